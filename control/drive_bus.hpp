@@ -1,0 +1,96 @@
+#pragma once
+// DriveBus: the cyclic telegram between the control kernel and the machine, as SERCOS carries
+// it. Every drive cycle (250 us) the master writes one MDT (master data telegram: a setpoint per
+// drive plus the digital outputs) and reads one AT (amplifier telegram: feedback per drive plus
+// the digital inputs). The control kernel knows the machine only through this and PathGuard.
+//
+// Units at this interface are machine units: linear axes mm, mm/s, N; rotary axes and spindles
+// degrees, deg/s, N m. Positions and velocities are load-side (spindle, not motor).
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vmt::control {
+
+/// What a drive's controller follows this cycle.
+enum class DriveMode : uint8_t {
+  kOff,       ///< no controller enable: the motor is torque-free, the axis coasts
+  kPosition,  ///< value = position command (mm | deg), cyclically updated by the master
+  kVelocity,  ///< value = velocity command (mm/s | deg/s); spindles ramp at their acceleration
+  kTorque,    ///< value = torque command (N | N m), limited by the drive's torque limit
+};
+
+/// Linear axes move in mm, rotary axes and spindles in degrees.
+enum class AxisKind : uint8_t { kLinear, kRotary };
+
+struct DriveSetpoint {
+  DriveMode mode = DriveMode::kOff;
+  double value = 0;
+  /// Drive parameter set (SERCOS S-0-0217); selects gains and limits from the machine YAML.
+  uint8_t parameter_set = 0;
+};
+
+/// Status bits of DriveFeedback::status.
+namespace drive_status {
+inline constexpr uint32_t kReady = 1u << 0;        ///< powered, no fault
+inline constexpr uint32_t kEnabled = 1u << 1;      ///< controller enable active
+inline constexpr uint32_t kInPosition = 1u << 2;   ///< |command - actual| < in-position window
+inline constexpr uint32_t kStandstill = 1u << 3;   ///< |velocity| < standstill window
+inline constexpr uint32_t kAtSpeed = 1u << 4;      ///< velocity mode: actual == command (ramp done)
+inline constexpr uint32_t kTorqueLimit = 1u << 5;  ///< output saturated at the torque limit
+inline constexpr uint32_t kFollowingError = 1u << 6;  ///< following error above its limit
+}  // namespace drive_status
+
+struct DriveFeedback {
+  double position = 0;  ///< encoder-quantised actual position (rotary: not wrapped)
+  double velocity = 0;
+  double torque = 0;    ///< motor torque referred to the load
+  double following_error = 0;  ///< position mode: command - actual
+  uint32_t status = 0;
+};
+
+/// One drive on the bus, as the machine YAML declares it.
+struct DriveInfo {
+  std::string name;  ///< the axis name of the manuals: X, Z, C, S1, S2, T, W
+  AxisKind kind = AxisKind::kLinear;
+};
+
+/// One digital signal of the machine's I/O map (valves out, switches in).
+struct IoInfo {
+  std::string name;  ///< e.g. QROTMODE (out), IROTMODE (in), as in the C-axis manual's PLC program
+  bool is_output = false;
+};
+
+/// Master data telegram: written by the control every drive cycle.
+struct MasterTelegram {
+  std::vector<DriveSetpoint> setpoints;  ///< one per drive, in DriveBus::Drives() order
+  std::vector<uint8_t> outputs;          ///< one per I/O point (inputs' entries are ignored)
+};
+
+/// Amplifier telegram: read by the control every drive cycle.
+struct AmplifierTelegram {
+  std::vector<DriveFeedback> feedback;  ///< one per drive
+  std::vector<uint8_t> inputs;          ///< one per I/O point (outputs read back as written)
+};
+
+class DriveBus {
+ public:
+  virtual ~DriveBus() = default;
+  virtual const std::vector<DriveInfo>& Drives() const = 0;
+  virtual const std::vector<IoInfo>& Io() const = 0;
+  /// Takes effect for the next drive cycle.
+  virtual void Write(const MasterTelegram& mdt) = 0;
+  /// The feedback of the last completed drive cycle.
+  virtual const AmplifierTelegram& Read() const = 0;
+};
+
+/// Index of a drive or I/O point by name, or -1.
+template <typename Info>
+int IndexOf(const std::vector<Info>& infos, const std::string& name) {
+  for (size_t i = 0; i < infos.size(); ++i)
+    if (infos[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+}  // namespace vmt::control

@@ -1,0 +1,46 @@
+#include "sim/backend/machine_backend.hpp"
+
+#include <stdexcept>
+
+#include "sim/backend/coupling_graph.hpp"
+
+namespace vmt::sim {
+
+std::vector<double> InitialJointPositions(const MachineModel& model, const InitialState& init) {
+  std::vector<double> q(model.joints.size(), 0.0);
+  std::vector<bool> known(model.joints.size(), false);
+  for (const auto& [name, value] : init.drive_positions) {
+    const int d = model.DriveIndex(name);
+    if (d < 0) throw std::invalid_argument("no drive named '" + name + "'");
+    const DriveParams& p = model.drives[d];
+    const double unit = p.info.kind == control::AxisKind::kLinear ? kMmPerM : kDegPerRad;
+    q[p.motor_joint] = p.ratio * value / unit;
+    known[p.motor_joint] = true;
+  }
+  std::vector<CouplingEdge> edges;
+  for (const GearCoupling& g : model.gears) edges.push_back({g.motor_joint, g.load_joint, g.ratio, 0});
+  for (const DogClutch& k : model.clutches) {
+    auto it = init.clutch_engaged.find(k.name);
+    if (it != init.clutch_engaged.end() && it->second)
+      edges.push_back({k.motor_joint, k.load_joint, k.ratio, 0});
+  }
+  for (const auto& [name, engaged] : init.clutch_engaged) {
+    bool found = false;
+    for (const DogClutch& k : model.clutches) found = found || k.name == name;
+    if (!found) throw std::invalid_argument("no clutch named '" + name + "'");
+  }
+  PropagateCouplings(edges, q, known);
+  return q;
+}
+
+void ReadInputs(const MachineModel& model, const std::vector<uint8_t>& outputs,
+                const std::vector<DogClutchLogic>& clutches, std::vector<uint8_t>& inputs) {
+  for (size_t i = 0; i < model.io.size(); ++i) inputs[i] = model.io[i].is_output ? outputs[i] : 0;
+  for (size_t k = 0; k < clutches.size(); ++k) {
+    const DogClutch& c = model.clutches[k];
+    inputs[c.sensor_engaged] = clutches[k].EngagedSwitch();
+    inputs[c.sensor_released] = clutches[k].ReleasedSwitch();
+  }
+}
+
+}  // namespace vmt::sim

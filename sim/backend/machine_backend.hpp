@@ -1,0 +1,43 @@
+#pragma once
+// A simulated machine behind the DriveBus: the physics (Bullet) and the kinematic (ideal) backend
+// implement this. The runner steps it at the drive tick and reads link poses for rendering and
+// collision checking.
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "control/drive_bus.hpp"
+#include "sim/backend/dog_clutch.hpp"
+#include "sim/model/machine_model.hpp"
+
+namespace vmt::sim {
+
+inline constexpr double kDriveTickS = 250e-6;  ///< SERCOS position loop and probe sampling
+
+/// The machine's state at t = 0.
+struct InitialState {
+  std::map<std::string, double> drive_positions;  ///< load side, machine units (mm | deg)
+  std::map<std::string, bool> clutch_engaged;     ///< by coupling name; default released
+};
+
+class MachineBackend : public control::DriveBus {
+ public:
+  /// Advance one drive tick (kDriveTickS).
+  virtual void Step() = 0;
+  virtual double time_s() const = 0;
+  /// Joint positions (m | rad), one per model joint: what the renderer and PathGuard pose.
+  virtual std::vector<double> JointPositions() const = 0;
+  virtual ClutchState Clutch(int index) const = 0;
+  virtual const MachineModel& model() const = 0;
+};
+
+/// Joint positions for an initial state: drive positions on their motor joints through their
+/// ratios, then gear and engaged-clutch partners. Throws std::invalid_argument on unknown names.
+std::vector<double> InitialJointPositions(const MachineModel& model, const InitialState& init);
+
+/// The digital inputs the machine shows: outputs read back, clutch end-position switches.
+void ReadInputs(const MachineModel& model, const std::vector<uint8_t>& outputs,
+                const std::vector<DogClutchLogic>& clutches, std::vector<uint8_t>& inputs);
+
+}  // namespace vmt::sim

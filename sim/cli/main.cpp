@@ -1,0 +1,131 @@
+// vmt: the command line. Every subcommand has --help; errors go to stderr with the file and
+// place of the fault; exit 0 = ok, 1 = the run or comparison failed, 2 = bad input.
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <iostream>
+
+#include "render/image.hpp"
+#include "render/image_compare.hpp"
+#include "sim/model/model_error.hpp"
+#include "sim/runner/runner.hpp"
+#include "sim/runner/scene_renderer.hpp"
+
+namespace {
+
+using namespace vmt;
+
+int Run(const std::string& scene_path, const std::string& backend, double until,
+        const std::string& out) {
+  sim::Scene scene = sim::LoadScene(scene_path);
+  sim::RunOptions options;
+  if (backend == "physics") options.backend = sim::BackendKind::kPhysics;
+  if (backend == "kinematic") options.backend = sim::BackendKind::kKinematic;
+  if (until > 0) options.until_s = until;
+  options.out_dir = out;
+  const sim::RunResult r = sim::RunScene(scene, options);
+  std::printf("%s: %.3f s simulated in %.3f s (%.1fx real time), trace digest %s\n",
+              scene.name.c_str(), r.simulated_s, r.wall_s,
+              r.wall_s > 0 ? r.simulated_s / r.wall_s : 0.0, r.trace_digest.c_str());
+  std::printf("output: %s/{trace.csv,events.jsonl,summary.json}", out.c_str());
+  for (const std::string& f : r.snapshot_files) std::printf(" %s", f.c_str());
+  const auto failed = std::count_if(r.expectations.begin(), r.expectations.end(),
+                                    [](const auto& e) { return !e.passed; });
+  std::printf("\nexpectations: %zu passed, %zu failed\n",
+              r.expectations.size() - static_cast<size_t>(failed), static_cast<size_t>(failed));
+  for (const std::string& f : r.failures) std::fprintf(stderr, "FAILED: %s\n", f.c_str());
+  return r.ok() ? 0 : 1;
+}
+
+int Snapshot(const std::string& scene_path, double at, const std::string& camera,
+             const std::string& out, int width, int height) {
+  sim::Scene scene = sim::LoadScene(scene_path);
+  const sim::NamedCamera* cam = scene.Camera(camera);
+  if (!cam) {
+    std::string names;
+    for (const auto& c : scene.cameras) names += " " + c.name;
+    throw sim::ModelError(scene_path, "cameras", "no camera '" + camera + "' (have:" + names + ")");
+  }
+  // Run the scene up to `at` without writing its own outputs, then picture the machine there.
+  sim::RunOptions options;
+  options.until_s = at;
+  options.snapshots = false;
+  const sim::RunResult r = sim::RunScene(scene, options);
+  sim::SceneRenderer renderer(*scene.model, scene.workpiece);
+  render::WritePng(out, renderer.Render(r.final_joint_positions, *cam, width, height));
+  std::printf("%s: %s at %.4f s -> %s\n", scene.name.c_str(), camera.c_str(), r.simulated_s,
+              out.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"vmt: a virtual machine tool (CNC kernel + simulated lathe)"};
+  app.require_subcommand(1);
+
+  std::string scene, backend, out = "out", camera = "iso", a, b, diff;
+  double until = 0, at = 0, tolerance_fraction = 0;
+  int width = 640, height = 480, channel_tolerance = 2;
+
+  CLI::App* run = app.add_subcommand("run", "Run a scene; writes trace.csv, events.jsonl, summary.json and snapshots");
+  run->add_option("scene", scene, "Scene file (YAML)")->required();
+  run->add_option("--backend", backend, "physics or kinematic (default: the scene's)")
+      ->check(CLI::IsMember({"physics", "kinematic"}));
+  run->add_option("--until", until, "Stop at this simulated time, seconds")->check(CLI::PositiveNumber);
+  run->add_option("--out", out, "Output folder")->capture_default_str();
+
+  CLI::App* snap = app.add_subcommand("snapshot", "Render the scene's machine at a time to a PNG");
+  snap->add_option("scene", scene, "Scene file (YAML)")->required();
+  snap->add_option("--at", at, "Simulated time, seconds")->required()->check(CLI::NonNegativeNumber);
+  snap->add_option("--camera", camera, "Camera name (model or scene)")->capture_default_str();
+  snap->add_option("--out", out, "PNG file to write")->required();
+  snap->add_option("--width", width, "Picture width")->check(CLI::Range(16, 4096))->capture_default_str();
+  snap->add_option("--height", height, "Picture height")->check(CLI::Range(16, 4096))->capture_default_str();
+
+  CLI::App* imgdiff = app.add_subcommand("imgdiff", "Compare two PNG pictures: exit 0 equal, 1 different, 2 bad input");
+  imgdiff->add_option("a", a, "First PNG")->required();
+  imgdiff->add_option("b", b, "Second PNG")->required();
+  imgdiff->add_option("--diff", diff, "Write a diff picture here when they differ");
+  imgdiff->add_option("--tolerance", channel_tolerance, "Per-channel tolerance 0..255")
+      ->check(CLI::Range(0, 255))->capture_default_str();
+  imgdiff->add_option("--allowed-fraction", tolerance_fraction, "Fraction of pixels allowed to differ")
+      ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+
+  try {
+    if (*run) return Run(scene, backend, until, out);
+    if (*snap) return Snapshot(scene, at, camera, out, width, height);
+    if (*imgdiff) {
+      const render::Image ia = render::ReadPng(a), ib = render::ReadPng(b);
+      render::CompareOptions opt;
+      opt.channel_tolerance = channel_tolerance;
+      opt.allowed_fraction = tolerance_fraction;
+      const render::CompareResult r = render::CompareImages(ia, ib, opt);
+      if (r.equal) {
+        std::printf("equal (%d pixels beyond tolerance %d)\n", r.differing_pixels, channel_tolerance);
+        return 0;
+      }
+      if (r.size_mismatch)
+        std::printf("different sizes: %dx%d vs %dx%d\n", ia.width, ia.height, ib.width, ib.height);
+      else
+        std::printf("different: %d pixels (%.4f%%) beyond tolerance %d, max channel delta %d\n",
+                    r.differing_pixels, 100 * r.differing_fraction, channel_tolerance,
+                    r.max_channel_delta);
+      if (!diff.empty() && !r.size_mismatch) {
+        render::WritePng(diff, r.diff);
+        std::printf("diff picture: %s\n", diff.c_str());
+      }
+      return 1;
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "vmt: error: %s\n", e.what());
+    return 2;
+  }
+  return 2;
+}

@@ -1,0 +1,89 @@
+#include "sim/kinematic/kinematic_backend.hpp"
+
+namespace vmt::sim {
+
+KinematicBackend::KinematicBackend(const MachineModel& model, const InitialState& init)
+    : model_(&model), drive_infos_(model.DriveInfos()) {
+  for (const DriveParams& p : model.drives) controllers_.emplace_back(p);
+  clutches_.resize(model.clutches.size());
+  clutch_offsets_.assign(model.clutches.size(), 0.0);
+  q_ = InitialJointPositions(model, init);
+  qd_.assign(q_.size(), 0.0);
+  for (size_t k = 0; k < model.clutches.size(); ++k) {
+    auto it = init.clutch_engaged.find(model.clutches[k].name);
+    if (it != init.clutch_engaged.end() && it->second) clutches_[k].state = ClutchState::kEngaged;
+  }
+  mdt_.setpoints.resize(model.drives.size());
+  mdt_.outputs.assign(model.io.size(), 0);
+  at_.feedback.resize(model.drives.size());
+  at_.inputs.assign(model.io.size(), 0);
+  UpdateFeedback();
+}
+
+void KinematicBackend::Write(const control::MasterTelegram& mdt) {
+  mdt_.setpoints = mdt.setpoints;
+  mdt_.setpoints.resize(model_->drives.size());
+  mdt_.outputs = mdt.outputs;
+  mdt_.outputs.resize(model_->io.size(), 0);
+}
+
+void KinematicBackend::Step() {
+  const double dt = kDriveTickS;
+  const std::vector<double> q_before = q_;
+
+  std::vector<CouplingEdge> edges;
+  for (const GearCoupling& g : model_->gears)
+    edges.push_back({g.motor_joint, g.load_joint, g.ratio, 0});
+  for (size_t k = 0; k < clutches_.size(); ++k)
+    if (clutches_[k].state == ClutchState::kEngaged) {
+      const DogClutch& c = model_->clutches[k];
+      edges.push_back({c.motor_joint, c.load_joint, c.ratio, clutch_offsets_[k]});
+    }
+
+  // Enabled drives lead their coupled group, first in YAML order; a second enabled drive on the
+  // same group follows (on the real machine it would fight: the PLC must switch enables).
+  std::vector<bool> known(q_.size(), false);
+  for (size_t d = 0; d < controllers_.size(); ++d) {
+    DriveController& ctrl = controllers_[d];
+    const DriveParams& p = model_->drives[d];
+    const control::DriveSetpoint sp = ToSi(p, mdt_.setpoints[d]);
+    const double pos = q_before[p.motor_joint] / p.ratio;
+    const double vel = qd_[p.motor_joint] / p.ratio;
+    double v_ref = ctrl.VelocityReference(sp, pos, vel, dt);
+    const bool leads = sp.mode == control::DriveMode::kPosition ||
+                       sp.mode == control::DriveMode::kVelocity;
+    if (!leads || known[p.motor_joint]) continue;
+    q_[p.motor_joint] = q_before[p.motor_joint] + p.ratio * v_ref * dt;
+    known[p.motor_joint] = true;
+    PropagateCouplings(edges, q_, known);
+  }
+  // Groups without an enabled drive stand still: an ideal machine has no inertia to coast on.
+  for (size_t j = 0; j < q_.size(); ++j)
+    if (!known[j]) q_[j] = q_before[j];
+
+  for (size_t j = 0; j < q_.size(); ++j) qd_[j] = (q_[j] - q_before[j]) / dt;
+
+  for (size_t k = 0; k < clutches_.size(); ++k) {
+    const DogClutch& c = model_->clutches[k];
+    const double phase = DogClutchLogic::PhaseError(c, q_[c.motor_joint], q_[c.load_joint]);
+    const double slip = qd_[c.load_joint] - qd_[c.motor_joint] / c.ratio;
+    const bool was_engaged = clutches_[k].state == ClutchState::kEngaged;
+    clutches_[k].Step(c, mdt_.outputs[c.valve_engage], mdt_.outputs[c.valve_release], phase,
+                      slip, dt);
+    if (!was_engaged && clutches_[k].state == ClutchState::kEngaged)
+      clutch_offsets_[k] = DogClutchLogic::MeshOffset(c, q_[c.motor_joint], q_[c.load_joint]);
+  }
+  ++ticks_;
+  UpdateFeedback();
+}
+
+void KinematicBackend::UpdateFeedback() {
+  for (size_t d = 0; d < controllers_.size(); ++d) {
+    const DriveParams& p = model_->drives[d];
+    at_.feedback[d] =
+        controllers_[d].Feedback(q_[p.motor_joint] / p.ratio, qd_[p.motor_joint] / p.ratio, 0);
+  }
+  ReadInputs(*model_, mdt_.outputs, clutches_, at_.inputs);
+}
+
+}  // namespace vmt::sim

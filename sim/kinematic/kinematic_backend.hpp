@@ -1,0 +1,43 @@
+#pragma once
+// The ideal machine: every enabled drive moves exactly at its own velocity reference (position
+// loop Kv, ramps, M19 profile of DriveController), so a position command is followed with the
+// first-order lag 1/Kv of a perfect velocity loop; gears and an engaged clutch tie joints
+// exactly. No masses, no torque. For fast studies, block search, and as the reference the
+// physics backend is checked against.
+
+#include "sim/backend/coupling_graph.hpp"
+#include "sim/backend/drive_controller.hpp"
+#include "sim/backend/machine_backend.hpp"
+
+namespace vmt::sim {
+
+class KinematicBackend : public MachineBackend {
+ public:
+  KinematicBackend(const MachineModel& model, const InitialState& init);
+
+  const std::vector<control::DriveInfo>& Drives() const override { return drive_infos_; }
+  const std::vector<control::IoInfo>& Io() const override { return model_->io; }
+  void Write(const control::MasterTelegram& mdt) override;
+  const control::AmplifierTelegram& Read() const override { return at_; }
+
+  void Step() override;
+  double time_s() const override { return ticks_ * kDriveTickS; }
+  std::vector<double> JointPositions() const override { return q_; }
+  ClutchState Clutch(int index) const override { return clutches_[index].state; }
+  const MachineModel& model() const override { return *model_; }
+
+ private:
+  void UpdateFeedback();
+
+  const MachineModel* model_;
+  std::vector<control::DriveInfo> drive_infos_;
+  std::vector<DriveController> controllers_;
+  std::vector<DogClutchLogic> clutches_;
+  std::vector<double> clutch_offsets_;
+  std::vector<double> q_, qd_;
+  control::MasterTelegram mdt_;
+  control::AmplifierTelegram at_;
+  int64_t ticks_ = 0;
+};
+
+}  // namespace vmt::sim

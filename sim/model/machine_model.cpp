@@ -1,0 +1,208 @@
+#include "sim/model/machine_model.hpp"
+
+#include <filesystem>
+
+#include "sim/model/model_error.hpp"
+#include "sim/model/urdf_loader.hpp"
+#include "sim/model/yaml_reader.hpp"
+
+namespace vmt::sim {
+namespace {
+
+constexpr double kRadPerDeg = 1.0 / kDegPerRad;
+
+// Machine units (mm | deg) -> SI (m | rad).
+double ToSi(control::AxisKind kind) {
+  return kind == control::AxisKind::kLinear ? 1.0 / kMmPerM : kRadPerDeg;
+}
+
+int RequireJoint(const MachineModel& m, const YamlNode& node) {
+  const int j = m.JointIndex(node.String());
+  if (j < 0) node.Fail("no joint '" + node.String() + "' in " + m.urdf_path);
+  return j;
+}
+
+int RequireIo(const MachineModel& m, const YamlNode& node, bool output) {
+  const int i = control::IndexOf(m.io, node.String());
+  if (i < 0) node.Fail("no I/O point '" + node.String() + "' in io:");
+  if (m.io[i].is_output != output)
+    node.Fail("'" + node.String() + "' must be an " + (output ? "output" : "input"));
+  return i;
+}
+
+DriveParams ReadDrive(const MachineModel& m, const YamlNode& d) {
+  d.AllowKeys({"name", "kind", "type", "joint", "ratio", "kv", "velocity_kp", "velocity_ti",
+               "torque_limit", "velocity_limit", "acceleration_limit", "encoder_resolution",
+               "in_position_window", "standstill_window", "following_error_limit",
+               "positioning_speed", "spec"});
+  DriveParams p;
+  p.info.name = d["name"].String();
+  const std::string kind = d["kind"].String();
+  if (kind == "linear") p.info.kind = control::AxisKind::kLinear;
+  else if (kind == "rotary") p.info.kind = control::AxisKind::kRotary;
+  else d["kind"].Fail("expected linear or rotary, got \"" + kind + "\"");
+  const std::string type = d.String("type", "servo");
+  if (type != "servo" && type != "spindle") d["type"].Fail("expected servo or spindle");
+  p.spindle = type == "spindle";
+  p.motor_joint = RequireJoint(m, d["joint"]);
+  const JointType jt = m.joints[p.motor_joint].type;
+  const bool joint_linear = jt == JointType::kPrismatic;
+  if (jt == JointType::kFixed || joint_linear != (p.info.kind == control::AxisKind::kLinear))
+    d["joint"].Fail("joint type does not match kind " + kind);
+
+  const double s = ToSi(p.info.kind);
+  auto positive = [&](const char* key) {
+    const double v = d[key].Double();
+    if (v <= 0) d[key].Fail("must be > 0");
+    return v;
+  };
+  p.ratio = d.Double("ratio", 1.0);
+  if (p.ratio == 0) d["ratio"].Fail("must not be 0");
+  p.kv_per_s = positive("kv");
+  p.velocity_kp = positive("velocity_kp") / s;  // N per (mm/s) -> N per (m/s)
+  p.velocity_ti_s = positive("velocity_ti");
+  p.torque_limit = positive("torque_limit");
+  p.velocity_limit = positive("velocity_limit") * s;
+  p.acceleration_limit = positive("acceleration_limit") * s;
+  p.encoder_resolution = positive("encoder_resolution") * s;
+  p.in_position_window = positive("in_position_window") * s;
+  p.standstill_window = positive("standstill_window") * s;
+  p.following_error_limit = positive("following_error_limit") * s;
+  p.positioning_speed = d.Double("positioning_speed", 360) * s;
+  if (d.Has("spec")) {
+    const YamlNode spec = d["spec"];
+    spec.AllowKeys({"settle_time", "overshoot"});
+    p.spec_settle_time_s = spec["settle_time"].Double();
+    p.spec_overshoot = spec["overshoot"].Double() * s;
+  }
+  return p;
+}
+
+}  // namespace
+
+std::vector<control::DriveInfo> MachineModel::DriveInfos() const {
+  std::vector<control::DriveInfo> infos;
+  for (const DriveParams& d : drives) infos.push_back(d.info);
+  return infos;
+}
+
+int MachineModel::LinkIndex(const std::string& n) const {
+  for (size_t i = 0; i < links.size(); ++i)
+    if (links[i].name == n) return static_cast<int>(i);
+  return -1;
+}
+int MachineModel::JointIndex(const std::string& n) const {
+  for (size_t i = 0; i < joints.size(); ++i)
+    if (joints[i].name == n) return static_cast<int>(i);
+  return -1;
+}
+int MachineModel::DriveIndex(const std::string& n) const {
+  for (size_t i = 0; i < drives.size(); ++i)
+    if (drives[i].info.name == n) return static_cast<int>(i);
+  return -1;
+}
+
+MachineModel LoadMachineModel(const std::string& machine_yaml_path) {
+  const YamlNode root = YamlNode::LoadFile(machine_yaml_path);
+  root.AllowKeys({"machine", "urdf", "io", "drives", "couplings", "cameras"});
+  MachineModel m;
+  m.yaml_path = machine_yaml_path;
+  m.name = root["machine"].String();
+  const YamlNode urdf = root["urdf"];
+  m.urdf_path =
+      (std::filesystem::path(machine_yaml_path).parent_path() / urdf.String()).string();
+  if (!std::filesystem::exists(m.urdf_path)) urdf.Fail("URDF file not found: " + m.urdf_path);
+  LoadUrdf(m.urdf_path, m);
+
+  if (root.Has("io")) {
+    const YamlNode io = root["io"];
+    for (size_t i = 0; i < io.size(); ++i) {
+      io[i].AllowKeys({"name", "dir"});
+      const std::string dir = io[i]["dir"].String();
+      if (dir != "in" && dir != "out") io[i]["dir"].Fail("expected in or out");
+      if (control::IndexOf(m.io, io[i]["name"].String()) >= 0) io[i]["name"].Fail("duplicate");
+      m.io.push_back({io[i]["name"].String(), dir == "out"});
+    }
+  }
+
+  const YamlNode drives = root["drives"];
+  for (size_t i = 0; i < drives.size(); ++i) {
+    DriveParams p = ReadDrive(m, drives[i]);
+    if (m.DriveIndex(p.info.name) >= 0) drives[i]["name"].Fail("duplicate drive name");
+    m.drives.push_back(std::move(p));
+  }
+
+  if (root.Has("couplings")) {
+    const YamlNode cs = root["couplings"];
+    for (size_t i = 0; i < cs.size(); ++i) {
+      const YamlNode c = cs[i];
+      const std::string type = c["type"].String();
+      if (type == "gear") {
+        c.AllowKeys({"name", "type", "motor", "load", "ratio"});
+        GearCoupling g{c["name"].String(), RequireJoint(m, c["motor"]),
+                       RequireJoint(m, c["load"]), c["ratio"].Double()};
+        if (g.ratio == 0) c["ratio"].Fail("must not be 0");
+        m.gears.push_back(g);
+      } else if (type == "dog_clutch") {
+        c.AllowKeys({"name", "type", "motor", "load", "ratio", "teeth", "phase_tolerance",
+                     "max_relative_speed", "engage_time", "release_time", "valve_engage",
+                     "valve_release", "sensor_engaged", "sensor_released"});
+        DogClutch k;
+        k.name = c["name"].String();
+        k.motor_joint = RequireJoint(m, c["motor"]);
+        k.load_joint = RequireJoint(m, c["load"]);
+        k.ratio = c["ratio"].Double();
+        if (k.ratio == 0) c["ratio"].Fail("must not be 0");
+        k.teeth = c["teeth"].Int();
+        if (k.teeth < 1) c["teeth"].Fail("must be >= 1");
+        k.phase_tolerance_rad = c["phase_tolerance"].Double() * kRadPerDeg;
+        k.max_relative_speed_rad_s = c["max_relative_speed"].Double() * kRadPerDeg;
+        k.engage_time_s = c["engage_time"].Double();
+        k.release_time_s = c["release_time"].Double();
+        k.valve_engage = RequireIo(m, c["valve_engage"], true);
+        k.valve_release = RequireIo(m, c["valve_release"], true);
+        k.sensor_engaged = RequireIo(m, c["sensor_engaged"], false);
+        k.sensor_released = RequireIo(m, c["sensor_released"], false);
+        m.clutches.push_back(k);
+      } else {
+        c["type"].Fail("expected gear or dog_clutch, got \"" + type + "\"");
+      }
+    }
+  }
+
+  if (root.Has("cameras")) {
+    const YamlNode cams = root["cameras"];
+    for (const std::string& name : cams.Keys()) {
+      const YamlNode c = cams[name];
+      c.AllowKeys({"eye", "target", "up", "fov"});
+      NamedCamera cam;
+      cam.name = name;
+      const auto eye = c["eye"].Doubles(3), target = c["target"].Doubles(3);
+      cam.eye_m = Eigen::Vector3d(eye[0], eye[1], eye[2]) / kMmPerM;
+      cam.target_m = Eigen::Vector3d(target[0], target[1], target[2]) / kMmPerM;
+      if (c.Has("up")) {
+        const auto up = c["up"].Doubles(3);
+        cam.up = Eigen::Vector3d(up[0], up[1], up[2]);
+      }
+      cam.fov_y_deg = c.Double("fov", 40);
+      m.cameras.push_back(cam);
+    }
+  }
+  return m;
+}
+
+std::vector<Eigen::Isometry3d> LinkPoses(const MachineModel& model, const std::vector<double>& q) {
+  std::vector<Eigen::Isometry3d> X_W(model.links.size(), Eigen::Isometry3d::Identity());
+  for (size_t j = 0; j < model.joints.size(); ++j) {
+    const Joint& joint = model.joints[j];
+    Eigen::Isometry3d X_JointChild = Eigen::Isometry3d::Identity();
+    if (joint.type == JointType::kPrismatic)
+      X_JointChild.translation() = joint.axis * q[j];
+    else if (joint.type != JointType::kFixed)
+      X_JointChild.linear() = Eigen::AngleAxisd(q[j], joint.axis).toRotationMatrix();
+    X_W[joint.child_link] = X_W[joint.parent_link] * joint.X_ParentJoint * X_JointChild;
+  }
+  return X_W;
+}
+
+}  // namespace vmt::sim

@@ -1,0 +1,141 @@
+#include "sim/model/urdf_loader.hpp"
+
+#include <console_bridge/console.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "sim/model/mesh_loader.hpp"
+#include "sim/model/model_error.hpp"
+
+namespace vmt::sim {
+namespace {
+
+// urdfdom reports its parse errors through console_bridge; collect them for our message
+// instead of letting them go to stderr out of context.
+class CollectingHandler : public console_bridge::OutputHandler {
+ public:
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_WARN) messages += (messages.empty() ? "" : "; ") + text;
+  }
+  std::string messages;
+};
+
+Eigen::Isometry3d ToIsometry(const urdf::Pose& pose) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
+  X.linear() = Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y,
+                                  pose.rotation.z)
+                   .normalized()
+                   .toRotationMatrix();
+  return X;
+}
+
+Visual ToVisual(const std::string& urdf_path, const std::string& where,
+                const urdf::GeometrySharedPtr& geometry, const urdf::Pose& origin,
+                const urdf::MaterialSharedPtr& material, MeshCache& meshes) {
+  Visual v;
+  v.X_LinkVisual = ToIsometry(origin);
+  if (!geometry) throw ModelError(urdf_path, where, "missing <geometry>");
+  if (geometry->type != urdf::Geometry::MESH)
+    throw ModelError(urdf_path, where, "only <mesh> geometry is supported");
+  const auto* mesh = static_cast<const urdf::Mesh*>(geometry.get());
+  v.mesh_file = mesh->filename;
+  const std::filesystem::path full =
+      std::filesystem::path(urdf_path).parent_path() / mesh->filename;
+  const Eigen::Vector3d scale(mesh->scale.x, mesh->scale.y, mesh->scale.z);
+  try {
+    v.mesh = meshes.Load(full.string(), scale);
+  } catch (const std::exception& e) {
+    throw ModelError(urdf_path, where, e.what());
+  }
+  if (material)
+    v.colour = {static_cast<float>(material->color.r), static_cast<float>(material->color.g),
+                static_cast<float>(material->color.b), static_cast<float>(material->color.a)};
+  return v;
+}
+
+}  // namespace
+
+void LoadUrdf(const std::string& urdf_path, MachineModel& model) {
+  std::ifstream in(urdf_path);
+  if (!in) throw ModelError(urdf_path, "", "cannot open URDF file");
+  std::stringstream text;
+  text << in.rdbuf();
+
+  CollectingHandler handler;
+  console_bridge::useOutputHandler(&handler);
+  urdf::ModelInterfaceSharedPtr urdf = urdf::parseURDF(text.str());
+  console_bridge::restorePreviousOutputHandler();
+  if (!urdf)
+    throw ModelError(urdf_path, "<robot>",
+                     "invalid URDF" + (handler.messages.empty() ? "" : ": " + handler.messages));
+
+  MeshCache meshes;
+  model.links.clear();
+  model.joints.clear();
+  std::map<std::string, int> link_index;
+
+  // Breadth-first from the root: parents always precede children.
+  std::vector<urdf::LinkConstSharedPtr> queue{urdf->getRoot()};
+  for (size_t head = 0; head < queue.size(); ++head) {
+    const urdf::LinkConstSharedPtr& ul = queue[head];
+    Link link;
+    link.name = ul->name;
+    const std::string where = "<link name=\"" + ul->name + "\">";
+    if (ul->inertial) {
+      link.mass_kg = ul->inertial->mass;
+      link.com_m = ToIsometry(ul->inertial->origin).translation();
+      link.inertia_kgm2 = {ul->inertial->ixx, ul->inertial->iyy, ul->inertial->izz};
+      if (link.mass_kg < 0 || link.inertia_kgm2.minCoeff() < 0)
+        throw ModelError(urdf_path, where, "negative mass or inertia");
+    }
+    for (const auto& uv : ul->visual_array)
+      link.visuals.push_back(
+          ToVisual(urdf_path, where + " <visual>", uv->geometry, uv->origin, uv->material, meshes));
+    for (const auto& uc : ul->collision_array)
+      link.collisions.push_back(
+          ToVisual(urdf_path, where + " <collision>", uc->geometry, uc->origin, nullptr, meshes));
+
+    const int index = static_cast<int>(model.links.size());
+    link_index[ul->name] = index;
+    if (ul->parent_joint) {
+      const urdf::Joint& uj = *ul->parent_joint;
+      const std::string jwhere = "<joint name=\"" + uj.name + "\">";
+      Joint joint;
+      joint.name = uj.name;
+      switch (uj.type) {
+        case urdf::Joint::FIXED: joint.type = JointType::kFixed; break;
+        case urdf::Joint::PRISMATIC: joint.type = JointType::kPrismatic; break;
+        case urdf::Joint::REVOLUTE: joint.type = JointType::kRevolute; break;
+        case urdf::Joint::CONTINUOUS: joint.type = JointType::kContinuous; break;
+        default: throw ModelError(urdf_path, jwhere, "joint type not supported (fixed, prismatic, revolute, continuous)");
+      }
+      joint.parent_link = link_index.at(uj.parent_link_name);
+      joint.child_link = index;
+      joint.X_ParentJoint = ToIsometry(uj.parent_to_joint_origin_transform);
+      joint.axis = Eigen::Vector3d(uj.axis.x, uj.axis.y, uj.axis.z);
+      if (joint.type != JointType::kFixed) {
+        if (joint.axis.norm() < 1e-9) throw ModelError(urdf_path, jwhere, "zero <axis>");
+        joint.axis.normalize();
+      }
+      if (uj.limits) {
+        joint.lower = uj.limits->lower;
+        joint.upper = uj.limits->upper;
+      }
+      if (uj.dynamics) {
+        joint.damping = uj.dynamics->damping;
+        joint.friction = uj.dynamics->friction;
+      }
+      link.parent_joint = static_cast<int>(model.joints.size());
+      model.joints.push_back(joint);
+    }
+    model.links.push_back(std::move(link));
+    for (const auto& child : ul->child_links) queue.push_back(child);
+  }
+}
+
+}  // namespace vmt::sim

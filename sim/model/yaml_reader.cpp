@@ -1,0 +1,127 @@
+#include "sim/model/yaml_reader.hpp"
+
+#include <cmath>
+#include <fstream>
+
+#include "sim/model/model_error.hpp"
+
+namespace vmt::sim {
+
+YamlNode YamlNode::LoadFile(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw ModelError(file, "", "cannot open file");
+  try {
+    return YamlNode(YAML::Load(in), file, "");
+  } catch (const YAML::Exception& e) {
+    throw ModelError(file + ":" + std::to_string(e.mark.line + 1) + ":" +
+                         std::to_string(e.mark.column + 1),
+                     "", "YAML syntax error: " + e.msg);
+  }
+}
+
+void YamlNode::Fail(const std::string& message) const {
+  std::string where = file_;
+  const YAML::Mark mark = node_.Mark();
+  if (mark.line >= 0)
+    where += ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1);
+  throw ModelError(where, path_.empty() ? "(top level)" : path_, message);
+}
+
+bool YamlNode::Has(const std::string& key) const {
+  return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull();
+}
+
+YamlNode YamlNode::operator[](const std::string& key) const {
+  if (!node_.IsMap()) Fail("expected a map with key '" + key + "'");
+  const YAML::Node child = node_[key];
+  const std::string child_path = path_.empty() ? key : path_ + "." + key;
+  if (!child.IsDefined() || child.IsNull()) Fail("missing required key '" + key + "'");
+  return YamlNode(child, file_, child_path);
+}
+
+YamlNode YamlNode::operator[](size_t index) const {
+  if (!node_.IsSequence()) Fail("expected a list");
+  if (index >= node_.size()) Fail("index " + std::to_string(index) + " out of range");
+  return YamlNode(node_[index], file_, path_ + "[" + std::to_string(index) + "]");
+}
+
+size_t YamlNode::size() const {
+  if (!node_.IsSequence()) Fail("expected a list");
+  return node_.size();
+}
+
+std::vector<std::string> YamlNode::Keys() const {
+  if (!node_.IsMap()) Fail("expected a map");
+  std::vector<std::string> keys;
+  for (const auto& kv : node_) keys.push_back(kv.first.as<std::string>());
+  return keys;
+}
+
+void YamlNode::AllowKeys(std::initializer_list<const char*> allowed) const {
+  for (const std::string& key : Keys()) {
+    bool ok = false;
+    for (const char* a : allowed) ok = ok || key == a;
+    if (ok) continue;
+    std::string list;
+    for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
+    YamlNode(node_[key], file_, path_.empty() ? key : path_ + "." + key)
+        .Fail("unknown key '" + key + "' (expected one of: " + list + ")");
+  }
+}
+
+double YamlNode::Double() const {
+  if (!node_.IsScalar()) Fail("expected a number");
+  try {
+    const double v = node_.as<double>();
+    if (!std::isfinite(v)) Fail("expected a finite number, got \"" + node_.Scalar() + "\"");
+    return v;
+  } catch (const YAML::Exception&) {
+    Fail("expected a number, got \"" + node_.Scalar() + "\"");
+  }
+}
+
+int YamlNode::Int() const {
+  if (!node_.IsScalar()) Fail("expected an integer");
+  try {
+    return node_.as<int>();
+  } catch (const YAML::Exception&) {
+    Fail("expected an integer, got \"" + node_.Scalar() + "\"");
+  }
+}
+
+bool YamlNode::Bool() const {
+  if (!node_.IsScalar()) Fail("expected true or false");
+  try {
+    return node_.as<bool>();
+  } catch (const YAML::Exception&) {
+    Fail("expected true or false, got \"" + node_.Scalar() + "\"");
+  }
+}
+
+std::string YamlNode::String() const {
+  if (!node_.IsScalar()) Fail("expected a string");
+  return node_.Scalar();
+}
+
+double YamlNode::Double(const std::string& key, double fallback) const {
+  return Has(key) ? (*this)[key].Double() : fallback;
+}
+int YamlNode::Int(const std::string& key, int fallback) const {
+  return Has(key) ? (*this)[key].Int() : fallback;
+}
+bool YamlNode::Bool(const std::string& key, bool fallback) const {
+  return Has(key) ? (*this)[key].Bool() : fallback;
+}
+std::string YamlNode::String(const std::string& key, const std::string& fallback) const {
+  return Has(key) ? (*this)[key].String() : fallback;
+}
+
+std::vector<double> YamlNode::Doubles(size_t n) const {
+  if (!node_.IsSequence() || node_.size() != n)
+    Fail("expected a list of " + std::to_string(n) + " numbers");
+  std::vector<double> out;
+  for (size_t i = 0; i < n; ++i) out.push_back((*this)[i].Double());
+  return out;
+}
+
+}  // namespace vmt::sim

@@ -1,0 +1,133 @@
+#include "sim/runner/drive_program.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vmt::sim {
+
+using control::DriveMode;
+
+double TrapezoidProfile::Duration() const {
+  const double d = std::abs(end - start);
+  if (d == 0) return 0;
+  if (d < speed * speed / accel) return 2 * std::sqrt(d / accel);
+  return d / speed + speed / accel;
+}
+
+double TrapezoidProfile::At(double t_s) const {
+  const double d = std::abs(end - start);
+  const double sign = end >= start ? 1 : -1;
+  const double t = t_s - t0_s;
+  const double total = Duration();
+  if (t <= 0) return start;
+  if (t >= total) return end;
+  const double peak = std::min(speed, std::sqrt(d * accel));
+  const double t_acc = peak / accel;
+  double s;
+  if (t < t_acc) s = 0.5 * accel * t * t;
+  else if (t < total - t_acc) s = 0.5 * peak * t_acc + peak * (t - t_acc);
+  else s = d - 0.5 * accel * (total - t) * (total - t);
+  return start + sign * s;
+}
+
+bool Holds(const Condition& c, const control::AmplifierTelegram& at,
+           const std::vector<ClutchState>& clutches) {
+  using namespace control::drive_status;
+  switch (c.kind) {
+    case Condition::Kind::kInput: return (at.inputs[c.index] != 0) == c.value;
+    case Condition::Kind::kInPosition: return ((at.feedback[c.index].status & kInPosition) != 0) == c.value;
+    case Condition::Kind::kAtSpeed: return ((at.feedback[c.index].status & kAtSpeed) != 0) == c.value;
+    case Condition::Kind::kStandstill: return ((at.feedback[c.index].status & kStandstill) != 0) == c.value;
+    case Condition::Kind::kClutch: return clutches[c.index] == c.clutch;
+  }
+  return false;
+}
+
+DriveProgram::DriveProgram(const Scene& scene, const control::AmplifierTelegram& feedback)
+    : scene_(&scene) {
+  const MachineModel& m = *scene.model;
+  setpoints_.resize(m.drives.size());
+  profiles_.resize(m.drives.size());
+  profiling_.assign(m.drives.size(), false);
+  outputs_.assign(m.io.size(), 0);
+  for (size_t d = 0; d < m.drives.size(); ++d) {
+    if (m.drives[d].spindle) setpoints_[d] = {DriveMode::kVelocity, 0, 0};
+    else setpoints_[d] = {DriveMode::kPosition, feedback.feedback[d].position, 0};
+  }
+}
+
+bool DriveProgram::Execute(const TimelineStep& step, double t_s,
+                           const control::AmplifierTelegram& at,
+                           const std::vector<ClutchState>& clutches,
+                           std::vector<ProgramEvent>& events) {
+  const MachineModel& m = *scene_->model;
+  using Kind = TimelineStep::Kind;
+  switch (step.kind) {
+    case Kind::kMove: {
+      const DriveParams& p = m.drives[step.drive];
+      const double unit = p.info.kind == control::AxisKind::kLinear ? kMmPerM : kDegPerRad;
+      // Start where the command is, or where the axis is if it was not position controlled.
+      const double from = setpoints_[step.drive].mode == DriveMode::kPosition
+                              ? setpoints_[step.drive].value
+                              : at.feedback[step.drive].position;
+      profiles_[step.drive] = {from, step.target, std::min(step.feed, p.velocity_limit * unit),
+                               p.acceleration_limit * unit, t_s};
+      profiling_[step.drive] = true;
+      setpoints_[step.drive] = {DriveMode::kPosition, from, 0};
+      return true;
+    }
+    case Kind::kSpeed:
+      profiling_[step.drive] = false;
+      setpoints_[step.drive] = {DriveMode::kVelocity, step.target, 0};
+      return true;
+    case Kind::kOrient:
+      profiling_[step.drive] = false;
+      setpoints_[step.drive] = {DriveMode::kPosition, step.target, 0};
+      return true;
+    case Kind::kOff:
+      profiling_[step.drive] = false;
+      setpoints_[step.drive] = {DriveMode::kOff, 0, 0};
+      return true;
+    case Kind::kOutput:
+      outputs_[step.io] = step.level;
+      return true;
+    case Kind::kWait:
+      return t_s - step_since_s_ >= step.wait_s - 1e-9;
+    case Kind::kWaitUntil: {
+      // "In position" means the move is done, not that the axis has yet to start.
+      const bool moving = step.until.kind == Condition::Kind::kInPosition &&
+                          profiling_[step.until.index] &&
+                          t_s < profiles_[step.until.index].t0_s + profiles_[step.until.index].Duration();
+      if (!moving && Holds(step.until, at, clutches)) return true;
+      if (t_s - step_since_s_ >= step.timeout_s) {
+        failures_.push_back(step.text + " timed out after " + std::to_string(step.timeout_s) + " s");
+        events.push_back({t_s, "timeout", step.text});
+        return true;  // go on: the rest of the run is still worth its trace
+      }
+      return false;
+    }
+  }
+  return true;
+}
+
+void DriveProgram::Tick(double t_s, const control::AmplifierTelegram& at,
+                        const std::vector<ClutchState>& clutches, control::MasterTelegram& mdt,
+                        std::vector<ProgramEvent>& events) {
+  while (next_ < scene_->timeline.size()) {
+    const TimelineStep& step = scene_->timeline[next_];
+    if (t_s < step.not_before_s - 1e-9) break;
+    if (step_since_s_ < 0) {
+      step_since_s_ = t_s;
+      events.push_back({t_s, "step", step.text});
+    }
+    if (!Execute(step, t_s, at, clutches, events)) break;
+    ++next_;
+    step_since_s_ = -1;
+  }
+  for (size_t d = 0; d < setpoints_.size(); ++d)
+    if (profiling_[d]) setpoints_[d].value = profiles_[d].At(t_s);
+  mdt.setpoints = setpoints_;
+  mdt.outputs = outputs_;
+}
+
+}  // namespace vmt::sim

@@ -1,0 +1,60 @@
+#pragma once
+// The drive-level test program: until the NC kernel drives the machine, a scene's timeline
+// commands the drives directly (move an axis along a trapezoidal profile, run a spindle, orient
+// it, switch a controller enable off, set a valve, wait for a time or a signal).
+
+#include <string>
+#include <vector>
+
+#include "control/drive_bus.hpp"
+#include "sim/scene/scene.hpp"
+
+namespace vmt::sim {
+
+struct ProgramEvent {
+  double t_s;
+  std::string kind;  ///< step | step_done | timeout
+  std::string text;
+};
+
+/// A point-to-point profile: trapezoidal velocity, acceleration-limited.
+struct TrapezoidProfile {
+  double start = 0, end = 0, speed = 0, accel = 0, t0_s = 0;
+  double Duration() const;
+  double At(double t_s) const;
+};
+
+class DriveProgram {
+ public:
+  /// `feedback` gives the state at t = 0: servos hold their position, spindles stand at 0.
+  DriveProgram(const Scene& scene, const control::AmplifierTelegram& feedback);
+
+  /// One drive tick at time t: advances the timeline on the feedback of the last tick and fills
+  /// the MDT to write. Events are appended to `events`.
+  void Tick(double t_s, const control::AmplifierTelegram& at,
+            const std::vector<ClutchState>& clutches, control::MasterTelegram& mdt,
+            std::vector<ProgramEvent>& events);
+
+  bool finished() const { return next_ >= scene_->timeline.size(); }
+  /// Steps that did not complete (wait_until timeouts), as messages.
+  const std::vector<std::string>& failures() const { return failures_; }
+
+ private:
+  bool Execute(const TimelineStep& step, double t_s, const control::AmplifierTelegram& at,
+               const std::vector<ClutchState>& clutches, std::vector<ProgramEvent>& events);
+
+  const Scene* scene_;
+  std::vector<control::DriveSetpoint> setpoints_;
+  std::vector<TrapezoidProfile> profiles_;
+  std::vector<bool> profiling_;
+  std::vector<uint8_t> outputs_;
+  size_t next_ = 0;
+  double step_since_s_ = -1;  ///< when the current blocking step began
+  std::vector<std::string> failures_;
+};
+
+/// Evaluates a condition on the machine's feedback.
+bool Holds(const Condition& c, const control::AmplifierTelegram& at,
+           const std::vector<ClutchState>& clutches);
+
+}  // namespace vmt::sim

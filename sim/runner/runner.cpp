@@ -1,0 +1,227 @@
+#include "sim/runner/runner.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "render/image.hpp"
+#include "sim/runner/drive_program.hpp"
+#include "sim/runner/scene_renderer.hpp"
+
+namespace vmt::sim {
+namespace {
+
+// Fixed formatting: the trace bytes, and so the digest, depend only on the simulation.
+void Append(std::string& row, double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, ",%.6f", v == 0 ? 0.0 : v);  // no "-0.000000"
+  row += buf;
+}
+
+class Fnv1a64 {
+ public:
+  void Add(const std::string& s) {
+    for (unsigned char c : s) hash_ = (hash_ ^ c) * 0x100000001b3ull;
+  }
+  std::string Hex() const {
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(hash_));
+    return buf;
+  }
+
+ private:
+  uint64_t hash_ = 0xcbf29ce484222325ull;
+};
+
+std::string TraceHeader(const MachineModel& m) {
+  std::string h = "t";
+  for (const DriveParams& d : m.drives) {
+    const std::string& n = d.info.name;
+    h += "," + n + ".cmd," + n + ".pos," + n + ".vel";
+    if (d.spindle || d.info.kind == control::AxisKind::kRotary) h += "," + n + ".rpm";
+  }
+  for (const DogClutch& k : m.clutches) h += "," + k.name + ".state";
+  return h + "\n";
+}
+
+double Measured(const Expectation& e, const control::AmplifierTelegram& at,
+                const std::vector<ClutchState>& clutches) {
+  using Q = Expectation::Quantity;
+  switch (e.quantity) {
+    case Q::kPosition: return at.feedback[e.index].position;
+    case Q::kVelocity: return at.feedback[e.index].velocity;
+    case Q::kRpm: return at.feedback[e.index].velocity / 6.0;
+    case Q::kFollowingError: return at.feedback[e.index].following_error;
+    case Q::kInput: return at.inputs[e.index];
+    case Q::kClutch: return static_cast<double>(clutches[e.index]);
+  }
+  return 0;
+}
+
+ExpectationResult Check(const Expectation& e, const control::AmplifierTelegram& at,
+                        const std::vector<ClutchState>& clutches) {
+  ExpectationResult r{e.text, false, ""};
+  const double got = Measured(e, at, clutches);
+  if (e.quantity == Expectation::Quantity::kClutch) {
+    r.passed = clutches[e.index] == e.clutch;
+    r.detail = std::string("got ") + ToString(clutches[e.index]);
+  } else {
+    r.passed = std::abs(got - e.value) <= e.tolerance;
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "got %.6f", got);
+    r.detail = buf;
+  }
+  return r;
+}
+
+}  // namespace
+
+RunResult RunScene(const Scene& scene, const RunOptions& options) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  const MachineModel& m = *scene.model;
+  std::unique_ptr<MachineBackend> backend =
+      MakeBackend(options.backend.value_or(scene.backend), m, scene.initial);
+  DriveProgram program(scene, backend->Read());
+
+  const double duration = options.until_s.value_or(scene.duration_s);
+  const int64_t last_tick = std::llround(duration / kDriveTickS);
+  const int64_t trace_every = std::max<int64_t>(1, std::llround(scene.trace_period_s / kDriveTickS));
+  const bool writing = !options.out_dir.empty();
+
+  std::ofstream trace_file, events_file;
+  if (writing) {
+    std::filesystem::create_directories(options.out_dir);
+    trace_file.open(options.out_dir + "/trace.csv", std::ios::binary);
+    events_file.open(options.out_dir + "/events.jsonl", std::ios::binary);
+    if (!trace_file || !events_file)
+      throw std::runtime_error("cannot write to output folder " + options.out_dir);
+  }
+  Fnv1a64 digest;
+  auto emit_trace = [&](const std::string& row) {
+    digest.Add(row);
+    if (writing) trace_file << row;
+  };
+  auto emit_event = [&](nlohmann::ordered_json event) {
+    // Times on the tick grid, without binary noise (3.4995, not 3.4995000000000003).
+    event["t"] = std::round(event["t"].get<double>() * 1e6) / 1e6;
+    if (writing) events_file << event.dump() << '\n';
+  };
+  emit_trace(TraceHeader(m));
+
+  RunResult result;
+  std::unique_ptr<SceneRenderer> renderer;
+  std::vector<bool> snapped(scene.snapshots.size(), false);
+  std::vector<bool> checked(scene.expectations.size(), false);
+  std::vector<ExpectationResult> checks(scene.expectations.size());
+  std::vector<ClutchState> clutches(m.clutches.size());
+  std::vector<ClutchState> last_clutches;
+  std::vector<uint8_t> last_inputs;
+  control::MasterTelegram mdt;
+  std::vector<ProgramEvent> events;
+
+  for (int64_t tick = 0;; ++tick) {
+    const double t = tick * kDriveTickS;
+    const control::AmplifierTelegram& at = backend->Read();
+    for (size_t k = 0; k < clutches.size(); ++k) clutches[k] = backend->Clutch(static_cast<int>(k));
+
+    events.clear();
+    program.Tick(t, at, clutches, mdt, events);
+    for (const ProgramEvent& e : events) emit_event({{"t", e.t_s}, {"event", e.kind}, {"text", e.text}});
+    for (size_t k = 0; k < clutches.size(); ++k)
+      if (last_clutches.empty() || clutches[k] != last_clutches[k])
+        emit_event({{"t", t}, {"event", "clutch"}, {"name", m.clutches[k].name},
+                    {"state", ToString(clutches[k])}});
+    for (size_t i = 0; i < at.inputs.size(); ++i)
+      if (!m.io[i].is_output && (last_inputs.empty() || at.inputs[i] != last_inputs[i]))
+        emit_event({{"t", t}, {"event", "input"}, {"name", m.io[i].name}, {"value", at.inputs[i]}});
+    last_clutches = clutches;
+    last_inputs = at.inputs;
+
+    if (tick % trace_every == 0 || tick == last_tick) {
+      std::string row;
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.6f", t);
+      row = buf;
+      for (size_t d = 0; d < m.drives.size(); ++d) {
+        const control::DriveFeedback& fb = at.feedback[d];
+        Append(row, mdt.setpoints[d].mode == control::DriveMode::kOff ? 0.0 : mdt.setpoints[d].value);
+        Append(row, fb.position);
+        Append(row, fb.velocity);
+        if (m.drives[d].spindle || m.drives[d].info.kind == control::AxisKind::kRotary)
+          Append(row, fb.velocity / 6.0);
+      }
+      for (ClutchState c : clutches) Append(row, static_cast<int>(c));
+      emit_trace(row + "\n");
+    }
+
+    for (size_t i = 0; i < scene.expectations.size(); ++i) {
+      const Expectation& e = scene.expectations[i];
+      const bool due = e.at_s < 0 ? tick == last_tick : t >= e.at_s - 1e-9;
+      if (checked[i] || !due) continue;
+      checked[i] = true;
+      checks[i] = Check(e, at, clutches);
+      emit_event({{"t", t}, {"event", "expectation"}, {"text", e.text},
+                  {"passed", checks[i].passed}, {"detail", checks[i].detail}});
+    }
+
+    for (size_t i = 0; i < scene.snapshots.size(); ++i) {
+      const SnapshotSpec& s = scene.snapshots[i];
+      if (snapped[i] || t < s.at_s - 1e-9 || !options.snapshots) continue;
+      snapped[i] = true;
+      if (!renderer) renderer = std::make_unique<SceneRenderer>(m, scene.workpiece);
+      const render::Image image =
+          renderer->Render(backend->JointPositions(), *scene.Camera(s.camera), s.width, s.height);
+      if (writing) {
+        const std::string path = options.out_dir + "/" + s.file;
+        render::WritePng(path, image);
+        result.snapshot_files.push_back(path);
+        emit_event({{"t", t}, {"event", "snapshot"}, {"camera", s.camera}, {"file", s.file}});
+      }
+    }
+
+    if (tick == last_tick) break;
+    backend->Write(mdt);
+    backend->Step();
+  }
+
+  result.simulated_s = last_tick * kDriveTickS;
+  result.final_joint_positions = backend->JointPositions();
+  result.trace_digest = digest.Hex();
+  for (size_t i = 0; i < checks.size(); ++i) {
+    if (!checked[i]) {
+      checks[i] = {scene.expectations[i].text, false, "not reached: the run ended first"};
+    }
+    if (!checks[i].passed) result.failures.push_back(checks[i].text + " (" + checks[i].detail + ")");
+  }
+  for (const std::string& f : program.failures()) result.failures.push_back(f);
+  result.expectations = checks;
+  result.wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+
+  if (writing) {
+    nlohmann::ordered_json summary;
+    summary["scene"] = scene.name;
+    summary["backend"] = options.backend.value_or(scene.backend) == BackendKind::kPhysics ? "physics" : "kinematic";
+    summary["simulated_time_s"] = result.simulated_s;
+    summary["wall_time_s"] = result.wall_s;
+    summary["real_time_factor"] = result.wall_s > 0 ? result.simulated_s / result.wall_s : 0.0;
+    summary["trace_digest"] = result.trace_digest;
+    summary["expectations_passed"] = result.expectations.size() -
+        std::count_if(checks.begin(), checks.end(), [](const auto& c) { return !c.passed; });
+    summary["expectations_failed"] =
+        std::count_if(checks.begin(), checks.end(), [](const auto& c) { return !c.passed; });
+    auto& list = summary["expectations"] = nlohmann::ordered_json::array();
+    for (const ExpectationResult& c : checks)
+      list.push_back({{"text", c.text}, {"passed", c.passed}, {"detail", c.detail}});
+    summary["failures"] = result.failures;
+    summary["snapshots"] = result.snapshot_files;
+    std::ofstream(options.out_dir + "/summary.json") << summary.dump(2) << '\n';
+  }
+  return result;
+}
+
+}  // namespace vmt::sim

@@ -1,0 +1,87 @@
+#pragma once
+// A scene (format v1, docs/scene-format.md): a machine model, a workpiece, the initial state, a
+// drive-level timeline of operator/test actions, expectations and snapshots. Scenes are the
+// demos, the tests and the benchmark inputs at once.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sim/backend/machine_backend.hpp"
+#include "sim/model/machine_model.hpp"
+
+namespace vmt::sim {
+
+enum class BackendKind { kPhysics, kKinematic };
+
+struct Workpiece {
+  bool present = false;
+  double diameter_m = 0, length_m = 0;
+  double z_m = 0;  ///< where its left face sits on the spindle axis (spindle link frame)
+  render::Rgba colour{0.78f, 0.79f, 0.80f, 1.0f};
+  std::string link = "spindle";
+};
+
+/// What a wait_until step or an expectation looks at.
+struct Condition {
+  enum class Kind { kInput, kInPosition, kAtSpeed, kStandstill, kClutch } kind = Kind::kInput;
+  int index = -1;      ///< I/O point, drive or clutch
+  bool value = true;   ///< input level or status bit wanted
+  ClutchState clutch = ClutchState::kEngaged;
+};
+
+struct TimelineStep {
+  enum class Kind { kMove, kSpeed, kOrient, kOff, kOutput, kWait, kWaitUntil } kind;
+  double not_before_s = 0;  ///< `at:`; 0 = as soon as the previous step is done
+  int drive = -1;
+  int io = -1;
+  double target = 0;     ///< move: position (mm|deg); speed: deg/s or mm/s; orient: deg
+  double feed = 0;       ///< move: mm/s | deg/s
+  bool level = false;    ///< output value
+  double wait_s = 0;
+  Condition until;
+  double timeout_s = 10;
+  std::string text;      ///< "timeline[3]: move Z to 250" for events and messages
+};
+
+struct Expectation {
+  enum class Quantity { kPosition, kVelocity, kRpm, kFollowingError, kInput, kClutch } quantity;
+  double at_s = -1;  ///< -1: at the end of the run
+  int index = -1;    ///< drive, I/O point or clutch
+  double value = 0;
+  double tolerance = 0;
+  ClutchState clutch = ClutchState::kEngaged;
+  std::string text;  ///< "expect[2]: Z position 250 +- 0.01 at 3 s"
+};
+
+struct SnapshotSpec {
+  double at_s = 0;
+  std::string camera;
+  int width = 640, height = 480;
+  std::string file;  ///< relative to the output folder
+};
+
+struct Scene {
+  std::string file;
+  std::string name;
+  std::shared_ptr<const MachineModel> model;
+  BackendKind backend = BackendKind::kPhysics;
+  double duration_s = 1;
+  double trace_period_s = 0.001;
+  Workpiece workpiece;
+  InitialState initial;
+  std::vector<TimelineStep> timeline;
+  std::vector<Expectation> expectations;
+  std::vector<SnapshotSpec> snapshots;
+  std::vector<NamedCamera> cameras;  ///< the model's, then the scene's (same name replaces)
+
+  const NamedCamera* Camera(const std::string& name) const;
+};
+
+/// Loads a scene and its model. Throws ModelError naming the file and the YAML path.
+Scene LoadScene(const std::string& path);
+
+std::unique_ptr<MachineBackend> MakeBackend(BackendKind kind, const MachineModel& model,
+                                            const InitialState& init);
+
+}  // namespace vmt::sim

@@ -1,0 +1,321 @@
+#include <filesystem>
+#include <sstream>
+
+#include "sim/kinematic/kinematic_backend.hpp"
+#include "sim/model/model_error.hpp"
+#include "sim/model/yaml_reader.hpp"
+#include "sim/physics/physics_backend.hpp"
+#include "sim/scene/scene.hpp"
+
+namespace vmt::sim {
+namespace {
+
+int RequireDrive(const MachineModel& m, const YamlNode& n) {
+  const int d = m.DriveIndex(n.String());
+  if (d < 0) n.Fail("no axis '" + n.String() + "' in the machine model");
+  return d;
+}
+
+int RequireIo(const MachineModel& m, const YamlNode& n) {
+  const int i = control::IndexOf(m.io, n.String());
+  if (i < 0) n.Fail("no I/O point '" + n.String() + "' in the machine model");
+  return i;
+}
+
+ClutchState ParseClutchState(const YamlNode& n) {
+  const std::string s = n.String();
+  for (ClutchState c : {ClutchState::kReleased, ClutchState::kEngaging, ClutchState::kBlocked,
+                        ClutchState::kEngaged, ClutchState::kReleasing})
+    if (s == ToString(c)) return c;
+  n.Fail("expected released, engaging, blocked, engaged or releasing");
+}
+
+std::string Fmt(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+bool IsRotary(const MachineModel& m, int drive) {
+  return m.drives[drive].info.kind == control::AxisKind::kRotary;
+}
+
+Condition ReadCondition(const MachineModel& m, const YamlNode& n) {
+  Condition c;
+  if (n.Has("input")) {
+    n.AllowKeys({"input", "value", "timeout"});
+    c.kind = Condition::Kind::kInput;
+    c.index = RequireIo(m, n["input"]);
+    c.value = n.Bool("value", true);
+  } else if (n.Has("clutch")) {
+    n.AllowKeys({"clutch", "state", "timeout"});
+    c.kind = Condition::Kind::kClutch;
+    c.index = -1;
+    for (size_t k = 0; k < m.clutches.size(); ++k)
+      if (m.clutches[k].name == n["clutch"].String()) c.index = static_cast<int>(k);
+    if (c.index < 0) n["clutch"].Fail("no clutch '" + n["clutch"].String() + "'");
+    c.clutch = ParseClutchState(n["state"]);
+  } else if (n.Has("axis")) {
+    n.AllowKeys({"axis", "in_position", "at_speed", "standstill", "timeout"});
+    c.index = RequireDrive(m, n["axis"]);
+    if (n.Has("in_position")) c.kind = Condition::Kind::kInPosition, c.value = n.Bool("in_position", true);
+    else if (n.Has("at_speed")) c.kind = Condition::Kind::kAtSpeed, c.value = n.Bool("at_speed", true);
+    else if (n.Has("standstill")) c.kind = Condition::Kind::kStandstill, c.value = n.Bool("standstill", true);
+    else n.Fail("expected one of in_position, at_speed, standstill");
+  } else {
+    n.Fail("expected input:, clutch: or axis:");
+  }
+  return c;
+}
+
+TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i) {
+  n.AllowKeys({"at", "move", "speed", "orient", "off", "output", "wait", "wait_until"});
+  TimelineStep s{};
+  s.not_before_s = n.Double("at", 0);
+  std::ostringstream text;
+  text << "timeline[" << i << "]: ";
+  int actions = 0;
+  for (const char* k : {"move", "speed", "orient", "off", "output", "wait", "wait_until"})
+    actions += n.Has(k);
+  if (actions != 1) n.Fail("a step needs exactly one of move, speed, orient, off, output, wait, wait_until");
+
+  if (n.Has("move")) {
+    const YamlNode a = n["move"];
+    a.AllowKeys({"axis", "to", "feed"});
+    s.kind = TimelineStep::Kind::kMove;
+    s.drive = RequireDrive(m, a["axis"]);
+    s.target = a["to"].Double();
+    s.feed = a["feed"].Double() / 60.0;  // mm/min | deg/min, as F words
+    if (s.feed <= 0) a["feed"].Fail("must be > 0");
+    text << "move " << a["axis"].String() << " to " << Fmt(s.target) << " at F" << Fmt(s.feed * 60);
+  } else if (n.Has("speed")) {
+    const YamlNode a = n["speed"];
+    s.kind = TimelineStep::Kind::kSpeed;
+    s.drive = RequireDrive(m, a["axis"]);
+    if (IsRotary(m, s.drive)) {
+      a.AllowKeys({"axis", "rpm"});
+      s.target = a["rpm"].Double() * 6.0;  // rpm -> deg/s
+      text << "speed " << a["axis"].String() << " " << Fmt(a["rpm"].Double()) << " rpm";
+    } else {
+      a.AllowKeys({"axis", "feed"});
+      s.target = a["feed"].Double() / 60.0;
+      text << "speed " << a["axis"].String() << " F" << Fmt(a["feed"].Double());
+    }
+  } else if (n.Has("orient")) {
+    const YamlNode a = n["orient"];
+    a.AllowKeys({"axis", "to"});
+    s.kind = TimelineStep::Kind::kOrient;
+    s.drive = RequireDrive(m, a["axis"]);
+    if (!m.drives[s.drive].spindle) a["axis"].Fail("orient needs a spindle drive");
+    s.target = a["to"].Double();
+    text << "orient " << a["axis"].String() << " to " << Fmt(s.target);
+  } else if (n.Has("off")) {
+    const YamlNode a = n["off"];
+    a.AllowKeys({"axis"});
+    s.kind = TimelineStep::Kind::kOff;
+    s.drive = RequireDrive(m, a["axis"]);
+    text << "controller enable off " << a["axis"].String();
+  } else if (n.Has("output")) {
+    const YamlNode a = n["output"];
+    a.AllowKeys({"name", "value"});
+    s.kind = TimelineStep::Kind::kOutput;
+    s.io = RequireIo(m, a["name"]);
+    if (!m.io[s.io].is_output) a["name"].Fail("'" + a["name"].String() + "' is an input");
+    s.level = a["value"].Bool();
+    text << "output " << a["name"].String() << " = " << (s.level ? 1 : 0);
+  } else if (n.Has("wait")) {
+    s.kind = TimelineStep::Kind::kWait;
+    s.wait_s = n["wait"].Double();
+    if (s.wait_s < 0) n["wait"].Fail("must be >= 0");
+    text << "wait " << Fmt(s.wait_s) << " s";
+  } else {
+    const YamlNode a = n["wait_until"];
+    s.kind = TimelineStep::Kind::kWaitUntil;
+    s.until = ReadCondition(m, a);
+    s.timeout_s = a.Double("timeout", 10);
+    text << "wait until";
+    for (const std::string& k : a.Keys())
+      if (k != "timeout") text << " " << k << "=" << a[k].String();
+  }
+  s.text = text.str();
+  return s;
+}
+
+Expectation ReadExpectation(const MachineModel& m, const YamlNode& n, size_t i) {
+  n.AllowKeys({"at", "axis", "position", "velocity", "rpm", "following_error", "input", "value",
+               "clutch", "state", "tol"});
+  Expectation e{};
+  e.at_s = n.Double("at", -1);
+  std::ostringstream text;
+  text << "expect[" << i << "]: ";
+  if (n.Has("axis")) {
+    e.index = RequireDrive(m, n["axis"]);
+    int quantities = 0;
+    for (const char* k : {"position", "velocity", "rpm", "following_error"}) quantities += n.Has(k);
+    if (quantities != 1) n.Fail("an axis expectation needs exactly one of position, velocity, rpm, following_error");
+    std::string q;
+    if (n.Has("position")) e.quantity = Expectation::Quantity::kPosition, q = "position";
+    if (n.Has("velocity")) e.quantity = Expectation::Quantity::kVelocity, q = "velocity";
+    if (n.Has("rpm")) e.quantity = Expectation::Quantity::kRpm, q = "rpm";
+    if (n.Has("following_error")) e.quantity = Expectation::Quantity::kFollowingError, q = "following_error";
+    e.value = n[q].Double();
+    e.tolerance = n["tol"].Double();
+    if (e.tolerance < 0) n["tol"].Fail("must be >= 0");
+    text << n["axis"].String() << " " << q << " " << Fmt(e.value) << " +- " << Fmt(e.tolerance);
+  } else if (n.Has("input")) {
+    e.quantity = Expectation::Quantity::kInput;
+    e.index = RequireIo(m, n["input"]);
+    e.value = n["value"].Bool() ? 1 : 0;
+    text << n["input"].String() << " = " << e.value;
+  } else if (n.Has("clutch")) {
+    e.quantity = Expectation::Quantity::kClutch;
+    for (size_t k = 0; k < m.clutches.size(); ++k)
+      if (m.clutches[k].name == n["clutch"].String()) e.index = static_cast<int>(k);
+    if (e.index < 0) n["clutch"].Fail("no clutch '" + n["clutch"].String() + "'");
+    e.clutch = ParseClutchState(n["state"]);
+    text << "clutch " << n["clutch"].String() << " " << ToString(e.clutch);
+  } else {
+    n.Fail("expected axis:, input: or clutch:");
+  }
+  text << (e.at_s < 0 ? std::string(" at the end") : " at " + Fmt(e.at_s) + " s");
+  e.text = text.str();
+  return e;
+}
+
+NamedCamera ReadCamera(const std::string& name, const YamlNode& c) {
+  c.AllowKeys({"eye", "target", "up", "fov"});
+  NamedCamera cam;
+  cam.name = name;
+  const auto eye = c["eye"].Doubles(3), target = c["target"].Doubles(3);
+  cam.eye_m = Eigen::Vector3d(eye[0], eye[1], eye[2]) / kMmPerM;
+  cam.target_m = Eigen::Vector3d(target[0], target[1], target[2]) / kMmPerM;
+  if (c.Has("up")) {
+    const auto up = c["up"].Doubles(3);
+    cam.up = Eigen::Vector3d(up[0], up[1], up[2]);
+  }
+  cam.fov_y_deg = c.Double("fov", 40);
+  if (cam.fov_y_deg <= 1 || cam.fov_y_deg >= 170) c["fov"].Fail("must be between 1 and 170 degrees");
+  if ((cam.eye_m - cam.target_m).norm() < 1e-9) c.Fail("eye and target coincide");
+  return cam;
+}
+
+}  // namespace
+
+const NamedCamera* Scene::Camera(const std::string& name) const {
+  for (const NamedCamera& c : cameras)
+    if (c.name == name) return &c;
+  return nullptr;
+}
+
+Scene LoadScene(const std::string& path) {
+  const YamlNode root = YamlNode::LoadFile(path);
+  if (!root.IsMap()) root.Fail("a scene file is a map");
+  root.AllowKeys({"scene", "model", "backend", "duration", "trace_period", "workpiece", "initial",
+                  "timeline", "expect", "snapshots", "cameras"});
+  Scene s;
+  s.file = path;
+  s.name = root["scene"].String();
+  const YamlNode model = root["model"];
+  const std::string model_path =
+      (std::filesystem::path(path).parent_path() / model.String()).lexically_normal().string();
+  if (!std::filesystem::exists(model_path)) model.Fail("model file not found: " + model_path);
+  s.model = std::make_shared<MachineModel>(LoadMachineModel(model_path));
+  const MachineModel& m = *s.model;
+
+  const std::string backend = root.String("backend", "physics");
+  if (backend == "physics") s.backend = BackendKind::kPhysics;
+  else if (backend == "kinematic") s.backend = BackendKind::kKinematic;
+  else root["backend"].Fail("expected physics or kinematic, got \"" + backend + "\"");
+  s.duration_s = root["duration"].Double();
+  if (s.duration_s <= 0 || s.duration_s > 86400) root["duration"].Fail("must be in (0, 86400] s");
+  s.trace_period_s = root.Double("trace_period", 0.001);
+  if (s.trace_period_s < kDriveTickS) root["trace_period"].Fail("must be >= 0.00025 s");
+
+  if (root.Has("workpiece")) {
+    const YamlNode w = root["workpiece"];
+    w.AllowKeys({"diameter", "length", "z", "colour", "link"});
+    s.workpiece.present = true;
+    s.workpiece.diameter_m = w["diameter"].Double() / kMmPerM;
+    s.workpiece.length_m = w["length"].Double() / kMmPerM;
+    s.workpiece.z_m = w["z"].Double() / kMmPerM;
+    if (s.workpiece.diameter_m <= 0) w["diameter"].Fail("must be > 0");
+    if (s.workpiece.length_m <= 0) w["length"].Fail("must be > 0");
+    s.workpiece.link = w.String("link", "spindle");
+    if (m.LinkIndex(s.workpiece.link) < 0) w["link"].Fail("no link '" + s.workpiece.link + "'");
+    if (w.Has("colour")) {
+      const auto c = w["colour"].Doubles(4);
+      s.workpiece.colour = {float(c[0]), float(c[1]), float(c[2]), float(c[3])};
+    }
+  }
+
+  if (root.Has("initial")) {
+    const YamlNode init = root["initial"];
+    for (const std::string& key : init.Keys()) {
+      if (key == "clutch") {
+        const YamlNode cl = init["clutch"];
+        for (const std::string& name : cl.Keys()) {
+          bool found = false;
+          for (const DogClutch& k : m.clutches) found = found || k.name == name;
+          if (!found) cl[name].Fail("no clutch '" + name + "'");
+          const std::string state = cl[name].String();
+          if (state != "engaged" && state != "released") cl[name].Fail("expected engaged or released");
+          s.initial.clutch_engaged[name] = state == "engaged";
+        }
+      } else {
+        RequireDrive(m, YamlNode(YAML::Node(key), path, init.path() + "." + key));
+        s.initial.drive_positions[key] = init[key].Double();
+      }
+    }
+  }
+
+  s.cameras = m.cameras;
+  if (root.Has("cameras")) {
+    const YamlNode cams = root["cameras"];
+    for (const std::string& name : cams.Keys()) {
+      NamedCamera cam = ReadCamera(name, cams[name]);
+      bool replaced = false;
+      for (NamedCamera& c : s.cameras)
+        if (c.name == name) c = cam, replaced = true;
+      if (!replaced) s.cameras.push_back(cam);
+    }
+  }
+
+  if (root.Has("timeline")) {
+    const YamlNode t = root["timeline"];
+    for (size_t i = 0; i < t.size(); ++i) s.timeline.push_back(ReadStep(m, t[i], i));
+  }
+  if (root.Has("expect")) {
+    const YamlNode e = root["expect"];
+    for (size_t i = 0; i < e.size(); ++i) s.expectations.push_back(ReadExpectation(m, e[i], i));
+  }
+  if (root.Has("snapshots")) {
+    const YamlNode sn = root["snapshots"];
+    for (size_t i = 0; i < sn.size(); ++i) {
+      const YamlNode n = sn[i];
+      n.AllowKeys({"at", "camera", "width", "height", "file"});
+      SnapshotSpec spec;
+      spec.at_s = n["at"].Double();
+      spec.camera = n["camera"].String();
+      if (!s.Camera(spec.camera)) n["camera"].Fail("no camera '" + spec.camera + "'");
+      spec.width = n.Int("width", 640);
+      spec.height = n.Int("height", 480);
+      if (spec.width < 16 || spec.width > 4096) n["width"].Fail("must be in 16..4096");
+      if (spec.height < 16 || spec.height > 4096) n["height"].Fail("must be in 16..4096");
+      std::ostringstream file;
+      file << spec.camera << "_" << Fmt(spec.at_s) << "s.png";
+      spec.file = n.String("file", file.str());
+      if (spec.file.find('/') != std::string::npos || spec.file.find("..") != std::string::npos)
+        n["file"].Fail("a plain file name inside the output folder");
+      s.snapshots.push_back(spec);
+    }
+  }
+  return s;
+}
+
+std::unique_ptr<MachineBackend> MakeBackend(BackendKind kind, const MachineModel& model,
+                                            const InitialState& init) {
+  if (kind == BackendKind::kPhysics) return std::make_unique<PhysicsBackend>(model, init);
+  return std::make_unique<KinematicBackend>(model, init);
+}
+
+}  // namespace vmt::sim

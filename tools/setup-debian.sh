@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages vmt builds with. Idempotent: quiet when all are there.
+set -euo pipefail
+packages=(
+  g++ cmake ninja-build pkg-config git
+  libbullet-dev libfcl-dev libccd-dev libassimp-dev libeigen3-dev
+  libosmesa6-dev libpng-dev libyaml-cpp-dev liburdfdom-dev libcli11-dev nlohmann-json3-dev
+  libgtest-dev libbenchmark-dev libmodbus-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
