@@ -15,8 +15,7 @@ struct CouplingEdge {
 };
 
 /// Sets every joint that is not yet `known` but coupled to a known one, transitively.
-/// Returns the joints it set.
-std::vector<int> PropagateCouplings(const std::vector<CouplingEdge>& edges,
+void PropagateCouplings(const std::vector<CouplingEdge>& edges,
                                     std::vector<double>& q, std::vector<bool>& known);
 
 }  // namespace vmt::sim

@@ -12,7 +12,8 @@ namespace vmt::sim {
 
 class DriveController {
  public:
-  explicit DriveController(const DriveParams& params) : p_(&params) {}
+  explicit DriveController(const DriveParams& params)
+      : p_(&params), counts_per_unit_(1 / params.encoder_resolution) {}
 
   /// Velocity the drive asks for this tick (m/s | rad/s), given the setpoint in SI and the true
   /// load position and velocity. Keeps the ramp and orientation state.
@@ -30,6 +31,7 @@ class DriveController {
 
  private:
   const DriveParams* p_;
+  double counts_per_unit_;  ///< 1 / encoder resolution: a multiply on the hot path
   control::DriveMode mode_ = control::DriveMode::kOff;
   double command_ = 0;        ///< SI: last position or velocity command
   double ramp_velocity_ = 0;  ///< velocity mode: reference after the acceleration ramp

@@ -17,6 +17,7 @@ KinematicBackend::KinematicBackend(const MachineModel& model, const InitialState
   mdt_.outputs.assign(model.io.size(), 0);
   at_.feedback.resize(model.drives.size());
   at_.inputs.assign(model.io.size(), 0);
+  RebuildPlan();
   UpdateFeedback();
 }
 
@@ -27,10 +28,7 @@ void KinematicBackend::Write(const control::MasterTelegram& mdt) {
   mdt_.outputs.resize(model_->io.size(), 0);
 }
 
-void KinematicBackend::Step() {
-  const double dt = kDriveTickS;
-  const std::vector<double> q_before = q_;
-
+void KinematicBackend::RebuildPlan() {
   std::vector<CouplingEdge> edges;
   for (const GearCoupling& g : model_->gears)
     edges.push_back({g.motor_joint, g.load_joint, g.ratio, 0});
@@ -39,27 +37,60 @@ void KinematicBackend::Step() {
       const DogClutch& c = model_->clutches[k];
       edges.push_back({c.motor_joint, c.load_joint, c.ratio, clutch_offsets_[k]});
     }
+  const size_t n = q_.size();
+  group_.assign(n, -1);
+  followers_.assign(n, {});
+  int groups = 0;
+  for (size_t leader = 0; leader < n; ++leader) {
+    // Breadth-first from the leader: each coupled joint follows one already placed.
+    std::vector<bool> placed(n, false);
+    placed[leader] = true;
+    for (bool grew = true; grew;) {
+      grew = false;
+      for (const CouplingEdge& e : edges) {
+        if (placed[e.motor_joint] && !placed[e.load_joint]) {
+          followers_[leader].push_back({e.load_joint, e.motor_joint, 1 / e.ratio, e.offset});
+          placed[e.load_joint] = grew = true;
+        } else if (placed[e.load_joint] && !placed[e.motor_joint]) {
+          followers_[leader].push_back({e.motor_joint, e.load_joint, e.ratio, -e.ratio * e.offset});
+          placed[e.motor_joint] = grew = true;
+        }
+      }
+    }
+    if (group_[leader] < 0) {
+      for (size_t j = 0; j < n; ++j)
+        if (placed[j]) group_[j] = groups;
+      ++groups;
+    }
+  }
+  group_led_.assign(groups, -1);
+}
+
+void KinematicBackend::Step() {
+  const double dt = kDriveTickS;
+  // Member buffers only: this runs thousands of times per simulated second.
+  q_before_ = q_;
+  const std::vector<double>& q_before = q_before_;
 
   // Enabled drives lead their coupled group, first in YAML order; a second enabled drive on the
   // same group follows (on the real machine it would fight: the PLC must switch enables).
-  std::vector<bool> known(q_.size(), false);
+  // Groups without an enabled drive stand still: an ideal machine has no inertia to coast on.
   for (size_t d = 0; d < controllers_.size(); ++d) {
     DriveController& ctrl = controllers_[d];
     const DriveParams& p = model_->drives[d];
     const control::DriveSetpoint sp = ToSi(p, mdt_.setpoints[d]);
     const double pos = q_before[p.motor_joint] / p.ratio;
     const double vel = qd_[p.motor_joint] / p.ratio;
-    double v_ref = ctrl.VelocityReference(sp, pos, vel, dt);
+    const double v_ref = ctrl.VelocityReference(sp, pos, vel, dt);
     const bool leads = sp.mode == control::DriveMode::kPosition ||
                        sp.mode == control::DriveMode::kVelocity;
-    if (!leads || known[p.motor_joint]) continue;
+    int64_t& led = group_led_[group_[p.motor_joint]];
+    if (!leads || led == ticks_) continue;
+    led = ticks_;
     q_[p.motor_joint] = q_before[p.motor_joint] + p.ratio * v_ref * dt;
-    known[p.motor_joint] = true;
-    PropagateCouplings(edges, q_, known);
+    for (const Follower& f : followers_[p.motor_joint])
+      q_[f.joint] = q_[f.from] * f.scale + f.offset;
   }
-  // Groups without an enabled drive stand still: an ideal machine has no inertia to coast on.
-  for (size_t j = 0; j < q_.size(); ++j)
-    if (!known[j]) q_[j] = q_before[j];
 
   for (size_t j = 0; j < q_.size(); ++j) qd_[j] = (q_[j] - q_before[j]) / dt;
 
@@ -70,8 +101,10 @@ void KinematicBackend::Step() {
     const bool was_engaged = clutches_[k].state == ClutchState::kEngaged;
     clutches_[k].Step(c, mdt_.outputs[c.valve_engage], mdt_.outputs[c.valve_release], phase,
                       slip, dt);
-    if (!was_engaged && clutches_[k].state == ClutchState::kEngaged)
+    const bool engaged = clutches_[k].state == ClutchState::kEngaged;
+    if (!was_engaged && engaged)
       clutch_offsets_[k] = DogClutchLogic::MeshOffset(c, q_[c.motor_joint], q_[c.load_joint]);
+    if (engaged != was_engaged) RebuildPlan();
   }
   ++ticks_;
   UpdateFeedback();

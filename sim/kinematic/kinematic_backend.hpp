@@ -35,6 +35,17 @@ class KinematicBackend : public MachineBackend {
   std::vector<DogClutchLogic> clutches_;
   std::vector<double> clutch_offsets_;
   std::vector<double> q_, qd_;
+  std::vector<double> q_before_;
+
+  // Who follows whom, rebuilt when a clutch opens or closes: q[joint] = q[from] * scale + offset.
+  struct Follower {
+    int joint, from;
+    double scale, offset;
+  };
+  void RebuildPlan();
+  std::vector<std::vector<Follower>> followers_;  ///< per leading joint, in propagation order
+  std::vector<int> group_;                        ///< coupled group of each joint
+  std::vector<int64_t> group_led_;  ///< per group: the tick in which an enabled drive led it
   control::MasterTelegram mdt_;
   control::AmplifierTelegram at_;
   int64_t ticks_ = 0;

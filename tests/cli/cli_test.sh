@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# The vmt command as a user meets it: exit codes, messages, files. Usage: cli_test.sh VMT SRC OUT
+set -u
+vmt=$1 src=$2 out=$3
+rm -rf "$out" && mkdir -p "$out"
+fails=0 passes=0
+check() {  # check NAME EXPECTED_EXIT PATTERN -- command...
+  local name=$1 want=$2 pattern=$3; shift 4
+  local log="$out/$name.log"
+  "$@" >"$log" 2>&1
+  local got=$?
+  if [ "$got" != "$want" ]; then
+    echo "FAIL $name: exit $got, wanted $want"; sed 's/^/    /' "$log" | head -20; fails=$((fails+1)); return
+  fi
+  if [ -n "$pattern" ] && ! grep -qE -- "$pattern" "$log"; then
+    echo "FAIL $name: output lacks /$pattern/"; sed 's/^/    /' "$log" | head -20; fails=$((fails+1)); return
+  fi
+  echo "ok   $name"; passes=$((passes+1))
+}
+
+check help 0 "run.*snapshot.*imgdiff|Subcommands" -- "$vmt" --help
+check run_help 0 "--backend" -- "$vmt" run --help
+check snapshot_help 0 "--camera" -- "$vmt" snapshot --help
+check imgdiff_help 0 "--diff" -- "$vmt" imgdiff --help
+check no_subcommand 2 "" -- "$vmt"
+check unknown_option 2 "" -- "$vmt" run "$src/scenes/default.yaml" --bogus
+
+check run_kinematic 0 "8 passed, 0 failed" -- "$vmt" run "$src/scenes/default.yaml" --backend kinematic --out "$out/run"
+for f in trace.csv events.jsonl summary.json iso_3.2s.png work_3.2s.png; do
+  check "run_wrote_$f" 0 "" -- test -s "$out/run/$f"
+done
+check summary_has_digest 0 '"trace_digest": "[0-9a-f]{16}"' -- cat "$out/run/summary.json"
+
+cat >"$out/failing.yaml" <<EOT
+scene: failing
+model: $src/models/lathe-c1/machine.yaml
+backend: kinematic
+duration: 0.5
+expect:
+  - {axis: Z, position: 123, tol: 0.001}
+EOT
+check run_failing_expectation 1 "FAILED: expect\[0\]: Z position 123" -- "$vmt" run "$out/failing.yaml" --out "$out/failing"
+
+printf 'scene: bad\nmodel: %s\nduration: 1\ntimeline:\n  - move: {axis: Z, to: far, feed: 10}\n' \
+  "$src/models/lathe-c1/machine.yaml" >"$out/bad.yaml"
+check run_bad_scene 2 "bad.yaml:5:[0-9]+: timeline\[0\]\.move\.to: expected a number" -- "$vmt" run "$out/bad.yaml"
+check run_missing_scene 2 "cannot open file" -- "$vmt" run "$out/nope.yaml"
+# --until cuts the run short: expectations it does not reach count as failed.
+check run_until 1 "0.500 s simulated" -- "$vmt" run "$src/scenes/default.yaml" --backend kinematic --until 0.5 --out "$out/until"
+
+check snapshot_a 0 "" -- "$vmt" snapshot "$src/scenes/default.yaml" --at 0.5 --camera iso --out "$out/a.png" --width 320 --height 240
+check snapshot_b 0 "" -- "$vmt" snapshot "$src/scenes/default.yaml" --at 0.5 --camera iso --out "$out/b.png" --width 320 --height 240
+check snapshot_same_bytes 0 "" -- cmp "$out/a.png" "$out/b.png"
+check snapshot_bad_camera 2 "no camera 'nope'" -- "$vmt" snapshot "$src/scenes/default.yaml" --at 0.5 --camera nope --out "$out/c.png"
+check snapshot_other 0 "" -- "$vmt" snapshot "$src/scenes/default.yaml" --at 1.5 --camera iso --out "$out/c.png" --width 320 --height 240
+
+check imgdiff_equal 0 "equal" -- "$vmt" imgdiff "$out/a.png" "$out/b.png"
+check imgdiff_different 1 "different" -- "$vmt" imgdiff "$out/a.png" "$out/c.png" --diff "$out/diff.png"
+check imgdiff_wrote_diff 0 "" -- test -s "$out/diff.png"
+check imgdiff_size 1 "different sizes" -- "$vmt" imgdiff "$out/a.png" "$out/run/iso_3.2s.png"
+check imgdiff_tolerant 0 "equal" -- "$vmt" imgdiff "$out/a.png" "$out/c.png" --tolerance 255
+check imgdiff_missing 2 "nope.png" -- "$vmt" imgdiff "$out/a.png" "$out/nope.png"
+echo "not a png" >"$out/text.png"
+check imgdiff_not_png 2 "text.png" -- "$vmt" imgdiff "$out/a.png" "$out/text.png"
+check imgdiff_golden 0 "equal" -- "$vmt" imgdiff "$src/tests/golden/default_iso_3.2s.png" "$out/run/iso_3.2s.png" --tolerance 8 --allowed-fraction 0.002
+
+echo "cli: $passes passed, $fails failed"
+[ "$fails" -eq 0 ]

@@ -1,0 +1,109 @@
+// Drive behaviour on the physics backend against the machine YAML's own spec.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "sim_test_support.hpp"
+
+namespace vmt::sim {
+namespace {
+
+using control::DriveMode;
+using testing::Bench;
+using testing::Lathe;
+
+struct StepCase {
+  const char* drive;
+  double step;  // mm | deg
+};
+
+class ServoStepTest : public ::testing::TestWithParam<StepCase> {};
+
+// A position step from standstill: the axis must settle into its in-position window within the
+// spec's settle time and overshoot no more than the spec allows.
+TEST_P(ServoStepTest, SettlesWithinSpec) {
+  const StepCase c = GetParam();
+  const MachineModel& m = Lathe();
+  const DriveParams& p = m.drives[m.DriveIndex(c.drive)];
+  ASSERT_GT(p.spec_settle_time_s, 0) << c.drive << " has no spec in the machine YAML";
+  const double unit = p.info.kind == control::AxisKind::kLinear ? kMmPerM : kDegPerRad;
+
+  InitialState init;
+  init.drive_positions[c.drive] = 100;
+  PhysicsBackend backend(m, init);
+  Bench bench(backend);
+  const double start = bench.Feedback(c.drive).position;
+  const double target = start + c.step;
+  bench.Command(c.drive, DriveMode::kPosition, target);
+
+  double overshoot = 0, last_outside = 0;
+  const double window = p.in_position_window * unit;
+  const double horizon = 3 * p.spec_settle_time_s + 0.5;
+  bench.Run(horizon, [&] {
+    const double pos = bench.Feedback(c.drive).position;
+    overshoot = std::max(overshoot, pos - target);
+    if (std::abs(pos - target) > window) last_outside = backend.time_s();
+  });
+  EXPECT_LE(overshoot, p.spec_overshoot * unit) << c.drive;
+  EXPECT_LE(last_outside, p.spec_settle_time_s) << c.drive << " settles too late";
+  EXPECT_NEAR(bench.Feedback(c.drive).position, target, window);
+  EXPECT_TRUE(bench.Feedback(c.drive).status & control::drive_status::kInPosition);
+}
+
+INSTANTIATE_TEST_SUITE_P(LatheServos, ServoStepTest,
+                         ::testing::Values(StepCase{"Z", 10}, StepCase{"X", 10},
+                                           StepCase{"W", 10}, StepCase{"T", 30},
+                                           StepCase{"C", 10}),
+                         [](const auto& info) { return std::string(info.param.drive); });
+
+// Run-up 0 -> 3000 rpm is limited by the spindle's acceleration: it takes v/a, not less (the
+// ramp) and not much more (the velocity loop follows the ramp).
+TEST(SpindleTest, RunUpTakesTheAccelerationLimitedTime) {
+  const MachineModel& m = Lathe();
+  const DriveParams& p = m.drives[m.DriveIndex("S1")];
+  PhysicsBackend backend(m, {});
+  Bench bench(backend);
+  const double rpm = 3000;
+  bench.Command("S1", DriveMode::kVelocity, rpm * 6);
+  const double expected_s = rpm * 6 / (p.acceleration_limit * kDegPerRad);
+  const double t = bench.RunUntil(
+      [&] { return bench.Feedback("S1").status & control::drive_status::kAtSpeed; }, 5);
+  ASSERT_GT(t, 0) << "never at speed";
+  EXPECT_GE(t, expected_s - 0.001);
+  EXPECT_LE(t, expected_s * 1.05);
+  bench.Run(0.5);
+  EXPECT_NEAR(bench.Feedback("S1").velocity / 6, rpm, 1.0);
+}
+
+// M19: the spindle orients to an angle the short way and stops there.
+TEST(SpindleTest, OrientsToAnAngle) {
+  const MachineModel& m = Lathe();
+  PhysicsBackend backend(m, {});
+  Bench bench(backend);
+  bench.Command("S1", DriveMode::kVelocity, 600);
+  bench.Run(1.0);
+  bench.Command("S1", DriveMode::kPosition, 45);
+  const double t = bench.RunUntil(
+      [&] { return bench.Feedback("S1").status & control::drive_status::kInPosition &&
+                   bench.Feedback("S1").status & control::drive_status::kStandstill; }, 5);
+  ASSERT_GT(t, 0);
+  const double angle = std::fmod(bench.Feedback("S1").position, 360.0);
+  EXPECT_NEAR(angle, 45, 0.05);
+}
+
+// The belt is a gear: the motor turns `ratio` times the spindle, and stays in phase.
+TEST(GearTest, BeltKeepsItsRatio) {
+  const MachineModel& m = Lathe();
+  PhysicsBackend backend(m, {});
+  Bench bench(backend);
+  bench.Command("S1", DriveMode::kVelocity, 3000 * 6);
+  bench.Run(3.0);
+  const auto q = backend.JointPositions();
+  const double motor = q[m.JointIndex("s1_motor")], spindle = q[m.JointIndex("spindle")];
+  ASSERT_GT(spindle, 2 * M_PI * 50);
+  EXPECT_NEAR(motor - 1.5 * spindle, 0, 1e-4);
+}
+
+}  // namespace
+}  // namespace vmt::sim

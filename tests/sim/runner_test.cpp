@@ -1,0 +1,122 @@
+// Scenes run deterministically: same scene -> same trace digest, same snapshot -> same bytes,
+// and the default scene's picture matches its golden image.
+
+#include <gtest/gtest.h>
+#include <gmock/gmock.h>
+
+#include <fstream>
+
+#include "render/image.hpp"
+#include "render/image_compare.hpp"
+#include "sim/runner/runner.hpp"
+#include "sim/runner/scene_renderer.hpp"
+#include "sim_test_support.hpp"
+
+namespace vmt::sim {
+namespace {
+
+using ::testing::HasSubstr;
+using testing::OutputDir;
+using testing::SourcePath;
+
+std::string Bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(RunnerTest, DefaultScenePassesAndWritesItsOutputs) {
+  const Scene scene = LoadScene(SourcePath("scenes/default.yaml"));
+  RunOptions options;
+  options.out_dir = OutputDir("default");
+  const RunResult r = RunScene(scene, options);
+  EXPECT_TRUE(r.ok()) << ::testing::PrintToString(r.failures);
+  EXPECT_EQ(r.snapshot_files.size(), scene.snapshots.size());
+  const std::string summary = Bytes(options.out_dir + "/summary.json");
+  EXPECT_THAT(summary, HasSubstr("\"trace_digest\": \"" + r.trace_digest + "\""));
+  EXPECT_THAT(summary, HasSubstr("\"real_time_factor\""));
+  EXPECT_THAT(Bytes(options.out_dir + "/trace.csv"), HasSubstr("t,Z.cmd,Z.pos,Z.vel"));
+  EXPECT_THAT(Bytes(options.out_dir + "/events.jsonl"), HasSubstr("\"event\":\"clutch\""));
+}
+
+class DeterminismTest : public ::testing::TestWithParam<BackendKind> {};
+
+TEST_P(DeterminismTest, SameSceneSameDigest) {
+  const Scene scene = LoadScene(SourcePath("scenes/default.yaml"));
+  RunOptions options;
+  options.backend = GetParam();
+  options.snapshots = false;
+  const RunResult a = RunScene(scene, options);
+  const RunResult b = RunScene(scene, options);
+  EXPECT_EQ(a.trace_digest, b.trace_digest);
+  EXPECT_EQ(a.trace_digest.size(), 16u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, DeterminismTest,
+                         ::testing::Values(BackendKind::kPhysics, BackendKind::kKinematic));
+
+TEST(RunnerTest, BackendsGiveDifferentTracesButTheSameEndState) {
+  const Scene scene = LoadScene(SourcePath("scenes/default.yaml"));
+  RunOptions physics, kinematic;
+  physics.snapshots = kinematic.snapshots = false;
+  physics.backend = BackendKind::kPhysics;
+  kinematic.backend = BackendKind::kKinematic;
+  const RunResult p = RunScene(scene, physics), k = RunScene(scene, kinematic);
+  EXPECT_NE(p.trace_digest, k.trace_digest);
+  EXPECT_TRUE(p.ok());
+  EXPECT_TRUE(k.ok()) << ::testing::PrintToString(k.failures);
+}
+
+TEST(RunnerTest, FailedExpectationAndTimeoutAreReported) {
+  const std::string dir = OutputDir("failing");
+  const std::string path = dir + "/failing.yaml";
+  std::ofstream(path) << "scene: failing\nmodel: " << SourcePath("models/lathe-c1/machine.yaml")
+                      << "\nbackend: kinematic\nduration: 1\n"
+                         "timeline:\n  - move: {axis: Z, to: 100, feed: 6000}\n"
+                         "  - wait_until: {input: IROTMODE, timeout: 0.2}\n"
+                         "expect:\n  - {at: 0.5, axis: Z, position: 50, tol: 0.01}\n";
+  const RunResult r = RunScene(LoadScene(path), {});
+  ASSERT_EQ(r.failures.size(), 2u);
+  EXPECT_THAT(r.failures[0], HasSubstr("expect[0]: Z position 50"));
+  EXPECT_THAT(r.failures[1], HasSubstr("timeline[1]: wait until input=IROTMODE"));
+  EXPECT_THAT(r.failures[1], HasSubstr("timed out"));
+}
+
+TEST(SnapshotTest, SameSnapshotSameBytes) {
+  const Scene scene = LoadScene(SourcePath("scenes/default.yaml"));
+  const std::string a = OutputDir("snap_a"), b = OutputDir("snap_b");
+  RunOptions options;
+  options.until_s = 3.2;
+  options.out_dir = a;
+  RunScene(scene, options);
+  options.out_dir = b;
+  RunScene(scene, options);
+  ASSERT_FALSE(scene.snapshots.empty());
+  for (const SnapshotSpec& s : scene.snapshots) {
+    const std::string bytes = Bytes(a + "/" + s.file);
+    EXPECT_GT(bytes.size(), 1000u);
+    EXPECT_EQ(bytes, Bytes(b + "/" + s.file)) << s.file;
+  }
+}
+
+// The golden picture was rendered on this project's machines (llvmpipe); a small tolerance
+// absorbs rounding differences between CPU instruction sets, not changes of the scene.
+TEST(SnapshotTest, DefaultSceneMatchesGolden) {
+  const Scene scene = LoadScene(SourcePath("scenes/default.yaml"));
+  const std::string dir = OutputDir("golden");
+  RunOptions options;
+  options.until_s = 3.2;
+  options.out_dir = dir;
+  RunScene(scene, options);
+  for (const char* name : {"iso_3.2s.png", "work_3.2s.png"}) {
+    const std::string golden = SourcePath(std::string("tests/golden/default_") + name);
+    const render::Image expected = render::ReadPng(golden);
+    const render::Image actual = render::ReadPng(dir + "/" + name);
+    const render::CompareResult c = render::CompareImages(expected, actual, {8, 0.002});
+    if (!c.equal && !c.size_mismatch) render::WritePng(dir + "/diff_" + std::string(name), c.diff);
+    EXPECT_TRUE(c.equal) << name << ": " << c.differing_pixels << " pixels differ, max delta "
+                         << c.max_channel_delta << "; see " << dir;
+  }
+}
+
+}  // namespace
+}  // namespace vmt::sim

@@ -1,0 +1,80 @@
+#pragma once
+// Shared by the sim tests: the lathe model (loaded once) and a small driver that commands drives
+// and steps a backend.
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "sim/kinematic/kinematic_backend.hpp"
+#include "sim/physics/physics_backend.hpp"
+
+namespace vmt::sim::testing {
+
+inline std::string SourcePath(const std::string& relative) {
+  return (std::filesystem::path(VMT_SOURCE_DIR) / relative).string();
+}
+
+inline std::string OutputDir(const std::string& name) {
+  const auto dir = std::filesystem::path(VMT_BINARY_DIR) / "test_output" / "sim" / name;
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+inline const MachineModel& Lathe() {
+  static const MachineModel model = LoadMachineModel(SourcePath("models/lathe-c1/machine.yaml"));
+  return model;
+}
+
+/// Commands drives of a backend directly, as the PLC/NC would through the DriveBus.
+class Bench {
+ public:
+  explicit Bench(MachineBackend& backend) : backend_(backend) {
+    const auto& m = backend.model();
+    mdt_.setpoints.resize(m.drives.size());
+    mdt_.outputs.assign(m.io.size(), 0);
+    // Servos hold where they are, spindles stand at speed 0.
+    for (size_t d = 0; d < m.drives.size(); ++d)
+      mdt_.setpoints[d] = m.drives[d].spindle
+                              ? control::DriveSetpoint{control::DriveMode::kVelocity, 0, 0}
+                              : control::DriveSetpoint{control::DriveMode::kPosition,
+                                                       backend.Read().feedback[d].position, 0};
+  }
+  int Drive(const std::string& name) const { return backend_.model().DriveIndex(name); }
+  int Io(const std::string& name) const { return control::IndexOf(backend_.model().io, name); }
+  void Command(const std::string& drive, control::DriveMode mode, double value) {
+    mdt_.setpoints[Drive(drive)] = {mode, value, 0};
+  }
+  void Output(const std::string& name, bool on) { mdt_.outputs[Io(name)] = on; }
+  const control::DriveFeedback& Feedback(const std::string& drive) const {
+    return backend_.Read().feedback[Drive(drive)];
+  }
+  bool Input(const std::string& name) const { return backend_.Read().inputs[Io(name)] != 0; }
+  /// Steps for `seconds`; `each` (if given) sees every tick.
+  void Run(double seconds, const std::function<void()>& each = {}) {
+    const int64_t n = std::llround(seconds / kDriveTickS);
+    for (int64_t i = 0; i < n; ++i) {
+      backend_.Write(mdt_);
+      backend_.Step();
+      if (each) each();
+    }
+  }
+  /// Steps until `done` holds or `timeout` passes; returns the time it took, or -1.
+  double RunUntil(const std::function<bool()>& done, double timeout) {
+    const double t0 = backend_.time_s();
+    while (backend_.time_s() - t0 < timeout) {
+      backend_.Write(mdt_);
+      backend_.Step();
+      if (done()) return backend_.time_s() - t0;
+    }
+    return -1;
+  }
+  control::MasterTelegram& mdt() { return mdt_; }
+
+ private:
+  MachineBackend& backend_;
+  control::MasterTelegram mdt_;
+};
+
+}  // namespace vmt::sim::testing
