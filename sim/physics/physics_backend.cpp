@@ -73,7 +73,10 @@ PhysicsBackend::PhysicsBackend(const MachineModel& model, const InitialState& in
     const Eigen::Quaterniond q_ThisParent(joint.X_ParentJoint.linear().transpose());
     const btQuaternion rot_parent_to_this(q_ThisParent.x(), q_ThisParent.y(), q_ThisParent.z(),
                                           q_ThisParent.w());
-    const btVector3 parent_com_to_pivot = Bt(joint.X_ParentJoint.translation() - parent.com_m);
+    // The fixed base sits at the world origin with its frame there, whatever the bed's COM.
+    const Eigen::Vector3d parent_com =
+        joint.parent_link == 0 ? Eigen::Vector3d::Zero() : parent.com_m;
+    const btVector3 parent_com_to_pivot = Bt(joint.X_ParentJoint.translation() - parent_com);
     const btVector3 pivot_to_com = Bt(child.com_m);
     const int parent_index = joint.parent_link - 1;
     switch (joint.type) {

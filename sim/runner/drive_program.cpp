@@ -94,6 +94,9 @@ bool DriveProgram::Execute(const TimelineStep& step, double t_s,
     case Kind::kWait:
       return t_s - step_since_s_ >= step.wait_s - 1e-9;
     case Kind::kWaitUntil: {
+      // The feedback in hand is one tick old: it cannot yet show the effect of commands given in
+      // this tick (an "at speed" of the old setpoint), so a wait never ends in its first tick.
+      if (t_s == step_since_s_) return false;
       // "In position" means the move is done, not that the axis has yet to start.
       const bool moving = step.until.kind == Condition::Kind::kInPosition &&
                           profiling_[step.until.index] &&

@@ -205,7 +205,7 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
   if (writing) {
     nlohmann::ordered_json summary;
     summary["scene"] = scene.name;
-    summary["backend"] = options.backend.value_or(scene.backend) == BackendKind::kPhysics ? "physics" : "kinematic";
+    summary["backend"] = ToString(options.backend.value_or(scene.backend));
     summary["simulated_time_s"] = result.simulated_s;
     summary["wall_time_s"] = result.wall_s;
     summary["real_time_factor"] = result.wall_s > 0 ? result.simulated_s / result.wall_s : 0.0;

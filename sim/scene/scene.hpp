@@ -13,6 +13,7 @@
 namespace vmt::sim {
 
 enum class BackendKind { kPhysics, kKinematic };
+inline const char* ToString(BackendKind k) { return k == BackendKind::kPhysics ? "physics" : "kinematic"; }
 
 struct Workpiece {
   bool present = false;

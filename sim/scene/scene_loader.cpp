@@ -36,6 +36,19 @@ std::string Fmt(double v) {
   return s.str();
 }
 
+// A load-side position of a drive (mm | deg) must lie within its joint's travel.
+void RequireWithinTravel(const MachineModel& m, int drive, double value, const YamlNode& where) {
+  const DriveParams& p = m.drives[drive];
+  const Joint& j = m.joints[p.motor_joint];
+  if (j.type == JointType::kContinuous || j.type == JointType::kFixed) return;
+  const double unit = p.info.kind == control::AxisKind::kLinear ? kMmPerM : kDegPerRad;
+  const double lo = std::min(j.lower, j.upper) / p.ratio * unit;
+  const double hi = std::max(j.lower, j.upper) / p.ratio * unit;
+  if (value < lo - 1e-9 || value > hi + 1e-9)
+    where.Fail(Fmt(value) + " is beyond the travel of " + p.info.name + " (" + Fmt(lo) + " .. " +
+               Fmt(hi) + ")");
+}
+
 bool IsRotary(const MachineModel& m, int drive) {
   return m.drives[drive].info.kind == control::AxisKind::kRotary;
 }
@@ -85,6 +98,7 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i) {
     s.kind = TimelineStep::Kind::kMove;
     s.drive = RequireDrive(m, a["axis"]);
     s.target = a["to"].Double();
+    RequireWithinTravel(m, s.drive, s.target, a["to"]);
     s.feed = a["feed"].Double() / 60.0;  // mm/min | deg/min, as F words
     if (s.feed <= 0) a["feed"].Fail("must be > 0");
     text << "move " << a["axis"].String() << " to " << Fmt(s.target) << " at F" << Fmt(s.feed * 60);
@@ -262,8 +276,9 @@ Scene LoadScene(const std::string& path) {
           s.initial.clutch_engaged[name] = state == "engaged";
         }
       } else {
-        RequireDrive(m, YamlNode(YAML::Node(key), path, init.path() + "." + key));
+        const int d = RequireDrive(m, YamlNode(YAML::Node(key), path, init.path() + "." + key));
         s.initial.drive_positions[key] = init[key].Double();
+        RequireWithinTravel(m, d, init[key].Double(), init[key]);
       }
     }
   }

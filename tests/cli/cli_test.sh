@@ -51,6 +51,10 @@ check run_until 1 "0.500 s simulated" -- "$vmt" run "$src/scenes/default.yaml" -
 check snapshot_a 0 "" -- "$vmt" snapshot "$src/scenes/default.yaml" --at 0.5 --camera iso --out "$out/a.png" --width 320 --height 240
 check snapshot_b 0 "" -- "$vmt" snapshot "$src/scenes/default.yaml" --at 0.5 --camera iso --out "$out/b.png" --width 320 --height 240
 check snapshot_same_bytes 0 "" -- cmp "$out/a.png" "$out/b.png"
+# llvmpipe reads LP_NUM_THREADS once per process: compare separate processes.
+check snapshot_1_thread 0 "" -- env LP_NUM_THREADS=1 "$vmt" snapshot "$src/scenes/default.yaml" --at 0.5 --camera iso --out "$out/t1.png" --width 320 --height 240
+check snapshot_4_threads 0 "" -- env LP_NUM_THREADS=4 "$vmt" snapshot "$src/scenes/default.yaml" --at 0.5 --camera iso --out "$out/t4.png" --width 320 --height 240
+check snapshot_threads_same_bytes 0 "" -- cmp "$out/t1.png" "$out/t4.png"
 check snapshot_bad_camera 2 "no camera 'nope'" -- "$vmt" snapshot "$src/scenes/default.yaml" --at 0.5 --camera nope --out "$out/c.png"
 check snapshot_other 0 "" -- "$vmt" snapshot "$src/scenes/default.yaml" --at 1.5 --camera iso --out "$out/c.png" --width 320 --height 240
 

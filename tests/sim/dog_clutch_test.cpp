@@ -90,9 +90,7 @@ TEST_P(DogClutchTest, MeshesAtOnceWhenAlignedAndStill) {
 
 INSTANTIATE_TEST_SUITE_P(Backends, DogClutchTest,
                          ::testing::Values(BackendKind::kPhysics, BackendKind::kKinematic),
-                         [](const auto& info) {
-                           return info.param == BackendKind::kPhysics ? "Physics" : "Kinematic";
-                         });
+                         [](const auto& info) { return std::string(ToString(info.param)); });
 
 }  // namespace
 }  // namespace vmt::sim

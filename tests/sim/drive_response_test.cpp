@@ -18,6 +18,8 @@ struct StepCase {
   double step;  // mm | deg
 };
 
+void PrintTo(const StepCase& c, std::ostream* os) { *os << c.drive << " step " << c.step; }
+
 class ServoStepTest : public ::testing::TestWithParam<StepCase> {};
 
 // A position step from standstill: the axis must settle into its in-position window within the

@@ -52,7 +52,8 @@ TEST_P(DeterminismTest, SameSceneSameDigest) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, DeterminismTest,
-                         ::testing::Values(BackendKind::kPhysics, BackendKind::kKinematic));
+                         ::testing::Values(BackendKind::kPhysics, BackendKind::kKinematic),
+                         [](const auto& info) { return std::string(ToString(info.param)); });
 
 TEST(RunnerTest, BackendsGiveDifferentTracesButTheSameEndState) {
   const Scene scene = LoadScene(SourcePath("scenes/default.yaml"));

@@ -10,6 +10,12 @@
 #include "sim/kinematic/kinematic_backend.hpp"
 #include "sim/physics/physics_backend.hpp"
 
+#include "sim/scene/scene.hpp"
+
+namespace vmt::sim {
+inline void PrintTo(BackendKind k, std::ostream* os) { *os << ToString(k); }
+}  // namespace vmt::sim
+
 namespace vmt::sim::testing {
 
 inline std::string SourcePath(const std::string& relative) {
