@@ -6,8 +6,8 @@
 
 #include <array>
 #include <cmath>
-#include <vector>
 #include <numbers>
+#include <vector>
 
 #include "sim/kinematic/kinematic_backend.hpp"
 #include "sim/physics/physics_backend.hpp"
@@ -33,9 +33,15 @@ void BM_Backend(benchmark::State& state) {
   control::MasterTelegram mdt;
   mdt.setpoints.resize(m.drives.size());
   mdt.outputs.assign(m.io.size(), 0);
-  struct Axis { const char* name; double centre, amplitude, hz; };
-  const Axis axes[] = {{"Z", 300, 100, 1.0}, {"X", 100, 40, 1.5}, {"W", 300, 50, 0.5},
-                       {"T", 0, 90, 1.0}, {"C", 0, 45, 2.0}};
+  struct Axis {
+    const char* name;
+    double centre, amplitude, hz;
+  };
+  const Axis axes[] = {{"Z", 300, 100, 1.0},
+                       {"X", 100, 40, 1.5},
+                       {"W", 300, 50, 0.5},
+                       {"T", 0, 90, 1.0},
+                       {"C", 0, 45, 2.0}};
   mdt.setpoints[m.DriveIndex("S1")] = {control::DriveMode::kVelocity, 3000 * 6, 0};
   mdt.setpoints[m.DriveIndex("S2")] = {control::DriveMode::kVelocity, 4000 * 6, 0};
   // Commands precomputed for two seconds (every sine repeats within them), so the benchmark
@@ -46,8 +52,9 @@ void BM_Backend(benchmark::State& state) {
   for (int k = 0; k < 5; ++k) index[k] = m.DriveIndex(axes[k].name);
   for (int i = 0; i < kTicks; ++i)
     for (int k = 0; k < 5; ++k)
-      table[i][k] = axes[k].centre + axes[k].amplitude *
-                    std::sin(2 * std::numbers::pi * axes[k].hz * i * sim::kDriveTickS);
+      table[i][k] =
+          axes[k].centre +
+          axes[k].amplitude * std::sin(2 * std::numbers::pi * axes[k].hz * i * sim::kDriveTickS);
   int64_t tick = 0, steps = 0;
   for (auto _ : state) {
     for (int i = 0; i < 4000; ++i, ++tick) {
@@ -64,10 +71,16 @@ void BM_Backend(benchmark::State& state) {
       benchmark::Counter(steps * sim::kDriveTickS, benchmark::Counter::kIsRate);
   state.counters["us_per_step"] =
       benchmark::Counter(steps, benchmark::Counter::kIsRate | benchmark::Counter::kInvert,
-                         benchmark::Counter::kIs1000) ;
+                         benchmark::Counter::kIs1000);
 }
 
-BENCHMARK(BM_Backend<sim::PhysicsBackend>)->Name("physics_lathe_all_axes")->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_Backend<sim::KinematicBackend>)->Name("kinematic_lathe_all_axes")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Backend<sim::PhysicsBackend>)
+    ->Name("physics_lathe_all_axes")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_Backend<sim::KinematicBackend>)
+    ->Name("kinematic_lathe_all_axes")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace

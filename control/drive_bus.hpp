@@ -45,7 +45,7 @@ inline constexpr uint32_t kFollowingError = 1u << 6;  ///< following error above
 struct DriveFeedback {
   double position = 0;  ///< encoder-quantised actual position (rotary: not wrapped)
   double velocity = 0;
-  double torque = 0;    ///< motor torque referred to the load
+  double torque = 0;           ///< motor torque referred to the load
   double following_error = 0;  ///< position mode: command - actual
   uint32_t status = 0;
 };

@@ -2,8 +2,8 @@
 
 namespace vmt::sim {
 
-void PropagateCouplings(const std::vector<CouplingEdge>& edges,
-                                    std::vector<double>& q, std::vector<bool>& known) {
+void PropagateCouplings(const std::vector<CouplingEdge>& edges, std::vector<double>& q,
+                        std::vector<bool>& known) {
   for (bool changed = true; changed;) {
     changed = false;
     for (const CouplingEdge& e : edges) {

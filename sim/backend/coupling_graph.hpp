@@ -15,7 +15,7 @@ struct CouplingEdge {
 };
 
 /// Sets every joint that is not yet `known` but coupled to a known one, transitively.
-void PropagateCouplings(const std::vector<CouplingEdge>& edges,
-                                    std::vector<double>& q, std::vector<bool>& known);
+void PropagateCouplings(const std::vector<CouplingEdge>& edges, std::vector<double>& q,
+                        std::vector<bool>& known);
 
 }  // namespace vmt::sim

@@ -7,11 +7,16 @@ namespace vmt::sim {
 
 const char* ToString(ClutchState state) {
   switch (state) {
-    case ClutchState::kReleased: return "released";
-    case ClutchState::kEngaging: return "engaging";
-    case ClutchState::kBlocked: return "blocked";
-    case ClutchState::kEngaged: return "engaged";
-    case ClutchState::kReleasing: return "releasing";
+    case ClutchState::kReleased:
+      return "released";
+    case ClutchState::kEngaging:
+      return "engaging";
+    case ClutchState::kBlocked:
+      return "blocked";
+    case ClutchState::kEngaged:
+      return "engaged";
+    case ClutchState::kReleasing:
+      return "releasing";
   }
   return "?";
 }
@@ -50,8 +55,10 @@ bool DogClutchLogic::Step(const DogClutch& k, bool valve_engage, bool valve_rele
     case ClutchState::kBlocked:
       // The dogs stay pressed on each other; they drop in as soon as the teeth line up slowly
       // enough (that is what "hunting" the drive at low speed is for).
-      if (release) state = ClutchState::kReleasing, stroke_left_s = k.release_time_s;
-      else if (meshes) state = ClutchState::kEngaged;
+      if (release)
+        state = ClutchState::kReleasing, stroke_left_s = k.release_time_s;
+      else if (meshes)
+        state = ClutchState::kEngaged;
       break;
     case ClutchState::kEngaged:
       if (release) state = ClutchState::kReleasing, stroke_left_s = k.release_time_s;

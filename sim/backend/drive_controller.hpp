@@ -37,7 +37,7 @@ class DriveController {
   double ramp_velocity_ = 0;  ///< velocity mode: reference after the acceleration ramp
   double orient_target_ = 0;  ///< M19: absolute target chosen when the command arrives
   double orient_command_ = 0;
-  double integral_ = 0;       ///< velocity PI state (torque units)
+  double integral_ = 0;  ///< velocity PI state (torque units)
   bool saturated_ = false;
 };
 

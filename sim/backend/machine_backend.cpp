@@ -18,7 +18,8 @@ std::vector<double> InitialJointPositions(const MachineModel& model, const Initi
     known[p.motor_joint] = true;
   }
   std::vector<CouplingEdge> edges;
-  for (const GearCoupling& g : model.gears) edges.push_back({g.motor_joint, g.load_joint, g.ratio, 0});
+  for (const GearCoupling& g : model.gears)
+    edges.push_back({g.motor_joint, g.load_joint, g.ratio, 0});
   for (const DogClutch& k : model.clutches) {
     auto it = init.clutch_engaged.find(k.name);
     if (it != init.clutch_engaged.end() && it->second)

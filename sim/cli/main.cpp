@@ -68,29 +68,41 @@ int main(int argc, char** argv) {
   double until = 0, at = 0, tolerance_fraction = 0;
   int width = 640, height = 480, channel_tolerance = 2;
 
-  CLI::App* run = app.add_subcommand("run", "Run a scene; writes trace.csv, events.jsonl, summary.json and snapshots");
+  CLI::App* run = app.add_subcommand(
+      "run", "Run a scene; writes trace.csv, events.jsonl, summary.json and snapshots");
   run->add_option("scene", scene, "Scene file (YAML)")->required();
   run->add_option("--backend", backend, "physics or kinematic (default: the scene's)")
       ->check(CLI::IsMember({"physics", "kinematic"}));
-  run->add_option("--until", until, "Stop at this simulated time, seconds")->check(CLI::PositiveNumber);
+  run->add_option("--until", until, "Stop at this simulated time, seconds")
+      ->check(CLI::PositiveNumber);
   run->add_option("--out", out, "Output folder")->capture_default_str();
 
   CLI::App* snap = app.add_subcommand("snapshot", "Render the scene's machine at a time to a PNG");
   snap->add_option("scene", scene, "Scene file (YAML)")->required();
-  snap->add_option("--at", at, "Simulated time, seconds")->required()->check(CLI::NonNegativeNumber);
+  snap->add_option("--at", at, "Simulated time, seconds")
+      ->required()
+      ->check(CLI::NonNegativeNumber);
   snap->add_option("--camera", camera, "Camera name (model or scene)")->capture_default_str();
   snap->add_option("--out", out, "PNG file to write")->required();
-  snap->add_option("--width", width, "Picture width")->check(CLI::Range(16, 4096))->capture_default_str();
-  snap->add_option("--height", height, "Picture height")->check(CLI::Range(16, 4096))->capture_default_str();
+  snap->add_option("--width", width, "Picture width")
+      ->check(CLI::Range(16, 4096))
+      ->capture_default_str();
+  snap->add_option("--height", height, "Picture height")
+      ->check(CLI::Range(16, 4096))
+      ->capture_default_str();
 
-  CLI::App* imgdiff = app.add_subcommand("imgdiff", "Compare two PNG pictures: exit 0 equal, 1 different, 2 bad input");
+  CLI::App* imgdiff = app.add_subcommand(
+      "imgdiff", "Compare two PNG pictures: exit 0 equal, 1 different, 2 bad input");
   imgdiff->add_option("a", a, "First PNG")->required();
   imgdiff->add_option("b", b, "Second PNG")->required();
   imgdiff->add_option("--diff", diff, "Write a diff picture here when they differ");
   imgdiff->add_option("--tolerance", channel_tolerance, "Per-channel tolerance 0..255")
-      ->check(CLI::Range(0, 255))->capture_default_str();
-  imgdiff->add_option("--allowed-fraction", tolerance_fraction, "Fraction of pixels allowed to differ")
-      ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+      ->check(CLI::Range(0, 255))
+      ->capture_default_str();
+  imgdiff
+      ->add_option("--allowed-fraction", tolerance_fraction, "Fraction of pixels allowed to differ")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
 
   try {
     app.parse(argc, argv);
@@ -108,7 +120,8 @@ int main(int argc, char** argv) {
       opt.allowed_fraction = tolerance_fraction;
       const render::CompareResult r = render::CompareImages(ia, ib, opt);
       if (r.equal) {
-        std::printf("equal (%d pixels beyond tolerance %d)\n", r.differing_pixels, channel_tolerance);
+        std::printf("equal (%d pixels beyond tolerance %d)\n", r.differing_pixels,
+                    channel_tolerance);
         return 0;
       }
       if (r.size_mismatch)

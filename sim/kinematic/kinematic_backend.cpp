@@ -82,8 +82,8 @@ void KinematicBackend::Step() {
     const double pos = q_before[p.motor_joint] / p.ratio;
     const double vel = qd_[p.motor_joint] / p.ratio;
     const double v_ref = ctrl.VelocityReference(sp, pos, vel, dt);
-    const bool leads = sp.mode == control::DriveMode::kPosition ||
-                       sp.mode == control::DriveMode::kVelocity;
+    const bool leads =
+        sp.mode == control::DriveMode::kPosition || sp.mode == control::DriveMode::kVelocity;
     int64_t& led = group_led_[group_[p.motor_joint]];
     if (!leads || led == ticks_) continue;
     led = ticks_;
@@ -99,8 +99,8 @@ void KinematicBackend::Step() {
     const double phase = DogClutchLogic::PhaseError(c, q_[c.motor_joint], q_[c.load_joint]);
     const double slip = qd_[c.load_joint] - qd_[c.motor_joint] / c.ratio;
     const bool was_engaged = clutches_[k].state == ClutchState::kEngaged;
-    clutches_[k].Step(c, mdt_.outputs[c.valve_engage], mdt_.outputs[c.valve_release], phase,
-                      slip, dt);
+    clutches_[k].Step(c, mdt_.outputs[c.valve_engage], mdt_.outputs[c.valve_release], phase, slip,
+                      dt);
     const bool engaged = clutches_[k].state == ClutchState::kEngaged;
     if (!was_engaged && engaged)
       clutch_offsets_[k] = DogClutchLogic::MeshOffset(c, q_[c.motor_joint], q_[c.load_joint]);

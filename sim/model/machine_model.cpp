@@ -38,9 +38,12 @@ DriveParams ReadDrive(const MachineModel& m, const YamlNode& d) {
   DriveParams p;
   p.info.name = d["name"].String();
   const std::string kind = d["kind"].String();
-  if (kind == "linear") p.info.kind = control::AxisKind::kLinear;
-  else if (kind == "rotary") p.info.kind = control::AxisKind::kRotary;
-  else d["kind"].Fail("expected linear or rotary, got \"" + kind + "\"");
+  if (kind == "linear")
+    p.info.kind = control::AxisKind::kLinear;
+  else if (kind == "rotary")
+    p.info.kind = control::AxisKind::kRotary;
+  else
+    d["kind"].Fail("expected linear or rotary, got \"" + kind + "\"");
   const std::string type = d.String("type", "servo");
   if (type != "servo" && type != "spindle") d["type"].Fail("expected servo or spindle");
   p.spindle = type == "spindle";
@@ -109,8 +112,7 @@ MachineModel LoadMachineModel(const std::string& machine_yaml_path) {
   m.yaml_path = machine_yaml_path;
   m.name = root["machine"].String();
   const YamlNode urdf = root["urdf"];
-  m.urdf_path =
-      (std::filesystem::path(machine_yaml_path).parent_path() / urdf.String()).string();
+  m.urdf_path = (std::filesystem::path(machine_yaml_path).parent_path() / urdf.String()).string();
   if (!std::filesystem::exists(m.urdf_path)) urdf.Fail("URDF file not found: " + m.urdf_path);
   LoadUrdf(m.urdf_path, m);
 
@@ -139,8 +141,8 @@ MachineModel LoadMachineModel(const std::string& machine_yaml_path) {
       const std::string type = c["type"].String();
       if (type == "gear") {
         c.AllowKeys({"name", "type", "motor", "load", "ratio"});
-        GearCoupling g{c["name"].String(), RequireJoint(m, c["motor"]),
-                       RequireJoint(m, c["load"]), c["ratio"].Double()};
+        GearCoupling g{c["name"].String(), RequireJoint(m, c["motor"]), RequireJoint(m, c["load"]),
+                       c["ratio"].Double()};
         if (g.ratio == 0) c["ratio"].Fail("must not be 0");
         m.gears.push_back(g);
       } else if (type == "dog_clutch") {
@@ -173,18 +175,7 @@ MachineModel LoadMachineModel(const std::string& machine_yaml_path) {
   if (root.Has("cameras")) {
     const YamlNode cams = root["cameras"];
     for (const std::string& name : cams.Keys()) {
-      const YamlNode c = cams[name];
-      c.AllowKeys({"eye", "target", "up", "fov"});
-      NamedCamera cam;
-      cam.name = name;
-      const auto eye = c["eye"].Doubles(3), target = c["target"].Doubles(3);
-      cam.eye_m = Eigen::Vector3d(eye[0], eye[1], eye[2]) / kMmPerM;
-      cam.target_m = Eigen::Vector3d(target[0], target[1], target[2]) / kMmPerM;
-      if (c.Has("up")) {
-        const auto up = c["up"].Doubles(3);
-        cam.up = Eigen::Vector3d(up[0], up[1], up[2]);
-      }
-      cam.fov_y_deg = c.Double("fov", 40);
+      const NamedCamera cam = ReadCamera(name, cams[name]);
       m.cameras.push_back(cam);
     }
   }

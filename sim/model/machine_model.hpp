@@ -10,6 +10,7 @@
 
 #include "control/drive_bus.hpp"
 #include "render/mesh.hpp"
+#include "sim/model/named_camera.hpp"
 
 namespace vmt::sim {
 
@@ -26,7 +27,7 @@ struct Visual {
 struct Link {
   std::string name;
   double mass_kg = 0;
-  Eigen::Vector3d com_m = Eigen::Vector3d::Zero();  ///< centre of mass in the link frame
+  Eigen::Vector3d com_m = Eigen::Vector3d::Zero();         ///< centre of mass in the link frame
   Eigen::Vector3d inertia_kgm2 = Eigen::Vector3d::Zero();  ///< principal moments at the COM
   std::vector<Visual> visuals;
   std::vector<Visual> collisions;
@@ -42,29 +43,29 @@ struct Joint {
   int child_link = -1;
   Eigen::Isometry3d X_ParentJoint = Eigen::Isometry3d::Identity();
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  ///< unit, in the joint (= child) frame
-  double lower = 0, upper = 0;                       ///< m | rad (not for continuous)
-  double damping = 0;                                ///< N s/m | N m s/rad
-  double friction = 0;                               ///< N | N m
+  double lower = 0, upper = 0;                      ///< m | rad (not for continuous)
+  double damping = 0;                               ///< N s/m | N m s/rad
+  double friction = 0;                              ///< N | N m
 };
 
 /// A drive's controller, as a servo or spindle amplifier would be parameterised.
 /// Gains and limits are stored in SI (m or rad) after loading.
 struct DriveParams {
   control::DriveInfo info;
-  bool spindle = false;         ///< spindle amplifier: velocity mode with ramp, M19 positioning
-  int motor_joint = -1;         ///< joint the motor torque acts on
-  double ratio = 1;             ///< motor units per load unit (belt, gear reduction)
-  double kv_per_s = 30;         ///< position loop gain
-  double velocity_kp = 0;       ///< velocity loop P gain, N s/m | N m s/rad (load side)
-  double velocity_ti_s = 0.01;  ///< velocity loop integral time
-  double torque_limit = 0;      ///< N | N m (load side)
-  double velocity_limit = 0;    ///< m/s | rad/s
+  bool spindle = false;           ///< spindle amplifier: velocity mode with ramp, M19 positioning
+  int motor_joint = -1;           ///< joint the motor torque acts on
+  double ratio = 1;               ///< motor units per load unit (belt, gear reduction)
+  double kv_per_s = 30;           ///< position loop gain
+  double velocity_kp = 0;         ///< velocity loop P gain, N s/m | N m s/rad (load side)
+  double velocity_ti_s = 0.01;    ///< velocity loop integral time
+  double torque_limit = 0;        ///< N | N m (load side)
+  double velocity_limit = 0;      ///< m/s | rad/s
   double acceleration_limit = 0;  ///< m/s^2 | rad/s^2 (spindle ramp, profiles)
   double encoder_resolution = 0;  ///< m | rad, load side
   double in_position_window = 0;  ///< m | rad
   double standstill_window = 0;   ///< m/s | rad/s
   double following_error_limit = 0;  ///< m | rad
-  double positioning_speed = 0;   ///< rad/s, spindle M19 orientation speed
+  double positioning_speed = 0;      ///< rad/s, spindle M19 orientation speed
   // Step response spec the tests hold the drive to (machine YAML `spec:`).
   double spec_settle_time_s = 0;
   double spec_overshoot = 0;  ///< m | rad
@@ -82,20 +83,14 @@ struct GearCoupling {
 struct DogClutch {
   std::string name;
   int motor_joint = -1, load_joint = -1;
-  double ratio = 1;                 ///< motor turns per load turn when engaged
-  int teeth = 1;                    ///< dog teeth; pitch = 2 pi / teeth on the load side
-  double phase_tolerance_rad = 0;   ///< load-side tooth phase error that still meshes
+  double ratio = 1;                     ///< motor turns per load turn when engaged
+  int teeth = 1;                        ///< dog teeth; pitch = 2 pi / teeth on the load side
+  double phase_tolerance_rad = 0;       ///< load-side tooth phase error that still meshes
   double max_relative_speed_rad_s = 0;  ///< load-side slip speed above which teeth ratchet
-  double engage_time_s = 0;         ///< valve + stroke time
+  double engage_time_s = 0;             ///< valve + stroke time
   double release_time_s = 0;
-  int valve_engage = -1, valve_release = -1;       ///< I/O indices (outputs)
-  int sensor_engaged = -1, sensor_released = -1;   ///< I/O indices (inputs)
-};
-
-struct NamedCamera {
-  std::string name;
-  Eigen::Vector3d eye_m, target_m, up{0, 1, 0};
-  double fov_y_deg = 40;
+  int valve_engage = -1, valve_release = -1;      ///< I/O indices (outputs)
+  int sensor_engaged = -1, sensor_released = -1;  ///< I/O indices (inputs)
 };
 
 struct MachineModel {

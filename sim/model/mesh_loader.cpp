@@ -19,8 +19,8 @@ std::shared_ptr<const render::Mesh> MeshCache::Load(const std::string& path,
   Assimp::Importer importer;
   // Keep vertices as written: the meshes carry their own normals, and joining vertices would
   // smooth hard edges.
-  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_GenNormals |
-                                                     aiProcess_PreTransformVertices);
+  const aiScene* scene = importer.ReadFile(
+      path, aiProcess_Triangulate | aiProcess_GenNormals | aiProcess_PreTransformVertices);
   if (!scene || !scene->mRootNode)
     throw std::runtime_error("mesh " + path + ": " + importer.GetErrorString());
 
@@ -30,9 +30,9 @@ std::shared_ptr<const render::Mesh> MeshCache::Load(const std::string& path,
     const auto base = static_cast<uint32_t>(mesh->positions.size() / 3);
     for (unsigned v = 0; v < am->mNumVertices; ++v) {
       const aiVector3D& p = am->mVertices[v];
-      mesh->positions.insert(mesh->positions.end(),
-                             {static_cast<float>(p.x * scale.x()), static_cast<float>(p.y * scale.y()),
-                              static_cast<float>(p.z * scale.z())});
+      mesh->positions.insert(mesh->positions.end(), {static_cast<float>(p.x * scale.x()),
+                                                     static_cast<float>(p.y * scale.y()),
+                                                     static_cast<float>(p.z * scale.z())});
       const aiVector3D n = am->HasNormals() ? am->mNormals[v] : aiVector3D(0, 0, 1);
       mesh->normals.insert(mesh->normals.end(), {n.x, n.y, n.z});
     }

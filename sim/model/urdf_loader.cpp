@@ -19,7 +19,8 @@ namespace {
 class CollectingHandler : public console_bridge::OutputHandler {
  public:
   void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
-    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_WARN) messages += (messages.empty() ? "" : "; ") + text;
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_WARN)
+      messages += (messages.empty() ? "" : "; ") + text;
   }
   std::string messages;
 };
@@ -27,10 +28,10 @@ class CollectingHandler : public console_bridge::OutputHandler {
 Eigen::Isometry3d ToIsometry(const urdf::Pose& pose) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   X.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
-  X.linear() = Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y,
-                                  pose.rotation.z)
-                   .normalized()
-                   .toRotationMatrix();
+  X.linear() =
+      Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z)
+          .normalized()
+          .toRotationMatrix();
   return X;
 }
 
@@ -108,11 +109,21 @@ void LoadUrdf(const std::string& urdf_path, MachineModel& model) {
       Joint joint;
       joint.name = uj.name;
       switch (uj.type) {
-        case urdf::Joint::FIXED: joint.type = JointType::kFixed; break;
-        case urdf::Joint::PRISMATIC: joint.type = JointType::kPrismatic; break;
-        case urdf::Joint::REVOLUTE: joint.type = JointType::kRevolute; break;
-        case urdf::Joint::CONTINUOUS: joint.type = JointType::kContinuous; break;
-        default: throw ModelError(urdf_path, jwhere, "joint type not supported (fixed, prismatic, revolute, continuous)");
+        case urdf::Joint::FIXED:
+          joint.type = JointType::kFixed;
+          break;
+        case urdf::Joint::PRISMATIC:
+          joint.type = JointType::kPrismatic;
+          break;
+        case urdf::Joint::REVOLUTE:
+          joint.type = JointType::kRevolute;
+          break;
+        case urdf::Joint::CONTINUOUS:
+          joint.type = JointType::kContinuous;
+          break;
+        default:
+          throw ModelError(urdf_path, jwhere,
+                           "joint type not supported (fixed, prismatic, revolute, continuous)");
       }
       joint.parent_link = link_index.at(uj.parent_link_name);
       joint.child_link = index;

@@ -13,9 +13,9 @@ YamlNode YamlNode::LoadFile(const std::string& file) {
   try {
     return YamlNode(YAML::Load(in), file, "");
   } catch (const YAML::Exception& e) {
-    throw ModelError(file + ":" + std::to_string(e.mark.line + 1) + ":" +
-                         std::to_string(e.mark.column + 1),
-                     "", "YAML syntax error: " + e.msg);
+    throw ModelError(
+        file + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1), "",
+        "YAML syntax error: " + e.msg);
   }
 }
 

@@ -1,12 +1,12 @@
 #include "sim/physics/physics_backend.hpp"
 
-#include <btBulletDynamicsCommon.h>
-
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 #include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
 #include <BulletDynamics/Featherstone/btMultiBodyGearConstraint.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
+#include <btBulletDynamicsCommon.h>
+
 #include <cmath>
 
 namespace vmt::sim {
@@ -56,7 +56,6 @@ PhysicsBackend::PhysicsBackend(const MachineModel& model, const InitialState& in
   clutches_.resize(model.clutches.size());
   world_->clutch_gears.resize(model.clutches.size());
   world_->world.setGravity(btVector3(0, -9.81, 0));
-
 
   // Link i of the multibody is joint i of the model (joints are in topological order and
   // joint i's child is model link i + 1).
@@ -200,8 +199,8 @@ void PhysicsBackend::Step() {
     const Joint& joint = model_->joints[j];
     if (joint.type == JointType::kFixed || (joint.damping == 0 && joint.friction == 0)) continue;
     const double qd = mb.getJointVel(static_cast<int>(j));
-    mb.addJointTorque(static_cast<int>(j), -joint.damping * qd -
-                                               joint.friction * std::tanh(qd / kFrictionSmoothing));
+    mb.addJointTorque(static_cast<int>(j),
+                      -joint.damping * qd - joint.friction * std::tanh(qd / kFrictionSmoothing));
   }
 
   world_->world.stepSimulation(dt, 0, dt);
@@ -226,8 +225,7 @@ void PhysicsBackend::UpdateFeedback(const std::vector<double>& torques) {
   for (size_t d = 0; d < controllers_.size(); ++d) {
     const DriveParams& p = model_->drives[d];
     at_.feedback[d] = controllers_[d].Feedback(mb.getJointPos(p.motor_joint) / p.ratio,
-                                               mb.getJointVel(p.motor_joint) / p.ratio,
-                                               torques[d]);
+                                               mb.getJointVel(p.motor_joint) / p.ratio, torques[d]);
   }
   ReadInputs(*model_, mdt_.outputs, clutches_, at_.inputs);
 }

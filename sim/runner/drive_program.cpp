@@ -24,9 +24,12 @@ double TrapezoidProfile::At(double t_s) const {
   const double peak = std::min(speed, std::sqrt(d * accel));
   const double t_acc = peak / accel;
   double s;
-  if (t < t_acc) s = 0.5 * accel * t * t;
-  else if (t < total - t_acc) s = 0.5 * peak * t_acc + peak * (t - t_acc);
-  else s = d - 0.5 * accel * (total - t) * (total - t);
+  if (t < t_acc)
+    s = 0.5 * accel * t * t;
+  else if (t < total - t_acc)
+    s = 0.5 * peak * t_acc + peak * (t - t_acc);
+  else
+    s = d - 0.5 * accel * (total - t) * (total - t);
   return start + sign * s;
 }
 
@@ -34,11 +37,16 @@ bool Holds(const Condition& c, const control::AmplifierTelegram& at,
            const std::vector<ClutchState>& clutches) {
   using namespace control::drive_status;
   switch (c.kind) {
-    case Condition::Kind::kInput: return (at.inputs[c.index] != 0) == c.value;
-    case Condition::Kind::kInPosition: return ((at.feedback[c.index].status & kInPosition) != 0) == c.value;
-    case Condition::Kind::kAtSpeed: return ((at.feedback[c.index].status & kAtSpeed) != 0) == c.value;
-    case Condition::Kind::kStandstill: return ((at.feedback[c.index].status & kStandstill) != 0) == c.value;
-    case Condition::Kind::kClutch: return clutches[c.index] == c.clutch;
+    case Condition::Kind::kInput:
+      return (at.inputs[c.index] != 0) == c.value;
+    case Condition::Kind::kInPosition:
+      return ((at.feedback[c.index].status & kInPosition) != 0) == c.value;
+    case Condition::Kind::kAtSpeed:
+      return ((at.feedback[c.index].status & kAtSpeed) != 0) == c.value;
+    case Condition::Kind::kStandstill:
+      return ((at.feedback[c.index].status & kStandstill) != 0) == c.value;
+    case Condition::Kind::kClutch:
+      return clutches[c.index] == c.clutch;
   }
   return false;
 }
@@ -51,8 +59,10 @@ DriveProgram::DriveProgram(const Scene& scene, const control::AmplifierTelegram&
   profiling_.assign(m.drives.size(), false);
   outputs_.assign(m.io.size(), 0);
   for (size_t d = 0; d < m.drives.size(); ++d) {
-    if (m.drives[d].spindle) setpoints_[d] = {DriveMode::kVelocity, 0, 0};
-    else setpoints_[d] = {DriveMode::kPosition, feedback.feedback[d].position, 0};
+    if (m.drives[d].spindle)
+      setpoints_[d] = {DriveMode::kVelocity, 0, 0};
+    else
+      setpoints_[d] = {DriveMode::kPosition, feedback.feedback[d].position, 0};
   }
 }
 
@@ -98,12 +108,13 @@ bool DriveProgram::Execute(const TimelineStep& step, double t_s,
       // this tick (an "at speed" of the old setpoint), so a wait never ends in its first tick.
       if (t_s == step_since_s_) return false;
       // "In position" means the move is done, not that the axis has yet to start.
-      const bool moving = step.until.kind == Condition::Kind::kInPosition &&
-                          profiling_[step.until.index] &&
-                          t_s < profiles_[step.until.index].t0_s + profiles_[step.until.index].Duration();
+      const bool moving =
+          step.until.kind == Condition::Kind::kInPosition && profiling_[step.until.index] &&
+          t_s < profiles_[step.until.index].t0_s + profiles_[step.until.index].Duration();
       if (!moving && Holds(step.until, at, clutches)) return true;
       if (t_s - step_since_s_ >= step.timeout_s) {
-        failures_.push_back(step.text + " timed out after " + std::to_string(step.timeout_s) + " s");
+        failures_.push_back(step.text + " timed out after " + std::to_string(step.timeout_s) +
+                            " s");
         events.push_back({t_s, "timeout", step.text});
         return true;  // go on: the rest of the run is still worth its trace
       }

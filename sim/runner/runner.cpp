@@ -52,12 +52,18 @@ double Measured(const Expectation& e, const control::AmplifierTelegram& at,
                 const std::vector<ClutchState>& clutches) {
   using Q = Expectation::Quantity;
   switch (e.quantity) {
-    case Q::kPosition: return at.feedback[e.index].position;
-    case Q::kVelocity: return at.feedback[e.index].velocity;
-    case Q::kRpm: return at.feedback[e.index].velocity / 6.0;
-    case Q::kFollowingError: return at.feedback[e.index].following_error;
-    case Q::kInput: return at.inputs[e.index];
-    case Q::kClutch: return static_cast<double>(clutches[e.index]);
+    case Q::kPosition:
+      return at.feedback[e.index].position;
+    case Q::kVelocity:
+      return at.feedback[e.index].velocity;
+    case Q::kRpm:
+      return at.feedback[e.index].velocity / 6.0;
+    case Q::kFollowingError:
+      return at.feedback[e.index].following_error;
+    case Q::kInput:
+      return at.inputs[e.index];
+    case Q::kClutch:
+      return static_cast<double>(clutches[e.index]);
   }
   return 0;
 }
@@ -89,7 +95,8 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
 
   const double duration = options.until_s.value_or(scene.duration_s);
   const int64_t last_tick = std::llround(duration / kDriveTickS);
-  const int64_t trace_every = std::max<int64_t>(1, std::llround(scene.trace_period_s / kDriveTickS));
+  const int64_t trace_every =
+      std::max<int64_t>(1, std::llround(scene.trace_period_s / kDriveTickS));
   const bool writing = !options.out_dir.empty();
 
   std::ofstream trace_file, events_file;
@@ -130,10 +137,13 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
 
     events.clear();
     program.Tick(t, at, clutches, mdt, events);
-    for (const ProgramEvent& e : events) emit_event({{"t", e.t_s}, {"event", e.kind}, {"text", e.text}});
+    for (const ProgramEvent& e : events)
+      emit_event({{"t", e.t_s}, {"event", e.kind}, {"text", e.text}});
     for (size_t k = 0; k < clutches.size(); ++k)
       if (last_clutches.empty() || clutches[k] != last_clutches[k])
-        emit_event({{"t", t}, {"event", "clutch"}, {"name", m.clutches[k].name},
+        emit_event({{"t", t},
+                    {"event", "clutch"},
+                    {"name", m.clutches[k].name},
                     {"state", ToString(clutches[k])}});
     for (size_t i = 0; i < at.inputs.size(); ++i)
       if (!m.io[i].is_output && (last_inputs.empty() || at.inputs[i] != last_inputs[i]))
@@ -148,7 +158,8 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
       row = buf;
       for (size_t d = 0; d < m.drives.size(); ++d) {
         const control::DriveFeedback& fb = at.feedback[d];
-        Append(row, mdt.setpoints[d].mode == control::DriveMode::kOff ? 0.0 : mdt.setpoints[d].value);
+        Append(row,
+               mdt.setpoints[d].mode == control::DriveMode::kOff ? 0.0 : mdt.setpoints[d].value);
         Append(row, fb.position);
         Append(row, fb.velocity);
         if (m.drives[d].spindle || m.drives[d].info.kind == control::AxisKind::kRotary)
@@ -164,8 +175,11 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
       if (checked[i] || !due) continue;
       checked[i] = true;
       checks[i] = Check(e, at, clutches);
-      emit_event({{"t", t}, {"event", "expectation"}, {"text", e.text},
-                  {"passed", checks[i].passed}, {"detail", checks[i].detail}});
+      emit_event({{"t", t},
+                  {"event", "expectation"},
+                  {"text", e.text},
+                  {"passed", checks[i].passed},
+                  {"detail", checks[i].detail}});
     }
 
     for (size_t i = 0; i < scene.snapshots.size(); ++i) {
@@ -195,7 +209,8 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
     if (!checked[i]) {
       checks[i] = {scene.expectations[i].text, false, "not reached: the run ended first"};
     }
-    if (!checks[i].passed) result.failures.push_back(checks[i].text + " (" + checks[i].detail + ")");
+    if (!checks[i].passed)
+      result.failures.push_back(checks[i].text + " (" + checks[i].detail + ")");
   }
   for (const std::string& f : program.failures()) result.failures.push_back(f);
   result.expectations = checks;
@@ -210,7 +225,8 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
     summary["wall_time_s"] = result.wall_s;
     summary["real_time_factor"] = result.wall_s > 0 ? result.simulated_s / result.wall_s : 0.0;
     summary["trace_digest"] = result.trace_digest;
-    summary["expectations_passed"] = result.expectations.size() -
+    summary["expectations_passed"] =
+        result.expectations.size() -
         std::count_if(checks.begin(), checks.end(), [](const auto& c) { return !c.passed; });
     summary["expectations_failed"] =
         std::count_if(checks.begin(), checks.end(), [](const auto& c) { return !c.passed; });

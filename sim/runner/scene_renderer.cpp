@@ -26,8 +26,8 @@ render::Image SceneRenderer::Render(const std::vector<double>& q, const NamedCam
   if (workpiece_mesh_) {
     Eigen::Isometry3d X_LinkPart = Eigen::Isometry3d::Identity();
     X_LinkPart.translation().z() = workpiece_.z_m;
-    items.push_back({workpiece_mesh_.get(), X_WLink[model_->LinkIndex(workpiece_.link)] * X_LinkPart,
-                     workpiece_.colour});
+    items.push_back({workpiece_mesh_.get(),
+                     X_WLink[model_->LinkIndex(workpiece_.link)] * X_LinkPart, workpiece_.colour});
   }
   render::Camera cam;
   cam.eye = camera.eye_m;

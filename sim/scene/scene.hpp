@@ -13,7 +13,9 @@
 namespace vmt::sim {
 
 enum class BackendKind { kPhysics, kKinematic };
-inline const char* ToString(BackendKind k) { return k == BackendKind::kPhysics ? "physics" : "kinematic"; }
+inline const char* ToString(BackendKind k) {
+  return k == BackendKind::kPhysics ? "physics" : "kinematic";
+}
 
 struct Workpiece {
   bool present = false;
@@ -26,8 +28,8 @@ struct Workpiece {
 /// What a wait_until step or an expectation looks at.
 struct Condition {
   enum class Kind { kInput, kInPosition, kAtSpeed, kStandstill, kClutch } kind = Kind::kInput;
-  int index = -1;      ///< I/O point, drive or clutch
-  bool value = true;   ///< input level or status bit wanted
+  int index = -1;     ///< I/O point, drive or clutch
+  bool value = true;  ///< input level or status bit wanted
   ClutchState clutch = ClutchState::kEngaged;
 };
 
@@ -36,13 +38,13 @@ struct TimelineStep {
   double not_before_s = 0;  ///< `at:`; 0 = as soon as the previous step is done
   int drive = -1;
   int io = -1;
-  double target = 0;     ///< move: position (mm|deg); speed: deg/s or mm/s; orient: deg
-  double feed = 0;       ///< move: mm/s | deg/s
-  bool level = false;    ///< output value
+  double target = 0;   ///< move: position (mm|deg); speed: deg/s or mm/s; orient: deg
+  double feed = 0;     ///< move: mm/s | deg/s
+  bool level = false;  ///< output value
   double wait_s = 0;
   Condition until;
   double timeout_s = 10;
-  std::string text;      ///< "timeline[3]: move Z to 250" for events and messages
+  std::string text;  ///< "timeline[3]: move Z to 250" for events and messages
 };
 
 struct Expectation {

@@ -71,10 +71,14 @@ Condition ReadCondition(const MachineModel& m, const YamlNode& n) {
   } else if (n.Has("axis")) {
     n.AllowKeys({"axis", "in_position", "at_speed", "standstill", "timeout"});
     c.index = RequireDrive(m, n["axis"]);
-    if (n.Has("in_position")) c.kind = Condition::Kind::kInPosition, c.value = n.Bool("in_position", true);
-    else if (n.Has("at_speed")) c.kind = Condition::Kind::kAtSpeed, c.value = n.Bool("at_speed", true);
-    else if (n.Has("standstill")) c.kind = Condition::Kind::kStandstill, c.value = n.Bool("standstill", true);
-    else n.Fail("expected one of in_position, at_speed, standstill");
+    if (n.Has("in_position"))
+      c.kind = Condition::Kind::kInPosition, c.value = n.Bool("in_position", true);
+    else if (n.Has("at_speed"))
+      c.kind = Condition::Kind::kAtSpeed, c.value = n.Bool("at_speed", true);
+    else if (n.Has("standstill"))
+      c.kind = Condition::Kind::kStandstill, c.value = n.Bool("standstill", true);
+    else
+      n.Fail("expected one of in_position, at_speed, standstill");
   } else {
     n.Fail("expected input:, clutch: or axis:");
   }
@@ -90,7 +94,8 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i) {
   int actions = 0;
   for (const char* k : {"move", "speed", "orient", "off", "output", "wait", "wait_until"})
     actions += n.Has(k);
-  if (actions != 1) n.Fail("a step needs exactly one of move, speed, orient, off, output, wait, wait_until");
+  if (actions != 1)
+    n.Fail("a step needs exactly one of move, speed, orient, off, output, wait, wait_until");
 
   if (n.Has("move")) {
     const YamlNode a = n["move"];
@@ -166,12 +171,14 @@ Expectation ReadExpectation(const MachineModel& m, const YamlNode& n, size_t i) 
     e.index = RequireDrive(m, n["axis"]);
     int quantities = 0;
     for (const char* k : {"position", "velocity", "rpm", "following_error"}) quantities += n.Has(k);
-    if (quantities != 1) n.Fail("an axis expectation needs exactly one of position, velocity, rpm, following_error");
+    if (quantities != 1)
+      n.Fail("an axis expectation needs exactly one of position, velocity, rpm, following_error");
     std::string q;
     if (n.Has("position")) e.quantity = Expectation::Quantity::kPosition, q = "position";
     if (n.Has("velocity")) e.quantity = Expectation::Quantity::kVelocity, q = "velocity";
     if (n.Has("rpm")) e.quantity = Expectation::Quantity::kRpm, q = "rpm";
-    if (n.Has("following_error")) e.quantity = Expectation::Quantity::kFollowingError, q = "following_error";
+    if (n.Has("following_error"))
+      e.quantity = Expectation::Quantity::kFollowingError, q = "following_error";
     e.value = n[q].Double();
     e.tolerance = n["tol"].Double();
     if (e.tolerance < 0) n["tol"].Fail("must be >= 0");
@@ -194,23 +201,6 @@ Expectation ReadExpectation(const MachineModel& m, const YamlNode& n, size_t i) 
   text << (e.at_s < 0 ? std::string(" at the end") : " at " + Fmt(e.at_s) + " s");
   e.text = text.str();
   return e;
-}
-
-NamedCamera ReadCamera(const std::string& name, const YamlNode& c) {
-  c.AllowKeys({"eye", "target", "up", "fov"});
-  NamedCamera cam;
-  cam.name = name;
-  const auto eye = c["eye"].Doubles(3), target = c["target"].Doubles(3);
-  cam.eye_m = Eigen::Vector3d(eye[0], eye[1], eye[2]) / kMmPerM;
-  cam.target_m = Eigen::Vector3d(target[0], target[1], target[2]) / kMmPerM;
-  if (c.Has("up")) {
-    const auto up = c["up"].Doubles(3);
-    cam.up = Eigen::Vector3d(up[0], up[1], up[2]);
-  }
-  cam.fov_y_deg = c.Double("fov", 40);
-  if (cam.fov_y_deg <= 1 || cam.fov_y_deg >= 170) c["fov"].Fail("must be between 1 and 170 degrees");
-  if ((cam.eye_m - cam.target_m).norm() < 1e-9) c.Fail("eye and target coincide");
-  return cam;
 }
 
 }  // namespace
@@ -237,9 +227,12 @@ Scene LoadScene(const std::string& path) {
   const MachineModel& m = *s.model;
 
   const std::string backend = root.String("backend", "physics");
-  if (backend == "physics") s.backend = BackendKind::kPhysics;
-  else if (backend == "kinematic") s.backend = BackendKind::kKinematic;
-  else root["backend"].Fail("expected physics or kinematic, got \"" + backend + "\"");
+  if (backend == "physics")
+    s.backend = BackendKind::kPhysics;
+  else if (backend == "kinematic")
+    s.backend = BackendKind::kKinematic;
+  else
+    root["backend"].Fail("expected physics or kinematic, got \"" + backend + "\"");
   s.duration_s = root["duration"].Double();
   if (s.duration_s <= 0 || s.duration_s > 86400) root["duration"].Fail("must be in (0, 86400] s");
   s.trace_period_s = root.Double("trace_period", 0.001);
@@ -272,7 +265,8 @@ Scene LoadScene(const std::string& path) {
           for (const DogClutch& k : m.clutches) found = found || k.name == name;
           if (!found) cl[name].Fail("no clutch '" + name + "'");
           const std::string state = cl[name].String();
-          if (state != "engaged" && state != "released") cl[name].Fail("expected engaged or released");
+          if (state != "engaged" && state != "released")
+            cl[name].Fail("expected engaged or released");
           s.initial.clutch_engaged[name] = state == "engaged";
         }
       } else {

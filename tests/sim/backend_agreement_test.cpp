@@ -38,8 +38,8 @@ TEST(BackendAgreementTest, SameMovesSamePathWithinFollowingError) {
     bp.Run(kDriveTickS);
     bk.Run(kDriveTickS);
     for (int a = 0; a < 3; ++a) {
-      worst_gap[a] = std::max(worst_gap[a], std::abs(bp.Feedback(axes[a]).position -
-                                                     bk.Feedback(axes[a]).position));
+      worst_gap[a] = std::max(
+          worst_gap[a], std::abs(bp.Feedback(axes[a]).position - bk.Feedback(axes[a]).position));
       worst_fe[a] = std::max(worst_fe[a], std::abs(bp.Feedback(axes[a]).following_error));
     }
   }

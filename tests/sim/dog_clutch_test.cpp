@@ -39,10 +39,13 @@ TEST_P(DogClutchTest, StaysBlockedToothOnToothThenMeshesWhileHunting) {
   Bench bench(*backend);
   // Orient the spindle to half a tooth pitch (7.5 deg): the dogs sit on each other.
   bench.Command("S1", DriveMode::kPosition, 7.5);
-  ASSERT_GT(bench.RunUntil([&] {
-    return (bench.Feedback("S1").status & control::drive_status::kInPosition) &&
-           (bench.Feedback("S1").status & control::drive_status::kStandstill);
-  }, 5), 0);
+  ASSERT_GT(bench.RunUntil(
+                [&] {
+                  return (bench.Feedback("S1").status & control::drive_status::kInPosition) &&
+                         (bench.Feedback("S1").status & control::drive_status::kStandstill);
+                },
+                5),
+            0);
   bench.Command("S1", DriveMode::kOff, 0);
   bench.Output("QROTMODE", true);
   bench.Run(0.3);

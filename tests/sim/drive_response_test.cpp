@@ -54,9 +54,8 @@ TEST_P(ServoStepTest, SettlesWithinSpec) {
 }
 
 INSTANTIATE_TEST_SUITE_P(LatheServos, ServoStepTest,
-                         ::testing::Values(StepCase{"Z", 10}, StepCase{"X", 10},
-                                           StepCase{"W", 10}, StepCase{"T", 30},
-                                           StepCase{"C", 10}),
+                         ::testing::Values(StepCase{"Z", 10}, StepCase{"X", 10}, StepCase{"W", 10},
+                                           StepCase{"T", 30}, StepCase{"C", 10}),
                          [](const auto& info) { return std::string(info.param.drive); });
 
 // Run-up 0 -> 3000 rpm is limited by the spindle's acceleration: it takes v/a, not less (the
@@ -87,8 +86,11 @@ TEST(SpindleTest, OrientsToAnAngle) {
   bench.Run(1.0);
   bench.Command("S1", DriveMode::kPosition, 45);
   const double t = bench.RunUntil(
-      [&] { return bench.Feedback("S1").status & control::drive_status::kInPosition &&
-                   bench.Feedback("S1").status & control::drive_status::kStandstill; }, 5);
+      [&] {
+        return bench.Feedback("S1").status & control::drive_status::kInPosition &&
+               bench.Feedback("S1").status & control::drive_status::kStandstill;
+      },
+      5);
   ASSERT_GT(t, 0);
   const double angle = std::fmod(bench.Feedback("S1").position, 360.0);
   EXPECT_NEAR(angle, 45, 0.05);

@@ -1,8 +1,8 @@
 // Bad machine, URDF and scene files give an error naming the file and the YAML path (or URDF
 // element) -- never a crash.
 
-#include <gtest/gtest.h>
 #include <gmock/gmock.h>
+#include <gtest/gtest.h>
 
 #include <fstream>
 
@@ -17,11 +17,6 @@ using ::testing::HasSubstr;
 using testing::OutputDir;
 using testing::SourcePath;
 
-std::string Slurp(const std::string& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 std::string Write(const std::string& dir, const std::string& name, const std::string& text) {
   const std::string path = dir + "/" + name;
   std::ofstream(path) << text;
@@ -35,10 +30,11 @@ std::string LoadEdited(const std::string& name, const std::function<std::string(
   const std::string dir = OutputDir("bad_models/" + name);
   std::filesystem::remove_all(dir + "/meshes");
   std::filesystem::copy(SourcePath("models/lathe-c1/meshes"), dir + "/meshes");
-  std::string urdf = Slurp(SourcePath("models/lathe-c1/machine.urdf"));
+  std::string urdf = testing::ReadBytes(SourcePath("models/lathe-c1/machine.urdf"));
   if (urdf_edit) urdf = urdf_edit(urdf);
   Write(dir, "machine.urdf", urdf);
-  const std::string yaml = Write(dir, "machine.yaml", edit(Slurp(SourcePath("models/lathe-c1/machine.yaml"))));
+  const std::string yaml = Write(
+      dir, "machine.yaml", edit(testing::ReadBytes(SourcePath("models/lathe-c1/machine.yaml"))));
   try {
     LoadMachineModel(yaml);
   } catch (const ModelError& e) {
@@ -75,9 +71,8 @@ TEST(ModelInputTest, WrongTypeNamesFileLineAndPath) {
 }
 
 TEST(ModelInputTest, MissingKey) {
-  const std::string e = LoadEdited("missing_key", [](std::string s) {
-    return Replace(s, "    torque_limit: 7000\n", "");
-  });
+  const std::string e = LoadEdited(
+      "missing_key", [](std::string s) { return Replace(s, "    torque_limit: 7000\n", ""); });
   EXPECT_THAT(e, HasSubstr("drives[1]"));
   EXPECT_THAT(e, HasSubstr("missing required key 'torque_limit'"));
 }
@@ -91,17 +86,19 @@ TEST(ModelInputTest, UnknownKeyIsNotIgnored) {
 }
 
 TEST(ModelInputTest, UnknownJointAndIo) {
-  EXPECT_THAT(LoadEdited("unknown_joint", [](std::string s) {
-                return Replace(s, "joint: x_slide", "joint: y_slide");
-              }),
-              HasSubstr("drives[1].joint: no joint 'y_slide'"));
-  EXPECT_THAT(LoadEdited("unknown_io", [](std::string s) {
-                return Replace(s, "valve_engage: QROTMODE", "valve_engage: QROTMOD");
-              }),
+  EXPECT_THAT(
+      LoadEdited("unknown_joint",
+                 [](std::string s) { return Replace(s, "joint: x_slide", "joint: y_slide"); }),
+      HasSubstr("drives[1].joint: no joint 'y_slide'"));
+  EXPECT_THAT(LoadEdited("unknown_io",
+                         [](std::string s) {
+                           return Replace(s, "valve_engage: QROTMODE", "valve_engage: QROTMOD");
+                         }),
               HasSubstr("couplings[1].valve_engage: no I/O point 'QROTMOD'"));
-  EXPECT_THAT(LoadEdited("io_direction", [](std::string s) {
-                return Replace(s, "sensor_engaged: IROTMODE", "sensor_engaged: QSPMODE");
-              }),
+  EXPECT_THAT(LoadEdited("io_direction",
+                         [](std::string s) {
+                           return Replace(s, "sensor_engaged: IROTMODE", "sensor_engaged: QSPMODE");
+                         }),
               HasSubstr("must be an input"));
 }
 
@@ -113,18 +110,19 @@ TEST(ModelInputTest, YamlSyntaxErrorHasLineAndColumn) {
 }
 
 TEST(ModelInputTest, BrokenUrdf) {
-  const std::string e = LoadEdited("broken_urdf", [](std::string s) { return s; },
-                                   [](std::string u) { return u.substr(0, u.size() / 2); });
+  const std::string e = LoadEdited(
+      "broken_urdf", [](std::string s) { return s; },
+      [](std::string u) { return u.substr(0, u.size() / 2); });
   EXPECT_THAT(e, HasSubstr("machine.urdf"));
   EXPECT_THAT(e, HasSubstr("invalid URDF"));
 }
 
 TEST(ModelInputTest, MissingMeshNamesTheLink) {
-  const std::string e = LoadEdited("missing_mesh", [](std::string s) { return s; },
-                                   [](std::string u) {
-                                     return Replace(u, "meshes/spindle_chuck_body.obj",
-                                                    "meshes/no_such_mesh.obj");
-                                   });
+  const std::string e = LoadEdited(
+      "missing_mesh", [](std::string s) { return s; },
+      [](std::string u) {
+        return Replace(u, "meshes/spindle_chuck_body.obj", "meshes/no_such_mesh.obj");
+      });
   EXPECT_THAT(e, HasSubstr("machine.urdf"));
   EXPECT_THAT(e, HasSubstr("<link name=\"spindle\">"));
   EXPECT_THAT(e, HasSubstr("no_such_mesh.obj"));
@@ -141,9 +139,9 @@ TEST(ModelInputTest, MissingFile) {
 
 std::string SceneError(const std::string& name, const std::string& body) {
   const std::string dir = OutputDir("bad_scenes");
-  const std::string path = Write(dir, name + ".yaml",
-                                 "scene: " + name + "\nmodel: " +
-                                     SourcePath("models/lathe-c1/machine.yaml") + "\n" + body);
+  const std::string path = Write(
+      dir, name + ".yaml",
+      "scene: " + name + "\nmodel: " + SourcePath("models/lathe-c1/machine.yaml") + "\n" + body);
   try {
     LoadScene(path);
   } catch (const ModelError& e) {
@@ -153,28 +151,36 @@ std::string SceneError(const std::string& name, const std::string& body) {
 }
 
 TEST(SceneInputTest, GoodSceneLoads) {
-  EXPECT_EQ(SceneError("good", "duration: 1\ntimeline:\n  - move: {axis: Z, to: 10, feed: 1000}\n"), "");
+  EXPECT_EQ(SceneError("good", "duration: 1\ntimeline:\n  - move: {axis: Z, to: 10, feed: 1000}\n"),
+            "");
 }
 
 TEST(SceneInputTest, Errors) {
-  EXPECT_THAT(SceneError("no_duration", "timeline: []\n"), HasSubstr("missing required key 'duration'"));
-  EXPECT_THAT(SceneError("bad_axis", "duration: 1\ntimeline:\n  - move: {axis: Q, to: 1, feed: 10}\n"),
-              HasSubstr("timeline[0].move.axis: no axis 'Q'"));
+  EXPECT_THAT(SceneError("no_duration", "timeline: []\n"),
+              HasSubstr("missing required key 'duration'"));
+  EXPECT_THAT(
+      SceneError("bad_axis", "duration: 1\ntimeline:\n  - move: {axis: Q, to: 1, feed: 10}\n"),
+      HasSubstr("timeline[0].move.axis: no axis 'Q'"));
   EXPECT_THAT(SceneError("two_actions", "duration: 1\ntimeline:\n  - {wait: 1, off: {axis: Z}}\n"),
               HasSubstr("timeline[0]: a step needs exactly one of"));
-  EXPECT_THAT(SceneError("bad_feed", "duration: 1\ntimeline:\n  - move: {axis: Z, to: 1, feed: -5}\n"),
-              HasSubstr("timeline[0].move.feed: must be > 0"));
+  EXPECT_THAT(
+      SceneError("bad_feed", "duration: 1\ntimeline:\n  - move: {axis: Z, to: 1, feed: -5}\n"),
+      HasSubstr("timeline[0].move.feed: must be > 0"));
   EXPECT_THAT(SceneError("bad_camera", "duration: 1\nsnapshots:\n  - {at: 0, camera: nope}\n"),
               HasSubstr("snapshots[0].camera: no camera 'nope'"));
   EXPECT_THAT(SceneError("bad_backend", "duration: 1\nbackend: quantum\n"),
               HasSubstr("backend: expected physics or kinematic"));
   EXPECT_THAT(SceneError("bad_expect", "duration: 1\nexpect:\n  - {axis: Z, position: 1}\n"),
               HasSubstr("expect[0]: missing required key 'tol'"));
-  EXPECT_THAT(SceneError("bad_file", "duration: 1\nsnapshots:\n  - {at: 0, camera: iso, file: ../x.png}\n"),
-              HasSubstr("snapshots[0].file"));
-  EXPECT_THAT(SceneError("not_a_map", "duration: [1, 2]\n"), HasSubstr("duration: expected a number"));
-  EXPECT_THAT(SceneError("bad_initial", "duration: 1\ninitial: {Q: 3}\n"), HasSubstr("initial.Q: no axis 'Q'"));
-  EXPECT_THAT(SceneError("beyond_travel", "duration: 1\ntimeline:\n  - move: {axis: X, to: 400, feed: 10}\n"),
+  EXPECT_THAT(
+      SceneError("bad_file", "duration: 1\nsnapshots:\n  - {at: 0, camera: iso, file: ../x.png}\n"),
+      HasSubstr("snapshots[0].file"));
+  EXPECT_THAT(SceneError("not_a_map", "duration: [1, 2]\n"),
+              HasSubstr("duration: expected a number"));
+  EXPECT_THAT(SceneError("bad_initial", "duration: 1\ninitial: {Q: 3}\n"),
+              HasSubstr("initial.Q: no axis 'Q'"));
+  EXPECT_THAT(SceneError("beyond_travel",
+                         "duration: 1\ntimeline:\n  - move: {axis: X, to: 400, feed: 10}\n"),
               HasSubstr("timeline[0].move.to: 400 is beyond the travel of X (0 .. 300)"));
   EXPECT_THAT(SceneError("initial_travel", "duration: 1\ninitial: {Z: -5}\n"),
               HasSubstr("initial.Z: -5 is beyond the travel of Z (0 .. 650)"));
@@ -182,8 +188,13 @@ TEST(SceneInputTest, Errors) {
 
 TEST(SceneInputTest, GarbageNeverCrashes) {
   // Arbitrary byte soup and YAML of the wrong shape: always a ModelError, never anything else.
-  const char* inputs[] = {"", "- 1\n- 2\n", "scene: [", "\x01\x02\xff\xfe", "scene: x\nmodel: {a: 1}\n",
-                          "{{{{", "scene: x\nmodel: 42\nduration: 1\n"};
+  const char* inputs[] = {"",
+                          "- 1\n- 2\n",
+                          "scene: [",
+                          "\x01\x02\xff\xfe",
+                          "scene: x\nmodel: {a: 1}\n",
+                          "{{{{",
+                          "scene: x\nmodel: 42\nduration: 1\n"};
   int i = 0;
   for (const char* text : inputs) {
     const std::string path = Write(OutputDir("garbage"), "g" + std::to_string(i++) + ".yaml", text);

@@ -1,14 +1,15 @@
 // Scenes run deterministically: same scene -> same trace digest, same snapshot -> same bytes,
 // and the default scene's picture matches its golden image.
 
-#include <gtest/gtest.h>
+#include "sim/runner/runner.hpp"
+
 #include <gmock/gmock.h>
+#include <gtest/gtest.h>
 
 #include <fstream>
 
 #include "render/image.hpp"
 #include "render/image_compare.hpp"
-#include "sim/runner/runner.hpp"
 #include "sim/runner/scene_renderer.hpp"
 #include "sim_test_support.hpp"
 
@@ -19,11 +20,6 @@ using ::testing::HasSubstr;
 using testing::OutputDir;
 using testing::SourcePath;
 
-std::string Bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 TEST(RunnerTest, DefaultScenePassesAndWritesItsOutputs) {
   const Scene scene = LoadScene(SourcePath("scenes/default.yaml"));
   RunOptions options;
@@ -31,11 +27,12 @@ TEST(RunnerTest, DefaultScenePassesAndWritesItsOutputs) {
   const RunResult r = RunScene(scene, options);
   EXPECT_TRUE(r.ok()) << ::testing::PrintToString(r.failures);
   EXPECT_EQ(r.snapshot_files.size(), scene.snapshots.size());
-  const std::string summary = Bytes(options.out_dir + "/summary.json");
+  const std::string summary = testing::ReadBytes(options.out_dir + "/summary.json");
   EXPECT_THAT(summary, HasSubstr("\"trace_digest\": \"" + r.trace_digest + "\""));
   EXPECT_THAT(summary, HasSubstr("\"real_time_factor\""));
-  EXPECT_THAT(Bytes(options.out_dir + "/trace.csv"), HasSubstr("t,Z.cmd,Z.pos,Z.vel"));
-  EXPECT_THAT(Bytes(options.out_dir + "/events.jsonl"), HasSubstr("\"event\":\"clutch\""));
+  EXPECT_THAT(testing::ReadBytes(options.out_dir + "/trace.csv"), HasSubstr("t,Z.cmd,Z.pos,Z.vel"));
+  EXPECT_THAT(testing::ReadBytes(options.out_dir + "/events.jsonl"),
+              HasSubstr("\"event\":\"clutch\""));
 }
 
 class DeterminismTest : public ::testing::TestWithParam<BackendKind> {};
@@ -93,9 +90,9 @@ TEST(SnapshotTest, SameSnapshotSameBytes) {
   RunScene(scene, options);
   ASSERT_FALSE(scene.snapshots.empty());
   for (const SnapshotSpec& s : scene.snapshots) {
-    const std::string bytes = Bytes(a + "/" + s.file);
+    const std::string bytes = testing::ReadBytes(a + "/" + s.file);
     EXPECT_GT(bytes.size(), 1000u);
-    EXPECT_EQ(bytes, Bytes(b + "/" + s.file)) << s.file;
+    EXPECT_EQ(bytes, testing::ReadBytes(b + "/" + s.file)) << s.file;
   }
 }
 

@@ -3,13 +3,13 @@
 // and steps a backend.
 
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <memory>
 #include <string>
 
 #include "sim/kinematic/kinematic_backend.hpp"
 #include "sim/physics/physics_backend.hpp"
-
 #include "sim/scene/scene.hpp"
 
 namespace vmt::sim {
@@ -26,6 +26,12 @@ inline std::string OutputDir(const std::string& name) {
   const auto dir = std::filesystem::path(VMT_BINARY_DIR) / "test_output" / "sim" / name;
   std::filesystem::create_directories(dir);
   return dir.string();
+}
+
+/// A whole file as bytes ("" if missing).
+inline std::string ReadBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 inline const MachineModel& Lathe() {
