@@ -133,7 +133,8 @@ PhysicsBackend::PhysicsBackend(const MachineModel& model, const InitialState& in
   mdt_.outputs.assign(model.io.size(), 0);
   at_.feedback.resize(model.drives.size());
   at_.inputs.assign(model.io.size(), 0);
-  UpdateFeedback(std::vector<double>(model.drives.size(), 0.0));
+  torques_.assign(model.drives.size(), 0.0);
+  UpdateFeedback(torques_);
 }
 
 PhysicsBackend::~PhysicsBackend() {
@@ -185,7 +186,7 @@ void PhysicsBackend::Step() {
   const double dt = kDriveTickS;
   btMultiBody& mb = *world_->body;
 
-  std::vector<double> torques(controllers_.size(), 0.0);
+  std::vector<double>& torques = torques_;  // member: no allocation per tick
   for (size_t d = 0; d < controllers_.size(); ++d) {
     const DriveParams& p = model_->drives[d];
     const double pos = mb.getJointPos(p.motor_joint) / p.ratio;

@@ -54,6 +54,7 @@ class PhysicsBackend : public MachineBackend {
   std::unique_ptr<World> world_;
   control::MasterTelegram mdt_;
   control::AmplifierTelegram at_;
+  std::vector<double> torques_;  ///< load side, per drive, of the last tick
   int64_t ticks_ = 0;
 };
 
