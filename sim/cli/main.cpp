@@ -3,8 +3,10 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 
+#include "control/nc/parser.hpp"
 #include "render/image.hpp"
 #include "render/image_compare.hpp"
 #include "sim/model/model_error.hpp"
@@ -58,6 +60,25 @@ int Snapshot(const std::string& scene_path, double at, const std::string& camera
   return 0;
 }
 
+int Check(const std::string& file, const std::string& dialect_name) {
+  namespace nc = control::nc;
+  std::ifstream in(file, std::ios::binary);
+  if (!in) {
+    std::fprintf(stderr, "%s:0:0: error: cannot open file\n", file.c_str());
+    return 2;
+  }
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  const nc::Dialect dialect = dialect_name.empty()   ? nc::DetectDialect(text, file)
+                              : dialect_name == "isg" ? nc::Dialect::kIsg
+                                                      : nc::Dialect::kMtc200;
+  const nc::ParseResult r = nc::ParseProgram(text, file, dialect);
+  for (const nc::Diagnostic& d : r.errors)
+    std::fprintf(stderr, "%s\n", nc::Format(d, r.program.files).c_str());
+  std::printf("%s: %s, %zu blocks, %zu errors\n", file.c_str(), nc::ToString(dialect),
+              r.program.blocks.size(), r.errors.size());
+  return r.ok() ? 0 : 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -91,6 +112,12 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(16, 4096))
       ->capture_default_str();
 
+  std::string dialect;
+  CLI::App* check = app.add_subcommand("check", "Check an NC program: every error as file:line:column: error: text");
+  check->add_option("file", scene, "NC program file")->required();
+  check->add_option("--dialect", dialect, "mtc200 or isg (default: from the file)")
+      ->check(CLI::IsMember({"mtc200", "isg"}));
+
   CLI::App* imgdiff = app.add_subcommand(
       "imgdiff", "Compare two PNG pictures: exit 0 equal, 1 different, 2 bad input");
   imgdiff->add_option("a", a, "First PNG")->required();
@@ -113,6 +140,7 @@ int main(int argc, char** argv) {
   try {
     if (*run) return Run(scene, backend, until, out);
     if (*snap) return Snapshot(scene, at, camera, out, width, height);
+    if (*check) return Check(scene, dialect);
     if (*imgdiff) {
       const render::Image ia = render::ReadPng(a), ib = render::ReadPng(b);
       render::CompareOptions opt;

@@ -1,0 +1,24 @@
+#pragma once
+// What the two dialect front ends share: each reads one line into one block (or none, for an
+// empty or comment-only line).
+
+#include <string_view>
+#include <vector>
+
+#include "control/nc/expression_parser.hpp"
+#include "control/nc/program.hpp"
+
+namespace vmt::control::nc {
+
+/// Returns false when the line holds no block (blank or comment only).
+bool ParseMtc200Line(std::string_view line, SourcePos start, Program& program,
+                     std::vector<Diagnostic>& errors, Block& block);
+bool ParseIsgLine(std::string_view line, SourcePos start, Program& program,
+                  std::vector<Diagnostic>& errors, Block& block);
+
+/// Reads an address word's value after its letters (and index) at the scanner: a number, a
+/// signed value, '=' expression, a variable, or a bracketed expression. kNoExpr after an error.
+ExprId ParseWordValue(LineScanner& s, ExpressionParser& expr, const std::string& address,
+                      SourcePos address_pos);
+
+}  // namespace vmt::control::nc

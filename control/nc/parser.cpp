@@ -1,0 +1,110 @@
+#include "control/nc/parser.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include "control/nc/front_end.hpp"
+#include "control/nc/program_check.hpp"
+
+namespace vmt::control::nc {
+
+const char* ToString(Dialect d) { return d == Dialect::kIsg ? "isg" : "mtc200"; }
+
+std::string Format(const Diagnostic& d, const std::vector<std::string>& files) {
+  const std::string& file = d.pos.file < files.size() ? files[d.pos.file] : "<input>";
+  return file + ":" + std::to_string(d.pos.line) + ":" + std::to_string(d.pos.column) +
+         ": error: " + d.message;
+}
+
+uint32_t Symbols::Intern(std::string_view name) {
+  if (auto it = ids_.find(name); it != ids_.end()) return it->second;
+  const auto id = static_cast<uint32_t>(names_.size());
+  names_.emplace_back(name);
+  ids_.emplace(std::string(name), id);
+  return id;
+}
+
+uint32_t Symbols::Find(std::string_view name) const {
+  auto it = ids_.find(name);
+  return it == ids_.end() ? 0 : it->second;
+}
+
+Dialect DetectDialect(std::string_view text, std::string_view file_name) {
+  auto ends_with = [&](std::string_view ext) {
+    return file_name.size() >= ext.size() &&
+           file_name.substr(file_name.size() - ext.size()) == ext;
+  };
+  if (ends_with(".isg") || ends_with(".ISG")) return Dialect::kIsg;
+  if (ends_with(".mtc") || ends_with(".MTC")) return Dialect::kMtc200;
+  for (size_t i = 0; i < text.size();) {
+    size_t end = text.find('\n', i);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(i, end - i);
+    i = end + 1;
+    const size_t first = line.find_first_not_of(" \t\r");
+    if (first == std::string_view::npos || line[first] == ';' || line[first] == '(') continue;
+    line = line.substr(first);
+    if (line[0] == '%' || line.find('$') != std::string_view::npos ||
+        line.find('#') != std::string_view::npos || line.find('[') != std::string_view::npos)
+      return Dialect::kIsg;
+    if (line.find('@') != std::string_view::npos || line.find(" .") != std::string_view::npos ||
+        line[0] == '.')
+      return Dialect::kMtc200;
+    if ((line[0] == 'N' || line[0] == 'n') && line.size() > 5 &&
+        line.substr(1, 4).find_first_not_of("0123456789") == std::string_view::npos)
+      return Dialect::kMtc200;
+  }
+  return Dialect::kMtc200;
+}
+
+ParseResult ParseProgram(std::string_view text, const std::string& file_name, Dialect dialect) {
+  ParseResult r;
+  Program& p = r.program;
+  p.dialect = dialect;
+  p.files.push_back(file_name);
+  p.blocks.reserve(text.size() / 16 + 1);
+  const auto parse_line = dialect == Dialect::kIsg ? ParseIsgLine : ParseMtc200Line;
+  uint32_t line_number = 0, counter = 0;
+  for (size_t i = 0; i <= text.size();) {
+    size_t end = text.find('\n', i);
+    if (end == std::string_view::npos) end = text.size();
+    ++line_number;
+    SourcePos start{0, line_number, 1, static_cast<uint32_t>(i)};
+    Block block;
+    const size_t errors_before = r.errors.size();
+    if (parse_line(text.substr(i, end - i), start, p, r.errors, block)) {
+      block.counter = ++counter;
+      p.blocks.push_back(std::move(block));
+    }
+    // One error per block: what follows a fault on the same line is not worth reporting.
+    if (r.errors.size() > errors_before + 1) r.errors.resize(errors_before + 1);
+    if (end == text.size()) break;
+    i = end + 1;
+  }
+  if (p.name.empty()) {
+    const size_t slash = file_name.find_last_of('/');
+    std::string stem = file_name.substr(slash == std::string::npos ? 0 : slash + 1);
+    p.name = stem.substr(0, stem.find('.'));
+  }
+  CheckProgram(p, r.errors);
+  std::stable_sort(r.errors.begin(), r.errors.end(), [](const Diagnostic& a, const Diagnostic& b) {
+    return a.pos.offset < b.pos.offset;
+  });
+  return r;
+}
+
+ParseResult ParseFile(const std::string& path, Dialect dialect) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    ParseResult r;
+    r.program.files.push_back(path);
+    r.errors.push_back({{0, 0, 0, 0}, "cannot open file"});
+    return r;
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  return ParseProgram(text.str(), path, dialect);
+}
+
+}  // namespace vmt::control::nc

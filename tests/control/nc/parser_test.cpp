@@ -1,0 +1,234 @@
+// The NC language front ends: each construct of both dialects, and the errors bad input gets.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "control/nc/parser.hpp"
+
+namespace vmt::control::nc {
+namespace {
+
+using ::testing::HasSubstr;
+
+ParseResult Mtc(const std::string& text) { return ParseProgram(text, "t.mtc", Dialect::kMtc200); }
+ParseResult Isg(const std::string& text) { return ParseProgram(text, "t.isg", Dialect::kIsg); }
+
+std::string Errors(const ParseResult& r) {
+  std::string all;
+  for (const Diagnostic& d : r.errors) all += Format(d, r.program.files) + "\n";
+  return all;
+}
+
+// Evaluates a constant expression tree (numbers and operators only) for checking the parse.
+double Eval(const Program& p, ExprId id) {
+  const Expr& e = p.exprs.at(id);
+  using Op = Expr::Op;
+  switch (e.op) {
+    case Op::kNumber: return e.number;
+    case Op::kNeg: return -Eval(p, e.lhs);
+    case Op::kAdd: return Eval(p, e.lhs) + Eval(p, e.rhs);
+    case Op::kSub: return Eval(p, e.lhs) - Eval(p, e.rhs);
+    case Op::kMul: return Eval(p, e.lhs) * Eval(p, e.rhs);
+    case Op::kDiv: return Eval(p, e.lhs) / Eval(p, e.rhs);
+    case Op::kPow: return std::pow(Eval(p, e.lhs), Eval(p, e.rhs));
+    default: ADD_FAILURE() << "not constant"; return 0;
+  }
+}
+
+TEST(Mtc200Test, WordsNumbersLabelsAndComments) {
+  const ParseResult r = Mtc("N0001 .START ; begin\nN0002 G01 X-30.5 Z.5 RX50 F1200 ; cut\n\n; only a comment\n");
+  ASSERT_TRUE(r.ok()) << Errors(r);
+  const Program& p = r.program;
+  ASSERT_EQ(p.blocks.size(), 2u);
+  EXPECT_EQ(p.blocks[0].number, 1);
+  EXPECT_EQ(p.symbols.Name(p.blocks[0].label), "START");
+  const Block& b = p.blocks[1];
+  EXPECT_EQ(b.number, 2);
+  EXPECT_EQ(b.counter, 2u);
+  EXPECT_EQ(b.pos.line, 2u);
+  EXPECT_EQ(b.pos.column, 1u);
+  EXPECT_EQ(b.pos.offset, 21u);
+  ASSERT_EQ(b.words.size(), 5u);
+  const char* addresses[] = {"G", "X", "Z", "RX", "F"};
+  const double values[] = {1, -30.5, 0.5, 50, 1200};
+  for (size_t i = 0; i < 5; ++i) {
+    EXPECT_EQ(p.symbols.Name(b.words[i].address), addresses[i]);
+    EXPECT_DOUBLE_EQ(Eval(p, b.words[i].value), values[i]);
+  }
+  EXPECT_EQ(b.words[1].pos.column, 11u);
+  EXPECT_EQ(p.labels.at(p.symbols.Find("START")), 0);
+}
+
+TEST(Mtc200Test, IndexedAddressesAndAssignedValues) {
+  const ParseResult r = Mtc("N0017 G77 X1=0 Y1=0 F5000 S1=0 S1000 M=@100\n");
+  ASSERT_TRUE(r.ok()) << Errors(r);
+  const Program& p = r.program;
+  const Block& b = p.blocks[0];
+  ASSERT_EQ(b.words.size(), 7u);
+  EXPECT_EQ(p.symbols.Name(b.words[1].address), "X1");
+  EXPECT_EQ(p.symbols.Name(b.words[4].address), "S1");
+  EXPECT_EQ(p.symbols.Name(b.words[5].address), "S");
+  EXPECT_DOUBLE_EQ(Eval(p, b.words[5].value), 1000);
+  EXPECT_EQ(p.symbols.Name(b.words[6].address), "M");
+  EXPECT_EQ(p.exprs[b.words[6].value].op, Expr::Op::kVariable);
+  EXPECT_EQ(p.symbols.Name(p.exprs[b.words[6].value].name), "@100");
+}
+
+TEST(Mtc200Test, VariablesBranchesAndCalls) {
+  const ParseResult r = Mtc(
+      "N0001 .A\n"
+      "      BES .B 29 ;event set?\n"
+      "N0002 @100=G(2)-17 BEQ .A\n"
+      "N0003 @101=(@100+2)*3^2 JSR .B\n"
+      "N0004 .B\n"
+      "      SE 30 MTP MRY RTS\n");
+  ASSERT_TRUE(r.ok()) << Errors(r);
+  const Program& p = r.program;
+  const Statement& bes = p.blocks[1].statements[0];
+  EXPECT_EQ(bes.kind, Statement::Kind::kEventBranch);
+  EXPECT_EQ(bes.jump, 4);
+  EXPECT_DOUBLE_EQ(Eval(p, bes.value), 29);
+  const Statement& assign = p.blocks[2].statements[0];
+  EXPECT_EQ(assign.kind, Statement::Kind::kAssign);
+  EXPECT_EQ(p.symbols.Name(assign.name), "@100");
+  const Expr& sub = p.exprs[assign.value];
+  EXPECT_EQ(sub.op, Expr::Op::kSub);
+  EXPECT_EQ(p.exprs[sub.lhs].op, Expr::Op::kCall);
+  EXPECT_EQ(p.symbols.Name(p.exprs[sub.lhs].name), "G");
+  EXPECT_EQ(p.blocks[2].statements[1].kind, Statement::Kind::kBranch);
+  EXPECT_EQ(p.blocks[2].statements[1].jump, 0);
+  // (@100+2)*3^2: power binds tighter than *, parentheses group.
+  const Expr& mul = p.exprs[p.blocks[3].statements[0].value];
+  EXPECT_EQ(mul.op, Expr::Op::kMul);
+  EXPECT_EQ(p.exprs[mul.rhs].op, Expr::Op::kPow);
+  EXPECT_EQ(p.blocks[3].statements[1].kind, Statement::Kind::kCall);
+  const auto& last = p.blocks[5].statements;
+  ASSERT_EQ(last.size(), 4u);
+  EXPECT_EQ(p.symbols.Name(last[0].name), "SE");
+  EXPECT_EQ(p.symbols.Name(last[1].name), "MTP");
+  EXPECT_EQ(last[3].kind, Statement::Kind::kReturn);
+}
+
+TEST(Mtc200Test, MeasuringInstructionsWithOmittedArguments) {
+  const ParseResult r = Mtc("N0010 SETTING (X, Z, , 18, 48, 16, 3)\nN0020 COMPARE (10, 1, 2, 8)\nN0030 SAVE ()\n");
+  ASSERT_TRUE(r.ok()) << Errors(r);
+  const Program& p = r.program;
+  const Statement& st = p.blocks[0].statements[0];
+  EXPECT_EQ(p.symbols.Name(st.name), "SETTING");
+  int n = 0;
+  for (ExprId a = st.value; a != kNoExpr; a = p.exprs[a].next) ++n;
+  EXPECT_EQ(n, 7);
+  const Expr& third = p.exprs[p.exprs[p.exprs[st.value].next].next];
+  EXPECT_EQ(third.op, Expr::Op::kVariable);
+  EXPECT_EQ(third.name, 0u);  // omitted
+  EXPECT_EQ(p.blocks[2].statements[0].value, kNoExpr);
+}
+
+TEST(IsgTest, HeaderParametersStructuresAndCommands) {
+  const ParseResult r = Isg(
+      "%example\n"
+      "N05 #DISTANCE   PROG START OFF ; comment\n"
+      "N10 P1 = 10 (a comment) P2 = P1 * [2 + 1]\n"
+      "N20 $IF P1 == 10\n"
+      "N30 G01 X[P1*2] Y-5 F1000\n"
+      "N40 $ELSEIF P1 > 3\n"
+      "N50 $ELSE\n"
+      "N60 $ENDIF\n"
+      "N70 $FOR P3 = 1, 10, 2\n"
+      "N80 L sub_1\n"
+      "N90 $ENDFOR\n"
+      "N100 $WHILE P1 < 100\n"
+      "N110 P1 = P1 + 1\n"
+      "N120 $ENDWHILE\n"
+      "N130 G74 X1 Y2\n"
+      "M30\n");
+  ASSERT_TRUE(r.ok()) << Errors(r);
+  const Program& p = r.program;
+  EXPECT_EQ(p.name, "EXAMPLE");
+  EXPECT_EQ(p.blocks[1].statements[0].kind, Statement::Kind::kHashCommand);
+  EXPECT_EQ(p.blocks[1].statements[0].text, "DISTANCE PROG START OFF");
+  ASSERT_EQ(p.blocks[2].statements.size(), 2u);
+  EXPECT_EQ(p.symbols.Name(p.blocks[2].statements[1].name), "P2");
+  // $IF -> $ELSEIF -> $ELSE -> $ENDIF chain, loops close back on their heads.
+  EXPECT_EQ(p.blocks[3].statements[0].jump, 5);
+  EXPECT_EQ(p.blocks[5].statements[0].jump, 6);
+  EXPECT_EQ(p.blocks[6].statements[0].jump, 7);
+  EXPECT_EQ(p.blocks[8].statements[0].jump, 10);
+  EXPECT_EQ(p.blocks[10].statements[0].jump, 8);
+  const Statement& loop = p.blocks[8].statements[0];
+  EXPECT_DOUBLE_EQ(Eval(p, loop.limit), 10);
+  EXPECT_DOUBLE_EQ(Eval(p, loop.step), 2);
+  EXPECT_EQ(p.blocks[9].statements[0].kind, Statement::Kind::kCall);
+  EXPECT_EQ(p.symbols.Name(p.blocks[9].statements[0].target), "SUB_1");
+  const Word& x = p.blocks[4].words[1];
+  EXPECT_EQ(p.exprs[x.value].op, Expr::Op::kMul);
+  EXPECT_EQ(p.blocks.back().number, -1);
+}
+
+struct BadCase {
+  Dialect dialect;
+  const char* text;
+  const char* where;  // "line:column"
+  const char* message;
+};
+
+void PrintTo(const BadCase& c, std::ostream* os) { *os << ToString(c.dialect) << ": " << c.text; }
+
+class BadInputTest : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadInputTest, ReportsFileLineColumnAndText) {
+  const BadCase c = GetParam();
+  const ParseResult r = ParseProgram(c.text, "bad.nc", c.dialect);
+  ASSERT_FALSE(r.ok()) << c.text;
+  const std::string first = Format(r.errors[0], r.program.files);
+  EXPECT_THAT(first, HasSubstr(std::string("bad.nc:") + c.where + ": error: "));
+  EXPECT_THAT(first, HasSubstr(c.message));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, BadInputTest,
+    ::testing::Values(
+        BadCase{Dialect::kMtc200, "N0001 G01 X\n", "1:11", "address X needs a value"},
+        BadCase{Dialect::kMtc200, "N0001 BRA .NOPE\n", "1:7", "label .NOPE is not defined"},
+        BadCase{Dialect::kMtc200, "N0001 .A\nN0002 .A\n", "2:1", "label .A is already defined on line 1"},
+        BadCase{Dialect::kMtc200, "N0001 FOO\n", "1:7", "unknown word 'FOO'"},
+        BadCase{Dialect::kMtc200, "N0001 @100=(1+2\n", "1:16", "expected ')'"},
+        BadCase{Dialect::kMtc200, "N0001 @=3\n", "1:8", "expected a variable number"},
+        BadCase{Dialect::kMtc200, "N0001 BEQ REPOS\n", "1:11", "expected a label (.NAME) after BEQ"},
+        BadCase{Dialect::kMtc200, "N0001 SETTING (X, Z\n", "1:20", "expected ',' or ')'"},
+        BadCase{Dialect::kMtc200, "N0001 X10 ! \n", "1:11", "unexpected '!'"},
+        BadCase{Dialect::kIsg, "N10 $IF P1 == 1\nN20 X1\n", "1:5", "missing $ENDIF"},
+        BadCase{Dialect::kIsg, "N10 $ENDFOR\n", "1:5", "$ENDFOR without its opening statement"},
+        BadCase{Dialect::kIsg, "N10 $LOOP\n", "1:5", "unknown control statement '$LOOP'"},
+        BadCase{Dialect::kIsg, "N10 X10 (open comment\n", "1:9", "comment '(' is not closed"},
+        BadCase{Dialect::kIsg, "N10 P1 10\n", "1:8", "expected '=' after P1"},
+        BadCase{Dialect::kIsg, "N10 $FOR P1 = 1\n", "1:16", "expected ', limit' in $FOR"},
+        BadCase{Dialect::kIsg, "N10 X[1+\n", "1:9", "expected a value, found the end of the block"}));
+
+TEST(ParserTest, DeepNestingIsAnErrorNotACrash) {
+  const std::string deep = "N1 @1=" + std::string(100000, '(') + "1\n";
+  const ParseResult r = Mtc(deep);
+  ASSERT_FALSE(r.ok());
+  EXPECT_THAT(Errors(r), HasSubstr("nested too deeply"));
+}
+
+TEST(ParserTest, ReportsEveryBadBlockAndKeepsTheGoodOnes) {
+  const ParseResult r = Mtc("N1 X\nN2 G01 X10\nN3 Y\n");
+  ASSERT_EQ(r.errors.size(), 2u);
+  EXPECT_EQ(r.errors[0].pos.line, 1u);
+  EXPECT_EQ(r.errors[1].pos.line, 3u);
+  EXPECT_EQ(r.program.blocks.size(), 3u);
+}
+
+TEST(ParserTest, DetectsTheDialect) {
+  EXPECT_EQ(DetectDialect("%prog\nN10 X1\n", "a.nc"), Dialect::kIsg);
+  EXPECT_EQ(DetectDialect("N0001 .REPOS\n", "a.nc"), Dialect::kMtc200);
+  EXPECT_EQ(DetectDialect("N10 $IF P1 == 1\n", "a.nc"), Dialect::kIsg);
+  EXPECT_EQ(DetectDialect("anything", "a.isg"), Dialect::kIsg);
+  EXPECT_EQ(DetectDialect("%x", "a.mtc"), Dialect::kMtc200);
+}
+
+}  // namespace
+}  // namespace vmt::control::nc
