@@ -66,7 +66,7 @@ ExprId ExpressionParser::Binary(LineScanner& s, int level) {
     e.op = op;
     e.lhs = lhs;
     e.rhs = rhs;
-    e.pos = pos;
+    e.offset = pos.offset;
     lhs = Add(e);
   }
 }
@@ -79,7 +79,7 @@ ExprId ExpressionParser::Unary(LineScanner& s) {
     return kNoExpr;
   }
   Expr e;
-  e.pos = pos;
+  e.offset = pos.offset;
   if (s.Accept('-')) {
     e.op = Op::kNeg;
   } else if (s.Accept('+')) {
@@ -103,7 +103,7 @@ ExprId ExpressionParser::Unary(LineScanner& s) {
       p.op = Op::kPow;
       p.lhs = base;
       p.rhs = exponent;
-      p.pos = op_pos;
+      p.offset = op_pos.offset;
       base = Add(p);
     }
     --depth_;
@@ -118,7 +118,8 @@ ExprId ExpressionParser::Unary(LineScanner& s) {
 ExprId ExpressionParser::Primary(LineScanner& s) {
   s.SkipSpace();
   Expr e;
-  e.pos = s.Pos();
+  const SourcePos pos = s.Pos();
+  e.offset = pos.offset;
   double number;
   if (s.Number(number)) {
     e.number = number;
@@ -162,7 +163,7 @@ ExprId ExpressionParser::Primary(LineScanner& s) {
     if (s.Accept(open_)) {
       e.op = Op::kCall;
       e.name = p_.symbols.Intern(name);
-      if (!Arguments(s, e.pos, e.lhs)) return kNoExpr;
+      if (!Arguments(s, pos, e.lhs)) return kNoExpr;
       return Add(e);
     }
     // A bare name stands for itself (axis names as measuring-instruction arguments).
@@ -189,7 +190,7 @@ bool ExpressionParser::Arguments(LineScanner& s, SourcePos open_pos, ExprId& fir
     } else {
       Expr empty;  // an omitted argument: a number flagged by name 0 and op kVariable
       empty.op = Op::kVariable;
-      empty.pos = s.Pos();
+      empty.offset = s.Pos().offset;
       arg = Add(empty);
     }
     if (first == kNoExpr) first = arg;

@@ -16,9 +16,11 @@ bool ParseMtc200Line(std::string_view line, SourcePos start, Program& program,
 bool ParseIsgLine(std::string_view line, SourcePos start, Program& program,
                   std::vector<Diagnostic>& errors, Block& block);
 
-/// Reads an address word's value after its letters (and index) at the scanner: a number, a
-/// signed value, '=' expression, a variable, or a bracketed expression. kNoExpr after an error.
-ExprId ParseWordValue(LineScanner& s, ExpressionParser& expr, const std::string& address,
-                      SourcePos address_pos);
+/// Reads an address word's value after its letters (and index) at the scanner into `word`: a
+/// number (kept in word.number), or '=' expression, a variable, a bracketed expression (into
+/// word.value). False after an error.
+bool ParseWordValue(LineScanner& s, ExpressionParser& expr, const std::string& address,
+                    SourcePos address_pos, Word& word);
+bool MoreExpression(LineScanner s);
 
 }  // namespace vmt::control::nc

@@ -64,7 +64,12 @@ bool ParseIsgLine(std::string_view line, SourcePos start, Program& p,
   block.pos = s.Pos();
   if (s.Accept('%')) {  // program header: %name
     s.SkipSpace();
-    const std::string name = s.Name();
+    // Program names may hold '-' and '.': %block-search-cax-track, %t_sv_number.nc.
+    std::string name;
+    while (!s.AtEnd() && s.Peek() != ' ' && s.Peek() != '\t' && s.Peek() != ';' && s.Peek() != '\r') {
+      name.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(s.Peek()))));
+      s.Advance();
+    }
     if (name.empty()) expr.Error(s.Pos(), "expected a program name after '%'");
     else if (p.name.empty() || p.blocks.empty()) p.name = name;
     block.label = p.symbols.Intern(name);
@@ -92,7 +97,7 @@ bool ParseIsgLine(std::string_view line, SourcePos start, Program& p,
       st.kind = Statement::Kind::kHashCommand;
       st.text = HashCommandText(s);
       if (st.text.empty()) return expr.Error(pos, "empty #-command"), true;
-      block.statements.push_back(std::move(st));
+      p.statements.push_back(std::move(st));
       return true;
     }
     if (s.Accept('$')) {
@@ -123,7 +128,7 @@ bool ParseIsgLine(std::string_view line, SourcePos start, Program& p,
         expr.Error(pos, "unknown control statement '$" + kw + "'");
         return true;
       }
-      block.statements.push_back(st);
+      p.statements.push_back(st);
       continue;
     }
     if (!LineScanner::IsLetter(s.Peek())) {
@@ -142,7 +147,7 @@ bool ParseIsgLine(std::string_view line, SourcePos start, Program& p,
       st.kind = Statement::Kind::kAssign;
       st.name = p.symbols.Intern(name);
       if ((st.value = expr.Parse(s)) == kNoExpr) return true;
-      block.statements.push_back(st);
+      p.statements.push_back(st);
       continue;
     }
     if (name == "L" && (probe.Peek() == ' ' || probe.Peek() == '\t')) {
@@ -154,7 +159,7 @@ bool ParseIsgLine(std::string_view line, SourcePos start, Program& p,
       st.kind = Statement::Kind::kCall;
       st.name = p.symbols.Intern("L");
       st.target = p.symbols.Intern(target);
-      block.statements.push_back(st);
+      p.statements.push_back(st);
       continue;
     }
     const std::string letter(1, static_cast<char>(std::toupper(static_cast<unsigned char>(s.Peek()))));
@@ -164,10 +169,10 @@ bool ParseIsgLine(std::string_view line, SourcePos start, Program& p,
     }
     s.Advance();
     Word w;
-    w.pos = pos;
+    w.offset = pos.offset;
     w.address = p.symbols.Intern(letter);
-    if ((w.value = ParseWordValue(s, expr, letter, pos)) == kNoExpr) return true;
-    block.words.push_back(w);
+    if (!ParseWordValue(s, expr, letter, pos, w)) return true;
+    p.words.push_back(w);
   }
 }
 

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <string>
+#include <unordered_map>
 
 #include "control/nc/front_end.hpp"
 
@@ -23,11 +24,24 @@ constexpr std::array kAddresses = {"A", "B", "C", "D", "E", "F", "G", "H", "I", 
                                    "M", "P", "Q", "R", "S", "T", "U", "V", "W", "X", "Y",
                                    "Z", "RX", "RY", "RZ"};
 
-template <size_t N>
-bool OneOf(const std::string& word, const std::array<const char*, N>& list) {
-  for (const char* w : list)
-    if (word == w) return true;
-  return false;
+enum class WordClass { kUnknown, kBranch, kEventBranch, kJump, kReturn, kEvent, kPlain, kCall, kAddress };
+
+// One hash lookup per word instead of a string compare against every mnemonic.
+WordClass Classify(const std::string& word) {
+  static const std::unordered_map<std::string_view, WordClass> table = [] {
+    std::unordered_map<std::string_view, WordClass> t;
+    for (const char* w : kBranches) t[w] = WordClass::kBranch;
+    for (const char* w : kEventBranches) t[w] = WordClass::kEventBranch;
+    for (const char* w : kPlainInstructions) t[w] = WordClass::kPlain;
+    for (const char* w : kEventInstructions) t[w] = WordClass::kEvent;
+    for (const char* w : kCallInstructions) t[w] = WordClass::kCall;
+    for (const char* w : kAddresses) t[w] = WordClass::kAddress;
+    t["JSR"] = WordClass::kJump;
+    t["RTS"] = t["RET"] = WordClass::kReturn;
+    return t;
+  }();
+  const auto it = table.find(word);
+  return it == table.end() ? WordClass::kUnknown : it->second;
 }
 
 // ".LABEL" at the scanner; returns the interned label or 0 after an error.
@@ -42,6 +56,13 @@ uint32_t Label(LineScanner& s, ExpressionParser& expr, Program& p, const std::st
 }
 
 }  // namespace
+
+// True if an operator follows: "X-3*2" is an expression, "X-3 Z5" two numbers.
+bool MoreExpression(LineScanner s) {
+  s.SkipSpace();
+  const char c = s.Peek();
+  return c == '+' || c == '-' || c == '*' || c == '/' || c == '^';
+}
 
 bool ParseMtc200Line(std::string_view line, SourcePos start, Program& p,
                      std::vector<Diagnostic>& errors, Block& block) {
@@ -85,7 +106,7 @@ bool ParseMtc200Line(std::string_view line, SourcePos start, Program& p,
       st.kind = Statement::Kind::kAssign;
       st.name = p.symbols.Intern("@" + std::to_string(n));
       if ((st.value = expr.Parse(s)) == kNoExpr) return true;
-      block.statements.push_back(st);
+      p.statements.push_back(st);
       continue;
     }
     if (!LineScanner::IsLetter(s.Peek())) {
@@ -93,27 +114,28 @@ bool ParseMtc200Line(std::string_view line, SourcePos start, Program& p,
       return true;
     }
     const std::string word = s.Letters();
-    if (OneOf(word, kBranches)) {
+    const WordClass cls = Classify(word);
+    if (cls == WordClass::kBranch) {
       st.kind = Statement::Kind::kBranch;
       st.name = p.symbols.Intern(word);
       if ((st.target = Label(s, expr, p, word)) == 0) return true;
-    } else if (OneOf(word, kEventBranches)) {
+    } else if (cls == WordClass::kEventBranch) {
       st.kind = Statement::Kind::kEventBranch;
       st.name = p.symbols.Intern(word);
       if ((st.target = Label(s, expr, p, word)) == 0) return true;
       if ((st.value = expr.Parse(s)) == kNoExpr) return true;
-    } else if (word == "JSR") {
+    } else if (cls == WordClass::kJump) {
       st.kind = Statement::Kind::kCall;
       st.name = p.symbols.Intern(word);
       if ((st.target = Label(s, expr, p, word)) == 0) return true;
-    } else if (word == "RTS" || word == "RET") {
+    } else if (cls == WordClass::kReturn) {
       st.kind = Statement::Kind::kReturn;
       st.name = p.symbols.Intern(word);
-    } else if (OneOf(word, kEventInstructions)) {
+    } else if (cls == WordClass::kEvent) {
       st.kind = Statement::Kind::kInstruction;
       st.name = p.symbols.Intern(word);
       if ((st.value = expr.Parse(s)) == kNoExpr) return true;
-    } else if (OneOf(word, kPlainInstructions) || OneOf(word, kCallInstructions)) {
+    } else if (cls == WordClass::kPlain || cls == WordClass::kCall) {
       st.kind = Statement::Kind::kInstruction;
       st.name = p.symbols.Intern(word);
       s.SkipSpace();
@@ -121,13 +143,26 @@ bool ParseMtc200Line(std::string_view line, SourcePos start, Program& p,
         const SourcePos open = s.Pos();
         s.Advance();
         if (!expr.Arguments(s, open, st.value)) return true;
-      } else if (OneOf(word, kCallInstructions)) {
+        s.SkipSpace();
+        if (cls == WordClass::kCall && s.Peek() == '=' && s.Peek(1) != '=') {
+          // A data location written to: TLD(1,3,,1,12,) = TLD(1,3,,1,12,) + MTD(105,,2,13).
+          s.Advance();
+          Expr call;
+          call.op = Expr::Op::kCall;
+          call.name = st.name;
+          call.lhs = st.value;
+          call.offset = pos.offset;
+          st.kind = Statement::Kind::kAssign;
+          st.data = expr.Add(call);
+          if ((st.value = expr.Parse(s)) == kNoExpr) return true;
+        }
+      } else if (cls == WordClass::kCall) {
         expr.Error(s.Pos(), "expected '(' after " + word);
         return true;
       }
-    } else if (OneOf(word, kAddresses)) {
+    } else if (cls == WordClass::kAddress) {
       Word w;
-      w.pos = pos;
+      w.offset = pos.offset;
       std::string address = word;
       // An index (S1=0, X1=0) is digits directly followed by '='; otherwise digits are the value.
       if (LineScanner::IsDigit(s.Peek())) {
@@ -141,38 +176,43 @@ bool ParseMtc200Line(std::string_view line, SourcePos start, Program& p,
         }
       }
       w.address = p.symbols.Intern(address);
-      if ((w.value = ParseWordValue(s, expr, address, pos)) == kNoExpr) return true;
-      block.words.push_back(w);
+      if (!ParseWordValue(s, expr, address, pos, w)) return true;
+      p.words.push_back(w);
       continue;
     } else {
       expr.Error(pos, "unknown word '" + word + "'");
       return true;
     }
-    block.statements.push_back(st);
+    p.statements.push_back(st);
   }
 }
 
-ExprId ParseWordValue(LineScanner& s, ExpressionParser& expr, const std::string& address,
-                      SourcePos address_pos) {
+bool ParseWordValue(LineScanner& s, ExpressionParser& expr, const std::string& address,
+                    SourcePos address_pos, Word& word) {
   s.SkipSpace();
   if (s.Peek() == '=' && s.Peek(1) != '=') {
     s.Advance();
-    return expr.Parse(s);
+    return (word.value = expr.Parse(s)) != kNoExpr;
   }
-  double number;
-  const SourcePos pos = s.Pos();
-  if (s.Number(number)) {
-    Expr e;
-    e.number = number;
-    e.pos = pos;
-    return expr.Add(e);
-  }
+  if (s.Number(word.number)) return true;
   const char c = s.Peek();
   if (c == '-' || c == '+' || c == '@' || c == expr.open()) {
-    return expr.Parse(s);  // a signed or computed value
+    // A signed number stays a number; anything else is computed.
+    if ((c == '-' || c == '+') && (LineScanner::IsDigit(s.Peek(1)) || s.Peek(1) == '.')) {
+      LineScanner probe = s;
+      probe.Advance();
+      double v;
+      probe.SkipSpace();
+      if (probe.Number(v) && !MoreExpression(probe)) {
+        s = probe;
+        word.number = c == '-' ? -v : v;
+        return true;
+      }
+    }
+    return (word.value = expr.Parse(s)) != kNoExpr;
   }
   expr.Error(address_pos, "address " + address + " needs a value");
-  return kNoExpr;
+  return false;
 }
 
 }  // namespace vmt::control::nc

@@ -6,7 +6,10 @@
 // blocks allocates per block, not per node.
 
 #include <cstdint>
+#include <deque>
 #include <map>
+#include <span>
+#include <unordered_map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -28,8 +31,8 @@ class Symbols {
   uint32_t Find(std::string_view name) const;
 
  private:
-  std::vector<std::string> names_{""};  ///< id 0 is "no name"
-  std::map<std::string, uint32_t, std::less<>> ids_;
+  std::deque<std::string> names_{""};  ///< id 0 is "no name"; a deque keeps the views valid
+  std::unordered_map<std::string_view, uint32_t> ids_;
 };
 
 using ExprId = int32_t;  ///< index into Program::exprs; -1 = none
@@ -49,19 +52,22 @@ struct Expr {
   uint32_t name = 0;
   ExprId lhs = kNoExpr, rhs = kNoExpr;  ///< operands; for kCall: first argument, and args chain
   ExprId next = kNoExpr;                ///< next argument of a call
-  SourcePos pos;
+  uint32_t offset = 0;                  ///< in the file; Program::PosAt gives line and column
 };
 
-/// An address with a value: G01, X-30.5, S1=0, RX50, F2000, M=@100, X[P1*2].
+/// An address with a value: G01, X-30.5, S1=0, RX50, F2000, M=@100, X[P1*2]. Most values are
+/// plain numbers; they are kept in the word, not in the expression arena (a million-block
+/// program would otherwise be mostly expression nodes).
 struct Word {
-  uint32_t address = 0;  ///< interned address, index included ("S1", "X1", "RX")
-  ExprId value = kNoExpr;
-  SourcePos pos;
+  uint32_t address = 0;    ///< interned address, index included ("S1", "X1", "RX")
+  ExprId value = kNoExpr;  ///< computed value, or kNoExpr: the value is `number`
+  double number = 0;
+  uint32_t offset = 0;     ///< in the file; Program::PosAt gives line and column
 };
 
 struct Statement {
   enum class Kind : uint8_t {
-    kAssign,       ///< variable = value (@100=..., P1 = ...)
+    kAssign,       ///< variable = value (@100=..., P1 = ...), or data = value (TLD(...) = ...)
     kBranch,       ///< BRA/BEQ/BNE/BGT/BLT/BGE/BLE .LABEL (name = mnemonic, target = label)
     kEventBranch,  ///< BES/BEC .LABEL event (value = event number)
     kCall,         ///< JSR .LABEL (MTC200) | L name (ISG)
@@ -76,6 +82,7 @@ struct Statement {
   uint32_t target = 0;    ///< label or subprogram name
   ExprId value = kNoExpr; ///< assigned value, condition, event, or first argument (args chain)
   ExprId limit = kNoExpr, step = kNoExpr;  ///< $FOR var = value, limit, step
+  ExprId data = kNoExpr;  ///< kAssign to a data location: the call TLD(...) | OTD(...) | MTD(...)
   std::string text;       ///< #-command text
   int32_t jump = -1;      ///< resolved: block index of the target / matching structure block
   SourcePos pos;
@@ -87,8 +94,10 @@ struct Block {
   int32_t number = -1;    ///< N number, -1 if none
   uint32_t label = 0;     ///< ".REPOS" -> interned "REPOS"; 0 if none
   bool skippable = false; ///< '/' block skip
-  std::vector<Word> words;
-  std::vector<Statement> statements;
+  // The block's words and statements are ranges of the program's arenas (no allocation per
+  // block): Program::Words(block), Program::Statements(block).
+  uint32_t first_word = 0, num_words = 0;
+  uint32_t first_statement = 0, num_statements = 0;
 };
 
 struct Program {
@@ -96,9 +105,20 @@ struct Program {
   Dialect dialect = Dialect::kMtc200;
   std::vector<std::string> files;
   std::vector<Block> blocks;
+  std::vector<Word> words;
+  std::vector<Statement> statements;
   std::vector<Expr> exprs;
   Symbols symbols;
   std::map<uint32_t, int32_t> labels;  ///< label -> block index
+  std::vector<uint32_t> line_starts;   ///< file offset of each line, for PosAt
+
+  /// Line and column of a file offset (words and expressions keep only the offset).
+  SourcePos PosAt(uint32_t offset) const;
+
+  std::span<const Word> Words(const Block& b) const { return {words.data() + b.first_word, b.num_words}; }
+  std::span<const Statement> Statements(const Block& b) const {
+    return {statements.data() + b.first_statement, b.num_statements};
+  }
 };
 
 struct ParseResult {

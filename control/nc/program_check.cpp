@@ -7,7 +7,7 @@ using Kind = Statement::Kind;
 
 struct Open {
   int32_t block;
-  size_t statement;
+  uint32_t statement;  ///< index into Program::statements
   Kind kind;
 };
 
@@ -37,8 +37,9 @@ void CheckProgram(Program& p, std::vector<Diagnostic>& errors) {
 
   std::vector<Open> open;
   for (size_t b = 0; b < p.blocks.size(); ++b) {
-    for (size_t i = 0; i < p.blocks[b].statements.size(); ++i) {
-      Statement& st = p.blocks[b].statements[i];
+    const Block& block = p.blocks[b];
+    for (uint32_t i = block.first_statement; i < block.first_statement + block.num_statements; ++i) {
+      Statement& st = p.statements[i];
       switch (st.kind) {
         case Kind::kBranch:
         case Kind::kEventBranch:
@@ -59,7 +60,7 @@ void CheckProgram(Program& p, std::vector<Diagnostic>& errors) {
             break;
           }
           // The previous branch of the $IF jumps here when its condition fails.
-          Statement& prev = p.blocks[open.back().block].statements[open.back().statement];
+          Statement& prev = p.statements[open.back().statement];
           prev.jump = static_cast<int32_t>(b);
           open.back() = {static_cast<int32_t>(b), i, st.kind};
           break;
@@ -82,7 +83,7 @@ void CheckProgram(Program& p, std::vector<Diagnostic>& errors) {
             break;
           }
           // Opening statement jumps past the end; the end jumps back to a loop's head.
-          Statement& head = p.blocks[open.back().block].statements[open.back().statement];
+          Statement& head = p.statements[open.back().statement];
           head.jump = static_cast<int32_t>(b);
           st.jump = open.back().block;
           open.pop_back();
@@ -94,7 +95,7 @@ void CheckProgram(Program& p, std::vector<Diagnostic>& errors) {
     }
   }
   for (const Open& o : open) {
-    const Statement& st = p.blocks[o.block].statements[o.statement];
+    const Statement& st = p.statements[o.statement];
     errors.push_back({st.pos, std::string("missing ") + Closer(o.kind) + " for this statement"});
   }
 }

@@ -37,6 +37,20 @@ double Eval(const Program& p, ExprId id) {
   }
 }
 
+double Value(const Program& p, const Word& w) { return w.value == kNoExpr ? w.number : Eval(p, w.value); }
+
+TEST(Mtc200Test, SignedAndComputedValues) {
+  const ParseResult r = Mtc("N1 X-3 Z-3*2 Y+.5 C-@100\n");
+  ASSERT_TRUE(r.ok()) << Errors(r);
+  const auto w = r.program.Words(r.program.blocks[0]);
+  EXPECT_EQ(w[0].value, kNoExpr);
+  EXPECT_DOUBLE_EQ(w[0].number, -3);
+  EXPECT_NE(w[1].value, kNoExpr);
+  EXPECT_DOUBLE_EQ(Value(r.program, w[1]), -6);
+  EXPECT_DOUBLE_EQ(Value(r.program, w[2]), 0.5);
+  EXPECT_EQ(r.program.exprs[w[3].value].op, Expr::Op::kNeg);
+}
+
 TEST(Mtc200Test, WordsNumbersLabelsAndComments) {
   const ParseResult r = Mtc("N0001 .START ; begin\nN0002 G01 X-30.5 Z.5 RX50 F1200 ; cut\n\n; only a comment\n");
   ASSERT_TRUE(r.ok()) << Errors(r);
@@ -50,14 +64,16 @@ TEST(Mtc200Test, WordsNumbersLabelsAndComments) {
   EXPECT_EQ(b.pos.line, 2u);
   EXPECT_EQ(b.pos.column, 1u);
   EXPECT_EQ(b.pos.offset, 21u);
-  ASSERT_EQ(b.words.size(), 5u);
+  const auto words = p.Words(b);
+  ASSERT_EQ(words.size(), 5u);
   const char* addresses[] = {"G", "X", "Z", "RX", "F"};
   const double values[] = {1, -30.5, 0.5, 50, 1200};
   for (size_t i = 0; i < 5; ++i) {
-    EXPECT_EQ(p.symbols.Name(b.words[i].address), addresses[i]);
-    EXPECT_DOUBLE_EQ(Eval(p, b.words[i].value), values[i]);
+    EXPECT_EQ(p.symbols.Name(words[i].address), addresses[i]);
+    EXPECT_DOUBLE_EQ(Value(p, words[i]), values[i]);
   }
-  EXPECT_EQ(b.words[1].pos.column, 11u);
+  EXPECT_EQ(p.PosAt(words[1].offset).column, 11u);
+  EXPECT_EQ(p.PosAt(words[1].offset).line, 2u);
   EXPECT_EQ(p.labels.at(p.symbols.Find("START")), 0);
 }
 
@@ -65,15 +81,15 @@ TEST(Mtc200Test, IndexedAddressesAndAssignedValues) {
   const ParseResult r = Mtc("N0017 G77 X1=0 Y1=0 F5000 S1=0 S1000 M=@100\n");
   ASSERT_TRUE(r.ok()) << Errors(r);
   const Program& p = r.program;
-  const Block& b = p.blocks[0];
-  ASSERT_EQ(b.words.size(), 7u);
-  EXPECT_EQ(p.symbols.Name(b.words[1].address), "X1");
-  EXPECT_EQ(p.symbols.Name(b.words[4].address), "S1");
-  EXPECT_EQ(p.symbols.Name(b.words[5].address), "S");
-  EXPECT_DOUBLE_EQ(Eval(p, b.words[5].value), 1000);
-  EXPECT_EQ(p.symbols.Name(b.words[6].address), "M");
-  EXPECT_EQ(p.exprs[b.words[6].value].op, Expr::Op::kVariable);
-  EXPECT_EQ(p.symbols.Name(p.exprs[b.words[6].value].name), "@100");
+  const auto w = p.Words(p.blocks[0]);
+  ASSERT_EQ(w.size(), 7u);
+  EXPECT_EQ(p.symbols.Name(w[1].address), "X1");
+  EXPECT_EQ(p.symbols.Name(w[4].address), "S1");
+  EXPECT_EQ(p.symbols.Name(w[5].address), "S");
+  EXPECT_DOUBLE_EQ(Value(p, w[5]), 1000);
+  EXPECT_EQ(p.symbols.Name(w[6].address), "M");
+  EXPECT_EQ(p.exprs[w[6].value].op, Expr::Op::kVariable);
+  EXPECT_EQ(p.symbols.Name(p.exprs[w[6].value].name), "@100");
 }
 
 TEST(Mtc200Test, VariablesBranchesAndCalls) {
@@ -86,25 +102,25 @@ TEST(Mtc200Test, VariablesBranchesAndCalls) {
       "      SE 30 MTP MRY RTS\n");
   ASSERT_TRUE(r.ok()) << Errors(r);
   const Program& p = r.program;
-  const Statement& bes = p.blocks[1].statements[0];
+  const Statement& bes = p.Statements(p.blocks[1])[0];
   EXPECT_EQ(bes.kind, Statement::Kind::kEventBranch);
   EXPECT_EQ(bes.jump, 4);
   EXPECT_DOUBLE_EQ(Eval(p, bes.value), 29);
-  const Statement& assign = p.blocks[2].statements[0];
+  const Statement& assign = p.Statements(p.blocks[2])[0];
   EXPECT_EQ(assign.kind, Statement::Kind::kAssign);
   EXPECT_EQ(p.symbols.Name(assign.name), "@100");
   const Expr& sub = p.exprs[assign.value];
   EXPECT_EQ(sub.op, Expr::Op::kSub);
   EXPECT_EQ(p.exprs[sub.lhs].op, Expr::Op::kCall);
   EXPECT_EQ(p.symbols.Name(p.exprs[sub.lhs].name), "G");
-  EXPECT_EQ(p.blocks[2].statements[1].kind, Statement::Kind::kBranch);
-  EXPECT_EQ(p.blocks[2].statements[1].jump, 0);
+  EXPECT_EQ(p.Statements(p.blocks[2])[1].kind, Statement::Kind::kBranch);
+  EXPECT_EQ(p.Statements(p.blocks[2])[1].jump, 0);
   // (@100+2)*3^2: power binds tighter than *, parentheses group.
-  const Expr& mul = p.exprs[p.blocks[3].statements[0].value];
+  const Expr& mul = p.exprs[p.Statements(p.blocks[3])[0].value];
   EXPECT_EQ(mul.op, Expr::Op::kMul);
   EXPECT_EQ(p.exprs[mul.rhs].op, Expr::Op::kPow);
-  EXPECT_EQ(p.blocks[3].statements[1].kind, Statement::Kind::kCall);
-  const auto& last = p.blocks[5].statements;
+  EXPECT_EQ(p.Statements(p.blocks[3])[1].kind, Statement::Kind::kCall);
+  const auto& last = p.Statements(p.blocks[5]);
   ASSERT_EQ(last.size(), 4u);
   EXPECT_EQ(p.symbols.Name(last[0].name), "SE");
   EXPECT_EQ(p.symbols.Name(last[1].name), "MTP");
@@ -115,7 +131,7 @@ TEST(Mtc200Test, MeasuringInstructionsWithOmittedArguments) {
   const ParseResult r = Mtc("N0010 SETTING (X, Z, , 18, 48, 16, 3)\nN0020 COMPARE (10, 1, 2, 8)\nN0030 SAVE ()\n");
   ASSERT_TRUE(r.ok()) << Errors(r);
   const Program& p = r.program;
-  const Statement& st = p.blocks[0].statements[0];
+  const Statement& st = p.Statements(p.blocks[0])[0];
   EXPECT_EQ(p.symbols.Name(st.name), "SETTING");
   int n = 0;
   for (ExprId a = st.value; a != kNoExpr; a = p.exprs[a].next) ++n;
@@ -123,7 +139,7 @@ TEST(Mtc200Test, MeasuringInstructionsWithOmittedArguments) {
   const Expr& third = p.exprs[p.exprs[p.exprs[st.value].next].next];
   EXPECT_EQ(third.op, Expr::Op::kVariable);
   EXPECT_EQ(third.name, 0u);  // omitted
-  EXPECT_EQ(p.blocks[2].statements[0].value, kNoExpr);
+  EXPECT_EQ(p.Statements(p.blocks[2])[0].value, kNoExpr);
 }
 
 TEST(IsgTest, HeaderParametersStructuresAndCommands) {
@@ -147,22 +163,23 @@ TEST(IsgTest, HeaderParametersStructuresAndCommands) {
   ASSERT_TRUE(r.ok()) << Errors(r);
   const Program& p = r.program;
   EXPECT_EQ(p.name, "EXAMPLE");
-  EXPECT_EQ(p.blocks[1].statements[0].kind, Statement::Kind::kHashCommand);
-  EXPECT_EQ(p.blocks[1].statements[0].text, "DISTANCE PROG START OFF");
-  ASSERT_EQ(p.blocks[2].statements.size(), 2u);
-  EXPECT_EQ(p.symbols.Name(p.blocks[2].statements[1].name), "P2");
+  EXPECT_EQ(p.Statements(p.blocks[1])[0].kind, Statement::Kind::kHashCommand);
+  EXPECT_EQ(p.Statements(p.blocks[1])[0].text, "DISTANCE PROG START OFF");
+  ASSERT_EQ(p.Statements(p.blocks[2]).size(), 2u);
+  EXPECT_EQ(p.symbols.Name(p.Statements(p.blocks[2])[1].name), "P2");
   // $IF -> $ELSEIF -> $ELSE -> $ENDIF chain, loops close back on their heads.
-  EXPECT_EQ(p.blocks[3].statements[0].jump, 5);
-  EXPECT_EQ(p.blocks[5].statements[0].jump, 6);
-  EXPECT_EQ(p.blocks[6].statements[0].jump, 7);
-  EXPECT_EQ(p.blocks[8].statements[0].jump, 10);
-  EXPECT_EQ(p.blocks[10].statements[0].jump, 8);
-  const Statement& loop = p.blocks[8].statements[0];
+  EXPECT_EQ(p.Statements(p.blocks[3])[0].jump, 5);
+  EXPECT_EQ(p.Statements(p.blocks[5])[0].jump, 6);
+  EXPECT_EQ(p.Statements(p.blocks[6])[0].jump, 7);
+  EXPECT_EQ(p.Statements(p.blocks[8])[0].jump, 10);
+  EXPECT_EQ(p.Statements(p.blocks[10])[0].jump, 8);
+  const Statement& loop = p.Statements(p.blocks[8])[0];
   EXPECT_DOUBLE_EQ(Eval(p, loop.limit), 10);
   EXPECT_DOUBLE_EQ(Eval(p, loop.step), 2);
-  EXPECT_EQ(p.blocks[9].statements[0].kind, Statement::Kind::kCall);
-  EXPECT_EQ(p.symbols.Name(p.blocks[9].statements[0].target), "SUB_1");
-  const Word& x = p.blocks[4].words[1];
+  EXPECT_EQ(p.Statements(p.blocks[9])[0].kind, Statement::Kind::kCall);
+  EXPECT_EQ(p.symbols.Name(p.Statements(p.blocks[9])[0].target), "SUB_1");
+  const Word& x = p.Words(p.blocks[4])[1];
+  EXPECT_DOUBLE_EQ(Value(p, p.Words(p.blocks[4])[2]), -5);
   EXPECT_EQ(p.exprs[x.value].op, Expr::Op::kMul);
   EXPECT_EQ(p.blocks.back().number, -1);
 }
