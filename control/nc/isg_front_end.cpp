@@ -95,9 +95,11 @@ bool ParseIsgLine(std::string_view line, SourcePos start, Program& p,
 
     if (s.Accept('#')) {
       st.kind = Statement::Kind::kHashCommand;
-      st.text = HashCommandText(s);
-      if (st.text.empty()) return expr.Error(pos, "empty #-command"), true;
-      p.statements.push_back(std::move(st));
+      std::string text = HashCommandText(s);
+      if (text.empty()) return expr.Error(pos, "empty #-command"), true;
+      st.text = static_cast<uint32_t>(p.texts.size());
+      p.texts.push_back(std::move(text));
+      p.statements.push_back(st);
       return true;
     }
     if (s.Accept('$')) {

@@ -41,18 +41,19 @@ inline constexpr ExprId kNoExpr = -1;
 struct Expr {
   enum class Op : uint8_t {
     kNumber,    ///< number
-    kVariable,  ///< name: "@100" (MTC200), "P1", "V.L.DIST" (ISG)
+    kVariable,  ///< name: "@100" (MTC200), "P1", "V.L.DIST" (ISG); name 0 = omitted argument
     kCall,      ///< name(args...): G(2), M(5), SIN[30], TLD(1,2)
     kNeg, kNot,
     kAdd, kSub, kMul, kDiv, kMod, kPow,
     kEq, kNe, kLt, kLe, kGt, kGe, kAnd, kOr, kXor,
   };
-  Op op = Op::kNumber;
+  // 32 bytes: expression-heavy programs are mostly these nodes.
   double number = 0;
   uint32_t name = 0;
-  ExprId lhs = kNoExpr, rhs = kNoExpr;  ///< operands; for kCall: first argument, and args chain
+  ExprId lhs = kNoExpr, rhs = kNoExpr;  ///< operands; for kCall: lhs = first argument
   ExprId next = kNoExpr;                ///< next argument of a call
   uint32_t offset = 0;                  ///< in the file; Program::PosAt gives line and column
+  Op op = Op::kNumber;
 };
 
 /// An address with a value: G01, X-30.5, S1=0, RX50, F2000, M=@100, X[P1*2]. Most values are
@@ -83,7 +84,7 @@ struct Statement {
   ExprId value = kNoExpr; ///< assigned value, condition, event, or first argument (args chain)
   ExprId limit = kNoExpr, step = kNoExpr;  ///< $FOR var = value, limit, step
   ExprId data = kNoExpr;  ///< kAssign to a data location: the call TLD(...) | OTD(...) | MTD(...)
-  std::string text;       ///< #-command text
+  uint32_t text = 0;      ///< #-command text: index into Program::texts
   int32_t jump = -1;      ///< resolved: block index of the target / matching structure block
   SourcePos pos;
 };
@@ -108,6 +109,7 @@ struct Program {
   std::vector<Word> words;
   std::vector<Statement> statements;
   std::vector<Expr> exprs;
+  std::vector<std::string> texts;  ///< #-command texts (kept out of Statement: it stays small)
   Symbols symbols;
   std::map<uint32_t, int32_t> labels;  ///< label -> block index
   std::vector<uint32_t> line_starts;   ///< file offset of each line, for PosAt

@@ -164,7 +164,7 @@ TEST(IsgTest, HeaderParametersStructuresAndCommands) {
   const Program& p = r.program;
   EXPECT_EQ(p.name, "EXAMPLE");
   EXPECT_EQ(p.Statements(p.blocks[1])[0].kind, Statement::Kind::kHashCommand);
-  EXPECT_EQ(p.Statements(p.blocks[1])[0].text, "DISTANCE PROG START OFF");
+  EXPECT_EQ(p.texts[p.Statements(p.blocks[1])[0].text], "DISTANCE PROG START OFF");
   ASSERT_EQ(p.Statements(p.blocks[2]).size(), 2u);
   EXPECT_EQ(p.symbols.Name(p.Statements(p.blocks[2])[1].name), "P2");
   // $IF -> $ELSEIF -> $ELSE -> $ENDIF chain, loops close back on their heads.
