@@ -1,0 +1,459 @@
+#include "control/nc/interpreter.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace vmt::control::nc {
+namespace {
+
+using Kind = Statement::Kind;
+constexpr double kRadPerDeg = std::numbers::pi / 180;
+
+std::string Upper(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// "GSP.nc" -> "GSP": programs are stored and called by name without extension.
+std::string Stem(const std::string& name) { return Upper(name.substr(0, name.find('.'))); }
+
+bool HasEffect(const PreparedBlock& b) {
+  return b.motion != Motion::kNone || !b.aux.empty() || b.dwell_s > 0 || b.homing ||
+         b.set_position || b.repos || b.measuring || !b.instructions.empty() || b.end;
+}
+
+}  // namespace
+
+int ModalGroupValue(const ModalState& m, char letter, int group, bool& known) {
+  known = true;
+  if (letter == 'G') {
+    switch (group) {
+      case 1: return static_cast<int>(m.motion) - 1;  // 0..3
+      case 2: return m.plane;
+      case 3: return m.incremental ? 91 : 90;
+      case 4: return m.feed_per_revolution ? 95 : 94;
+      case 5: return m.diameter ? 16 : 15;
+      case 6: return m.zero_offset;
+      case 7: return m.compensation;
+      case 8: return m.tool_length;
+      case 9: return m.low_lag ? 6 : 5;
+      case 17: return m.transformation;
+    }
+  } else if (letter == 'M') {
+    switch (group) {
+      case 1: return m.spindle;
+      case 5: return m.coolant;
+    }
+  }
+  known = false;
+  return 0;
+}
+
+Interpreter::Interpreter(std::vector<const Program*> programs, InterpreterConfig config)
+    : programs_(std::move(programs)), config_(std::move(config)), modal_(config_.initial) {
+  for (size_t i = 0; i < programs_.size(); ++i) by_name_.emplace(Stem(programs_[i]->name), i);
+  position_.assign(config_.axes.size(), 0.0);
+  var_cache_.resize(programs_.size());
+}
+
+const std::string& Interpreter::ErrorFile() const { return programs_[error_program_]->files[0]; }
+
+double Interpreter::Variable(const std::string& name) const {
+  auto it = variables_.find(Upper(name));
+  return it == variables_.end() ? 0.0 : it->second;
+}
+
+double& Interpreter::Var(uint32_t name) {
+  auto& cache = var_cache_[current_];
+  if (cache.size() <= name) cache.resize(name + 1, nullptr);
+  if (!cache[name]) cache[name] = &variables_[program().symbols.Name(name)];
+  return *cache[name];
+}
+
+bool Interpreter::Fail(uint32_t offset, std::string message) {
+  if (!error_) {
+    error_ = Diagnostic{program().PosAt(offset), std::move(message)};
+    error_program_ = current_;
+  }
+  return false;
+}
+
+double Interpreter::Eval(ExprId id) {
+  const Program& p = program();
+  const Expr& e = p.exprs[id];
+  auto fail = [&](std::string message) {
+    if (!eval_failed_) {
+      eval_failed_ = true;
+      eval_fail_offset_ = e.offset;
+      eval_fail_message_ = std::move(message);
+    }
+    return 0.0;
+  };
+  using Op = Expr::Op;
+  switch (e.op) {
+    case Op::kNumber: return e.number;
+    case Op::kVariable: return e.name == 0 ? 0.0 : Var(e.name);
+    case Op::kNeg: return -Eval(e.lhs);
+    case Op::kNot: return Eval(e.lhs) == 0 ? 1 : 0;
+    case Op::kAdd: return Eval(e.lhs) + Eval(e.rhs);
+    case Op::kSub: return Eval(e.lhs) - Eval(e.rhs);
+    case Op::kMul: return Eval(e.lhs) * Eval(e.rhs);
+    case Op::kDiv: {
+      const double d = Eval(e.rhs);
+      if (d == 0) return fail("division by zero");
+      return Eval(e.lhs) / d;
+    }
+    case Op::kMod: {
+      const double d = Eval(e.rhs);
+      if (d == 0) return fail("MOD by zero");
+      return std::fmod(Eval(e.lhs), d);
+    }
+    case Op::kPow: return std::pow(Eval(e.lhs), Eval(e.rhs));
+    case Op::kEq: return Eval(e.lhs) == Eval(e.rhs);
+    case Op::kNe: return Eval(e.lhs) != Eval(e.rhs);
+    case Op::kLt: return Eval(e.lhs) < Eval(e.rhs);
+    case Op::kLe: return Eval(e.lhs) <= Eval(e.rhs);
+    case Op::kGt: return Eval(e.lhs) > Eval(e.rhs);
+    case Op::kGe: return Eval(e.lhs) >= Eval(e.rhs);
+    case Op::kAnd: return (Eval(e.lhs) != 0) && (Eval(e.rhs) != 0);
+    case Op::kOr: return (Eval(e.lhs) != 0) || (Eval(e.rhs) != 0);
+    case Op::kXor: return (Eval(e.lhs) != 0) != (Eval(e.rhs) != 0);
+    case Op::kCall: break;
+  }
+  const std::string& name = p.symbols.Name(e.name);
+  std::vector<double> args;
+  for (ExprId a = e.lhs; a != kNoExpr; a = p.exprs[a].next) args.push_back(Eval(a));
+  auto one = [&](double (*f)(double)) {
+    if (args.size() != 1) return fail(name + " takes one argument");
+    return f(args[0]);
+  };
+  if ((name == "G" || name == "M") && args.size() == 1) {
+    bool known;
+    const int v = ModalGroupValue(modal_, name[0], static_cast<int>(args[0]), known);
+    if (!known) return fail(name + "(" + std::to_string(static_cast<int>(args[0])) + "): no such modal group");
+    return v;
+  }
+  if (name == "SIN") return one([](double x) { return std::sin(x * kRadPerDeg); });
+  if (name == "COS") return one([](double x) { return std::cos(x * kRadPerDeg); });
+  if (name == "TAN") return one([](double x) { return std::tan(x * kRadPerDeg); });
+  if (name == "ASIN") return one([](double x) { return std::asin(x) / kRadPerDeg; });
+  if (name == "ACOS") return one([](double x) { return std::acos(x) / kRadPerDeg; });
+  if (name == "ATAN") return one([](double x) { return std::atan(x) / kRadPerDeg; });
+  if (name == "ABS") return one([](double x) { return std::abs(x); });
+  if (name == "INT") return one([](double x) { return std::trunc(x); });
+  if (name == "ROUND") return one([](double x) { return std::round(x); });
+  if (name == "EXP") return one([](double x) { return std::exp(x); });
+  if (name == "SQRT") {
+    if (args.size() == 1 && args[0] < 0) return fail("SQRT of a negative number");
+    return one([](double x) { return std::sqrt(x); });
+  }
+  if (name == "LN") {
+    if (args.size() == 1 && args[0] <= 0) return fail("LN of a number <= 0");
+    return one([](double x) { return std::log(x); });
+  }
+  return fail("function " + name + " is not available");
+}
+
+bool Interpreter::Next(PreparedBlock& out) {
+  int64_t steps = 0;
+  while (!ended_ && !error_) {
+    const Program& p = program();
+    if (pc_ >= static_cast<int32_t>(p.blocks.size())) {
+      // The end of a file: an ISG subprogram returns, a main program ends.
+      if (!calls_.empty()) {
+        current_ = calls_.back().program;
+        pc_ = calls_.back().return_block;
+        calls_.pop_back();
+        continue;
+      }
+      ended_ = true;
+      out = PreparedBlock{};
+      out.program = current_;
+      out.end = true;
+      out.target = position_;
+      out.modal = modal_;
+      return true;
+    }
+    const int32_t here = pc_;
+    int32_t next = pc_ + 1;
+    out.program = current_;
+    out.block = here;
+    out.motion = Motion::kNone;
+    out.target = position_;
+    out.programmed = 0;
+    out.has_centre = false;
+    out.radius = 0;
+    out.has_effective_distance = 0;
+    out.aux.clear();
+    out.instructions.clear();
+    out.dwell_s = 0;
+    out.homing = out.set_position = out.repos = out.measuring = out.end = false;
+    if (!Execute(p.blocks[here], out, next)) return false;
+    ++executed_;
+    pc_ = next;
+    out.modal = modal_;
+    if (HasEffect(out)) {
+      for (size_t a = 0; a < position_.size(); ++a)
+        if (out.programmed >> a & 1) position_[a] = out.target[a];
+      if (out.end) ended_ = true;
+      return true;
+    }
+    if (++steps > config_.max_steps_per_block)
+      return Fail(p.blocks[here].pos.offset, "no block with an effect after " +
+                                                  std::to_string(steps) + " blocks: endless loop?");
+  }
+  return false;
+}
+
+bool Interpreter::Execute(const Block& block, PreparedBlock& out, int32_t& next) {
+  const Program& p = program();
+  const auto statements = p.Statements(block);
+  const int32_t here = static_cast<int32_t>(&block - p.blocks.data());
+  // Source order within a block: computations first, then the words (their values may use
+  // them), then the flow of control (G77 X0 F2000 RTS moves, then returns).
+  for (const Statement& st : statements)
+    if (st.kind == Kind::kAssign || st.kind == Kind::kInstruction || st.kind == Kind::kHashCommand)
+      if (!Statement_(st, here, out, next)) return false;
+  if (!Words(block, out)) return false;
+  for (const Statement& st : statements)
+    if (st.kind != Kind::kAssign && st.kind != Kind::kInstruction && st.kind != Kind::kHashCommand)
+      if (!Statement_(st, here, out, next)) return false;
+  return true;
+}
+
+bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& out,
+                             int32_t& next) {
+  const Program& p = program();
+  eval_failed_ = false;
+  auto eval = [&](ExprId id) { return Eval(id); };
+  auto check = [&]() { return eval_failed_ ? Fail(eval_fail_offset_, eval_fail_message_) : true; };
+  // The statement that opens or continues a $-structure in a block.
+  auto structure_at = [&](int32_t b) -> const Statement* {
+    for (const Statement& s : p.Statements(p.blocks[b]))
+      if (s.kind >= Kind::kIf && s.kind <= Kind::kEndWhile) return &s;
+    return nullptr;
+  };
+  switch (st.kind) {
+    case Kind::kAssign: {
+      const double v = eval(st.value);
+      if (!check()) return false;
+      if (st.data != kNoExpr)
+        return Fail(st.pos.offset, "writing " + p.symbols.Name(st.name) + "(...) data is not available yet");
+      Var(st.name) = v;
+      last_result_ = v;
+      return true;
+    }
+    case Kind::kBranch: {
+      const std::string& m = p.symbols.Name(st.name);
+      const double r = last_result_;
+      const bool take = m == "BRA" || (m == "BEQ" && r == 0) || (m == "BNE" && r != 0) ||
+                        (m == "BGT" && r > 0) || (m == "BLT" && r < 0) || (m == "BGE" && r >= 0) ||
+                        (m == "BLE" && r <= 0);
+      if (take) next = st.jump;
+      return true;
+    }
+    case Kind::kEventBranch: {
+      const int event = static_cast<int>(eval(st.value));
+      if (!check()) return false;
+      const bool set = (event_ && event_(event));
+      if ((p.symbols.Name(st.name) == "BES") == set) next = st.jump;
+      return true;
+    }
+    case Kind::kCall: {
+      if (static_cast<int>(calls_.size()) >= config_.max_call_depth)
+        return Fail(st.pos.offset, "subprogram calls nested deeper than " +
+                                       std::to_string(config_.max_call_depth));
+      if (p.dialect == Dialect::kMtc200) {
+        calls_.push_back({current_, next});
+        next = st.jump;
+        return true;
+      }
+      const auto it = by_name_.find(Stem(p.symbols.Name(st.target)));
+      if (it == by_name_.end())
+        return Fail(st.pos.offset, "subprogram " + p.symbols.Name(st.target) + " is not in the program store");
+      calls_.push_back({current_, next});
+      current_ = it->second;
+      next = 0;
+      return true;
+    }
+    case Kind::kReturn:
+      if (calls_.empty()) {
+        if (p.symbols.Name(st.name) == "RTS") return Fail(st.pos.offset, "RTS without JSR");
+        out.end = true;  // RET: end of the main program
+        return true;
+      }
+      current_ = calls_.back().program;
+      next = calls_.back().return_block;
+      calls_.pop_back();
+      return true;
+    case Kind::kInstruction:
+    case Kind::kHashCommand:
+      out.instructions.push_back(static_cast<uint32_t>(&st - p.statements.data()));
+      return true;
+    case Kind::kIf:
+    case Kind::kElseIf: {
+      if (st.kind == Kind::kElseIf && !entering_) {
+        // Reached from a branch that ran: go to the $ENDIF at the end of the chain.
+        int32_t j = st.jump;
+        for (const Statement* s = structure_at(j); s && s->kind != Kind::kEndIf; s = structure_at(j))
+          j = s->jump;
+        next = j;
+        return true;
+      }
+      entering_ = false;
+      const bool condition = eval(st.value) != 0;
+      if (!check()) return false;
+      if (!condition) {
+        next = st.jump;
+        entering_ = true;
+      }
+      return true;
+    }
+    case Kind::kElse:
+      if (!entering_) next = st.jump;
+      entering_ = false;
+      return true;
+    case Kind::kEndIf:
+      entering_ = false;
+      return true;
+    case Kind::kFor: {
+      const double start = eval(st.value), limit = eval(st.limit);
+      const double step = st.step == kNoExpr ? 1.0 : eval(st.step);
+      if (!check()) return false;
+      if (step == 0) return Fail(st.pos.offset, "$FOR with step 0 never ends");
+      Var(st.name) = start;
+      if (step > 0 ? start > limit : start < limit) next = st.jump + 1;
+      else loops_.push_back({current_, block, st.name, limit, step});
+      return true;
+    }
+    case Kind::kEndFor: {
+      if (loops_.empty() || loops_.back().head != st.jump || loops_.back().program != current_)
+        return Fail(st.pos.offset, "$ENDFOR reached without its $FOR");
+      Loop& loop = loops_.back();
+      double& v = Var(loop.variable);
+      v += loop.step;
+      if (loop.step > 0 ? v <= loop.limit : v >= loop.limit) next = loop.head + 1;
+      else loops_.pop_back();
+      return true;
+    }
+    case Kind::kWhile: {
+      const bool condition = eval(st.value) != 0;
+      if (!check()) return false;
+      if (!condition) next = st.jump + 1;
+      return true;
+    }
+    case Kind::kEndWhile:
+      next = st.jump;
+      return true;
+    case Kind::kProgramEnd:
+      out.end = true;
+      return true;
+  }
+  return true;
+}
+
+bool Interpreter::Words(const Block& block, PreparedBlock& out) {
+  const Program& p = program();
+  eval_failed_ = false;
+  for (const Word& w : p.Words(block)) {
+    const double v = w.value == kNoExpr ? w.number : Eval(w.value);
+    if (eval_failed_) return Fail(eval_fail_offset_, eval_fail_message_);
+    const std::string& address = p.symbols.Name(w.address);
+    const char letter = address[0];
+    const int index = address.size() > 1 && std::isdigit(static_cast<unsigned char>(address[1]))
+                          ? std::atoi(address.c_str() + 1) : 0;
+    // Axes first: a channel axis may be named like an address letter (C, X1).
+    int axis = -1;
+    for (size_t a = 0; a < config_.axes.size(); ++a)
+      if (config_.axes[a] == address) axis = static_cast<int>(a);
+    if (axis >= 0) {
+      double value = v;
+      if (address == "X" && modal_.diameter) value = v / 2;  // G16: X is programmed as diameter
+      out.target[axis] = modal_.incremental ? out.target[axis] + value : value;
+      out.programmed |= uint64_t{1} << axis;
+      continue;
+    }
+    if (address == "G") {
+      const int g = static_cast<int>(std::lround(v));
+      if (std::abs(v - g) > 1e-9) return Fail(w.offset, "G" + std::to_string(v) + " is not a G code");
+      switch (g) {
+        case 0: modal_.motion = Motion::kRapid; break;
+        case 1: modal_.motion = Motion::kLinear; break;
+        case 2: modal_.motion = Motion::kArcCw; break;
+        case 3: modal_.motion = Motion::kArcCcw; break;
+        case 4: out.dwell_s = -1; break;  // the dwell time follows as F or X
+        case 5: modal_.low_lag = false; break;
+        case 6: modal_.low_lag = true; break;
+        case 15: modal_.diameter = false; break;
+        case 16: modal_.diameter = true; break;
+        case 17: case 18: case 19: modal_.plane = g; break;
+        case 40: case 41: case 42: modal_.compensation = g; break;
+        case 47: case 48: modal_.tool_length = g; break;
+        case 53: case 54: case 55: case 56: case 57: case 58: case 59: modal_.zero_offset = g; break;
+        case 74: out.homing = true; break;
+        case 77: out.repos = true; break;
+        case 90: modal_.incremental = false; break;
+        case 91: modal_.incremental = true; break;
+        case 92: out.set_position = true; break;
+        case 94: modal_.feed_per_revolution = false; break;
+        case 95: modal_.feed_per_revolution = true; break;
+        case 100: out.measuring = true; break;
+        default: return Fail(w.offset, "G" + std::to_string(g) + " is not supported");
+      }
+      continue;
+    }
+    switch (letter) {
+      case 'F':
+        if (out.dwell_s < 0) out.dwell_s = v;
+        else modal_.feed = v;
+        continue;
+      case 'I': case 'J': case 'K':
+        out.centre[letter - 'I'] = v;
+        out.has_centre = true;
+        continue;
+      case 'R':
+        if (address == "R") {
+          out.radius = v;
+          continue;
+        }
+        break;  // RX RY RZ below
+      case 'M': {
+        const int m = static_cast<int>(std::lround(v));
+        if (m == 3 || m == 4 || m == 5 || m == 19) modal_.spindle = m;
+        if (m == 7 || m == 8 || m == 9) modal_.coolant = m;
+        if (m == 30 || m == 2) out.end = true;
+        out.aux.push_back({'M', index, v});
+        continue;
+      }
+      case 'S':
+        if (index == 0 && !out.repos) modal_.spindle_speed = v;
+        out.aux.push_back({'S', index, v});
+        continue;
+      case 'T':
+        modal_.tool = static_cast<int>(v);
+        out.aux.push_back({'T', index, v});
+        continue;
+      case 'D':
+        modal_.correction = static_cast<int>(v);
+        out.aux.push_back({'D', index, v});
+        continue;
+      case 'H': case 'Q':
+        out.aux.push_back({letter, index, v});
+        continue;
+      default:
+        break;
+    }
+    if (address == "RX" || address == "RY" || address == "RZ") {
+      const int k = address[1] - 'X';
+      out.effective_distance[k] = v;
+      out.has_effective_distance |= 1 << k;
+      continue;
+    }
+    return Fail(w.offset, "axis " + address + " is not in this channel");
+  }
+  if (out.dwell_s < 0) return Fail(block.pos.offset, "G04 needs its dwell time as F");
+  if (out.programmed && !out.homing && !out.set_position && !out.repos) out.motion = modal_.motion;
+  return true;
+}
+
+}  // namespace vmt::control::nc

@@ -1,0 +1,143 @@
+#pragma once
+// The convert phase of the NC pipeline: executes a parsed program's control flow (variables,
+// branches, events, subroutines, $-structures, loops) and its words, and hands the channel one
+// PreparedBlock per block that does something (moves, switches, waits). Program coordinates;
+// the channel applies zero offsets, tool corrections and interpolation.
+//
+// Errors at run time (an undefined subprogram, division by zero, a loop without end) stop the
+// program with a Diagnostic at the offending place, as the manuals' error state does.
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "control/nc/program.hpp"
+
+namespace vmt::control::nc {
+
+enum class Motion : uint8_t { kNone, kRapid, kLinear, kArcCw, kArcCcw };
+
+/// Modal state as programs set it. Group numbers for G(n) reads are ModalGroup.
+struct ModalState {
+  Motion motion = Motion::kRapid;    ///< G00 G01 G02 G03
+  int plane = 18;                    ///< G17 G18 G19 (a lathe starts in G18)
+  bool incremental = false;          ///< G91 | G90
+  bool feed_per_revolution = false;  ///< G95 | G94
+  bool diameter = false;             ///< G16 diameter | G15 radius programming of X (MTC200)
+  int zero_offset = 53;              ///< G53 .. G59
+  int compensation = 40;             ///< G40 G41 G42
+  int tool_length = 47;              ///< G47 | G48
+  bool low_lag = false;              ///< G06 (MTC200)
+  int transformation = 30;           ///< MTC200 G(17): 31 when a transformation is active
+  int spindle = 5;                   ///< M3 M4 M5 M19
+  int coolant = 9;                   ///< M7 M8 M9
+  double feed = 0;                   ///< F, mm/min or mm/rev
+  double spindle_speed = 0;          ///< S, rpm
+  int tool = 0, correction = 0;      ///< T, D
+};
+
+/// G(n) / M(n) group numbers (MTC200 data access to modal state).
+int ModalGroupValue(const ModalState& m, char letter, int group, bool& known);
+
+struct AuxFunction {
+  char letter;     ///< M S T D H Q
+  int index;       ///< address index: S1 -> 1, S -> 0
+  double value;
+};
+
+struct PreparedBlock {
+  uint32_t program = 0;        ///< index into the interpreter's program list
+  int32_t block = -1;          ///< Program::blocks index: the source position
+  Motion motion = Motion::kNone;
+  std::vector<double> target;  ///< per channel axis, absolute program coordinates
+  uint64_t programmed = 0;     ///< bit per channel axis written in this block
+  double centre[3] = {0, 0, 0};  ///< I J K (relative to the start point)
+  bool has_centre = false;
+  double radius = 0;           ///< R (arc by radius)
+  double effective_distance[3] = {0, 0, 0};  ///< RX RY RZ: C-axis path velocity (C-axis manual 1.2)
+  uint8_t has_effective_distance = 0;        ///< bit 0 RX, 1 RY, 2 RZ
+  std::vector<AuxFunction> aux;
+  double dwell_s = 0;          ///< G04
+  bool homing = false;         ///< G74: the programmed axes home
+  bool set_position = false;   ///< G92: the programmed values become the current position
+  bool repos = false;          ///< G77: return the programmed axes to the interruption point
+  bool measuring = false;      ///< G100: measuring move (ISG)
+  std::vector<uint32_t> instructions;  ///< MTP, MRY, SETTING(...), #-commands: Program::statements
+  bool end = false;            ///< M30 / M02 / RET of the main program
+  ModalState modal;            ///< after the block
+};
+
+struct InterpreterConfig {
+  std::vector<std::string> axes = {"X", "Z", "C"};  ///< the channel's axis names
+  ModalState initial;
+  int max_call_depth = 16;
+  int64_t max_steps_per_block = 1000000;  ///< statements run without a block: an endless loop
+};
+
+class Interpreter {
+ public:
+  /// Programs by name (upper case, without extension), the first is the main program.
+  Interpreter(std::vector<const Program*> programs, InterpreterConfig config);
+
+  /// Events (BES/BEC, E in the manuals) come from the machine and the PLC.
+  void SetEventSource(std::function<bool(int)> source) { event_ = std::move(source); }
+
+  /// Executes up to the next block with an effect. False at the end or after an error.
+  bool Next(PreparedBlock& out);
+
+  const std::optional<Diagnostic>& error() const { return error_; }
+  const std::string& ErrorFile() const;
+  const ModalState& modal() const { return modal_; }
+  const std::vector<double>& position() const { return position_; }
+  /// A variable (@100, P1, V.L.X) by name; 0 if never set.
+  double Variable(const std::string& name) const;
+  bool ended() const { return ended_; }
+  int64_t executed_blocks() const { return executed_; }
+
+ private:
+  struct Frame {
+    uint32_t program;
+    int32_t return_block;  ///< block to continue at in the caller
+  };
+  struct Loop {
+    uint32_t program;
+    int32_t head;  ///< block of the $FOR
+    uint32_t variable;
+    double limit, step;
+  };
+
+  bool Execute(const Block& block, PreparedBlock& out, int32_t& next);
+  bool Statement_(const Statement& st, int32_t block, PreparedBlock& out, int32_t& next);
+  bool Words(const Block& block, PreparedBlock& out);
+  double Eval(ExprId id);
+  bool Fail(uint32_t offset, std::string message);
+  double& Var(uint32_t name);
+  const Program& program() const { return *programs_[current_]; }
+
+  std::vector<const Program*> programs_;
+  std::map<std::string, uint32_t> by_name_;
+  InterpreterConfig config_;
+  ModalState modal_;
+  std::vector<double> position_;
+  std::map<std::string, double> variables_;
+  std::vector<std::vector<double*>> var_cache_;  ///< per program, per symbol id
+  std::vector<Frame> calls_;
+  std::vector<Loop> loops_;
+  std::function<bool(int)> event_;
+  uint32_t current_ = 0;
+  int32_t pc_ = 0;
+  double last_result_ = 0;  ///< MTC200: BEQ/BNE/... test the last computed @ value
+  bool ended_ = false;
+  int64_t executed_ = 0;
+  std::optional<Diagnostic> error_;
+  uint32_t error_program_ = 0;
+  bool entering_ = false;  ///< a failed $IF/$ELSEIF condition jumped to the next branch
+  bool eval_failed_ = false;
+  uint32_t eval_fail_offset_ = 0;
+  std::string eval_fail_message_;
+};
+
+}  // namespace vmt::control::nc
