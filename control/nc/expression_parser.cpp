@@ -120,7 +120,7 @@ ExprId ExpressionParser::Primary(LineScanner& s) {
   Expr e;
   const SourcePos pos = s.Pos();
   e.offset = pos.offset;
-  double number;
+  double number = 0;
   if (s.Number(number)) {
     e.number = number;
     return Add(e);
@@ -136,7 +136,7 @@ ExprId ExpressionParser::Primary(LineScanner& s) {
     return inner;
   }
   if (p_.dialect == Dialect::kMtc200 && s.Accept('@')) {
-    long n;
+    long n = 0;
     if (!s.Integer(n)) {
       Error(s.Pos(), "expected a variable number after '@'");
       return kNoExpr;

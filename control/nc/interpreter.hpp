@@ -92,6 +92,8 @@ class Interpreter {
   const std::string& ErrorFile() const;
   const ModalState& modal() const { return modal_; }
   const std::vector<double>& position() const { return position_; }
+  /// Where the axes stand before the first block (incremental moves start from here).
+  void SetPosition(const std::vector<double>& position) { position_ = position; }
   /// A variable (@100, P1, V.L.X) by name; 0 if never set.
   double Variable(const std::string& name) const;
   bool ended() const { return ended_; }

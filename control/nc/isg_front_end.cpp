@@ -81,7 +81,7 @@ bool ParseIsgLine(std::string_view line, SourcePos start, Program& p,
   }
   if ((s.Peek() == 'N' || s.Peek() == 'n') && LineScanner::IsDigit(s.Peek(1))) {
     s.Advance();
-    long n;
+    long n = 0;
     s.Integer(n);
     block.number = static_cast<int32_t>(n);
   }

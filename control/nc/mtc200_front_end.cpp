@@ -77,7 +77,7 @@ bool ParseMtc200Line(std::string_view line, SourcePos start, Program& p,
   }
   if ((s.Peek() == 'N' || s.Peek() == 'n') && LineScanner::IsDigit(s.Peek(1))) {
     s.Advance();
-    long n;
+    long n = 0;
     s.Integer(n);
     block.number = static_cast<int32_t>(n);
     s.SkipSpace();
@@ -99,7 +99,7 @@ bool ParseMtc200Line(std::string_view line, SourcePos start, Program& p,
     st.pos = pos;
 
     if (s.Accept('@')) {  // @100=expression
-      long n;
+      long n = 0;
       if (!s.Integer(n)) return expr.Error(s.Pos(), "expected a variable number after '@'"), true;
       s.SkipSpace();
       if (!s.Accept('=')) return expr.Error(s.Pos(), "expected '=' after @" + std::to_string(n)), true;
@@ -167,7 +167,7 @@ bool ParseMtc200Line(std::string_view line, SourcePos start, Program& p,
       // An index (S1=0, X1=0) is digits directly followed by '='; otherwise digits are the value.
       if (LineScanner::IsDigit(s.Peek())) {
         LineScanner probe = s;
-        long index;
+        long index = 0;
         probe.Integer(index);
         probe.SkipSpace();
         if (probe.Peek() == '=' && probe.Peek(1) != '=') {
@@ -201,7 +201,7 @@ bool ParseWordValue(LineScanner& s, ExpressionParser& expr, const std::string& a
     if ((c == '-' || c == '+') && (LineScanner::IsDigit(s.Peek(1)) || s.Peek(1) == '.')) {
       LineScanner probe = s;
       probe.Advance();
-      double v;
+      double v = 0;
       probe.SkipSpace();
       if (probe.Number(v) && !MoreExpression(probe)) {
         s = probe;

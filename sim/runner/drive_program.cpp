@@ -34,7 +34,7 @@ double TrapezoidProfile::At(double t_s) const {
 }
 
 bool Holds(const Condition& c, const control::AmplifierTelegram& at,
-           const std::vector<ClutchState>& clutches) {
+           const std::vector<ClutchState>& clutches, const control::channel::Channel* channel) {
   using namespace control::drive_status;
   switch (c.kind) {
     case Condition::Kind::kInput:
@@ -47,12 +47,15 @@ bool Holds(const Condition& c, const control::AmplifierTelegram& at,
       return ((at.feedback[c.index].status & kStandstill) != 0) == c.value;
     case Condition::Kind::kClutch:
       return clutches[c.index] == c.clutch;
+    case Condition::Kind::kNc:
+      return channel && channel->state() == c.nc;
   }
   return false;
 }
 
-DriveProgram::DriveProgram(const Scene& scene, const control::AmplifierTelegram& feedback)
-    : scene_(&scene) {
+DriveProgram::DriveProgram(const Scene& scene, const control::AmplifierTelegram& feedback,
+                           control::channel::Channel* channel)
+    : scene_(&scene), channel_(channel) {
   const MachineModel& m = *scene.model;
   setpoints_.resize(m.drives.size());
   profiles_.resize(m.drives.size());
@@ -101,6 +104,18 @@ bool DriveProgram::Execute(const TimelineStep& step, double t_s,
     case Kind::kOutput:
       outputs_[step.io] = step.level;
       return true;
+    case Kind::kNcStart:
+      if (channel_) channel_->Start();
+      return true;
+    case Kind::kNcStop:
+      if (channel_) channel_->Stop();
+      return true;
+    case Kind::kNcReset:
+      if (channel_) channel_->Reset();
+      return true;
+    case Kind::kNcOverride:
+      if (channel_) channel_->SetFeedOverride(step.target);
+      return true;
     case Kind::kWait:
       return t_s - step_since_s_ >= step.wait_s - 1e-9;
     case Kind::kWaitUntil: {
@@ -111,7 +126,7 @@ bool DriveProgram::Execute(const TimelineStep& step, double t_s,
       const bool moving =
           step.until.kind == Condition::Kind::kInPosition && profiling_[step.until.index] &&
           t_s < profiles_[step.until.index].t0_s + profiles_[step.until.index].Duration();
-      if (!moving && Holds(step.until, at, clutches)) return true;
+      if (!moving && Holds(step.until, at, clutches, channel_)) return true;
       if (t_s - step_since_s_ >= step.timeout_s) {
         failures_.push_back(step.text + " timed out after " + std::to_string(step.timeout_s) +
                             " s");

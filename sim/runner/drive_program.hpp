@@ -27,7 +27,9 @@ struct TrapezoidProfile {
 class DriveProgram {
  public:
   /// `feedback` gives the state at t = 0: servos hold their position, spindles stand at 0.
-  DriveProgram(const Scene& scene, const control::AmplifierTelegram& feedback);
+  /// `channel` (may be null) receives the timeline's NC steps.
+  DriveProgram(const Scene& scene, const control::AmplifierTelegram& feedback,
+               control::channel::Channel* channel = nullptr);
 
   /// One drive tick at time t: advances the timeline on the feedback of the last tick and fills
   /// the MDT to write. Events are appended to `events`.
@@ -44,6 +46,7 @@ class DriveProgram {
                const std::vector<ClutchState>& clutches, std::vector<ProgramEvent>& events);
 
   const Scene* scene_;
+  control::channel::Channel* channel_;
   std::vector<control::DriveSetpoint> setpoints_;
   std::vector<TrapezoidProfile> profiles_;
   std::vector<bool> profiling_;
@@ -53,8 +56,8 @@ class DriveProgram {
   std::vector<std::string> failures_;
 };
 
-/// Evaluates a condition on the machine's feedback.
+/// Evaluates a condition on the machine's feedback (and the channel, if there is one).
 bool Holds(const Condition& c, const control::AmplifierTelegram& at,
-           const std::vector<ClutchState>& clutches);
+           const std::vector<ClutchState>& clutches, const control::channel::Channel* channel);
 
 }  // namespace vmt::sim

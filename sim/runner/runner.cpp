@@ -37,7 +37,7 @@ class Fnv1a64 {
   uint64_t hash_ = 0xcbf29ce484222325ull;
 };
 
-std::string TraceHeader(const MachineModel& m) {
+std::string TraceHeader(const MachineModel& m, bool nc) {
   std::string h = "t";
   for (const DriveParams& d : m.drives) {
     const std::string& n = d.info.name;
@@ -45,11 +45,13 @@ std::string TraceHeader(const MachineModel& m) {
     if (d.spindle || d.info.kind == control::AxisKind::kRotary) h += "," + n + ".rpm";
   }
   for (const DogClutch& k : m.clutches) h += "," + k.name + ".state";
+  if (nc) h += ",nc.state,nc.line";
   return h + "\n";
 }
 
 double Measured(const Expectation& e, const control::AmplifierTelegram& at,
                 const std::vector<ClutchState>& clutches) {
+  if (e.quantity == Expectation::Quantity::kNc) return 0;
   using Q = Expectation::Quantity;
   switch (e.quantity) {
     case Q::kPosition:
@@ -69,10 +71,15 @@ double Measured(const Expectation& e, const control::AmplifierTelegram& at,
 }
 
 ExpectationResult Check(const Expectation& e, const control::AmplifierTelegram& at,
-                        const std::vector<ClutchState>& clutches) {
+                        const std::vector<ClutchState>& clutches,
+                        const control::channel::Channel* channel) {
   ExpectationResult r{e.text, false, ""};
   const double got = Measured(e, at, clutches);
-  if (e.quantity == Expectation::Quantity::kClutch) {
+  if (e.quantity == Expectation::Quantity::kNc) {
+    r.passed = channel && channel->state() == e.nc;
+    r.detail = std::string("got ") + (channel ? ToString(channel->state()) : "no channel");
+    if (channel && !channel->error().empty()) r.detail += ": " + channel->error();
+  } else if (e.quantity == Expectation::Quantity::kClutch) {
     r.passed = clutches[e.index] == e.clutch;
     r.detail = std::string("got ") + ToString(clutches[e.index]);
   } else {
@@ -91,7 +98,25 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
   const MachineModel& m = *scene.model;
   std::unique_ptr<MachineBackend> backend =
       MakeBackend(options.backend.value_or(scene.backend), m, scene.initial);
-  DriveProgram program(scene, backend->Read());
+  // The NC channel, if the scene has one: its axes move at the drives' rapid and acceleration.
+  std::unique_ptr<control::channel::Channel> channel;
+  if (scene.nc.present) {
+    control::channel::ChannelConfig config;
+    for (int d : scene.nc.axis_drives) {
+      const DriveParams& p = m.drives[d];
+      const double unit = p.info.kind == control::AxisKind::kLinear ? kMmPerM : kDegPerRad;
+      config.axes.push_back({p.info.name, d, p.velocity_limit * unit, p.acceleration_limit * unit,
+                             p.info.kind == control::AxisKind::kRotary});
+    }
+    config.spindle_drive = scene.nc.spindle_drive;
+    config.tick_s = kDriveTickS;
+    std::vector<const control::nc::Program*> programs;
+    for (const auto& parsed : scene.nc.programs) programs.push_back(&parsed->program);
+    channel = std::make_unique<control::channel::Channel>(config, programs);
+    channel->SetFeedOverride(scene.nc.override);
+  }
+  DriveProgram program(scene, backend->Read(), channel.get());
+  auto nc_state = control::channel::ChannelState::kIdle;
 
   const double duration = options.until_s.value_or(scene.duration_s);
   const int64_t last_tick = std::llround(duration / kDriveTickS);
@@ -117,7 +142,7 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
     event["t"] = std::round(event["t"].get<double>() * 1e6) / 1e6;
     if (writing) events_file << event.dump() << '\n';
   };
-  emit_trace(TraceHeader(m));
+  emit_trace(TraceHeader(m, channel != nullptr));
 
   RunResult result;
   std::unique_ptr<SceneRenderer> renderer;
@@ -137,6 +162,15 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
 
     events.clear();
     program.Tick(t, at, clutches, mdt, events);
+    if (channel) {
+      channel->Tick(at, mdt);
+      if (channel->state() != nc_state) {
+        nc_state = channel->state();
+        nlohmann::ordered_json e = {{"t", t}, {"event", "nc"}, {"state", ToString(nc_state)}};
+        if (!channel->error().empty()) e["error"] = channel->error();
+        emit_event(e);
+      }
+    }
     for (const ProgramEvent& e : events)
       emit_event({{"t", e.t_s}, {"event", e.kind}, {"text", e.text}});
     for (size_t k = 0; k < clutches.size(); ++k)
@@ -166,6 +200,10 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
           Append(row, fb.velocity / 6.0);
       }
       for (ClutchState c : clutches) Append(row, static_cast<int>(c));
+      if (channel) {
+        Append(row, static_cast<int>(channel->state()));
+        Append(row, channel->line());
+      }
       emit_trace(row + "\n");
     }
 
@@ -174,7 +212,7 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
       const bool due = e.at_s < 0 ? tick == last_tick : t >= e.at_s - 1e-9;
       if (checked[i] || !due) continue;
       checked[i] = true;
-      checks[i] = Check(e, at, clutches);
+      checks[i] = Check(e, at, clutches, channel.get());
       emit_event({{"t", t},
                   {"event", "expectation"},
                   {"text", e.text},
@@ -213,6 +251,14 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
       result.failures.push_back(checks[i].text + " (" + checks[i].detail + ")");
   }
   for (const std::string& f : program.failures()) result.failures.push_back(f);
+  // An NC error fails the run unless the scene expects it.
+  if (channel && !channel->error().empty()) {
+    bool expected = false;
+    for (const Expectation& e : scene.expectations)
+      expected = expected || (e.quantity == Expectation::Quantity::kNc &&
+                              e.nc == control::channel::ChannelState::kError);
+    if (!expected) result.failures.push_back("NC error: " + channel->error());
+  }
   result.expectations = checks;
   result.wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

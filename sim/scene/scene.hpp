@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "control/channel/channel.hpp"
+#include "control/nc/program.hpp"
 #include "sim/backend/machine_backend.hpp"
 #include "sim/model/machine_model.hpp"
 
@@ -25,16 +27,27 @@ struct Workpiece {
   std::string link = "spindle";
 };
 
+/// The NC channel of a scene: its programs (main first) and the drives it commands.
+struct NcSetup {
+  bool present = false;
+  std::vector<std::shared_ptr<const control::nc::ParseResult>> programs;
+  std::vector<int> axis_drives;  ///< channel axes, named as their drives (X, Z, C)
+  int spindle_drive = -1;
+  double override = 1.0;
+};
+
 /// What a wait_until step or an expectation looks at.
 struct Condition {
-  enum class Kind { kInput, kInPosition, kAtSpeed, kStandstill, kClutch } kind = Kind::kInput;
+  enum class Kind { kInput, kInPosition, kAtSpeed, kStandstill, kClutch, kNc } kind = Kind::kInput;
   int index = -1;     ///< I/O point, drive or clutch
   bool value = true;  ///< input level or status bit wanted
   ClutchState clutch = ClutchState::kEngaged;
+  control::channel::ChannelState nc = control::channel::ChannelState::kEnded;
 };
 
 struct TimelineStep {
-  enum class Kind { kMove, kSpeed, kOrient, kOff, kOutput, kWait, kWaitUntil } kind;
+  enum class Kind { kMove, kSpeed, kOrient, kOff, kOutput, kWait, kWaitUntil, kNcStart, kNcStop,
+                    kNcReset, kNcOverride } kind;
   double not_before_s = 0;  ///< `at:`; 0 = as soon as the previous step is done
   int drive = -1;
   int io = -1;
@@ -48,12 +61,13 @@ struct TimelineStep {
 };
 
 struct Expectation {
-  enum class Quantity { kPosition, kVelocity, kRpm, kFollowingError, kInput, kClutch } quantity;
+  enum class Quantity { kPosition, kVelocity, kRpm, kFollowingError, kInput, kClutch, kNc } quantity;
   double at_s = -1;  ///< -1: at the end of the run
   int index = -1;    ///< drive, I/O point or clutch
   double value = 0;
   double tolerance = 0;
   ClutchState clutch = ClutchState::kEngaged;
+  control::channel::ChannelState nc = control::channel::ChannelState::kEnded;
   std::string text;  ///< "expect[2]: Z position 250 +- 0.01 at 3 s"
 };
 
@@ -73,6 +87,7 @@ struct Scene {
   double trace_period_s = 0.001;
   Workpiece workpiece;
   InitialState initial;
+  NcSetup nc;
   std::vector<TimelineStep> timeline;
   std::vector<Expectation> expectations;
   std::vector<SnapshotSpec> snapshots;

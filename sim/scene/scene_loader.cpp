@@ -1,6 +1,8 @@
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
+#include "control/nc/parser.hpp"
 #include "sim/kinematic/kinematic_backend.hpp"
 #include "sim/model/model_error.hpp"
 #include "sim/model/yaml_reader.hpp"
@@ -53,8 +55,23 @@ bool IsRotary(const MachineModel& m, int drive) {
   return m.drives[drive].info.kind == control::AxisKind::kRotary;
 }
 
+control::channel::ChannelState ParseNcState(const YamlNode& n) {
+  using control::channel::ChannelState;
+  const std::string s = n.String();
+  for (ChannelState c : {ChannelState::kIdle, ChannelState::kRunning, ChannelState::kHold,
+                         ChannelState::kEnded, ChannelState::kError})
+    if (s == control::channel::ToString(c)) return c;
+  n.Fail("expected idle, running, hold, ended or error");
+}
+
 Condition ReadCondition(const MachineModel& m, const YamlNode& n) {
   Condition c;
+  if (n.Has("nc")) {
+    n.AllowKeys({"nc", "timeout"});
+    c.kind = Condition::Kind::kNc;
+    c.nc = ParseNcState(n["nc"]);
+    return c;
+  }
   if (n.Has("input")) {
     n.AllowKeys({"input", "value", "timeout"});
     c.kind = Condition::Kind::kInput;
@@ -85,17 +102,38 @@ Condition ReadCondition(const MachineModel& m, const YamlNode& n) {
   return c;
 }
 
-TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i) {
-  n.AllowKeys({"at", "move", "speed", "orient", "off", "output", "wait", "wait_until"});
+TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, bool has_nc) {
+  n.AllowKeys({"at", "move", "speed", "orient", "off", "output", "wait", "wait_until", "nc"});
   TimelineStep s{};
   s.not_before_s = n.Double("at", 0);
   std::ostringstream text;
   text << "timeline[" << i << "]: ";
   int actions = 0;
-  for (const char* k : {"move", "speed", "orient", "off", "output", "wait", "wait_until"})
+  for (const char* k : {"move", "speed", "orient", "off", "output", "wait", "wait_until", "nc"})
     actions += n.Has(k);
   if (actions != 1)
-    n.Fail("a step needs exactly one of move, speed, orient, off, output, wait, wait_until");
+    n.Fail("a step needs exactly one of move, speed, orient, off, output, wait, wait_until, nc");
+
+  if (n.Has("nc")) {
+    const YamlNode a = n["nc"];
+    if (!has_nc) a.Fail("the scene has no nc: section");
+    if (a.IsMap()) {
+      a.AllowKeys({"override"});
+      s.kind = TimelineStep::Kind::kNcOverride;
+      s.target = a["override"].Double() / 100;
+      if (s.target < 0 || s.target > 2) a["override"].Fail("must be 0..200 (percent)");
+      text << "feed override " << Fmt(s.target * 100) << " %";
+    } else {
+      const std::string cmd = a.String();
+      if (cmd == "start") s.kind = TimelineStep::Kind::kNcStart;
+      else if (cmd == "stop") s.kind = TimelineStep::Kind::kNcStop;
+      else if (cmd == "reset") s.kind = TimelineStep::Kind::kNcReset;
+      else a.Fail("expected start, stop, reset or {override: percent}");
+      text << "NC " << cmd;
+    }
+    s.text = text.str();
+    return s;
+  }
 
   if (n.Has("move")) {
     const YamlNode a = n["move"];
@@ -162,7 +200,7 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i) {
 
 Expectation ReadExpectation(const MachineModel& m, const YamlNode& n, size_t i) {
   n.AllowKeys({"at", "axis", "position", "velocity", "rpm", "following_error", "input", "value",
-               "clutch", "state", "tol"});
+               "clutch", "state", "tol", "nc"});
   Expectation e{};
   e.at_s = n.Double("at", -1);
   std::ostringstream text;
@@ -188,6 +226,10 @@ Expectation ReadExpectation(const MachineModel& m, const YamlNode& n, size_t i) 
     e.index = RequireIo(m, n["input"]);
     e.value = n["value"].Bool() ? 1 : 0;
     text << n["input"].String() << " = " << e.value;
+  } else if (n.Has("nc")) {
+    e.quantity = Expectation::Quantity::kNc;
+    e.nc = ParseNcState(n["nc"]);
+    text << "NC " << control::channel::ToString(e.nc);
   } else if (n.Has("clutch")) {
     e.quantity = Expectation::Quantity::kClutch;
     for (size_t k = 0; k < m.clutches.size(); ++k)
@@ -196,7 +238,7 @@ Expectation ReadExpectation(const MachineModel& m, const YamlNode& n, size_t i) 
     e.clutch = ParseClutchState(n["state"]);
     text << "clutch " << n["clutch"].String() << " " << ToString(e.clutch);
   } else {
-    n.Fail("expected axis:, input: or clutch:");
+    n.Fail("expected axis:, input:, clutch: or nc:");
   }
   text << (e.at_s < 0 ? std::string(" at the end") : " at " + Fmt(e.at_s) + " s");
   e.text = text.str();
@@ -215,7 +257,7 @@ Scene LoadScene(const std::string& path) {
   const YamlNode root = YamlNode::LoadFile(path);
   if (!root.IsMap()) root.Fail("a scene file is a map");
   root.AllowKeys({"scene", "model", "backend", "duration", "trace_period", "workpiece", "initial",
-                  "timeline", "expect", "snapshots", "cameras"});
+                  "nc", "timeline", "expect", "snapshots", "cameras"});
   Scene s;
   s.file = path;
   s.name = root["scene"].String();
@@ -289,9 +331,41 @@ Scene LoadScene(const std::string& path) {
     }
   }
 
+  if (root.Has("nc")) {
+    const YamlNode nc = root["nc"];
+    nc.AllowKeys({"program", "subprograms", "dialect", "axes", "spindle", "override"});
+    s.nc.present = true;
+    std::vector<YamlNode> files{nc["program"]};
+    if (nc.Has("subprograms"))
+      for (size_t i = 0; i < nc["subprograms"].size(); ++i) files.push_back(nc["subprograms"][i]);
+    const std::string dialect = nc.String("dialect", "");
+    if (!dialect.empty() && dialect != "mtc200" && dialect != "isg")
+      nc["dialect"].Fail("expected mtc200 or isg");
+    for (const YamlNode& f : files) {
+      const std::string file =
+          (std::filesystem::path(path).parent_path() / f.String()).lexically_normal().string();
+      std::ifstream in(file, std::ios::binary);
+      if (!in) f.Fail("cannot open NC program " + file);
+      const std::string text((std::istreambuf_iterator<char>(in)), {});
+      namespace cnc = control::nc;
+      const cnc::Dialect d = dialect.empty() ? cnc::DetectDialect(text, file)
+                             : dialect == "isg" ? cnc::Dialect::kIsg : cnc::Dialect::kMtc200;
+      auto parsed = std::make_shared<cnc::ParseResult>(cnc::ParseProgram(text, file, d));
+      // NC errors read like a compiler's, the first one names the scene entry that loaded it.
+      if (!parsed->ok()) f.Fail(cnc::Format(parsed->errors[0], parsed->program.files));
+      s.nc.programs.push_back(parsed);
+    }
+    const YamlNode axes = nc["axes"];
+    for (size_t i = 0; i < axes.size(); ++i) s.nc.axis_drives.push_back(RequireDrive(m, axes[i]));
+    if (nc.Has("spindle")) {
+      s.nc.spindle_drive = RequireDrive(m, nc["spindle"]);
+      if (!m.drives[s.nc.spindle_drive].spindle) nc["spindle"].Fail("not a spindle drive");
+    }
+    s.nc.override = nc.Double("override", 100) / 100;
+  }
   if (root.Has("timeline")) {
     const YamlNode t = root["timeline"];
-    for (size_t i = 0; i < t.size(); ++i) s.timeline.push_back(ReadStep(m, t[i], i));
+    for (size_t i = 0; i < t.size(); ++i) s.timeline.push_back(ReadStep(m, t[i], i, s.nc.present));
   }
   if (root.Has("expect")) {
     const YamlNode e = root["expect"];

@@ -1,0 +1,282 @@
+#include "control/channel/channel.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace vmt::control::channel {
+namespace {
+
+constexpr double kArcTolerance = 0.01;  // mm: start and end radius may differ this much
+
+// Plane axes (first, second) by address: G17 X-Y, G18 Z-X, G19 Y-Z; the arc turns
+// counter-clockwise from first to second.
+void PlaneAxes(int plane, const char*& first, const char*& second, char& i_first, char& i_second) {
+  if (plane == 17) first = "X", second = "Y", i_first = 'I', i_second = 'J';
+  else if (plane == 19) first = "Y", second = "Z", i_first = 'J', i_second = 'K';
+  else first = "Z", second = "X", i_first = 'K', i_second = 'I';
+}
+
+}  // namespace
+
+const char* ToString(ChannelState s) {
+  switch (s) {
+    case ChannelState::kIdle: return "idle";
+    case ChannelState::kRunning: return "running";
+    case ChannelState::kHold: return "hold";
+    case ChannelState::kEnded: return "ended";
+    case ChannelState::kError: return "error";
+  }
+  return "?";
+}
+
+Channel::Channel(ChannelConfig config, std::vector<const nc::Program*> programs)
+    : config_(std::move(config)), programs_(std::move(programs)) {
+  commanded_.assign(config_.axes.size(), 0.0);
+  previous_ = commanded_;
+  spindle_ = {DriveMode::kVelocity, 0, 0};
+}
+
+uint32_t Channel::line() const {
+  if (!active_ && state_ != ChannelState::kError) return 0;
+  if (block_.block < 0) return 0;
+  return programs_[block_.program]->blocks[block_.block].pos.line;
+}
+
+void Channel::Fail(const std::string& message) {
+  state_ = ChannelState::kError;
+  error_ = message;
+  active_ = false;
+}
+
+void Channel::Start() {
+  if (state_ == ChannelState::kHold) {
+    state_ = ChannelState::kRunning;
+    return;
+  }
+  if (state_ == ChannelState::kRunning || state_ == ChannelState::kError) return;
+  state_ = ChannelState::kRunning;
+  start_pending_ = true;  // positions are taken from the feedback at the next tick
+}
+
+void Channel::Stop() {
+  if (state_ == ChannelState::kRunning) state_ = ChannelState::kHold;
+}
+
+void Channel::Reset() {
+  state_ = ChannelState::kIdle;
+  error_.clear();
+  active_ = false;
+  interpreter_.reset();
+  previous_ = commanded_;
+  spindle_ = {DriveMode::kVelocity, 0, 0};
+}
+
+void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
+  if (start_pending_) {
+    start_pending_ = false;
+    if (!holding_positions_) {
+      for (size_t a = 0; a < config_.axes.size(); ++a)
+        commanded_[a] = at.feedback[config_.axes[a].drive].position;
+      previous_ = commanded_;
+      holding_positions_ = true;
+    }
+    if (!interpreter_) {
+      nc::InterpreterConfig ic;
+      ic.axes.clear();
+      for (const ChannelAxis& a : config_.axes) ic.axes.push_back(a.name);
+      interpreter_ = std::make_unique<nc::Interpreter>(programs_, ic);
+      interpreter_->SetPosition(commanded_);
+      if (events_) interpreter_->SetEventSource(events_);
+    }
+  }
+  if (!holding_positions_) return;
+
+  if (++tick_in_cycle_ >= config_.ticks_per_cycle) {
+    tick_in_cycle_ = 0;
+    previous_ = commanded_;
+    const double dt = config_.tick_s * config_.ticks_per_cycle;
+    if (state_ == ChannelState::kRunning || state_ == ChannelState::kHold) {
+      if (dwell_left_s_ > 0) {
+        if (state_ == ChannelState::kRunning) dwell_left_s_ -= dt;
+      } else if (!active_ && state_ == ChannelState::kRunning) {
+        NextBlock(at);
+      }
+      if (active_) Interpolate(dt);
+    }
+  }
+  // Fine interpolation: the drives get a straight line between the last two NC cycle points.
+  const double f = static_cast<double>(tick_in_cycle_ + 1) / config_.ticks_per_cycle;
+  for (size_t a = 0; a < config_.axes.size(); ++a)
+    mdt.setpoints[config_.axes[a].drive] = {DriveMode::kPosition,
+                                            previous_[a] + (commanded_[a] - previous_[a]) * f, 0};
+  if (config_.spindle_drive >= 0) mdt.setpoints[config_.spindle_drive] = spindle_;
+}
+
+bool Channel::NextBlock(const AmplifierTelegram& at) {
+  if (!interpreter_->Next(block_)) {
+    if (interpreter_->error())
+      Fail(nc::Format(*interpreter_->error(), {interpreter_->ErrorFile()}));
+    else
+      state_ = ChannelState::kEnded;
+    return false;
+  }
+  const nc::Program& program = *programs_[block_.program];
+  auto unsupported = [&](const std::string& what) {
+    Fail(nc::Format({program.blocks[block_.block].pos, what + " is not available in the channel yet"},
+                    program.files));
+    return false;
+  };
+  if (block_.homing) return unsupported("G74 homing");
+  if (block_.set_position) return unsupported("G92");
+  if (block_.repos) return unsupported("G77 (REPOS)");
+  if (block_.measuring) return unsupported("G100 measuring");
+  if (block_.has_centre && block_.motion != nc::Motion::kArcCw && block_.motion != nc::Motion::kArcCcw)
+    return unsupported("I/J/K outside G02/G03");
+
+  // Spindle: M3/M4 with S (rpm), M5, M19 (orient to 0 deg).
+  for (const nc::AuxFunction& f : block_.aux) {
+    if (f.letter != 'M' || config_.spindle_drive < 0) continue;
+    const int m = static_cast<int>(f.value);
+    const double rpm = block_.modal.spindle_speed;
+    if (m == 3) spindle_ = {DriveMode::kVelocity, rpm * 6, 0};
+    if (m == 4) spindle_ = {DriveMode::kVelocity, -rpm * 6, 0};
+    if (m == 5) spindle_ = {DriveMode::kVelocity, 0, 0};
+    if (m == 19) spindle_ = {DriveMode::kPosition, 0, 0};
+  }
+  // An S word alone changes the speed of a running spindle.
+  if (spindle_.mode == DriveMode::kVelocity && spindle_.value != 0)
+    spindle_.value = std::copysign(block_.modal.spindle_speed * 6, spindle_.value);
+
+  dwell_left_s_ = block_.dwell_s;
+  if (block_.end) state_ = ChannelState::kEnded;
+  if (block_.motion == nc::Motion::kNone) return true;
+
+  start_ = commanded_;
+  end_ = block_.target;
+  const size_t n = config_.axes.size();
+  std::vector<double> delta(n);
+  double max_delta = 0;
+  for (size_t a = 0; a < n; ++a) max_delta = std::max(max_delta, std::abs(delta[a] = end_[a] - start_[a]));
+  const bool arc = block_.motion == nc::Motion::kArcCw || block_.motion == nc::Motion::kArcCcw;
+  if (max_delta < 1e-12 && !arc) return true;
+
+  // Per-axis limits on du/dt and d2u/dt2 for a straight move in axis space.
+  double axis_rate = std::numeric_limits<double>::infinity();
+  double axis_accel = std::numeric_limits<double>::infinity();
+  for (size_t a = 0; a < n; ++a) {
+    if (std::abs(delta[a]) < 1e-12) continue;
+    axis_rate = std::min(axis_rate, config_.axes[a].rapid_per_s / std::abs(delta[a]));
+    axis_accel = std::min(axis_accel, config_.axes[a].acceleration / std::abs(delta[a]));
+  }
+  profile_ = PathProfile{};
+  arc_axes_[0] = arc_axes_[1] = -1;
+
+  // Path feed, mm/s: F mm/min, or mm/rev times the spindle speed (G95).
+  double feed = block_.modal.feed / 60.0;
+  if (block_.modal.feed_per_revolution) feed = block_.modal.feed * std::abs(at.feedback.empty() || config_.spindle_drive < 0 ? 0 : at.feedback[config_.spindle_drive].velocity / 360.0);
+  if (block_.motion != nc::Motion::kRapid && feed <= 0) {
+    Fail(nc::Format({program.blocks[block_.block].pos, "no feed programmed (F)"}, program.files));
+    return false;
+  }
+
+  if (block_.motion == nc::Motion::kRapid) {
+    profile_.max_rate = axis_rate;
+    profile_.max_accel = axis_accel;
+  } else if (!arc) {
+    // Path length over the linear axes; rotary axes count with their effective distance
+    // (RX: radius at which the C axis' motion counts, C-axis manual 1.2), or alone in deg.
+    double length2 = 0, rotary2 = 0;
+    for (size_t a = 0; a < n; ++a) {
+      if (!config_.axes[a].rotary) length2 += delta[a] * delta[a];
+      else if (block_.has_effective_distance & 1)
+        length2 += std::pow(block_.effective_distance[0] * delta[a] * std::numbers::pi / 180, 2);
+      else rotary2 += delta[a] * delta[a];
+    }
+    const double length = std::sqrt(length2 > 0 ? length2 : rotary2);
+    profile_.max_rate = std::min(feed / length, axis_rate);
+    profile_.max_accel = axis_accel;
+  } else {
+    const char *first, *second;
+    char i_first, i_second;
+    PlaneAxes(block_.modal.plane, first, second, i_first, i_second);
+    for (size_t a = 0; a < n; ++a) {
+      if (config_.axes[a].name == first) arc_axes_[0] = static_cast<int>(a);
+      if (config_.axes[a].name == second) arc_axes_[1] = static_cast<int>(a);
+    }
+    if (arc_axes_[0] < 0 || arc_axes_[1] < 0) {
+      Fail(nc::Format({program.blocks[block_.block].pos, std::string("the arc plane G") +
+                       std::to_string(block_.modal.plane) + " needs axes " + first + " and " + second},
+                      program.files));
+      return false;
+    }
+    const int a0 = arc_axes_[0], a1 = arc_axes_[1];
+    const double s0 = start_[a0], s1 = start_[a1], e0 = end_[a0], e1 = end_[a1];
+    const bool cw = block_.motion == nc::Motion::kArcCw;
+    double c0, c1;
+    if (block_.has_centre) {
+      c0 = s0 + block_.centre[i_first - 'I'];
+      c1 = s1 + block_.centre[i_second - 'I'];
+    } else if (block_.radius != 0) {
+      // Centre from R: on the chord's bisector; R < 0 picks the arc over 180 degrees.
+      const double dx = e0 - s0, dy = e1 - s1, chord = std::hypot(dx, dy);
+      const double r = std::abs(block_.radius);
+      if (chord < 1e-12 || chord > 2 * r + kArcTolerance) {
+        Fail(nc::Format({program.blocks[block_.block].pos, "radius R too small for the end point"}, program.files));
+        return false;
+      }
+      const double h = std::sqrt(std::max(0.0, r * r - chord * chord / 4));
+      const double side = ((block_.radius > 0) == cw) ? -1 : 1;
+      c0 = (s0 + e0) / 2 - side * h * dy / chord;
+      c1 = (s1 + e1) / 2 + side * h * dx / chord;
+    } else {
+      Fail(nc::Format({program.blocks[block_.block].pos, "G02/G03 needs a centre (I/J/K) or a radius R"}, program.files));
+      return false;
+    }
+    const double r_start = std::hypot(s0 - c0, s1 - c1), r_end = std::hypot(e0 - c0, e1 - c1);
+    if (std::abs(r_start - r_end) > kArcTolerance || r_start < 1e-9) {
+      Fail(nc::Format({program.blocks[block_.block].pos,
+                       "end point not on the arc (radius " + std::to_string(r_start) + " at the start, " +
+                           std::to_string(r_end) + " at the end)"},
+                      program.files));
+      return false;
+    }
+    arc_centre_[0] = c0;
+    arc_centre_[1] = c1;
+    arc_radius_ = r_start;
+    arc_start_angle_ = std::atan2(s1 - c1, s0 - c0);
+    double sweep = std::atan2(e1 - c1, e0 - c0) - arc_start_angle_;
+    if (cw) {
+      while (sweep >= -1e-12) sweep -= 2 * std::numbers::pi;
+    } else {
+      while (sweep <= 1e-12) sweep += 2 * std::numbers::pi;
+    }
+    if (std::abs(std::abs(sweep) - 2 * std::numbers::pi) < 1e-9 && std::hypot(e0 - s0, e1 - s1) > 1e-9)
+      sweep = std::fmod(sweep, 2 * std::numbers::pi);
+    arc_sweep_ = sweep;
+    const double length = arc_radius_ * std::abs(sweep);
+    const double accel = std::min(config_.axes[a0].acceleration, config_.axes[a1].acceleration);
+    // Centripetal acceleration v^2/r must stay within the axes' limit too.
+    const double v = std::min(feed, std::sqrt(accel * arc_radius_));
+    profile_.max_rate = v / length;
+    profile_.max_accel = accel / length;
+  }
+  active_ = true;
+  return true;
+}
+
+void Channel::Interpolate(double dt) {
+  profile_.Advance(dt, state_ == ChannelState::kHold ? 0.0 : override_);
+  const double u = profile_.u;
+  for (size_t a = 0; a < commanded_.size(); ++a) commanded_[a] = start_[a] + (end_[a] - start_[a]) * u;
+  if (arc_axes_[0] >= 0) {
+    const double angle = arc_start_angle_ + arc_sweep_ * u;
+    commanded_[arc_axes_[0]] = arc_centre_[0] + arc_radius_ * std::cos(angle);
+    commanded_[arc_axes_[1]] = arc_centre_[1] + arc_radius_ * std::sin(angle);
+  }
+  if (profile_.done()) {
+    commanded_ = end_;  // exactly the programmed point
+    active_ = false;
+  }
+}
+
+}  // namespace vmt::control::channel

@@ -1,0 +1,137 @@
+// The channel on an ideal machine (actual = setpoint): block timing, G00 synchronisation, arcs,
+// feed override and feed hold on the path.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "control/channel/channel.hpp"
+#include "control/nc/parser.hpp"
+
+namespace vmt::control::channel {
+namespace {
+
+struct Machine {
+  explicit Machine(const std::string& program, double x = 0, double z = 0) {
+    parsed = nc::ParseProgram(program, "p.mtc", nc::Dialect::kMtc200);
+    EXPECT_TRUE(parsed.ok()) << nc::Format(parsed.errors[0], parsed.program.files);
+    ChannelConfig config;
+    config.axes = {{"X", 0, 400, 4000, false}, {"Z", 1, 500, 4000, false}};
+    config.spindle_drive = 2;
+    channel = std::make_unique<Channel>(config, std::vector<const nc::Program*>{&parsed.program});
+    at.feedback.resize(3);
+    at.feedback[0].position = x;
+    at.feedback[1].position = z;
+    mdt.setpoints.resize(3);
+  }
+  // One drive tick of an ideal machine: the actual position is the setpoint.
+  void Tick() {
+    channel->Tick(at, mdt);
+    for (int d = 0; d < 2; ++d)
+      if (mdt.setpoints[d].mode == DriveMode::kPosition) at.feedback[d].position = mdt.setpoints[d].value;
+    t += 250e-6;
+  }
+  double RunUntilEnd(double limit = 60) {
+    while (channel->state() != ChannelState::kEnded && channel->state() != ChannelState::kError && t < limit) Tick();
+    return t;
+  }
+  double X() const { return at.feedback[0].position; }
+  double Z() const { return at.feedback[1].position; }
+
+  nc::ParseResult parsed;
+  std::unique_ptr<Channel> channel;
+  AmplifierTelegram at;
+  MasterTelegram mdt;
+  double t = 0;
+};
+
+TEST(ChannelTest, LinearMoveTakesFeedAndAccelerationTime) {
+  Machine m("N1 G01 X100 F6000\nN2 RET\n");  // 100 mm at 100 mm/s, accel 4000 mm/s^2
+  m.channel->Start();
+  const double t = m.RunUntilEnd();
+  EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  EXPECT_DOUBLE_EQ(m.X(), 100);
+  // Trapezoid: 100/100 + 100/4000 = 1.025 s, plus a few NC cycles of block change.
+  EXPECT_NEAR(t, 1.025, 0.01);
+}
+
+TEST(ChannelTest, RapidMovesEveryAxisAtItsLimitAndEndsThemTogether) {
+  Machine m("N1 G00 X200 Z100\nN2 RET\n");
+  m.channel->Start();
+  double x_done = -1, z_done = -1;
+  double max_ratio_error = 0;
+  while (m.channel->state() == ChannelState::kRunning && m.t < 5) {
+    m.Tick();
+    if (x_done < 0 && m.X() == 200) x_done = m.t;
+    if (z_done < 0 && m.Z() == 100) z_done = m.t;
+    // Straight in axis space: Z/X stays 1/2.
+    if (m.X() > 1) max_ratio_error = std::max(max_ratio_error, std::abs(m.Z() / m.X() - 0.5));
+  }
+  EXPECT_NEAR(x_done, z_done, 1e-9);
+  EXPECT_LT(max_ratio_error, 1e-9);
+  // X limits (200 mm at 400 mm/s, 4000 mm/s^2): 0.5 + 0.1 s.
+  EXPECT_NEAR(x_done, 0.6, 0.01);
+}
+
+TEST(ChannelTest, ArcStaysOnItsCircle) {
+  Machine m("N1 G18 G02 X23 Z134 I4 K0 F600\nN2 RET\n", 19, 138);
+  m.channel->Start();
+  double worst = 0;
+  while (m.channel->state() == ChannelState::kRunning && m.t < 5) {
+    m.Tick();
+    worst = std::max(worst, std::abs(std::hypot(m.Z() - 138, m.X() - 23) - 4));
+  }
+  EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  EXPECT_LT(worst, 1e-4);
+  EXPECT_DOUBLE_EQ(m.X(), 23);
+  EXPECT_DOUBLE_EQ(m.Z(), 134);
+}
+
+TEST(ChannelTest, FeedHoldStopsOnThePathAndResumes) {
+  Machine m("N1 G01 X100 Z50 F6000\nN2 RET\n");
+  m.channel->Start();
+  while (m.t < 0.3) m.Tick();
+  m.channel->Stop();
+  for (int i = 0; i < 1000; ++i) m.Tick();
+  EXPECT_EQ(m.channel->state(), ChannelState::kHold);
+  const double x = m.X(), z = m.Z();
+  EXPECT_GT(x, 10);
+  EXPECT_LT(x, 100);
+  EXPECT_NEAR(z, x / 2, 1e-9);  // the stop point lies on the programmed line
+  for (int i = 0; i < 100; ++i) m.Tick();
+  EXPECT_EQ(m.X(), x);  // standing
+  m.channel->Start();
+  m.RunUntilEnd();
+  EXPECT_EQ(m.channel->state(), ChannelState::kEnded);
+  EXPECT_DOUBLE_EQ(m.X(), 100);
+}
+
+TEST(ChannelTest, OverrideScalesTheFeed) {
+  Machine full("N1 G01 X100 F3000\nN2 RET\n"), half("N1 G01 X100 F3000\nN2 RET\n");
+  half.channel->SetFeedOverride(0.5);
+  full.channel->Start();
+  half.channel->Start();
+  EXPECT_NEAR(half.RunUntilEnd() / full.RunUntilEnd(), 2, 0.02);
+}
+
+TEST(ChannelTest, SpindleAndErrors) {
+  Machine m("N1 M03 S1200\nN2 G01 X10\nN3 RET\n");
+  m.channel->Start();
+  m.RunUntilEnd();
+  EXPECT_EQ(m.mdt.setpoints[2].mode, DriveMode::kVelocity);
+  EXPECT_DOUBLE_EQ(m.mdt.setpoints[2].value, 7200);
+  EXPECT_EQ(m.channel->state(), ChannelState::kError);
+  EXPECT_THAT(m.channel->error(), ::testing::HasSubstr("p.mtc:2:1: error: no feed programmed"));
+
+  Machine arc("N1 G02 X10 Z0 I3 K0 F100\nN2 RET\n");
+  arc.channel->Start();
+  arc.RunUntilEnd();
+  EXPECT_THAT(arc.channel->error(), ::testing::HasSubstr("end point not on the arc"));
+  arc.channel->Reset();
+  EXPECT_EQ(arc.channel->state(), ChannelState::kIdle);
+  EXPECT_EQ(arc.channel->error(), "");
+}
+
+}  // namespace
+}  // namespace vmt::control::channel
