@@ -51,7 +51,6 @@ std::string TraceHeader(const MachineModel& m, bool nc) {
 
 double Measured(const Expectation& e, const control::AmplifierTelegram& at,
                 const std::vector<ClutchState>& clutches) {
-  if (e.quantity == Expectation::Quantity::kNc) return 0;
   using Q = Expectation::Quantity;
   switch (e.quantity) {
     case Q::kPosition:
@@ -66,6 +65,8 @@ double Measured(const Expectation& e, const control::AmplifierTelegram& at,
       return at.inputs[e.index];
     case Q::kClutch:
       return static_cast<double>(clutches[e.index]);
+    case Q::kNc:
+      return 0;  // a state, compared in Check
   }
   return 0;
 }
