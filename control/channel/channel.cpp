@@ -96,12 +96,18 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
     previous_ = commanded_;
     const double dt = config_.tick_s * config_.ticks_per_cycle;
     if (state_ == ChannelState::kRunning || state_ == ChannelState::kHold) {
+      bool finished = false;
       if (dwell_left_s_ > 0) {
         if (state_ == ChannelState::kRunning) dwell_left_s_ -= dt;
+        finished = dwell_left_s_ <= 0;
       } else if (!active_ && state_ == ChannelState::kRunning) {
-        NextBlock(at);
+        finished = NextBlock(at) && !active_ && dwell_left_s_ <= 0;
       }
-      if (active_) Interpolate(dt);
+      if (active_) {
+        Interpolate(dt);
+        finished = !active_;
+      }
+      if (finished && single_block_ && state_ == ChannelState::kRunning) state_ = ChannelState::kHold;
     }
   }
   // Fine interpolation: the drives get a straight line between the last two NC cycle points.

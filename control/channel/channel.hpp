@@ -46,6 +46,8 @@ class Channel {
   void Stop();                      ///< feed hold: brake on the path
   void Reset();                     ///< Control-Reset: stop, back to the program start
   void SetFeedOverride(double fraction) { override_ = std::clamp(fraction, 0.0, 2.0); }
+  /// Single block (semi-automatic): after each block the channel holds until the next start.
+  void SetSingleBlock(bool on) { single_block_ = on; }
   void SetEventSource(std::function<bool(int)> source) { events_ = std::move(source); }
 
   /// One drive tick: reads the feedback, interpolates on the NC cycle, writes setpoints.
@@ -71,6 +73,7 @@ class Channel {
   ChannelState state_ = ChannelState::kIdle;
   std::string error_;
   double override_ = 1.0;
+  bool single_block_ = false;
 
   // The block in work.
   bool active_ = false;

@@ -116,6 +116,9 @@ bool DriveProgram::Execute(const TimelineStep& step, double t_s,
     case Kind::kNcOverride:
       if (channel_) channel_->SetFeedOverride(step.target);
       return true;
+    case Kind::kNcSingleBlock:
+      if (channel_) channel_->SetSingleBlock(step.level);
+      return true;
     case Kind::kWait:
       return t_s - step_since_s_ >= step.wait_s - 1e-9;
     case Kind::kWaitUntil: {

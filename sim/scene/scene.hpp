@@ -47,7 +47,7 @@ struct Condition {
 
 struct TimelineStep {
   enum class Kind { kMove, kSpeed, kOrient, kOff, kOutput, kWait, kWaitUntil, kNcStart, kNcStop,
-                    kNcReset, kNcOverride } kind;
+                    kNcReset, kNcOverride, kNcSingleBlock } kind;
   double not_before_s = 0;  ///< `at:`; 0 = as soon as the previous step is done
   int drive = -1;
   int io = -1;

@@ -117,7 +117,12 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, bool h
   if (n.Has("nc")) {
     const YamlNode a = n["nc"];
     if (!has_nc) a.Fail("the scene has no nc: section");
-    if (a.IsMap()) {
+    if (a.IsMap() && a.Has("single_block")) {
+      a.AllowKeys({"single_block"});
+      s.kind = TimelineStep::Kind::kNcSingleBlock;
+      s.level = a["single_block"].Bool();
+      text << "single block " << (s.level ? "on" : "off");
+    } else if (a.IsMap()) {
       a.AllowKeys({"override"});
       s.kind = TimelineStep::Kind::kNcOverride;
       s.target = a["override"].Double() / 100;
@@ -128,7 +133,7 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, bool h
       if (cmd == "start") s.kind = TimelineStep::Kind::kNcStart;
       else if (cmd == "stop") s.kind = TimelineStep::Kind::kNcStop;
       else if (cmd == "reset") s.kind = TimelineStep::Kind::kNcReset;
-      else a.Fail("expected start, stop, reset or {override: percent}");
+      else a.Fail("expected start, stop, reset, {override: percent} or {single_block: bool}");
       text << "NC " << cmd;
     }
     s.text = text.str();

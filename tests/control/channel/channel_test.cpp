@@ -107,6 +107,19 @@ TEST(ChannelTest, FeedHoldStopsOnThePathAndResumes) {
   EXPECT_DOUBLE_EQ(m.X(), 100);
 }
 
+TEST(ChannelTest, SingleBlockHoldsAfterEachBlock) {
+  Machine m("N1 G01 X10 F6000\nN2 X20\nN3 X30\nN4 RET\n");
+  m.channel->SetSingleBlock(true);
+  std::vector<double> stops;
+  for (int start = 0; start < 10 && m.channel->state() != ChannelState::kEnded; ++start) {
+    m.channel->Start();
+    for (int i = 0; i < 4000 && m.channel->state() == ChannelState::kRunning; ++i) m.Tick();
+    stops.push_back(m.X());
+  }
+  EXPECT_EQ(stops, (std::vector<double>{10, 20, 30, 30}));
+  EXPECT_EQ(m.channel->state(), ChannelState::kEnded);
+}
+
 TEST(ChannelTest, OverrideScalesTheFeed) {
   Machine full("N1 G01 X100 F3000\nN2 RET\n"), half("N1 G01 X100 F3000\nN2 RET\n");
   half.channel->SetFeedOverride(0.5);

@@ -1,0 +1,57 @@
+// The same NC program gives the same tool path on both backends, within the following error.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "sim/runner/runner.hpp"
+#include "sim_test_support.hpp"
+
+namespace vmt::sim {
+namespace {
+
+struct Row {
+  double x_pos, z_pos, x_fe;
+};
+
+std::vector<Row> Trace(const std::string& dir) {
+  std::ifstream in(dir + "/trace.csv");
+  std::string line;
+  std::getline(in, line);
+  // Columns: t, Z.cmd, Z.pos, Z.vel, X.cmd, X.pos, X.vel, ...
+  std::vector<Row> rows;
+  while (std::getline(in, line)) {
+    std::vector<double> v;
+    size_t start = 0;
+    for (size_t comma; (comma = line.find(',', start)) != std::string::npos; start = comma + 1)
+      v.push_back(std::stod(line.substr(start, comma - start)));
+    v.push_back(std::stod(line.substr(start)));
+    rows.push_back({v[5], v[2], v[4] - v[5]});
+  }
+  return rows;
+}
+
+TEST(NcBackendAgreementTest, TurningProgramSamePathOnBothBackends) {
+  const Scene scene = LoadScene(testing::SourcePath("scenes/turning.yaml"));
+  RunOptions physics, kinematic;
+  physics.snapshots = kinematic.snapshots = false;
+  physics.backend = BackendKind::kPhysics;
+  kinematic.backend = BackendKind::kKinematic;
+  physics.out_dir = testing::OutputDir("nc_physics");
+  kinematic.out_dir = testing::OutputDir("nc_kinematic");
+  ASSERT_TRUE(RunScene(scene, physics).ok());
+  ASSERT_TRUE(RunScene(scene, kinematic).ok());
+  const std::vector<Row> p = Trace(physics.out_dir), k = Trace(kinematic.out_dir);
+  ASSERT_EQ(p.size(), k.size());
+  double worst_gap = 0, worst_fe = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    worst_gap = std::max({worst_gap, std::abs(p[i].x_pos - k[i].x_pos), std::abs(p[i].z_pos - k[i].z_pos)});
+    worst_fe = std::max(worst_fe, std::abs(p[i].x_fe));
+  }
+  EXPECT_GT(worst_fe, 1.0);  // real motion with real following error
+  EXPECT_LT(worst_gap, 0.1 * worst_fe) << "gap " << worst_gap << " vs following error " << worst_fe;
+}
+
+}  // namespace
+}  // namespace vmt::sim
