@@ -29,8 +29,8 @@ std::string StraightMtc200() {
   s.reserve(kBlocks * 32);
   char line[96];
   for (int i = 0; i < kBlocks; ++i) {
-    std::snprintf(line, sizeof line, "N%04d G01 X%.3f Z%.3f F%d\n", i % 10000, 10 + (i % 977) * 0.125,
-                  -(i % 613) * 0.25, 500 + i % 7 * 100);
+    std::snprintf(line, sizeof line, "N%04d G01 X%.3f Z%.3f F%d\n", i % 10000,
+                  10 + (i % 977) * 0.125, -(i % 613) * 0.25, 500 + i % 7 * 100);
     s += line;
   }
   return s;
@@ -41,8 +41,8 @@ std::string ExpressionsIsg() {
   s.reserve(kBlocks * 48);
   char line[128];
   for (int i = 0; i < kBlocks; ++i) {
-    std::snprintf(line, sizeof line, "N%d P%d = [P%d + %d.5] * 2 / [1 + P%d] X[P%d * 0.5 - %d]\n", i,
-                  i % 50 + 1, (i + 7) % 50 + 1, i % 13, (i + 3) % 50 + 1, i % 50 + 1, i % 31);
+    std::snprintf(line, sizeof line, "N%d P%d = [P%d + %d.5] * 2 / [1 + P%d] X[P%d * 0.5 - %d]\n",
+                  i, i % 50 + 1, (i + 7) % 50 + 1, i % 13, (i + 3) % 50 + 1, i % 50 + 1, i % 31);
     s += line;
   }
   return s;
@@ -75,9 +75,10 @@ void Decode(benchmark::State& state, const std::string& text, Dialect dialect) {
     blocks += r.program.blocks.size();
     benchmark::DoNotOptimize(r.program.blocks.data());
   }
-  state.counters["blocks_per_second"] = benchmark::Counter(double(blocks), benchmark::Counter::kIsRate);
-  state.counters["source_mb_per_second"] =
-      benchmark::Counter(double(text.size()) * state.iterations() / 1e6, benchmark::Counter::kIsRate);
+  state.counters["blocks_per_second"] =
+      benchmark::Counter(double(blocks), benchmark::Counter::kIsRate);
+  state.counters["source_mb_per_second"] = benchmark::Counter(
+      double(text.size()) * state.iterations() / 1e6, benchmark::Counter::kIsRate);
 }
 
 void BM_ParseStraightMtc200(benchmark::State& state) {
@@ -97,7 +98,8 @@ void BM_ParseLoopsIsg(benchmark::State& state) {
 // producing a move (LinuxCNC reference: about 250k executed blocks/s on loop-heavy code).
 void Execute(benchmark::State& state, const std::vector<std::pair<std::string, Dialect>>& files) {
   std::vector<ParseResult> parsed;
-  for (const auto& [text, dialect] : files) parsed.push_back(ParseProgram(text, "bench.nc", dialect));
+  for (const auto& [text, dialect] : files)
+    parsed.push_back(ParseProgram(text, "bench.nc", dialect));
   std::vector<const Program*> programs;
   for (const ParseResult& r : parsed) programs.push_back(&r.program);
   int64_t executed = 0;
@@ -121,7 +123,8 @@ void BM_ExecuteLoopsIsg(benchmark::State& state) {
                    "N50 G01 X[P1 * 0.001] Z[-P1 * 0.002] F1000\n"
                    "N60 $ENDIF\n"
                    "N70 $ENDFOR\n"
-                   "N80 M30\n", Dialect::kIsg},
+                   "N80 M30\n",
+                   Dialect::kIsg},
                   {"%sub\nN10 P2 = P2 + 1\nN20 G01 Z[P2 * 0.01]\nN30 M17\n", Dialect::kIsg}});
 }
 
@@ -133,7 +136,8 @@ void BM_ExecuteLoopsMtc200(benchmark::State& state) {
                    "N0005 RET\n"
                    "N0006 .MOVE\n"
                    "N0007 @101=@100*0.001\n"
-                   "N0008 G01 X@101 Z-@101 F1000 RTS\n", Dialect::kMtc200}});
+                   "N0008 G01 X@101 Z-@101 F1000 RTS\n",
+                   Dialect::kMtc200}});
 }
 
 BENCHMARK(BM_ExecuteLoopsIsg)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -11,20 +11,28 @@ constexpr double kArcTolerance = 0.01;  // mm: start and end radius may differ t
 // Plane axes (first, second) by address: G17 X-Y, G18 Z-X, G19 Y-Z; the arc turns
 // counter-clockwise from first to second.
 void PlaneAxes(int plane, const char*& first, const char*& second, char& i_first, char& i_second) {
-  if (plane == 17) first = "X", second = "Y", i_first = 'I', i_second = 'J';
-  else if (plane == 19) first = "Y", second = "Z", i_first = 'J', i_second = 'K';
-  else first = "Z", second = "X", i_first = 'K', i_second = 'I';
+  if (plane == 17)
+    first = "X", second = "Y", i_first = 'I', i_second = 'J';
+  else if (plane == 19)
+    first = "Y", second = "Z", i_first = 'J', i_second = 'K';
+  else
+    first = "Z", second = "X", i_first = 'K', i_second = 'I';
 }
 
 }  // namespace
 
 const char* ToString(ChannelState s) {
   switch (s) {
-    case ChannelState::kIdle: return "idle";
-    case ChannelState::kRunning: return "running";
-    case ChannelState::kHold: return "hold";
-    case ChannelState::kEnded: return "ended";
-    case ChannelState::kError: return "error";
+    case ChannelState::kIdle:
+      return "idle";
+    case ChannelState::kRunning:
+      return "running";
+    case ChannelState::kHold:
+      return "hold";
+    case ChannelState::kEnded:
+      return "ended";
+    case ChannelState::kError:
+      return "error";
   }
   return "?";
 }
@@ -107,7 +115,8 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
         Interpolate(dt);
         finished = !active_;
       }
-      if (finished && single_block_ && state_ == ChannelState::kRunning) state_ = ChannelState::kHold;
+      if (finished && single_block_ && state_ == ChannelState::kRunning)
+        state_ = ChannelState::kHold;
     }
   }
   // Fine interpolation: the drives get a straight line between the last two NC cycle points.
@@ -128,15 +137,17 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
   }
   const nc::Program& program = *programs_[block_.program];
   auto unsupported = [&](const std::string& what) {
-    Fail(nc::Format({program.blocks[block_.block].pos, what + " is not available in the channel yet"},
-                    program.files));
+    Fail(nc::Format(
+        {program.blocks[block_.block].pos, what + " is not available in the channel yet"},
+        program.files));
     return false;
   };
   if (block_.homing) return unsupported("G74 homing");
   if (block_.set_position) return unsupported("G92");
   if (block_.repos) return unsupported("G77 (REPOS)");
   if (block_.measuring) return unsupported("G100 measuring");
-  if (block_.has_centre && block_.motion != nc::Motion::kArcCw && block_.motion != nc::Motion::kArcCcw)
+  if (block_.has_centre && block_.motion != nc::Motion::kArcCw &&
+      block_.motion != nc::Motion::kArcCcw)
     return unsupported("I/J/K outside G02/G03");
 
   // Spindle: M3/M4 with S (rpm), M5, M19 (orient to 0 deg).
@@ -162,7 +173,8 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
   const size_t n = config_.axes.size();
   std::vector<double> delta(n);
   double max_delta = 0;
-  for (size_t a = 0; a < n; ++a) max_delta = std::max(max_delta, std::abs(delta[a] = end_[a] - start_[a]));
+  for (size_t a = 0; a < n; ++a)
+    max_delta = std::max(max_delta, std::abs(delta[a] = end_[a] - start_[a]));
   const bool arc = block_.motion == nc::Motion::kArcCw || block_.motion == nc::Motion::kArcCcw;
   if (max_delta < 1e-12 && !arc) return true;
 
@@ -179,7 +191,10 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
 
   // Path feed, mm/s: F mm/min, or mm/rev times the spindle speed (G95).
   double feed = block_.modal.feed / 60.0;
-  if (block_.modal.feed_per_revolution) feed = block_.modal.feed * std::abs(at.feedback.empty() || config_.spindle_drive < 0 ? 0 : at.feedback[config_.spindle_drive].velocity / 360.0);
+  if (block_.modal.feed_per_revolution)
+    feed = block_.modal.feed * std::abs(at.feedback.empty() || config_.spindle_drive < 0
+                                            ? 0
+                                            : at.feedback[config_.spindle_drive].velocity / 360.0);
   if (block_.motion != nc::Motion::kRapid && feed <= 0) {
     Fail(nc::Format({program.blocks[block_.block].pos, "no feed programmed (F)"}, program.files));
     return false;
@@ -193,10 +208,12 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
     // (RX: radius at which the C axis' motion counts, C-axis manual 1.2), or alone in deg.
     double length2 = 0, rotary2 = 0;
     for (size_t a = 0; a < n; ++a) {
-      if (!config_.axes[a].rotary) length2 += delta[a] * delta[a];
+      if (!config_.axes[a].rotary)
+        length2 += delta[a] * delta[a];
       else if (block_.has_effective_distance & 1)
         length2 += std::pow(block_.effective_distance[0] * delta[a] * std::numbers::pi / 180, 2);
-      else rotary2 += delta[a] * delta[a];
+      else
+        rotary2 += delta[a] * delta[a];
     }
     const double length = std::sqrt(length2 > 0 ? length2 : rotary2);
     profile_.max_rate = std::min(feed / length, axis_rate);
@@ -210,8 +227,9 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
       if (config_.axes[a].name == second) arc_axes_[1] = static_cast<int>(a);
     }
     if (arc_axes_[0] < 0 || arc_axes_[1] < 0) {
-      Fail(nc::Format({program.blocks[block_.block].pos, std::string("the arc plane G") +
-                       std::to_string(block_.modal.plane) + " needs axes " + first + " and " + second},
+      Fail(nc::Format({program.blocks[block_.block].pos,
+                       std::string("the arc plane G") + std::to_string(block_.modal.plane) +
+                           " needs axes " + first + " and " + second},
                       program.files));
       return false;
     }
@@ -227,7 +245,8 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
       const double dx = e0 - s0, dy = e1 - s1, chord = std::hypot(dx, dy);
       const double r = std::abs(block_.radius);
       if (chord < 1e-12 || chord > 2 * r + kArcTolerance) {
-        Fail(nc::Format({program.blocks[block_.block].pos, "radius R too small for the end point"}, program.files));
+        Fail(nc::Format({program.blocks[block_.block].pos, "radius R too small for the end point"},
+                        program.files));
         return false;
       }
       const double h = std::sqrt(std::max(0.0, r * r - chord * chord / 4));
@@ -235,14 +254,16 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
       c0 = (s0 + e0) / 2 - side * h * dy / chord;
       c1 = (s1 + e1) / 2 + side * h * dx / chord;
     } else {
-      Fail(nc::Format({program.blocks[block_.block].pos, "G02/G03 needs a centre (I/J/K) or a radius R"}, program.files));
+      Fail(nc::Format(
+          {program.blocks[block_.block].pos, "G02/G03 needs a centre (I/J/K) or a radius R"},
+          program.files));
       return false;
     }
     const double r_start = std::hypot(s0 - c0, s1 - c1), r_end = std::hypot(e0 - c0, e1 - c1);
     if (std::abs(r_start - r_end) > kArcTolerance || r_start < 1e-9) {
       Fail(nc::Format({program.blocks[block_.block].pos,
-                       "end point not on the arc (radius " + std::to_string(r_start) + " at the start, " +
-                           std::to_string(r_end) + " at the end)"},
+                       "end point not on the arc (radius " + std::to_string(r_start) +
+                           " at the start, " + std::to_string(r_end) + " at the end)"},
                       program.files));
       return false;
     }
@@ -256,7 +277,8 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
     } else {
       while (sweep <= 1e-12) sweep += 2 * std::numbers::pi;
     }
-    if (std::abs(std::abs(sweep) - 2 * std::numbers::pi) < 1e-9 && std::hypot(e0 - s0, e1 - s1) > 1e-9)
+    if (std::abs(std::abs(sweep) - 2 * std::numbers::pi) < 1e-9 &&
+        std::hypot(e0 - s0, e1 - s1) > 1e-9)
       sweep = std::fmod(sweep, 2 * std::numbers::pi);
     arc_sweep_ = sweep;
     const double length = arc_radius_ * std::abs(sweep);
@@ -273,7 +295,8 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
 void Channel::Interpolate(double dt) {
   profile_.Advance(dt, state_ == ChannelState::kHold ? 0.0 : override_);
   const double u = profile_.u;
-  for (size_t a = 0; a < commanded_.size(); ++a) commanded_[a] = start_[a] + (end_[a] - start_[a]) * u;
+  for (size_t a = 0; a < commanded_.size(); ++a)
+    commanded_[a] = start_[a] + (end_[a] - start_[a]) * u;
   if (arc_axes_[0] >= 0) {
     const double angle = arc_start_angle_ + arc_sweep_ * u;
     commanded_[arc_axes_[0]] = arc_centre_[0] + arc_radius_ * std::cos(angle);

@@ -19,17 +19,17 @@
 namespace vmt::control::channel {
 
 struct ChannelAxis {
-  std::string name;              ///< program address: X, Z, C
-  int drive = -1;                ///< DriveBus index
-  double rapid_per_s = 0;        ///< mm/s | deg/s
-  double acceleration = 0;       ///< mm/s^2 | deg/s^2
+  std::string name;         ///< program address: X, Z, C
+  int drive = -1;           ///< DriveBus index
+  double rapid_per_s = 0;   ///< mm/s | deg/s
+  double acceleration = 0;  ///< mm/s^2 | deg/s^2
   bool rotary = false;
 };
 
 struct ChannelConfig {
   std::vector<ChannelAxis> axes;
-  int spindle_drive = -1;        ///< main spindle (S, M3/M4/M5/M19); -1 if none
-  int ticks_per_cycle = 4;       ///< NC cycle 1 ms at the 250 us drive tick
+  int spindle_drive = -1;   ///< main spindle (S, M3/M4/M5/M19); -1 if none
+  int ticks_per_cycle = 4;  ///< NC cycle 1 ms at the 250 us drive tick
   double tick_s = 250e-6;
 };
 
@@ -42,9 +42,9 @@ class Channel {
   /// the channel.
   Channel(ChannelConfig config, std::vector<const nc::Program*> programs);
 
-  void Start();                     ///< cycle start: run, or resume after a hold
-  void Stop();                      ///< feed hold: brake on the path
-  void Reset();                     ///< Control-Reset: stop, back to the program start
+  void Start();  ///< cycle start: run, or resume after a hold
+  void Stop();   ///< feed hold: brake on the path
+  void Reset();  ///< Control-Reset: stop, back to the program start
   void SetFeedOverride(double fraction) { override_ = std::clamp(fraction, 0.0, 2.0); }
   /// Single block (semi-automatic): after each block the channel holds until the next start.
   void SetSingleBlock(bool on) { single_block_ = on; }

@@ -10,10 +10,10 @@
 namespace vmt::control::channel {
 
 struct PathProfile {
-  double u = 0;         ///< 0 at the block start, 1 at its end
-  double rate = 0;      ///< du/dt, 1/s
-  double max_rate = 0;  ///< du/dt at 100 % override, 1/s
-  double max_accel = 0; ///< d2u/dt2, 1/s^2
+  double u = 0;          ///< 0 at the block start, 1 at its end
+  double rate = 0;       ///< du/dt, 1/s
+  double max_rate = 0;   ///< du/dt at 100 % override, 1/s
+  double max_accel = 0;  ///< d2u/dt2, 1/s^2
 
   bool done() const { return u >= 1; }
 

@@ -22,8 +22,10 @@ bool MatchOperator(LineScanner& s, int level, Op& op) {
     return true;
   };
   switch (level) {
-    case 0: return word("OR", Op::kOr) || word("XOR", Op::kXor);
-    case 1: return word("AND", Op::kAnd);
+    case 0:
+      return word("OR", Op::kOr) || word("XOR", Op::kXor);
+    case 1:
+      return word("AND", Op::kAnd);
     case 2:
       if (c == '=' && d == '=') return s.Advance(2), op = Op::kEq, true;
       if (c == '!' && d == '=') return s.Advance(2), op = Op::kNe, true;
@@ -41,7 +43,8 @@ bool MatchOperator(LineScanner& s, int level, Op& op) {
       if (c == '*' && d != '*') return s.Advance(), op = Op::kMul, true;
       if (c == '/') return s.Advance(), op = Op::kDiv, true;
       return word("MOD", Op::kMod);
-    default: return false;
+    default:
+      return false;
   }
 }
 
@@ -85,9 +88,8 @@ ExprId ExpressionParser::Unary(LineScanner& s) {
   } else if (s.Accept('+')) {
     --depth_;
     return Unary(s);
-  } else if ((s.Peek() == 'N' || s.Peek() == 'n') &&
-             (s.Peek(1) == 'O' || s.Peek(1) == 'o') && (s.Peek(2) == 'T' || s.Peek(2) == 't') &&
-             !LineScanner::IsLetter(s.Peek(3))) {
+  } else if ((s.Peek() == 'N' || s.Peek() == 'n') && (s.Peek(1) == 'O' || s.Peek(1) == 'o') &&
+             (s.Peek(2) == 'T' || s.Peek(2) == 't') && !LineScanner::IsLetter(s.Peek(3))) {
     s.Advance(3);
     e.op = Op::kNot;
   } else {
@@ -171,8 +173,10 @@ ExprId ExpressionParser::Primary(LineScanner& s) {
     e.name = p_.symbols.Intern(name);
     return Add(e);
   }
-  if (s.AtEnd()) Error(s.Pos(), "expected a value, found the end of the block");
-  else Error(s.Pos(), std::string("expected a value, found '") + s.Peek() + "'");
+  if (s.AtEnd())
+    Error(s.Pos(), "expected a value, found the end of the block");
+  else
+    Error(s.Pos(), std::string("expected a value, found '") + s.Peek() + "'");
   return kNoExpr;
 }
 
@@ -193,8 +197,10 @@ bool ExpressionParser::Arguments(LineScanner& s, SourcePos open_pos, ExprId& fir
       empty.offset = s.Pos().offset;
       arg = Add(empty);
     }
-    if (first == kNoExpr) first = arg;
-    else p_.exprs[last].next = arg;
+    if (first == kNoExpr)
+      first = arg;
+    else
+      p_.exprs[last].next = arg;
     last = arg;
     s.SkipSpace();
     if (s.Accept(',')) continue;

@@ -14,7 +14,9 @@ namespace vmt::control::nc {
 class ExpressionParser {
  public:
   ExpressionParser(Program& program, std::vector<Diagnostic>& errors)
-      : p_(program), errors_(errors), open_(program.dialect == Dialect::kIsg ? '[' : '('),
+      : p_(program),
+        errors_(errors),
+        open_(program.dialect == Dialect::kIsg ? '[' : '('),
         close_(program.dialect == Dialect::kIsg ? ']' : ')') {}
 
   /// An expression, or kNoExpr after reporting an error at the scanner's position.

@@ -16,6 +16,9 @@ bool ParseMtc200Line(std::string_view line, SourcePos start, Program& program,
 bool ParseIsgLine(std::string_view line, SourcePos start, Program& program,
                   std::vector<Diagnostic>& errors, Block& block);
 
+/// The start of a block: '/' (block skip) and an N number, both optional.
+void ReadBlockStart(LineScanner& s, Block& block);
+
 /// Reads an address word's value after its letters (and index) at the scanner into `word`: a
 /// number (kept in word.number), or '=' expression, a variable, a bracketed expression (into
 /// word.value). False after an error.

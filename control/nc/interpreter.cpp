@@ -28,21 +28,33 @@ int ModalGroupValue(const ModalState& m, char letter, int group, bool& known) {
   known = true;
   if (letter == 'G') {
     switch (group) {
-      case 1: return static_cast<int>(m.motion) - 1;  // 0..3
-      case 2: return m.plane;
-      case 3: return m.incremental ? 91 : 90;
-      case 4: return m.feed_per_revolution ? 95 : 94;
-      case 5: return m.diameter ? 16 : 15;
-      case 6: return m.zero_offset;
-      case 7: return m.compensation;
-      case 8: return m.tool_length;
-      case 9: return m.low_lag ? 6 : 5;
-      case 17: return m.transformation;
+      case 1:
+        return static_cast<int>(m.motion) - 1;  // 0..3
+      case 2:
+        return m.plane;
+      case 3:
+        return m.incremental ? 91 : 90;
+      case 4:
+        return m.feed_per_revolution ? 95 : 94;
+      case 5:
+        return m.diameter ? 16 : 15;
+      case 6:
+        return m.zero_offset;
+      case 7:
+        return m.compensation;
+      case 8:
+        return m.tool_length;
+      case 9:
+        return m.low_lag ? 6 : 5;
+      case 17:
+        return m.transformation;
     }
   } else if (letter == 'M') {
     switch (group) {
-      case 1: return m.spindle;
-      case 5: return m.coolant;
+      case 1:
+        return m.spindle;
+      case 5:
+        return m.coolant;
     }
   }
   known = false;
@@ -91,13 +103,20 @@ double Interpreter::Eval(ExprId id) {
   };
   using Op = Expr::Op;
   switch (e.op) {
-    case Op::kNumber: return e.number;
-    case Op::kVariable: return e.name == 0 ? 0.0 : Var(e.name);
-    case Op::kNeg: return -Eval(e.lhs);
-    case Op::kNot: return Eval(e.lhs) == 0 ? 1 : 0;
-    case Op::kAdd: return Eval(e.lhs) + Eval(e.rhs);
-    case Op::kSub: return Eval(e.lhs) - Eval(e.rhs);
-    case Op::kMul: return Eval(e.lhs) * Eval(e.rhs);
+    case Op::kNumber:
+      return e.number;
+    case Op::kVariable:
+      return e.name == 0 ? 0.0 : Var(e.name);
+    case Op::kNeg:
+      return -Eval(e.lhs);
+    case Op::kNot:
+      return Eval(e.lhs) == 0 ? 1 : 0;
+    case Op::kAdd:
+      return Eval(e.lhs) + Eval(e.rhs);
+    case Op::kSub:
+      return Eval(e.lhs) - Eval(e.rhs);
+    case Op::kMul:
+      return Eval(e.lhs) * Eval(e.rhs);
     case Op::kDiv: {
       const double d = Eval(e.rhs);
       if (d == 0) return fail("division by zero");
@@ -108,17 +127,28 @@ double Interpreter::Eval(ExprId id) {
       if (d == 0) return fail("MOD by zero");
       return std::fmod(Eval(e.lhs), d);
     }
-    case Op::kPow: return std::pow(Eval(e.lhs), Eval(e.rhs));
-    case Op::kEq: return Eval(e.lhs) == Eval(e.rhs);
-    case Op::kNe: return Eval(e.lhs) != Eval(e.rhs);
-    case Op::kLt: return Eval(e.lhs) < Eval(e.rhs);
-    case Op::kLe: return Eval(e.lhs) <= Eval(e.rhs);
-    case Op::kGt: return Eval(e.lhs) > Eval(e.rhs);
-    case Op::kGe: return Eval(e.lhs) >= Eval(e.rhs);
-    case Op::kAnd: return (Eval(e.lhs) != 0) && (Eval(e.rhs) != 0);
-    case Op::kOr: return (Eval(e.lhs) != 0) || (Eval(e.rhs) != 0);
-    case Op::kXor: return (Eval(e.lhs) != 0) != (Eval(e.rhs) != 0);
-    case Op::kCall: break;
+    case Op::kPow:
+      return std::pow(Eval(e.lhs), Eval(e.rhs));
+    case Op::kEq:
+      return Eval(e.lhs) == Eval(e.rhs);
+    case Op::kNe:
+      return Eval(e.lhs) != Eval(e.rhs);
+    case Op::kLt:
+      return Eval(e.lhs) < Eval(e.rhs);
+    case Op::kLe:
+      return Eval(e.lhs) <= Eval(e.rhs);
+    case Op::kGt:
+      return Eval(e.lhs) > Eval(e.rhs);
+    case Op::kGe:
+      return Eval(e.lhs) >= Eval(e.rhs);
+    case Op::kAnd:
+      return (Eval(e.lhs) != 0) && (Eval(e.rhs) != 0);
+    case Op::kOr:
+      return (Eval(e.lhs) != 0) || (Eval(e.rhs) != 0);
+    case Op::kXor:
+      return (Eval(e.lhs) != 0) != (Eval(e.rhs) != 0);
+    case Op::kCall:
+      break;
   }
   const std::string& name = p.symbols.Name(e.name);
   std::vector<double> args;
@@ -130,7 +160,9 @@ double Interpreter::Eval(ExprId id) {
   if ((name == "G" || name == "M") && args.size() == 1) {
     bool known;
     const int v = ModalGroupValue(modal_, name[0], static_cast<int>(args[0]), known);
-    if (!known) return fail(name + "(" + std::to_string(static_cast<int>(args[0])) + "): no such modal group");
+    if (!known)
+      return fail(name + "(" + std::to_string(static_cast<int>(args[0])) +
+                  "): no such modal group");
     return v;
   }
   if (name == "SIN") return one([](double x) { return std::sin(x * kRadPerDeg); });
@@ -200,7 +232,7 @@ bool Interpreter::Next(PreparedBlock& out) {
     }
     if (++steps > config_.max_steps_per_block)
       return Fail(p.blocks[here].pos.offset, "no block with an effect after " +
-                                                  std::to_string(steps) + " blocks: endless loop?");
+                                                 std::to_string(steps) + " blocks: endless loop?");
   }
   return false;
 }
@@ -238,7 +270,8 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
       const double v = eval(st.value);
       if (!check()) return false;
       if (st.data != kNoExpr)
-        return Fail(st.pos.offset, "writing " + p.symbols.Name(st.name) + "(...) data is not available yet");
+        return Fail(st.pos.offset,
+                    "writing " + p.symbols.Name(st.name) + "(...) data is not available yet");
       Var(st.name) = v;
       last_result_ = v;
       return true;
@@ -270,7 +303,8 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
       }
       const auto it = by_name_.find(Stem(p.symbols.Name(st.target)));
       if (it == by_name_.end())
-        return Fail(st.pos.offset, "subprogram " + p.symbols.Name(st.target) + " is not in the program store");
+        return Fail(st.pos.offset,
+                    "subprogram " + p.symbols.Name(st.target) + " is not in the program store");
       calls_.push_back({current_, next});
       current_ = it->second;
       next = 0;
@@ -295,7 +329,8 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
       if (st.kind == Kind::kElseIf && !entering_) {
         // Reached from a branch that ran: go to the $ENDIF at the end of the chain.
         int32_t j = st.jump;
-        for (const Statement* s = structure_at(j); s && s->kind != Kind::kEndIf; s = structure_at(j))
+        for (const Statement* s = structure_at(j); s && s->kind != Kind::kEndIf;
+             s = structure_at(j))
           j = s->jump;
         next = j;
         return true;
@@ -322,8 +357,10 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
       if (!check()) return false;
       if (step == 0) return Fail(st.pos.offset, "$FOR with step 0 never ends");
       Var(st.name) = start;
-      if (step > 0 ? start > limit : start < limit) next = st.jump + 1;
-      else loops_.push_back({current_, block, st.name, limit, step});
+      if (step > 0 ? start > limit : start < limit)
+        next = st.jump + 1;
+      else
+        loops_.push_back({current_, block, st.name, limit, step});
       return true;
     }
     case Kind::kEndFor: {
@@ -332,8 +369,10 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
       Loop& loop = loops_.back();
       double& v = Var(loop.variable);
       v += loop.step;
-      if (loop.step > 0 ? v <= loop.limit : v >= loop.limit) next = loop.head + 1;
-      else loops_.pop_back();
+      if (loop.step > 0 ? v <= loop.limit : v >= loop.limit)
+        next = loop.head + 1;
+      else
+        loops_.pop_back();
       return true;
     }
     case Kind::kWhile: {
@@ -361,7 +400,8 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
     const std::string& address = p.symbols.Name(w.address);
     const char letter = address[0];
     const int index = address.size() > 1 && std::isdigit(static_cast<unsigned char>(address[1]))
-                          ? std::atoi(address.c_str() + 1) : 0;
+                          ? std::atoi(address.c_str() + 1)
+                          : 0;
     // Axes first: a channel axis may be named like an address letter (C, X1).
     int axis = -1;
     for (size_t a = 0; a < config_.axes.size(); ++a)
@@ -375,39 +415,98 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
     }
     if (address == "G") {
       const int g = static_cast<int>(std::lround(v));
-      if (std::abs(v - g) > 1e-9) return Fail(w.offset, "G" + std::to_string(v) + " is not a G code");
+      if (std::abs(v - g) > 1e-9)
+        return Fail(w.offset, "G" + std::to_string(v) + " is not a G code");
       switch (g) {
-        case 0: modal_.motion = Motion::kRapid; break;
-        case 1: modal_.motion = Motion::kLinear; break;
-        case 2: modal_.motion = Motion::kArcCw; break;
-        case 3: modal_.motion = Motion::kArcCcw; break;
-        case 4: out.dwell_s = -1; break;  // the dwell time follows as F or X
-        case 5: modal_.low_lag = false; break;
-        case 6: modal_.low_lag = true; break;
-        case 15: modal_.diameter = false; break;
-        case 16: modal_.diameter = true; break;
-        case 17: case 18: case 19: modal_.plane = g; break;
-        case 40: case 41: case 42: modal_.compensation = g; break;
-        case 47: case 48: modal_.tool_length = g; break;
-        case 53: case 54: case 55: case 56: case 57: case 58: case 59: modal_.zero_offset = g; break;
-        case 74: out.homing = true; break;
-        case 77: out.repos = true; break;
-        case 90: modal_.incremental = false; break;
-        case 91: modal_.incremental = true; break;
-        case 92: out.set_position = true; break;
-        case 94: modal_.feed_per_revolution = false; break;
-        case 95: modal_.feed_per_revolution = true; break;
-        case 100: out.measuring = true; break;
-        default: return Fail(w.offset, "G" + std::to_string(g) + " is not supported");
+        case 0:
+          modal_.motion = Motion::kRapid;
+          break;
+        case 1:
+          modal_.motion = Motion::kLinear;
+          break;
+        case 2:
+          modal_.motion = Motion::kArcCw;
+          break;
+        case 3:
+          modal_.motion = Motion::kArcCcw;
+          break;
+        case 4:
+          out.dwell_s = -1;
+          break;  // the dwell time follows as F or X
+        case 5:
+          modal_.low_lag = false;
+          break;
+        case 6:
+          modal_.low_lag = true;
+          break;
+        case 15:
+          modal_.diameter = false;
+          break;
+        case 16:
+          modal_.diameter = true;
+          break;
+        case 17:
+        case 18:
+        case 19:
+          modal_.plane = g;
+          break;
+        case 40:
+        case 41:
+        case 42:
+          modal_.compensation = g;
+          break;
+        case 47:
+        case 48:
+          modal_.tool_length = g;
+          break;
+        case 53:
+        case 54:
+        case 55:
+        case 56:
+        case 57:
+        case 58:
+        case 59:
+          modal_.zero_offset = g;
+          break;
+        case 74:
+          out.homing = true;
+          break;
+        case 77:
+          out.repos = true;
+          break;
+        case 90:
+          modal_.incremental = false;
+          break;
+        case 91:
+          modal_.incremental = true;
+          break;
+        case 92:
+          out.set_position = true;
+          break;
+        case 94:
+          modal_.feed_per_revolution = false;
+          break;
+        case 95:
+          modal_.feed_per_revolution = true;
+          break;
+        case 100:
+          out.measuring = true;
+          break;
+        default:
+          return Fail(w.offset, "G" + std::to_string(g) + " is not supported");
       }
       continue;
     }
     switch (letter) {
       case 'F':
-        if (out.dwell_s < 0) out.dwell_s = v;
-        else modal_.feed = v;
+        if (out.dwell_s < 0)
+          out.dwell_s = v;
+        else
+          modal_.feed = v;
         continue;
-      case 'I': case 'J': case 'K':
+      case 'I':
+      case 'J':
+      case 'K':
         out.centre[letter - 'I'] = v;
         out.has_centre = true;
         continue;
@@ -437,7 +536,8 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
         modal_.correction = static_cast<int>(v);
         out.aux.push_back({'D', index, v});
         continue;
-      case 'H': case 'Q':
+      case 'H':
+      case 'Q':
         out.aux.push_back({letter, index, v});
         continue;
       default:

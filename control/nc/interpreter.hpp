@@ -43,31 +43,31 @@ struct ModalState {
 int ModalGroupValue(const ModalState& m, char letter, int group, bool& known);
 
 struct AuxFunction {
-  char letter;     ///< M S T D H Q
-  int index;       ///< address index: S1 -> 1, S -> 0
+  char letter;  ///< M S T D H Q
+  int index;    ///< address index: S1 -> 1, S -> 0
   double value;
 };
 
 struct PreparedBlock {
-  uint32_t program = 0;        ///< index into the interpreter's program list
-  int32_t block = -1;          ///< Program::blocks index: the source position
+  uint32_t program = 0;  ///< index into the interpreter's program list
+  int32_t block = -1;    ///< Program::blocks index: the source position
   Motion motion = Motion::kNone;
-  std::vector<double> target;  ///< per channel axis, absolute program coordinates
-  uint64_t programmed = 0;     ///< bit per channel axis written in this block
+  std::vector<double> target;    ///< per channel axis, absolute program coordinates
+  uint64_t programmed = 0;       ///< bit per channel axis written in this block
   double centre[3] = {0, 0, 0};  ///< I J K (relative to the start point)
   bool has_centre = false;
-  double radius = 0;           ///< R (arc by radius)
+  double radius = 0;                         ///< R (arc by radius)
   double effective_distance[3] = {0, 0, 0};  ///< RX RY RZ: C-axis path velocity (C-axis manual 1.2)
   uint8_t has_effective_distance = 0;        ///< bit 0 RX, 1 RY, 2 RZ
   std::vector<AuxFunction> aux;
-  double dwell_s = 0;          ///< G04
-  bool homing = false;         ///< G74: the programmed axes home
-  bool set_position = false;   ///< G92: the programmed values become the current position
-  bool repos = false;          ///< G77: return the programmed axes to the interruption point
-  bool measuring = false;      ///< G100: measuring move (ISG)
+  double dwell_s = 0;         ///< G04
+  bool homing = false;        ///< G74: the programmed axes home
+  bool set_position = false;  ///< G92: the programmed values become the current position
+  bool repos = false;         ///< G77: return the programmed axes to the interruption point
+  bool measuring = false;     ///< G100: measuring move (ISG)
   std::vector<uint32_t> instructions;  ///< MTP, MRY, SETTING(...), #-commands: Program::statements
-  bool end = false;            ///< M30 / M02 / RET of the main program
-  ModalState modal;            ///< after the block
+  bool end = false;                    ///< M30 / M02 / RET of the main program
+  ModalState modal;                    ///< after the block
 };
 
 struct InterpreterConfig {

@@ -66,25 +66,19 @@ bool ParseIsgLine(std::string_view line, SourcePos start, Program& p,
     s.SkipSpace();
     // Program names may hold '-' and '.': %block-search-cax-track, %t_sv_number.nc.
     std::string name;
-    while (!s.AtEnd() && s.Peek() != ' ' && s.Peek() != '\t' && s.Peek() != ';' && s.Peek() != '\r') {
+    while (!s.AtEnd() && s.Peek() != ' ' && s.Peek() != '\t' && s.Peek() != ';' &&
+           s.Peek() != '\r') {
       name.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(s.Peek()))));
       s.Advance();
     }
-    if (name.empty()) expr.Error(s.Pos(), "expected a program name after '%'");
-    else if (p.name.empty() || p.blocks.empty()) p.name = name;
+    if (name.empty())
+      expr.Error(s.Pos(), "expected a program name after '%'");
+    else if (p.name.empty() || p.blocks.empty())
+      p.name = name;
     block.label = p.symbols.Intern(name);
     return true;
   }
-  if (s.Accept('/')) {
-    block.skippable = true;
-    s.SkipSpace();
-  }
-  if ((s.Peek() == 'N' || s.Peek() == 'n') && LineScanner::IsDigit(s.Peek(1))) {
-    s.Advance();
-    long n = 0;
-    s.Integer(n);
-    block.number = static_cast<int32_t>(n);
-  }
+  ReadBlockStart(s, block);
 
   for (;;) {
     if (!SkipSpaceAndComments(s, expr)) return true;
@@ -109,8 +103,10 @@ bool ParseIsgLine(std::string_view line, SourcePos start, Program& p,
         st.kind = kw == "IF" ? K::kIf : kw == "ELSEIF" ? K::kElseIf : K::kWhile;
         if ((st.value = expr.Parse(s)) == kNoExpr) return true;
       } else if (kw == "ELSE" || kw == "ENDIF" || kw == "ENDFOR" || kw == "ENDWHILE") {
-        st.kind = kw == "ELSE" ? K::kElse : kw == "ENDIF" ? K::kEndIf
-                  : kw == "ENDFOR" ? K::kEndFor : K::kEndWhile;
+        st.kind = kw == "ELSE"     ? K::kElse
+                  : kw == "ENDIF"  ? K::kEndIf
+                  : kw == "ENDFOR" ? K::kEndFor
+                                   : K::kEndWhile;
       } else if (kw == "FOR") {  // $FOR P1 = start, limit, step
         st.kind = K::kFor;
         s.SkipSpace();
@@ -119,7 +115,8 @@ bool ParseIsgLine(std::string_view line, SourcePos start, Program& p,
         if (var.empty()) return expr.Error(var_pos, "expected a loop variable after $FOR"), true;
         st.name = p.symbols.Intern(var);
         s.SkipSpace();
-        if (!s.Accept('=')) return expr.Error(s.Pos(), "expected '=' after the $FOR variable"), true;
+        if (!s.Accept('='))
+          return expr.Error(s.Pos(), "expected '=' after the $FOR variable"), true;
         if ((st.value = expr.Parse(s)) == kNoExpr) return true;
         s.SkipSpace();
         if (!s.Accept(',')) return expr.Error(s.Pos(), "expected ', limit' in $FOR"), true;
@@ -164,7 +161,8 @@ bool ParseIsgLine(std::string_view line, SourcePos start, Program& p,
       p.statements.push_back(st);
       continue;
     }
-    const std::string letter(1, static_cast<char>(std::toupper(static_cast<unsigned char>(s.Peek()))));
+    const std::string letter(1,
+                             static_cast<char>(std::toupper(static_cast<unsigned char>(s.Peek()))));
     if (!OneOf(letter, kAddresses)) {
       expr.Error(pos, "unknown word '" + name + "'");
       return true;

@@ -18,9 +18,7 @@ class LineScanner {
     while (i_ < line_.size() && (line_[i_] == ' ' || line_[i_] == '\t' || line_[i_] == '\r')) ++i_;
   }
   bool AtEnd() const { return i_ >= line_.size(); }
-  char Peek(size_t ahead = 0) const {
-    return i_ + ahead < line_.size() ? line_[i_ + ahead] : '\0';
-  }
+  char Peek(size_t ahead = 0) const { return i_ + ahead < line_.size() ? line_[i_ + ahead] : '\0'; }
   bool Accept(char c) {
     if (Peek() != c) return false;
     ++i_;
@@ -82,7 +80,9 @@ class LineScanner {
     value = v;
     return true;
   }
-  std::string_view Rest() const { return i_ < line_.size() ? line_.substr(i_) : std::string_view(); }
+  std::string_view Rest() const {
+    return i_ < line_.size() ? line_.substr(i_) : std::string_view();
+  }
   void SkipToEnd() { i_ = line_.size(); }
 
   SourcePos Pos() const {

@@ -16,15 +16,24 @@ constexpr std::array kBranches = {"BRA", "BEQ", "BNE", "BGT", "BLT", "BGE", "BLE
 constexpr std::array kEventBranches = {"BES", "BEC"};
 constexpr std::array kPlainInstructions = {"MTP", "MMP", "MRF", "MHP", "MFP", "MOP", "MRY"};
 constexpr std::array kEventInstructions = {"SE", "RE"};
-constexpr std::array kCallInstructions = {"TLD",     "OTD",  "MTD",     "SETTING", "SAVE",
-                                          "MOVE",    "PROBE", "COMPARE", "CORRECTION",
-                                          "RESTORE"};
+constexpr std::array kCallInstructions = {"TLD",  "OTD",   "MTD",     "SETTING",    "SAVE",
+                                          "MOVE", "PROBE", "COMPARE", "CORRECTION", "RESTORE"};
 // Address letters and multi-letter addresses of the MTC200 block.
-constexpr std::array kAddresses = {"A", "B", "C", "D", "E", "F", "G", "H", "I", "J", "K",
-                                   "M", "P", "Q", "R", "S", "T", "U", "V", "W", "X", "Y",
-                                   "Z", "RX", "RY", "RZ"};
+constexpr std::array kAddresses = {"A", "B", "C", "D", "E", "F",  "G",  "H", "I",
+                                   "J", "K", "M", "P", "Q", "R",  "S",  "T", "U",
+                                   "V", "W", "X", "Y", "Z", "RX", "RY", "RZ"};
 
-enum class WordClass { kUnknown, kBranch, kEventBranch, kJump, kReturn, kEvent, kPlain, kCall, kAddress };
+enum class WordClass {
+  kUnknown,
+  kBranch,
+  kEventBranch,
+  kJump,
+  kReturn,
+  kEvent,
+  kPlain,
+  kCall,
+  kAddress
+};
 
 // One hash lookup per word instead of a string compare against every mnemonic.
 WordClass Classify(const std::string& word) {
@@ -57,13 +66,6 @@ uint32_t Label(LineScanner& s, ExpressionParser& expr, Program& p, const std::st
 
 }  // namespace
 
-// True if an operator follows: "X-3*2" is an expression, "X-3 Z5" two numbers.
-bool MoreExpression(LineScanner s) {
-  s.SkipSpace();
-  const char c = s.Peek();
-  return c == '+' || c == '-' || c == '*' || c == '/' || c == '^';
-}
-
 bool ParseMtc200Line(std::string_view line, SourcePos start, Program& p,
                      std::vector<Diagnostic>& errors, Block& block) {
   LineScanner s(line, start);
@@ -71,17 +73,7 @@ bool ParseMtc200Line(std::string_view line, SourcePos start, Program& p,
   s.SkipSpace();
   if (s.AtEnd() || s.Peek() == ';') return false;
   block.pos = s.Pos();
-  if (s.Accept('/')) {
-    block.skippable = true;
-    s.SkipSpace();
-  }
-  if ((s.Peek() == 'N' || s.Peek() == 'n') && LineScanner::IsDigit(s.Peek(1))) {
-    s.Advance();
-    long n = 0;
-    s.Integer(n);
-    block.number = static_cast<int32_t>(n);
-    s.SkipSpace();
-  }
+  ReadBlockStart(s, block);
   if (s.Peek() == '.') {
     s.Advance();
     if (!LineScanner::IsLetter(s.Peek())) {
@@ -102,7 +94,8 @@ bool ParseMtc200Line(std::string_view line, SourcePos start, Program& p,
       long n = 0;
       if (!s.Integer(n)) return expr.Error(s.Pos(), "expected a variable number after '@'"), true;
       s.SkipSpace();
-      if (!s.Accept('=')) return expr.Error(s.Pos(), "expected '=' after @" + std::to_string(n)), true;
+      if (!s.Accept('='))
+        return expr.Error(s.Pos(), "expected '=' after @" + std::to_string(n)), true;
       st.kind = Statement::Kind::kAssign;
       st.name = p.symbols.Intern("@" + std::to_string(n));
       if ((st.value = expr.Parse(s)) == kNoExpr) return true;
@@ -185,34 +178,6 @@ bool ParseMtc200Line(std::string_view line, SourcePos start, Program& p,
     }
     p.statements.push_back(st);
   }
-}
-
-bool ParseWordValue(LineScanner& s, ExpressionParser& expr, const std::string& address,
-                    SourcePos address_pos, Word& word) {
-  s.SkipSpace();
-  if (s.Peek() == '=' && s.Peek(1) != '=') {
-    s.Advance();
-    return (word.value = expr.Parse(s)) != kNoExpr;
-  }
-  if (s.Number(word.number)) return true;
-  const char c = s.Peek();
-  if (c == '-' || c == '+' || c == '@' || c == expr.open()) {
-    // A signed number stays a number; anything else is computed.
-    if ((c == '-' || c == '+') && (LineScanner::IsDigit(s.Peek(1)) || s.Peek(1) == '.')) {
-      LineScanner probe = s;
-      probe.Advance();
-      double v = 0;
-      probe.SkipSpace();
-      if (probe.Number(v) && !MoreExpression(probe)) {
-        s = probe;
-        word.number = c == '-' ? -v : v;
-        return true;
-      }
-    }
-    return (word.value = expr.Parse(s)) != kNoExpr;
-  }
-  expr.Error(address_pos, "address " + address + " needs a value");
-  return false;
 }
 
 }  // namespace vmt::control::nc

@@ -38,8 +38,7 @@ SourcePos Program::PosAt(uint32_t offset) const {
 
 Dialect DetectDialect(std::string_view text, std::string_view file_name) {
   auto ends_with = [&](std::string_view ext) {
-    return file_name.size() >= ext.size() &&
-           file_name.substr(file_name.size() - ext.size()) == ext;
+    return file_name.size() >= ext.size() && file_name.substr(file_name.size() - ext.size()) == ext;
   };
   if (ends_with(".isg") || ends_with(".ISG")) return Dialect::kIsg;
   if (ends_with(".mtc") || ends_with(".MTC")) return Dialect::kMtc200;

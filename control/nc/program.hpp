@@ -9,9 +9,9 @@
 #include <deque>
 #include <map>
 #include <span>
-#include <unordered_map>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "control/nc/source_pos.hpp"
@@ -43,9 +43,23 @@ struct Expr {
     kNumber,    ///< number
     kVariable,  ///< name: "@100" (MTC200), "P1", "V.L.DIST" (ISG); name 0 = omitted argument
     kCall,      ///< name(args...): G(2), M(5), SIN[30], TLD(1,2)
-    kNeg, kNot,
-    kAdd, kSub, kMul, kDiv, kMod, kPow,
-    kEq, kNe, kLt, kLe, kGt, kGe, kAnd, kOr, kXor,
+    kNeg,
+    kNot,
+    kAdd,
+    kSub,
+    kMul,
+    kDiv,
+    kMod,
+    kPow,
+    kEq,
+    kNe,
+    kLt,
+    kLe,
+    kGt,
+    kGe,
+    kAnd,
+    kOr,
+    kXor,
   };
   // 32 bytes: expression-heavy programs are mostly these nodes.
   double number = 0;
@@ -63,7 +77,7 @@ struct Word {
   uint32_t address = 0;    ///< interned address, index included ("S1", "X1", "RX")
   ExprId value = kNoExpr;  ///< computed value, or kNoExpr: the value is `number`
   double number = 0;
-  uint32_t offset = 0;     ///< in the file; Program::PosAt gives line and column
+  uint32_t offset = 0;  ///< in the file; Program::PosAt gives line and column
 };
 
 struct Statement {
@@ -75,13 +89,20 @@ struct Statement {
     kReturn,       ///< RTS | RET
     kInstruction,  ///< MTP, MRY, SE 29, SETTING(...), TLD(...): name + args
     kHashCommand,  ///< ISG #-command: text after '#', normalised spaces
-    kIf, kElseIf, kElse, kEndIf, kFor, kEndFor, kWhile, kEndWhile,
-    kProgramEnd,   ///< M30 / M02 as program end (ISG); MTC200 uses RET
+    kIf,
+    kElseIf,
+    kElse,
+    kEndIf,
+    kFor,
+    kEndFor,
+    kWhile,
+    kEndWhile,
+    kProgramEnd,  ///< M30 / M02 as program end (ISG); MTC200 uses RET
   };
   Kind kind = Kind::kInstruction;
-  uint32_t name = 0;      ///< mnemonic, variable or instruction name
-  uint32_t target = 0;    ///< label or subprogram name
-  ExprId value = kNoExpr; ///< assigned value, condition, event, or first argument (args chain)
+  uint32_t name = 0;       ///< mnemonic, variable or instruction name
+  uint32_t target = 0;     ///< label or subprogram name
+  ExprId value = kNoExpr;  ///< assigned value, condition, event, or first argument (args chain)
   ExprId limit = kNoExpr, step = kNoExpr;  ///< $FOR var = value, limit, step
   ExprId data = kNoExpr;  ///< kAssign to a data location: the call TLD(...) | OTD(...) | MTD(...)
   uint32_t text = 0;      ///< #-command text: index into Program::texts
@@ -91,10 +112,10 @@ struct Statement {
 
 struct Block {
   SourcePos pos;
-  uint32_t counter = 0;   ///< 1-based block counter in its file (block search type 3)
-  int32_t number = -1;    ///< N number, -1 if none
-  uint32_t label = 0;     ///< ".REPOS" -> interned "REPOS"; 0 if none
-  bool skippable = false; ///< '/' block skip
+  uint32_t counter = 0;    ///< 1-based block counter in its file (block search type 3)
+  int32_t number = -1;     ///< N number, -1 if none
+  uint32_t label = 0;      ///< ".REPOS" -> interned "REPOS"; 0 if none
+  bool skippable = false;  ///< '/' block skip
   // The block's words and statements are ranges of the program's arenas (no allocation per
   // block): Program::Words(block), Program::Statements(block).
   uint32_t first_word = 0, num_words = 0;
@@ -117,7 +138,9 @@ struct Program {
   /// Line and column of a file offset (words and expressions keep only the offset).
   SourcePos PosAt(uint32_t offset) const;
 
-  std::span<const Word> Words(const Block& b) const { return {words.data() + b.first_word, b.num_words}; }
+  std::span<const Word> Words(const Block& b) const {
+    return {words.data() + b.first_word, b.num_words};
+  }
   std::span<const Statement> Statements(const Block& b) const {
     return {statements.data() + b.first_statement, b.num_statements};
   }

@@ -13,9 +13,14 @@ struct Open {
 
 const char* Closer(Kind k) {
   switch (k) {
-    case Kind::kIf: case Kind::kElseIf: case Kind::kElse: return "$ENDIF";
-    case Kind::kFor: return "$ENDFOR";
-    default: return "$ENDWHILE";
+    case Kind::kIf:
+    case Kind::kElseIf:
+    case Kind::kElse:
+      return "$ENDIF";
+    case Kind::kFor:
+      return "$ENDFOR";
+    default:
+      return "$ENDWHILE";
   }
 }
 
@@ -38,22 +43,28 @@ void CheckProgram(Program& p, std::vector<Diagnostic>& errors) {
   std::vector<Open> open;
   for (size_t b = 0; b < p.blocks.size(); ++b) {
     const Block& block = p.blocks[b];
-    for (uint32_t i = block.first_statement; i < block.first_statement + block.num_statements; ++i) {
+    for (uint32_t i = block.first_statement; i < block.first_statement + block.num_statements;
+         ++i) {
       Statement& st = p.statements[i];
       switch (st.kind) {
         case Kind::kBranch:
         case Kind::kEventBranch:
         case Kind::kCall:
           if (p.dialect == Dialect::kIsg) break;  // L name: a subprogram of the program store
-          if (auto it = p.labels.find(st.target); it != p.labels.end()) st.jump = it->second;
-          else errors.push_back({st.pos, "label ." + p.symbols.Name(st.target) + " is not defined"});
+          if (auto it = p.labels.find(st.target); it != p.labels.end())
+            st.jump = it->second;
+          else
+            errors.push_back({st.pos, "label ." + p.symbols.Name(st.target) + " is not defined"});
           break;
-        case Kind::kIf: case Kind::kFor: case Kind::kWhile:
+        case Kind::kIf:
+        case Kind::kFor:
+        case Kind::kWhile:
           open.push_back({static_cast<int32_t>(b), i, st.kind});
           break;
-        case Kind::kElseIf: case Kind::kElse: {
-          const bool ok = !open.empty() && (open.back().kind == Kind::kIf ||
-                                            open.back().kind == Kind::kElseIf);
+        case Kind::kElseIf:
+        case Kind::kElse: {
+          const bool ok =
+              !open.empty() && (open.back().kind == Kind::kIf || open.back().kind == Kind::kElseIf);
           if (!ok) {
             errors.push_back({st.pos, std::string(st.kind == Kind::kElse ? "$ELSE" : "$ELSEIF") +
                                           " without $IF"});
@@ -65,16 +76,20 @@ void CheckProgram(Program& p, std::vector<Diagnostic>& errors) {
           open.back() = {static_cast<int32_t>(b), i, st.kind};
           break;
         }
-        case Kind::kEndIf: case Kind::kEndFor: case Kind::kEndWhile: {
-          const Kind want = st.kind == Kind::kEndIf ? Kind::kIf
-                            : st.kind == Kind::kEndFor ? Kind::kFor : Kind::kWhile;
+        case Kind::kEndIf:
+        case Kind::kEndFor:
+        case Kind::kEndWhile: {
+          const Kind want = st.kind == Kind::kEndIf    ? Kind::kIf
+                            : st.kind == Kind::kEndFor ? Kind::kFor
+                                                       : Kind::kWhile;
           const bool matches =
               !open.empty() && (open.back().kind == want ||
                                 (want == Kind::kIf && (open.back().kind == Kind::kElseIf ||
                                                        open.back().kind == Kind::kElse)));
           if (!matches) {
-            const char* name = st.kind == Kind::kEndIf ? "$ENDIF"
-                               : st.kind == Kind::kEndFor ? "$ENDFOR" : "$ENDWHILE";
+            const char* name = st.kind == Kind::kEndIf    ? "$ENDIF"
+                               : st.kind == Kind::kEndFor ? "$ENDFOR"
+                                                          : "$ENDWHILE";
             std::string msg = std::string(name) + " without its opening statement";
             if (!open.empty())
               msg += " (line " + std::to_string(p.blocks[open.back().block].pos.line) +

@@ -1,9 +1,9 @@
 // vmt: the command line. Every subcommand has --help; errors go to stderr with the file and
 // place of the fault; exit 0 = ok, 1 = the run or comparison failed, 2 = bad input.
 
-#include <CLI/CLI.hpp>
 #include <malloc.h>
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -70,7 +70,7 @@ int Check(const std::string& file, const std::string& dialect_name) {
     return 2;
   }
   const std::string text((std::istreambuf_iterator<char>(in)), {});
-  const nc::Dialect dialect = dialect_name.empty()   ? nc::DetectDialect(text, file)
+  const nc::Dialect dialect = dialect_name.empty()    ? nc::DetectDialect(text, file)
                               : dialect_name == "isg" ? nc::Dialect::kIsg
                                                       : nc::Dialect::kMtc200;
   const nc::ParseResult r = nc::ParseProgram(text, file, dialect);
@@ -120,7 +120,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
 
   std::string dialect;
-  CLI::App* check = app.add_subcommand("check", "Check an NC program: every error as file:line:column: error: text");
+  CLI::App* check = app.add_subcommand(
+      "check", "Check an NC program: every error as file:line:column: error: text");
   check->add_option("file", scene, "NC program file")->required();
   check->add_option("--dialect", dialect, "mtc200 or isg (default: from the file)")
       ->check(CLI::IsMember({"mtc200", "isg"}));

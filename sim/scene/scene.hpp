@@ -46,8 +46,20 @@ struct Condition {
 };
 
 struct TimelineStep {
-  enum class Kind { kMove, kSpeed, kOrient, kOff, kOutput, kWait, kWaitUntil, kNcStart, kNcStop,
-                    kNcReset, kNcOverride, kNcSingleBlock } kind;
+  enum class Kind {
+    kMove,
+    kSpeed,
+    kOrient,
+    kOff,
+    kOutput,
+    kWait,
+    kWaitUntil,
+    kNcStart,
+    kNcStop,
+    kNcReset,
+    kNcOverride,
+    kNcSingleBlock
+  } kind;
   double not_before_s = 0;  ///< `at:`; 0 = as soon as the previous step is done
   int drive = -1;
   int io = -1;
@@ -61,7 +73,15 @@ struct TimelineStep {
 };
 
 struct Expectation {
-  enum class Quantity { kPosition, kVelocity, kRpm, kFollowingError, kInput, kClutch, kNc } quantity;
+  enum class Quantity {
+    kPosition,
+    kVelocity,
+    kRpm,
+    kFollowingError,
+    kInput,
+    kClutch,
+    kNc
+  } quantity;
   double at_s = -1;  ///< -1: at the end of the run
   int index = -1;    ///< drive, I/O point or clutch
   double value = 0;

@@ -130,10 +130,14 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, bool h
       text << "feed override " << Fmt(s.target * 100) << " %";
     } else {
       const std::string cmd = a.String();
-      if (cmd == "start") s.kind = TimelineStep::Kind::kNcStart;
-      else if (cmd == "stop") s.kind = TimelineStep::Kind::kNcStop;
-      else if (cmd == "reset") s.kind = TimelineStep::Kind::kNcReset;
-      else a.Fail("expected start, stop, reset, {override: percent} or {single_block: bool}");
+      if (cmd == "start")
+        s.kind = TimelineStep::Kind::kNcStart;
+      else if (cmd == "stop")
+        s.kind = TimelineStep::Kind::kNcStop;
+      else if (cmd == "reset")
+        s.kind = TimelineStep::Kind::kNcReset;
+      else
+        a.Fail("expected start, stop, reset, {override: percent} or {single_block: bool}");
       text << "NC " << cmd;
     }
     s.text = text.str();
@@ -353,8 +357,9 @@ Scene LoadScene(const std::string& path) {
       if (!in) f.Fail("cannot open NC program " + file);
       const std::string text((std::istreambuf_iterator<char>(in)), {});
       namespace cnc = control::nc;
-      const cnc::Dialect d = dialect.empty() ? cnc::DetectDialect(text, file)
-                             : dialect == "isg" ? cnc::Dialect::kIsg : cnc::Dialect::kMtc200;
+      const cnc::Dialect d = dialect.empty()    ? cnc::DetectDialect(text, file)
+                             : dialect == "isg" ? cnc::Dialect::kIsg
+                                                : cnc::Dialect::kMtc200;
       auto parsed = std::make_shared<cnc::ParseResult>(cnc::ParseProgram(text, file, d));
       // NC errors read like a compiler's, the first one names the scene entry that loaded it.
       if (!parsed->ok()) f.Fail(cnc::Format(parsed->errors[0], parsed->program.files));

@@ -46,7 +46,8 @@ TEST(NcBackendAgreementTest, TurningProgramSamePathOnBothBackends) {
   ASSERT_EQ(p.size(), k.size());
   double worst_gap = 0, worst_fe = 0;
   for (size_t i = 0; i < p.size(); ++i) {
-    worst_gap = std::max({worst_gap, std::abs(p[i].x_pos - k[i].x_pos), std::abs(p[i].z_pos - k[i].z_pos)});
+    worst_gap =
+        std::max({worst_gap, std::abs(p[i].x_pos - k[i].x_pos), std::abs(p[i].z_pos - k[i].z_pos)});
     worst_fe = std::max(worst_fe, std::abs(p[i].x_fe));
   }
   EXPECT_GT(worst_fe, 1.0);  // real motion with real following error

@@ -1,12 +1,13 @@
 // The channel on an ideal machine (actual = setpoint): block timing, G00 synchronisation, arcs,
 // feed override and feed hold on the path.
 
+#include "control/channel/channel.hpp"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "control/channel/channel.hpp"
 #include "control/nc/parser.hpp"
 
 namespace vmt::control::channel {
@@ -29,11 +30,14 @@ struct Machine {
   void Tick() {
     channel->Tick(at, mdt);
     for (int d = 0; d < 2; ++d)
-      if (mdt.setpoints[d].mode == DriveMode::kPosition) at.feedback[d].position = mdt.setpoints[d].value;
+      if (mdt.setpoints[d].mode == DriveMode::kPosition)
+        at.feedback[d].position = mdt.setpoints[d].value;
     t += 250e-6;
   }
   double RunUntilEnd(double limit = 60) {
-    while (channel->state() != ChannelState::kEnded && channel->state() != ChannelState::kError && t < limit) Tick();
+    while (channel->state() != ChannelState::kEnded && channel->state() != ChannelState::kError &&
+           t < limit)
+      Tick();
     return t;
   }
   double X() const { return at.feedback[0].position; }

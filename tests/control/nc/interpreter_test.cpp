@@ -1,9 +1,10 @@
 // The convert phase: control flow, variables and words of both dialects, run to prepared blocks.
 
+#include "control/nc/interpreter.hpp"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "control/nc/interpreter.hpp"
 #include "control/nc/parser.hpp"
 
 namespace vmt::control::nc {
@@ -19,13 +20,14 @@ struct ProgramRun {
 };
 
 // Parses the programs (first = main) and runs the main one to its end or first error.
-ProgramRun Execute(std::vector<std::pair<std::string, std::string>> files, InterpreterConfig config = {},
-            std::function<bool(int)> events = {}) {
+ProgramRun Execute(std::vector<std::pair<std::string, std::string>> files,
+                   InterpreterConfig config = {}, std::function<bool(int)> events = {}) {
   ProgramRun run;
   std::vector<const Program*> programs;
   for (const auto& [name, text] : files) {
     run.parsed.push_back(ParseProgram(text, name, DetectDialect(text, name)));
-    EXPECT_TRUE(run.parsed.back().ok()) << name << ": " << Format(run.parsed.back().errors[0], run.parsed.back().program.files);
+    EXPECT_TRUE(run.parsed.back().ok())
+        << name << ": " << Format(run.parsed.back().errors[0], run.parsed.back().program.files);
   }
   for (const ParseResult& r : run.parsed) programs.push_back(&r.program);
   run.interpreter = std::make_unique<Interpreter>(programs, config);
@@ -41,7 +43,9 @@ ProgramRun Execute(std::vector<std::pair<std::string, std::string>> files, Inter
 }
 
 TEST(InterpreterTest, MotionModesAndTargets) {
-  const ProgramRun r = Execute({{"a.mtc", "N1 G00 X100 Z50\nN2 G01 X80 F200\nN3 G91 Z-10\nN4 G90 G02 X60 Z30 I-10 K0\nN5 RET\n"}});
+  const ProgramRun r = Execute(
+      {{"a.mtc",
+        "N1 G00 X100 Z50\nN2 G01 X80 F200\nN3 G91 Z-10\nN4 G90 G02 X60 Z30 I-10 K0\nN5 RET\n"}});
   ASSERT_EQ(r.error, "");
   ASSERT_EQ(r.blocks.size(), 5u);
   EXPECT_EQ(r.blocks[0].motion, Motion::kRapid);
@@ -59,13 +63,13 @@ TEST(InterpreterTest, MotionModesAndTargets) {
 TEST(InterpreterTest, Mtc200VariablesBranchesAndSubroutines) {
   // Count down @100 from 3 with a subroutine doing one move per pass.
   const ProgramRun r = Execute({{"a.mtc",
-                          "N0001 @100=3\n"
-                          "N0002 .LOOP\n"
-                          "N0003 JSR .MOVE\n"
-                          "N0004 @100=@100-1 BGT .LOOP\n"
-                          "N0005 RET\n"
-                          "N0006 .MOVE\n"
-                          "N0007 G01 X@100 F100 RTS\n"}});
+                                 "N0001 @100=3\n"
+                                 "N0002 .LOOP\n"
+                                 "N0003 JSR .MOVE\n"
+                                 "N0004 @100=@100-1 BGT .LOOP\n"
+                                 "N0005 RET\n"
+                                 "N0006 .MOVE\n"
+                                 "N0007 G01 X@100 F100 RTS\n"}});
   ASSERT_EQ(r.error, "");
   ASSERT_EQ(r.blocks.size(), 4u);
   EXPECT_EQ(r.blocks[0].target[0], 3);
@@ -78,15 +82,15 @@ TEST(InterpreterTest, Mtc200VariablesBranchesAndSubroutines) {
 TEST(InterpreterTest, ModalGroupReadsAndEvents) {
   // The REPOS subroutine's tests: G(2)-17 is 0 in G17; BES branches on a set event.
   const ProgramRun r = Execute({{"a.mtc",
-                          "N0 G17\n"
-                          "N1 @100=G(2)-17 BEQ .G17\n"
-                          "N2 G01 X1 F10\n"
-                          "N3 .G17\n"
-                          "   BES .EV 29\n"
-                          "N4 G01 X2 F10\n"
-                          "N5 .EV\n"
-                          "N6 G01 X3 F10 M=@100 RET\n"}},
-                        {}, [](int e) { return e == 29; });
+                                 "N0 G17\n"
+                                 "N1 @100=G(2)-17 BEQ .G17\n"
+                                 "N2 G01 X1 F10\n"
+                                 "N3 .G17\n"
+                                 "   BES .EV 29\n"
+                                 "N4 G01 X2 F10\n"
+                                 "N5 .EV\n"
+                                 "N6 G01 X3 F10 M=@100 RET\n"}},
+                               {}, [](int e) { return e == 29; });
   ASSERT_EQ(r.error, "");
   ASSERT_EQ(r.blocks.size(), 1u);
   EXPECT_EQ(r.blocks[0].target[0], 3);
@@ -98,23 +102,23 @@ TEST(InterpreterTest, ModalGroupReadsAndEvents) {
 
 TEST(InterpreterTest, IsgStructuresLoopsAndSubprograms) {
   const ProgramRun r = Execute({{"main.isg",
-                          "%main\n"
-                          "N10 P1 = 0\n"
-                          "N20 $FOR P2 = 1, 4, 1\n"
-                          "N30 $IF P2 == 2\n"
-                          "N40 L sub.nc\n"
-                          "N50 $ELSEIF P2 == 3\n"
-                          "N60 G01 X[P2 * 10] F100\n"
-                          "N70 $ELSE\n"
-                          "N80 P1 = P1 + P2\n"
-                          "N90 $ENDIF\n"
-                          "N100 $ENDFOR\n"
-                          "N110 $WHILE P1 < 8\n"
-                          "N120 P1 = P1 + 1\n"
-                          "N130 Z[P1]\n"
-                          "N140 $ENDWHILE\n"
-                          "N150 M30\n"},
-                         {"sub.isg", "%sub\nN10 G01 Z-5 F50\nN20 M17\n"}});
+                                 "%main\n"
+                                 "N10 P1 = 0\n"
+                                 "N20 $FOR P2 = 1, 4, 1\n"
+                                 "N30 $IF P2 == 2\n"
+                                 "N40 L sub.nc\n"
+                                 "N50 $ELSEIF P2 == 3\n"
+                                 "N60 G01 X[P2 * 10] F100\n"
+                                 "N70 $ELSE\n"
+                                 "N80 P1 = P1 + P2\n"
+                                 "N90 $ENDIF\n"
+                                 "N100 $ENDFOR\n"
+                                 "N110 $WHILE P1 < 8\n"
+                                 "N120 P1 = P1 + 1\n"
+                                 "N130 Z[P1]\n"
+                                 "N140 $ENDWHILE\n"
+                                 "N150 M30\n"},
+                                {"sub.isg", "%sub\nN10 G01 Z-5 F50\nN20 M17\n"}});
   ASSERT_EQ(r.error, "");
   // P2=1: else (P1=1); P2=2: sub (Z-5, M17); P2=3: X30; P2=4: else (P1=5); while: Z6 Z7 Z8.
   ASSERT_EQ(r.blocks.size(), 7u);
@@ -128,7 +132,8 @@ TEST(InterpreterTest, IsgStructuresLoopsAndSubprograms) {
 }
 
 TEST(InterpreterTest, DiameterProgrammingAndAuxFunctions) {
-  const ProgramRun r = Execute({{"a.mtc", "N1 G16 G00 X60 Z10 M03 S1200 T1 D1\nN2 G15 X20\nN3 RET\n"}});
+  const ProgramRun r =
+      Execute({{"a.mtc", "N1 G16 G00 X60 Z10 M03 S1200 T1 D1\nN2 G15 X20\nN3 RET\n"}});
   ASSERT_EQ(r.error, "");
   EXPECT_EQ(r.blocks[0].target[0], 30);
   EXPECT_EQ(r.blocks[0].modal.spindle, 3);
@@ -138,15 +143,18 @@ TEST(InterpreterTest, DiameterProgrammingAndAuxFunctions) {
 }
 
 TEST(InterpreterTest, RuntimeErrorsPointAtTheSource) {
-  EXPECT_THAT(Execute({{"a.mtc", "N1 @1=0\nN2 @2=5/@1\n"}}).error, HasSubstr("a.mtc:2:8: error: division by zero"));
+  EXPECT_THAT(Execute({{"a.mtc", "N1 @1=0\nN2 @2=5/@1\n"}}).error,
+              HasSubstr("a.mtc:2:8: error: division by zero"));
   EXPECT_THAT(Execute({{"a.isg", "%a\nN10 L missing\n"}}).error,
               HasSubstr("a.isg:2:5: error: subprogram MISSING is not in the program store"));
-  EXPECT_THAT(Execute({{"a.mtc", "N1 G01 A5 F1\n"}}).error, HasSubstr("a.mtc:1:8: error: axis A is not in this channel"));
+  EXPECT_THAT(Execute({{"a.mtc", "N1 G01 A5 F1\n"}}).error,
+              HasSubstr("a.mtc:1:8: error: axis A is not in this channel"));
   EXPECT_THAT(Execute({{"a.mtc", "N1 G33 X1\n"}}).error, HasSubstr("G33 is not supported"));
   EXPECT_THAT(Execute({{"a.mtc", "N1 RTS\n"}}).error, HasSubstr("RTS without JSR"));
   InterpreterConfig tight;
   tight.max_steps_per_block = 1000;
-  EXPECT_THAT(Execute({{"a.mtc", "N1 .L\nN2 @1=1 BRA .L\n"}}, tight).error, HasSubstr("endless loop"));
+  EXPECT_THAT(Execute({{"a.mtc", "N1 .L\nN2 @1=1 BRA .L\n"}}, tight).error,
+              HasSubstr("endless loop"));
   EXPECT_THAT(Execute({{"a.mtc", "N1 .L JSR .L\n"}}).error, HasSubstr("nested deeper than 16"));
 }
 
@@ -154,10 +162,11 @@ TEST(InterpreterTest, SeedCAxisProgramRuns) {
   // C-axis manual, spiral groove at the face end, with RX as the effective distance.
   InterpreterConfig config;
   config.axes = {"X", "Y", "Z", "C"};
-  const ProgramRun r = Execute({{"s.mtc",
-                          "N0140 G90 G06 G17\nN0144 G00 X-30 Y0 Z501 C90\nN0145 G01 Z497 F500\n"
-                          "N0146 G01 X-70 C-270 RX50 F1200\nN0170 RET\n"}},
-                        config);
+  const ProgramRun r =
+      Execute({{"s.mtc",
+                "N0140 G90 G06 G17\nN0144 G00 X-30 Y0 Z501 C90\nN0145 G01 Z497 F500\n"
+                "N0146 G01 X-70 C-270 RX50 F1200\nN0170 RET\n"}},
+              config);
   ASSERT_EQ(r.error, "");
   ASSERT_EQ(r.blocks.size(), 4u);
   EXPECT_EQ(r.blocks[2].target, (std::vector<double>{-70, 0, 497, -270}));

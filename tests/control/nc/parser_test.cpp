@@ -1,11 +1,11 @@
 // The NC language front ends: each construct of both dialects, and the errors bad input gets.
 
+#include "control/nc/parser.hpp"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "control/nc/parser.hpp"
 
 namespace vmt::control::nc {
 namespace {
@@ -26,18 +26,29 @@ double Eval(const Program& p, ExprId id) {
   const Expr& e = p.exprs.at(id);
   using Op = Expr::Op;
   switch (e.op) {
-    case Op::kNumber: return e.number;
-    case Op::kNeg: return -Eval(p, e.lhs);
-    case Op::kAdd: return Eval(p, e.lhs) + Eval(p, e.rhs);
-    case Op::kSub: return Eval(p, e.lhs) - Eval(p, e.rhs);
-    case Op::kMul: return Eval(p, e.lhs) * Eval(p, e.rhs);
-    case Op::kDiv: return Eval(p, e.lhs) / Eval(p, e.rhs);
-    case Op::kPow: return std::pow(Eval(p, e.lhs), Eval(p, e.rhs));
-    default: ADD_FAILURE() << "not constant"; return 0;
+    case Op::kNumber:
+      return e.number;
+    case Op::kNeg:
+      return -Eval(p, e.lhs);
+    case Op::kAdd:
+      return Eval(p, e.lhs) + Eval(p, e.rhs);
+    case Op::kSub:
+      return Eval(p, e.lhs) - Eval(p, e.rhs);
+    case Op::kMul:
+      return Eval(p, e.lhs) * Eval(p, e.rhs);
+    case Op::kDiv:
+      return Eval(p, e.lhs) / Eval(p, e.rhs);
+    case Op::kPow:
+      return std::pow(Eval(p, e.lhs), Eval(p, e.rhs));
+    default:
+      ADD_FAILURE() << "not constant";
+      return 0;
   }
 }
 
-double Value(const Program& p, const Word& w) { return w.value == kNoExpr ? w.number : Eval(p, w.value); }
+double Value(const Program& p, const Word& w) {
+  return w.value == kNoExpr ? w.number : Eval(p, w.value);
+}
 
 TEST(Mtc200Test, SignedAndComputedValues) {
   const ParseResult r = Mtc("N1 X-3 Z-3*2 Y+.5 C-@100\n");
@@ -52,7 +63,8 @@ TEST(Mtc200Test, SignedAndComputedValues) {
 }
 
 TEST(Mtc200Test, WordsNumbersLabelsAndComments) {
-  const ParseResult r = Mtc("N0001 .START ; begin\nN0002 G01 X-30.5 Z.5 RX50 F1200 ; cut\n\n; only a comment\n");
+  const ParseResult r =
+      Mtc("N0001 .START ; begin\nN0002 G01 X-30.5 Z.5 RX50 F1200 ; cut\n\n; only a comment\n");
   ASSERT_TRUE(r.ok()) << Errors(r);
   const Program& p = r.program;
   ASSERT_EQ(p.blocks.size(), 2u);
@@ -93,13 +105,13 @@ TEST(Mtc200Test, IndexedAddressesAndAssignedValues) {
 }
 
 TEST(Mtc200Test, VariablesBranchesAndCalls) {
-  const ParseResult r = Mtc(
-      "N0001 .A\n"
-      "      BES .B 29 ;event set?\n"
-      "N0002 @100=G(2)-17 BEQ .A\n"
-      "N0003 @101=(@100+2)*3^2 JSR .B\n"
-      "N0004 .B\n"
-      "      SE 30 MTP MRY RTS\n");
+  const ParseResult r =
+      Mtc("N0001 .A\n"
+          "      BES .B 29 ;event set?\n"
+          "N0002 @100=G(2)-17 BEQ .A\n"
+          "N0003 @101=(@100+2)*3^2 JSR .B\n"
+          "N0004 .B\n"
+          "      SE 30 MTP MRY RTS\n");
   ASSERT_TRUE(r.ok()) << Errors(r);
   const Program& p = r.program;
   const Statement& bes = p.Statements(p.blocks[1])[0];
@@ -128,7 +140,8 @@ TEST(Mtc200Test, VariablesBranchesAndCalls) {
 }
 
 TEST(Mtc200Test, MeasuringInstructionsWithOmittedArguments) {
-  const ParseResult r = Mtc("N0010 SETTING (X, Z, , 18, 48, 16, 3)\nN0020 COMPARE (10, 1, 2, 8)\nN0030 SAVE ()\n");
+  const ParseResult r =
+      Mtc("N0010 SETTING (X, Z, , 18, 48, 16, 3)\nN0020 COMPARE (10, 1, 2, 8)\nN0030 SAVE ()\n");
   ASSERT_TRUE(r.ok()) << Errors(r);
   const Program& p = r.program;
   const Statement& st = p.Statements(p.blocks[0])[0];
@@ -143,23 +156,23 @@ TEST(Mtc200Test, MeasuringInstructionsWithOmittedArguments) {
 }
 
 TEST(IsgTest, HeaderParametersStructuresAndCommands) {
-  const ParseResult r = Isg(
-      "%example\n"
-      "N05 #DISTANCE   PROG START OFF ; comment\n"
-      "N10 P1 = 10 (a comment) P2 = P1 * [2 + 1]\n"
-      "N20 $IF P1 == 10\n"
-      "N30 G01 X[P1*2] Y-5 F1000\n"
-      "N40 $ELSEIF P1 > 3\n"
-      "N50 $ELSE\n"
-      "N60 $ENDIF\n"
-      "N70 $FOR P3 = 1, 10, 2\n"
-      "N80 L sub_1\n"
-      "N90 $ENDFOR\n"
-      "N100 $WHILE P1 < 100\n"
-      "N110 P1 = P1 + 1\n"
-      "N120 $ENDWHILE\n"
-      "N130 G74 X1 Y2\n"
-      "M30\n");
+  const ParseResult r =
+      Isg("%example\n"
+          "N05 #DISTANCE   PROG START OFF ; comment\n"
+          "N10 P1 = 10 (a comment) P2 = P1 * [2 + 1]\n"
+          "N20 $IF P1 == 10\n"
+          "N30 G01 X[P1*2] Y-5 F1000\n"
+          "N40 $ELSEIF P1 > 3\n"
+          "N50 $ELSE\n"
+          "N60 $ENDIF\n"
+          "N70 $FOR P3 = 1, 10, 2\n"
+          "N80 L sub_1\n"
+          "N90 $ENDFOR\n"
+          "N100 $WHILE P1 < 100\n"
+          "N110 P1 = P1 + 1\n"
+          "N120 $ENDWHILE\n"
+          "N130 G74 X1 Y2\n"
+          "M30\n");
   ASSERT_TRUE(r.ok()) << Errors(r);
   const Program& p = r.program;
   EXPECT_EQ(p.name, "EXAMPLE");
@@ -209,11 +222,13 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         BadCase{Dialect::kMtc200, "N0001 G01 X\n", "1:11", "address X needs a value"},
         BadCase{Dialect::kMtc200, "N0001 BRA .NOPE\n", "1:7", "label .NOPE is not defined"},
-        BadCase{Dialect::kMtc200, "N0001 .A\nN0002 .A\n", "2:1", "label .A is already defined on line 1"},
+        BadCase{Dialect::kMtc200, "N0001 .A\nN0002 .A\n", "2:1",
+                "label .A is already defined on line 1"},
         BadCase{Dialect::kMtc200, "N0001 FOO\n", "1:7", "unknown word 'FOO'"},
         BadCase{Dialect::kMtc200, "N0001 @100=(1+2\n", "1:16", "expected ')'"},
         BadCase{Dialect::kMtc200, "N0001 @=3\n", "1:8", "expected a variable number"},
-        BadCase{Dialect::kMtc200, "N0001 BEQ REPOS\n", "1:11", "expected a label (.NAME) after BEQ"},
+        BadCase{Dialect::kMtc200, "N0001 BEQ REPOS\n", "1:11",
+                "expected a label (.NAME) after BEQ"},
         BadCase{Dialect::kMtc200, "N0001 SETTING (X, Z\n", "1:20", "expected ',' or ')'"},
         BadCase{Dialect::kMtc200, "N0001 X10 ! \n", "1:11", "unexpected '!'"},
         BadCase{Dialect::kIsg, "N10 $IF P1 == 1\nN20 X1\n", "1:5", "missing $ENDIF"},
@@ -222,7 +237,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{Dialect::kIsg, "N10 X10 (open comment\n", "1:9", "comment '(' is not closed"},
         BadCase{Dialect::kIsg, "N10 P1 10\n", "1:8", "expected '=' after P1"},
         BadCase{Dialect::kIsg, "N10 $FOR P1 = 1\n", "1:16", "expected ', limit' in $FOR"},
-        BadCase{Dialect::kIsg, "N10 X[1+\n", "1:9", "expected a value, found the end of the block"}));
+        BadCase{Dialect::kIsg, "N10 X[1+\n", "1:9",
+                "expected a value, found the end of the block"}));
 
 TEST(ParserTest, DeepNestingIsAnErrorNotACrash) {
   const std::string deep = "N1 @1=" + std::string(100000, '(') + "1\n";

@@ -16,8 +16,10 @@ namespace fs = std::filesystem;
 
 std::vector<std::string> SeedFiles() {
   std::vector<std::string> files;
-  for (const auto& e : fs::directory_iterator(fs::path(VMT_SOURCE_DIR) / "tests/control/nc/seed_programs"))
-    if (e.path().extension() == ".mtc" || e.path().extension() == ".isg") files.push_back(e.path().string());
+  for (const auto& e :
+       fs::directory_iterator(fs::path(VMT_SOURCE_DIR) / "tests/control/nc/seed_programs"))
+    if (e.path().extension() == ".mtc" || e.path().extension() == ".isg")
+      files.push_back(e.path().string());
   std::sort(files.begin(), files.end());
   return files;
 }
@@ -43,9 +45,9 @@ TEST(SeedProgramsTest, EveryProgramParses) {
 }
 
 TEST(SeedProgramsTest, ReposSubroutineStructure) {
-  const ParseResult r = ParseFile(std::string(VMT_SOURCE_DIR) +
-                                      "/tests/control/nc/seed_programs/repos_subroutine_lathe.mtc",
-                                  Dialect::kMtc200);
+  const ParseResult r = ParseFile(
+      std::string(VMT_SOURCE_DIR) + "/tests/control/nc/seed_programs/repos_subroutine_lathe.mtc",
+      Dialect::kMtc200);
   ASSERT_TRUE(r.ok());
   const Program& p = r.program;
   for (const char* label : {"REPOS", "NO_MTP", "ROTMOD", "REPOSW", "REP_17", "TRANSF"})
@@ -61,8 +63,8 @@ TEST(SeedProgramsTest, ReposSubroutineStructure) {
 }
 
 TEST(SeedProgramsTest, DataLocationsAreAssignable) {
-  const ParseResult r = ParseProgram("TLD(1,3,,1,12,) = TLD(1,3,,1,12,) + MTD(105,,2,13)\n", "t.mtc",
-                                     Dialect::kMtc200);
+  const ParseResult r = ParseProgram("TLD(1,3,,1,12,) = TLD(1,3,,1,12,) + MTD(105,,2,13)\n",
+                                     "t.mtc", Dialect::kMtc200);
   ASSERT_TRUE(r.ok());
   const Statement& st = r.program.Statements(r.program.blocks[0])[0];
   EXPECT_EQ(st.kind, Statement::Kind::kAssign);
