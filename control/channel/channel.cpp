@@ -37,8 +37,11 @@ const char* ToString(ChannelState s) {
   return "?";
 }
 
+const char* ToString(ChannelMode m) { return m == ChannelMode::kManual ? "manual" : "automatic"; }
+
 Channel::Channel(ChannelConfig config, std::vector<const nc::Program*> programs)
     : config_(std::move(config)), programs_(std::move(programs)) {
+  jog_.resize(config_.axes.size());
   commanded_.assign(config_.axes.size(), 0.0);
   previous_ = commanded_;
   spindle_ = {DriveMode::kVelocity, 0, 0};
@@ -56,8 +59,69 @@ void Channel::Fail(const std::string& message) {
   active_ = false;
 }
 
+bool Channel::SetMode(ChannelMode mode) {
+  if (state_ == ChannelState::kRunning) return false;
+  if (mode != mode_) {
+    for (JogAxis& j : jog_) j = JogAxis{};
+    // Where the program was interrupted: the contour the axes must come back to.
+    if (mode == ChannelMode::kManual) interruption_point_ = commanded_;
+  }
+  mode_ = mode;
+  return true;
+}
+
+void Channel::Jog(size_t axis, int direction) {
+  if (mode_ != ChannelMode::kManual || axis >= jog_.size()) return;
+  jog_[axis].key = direction > 0 ? 1 : direction < 0 ? -1 : 0;
+  take_over_pending_ = true;
+}
+
+int Channel::AxisMotion(size_t axis) const {
+  const double d = commanded_[axis] - previous_[axis];
+  return d > 0 ? 1 : d < 0 ? -1 : 0;
+}
+
+void Channel::Jogging(double dt) {
+  for (size_t a = 0; a < jog_.size(); ++a) {
+    JogAxis& j = jog_[a];
+    const ChannelAxis& axis = config_.axes[a];
+    const double speed = (axis.jog_per_s > 0 ? axis.jog_per_s : axis.rapid_per_s / 10) * override_;
+    if (jog_increment_ > 0 || j.stepping) {
+      // Incremental: a key press starts one increment, which then runs to its end.
+      if (!j.stepping && j.key != 0) {
+        j.stepping = true;
+        j.from = commanded_[a];
+        j.to = commanded_[a] + j.key * jog_increment_;
+        j.increment = PathProfile{};
+        j.increment.max_rate = speed / jog_increment_;
+        j.increment.max_accel = axis.acceleration / jog_increment_;
+        j.key = 0;  // one increment per press
+      }
+      if (j.stepping) {
+        j.increment.Advance(dt, 1.0);
+        commanded_[a] = j.from + (j.to - j.from) * j.increment.u;
+        if (j.increment.done()) commanded_[a] = j.to, j.stepping = false;
+      }
+      continue;
+    }
+    // Continuous: towards the jog speed while the key is held, braking when it is released.
+    const double target = j.key * speed, step = axis.acceleration * dt;
+    j.velocity = std::clamp(target, j.velocity - step, j.velocity + step);
+    commanded_[a] += j.velocity * dt;
+  }
+}
+
 void Channel::Start() {
+  if (mode_ != ChannelMode::kAutomatic) return;
   if (state_ == ChannelState::kHold) {
+    // Continuing from off the contour would jump back to the path: the axes must first be
+    // repositioned to the interruption point (REPOS manual; the REPOS function is issue 6's).
+    for (size_t a = 0; a < commanded_.size() && !interruption_point_.empty(); ++a)
+      if (std::abs(commanded_[a] - interruption_point_[a]) > 1e-6) {
+        Fail("axis " + config_.axes[a].name +
+             " has left the contour at the interruption point: reposition it first");
+        return;
+      }
     state_ = ChannelState::kRunning;
     return;
   }
@@ -80,6 +144,13 @@ void Channel::Reset() {
 }
 
 void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
+  if (take_over_pending_ && !holding_positions_) {
+    for (size_t a = 0; a < config_.axes.size(); ++a)
+      commanded_[a] = at.feedback[config_.axes[a].drive].position;
+    previous_ = commanded_;
+    holding_positions_ = true;
+  }
+  take_over_pending_ = false;
   if (start_pending_) {
     start_pending_ = false;
     if (!holding_positions_) {
@@ -103,7 +174,9 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
     tick_in_cycle_ = 0;
     previous_ = commanded_;
     const double dt = config_.tick_s * config_.ticks_per_cycle;
-    if (state_ == ChannelState::kRunning || state_ == ChannelState::kHold) {
+    if (mode_ == ChannelMode::kManual) {
+      Jogging(dt);
+    } else if (state_ == ChannelState::kRunning || state_ == ChannelState::kHold) {
       bool finished = false;
       if (dwell_left_s_ > 0) {
         if (state_ == ChannelState::kRunning) dwell_left_s_ -= dt;

@@ -24,6 +24,7 @@ struct ChannelAxis {
   double rapid_per_s = 0;   ///< mm/s | deg/s
   double acceleration = 0;  ///< mm/s^2 | deg/s^2
   bool rotary = false;
+  double jog_per_s = 0;  ///< jog velocity; 0: a tenth of the rapid
 };
 
 struct ChannelConfig {
@@ -35,6 +36,11 @@ struct ChannelConfig {
 
 enum class ChannelState { kIdle, kRunning, kHold, kEnded, kError };
 const char* ToString(ChannelState s);
+
+/// Operating modes. Automatic runs the program (single block makes it semi-automatic); manual
+/// moves the axes with the jog keys, continuously or by increments.
+enum class ChannelMode { kAutomatic, kManual };
+const char* ToString(ChannelMode m);
 
 class Channel {
  public:
@@ -48,6 +54,17 @@ class Channel {
   void SetFeedOverride(double fraction) { override_ = std::clamp(fraction, 0.0, 2.0); }
   /// Single block (semi-automatic): after each block the channel holds until the next start.
   void SetSingleBlock(bool on) { single_block_ = on; }
+  /// Changes the mode; refused (false) while a program runs. An interrupted program (hold)
+  /// stays interrupted: the axes may be jogged away and the program continued later.
+  bool SetMode(ChannelMode mode);
+  ChannelMode mode() const { return mode_; }
+  /// Jog increment in mm | deg; 0 jogs continuously while the key is held.
+  void SetJogIncrement(double increment) { jog_increment_ = std::abs(increment); }
+  /// Jog key of a channel axis: +1 positive, -1 negative, 0 released. Manual mode only; an
+  /// increment, once started, is completed.
+  void Jog(size_t axis, int direction);
+  /// Direction the axis is commanded to move this NC cycle: +1, -1 or 0 (MVPOS / MVNEG).
+  int AxisMotion(size_t axis) const;
   void SetEventSource(std::function<bool(int)> source) { events_ = std::move(source); }
 
   /// One drive tick: reads the feedback, interpolates on the NC cycle, writes setpoints.
@@ -89,6 +106,20 @@ class Channel {
   int tick_in_cycle_ = 0;
   bool holding_positions_ = false;  ///< once started, the channel owns its axes' setpoints
   bool start_pending_ = false;
+  bool take_over_pending_ = false;  ///< own the axes' setpoints from the next tick on
+  void Jogging(double dt);
+
+  ChannelMode mode_ = ChannelMode::kAutomatic;
+  double jog_increment_ = 0;
+  struct JogAxis {
+    int key = 0;            ///< key held: +1, -1, 0
+    double velocity = 0;    ///< continuous jog
+    PathProfile increment;  ///< incremental jog in progress when rate or u < 1
+    double from = 0, to = 0;
+    bool stepping = false;
+  };
+  std::vector<JogAxis> jog_;
+  std::vector<double> interruption_point_;  ///< commanded position when manual was entered
   DriveSetpoint spindle_;
 };
 

@@ -119,6 +119,23 @@ bool DriveProgram::Execute(const TimelineStep& step, double t_s,
     case Kind::kNcSingleBlock:
       if (channel_) channel_->SetSingleBlock(step.level);
       return true;
+    case Kind::kNcMode:
+      if (channel_ && !channel_->SetMode(step.level ? control::channel::ChannelMode::kManual
+                                                    : control::channel::ChannelMode::kAutomatic)) {
+        failures_.push_back(step.text + ": refused while the program runs");
+        events.push_back({t_s, "refused", step.text});
+      }
+      return true;
+    case Kind::kNcJogIncrement:
+      if (channel_) channel_->SetJogIncrement(step.target);
+      return true;
+    case Kind::kJog:
+      // The key goes down when the step begins and comes up after `hold`.
+      if (!channel_) return true;
+      if (t_s == step_since_s_) channel_->Jog(step.axis, step.direction);
+      if (t_s - step_since_s_ < step.wait_s - 1e-9) return false;
+      channel_->Jog(step.axis, 0);
+      return true;
     case Kind::kWait:
       return t_s - step_since_s_ >= step.wait_s - 1e-9;
     case Kind::kWaitUntil: {

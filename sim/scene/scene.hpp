@@ -58,14 +58,19 @@ struct TimelineStep {
     kNcStop,
     kNcReset,
     kNcOverride,
-    kNcSingleBlock
+    kNcSingleBlock,
+    kNcMode,
+    kNcJogIncrement,
+    kJog,
   } kind;
   double not_before_s = 0;  ///< `at:`; 0 = as soon as the previous step is done
   int drive = -1;
   int io = -1;
   double target = 0;   ///< move: position (mm|deg); speed: deg/s or mm/s; orient: deg
   double feed = 0;     ///< move: mm/s | deg/s
-  bool level = false;  ///< output value
+  bool level = false;  ///< output value; kNcMode: true = manual
+  int axis = -1;       ///< kJog: channel axis index
+  int direction = 0;   ///< kJog: +1 | -1
   double wait_s = 0;
   Condition until;
   double timeout_s = 10;

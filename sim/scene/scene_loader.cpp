@@ -102,22 +102,58 @@ Condition ReadCondition(const MachineModel& m, const YamlNode& n) {
   return c;
 }
 
-TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, bool has_nc) {
-  n.AllowKeys({"at", "move", "speed", "orient", "off", "output", "wait", "wait_until", "nc"});
+TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const NcSetup& nc) {
+  const bool has_nc = nc.present;
+  n.AllowKeys(
+      {"at", "move", "speed", "orient", "off", "output", "wait", "wait_until", "nc", "jog"});
   TimelineStep s{};
   s.not_before_s = n.Double("at", 0);
   std::ostringstream text;
   text << "timeline[" << i << "]: ";
   int actions = 0;
-  for (const char* k : {"move", "speed", "orient", "off", "output", "wait", "wait_until", "nc"})
+  for (const char* k :
+       {"move", "speed", "orient", "off", "output", "wait", "wait_until", "nc", "jog"})
     actions += n.Has(k);
   if (actions != 1)
-    n.Fail("a step needs exactly one of move, speed, orient, off, output, wait, wait_until, nc");
+    n.Fail(
+        "a step needs exactly one of move, speed, orient, off, output, wait, wait_until, nc, jog");
+
+  if (n.Has("jog")) {  // hold a jog key of a channel axis for a time
+    const YamlNode a = n["jog"];
+    if (!has_nc) a.Fail("the scene has no nc: section");
+    a.AllowKeys({"axis", "direction", "hold"});
+    s.kind = TimelineStep::Kind::kJog;
+    const int drive = RequireDrive(m, a["axis"]);
+    for (size_t k = 0; k < nc.axis_drives.size(); ++k)
+      if (nc.axis_drives[k] == drive) s.axis = static_cast<int>(k);
+    if (s.axis < 0) a["axis"].Fail("not an axis of the NC channel");
+    const std::string dir = a["direction"].String();
+    if (dir != "+" && dir != "-") a["direction"].Fail("expected + or -");
+    s.direction = dir == "+" ? 1 : -1;
+    s.wait_s = a["hold"].Double();
+    if (s.wait_s <= 0) a["hold"].Fail("must be > 0");
+    text << "jog " << a["axis"].String() << dir << " for " << Fmt(s.wait_s) << " s";
+    s.text = text.str();
+    return s;
+  }
 
   if (n.Has("nc")) {
     const YamlNode a = n["nc"];
     if (!has_nc) a.Fail("the scene has no nc: section");
-    if (a.IsMap() && a.Has("single_block")) {
+    if (a.IsMap() && a.Has("mode")) {
+      a.AllowKeys({"mode"});
+      s.kind = TimelineStep::Kind::kNcMode;
+      const std::string mode = a["mode"].String();
+      if (mode != "manual" && mode != "automatic") a["mode"].Fail("expected manual or automatic");
+      s.level = mode == "manual";
+      text << "mode " << mode;
+    } else if (a.IsMap() && a.Has("jog_increment")) {
+      a.AllowKeys({"jog_increment"});
+      s.kind = TimelineStep::Kind::kNcJogIncrement;
+      s.target = a["jog_increment"].Double();
+      if (s.target < 0) a["jog_increment"].Fail("must be >= 0 (0: continuous)");
+      text << "jog increment " << Fmt(s.target);
+    } else if (a.IsMap() && a.Has("single_block")) {
       a.AllowKeys({"single_block"});
       s.kind = TimelineStep::Kind::kNcSingleBlock;
       s.level = a["single_block"].Bool();
@@ -375,7 +411,7 @@ Scene LoadScene(const std::string& path) {
   }
   if (root.Has("timeline")) {
     const YamlNode t = root["timeline"];
-    for (size_t i = 0; i < t.size(); ++i) s.timeline.push_back(ReadStep(m, t[i], i, s.nc.present));
+    for (size_t i = 0; i < t.size(); ++i) s.timeline.push_back(ReadStep(m, t[i], i, s.nc));
   }
   if (root.Has("expect")) {
     const YamlNode e = root["expect"];

@@ -125,6 +125,77 @@ TEST(ChannelTest, SingleBlockHoldsAfterEachBlock) {
   EXPECT_EQ(m.channel->state(), ChannelState::kEnded);
 }
 
+TEST(ChannelTest, ContinuousJogWhileTheKeyIsHeld) {
+  Machine m("N1 RET\n", 50, 0);
+  m.channel->Jog(0, +1);  // automatic mode: ignored
+  for (int i = 0; i < 400; ++i) m.Tick();
+  EXPECT_EQ(m.X(), 50);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->Jog(0, +1);
+  for (int i = 0; i < 4000; ++i) m.Tick();  // 1 s at 40 mm/s (a tenth of the rapid)
+  EXPECT_EQ(m.channel->AxisMotion(0), 1);
+  EXPECT_NEAR(m.X(), 50 + 40 - 40 * 40 / (2 * 4000.0), 0.05);
+  m.channel->Jog(0, 0);
+  for (int i = 0; i < 400; ++i) m.Tick();
+  const double stopped = m.X();
+  for (int i = 0; i < 400; ++i) m.Tick();
+  EXPECT_EQ(m.X(), stopped);
+  EXPECT_EQ(m.channel->AxisMotion(0), 0);
+  EXPECT_EQ(m.Z(), 0);
+}
+
+TEST(ChannelTest, IncrementalJogMovesExactlyOneIncrementPerPress) {
+  Machine m("N1 RET\n", 50, 20);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->SetJogIncrement(0.1);
+  for (int press = 0; press < 3; ++press) {
+    m.channel->Jog(1, -1);
+    for (int i = 0; i < 800; ++i) m.Tick();
+    m.channel->Jog(1, 0);
+    for (int i = 0; i < 40; ++i) m.Tick();
+  }
+  EXPECT_NEAR(m.Z(), 19.7, 1e-9);
+  EXPECT_EQ(m.X(), 50);
+}
+
+TEST(ChannelTest, ModeChangeWaitsForTheProgramToStop) {
+  Machine m("N1 G01 X100 F600\nN2 RET\n");
+  m.channel->Start();
+  for (int i = 0; i < 400; ++i) m.Tick();
+  EXPECT_FALSE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->Stop();
+  for (int i = 0; i < 400; ++i) m.Tick();
+  // Interrupted: jog away in manual, come back, continue the program.
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  EXPECT_EQ(m.channel->state(), ChannelState::kHold);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kAutomatic));
+  m.channel->Start();
+  m.RunUntilEnd();
+  EXPECT_EQ(m.channel->state(), ChannelState::kEnded);
+  EXPECT_DOUBLE_EQ(m.X(), 100);
+}
+
+TEST(ChannelTest, JoggedAwayProgramDoesNotJumpBackToThePath) {
+  Machine m("N1 G01 X100 F600\nN2 RET\n");
+  m.channel->Start();
+  for (int i = 0; i < 2000; ++i) m.Tick();
+  m.channel->Stop();
+  for (int i = 0; i < 400; ++i) m.Tick();
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->Jog(1, +1);  // Z away from the contour
+  for (int i = 0; i < 400; ++i) m.Tick();
+  m.channel->Jog(1, 0);
+  for (int i = 0; i < 400; ++i) m.Tick();
+  const double z = m.Z();
+  ASSERT_GT(z, 1);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kAutomatic));
+  m.channel->Start();
+  for (int i = 0; i < 400; ++i) m.Tick();
+  EXPECT_EQ(m.channel->state(), ChannelState::kError);
+  EXPECT_THAT(m.channel->error(), ::testing::HasSubstr("axis Z has left the contour"));
+  EXPECT_EQ(m.Z(), z);  // nothing jumped
+}
+
 TEST(ChannelTest, OverrideScalesTheFeed) {
   Machine full("N1 G01 X100 F3000\nN2 RET\n"), half("N1 G01 X100 F3000\nN2 RET\n");
   half.channel->SetFeedOverride(0.5);
