@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "control/nc/parser.hpp"
+
 namespace vmt::control::channel {
 namespace {
 
@@ -37,36 +39,173 @@ const char* ToString(ChannelState s) {
   return "?";
 }
 
-const char* ToString(ChannelMode m) { return m == ChannelMode::kManual ? "manual" : "automatic"; }
+const char* ToString(ChannelMode m) {
+  switch (m) {
+    case ChannelMode::kAutomatic:
+      return "automatic";
+    case ChannelMode::kManual:
+      return "manual";
+    case ChannelMode::kMdi:
+      return "mdi";
+  }
+  return "?";
+}
 
 Channel::Channel(ChannelConfig config, std::vector<const nc::Program*> programs)
     : config_(std::move(config)), programs_(std::move(programs)) {
-  jog_.resize(config_.axes.size());
-  commanded_.assign(config_.axes.size(), 0.0);
+  const size_t n = config_.axes.size();
+  jog_.resize(n);
+  commanded_.assign(n, 0.0);
   previous_ = commanded_;
+  translation_.assign(n, 0.0);
+  shift_.assign(n, 0.0);
+  homed_.resize(n);
+  for (size_t a = 0; a < n; ++a) homed_[a] = config_.axes[a].homed_at_start;
   spindle_ = {DriveMode::kVelocity, 0, 0};
+  last_modal_ = config_.initial;
+}
+
+const nc::Program* Channel::ProgramOf(uint32_t index) const {
+  // MDI runs its blocks as program 0 in front of the channel's programs.
+  if (running_mdi_) return index == 0 ? &mdi_->program : programs_[index - 1];
+  return programs_[index];
+}
+
+const nc::ModalState& Channel::modal() const {
+  return interpreter_ ? interpreter_->modal() : last_modal_;
+}
+
+std::unique_ptr<nc::Interpreter> Channel::MakeInterpreter() {
+  nc::InterpreterConfig ic;
+  ic.axes.clear();
+  for (const ChannelAxis& a : config_.axes) ic.axes.push_back(a.name);
+  std::vector<const nc::Program*> programs = programs_;
+  if (mode_ == ChannelMode::kMdi && mdi_) {
+    // MDI blocks run in the modal state the last program left; subprograms stay callable.
+    programs.insert(programs.begin(), &mdi_->program);
+    ic.initial = last_modal_;
+    running_mdi_ = true;
+  } else {
+    ic.initial = config_.initial;
+    running_mdi_ = false;
+  }
+  auto interpreter = std::make_unique<nc::Interpreter>(std::move(programs), ic);
+  // Incremental moves start from where the axes stand, in program coordinates.
+  std::vector<double> position(commanded_.size());
+  for (size_t a = 0; a < position.size(); ++a) position[a] = commanded_[a] - translation_[a];
+  interpreter->SetPosition(position);
+  if (events_) interpreter->SetEventSource(events_);
+  return interpreter;
+}
+
+void Channel::SetJogMode(int code) {
+  jog_mode_ = static_cast<JogMode>(std::clamp(code, 0, 7));
+  switch (jog_mode_) {
+    case JogMode::kIncrement1:
+      jog_increment_ = 0.001;
+      break;
+    case JogMode::kIncrement10:
+      jog_increment_ = 0.01;
+      break;
+    case JogMode::kIncrement100:
+      jog_increment_ = 0.1;
+      break;
+    case JogMode::kIncrement1000:
+      jog_increment_ = 1;
+      break;
+    default:
+      jog_increment_ = 0;
+  }
+  for (size_t a = 0; a < jog_.size(); ++a) {
+    jog_[a].handwheel = jog_mode_ == JogMode::kHandwheel;
+    jog_[a].handwheel_target = commanded_[a];
+  }
+}
+
+void Channel::Handwheel(size_t axis, int counts) {
+  if (mode_ != ChannelMode::kManual || jog_mode_ != JogMode::kHandwheel || axis >= jog_.size())
+    return;
+  take_over_pending_ = true;
+  JogAxis& j = jog_[axis];
+  if (!j.handwheel) j.handwheel = true, j.handwheel_target = commanded_[axis];
+  j.handwheel_target += counts * config_.handwheel_per_count;
+}
+
+bool Channel::Mdi(const std::string& text) {
+  const nc::Dialect dialect = programs_.empty() ? nc::Dialect::kMtc200 : programs_[0]->dialect;
+  auto parsed = std::make_shared<nc::ParseResult>(nc::ParseProgram(text, "MDI", dialect));
+  if (!parsed->ok()) {
+    Fail(nc::Format(parsed->errors[0], parsed->program.files), kMsgMdiSyntax);
+    return false;
+  }
+  mdi_ = std::move(parsed);
+  return true;
+}
+
+bool Channel::Reverse() {
+  if (mode_ != ChannelMode::kAutomatic || programs_.empty()) return false;
+  if (state_ != ChannelState::kHold && state_ != ChannelState::kError) return false;
+  if (!interpreter_) interpreter_ = MakeInterpreter();
+  if (!interpreter_->JumpTo("HOME")) {
+    Fail(programs_[0]->files[0] + ": error: the program has no reverse program .HOME",
+         kMsgNoHomeLabel);
+    return false;
+  }
+  // The interrupted block is abandoned where the axes stand; the reverse program starts there.
+  active_ = false;
+  homing_ = false;
+  dwell_left_s_ = 0;
+  aux_output_.clear();
+  error_.clear();
+  error_number_ = 0;
+  interruption_point_.clear();
+  std::vector<double> position(commanded_.size());
+  for (size_t a = 0; a < position.size(); ++a) position[a] = commanded_[a] - translation_[a];
+  interpreter_->SetPosition(position);
+  reversing_ = true;
+  state_ = ChannelState::kRunning;
+  return true;
 }
 
 uint32_t Channel::line() const {
   if (!active_ && state_ != ChannelState::kError) return 0;
   if (block_.block < 0) return 0;
-  return programs_[block_.program]->blocks[block_.block].pos.line;
+  return ProgramOf(block_.program)->blocks[block_.block].pos.line;
 }
 
-void Channel::Fail(const std::string& message) {
+void Channel::Fail(const std::string& message, int number) {
   state_ = ChannelState::kError;
   error_ = message;
+  error_number_ = number;
   active_ = false;
+  homing_ = false;
+}
+
+void Channel::Fail(const nc::Program& program, int32_t block, const std::string& text, int number) {
+  Fail(nc::Format({program.blocks[block].pos, text}, program.files), number);
 }
 
 bool Channel::SetMode(ChannelMode mode) {
   if (state_ == ChannelState::kRunning) return false;
+  // MDI and an interrupted automatic program do not share the interpreter: MDI needs the
+  // program ended or reset first.
+  if (mode == ChannelMode::kMdi && state_ == ChannelState::kHold) return false;
   if (mode != mode_) {
     for (JogAxis& j : jog_) j = JogAxis{};
     // Where the program was interrupted: the contour the axes must come back to.
-    if (mode == ChannelMode::kManual) interruption_point_ = commanded_;
+    if (mode == ChannelMode::kManual && interruption_point_.empty() &&
+        state_ == ChannelState::kHold)
+      interruption_point_ = commanded_;
+    if (mode == ChannelMode::kMdi || mode_ == ChannelMode::kMdi) {
+      if (interpreter_) last_modal_ = interpreter_->modal();
+      interpreter_.reset();
+      if (state_ == ChannelState::kEnded) state_ = ChannelState::kIdle;
+    }
   }
   mode_ = mode;
+  if (mode == ChannelMode::kManual && jog_mode_ == JogMode::kHandwheel)
+    for (size_t a = 0; a < jog_.size(); ++a)
+      jog_[a].handwheel = true, jog_[a].handwheel_target = commanded_[a];
   return true;
 }
 
@@ -85,16 +224,35 @@ void Channel::Jogging(double dt) {
   for (size_t a = 0; a < jog_.size(); ++a) {
     JogAxis& j = jog_[a];
     const ChannelAxis& axis = config_.axes[a];
-    const double speed = (axis.jog_per_s > 0 ? axis.jog_per_s : axis.rapid_per_s / 10) * override_;
-    if (jog_increment_ > 0 || j.stepping) {
+    const double normal = axis.jog_per_s > 0 ? axis.jog_per_s : axis.rapid_per_s / 10;
+    const double rapid = axis.jog_rapid_per_s > 0 ? axis.jog_rapid_per_s : axis.rapid_per_s / 2;
+    const double speed = (jog_mode_ == JogMode::kRapid ? rapid : normal) * override_;
+    if (jog_mode_ == JogMode::kHandwheel) {
+      // Follow the counts at most at the jogging rapid, braking so as not to pass the target.
+      if (!j.handwheel) j.handwheel = true, j.handwheel_target = commanded_[a];
+      const double to_go = j.handwheel_target - commanded_[a];
+      const double braking = std::sqrt(2 * axis.acceleration * std::abs(to_go));
+      const double target = std::copysign(std::min(rapid * override_, braking), to_go);
+      const double step = axis.acceleration * dt;
+      j.velocity = std::clamp(target, j.velocity - step, j.velocity + step);
+      if (std::abs(to_go) <= std::abs(j.velocity * dt) || std::abs(to_go) < 1e-9) {
+        commanded_[a] = j.handwheel_target;
+        j.velocity = 0;
+      } else {
+        commanded_[a] += j.velocity * dt;
+      }
+      continue;
+    }
+    const double increment = jog_mode_ == JogMode::kParametric ? axis.jog_distance : jog_increment_;
+    if (increment > 0 || j.stepping) {
       // Incremental: a key press starts one increment, which then runs to its end.
       if (!j.stepping && j.key != 0) {
         j.stepping = true;
         j.from = commanded_[a];
-        j.to = commanded_[a] + j.key * jog_increment_;
+        j.to = commanded_[a] + j.key * increment;
         j.increment = PathProfile{};
-        j.increment.max_rate = speed / jog_increment_;
-        j.increment.max_accel = axis.acceleration / jog_increment_;
+        j.increment.max_rate = speed / increment;
+        j.increment.max_accel = axis.acceleration / increment;
         j.key = 0;  // one increment per press
       }
       if (j.stepping) {
@@ -112,20 +270,28 @@ void Channel::Jogging(double dt) {
 }
 
 void Channel::Start() {
-  if (mode_ != ChannelMode::kAutomatic) return;
+  if (mode_ == ChannelMode::kManual) return;
+  if (mode_ == ChannelMode::kMdi && !mdi_) return;
   if (state_ == ChannelState::kHold) {
     // Continuing from off the contour would jump back to the path: the axes must first be
     // repositioned to the interruption point (REPOS manual; the REPOS function is issue 6's).
     for (size_t a = 0; a < commanded_.size() && !interruption_point_.empty(); ++a)
       if (std::abs(commanded_[a] - interruption_point_[a]) > 1e-6) {
         Fail("axis " + config_.axes[a].name +
-             " has left the contour at the interruption point: reposition it first");
+                 " has left the contour at the interruption point: reposition it first",
+             kMsgLeftContour);
         return;
       }
+    interruption_point_.clear();
     state_ = ChannelState::kRunning;
     return;
   }
   if (state_ == ChannelState::kRunning || state_ == ChannelState::kError) return;
+  if (state_ == ChannelState::kEnded) {
+    // Start after the end runs the program again from its first block.
+    if (interpreter_) last_modal_ = interpreter_->modal();
+    interpreter_.reset();
+  }
   state_ = ChannelState::kRunning;
   start_pending_ = true;  // positions are taken from the feedback at the next tick
 }
@@ -137,10 +303,22 @@ void Channel::Stop() {
 void Channel::Reset() {
   state_ = ChannelState::kIdle;
   error_.clear();
+  error_number_ = 0;
   active_ = false;
+  homing_ = false;
+  reversing_ = false;
+  dwell_left_s_ = 0;
+  aux_output_.clear();
+  interruption_point_.clear();
+  if (interpreter_) last_modal_ = interpreter_->modal();
   interpreter_.reset();
   previous_ = commanded_;
   spindle_ = {DriveMode::kVelocity, 0, 0};
+  // Control-Reset drops the G92 shift and returns to the initial modal state (offsets too).
+  std::fill(shift_.begin(), shift_.end(), 0.0);
+  last_modal_ = config_.initial;
+  for (size_t a = 0; a < translation_.size(); ++a)
+    translation_[a] = config_.zero_offsets.Offset(config_.initial.zero_offset, a);
 }
 
 void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
@@ -159,14 +337,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
       previous_ = commanded_;
       holding_positions_ = true;
     }
-    if (!interpreter_) {
-      nc::InterpreterConfig ic;
-      ic.axes.clear();
-      for (const ChannelAxis& a : config_.axes) ic.axes.push_back(a.name);
-      interpreter_ = std::make_unique<nc::Interpreter>(programs_, ic);
-      interpreter_->SetPosition(commanded_);
-      if (events_) interpreter_->SetEventSource(events_);
-    }
+    if (!interpreter_) interpreter_ = MakeInterpreter();
   }
   if (!holding_positions_) return;
 
@@ -178,7 +349,12 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
       Jogging(dt);
     } else if (state_ == ChannelState::kRunning || state_ == ChannelState::kHold) {
       bool finished = false;
-      if (dwell_left_s_ > 0) {
+      if (!aux_output_.empty()) {
+        // The block waits for the PLC's acknowledgement of its auxiliary functions.
+      } else if (pending_motion_) {
+        pending_motion_ = false;
+        if (StartMotion(at)) finished = !active_ && dwell_left_s_ <= 0 && !homing_;
+      } else if (dwell_left_s_ > 0) {
         if (state_ == ChannelState::kRunning) dwell_left_s_ -= dt;
         finished = dwell_left_s_ <= 0;
       } else if (!active_ && state_ == ChannelState::kRunning) {
@@ -187,6 +363,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
       if (active_) {
         Interpolate(dt);
         finished = !active_;
+        if (finished && homing_) finished = !NextHomingStage();
       }
       if (finished && single_block_ && state_ == ChannelState::kRunning)
         state_ = ChannelState::kHold;
@@ -203,25 +380,40 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
 bool Channel::NextBlock(const AmplifierTelegram& at) {
   if (!interpreter_->Next(block_)) {
     if (interpreter_->error())
-      Fail(nc::Format(*interpreter_->error(), {interpreter_->ErrorFile()}));
+      Fail(nc::Format(*interpreter_->error(), {interpreter_->ErrorFile()}), kMsgProgramError);
     else
-      state_ = ChannelState::kEnded;
+      state_ = ChannelState::kEnded, reversing_ = false;
     return false;
   }
-  const nc::Program& program = *programs_[block_.program];
+  const nc::Program& program = *ProgramOf(block_.program);
   auto unsupported = [&](const std::string& what) {
-    Fail(nc::Format(
-        {program.blocks[block_.block].pos, what + " is not available in the channel yet"},
-        program.files));
+    Fail(program, block_.block, what + " is not available in the channel yet", kMsgNotAvailable);
     return false;
   };
-  if (block_.homing) return unsupported("G74 homing");
-  if (block_.set_position) return unsupported("G92");
   if (block_.repos) return unsupported("G77 (REPOS)");
   if (block_.measuring) return unsupported("G100 measuring");
   if (block_.has_centre && block_.motion != nc::Motion::kArcCw &&
       block_.motion != nc::Motion::kArcCcw)
     return unsupported("I/J/K outside G02/G03");
+
+  const std::vector<double> before = translation_;
+  if (!UpdateTranslation(block_.modal, program, block_.block)) return false;
+  if (block_.set_position) {
+    // G92: the programmed values become the current position of those axes (a shift that
+    // stays until Control-Reset).
+    for (size_t a = 0; a < commanded_.size(); ++a)
+      if (block_.programmed >> a & 1) {
+        shift_[a] += commanded_[a] - (block_.target[a] + translation_[a]);
+        translation_[a] = commanded_[a] - block_.target[a];
+      }
+  }
+  const bool arc = block_.motion == nc::Motion::kArcCw || block_.motion == nc::Motion::kArcCcw;
+  if (arc && translation_ != before) {
+    Fail(program, block_.block,
+         "zero offset or tool correction changes in an arc block: program it in a straight block",
+         kMsgTranslationInArc);
+    return false;
+  }
 
   // Spindle: M3/M4 with S (rpm), M5, M19 (orient to 0 deg).
   for (const nc::AuxFunction& f : block_.aux) {
@@ -237,12 +429,118 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
   if (spindle_.mode == DriveMode::kVelocity && spindle_.value != 0)
     spindle_.value = std::copysign(block_.modal.spindle_speed * 6, spindle_.value);
 
+  // M, H, Q and T go to the PLC; the block goes on when it has acknowledged them.
+  if (config_.aux_handshake) {
+    for (const nc::AuxFunction& f : block_.aux)
+      if (f.letter == 'M' || f.letter == 'H' || f.letter == 'Q' || f.letter == 'T')
+        aux_output_.push_back(f);
+    if (!aux_output_.empty()) ++aux_strobe_;
+  }
+
   dwell_left_s_ = block_.dwell_s;
-  if (block_.end) state_ = ChannelState::kEnded;
-  if (block_.motion == nc::Motion::kNone) return true;
+  if (block_.end) state_ = ChannelState::kEnded, reversing_ = false;
+  if (block_.motion == nc::Motion::kNone && !block_.homing) return true;
+  if (!aux_output_.empty()) {
+    pending_motion_ = true;
+    return true;
+  }
+  return StartMotion(at);
+}
+
+bool Channel::UpdateTranslation(const nc::ModalState& modal, const nc::Program& program,
+                                int32_t block) {
+  // Tool length: G48 adds the edge's lengths, G49 subtracts them, G47 ignores the tool list.
+  const axes::ToolEdge* edge = nullptr;
+  std::optional<axes::ToolEdge> found;
+  if (modal.tool_length != 47 && modal.correction != 0) {
+    found = config_.tools.Find(modal.tool, modal.correction);
+    if (!found) {
+      Fail(program, block,
+           "T" + std::to_string(modal.tool) + " D" + std::to_string(modal.correction) +
+               " is not in the tool list (G" + std::to_string(modal.tool_length) + ")",
+           kMsgToolNotInList);
+      return false;
+    }
+    edge = &*found;
+  }
+  const double sign = modal.tool_length == 49 ? -1 : 1;
+  for (size_t a = 0; a < translation_.size(); ++a) {
+    const double length = edge && a < edge->length.size() ? edge->length[a] : 0;
+    translation_[a] = config_.zero_offsets.Offset(modal.zero_offset, a) + shift_[a] - sign * length;
+  }
+  return true;
+}
+
+bool Channel::NextHomingStage() {
+  // G74: the programmed axes travel to their reference points, in the order of the values
+  // (ISG: G74 X1 Z2 homes X first); equal values home together.
+  if (homing_stages_.empty()) {
+    homing_ = false;
+    // The program continues from the reference points, in its own coordinates.
+    std::vector<double> position(commanded_.size());
+    for (size_t a = 0; a < position.size(); ++a) position[a] = commanded_[a] - translation_[a];
+    interpreter_->SetPosition(position);
+    return false;
+  }
+  const uint64_t bits = homing_stages_.front().second;
+  homing_stages_.erase(homing_stages_.begin());
+  start_ = commanded_;
+  end_ = commanded_;
+  double rate = std::numeric_limits<double>::infinity();
+  double accel = rate;
+  for (size_t a = 0; a < commanded_.size(); ++a) {
+    if (!(bits >> a & 1)) continue;
+    const ChannelAxis& axis = config_.axes[a];
+    end_[a] = axis.reference_position;
+    homed_[a] = true;
+    const double distance = std::abs(end_[a] - start_[a]);
+    if (distance < 1e-12) continue;
+    const double speed = axis.homing_per_s > 0 ? axis.homing_per_s
+                         : axis.jog_per_s > 0  ? axis.jog_per_s
+                                               : axis.rapid_per_s / 10;
+    rate = std::min(rate, speed / distance);
+    accel = std::min(accel, axis.acceleration / distance);
+  }
+  profile_ = PathProfile{};
+  arc_axes_[0] = arc_axes_[1] = -1;
+  if (!std::isfinite(rate)) return NextHomingStage();
+  profile_.max_rate = rate;
+  profile_.max_accel = accel;
+  active_ = true;
+  return true;
+}
+
+bool Channel::StartMotion(const AmplifierTelegram& at) {
+  const nc::Program& program = *ProgramOf(block_.program);
+  if (block_.homing) {
+    homing_stages_.clear();
+    for (size_t a = 0; a < commanded_.size(); ++a) {
+      if (!(block_.programmed >> a & 1)) continue;
+      // The value orders the axes in ISG; in MTC200 it is a placeholder (G74 X0, like G77).
+      const int order = program.dialect == nc::Dialect::kIsg
+                            ? static_cast<int>(std::lround(block_.target[a]))
+                            : 0;
+      auto it = std::find_if(homing_stages_.begin(), homing_stages_.end(),
+                             [&](const auto& s) { return s.first == order; });
+      if (it == homing_stages_.end())
+        homing_stages_.emplace_back(order, uint64_t{1} << a);
+      else
+        it->second |= uint64_t{1} << a;
+    }
+    std::sort(homing_stages_.begin(), homing_stages_.end());
+    homing_ = true;
+    return NextHomingStage();
+  }
+  for (size_t a = 0; a < commanded_.size(); ++a)
+    if (!homed_[a] && (block_.programmed >> a & 1)) {
+      Fail(program, block_.block,
+           "axis " + config_.axes[a].name + " has no reference: home it first (G74)", kMsgNotHomed);
+      return false;
+    }
 
   start_ = commanded_;
   end_ = block_.target;
+  for (size_t a = 0; a < end_.size(); ++a) end_[a] += translation_[a];
   const size_t n = config_.axes.size();
   std::vector<double> delta(n);
   double max_delta = 0;
@@ -269,7 +567,7 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
                                             ? 0
                                             : at.feedback[config_.spindle_drive].velocity / 360.0);
   if (block_.motion != nc::Motion::kRapid && feed <= 0) {
-    Fail(nc::Format({program.blocks[block_.block].pos, "no feed programmed (F)"}, program.files));
+    Fail(program, block_.block, "no feed programmed (F)", kMsgNoFeed);
     return false;
   }
 
@@ -300,10 +598,10 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
       if (config_.axes[a].name == second) arc_axes_[1] = static_cast<int>(a);
     }
     if (arc_axes_[0] < 0 || arc_axes_[1] < 0) {
-      Fail(nc::Format({program.blocks[block_.block].pos,
-                       std::string("the arc plane G") + std::to_string(block_.modal.plane) +
-                           " needs axes " + first + " and " + second},
-                      program.files));
+      Fail(program, block_.block,
+           std::string("the arc plane G") + std::to_string(block_.modal.plane) + " needs axes " +
+               first + " and " + second,
+           kMsgArcPlane);
       return false;
     }
     const int a0 = arc_axes_[0], a1 = arc_axes_[1];
@@ -318,8 +616,7 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
       const double dx = e0 - s0, dy = e1 - s1, chord = std::hypot(dx, dy);
       const double r = std::abs(block_.radius);
       if (chord < 1e-12 || chord > 2 * r + kArcTolerance) {
-        Fail(nc::Format({program.blocks[block_.block].pos, "radius R too small for the end point"},
-                        program.files));
+        Fail(program, block_.block, "radius R too small for the end point", kMsgArcGeometry);
         return false;
       }
       const double h = std::sqrt(std::max(0.0, r * r - chord * chord / 4));
@@ -327,17 +624,15 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
       c0 = (s0 + e0) / 2 - side * h * dy / chord;
       c1 = (s1 + e1) / 2 + side * h * dx / chord;
     } else {
-      Fail(nc::Format(
-          {program.blocks[block_.block].pos, "G02/G03 needs a centre (I/J/K) or a radius R"},
-          program.files));
+      Fail(program, block_.block, "G02/G03 needs a centre (I/J/K) or a radius R", kMsgArcGeometry);
       return false;
     }
     const double r_start = std::hypot(s0 - c0, s1 - c1), r_end = std::hypot(e0 - c0, e1 - c1);
     if (std::abs(r_start - r_end) > kArcTolerance || r_start < 1e-9) {
-      Fail(nc::Format({program.blocks[block_.block].pos,
-                       "end point not on the arc (radius " + std::to_string(r_start) +
-                           " at the start, " + std::to_string(r_end) + " at the end)"},
-                      program.files));
+      Fail(program, block_.block,
+           "end point not on the arc (radius " + std::to_string(r_start) + " at the start, " +
+               std::to_string(r_end) + " at the end)",
+           kMsgArcGeometry);
       return false;
     }
     arc_centre_[0] = c0;

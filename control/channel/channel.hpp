@@ -12,35 +12,55 @@
 #include <string>
 #include <vector>
 
+#include "control/axes/axis_parameters.hpp"
+#include "control/axes/tool_table.hpp"
+#include "control/axes/zero_offsets.hpp"
+#include "control/channel/channel_messages.hpp"
 #include "control/channel/path_profile.hpp"
 #include "control/drive_bus.hpp"
 #include "control/nc/interpreter.hpp"
 
 namespace vmt::control::channel {
 
-struct ChannelAxis {
-  std::string name;         ///< program address: X, Z, C
-  int drive = -1;           ///< DriveBus index
-  double rapid_per_s = 0;   ///< mm/s | deg/s
-  double acceleration = 0;  ///< mm/s^2 | deg/s^2
-  bool rotary = false;
-  double jog_per_s = 0;  ///< jog velocity; 0: a tenth of the rapid
-};
+/// A channel axis is described by its axis parameters (control/axes).
+using ChannelAxis = axes::AxisParameters;
 
 struct ChannelConfig {
   std::vector<ChannelAxis> axes;
+  axes::ProcessParameters process;
   int spindle_drive = -1;   ///< main spindle (S, M3/M4/M5/M19); -1 if none
   int ticks_per_cycle = 4;  ///< NC cycle 1 ms at the 250 us drive tick
   double tick_s = 250e-6;
+  axes::ZeroOffsetTable zero_offsets;
+  axes::ToolTable tools;
+  nc::ModalState initial;  ///< modal state at program start
+  /// M, H, Q and T functions wait for the PLC's acknowledgement (AcknowledgeAux) before the
+  /// block goes on; off, they count as acknowledged at once.
+  bool aux_handshake = false;
+  double handwheel_per_count = 0.01;  ///< mm | deg per handwheel count
 };
 
 enum class ChannelState { kIdle, kRunning, kHold, kEnded, kError };
 const char* ToString(ChannelState s);
 
 /// Operating modes. Automatic runs the program (single block makes it semi-automatic); manual
-/// moves the axes with the jog keys, continuously or by increments.
-enum class ChannelMode { kAutomatic, kManual };
+/// moves the axes with the jog keys, continuously, by increments or by handwheel; MDI runs
+/// blocks typed in by the operator.
+enum class ChannelMode { kAutomatic, kManual, kMdi };
 const char* ToString(ChannelMode m);
+
+/// Jog modes, selected by the code on PxxC.JOGM0..2 (JOGM0 the lowest bit). The manuals name
+/// the signals, not their codes; these are vmt's.
+enum class JogMode : uint8_t {
+  kContinuous = 0,     ///< Cxx.020 jogging speed while the key is held
+  kRapid = 1,          ///< Cxx.021 jogging speed - rapid
+  kParametric = 2,     ///< one Cxx.022 parametric jogging distance per key press
+  kIncrement1 = 3,     ///< 0.001 mm | deg per press
+  kIncrement10 = 4,    ///< 0.01
+  kIncrement100 = 5,   ///< 0.1
+  kIncrement1000 = 6,  ///< 1
+  kHandwheel = 7,      ///< the handwheel counts move the axis, keys do nothing
+};
 
 class Channel {
  public:
@@ -59,7 +79,28 @@ class Channel {
   bool SetMode(ChannelMode mode);
   ChannelMode mode() const { return mode_; }
   /// Jog increment in mm | deg; 0 jogs continuously while the key is held.
-  void SetJogIncrement(double increment) { jog_increment_ = std::abs(increment); }
+  void SetJogIncrement(double increment) {
+    jog_increment_ = std::abs(increment);
+    jog_mode_ = JogMode::kContinuous;
+  }
+  /// Jog mode from the JOGM0..2 code (0..7).
+  void SetJogMode(int code);
+  JogMode jog_mode() const { return jog_mode_; }
+  /// Handwheel counts for a channel axis (JogMode::kHandwheel): the axis follows at most at
+  /// its jogging rapid speed.
+  void Handwheel(size_t axis, int counts);
+  /// MDI: the block(s) to run at the next start in MDI mode, in the main program's dialect.
+  /// False, with the channel in its error state, if the text does not parse.
+  bool Mdi(const std::string& text);
+  /// Reverse program: while interrupted (hold) or after an error, continue at the main
+  /// program's `.HOME` label (fast-measurement manual 4.4). PxxS.REV while it runs.
+  bool Reverse();
+  bool reversing() const { return reversing_; }
+  /// Auxiliary functions (M, H, Q, T) of the block in work that wait for the PLC.
+  const std::vector<nc::AuxFunction>& aux_output() const { return aux_output_; }
+  /// Increments with every new output of auxiliary functions (the strobe).
+  uint32_t aux_strobe() const { return aux_strobe_; }
+  void AcknowledgeAux() { aux_output_.clear(); }
   /// Jog key of a channel axis: +1 positive, -1 negative, 0 released. Manual mode only; an
   /// increment, once started, is completed.
   void Jog(size_t axis, int direction);
@@ -73,6 +114,15 @@ class Channel {
   ChannelState state() const { return state_; }
   /// "file:line:column: error: text" of the error that stopped the program.
   const std::string& error() const { return error_; }
+  /// Its message number (channel_messages.hpp), 0 when there is none.
+  int error_number() const { return error_number_; }
+  /// The modal state of the program (initial state before the first block).
+  const nc::ModalState& modal() const;
+  /// Axis referenced (homed): from the start, or after G74.
+  bool homed(size_t axis) const { return homed_[axis]; }
+  /// Translation program -> axis position of a channel axis under the current modal state:
+  /// zero offset + G92 shift - tool length.
+  double Translation(size_t axis) const { return translation_[axis]; }
   /// Commanded position of a channel axis (program coordinates, mm | deg).
   double position(size_t axis) const { return commanded_[axis]; }
   /// Source line of the block in work, 0 when none.
@@ -80,8 +130,14 @@ class Channel {
 
  private:
   bool NextBlock(const AmplifierTelegram& at);
+  bool StartMotion(const AmplifierTelegram& at);
+  bool UpdateTranslation(const nc::ModalState& modal, const nc::Program& program, int32_t block);
+  bool NextHomingStage();
   void Interpolate(double dt);
-  void Fail(const std::string& message);
+  void Fail(const std::string& message, int number = kMsgProgramError);
+  void Fail(const nc::Program& program, int32_t block, const std::string& text, int number);
+  std::unique_ptr<nc::Interpreter> MakeInterpreter();
+  const nc::Program* ProgramOf(uint32_t index) const;
 
   ChannelConfig config_;
   std::vector<const nc::Program*> programs_;
@@ -110,13 +166,28 @@ class Channel {
   void Jogging(double dt);
 
   ChannelMode mode_ = ChannelMode::kAutomatic;
+  JogMode jog_mode_ = JogMode::kContinuous;
   double jog_increment_ = 0;
+  int error_number_ = 0;
+  std::vector<double> translation_, shift_;  ///< per axis; shift_: G92
+  std::vector<bool> homed_;
+  std::vector<std::pair<int, uint64_t>> homing_stages_;  ///< G74: order, axes bits
+  bool homing_ = false;
+  std::vector<nc::AuxFunction> aux_output_;
+  uint32_t aux_strobe_ = 0;
+  bool reversing_ = false;
+  bool pending_motion_ = false;  ///< the block's motion waits for the aux acknowledgement
+  bool running_mdi_ = false;
+  std::shared_ptr<nc::ParseResult> mdi_;
+  nc::ModalState last_modal_;
   struct JogAxis {
     int key = 0;            ///< key held: +1, -1, 0
     double velocity = 0;    ///< continuous jog
     PathProfile increment;  ///< incremental jog in progress when rate or u < 1
     double from = 0, to = 0;
     bool stepping = false;
+    double handwheel_target = 0;  ///< kHandwheel: where the counts want the axis
+    bool handwheel = false;
   };
   std::vector<JogAxis> jog_;
   std::vector<double> interruption_point_;  ///< commanded position when manual was entered

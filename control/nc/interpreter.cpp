@@ -68,6 +68,23 @@ Interpreter::Interpreter(std::vector<const Program*> programs, InterpreterConfig
   var_cache_.resize(programs_.size());
 }
 
+bool Interpreter::JumpTo(const std::string& label) {
+  const Program& main = *programs_[0];
+  const std::string bare = label.starts_with('.') ? label.substr(1) : label;
+  for (const std::string& name : {bare, "." + bare}) {
+    const uint32_t id = main.symbols.Find(name);
+    if (auto it = main.labels.find(id); id != 0 && it != main.labels.end()) {
+      current_ = 0;
+      pc_ = it->second;
+      calls_.clear();
+      loops_.clear();
+      ended_ = false;
+      return true;
+    }
+  }
+  return false;
+}
+
 const std::string& Interpreter::ErrorFile() const { return programs_[error_program_]->files[0]; }
 
 double Interpreter::Variable(const std::string& name) const {
@@ -394,163 +411,168 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
 bool Interpreter::Words(const Block& block, PreparedBlock& out) {
   const Program& p = program();
   eval_failed_ = false;
-  for (const Word& w : p.Words(block)) {
-    const double v = w.value == kNoExpr ? w.number : Eval(w.value);
-    if (eval_failed_) return Fail(eval_fail_offset_, eval_fail_message_);
-    const std::string& address = p.symbols.Name(w.address);
-    const char letter = address[0];
-    const int index = address.size() > 1 && std::isdigit(static_cast<unsigned char>(address[1]))
-                          ? std::atoi(address.c_str() + 1)
-                          : 0;
-    // Axes first: a channel axis may be named like an address letter (C, X1).
-    int axis = -1;
-    for (size_t a = 0; a < config_.axes.size(); ++a)
-      if (config_.axes[a] == address) axis = static_cast<int>(a);
-    if (axis >= 0) {
-      double value = v;
-      if (address == "X" && modal_.diameter) value = v / 2;  // G16: X is programmed as diameter
-      out.target[axis] = modal_.incremental ? out.target[axis] + value : value;
-      out.programmed |= uint64_t{1} << axis;
-      continue;
-    }
-    if (address == "G") {
-      const int g = static_cast<int>(std::lround(v));
-      if (std::abs(v - g) > 1e-9)
-        return Fail(w.offset, "G" + std::to_string(v) + " is not a G code");
-      switch (g) {
-        case 0:
-          modal_.motion = Motion::kRapid;
-          break;
-        case 1:
-          modal_.motion = Motion::kLinear;
-          break;
-        case 2:
-          modal_.motion = Motion::kArcCw;
-          break;
-        case 3:
-          modal_.motion = Motion::kArcCcw;
-          break;
-        case 4:
-          out.dwell_s = -1;
-          break;  // the dwell time follows as F or X
-        case 5:
-          modal_.low_lag = false;
-          break;
-        case 6:
-          modal_.low_lag = true;
-          break;
-        case 15:
-          modal_.diameter = false;
-          break;
-        case 16:
-          modal_.diameter = true;
-          break;
-        case 17:
-        case 18:
-        case 19:
-          modal_.plane = g;
-          break;
-        case 40:
-        case 41:
-        case 42:
-          modal_.compensation = g;
-          break;
-        case 47:
-        case 48:
-          modal_.tool_length = g;
-          break;
-        case 53:
-        case 54:
-        case 55:
-        case 56:
-        case 57:
-        case 58:
-        case 59:
-          modal_.zero_offset = g;
-          break;
-        case 74:
-          out.homing = true;
-          break;
-        case 77:
-          out.repos = true;
-          break;
-        case 90:
-          modal_.incremental = false;
-          break;
-        case 91:
-          modal_.incremental = true;
-          break;
-        case 92:
-          out.set_position = true;
-          break;
-        case 94:
-          modal_.feed_per_revolution = false;
-          break;
-        case 95:
-          modal_.feed_per_revolution = true;
-          break;
-        case 100:
-          out.measuring = true;
-          break;
-        default:
-          return Fail(w.offset, "G" + std::to_string(g) + " is not supported");
+  // Two passes: the G codes and other words of a block act before its coordinates, wherever
+  // they stand (X40 G16 is a diameter, X10 G91 an increment).
+  for (int pass = 0; pass < 2; ++pass)
+    for (const Word& w : p.Words(block)) {
+      const std::string& address = p.symbols.Name(w.address);
+      // A channel axis may be named like an address letter (C, X1): axes are looked up first.
+      int axis = -1;
+      for (size_t a = 0; a < config_.axes.size(); ++a)
+        if (config_.axes[a] == address) axis = static_cast<int>(a);
+      if ((axis >= 0) != (pass == 1)) continue;
+      const double v = w.value == kNoExpr ? w.number : Eval(w.value);
+      if (eval_failed_) return Fail(eval_fail_offset_, eval_fail_message_);
+      const char letter = address[0];
+      const int index = address.size() > 1 && std::isdigit(static_cast<unsigned char>(address[1]))
+                            ? std::atoi(address.c_str() + 1)
+                            : 0;
+      if (axis >= 0) {
+        double value = v;
+        if (address == "X" && modal_.diameter) value = v / 2;  // G16: X is programmed as diameter
+        out.target[axis] = modal_.incremental ? out.target[axis] + value : value;
+        out.programmed |= uint64_t{1} << axis;
+        continue;
       }
-      continue;
-    }
-    switch (letter) {
-      case 'F':
-        if (out.dwell_s < 0)
-          out.dwell_s = v;
-        else
-          modal_.feed = v;
+      if (address == "G") {
+        const int g = static_cast<int>(std::lround(v));
+        if (std::abs(v - g) > 1e-9)
+          return Fail(w.offset, "G" + std::to_string(v) + " is not a G code");
+        switch (g) {
+          case 0:
+            modal_.motion = Motion::kRapid;
+            break;
+          case 1:
+            modal_.motion = Motion::kLinear;
+            break;
+          case 2:
+            modal_.motion = Motion::kArcCw;
+            break;
+          case 3:
+            modal_.motion = Motion::kArcCcw;
+            break;
+          case 4:
+            out.dwell_s = -1;
+            break;  // the dwell time follows as F or X
+          case 5:
+            modal_.low_lag = false;
+            break;
+          case 6:
+            modal_.low_lag = true;
+            break;
+          case 15:
+            modal_.diameter = false;
+            break;
+          case 16:
+            modal_.diameter = true;
+            break;
+          case 17:
+          case 18:
+          case 19:
+            modal_.plane = g;
+            break;
+          case 40:
+          case 41:
+          case 42:
+            modal_.compensation = g;
+            break;
+          case 47:
+          case 48:
+          case 49:
+            modal_.tool_length = g;
+            break;
+          case 53:
+          case 54:
+          case 55:
+          case 56:
+          case 57:
+          case 58:
+          case 59:
+            modal_.zero_offset = g;
+            break;
+          case 74:
+            out.homing = true;
+            break;
+          case 77:
+            out.repos = true;
+            break;
+          case 90:
+            modal_.incremental = false;
+            break;
+          case 91:
+            modal_.incremental = true;
+            break;
+          case 92:
+            out.set_position = true;
+            break;
+          case 94:
+            modal_.feed_per_revolution = false;
+            break;
+          case 95:
+            modal_.feed_per_revolution = true;
+            break;
+          case 100:
+            out.measuring = true;
+            break;
+          default:
+            return Fail(w.offset, "G" + std::to_string(g) + " is not supported");
+        }
         continue;
-      case 'I':
-      case 'J':
-      case 'K':
-        out.centre[letter - 'I'] = v;
-        out.has_centre = true;
-        continue;
-      case 'R':
-        if (address == "R") {
-          out.radius = v;
+      }
+      switch (letter) {
+        case 'F':
+          if (out.dwell_s < 0)
+            out.dwell_s = v;
+          else
+            modal_.feed = v;
+          continue;
+        case 'I':
+        case 'J':
+        case 'K':
+          out.centre[letter - 'I'] = v;
+          out.has_centre = true;
+          continue;
+        case 'R':
+          if (address == "R") {
+            out.radius = v;
+            continue;
+          }
+          break;  // RX RY RZ below
+        case 'M': {
+          const int m = static_cast<int>(std::lround(v));
+          if (m == 3 || m == 4 || m == 5 || m == 19) modal_.spindle = m;
+          if (m == 7 || m == 8 || m == 9) modal_.coolant = m;
+          if (m == 30 || m == 2) out.end = true;
+          out.aux.push_back({'M', index, v});
           continue;
         }
-        break;  // RX RY RZ below
-      case 'M': {
-        const int m = static_cast<int>(std::lround(v));
-        if (m == 3 || m == 4 || m == 5 || m == 19) modal_.spindle = m;
-        if (m == 7 || m == 8 || m == 9) modal_.coolant = m;
-        if (m == 30 || m == 2) out.end = true;
-        out.aux.push_back({'M', index, v});
+        case 'S':
+          if (index == 0 && !out.repos) modal_.spindle_speed = v;
+          out.aux.push_back({'S', index, v});
+          continue;
+        case 'T':
+          modal_.tool = static_cast<int>(v);
+          out.aux.push_back({'T', index, v});
+          continue;
+        case 'D':
+          modal_.correction = static_cast<int>(v);
+          out.aux.push_back({'D', index, v});
+          continue;
+        case 'H':
+        case 'Q':
+          out.aux.push_back({letter, index, v});
+          continue;
+        default:
+          break;
+      }
+      if (address == "RX" || address == "RY" || address == "RZ") {
+        const int k = address[1] - 'X';
+        out.effective_distance[k] = v;
+        out.has_effective_distance |= 1 << k;
         continue;
       }
-      case 'S':
-        if (index == 0 && !out.repos) modal_.spindle_speed = v;
-        out.aux.push_back({'S', index, v});
-        continue;
-      case 'T':
-        modal_.tool = static_cast<int>(v);
-        out.aux.push_back({'T', index, v});
-        continue;
-      case 'D':
-        modal_.correction = static_cast<int>(v);
-        out.aux.push_back({'D', index, v});
-        continue;
-      case 'H':
-      case 'Q':
-        out.aux.push_back({letter, index, v});
-        continue;
-      default:
-        break;
+      return Fail(w.offset, "axis " + address + " is not in this channel");
     }
-    if (address == "RX" || address == "RY" || address == "RZ") {
-      const int k = address[1] - 'X';
-      out.effective_distance[k] = v;
-      out.has_effective_distance |= 1 << k;
-      continue;
-    }
-    return Fail(w.offset, "axis " + address + " is not in this channel");
-  }
   if (out.dwell_s < 0) return Fail(block.pos.offset, "G04 needs its dwell time as F");
   if (out.programmed && !out.homing && !out.set_position && !out.repos) out.motion = modal_.motion;
   return true;

@@ -29,7 +29,7 @@ struct ModalState {
   bool diameter = false;             ///< G16 diameter | G15 radius programming of X (MTC200)
   int zero_offset = 53;              ///< G53 .. G59
   int compensation = 40;             ///< G40 G41 G42
-  int tool_length = 47;              ///< G47 | G48
+  int tool_length = 47;              ///< G47 off | G48 tool length | G49 negative tool length
   bool low_lag = false;              ///< G06 (MTC200)
   int transformation = 30;           ///< MTC200 G(17): 31 when a transformation is active
   int spindle = 5;                   ///< M3 M4 M5 M19
@@ -97,6 +97,9 @@ class Interpreter {
   /// A variable (@100, P1, V.L.X) by name; 0 if never set.
   double Variable(const std::string& name) const;
   bool ended() const { return ended_; }
+  /// Continues the main program at `label` (the reverse program `.HOME`): calls and loops in
+  /// progress are dropped. False if the main program has no such label.
+  bool JumpTo(const std::string& label);
   int64_t executed_blocks() const { return executed_; }
 
  private:

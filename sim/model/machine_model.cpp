@@ -107,7 +107,7 @@ int MachineModel::DriveIndex(const std::string& n) const {
 
 MachineModel LoadMachineModel(const std::string& machine_yaml_path) {
   const YamlNode root = YamlNode::LoadFile(machine_yaml_path);
-  root.AllowKeys({"machine", "urdf", "io", "drives", "couplings", "cameras"});
+  root.AllowKeys({"machine", "urdf", "io", "drives", "couplings", "cameras", "nc"});
   MachineModel m;
   m.yaml_path = machine_yaml_path;
   m.name = root["machine"].String();
@@ -179,6 +179,7 @@ MachineModel LoadMachineModel(const std::string& machine_yaml_path) {
       m.cameras.push_back(cam);
     }
   }
+  if (root.Has("nc")) m.nc = ReadNcMachineData(m, root["nc"]);
   return m;
 }
 

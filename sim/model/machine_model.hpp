@@ -11,6 +11,7 @@
 #include "control/drive_bus.hpp"
 #include "render/mesh.hpp"
 #include "sim/model/named_camera.hpp"
+#include "sim/model/nc_machine_data.hpp"
 
 namespace vmt::sim {
 
@@ -103,6 +104,7 @@ struct MachineModel {
   std::vector<GearCoupling> gears;
   std::vector<DogClutch> clutches;
   std::vector<NamedCamera> cameras;
+  NcMachineData nc;  ///< machine.yaml `nc:`; not present for a machine without NC
 
   std::vector<control::DriveInfo> DriveInfos() const;
   int LinkIndex(const std::string& name) const;

@@ -103,13 +103,13 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
   std::unique_ptr<control::channel::Channel> channel;
   if (scene.nc.present) {
     control::channel::ChannelConfig config;
-    for (int d : scene.nc.axis_drives) {
-      const DriveParams& p = m.drives[d];
-      const double unit = p.info.kind == control::AxisKind::kLinear ? kMmPerM : kDegPerRad;
-      config.axes.push_back({p.info.name, d, p.velocity_limit * unit, p.acceleration_limit * unit,
-                             p.info.kind == control::AxisKind::kRotary});
-    }
-    config.spindle_drive = scene.nc.spindle_drive;
+    config.axes = scene.nc.data.axes;
+    config.process = scene.nc.data.process;
+    config.spindle_drive = scene.nc.data.spindle_drive;
+    config.zero_offsets = scene.nc.data.zero_offsets;
+    config.tools = scene.nc.data.tools;
+    config.initial = scene.nc.initial;
+    config.aux_handshake = scene.nc.aux_handshake;
     config.tick_s = kDriveTickS;
     std::vector<const control::nc::Program*> programs;
     for (const auto& parsed : scene.nc.programs) programs.push_back(&parsed->program);

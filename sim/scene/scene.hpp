@@ -31,9 +31,13 @@ struct Workpiece {
 struct NcSetup {
   bool present = false;
   std::vector<std::shared_ptr<const control::nc::ParseResult>> programs;
-  std::vector<int> axis_drives;  ///< channel axes, named as their drives (X, Z, C)
-  int spindle_drive = -1;
+  /// The machine's NC data with the scene's choices applied (axes, spindle, zero offsets, tool
+  /// list).
+  NcMachineData data;
+  std::vector<int> axis_drives;  ///< channel axes' drives, in channel order
   double override = 1.0;
+  control::nc::ModalState initial;  ///< `initial:` G codes of the scene (e.g. G54)
+  bool aux_handshake = false;       ///< M/H/Q/T wait for the PLC's acknowledgement
 };
 
 /// What a wait_until step or an expectation looks at.

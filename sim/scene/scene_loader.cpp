@@ -1,3 +1,5 @@
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -5,6 +7,7 @@
 #include "control/nc/parser.hpp"
 #include "sim/kinematic/kinematic_backend.hpp"
 #include "sim/model/model_error.hpp"
+#include "sim/model/nc_machine_data.hpp"
 #include "sim/model/yaml_reader.hpp"
 #include "sim/physics/physics_backend.hpp"
 #include "sim/scene/scene.hpp"
@@ -378,7 +381,8 @@ Scene LoadScene(const std::string& path) {
 
   if (root.Has("nc")) {
     const YamlNode nc = root["nc"];
-    nc.AllowKeys({"program", "subprograms", "dialect", "axes", "spindle", "override"});
+    nc.AllowKeys({"program", "subprograms", "dialect", "axes", "spindle", "override",
+                  "zero_offsets", "tools", "initial", "aux_handshake"});
     s.nc.present = true;
     std::vector<YamlNode> files{nc["program"]};
     if (nc.Has("subprograms"))
@@ -401,12 +405,78 @@ Scene LoadScene(const std::string& path) {
       if (!parsed->ok()) f.Fail(cnc::Format(parsed->errors[0], parsed->program.files));
       s.nc.programs.push_back(parsed);
     }
-    const YamlNode axes = nc["axes"];
-    for (size_t i = 0; i < axes.size(); ++i) s.nc.axis_drives.push_back(RequireDrive(m, axes[i]));
-    if (nc.Has("spindle")) {
-      s.nc.spindle_drive = RequireDrive(m, nc["spindle"]);
-      if (!m.drives[s.nc.spindle_drive].spindle) nc["spindle"].Fail("not a spindle drive");
+    // The channel's axes: the machine's NC axes, or the scene's choice among them. A machine
+    // without an `nc:` section gets axes from its drives with the drives' limits.
+    s.nc.data = m.nc;
+    if (nc.Has("axes")) {
+      const YamlNode axes = nc["axes"];
+      std::vector<control::axes::AxisParameters> chosen;
+      for (size_t i = 0; i < axes.size(); ++i) {
+        const std::string name = axes[i].String();
+        auto it = std::find_if(m.nc.axes.begin(), m.nc.axes.end(),
+                               [&](const auto& a) { return a.name == name; });
+        if (it != m.nc.axes.end()) {
+          chosen.push_back(*it);
+          continue;
+        }
+        const int d = RequireDrive(m, axes[i]);
+        control::axes::AxisParameters a;
+        const DriveParams& p = m.drives[d];
+        a.name = name;
+        a.number = static_cast<int>(i) + 1;
+        a.drive = d;
+        a.rotary = p.info.kind == control::AxisKind::kRotary;
+        const double unit = a.rotary ? kDegPerRad : kMmPerM;
+        a.rapid_per_s = p.velocity_limit * unit;
+        a.acceleration = p.acceleration_limit * unit;
+        chosen.push_back(a);
+      }
+      // Zero offsets and tool lengths follow the axes they were given for.
+      auto column = [&](const std::vector<double>& row) {
+        std::vector<double> out(chosen.size(), 0.0);
+        for (size_t k = 0; k < chosen.size(); ++k)
+          for (size_t j = 0; j < m.nc.axes.size() && j < row.size(); ++j)
+            if (m.nc.axes[j].name == chosen[k].name) out[k] = row[j];
+        return out;
+      };
+      for (auto& row : s.nc.data.zero_offsets.g54_to_g59) row = column(row);
+      for (auto& edge : s.nc.data.tools.edges) edge.length = column(edge.length);
+      s.nc.data.axes = chosen;
+    } else if (!m.nc.present) {
+      nc.Fail("the machine has no nc: section: list the channel's axes (axes: [X, Z])");
     }
+    if (nc.Has("spindle")) {
+      s.nc.data.spindle_drive = RequireDrive(m, nc["spindle"]);
+      if (!m.drives[s.nc.data.spindle_drive].spindle) nc["spindle"].Fail("not a spindle drive");
+    }
+    for (const auto& a : s.nc.data.axes) s.nc.axis_drives.push_back(a.drive);
+    if (nc.Has("zero_offsets"))
+      s.nc.data.zero_offsets = ReadZeroOffsets(s.nc.data.axes, nc["zero_offsets"]);
+    if (nc.Has("tools")) s.nc.data.tools = ReadToolTable(s.nc.data.axes, nc["tools"]);
+    if (nc.Has("initial")) {
+      // Start-up G codes of the channel: the zero offset and tool length a program expects.
+      const YamlNode init = nc["initial"];
+      for (size_t i = 0; i < init.size(); ++i) {
+        const std::string g = init[i].String();
+        control::nc::ModalState& ms = s.nc.initial;
+        if (g == "G53" || g == "G54" || g == "G55" || g == "G56" || g == "G57" || g == "G58" ||
+            g == "G59")
+          ms.zero_offset = std::stoi(g.substr(1));
+        else if (g == "G47" || g == "G48" || g == "G49")
+          ms.tool_length = std::stoi(g.substr(1));
+        else if (g == "G15" || g == "G16")
+          ms.diameter = g == "G16";
+        else if (g == "G94" || g == "G95")
+          ms.feed_per_revolution = g == "G95";
+        else if (g[0] == 'T' && g.size() > 1 && std::isdigit(static_cast<unsigned char>(g[1])))
+          ms.tool = std::stoi(g.substr(1));
+        else if (g[0] == 'D' && g.size() > 1 && std::isdigit(static_cast<unsigned char>(g[1])))
+          ms.correction = std::stoi(g.substr(1));
+        else
+          init[i].Fail("expected G53..G59, G47..G49, G15/G16, G94/G95, Tn or Dn");
+      }
+    }
+    s.nc.aux_handshake = nc.Bool("aux_handshake", false);
     s.nc.override = nc.Double("override", 100) / 100;
   }
   if (root.Has("timeline")) {

@@ -13,12 +13,22 @@
 namespace vmt::control::channel {
 namespace {
 
+ChannelAxis Axis(const std::string& name, int drive, double rapid_per_s) {
+  ChannelAxis a;
+  a.name = name;
+  a.number = drive + 1;
+  a.drive = drive;
+  a.rapid_per_s = rapid_per_s;
+  a.acceleration = 4000;
+  return a;
+}
+
 struct Machine {
   explicit Machine(const std::string& program, double x = 0, double z = 0) {
     parsed = nc::ParseProgram(program, "p.mtc", nc::Dialect::kMtc200);
     EXPECT_TRUE(parsed.ok()) << nc::Format(parsed.errors[0], parsed.program.files);
     ChannelConfig config;
-    config.axes = {{"X", 0, 400, 4000, false}, {"Z", 1, 500, 4000, false}};
+    config.axes = {Axis("X", 0, 400), Axis("Z", 1, 500)};
     config.spindle_drive = 2;
     channel = std::make_unique<Channel>(config, std::vector<const nc::Program*>{&parsed.program});
     at.feedback.resize(3);

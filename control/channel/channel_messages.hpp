@@ -1,0 +1,52 @@
+#pragma once
+// The channel's error messages: a number the gateway shows the PLC (PxxS error number) and the
+// operator's text. The MTC200 manuals do not list the NC's own message numbers (only the probe
+// block's, mtc200-fast-measurement.md 7.2, which arrive with issue 7), so these are vmt's,
+// grouped like a control's: 1xx program, 2xx geometry and feed, 3xx tools and offsets,
+// 4xx operation, 5xx machine.
+
+namespace vmt::control::channel {
+
+inline constexpr int kMsgProgramError = 101;      ///< the NC program: syntax or run-time error
+inline constexpr int kMsgNotAvailable = 102;      ///< a function the channel does not offer yet
+inline constexpr int kMsgNoFeed = 201;            ///< G01/G02/G03 without F
+inline constexpr int kMsgArcGeometry = 202;       ///< centre/radius do not fit the end point
+inline constexpr int kMsgArcPlane = 203;          ///< the plane's axes are not in the channel
+inline constexpr int kMsgToolNotInList = 301;     ///< G48/G49 with a T/D the tool list lacks
+inline constexpr int kMsgTranslationInArc = 302;  ///< offset or tool change in an arc block
+inline constexpr int kMsgLeftContour = 401;       ///< continue after jogging off the contour
+inline constexpr int kMsgNoHomeLabel = 402;       ///< reverse without a .HOME label
+inline constexpr int kMsgMdiSyntax = 403;         ///< the MDI text does not parse
+inline constexpr int kMsgNotHomed = 501;          ///< a move of an axis that has no reference
+
+/// The operator text of a message number ("program error", ...).
+inline const char* MessageText(int number) {
+  switch (number) {
+    case kMsgProgramError:
+      return "program error";
+    case kMsgNotAvailable:
+      return "function not available";
+    case kMsgNoFeed:
+      return "no feed programmed";
+    case kMsgArcGeometry:
+      return "arc end point does not fit";
+    case kMsgArcPlane:
+      return "arc plane axis missing";
+    case kMsgToolNotInList:
+      return "tool correction not in the tool list";
+    case kMsgTranslationInArc:
+      return "offset change in an arc block";
+    case kMsgLeftContour:
+      return "axes off the contour";
+    case kMsgNoHomeLabel:
+      return "no reverse program .HOME";
+    case kMsgMdiSyntax:
+      return "MDI block error";
+    case kMsgNotHomed:
+      return "axis not homed";
+    default:
+      return "";
+  }
+}
+
+}  // namespace vmt::control::channel

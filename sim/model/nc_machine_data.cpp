@@ -1,0 +1,144 @@
+#include "sim/model/nc_machine_data.hpp"
+
+#include <string>
+
+#include "sim/model/machine_model.hpp"
+#include "sim/model/yaml_reader.hpp"
+
+namespace vmt::sim {
+namespace {
+
+int AxisIndex(const std::vector<control::axes::AxisParameters>& axes, const std::string& name) {
+  for (size_t a = 0; a < axes.size(); ++a)
+    if (axes[a].name == name) return static_cast<int>(a);
+  return -1;
+}
+
+// Manual units are per minute (Cxx.020 [mm/min | deg/min]); the channel works per second.
+double PerMinute(const YamlNode& n, const char* key, double fallback_per_s) {
+  if (!n.Has(key)) return fallback_per_s;
+  const double v = n[key].Double();
+  if (v <= 0) n[key].Fail("must be > 0");
+  return v / 60;
+}
+
+control::axes::AxisParameters ReadAxis(const MachineModel& m, const YamlNode& n, size_t i) {
+  n.AllowKeys({"name", "number", "drive", "rapid", "acceleration", "jerk", "Cxx.020", "Cxx.021",
+               "Cxx.022", "Cxx.023", "Cxx.086", "reference", "homing", "needs_homing"});
+  control::axes::AxisParameters a;
+  a.name = n["name"].String();
+  a.number = n.Int("number", static_cast<int>(i) + 1);
+  if (a.number < 1 || a.number > 99) n["number"].Fail("must be in 1..99 (Axx, Cxx)");
+  const std::string drive = n.String("drive", a.name);
+  a.drive = m.DriveIndex(drive);
+  if (a.drive < 0) (n.Has("drive") ? n["drive"] : n["name"]).Fail("no drive '" + drive + "'");
+  const DriveParams& d = m.drives[a.drive];
+  a.rotary = d.info.kind == control::AxisKind::kRotary;
+  const double unit = a.rotary ? kDegPerRad : kMmPerM;
+  a.rapid_per_s = PerMinute(n, "rapid", d.velocity_limit * unit);
+  if (a.rapid_per_s > d.velocity_limit * unit * (1 + 1e-9))
+    n["rapid"].Fail("faster than the drive's velocity_limit");
+  a.acceleration = n.Double("acceleration", d.acceleration_limit * unit);
+  if (a.acceleration <= 0) n["acceleration"].Fail("must be > 0");
+  a.jerk = n.Double("jerk", 0);
+  if (a.jerk < 0) n["jerk"].Fail("must be >= 0 (0: not limited)");
+  a.jog_per_s = PerMinute(n, "Cxx.020", 0);
+  a.jog_rapid_per_s = PerMinute(n, "Cxx.021", 0);
+  a.jog_distance = n.Double("Cxx.022", 0);
+  if (a.jog_distance < 0) n["Cxx.022"].Fail("must be >= 0");
+  a.in_position_window = n.Double("Cxx.023", d.in_position_window * unit);
+  a.repos_window = n.Double("Cxx.086", 0.2);
+  if (a.repos_window < 0) n["Cxx.086"].Fail("must be >= 0 (0: the axis is not repositioned)");
+  a.reference_position = n.Double("reference", 0);
+  a.homing_per_s = PerMinute(n, "homing", 0);
+  a.homed_at_start = !n.Bool("needs_homing", false);
+  return a;
+}
+
+}  // namespace
+
+control::axes::ZeroOffsetTable ReadZeroOffsets(
+    const std::vector<control::axes::AxisParameters>& axes, const YamlNode& node) {
+  control::axes::ZeroOffsetTable t;
+  for (const std::string& key : node.Keys()) {
+    const YamlNode table = node[key];
+    int g = -1;
+    if (key.size() == 3 && key[0] == 'G' && key[1] == '5' && key[2] >= '4' && key[2] <= '9')
+      g = 50 + (key[2] - '0');
+    if (g < 0) table.Fail("expected G54 .. G59");
+    std::vector<double>& row = t.g54_to_g59[g - 54];
+    row.assign(axes.size(), 0.0);
+    for (const std::string& axis : table.Keys()) {
+      const int a = AxisIndex(axes, axis);
+      if (a < 0) table[axis].Fail("no NC axis '" + axis + "'");
+      row[a] = table[axis].Double();
+    }
+  }
+  return t;
+}
+
+control::axes::ToolTable ReadToolTable(const std::vector<control::axes::AxisParameters>& axes,
+                                       const YamlNode& node) {
+  control::axes::ToolTable t;
+  for (size_t i = 0; i < node.size(); ++i) {
+    const YamlNode e = node[i];
+    control::axes::ToolEdge edge;
+    edge.tool = e["T"].Int();
+    edge.edge = e.Int("D", 1);
+    if (edge.tool < 0) e["T"].Fail("must be >= 0");
+    if (edge.edge < 1) e["D"].Fail("must be >= 1 (D0 is no correction)");
+    if (t.Find(edge.tool, edge.edge))
+      e.Fail("T" + std::to_string(edge.tool) + " D" + std::to_string(edge.edge) + " listed twice");
+    edge.length.assign(axes.size(), 0.0);
+    for (const std::string& key : e.Keys()) {
+      if (key == "T" || key == "D") continue;
+      if (key == "radius") {
+        edge.nose_radius = e[key].Double();
+        if (edge.nose_radius < 0) e[key].Fail("must be >= 0");
+      } else if (key == "edge") {
+        edge.edge_position = e[key].Int();
+        if (edge.edge_position < 0 || edge.edge_position > 9) e[key].Fail("must be in 0..9");
+      } else {
+        const int a = AxisIndex(axes, key);
+        if (a < 0) e[key].Fail("expected T, D, radius, edge or an NC axis name");
+        edge.length[a] = e[key].Double();
+      }
+    }
+    t.edges.push_back(edge);
+  }
+  return t;
+}
+
+NcMachineData ReadNcMachineData(const MachineModel& m, const YamlNode& node) {
+  node.AllowKeys({"process", "axes", "spindle", "zero_offsets", "tools"});
+  NcMachineData nc;
+  nc.present = true;
+  if (node.Has("process")) {
+    const YamlNode p = node["process"];
+    p.AllowKeys({"number", "Bxx.032", "Bxx.036", "Bxx.045"});
+    nc.process.number = p.Int("number", 0);
+    if (nc.process.number < 0 || nc.process.number > 99) p["number"].Fail("must be in 0..99");
+    nc.process.reverse_program_required = p.Bool("Bxx.032", false);
+    nc.process.jogging_causes_reset = p.Bool("Bxx.036", false);
+    nc.process.reposition_tool_storage = p.Bool("Bxx.045", false);
+  }
+  const YamlNode axes = node["axes"];
+  for (size_t i = 0; i < axes.size(); ++i) {
+    control::axes::AxisParameters a = ReadAxis(m, axes[i], i);
+    if (AxisIndex(nc.axes, a.name) >= 0) axes[i]["name"].Fail("duplicate NC axis");
+    for (const auto& other : nc.axes)
+      if (other.number == a.number) axes[i]["number"].Fail("axis number used twice");
+    nc.axes.push_back(a);
+  }
+  if (node.Has("spindle")) {
+    const YamlNode s = node["spindle"];
+    nc.spindle_drive = m.DriveIndex(s.String());
+    if (nc.spindle_drive < 0) s.Fail("no drive '" + s.String() + "'");
+    if (!m.drives[nc.spindle_drive].spindle) s.Fail("not a spindle drive");
+  }
+  if (node.Has("zero_offsets")) nc.zero_offsets = ReadZeroOffsets(nc.axes, node["zero_offsets"]);
+  if (node.Has("tools")) nc.tools = ReadToolTable(nc.axes, node["tools"]);
+  return nc;
+}
+
+}  // namespace vmt::sim

@@ -1,0 +1,37 @@
+#pragma once
+// The `nc:` section of machine.yaml: the NC process of the machine, its axes with their axis
+// parameters (Cxx.*), the process parameters (Bxx.*), the zero offset table and the tool list.
+// A scene may replace the zero offsets and the tool list (a different job on the same machine).
+
+#include <vector>
+
+#include "control/axes/axis_parameters.hpp"
+#include "control/axes/tool_table.hpp"
+#include "control/axes/zero_offsets.hpp"
+
+namespace vmt::sim {
+
+class YamlNode;
+struct MachineModel;
+
+struct NcMachineData {
+  bool present = false;
+  control::axes::ProcessParameters process;
+  std::vector<control::axes::AxisParameters> axes;  ///< channel axes, in channel order
+  int spindle_drive = -1;
+  control::axes::ZeroOffsetTable zero_offsets;
+  control::axes::ToolTable tools;
+};
+
+/// Reads machine.yaml's `nc:`; the drives must be loaded. Throws ModelError (file, YAML path).
+NcMachineData ReadNcMachineData(const MachineModel& m, const YamlNode& node);
+
+/// `zero_offsets: {G54: {X: 0, Z: 200}, ...}` for the given channel axes.
+control::axes::ZeroOffsetTable ReadZeroOffsets(
+    const std::vector<control::axes::AxisParameters>& axes, const YamlNode& node);
+
+/// `tools: [{T: 1, D: 1, X: 0, Z: 0, radius: 0.8, edge: 3}, ...]`; lengths in mm per axis.
+control::axes::ToolTable ReadToolTable(const std::vector<control::axes::AxisParameters>& axes,
+                                       const YamlNode& node);
+
+}  // namespace vmt::sim
