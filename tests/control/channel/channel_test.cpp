@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 
 #include "control/nc/parser.hpp"
 
@@ -24,12 +25,15 @@ ChannelAxis Axis(const std::string& name, int drive, double rapid_per_s) {
 }
 
 struct Machine {
-  explicit Machine(const std::string& program, double x = 0, double z = 0) {
-    parsed = nc::ParseProgram(program, "p.mtc", nc::Dialect::kMtc200);
+  explicit Machine(const std::string& program, double x = 0, double z = 0,
+                   const std::function<void(ChannelConfig&)>& configure = {},
+                   nc::Dialect dialect = nc::Dialect::kMtc200) {
+    parsed = nc::ParseProgram(program, dialect == nc::Dialect::kIsg ? "p.isg" : "p.mtc", dialect);
     EXPECT_TRUE(parsed.ok()) << nc::Format(parsed.errors[0], parsed.program.files);
     ChannelConfig config;
     config.axes = {Axis("X", 0, 400), Axis("Z", 1, 500)};
     config.spindle_drive = 2;
+    if (configure) configure(config);
     channel = std::make_unique<Channel>(config, std::vector<const nc::Program*>{&parsed.program});
     at.feedback.resize(3);
     at.feedback[0].position = x;
@@ -230,6 +234,235 @@ TEST(ChannelTest, SpindleAndErrors) {
   arc.channel->Reset();
   EXPECT_EQ(arc.channel->state(), ChannelState::kIdle);
   EXPECT_EQ(arc.channel->error(), "");
+}
+
+void WithOffsetsAndTools(ChannelConfig& c) {
+  c.zero_offsets.g54_to_g59[0] = {5, 100};   // G54: X+5, Z+100
+  c.zero_offsets.g54_to_g59[1] = {-2, 200};  // G55
+  c.tools.edges = {{1, 1, {0, 0}, 0.8, 3}, {2, 1, {1.5, -4}, 0.4, 3}};
+}
+
+TEST(ChannelTest, ZeroOffsetsShiftTheProgram) {
+  Machine m("N1 G54 G00 X10 Z0\nN2 G55 X10 Z0\nN3 G53 X10 Z0\nN4 RET\n", 0, 0, WithOffsetsAndTools);
+  m.channel->Start();
+  std::vector<std::pair<double, double>> stops;
+  for (uint32_t line = 0; m.channel->state() == ChannelState::kRunning && m.t < 10;) {
+    m.Tick();
+    if (m.channel->line() != line) {
+      if (line != 0) stops.emplace_back(m.channel->position(0), m.channel->position(1));
+      line = m.channel->line();
+    }
+  }
+  ASSERT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  EXPECT_DOUBLE_EQ(m.X(), 10);
+  EXPECT_DOUBLE_EQ(m.Z(), 0);
+  ASSERT_GE(stops.size(), 2u);
+  EXPECT_NEAR(stops[0].first, 15, 1e-9);  // G54 reached before N2 begins
+  EXPECT_NEAR(stops[0].second, 100, 1e-9);
+  EXPECT_NEAR(stops[1].first, 8, 1e-9);
+  EXPECT_NEAR(stops[1].second, 200, 1e-9);
+}
+
+TEST(ChannelTest, IncrementalMoveAfterAnOffsetChangeIsInProgramCoordinates) {
+  // G91 X1 after G55: one mm in the G55 frame, from where the axes stand in it.
+  Machine m("N1 G54 G00 X10 Z0\nN2 G55 G91 X1\nN3 RET\n", 0, 0, WithOffsetsAndTools);
+  m.channel->Start();
+  m.RunUntilEnd();
+  ASSERT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  EXPECT_NEAR(m.X(), 10 + 1 - 2, 1e-9);  // program X was 10, is 11, under G55's -2
+}
+
+TEST(ChannelTest, ToolLengthG48AddsAndG49SubtractsTheEdge) {
+  Machine plus("N1 G48 T2 D1 G00 X10 Z0\nN2 RET\n", 0, 0, WithOffsetsAndTools);
+  plus.channel->Start();
+  plus.RunUntilEnd();
+  ASSERT_EQ(plus.channel->state(), ChannelState::kEnded) << plus.channel->error();
+  EXPECT_NEAR(plus.X(), 10 - 1.5, 1e-9);  // the tip is 1.5 mm further out than the reference
+  EXPECT_NEAR(plus.Z(), 0 + 4, 1e-9);
+  Machine minus("N1 G49 T2 D1 G00 X10 Z0\nN2 RET\n", 0, 0, WithOffsetsAndTools);
+  minus.channel->Start();
+  minus.RunUntilEnd();
+  EXPECT_NEAR(minus.X(), 10 + 1.5, 1e-9);
+  Machine off("N1 G47 T2 D1 G00 X10 Z0\nN2 RET\n", 0, 0, WithOffsetsAndTools);
+  off.channel->Start();
+  off.RunUntilEnd();
+  EXPECT_NEAR(off.X(), 10, 1e-9);
+}
+
+TEST(ChannelTest, ToolMissingFromTheListIsAnError) {
+  Machine m("N1 G00 X1\nN2 G48 T7 D2 X10\nN3 RET\n", 0, 0, WithOffsetsAndTools);
+  m.channel->Start();
+  m.RunUntilEnd();
+  EXPECT_EQ(m.channel->state(), ChannelState::kError);
+  EXPECT_EQ(m.channel->error_number(), kMsgToolNotInList);
+  EXPECT_STREQ(MessageText(m.channel->error_number()), "tool correction not in the tool list");
+  EXPECT_THAT(m.channel->error(),
+              ::testing::HasSubstr("p.mtc:2:1: error: T7 D2 is not in the tool list (G48)"));
+  EXPECT_NEAR(m.X(), 1, 1e-9);
+}
+
+TEST(ChannelTest, GCodesActBeforeTheCoordinatesOfTheirBlock) {
+  Machine m("N1 X40 G16 G01 F6000\nN2 X2 G91\nN3 RET\n");
+  m.channel->Start();
+  m.RunUntilEnd();
+  ASSERT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  EXPECT_NEAR(m.X(), 21, 1e-9);  // diameter 40 -> radius 20, then +1 (incremental diameter 2)
+}
+
+TEST(ChannelTest, G92SetsTheCurrentPositionUntilReset) {
+  Machine m("N1 G00 X10 Z20\nN2 G92 X0 Z0\nN3 G00 X5 Z5\nN4 M30\n", 0, 0, {}, nc::Dialect::kIsg);
+  m.channel->Start();
+  m.RunUntilEnd();
+  ASSERT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  EXPECT_NEAR(m.X(), 15, 1e-9);
+  EXPECT_NEAR(m.Z(), 25, 1e-9);
+  EXPECT_NEAR(m.channel->Translation(0), 10, 1e-9);
+  m.channel->Reset();
+  EXPECT_NEAR(m.channel->Translation(0), 0, 1e-9);
+}
+
+TEST(ChannelTest, G74HomesTheAxesInTheirOrder) {
+  auto configure = [](ChannelConfig& c) {
+    c.axes[0].reference_position = 200;
+    c.axes[1].reference_position = 400;
+    c.axes[0].homing_per_s = 100;
+    c.axes[1].homing_per_s = 100;
+    c.axes[0].homed_at_start = c.axes[1].homed_at_start = false;
+  };
+  // ISG: G74 X1 Z2 homes X first, then Z.
+  Machine m("N10 G74 X1 Z2\nN20 G00 X150 Z300\nN30 M30\n", 50, 100, configure, nc::Dialect::kIsg);
+  EXPECT_FALSE(m.channel->homed(0));
+  m.channel->Start();
+  bool z_moved_before_x_home = false, x_home = false;
+  while (m.channel->state() == ChannelState::kRunning && m.t < 20) {
+    m.Tick();
+    x_home = x_home || m.X() == 200;
+    if (!x_home && m.Z() != 100) z_moved_before_x_home = true;
+  }
+  EXPECT_TRUE(x_home);
+  ASSERT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  EXPECT_FALSE(z_moved_before_x_home);
+  EXPECT_TRUE(m.channel->homed(0));
+  EXPECT_TRUE(m.channel->homed(1));
+  EXPECT_DOUBLE_EQ(m.X(), 150);
+  EXPECT_DOUBLE_EQ(m.Z(), 300);
+
+  // Without homing a move is refused.
+  Machine unhomed("N1 G00 X10\nN2 RET\n", 0, 0, configure);
+  unhomed.channel->Start();
+  unhomed.RunUntilEnd();
+  EXPECT_EQ(unhomed.channel->error_number(), kMsgNotHomed);
+  EXPECT_THAT(unhomed.channel->error(), ::testing::HasSubstr("axis X has no reference"));
+}
+
+TEST(ChannelTest, MdiRunsTypedBlocksInTheModalStateOfTheLastProgram) {
+  Machine m("N1 G91 G01 X10 F6000\nN2 RET\n");
+  m.channel->Start();
+  m.RunUntilEnd();
+  ASSERT_EQ(m.channel->state(), ChannelState::kEnded);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kMdi));
+  EXPECT_EQ(m.channel->state(), ChannelState::kIdle);
+  ASSERT_TRUE(m.channel->Mdi("X5 Z-3\nX1 Z1\n"));
+  m.channel->Start();
+  m.RunUntilEnd();
+  ASSERT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  EXPECT_NEAR(m.X(), 16, 1e-9);  // G91 carried over: 10 + 5 + 1
+  EXPECT_NEAR(m.Z(), -2, 1e-9);
+  // A text that does not parse is refused with its message; Control-Reset clears it.
+  EXPECT_FALSE(m.channel->Mdi("X5 Z-3 Y"));
+  EXPECT_EQ(m.channel->state(), ChannelState::kError);
+  EXPECT_EQ(m.channel->error_number(), kMsgMdiSyntax);
+  EXPECT_THAT(m.channel->error(), ::testing::HasSubstr("MDI:1:"));
+  m.channel->Reset();
+  EXPECT_EQ(m.channel->state(), ChannelState::kIdle);
+  // Back in automatic, start runs the program again from its top.
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kAutomatic));
+  m.channel->Start();
+  m.RunUntilEnd();
+  EXPECT_NEAR(m.X(), 26, 1e-9);  // G91 X10 from 16
+}
+
+TEST(ChannelTest, ReverseContinuesAtHome) {
+  Machine m("N1 G01 X100 F600\nN2 X0\nN3 RET\n.HOME\nN10 G00 Z50\nN11 G00 X-20\nN12 RET\n");
+  m.channel->Start();
+  for (int i = 0; i < 2000; ++i) m.Tick();
+  EXPECT_FALSE(m.channel->Reverse());  // only when interrupted
+  m.channel->Stop();
+  for (int i = 0; i < 800; ++i) m.Tick();
+  const double x = m.X();
+  ASSERT_GT(x, 1);
+  ASSERT_LT(x, 99);
+  ASSERT_TRUE(m.channel->Reverse());
+  EXPECT_TRUE(m.channel->reversing());
+  bool x_still_while_z = true;
+  while (m.channel->state() == ChannelState::kRunning && m.t < 20) {
+    m.Tick();
+    if (m.Z() > 0 && m.Z() < 50 && std::abs(m.X() - x) > 1e-9) x_still_while_z = false;
+  }
+  ASSERT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  EXPECT_FALSE(m.channel->reversing());
+  EXPECT_TRUE(x_still_while_z);
+  EXPECT_DOUBLE_EQ(m.Z(), 50);
+  EXPECT_DOUBLE_EQ(m.X(), -20);
+
+  Machine none("N1 G01 X100 F600\nN2 RET\n");
+  none.channel->Start();
+  for (int i = 0; i < 400; ++i) none.Tick();
+  none.channel->Stop();
+  for (int i = 0; i < 400; ++i) none.Tick();
+  EXPECT_FALSE(none.channel->Reverse());
+  EXPECT_EQ(none.channel->error_number(), kMsgNoHomeLabel);
+}
+
+TEST(ChannelTest, JogModesRapidParametricAndHandwheel) {
+  auto configure = [](ChannelConfig& c) {
+    c.axes[0].jog_per_s = 20;
+    c.axes[0].jog_rapid_per_s = 80;
+    c.axes[0].jog_distance = 2.5;
+  };
+  Machine m("N1 RET\n", 0, 0, configure);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->SetJogMode(static_cast<int>(JogMode::kRapid));
+  m.channel->Jog(0, +1);
+  for (int i = 0; i < 4000; ++i) m.Tick();
+  m.channel->Jog(0, 0);
+  for (int i = 0; i < 400; ++i) m.Tick();
+  EXPECT_NEAR(m.X(), 80, 0.5);  // 1 s at 80 mm/s
+  const double x0 = m.X();
+  m.channel->SetJogMode(static_cast<int>(JogMode::kParametric));
+  m.channel->Jog(0, -1);
+  for (int i = 0; i < 4000; ++i) m.Tick();
+  m.channel->Jog(0, 0);
+  EXPECT_NEAR(m.X(), x0 - 2.5, 1e-9);
+  m.channel->SetJogMode(static_cast<int>(JogMode::kIncrement100));
+  m.channel->Jog(0, +1);
+  for (int i = 0; i < 400; ++i) m.Tick();
+  m.channel->Jog(0, 0);
+  EXPECT_NEAR(m.X(), x0 - 2.4, 1e-9);
+  // Handwheel: 250 counts of 0.01 mm, the keys do nothing.
+  m.channel->SetJogMode(static_cast<int>(JogMode::kHandwheel));
+  m.channel->Jog(1, +1);
+  m.channel->Handwheel(0, 250);
+  for (int i = 0; i < 4000; ++i) m.Tick();
+  EXPECT_NEAR(m.X(), x0 - 2.4 + 2.5, 1e-9);
+  EXPECT_EQ(m.Z(), 0);
+}
+
+TEST(ChannelTest, AuxFunctionsWaitForThePlcAcknowledgement) {
+  Machine m("N1 M08 H12 G01 X10 F6000\nN2 RET\n", 0, 0,
+            [](ChannelConfig& c) { c.aux_handshake = true; });
+  m.channel->Start();
+  for (int i = 0; i < 400; ++i) m.Tick();
+  ASSERT_EQ(m.channel->aux_output().size(), 2u);
+  EXPECT_EQ(m.channel->aux_output()[0].letter, 'M');
+  EXPECT_EQ(m.channel->aux_output()[0].value, 8);
+  EXPECT_EQ(m.channel->aux_output()[1].letter, 'H');
+  EXPECT_EQ(m.channel->aux_strobe(), 1u);
+  EXPECT_EQ(m.X(), 0);  // the block waits
+  m.channel->AcknowledgeAux();
+  m.RunUntilEnd();
+  EXPECT_EQ(m.channel->state(), ChannelState::kEnded);
+  EXPECT_DOUBLE_EQ(m.X(), 10);
 }
 
 }  // namespace
