@@ -14,17 +14,18 @@ struct AxisParameters {
   std::string name;  ///< address in the program: X, Z, C (Cxx.001 axis designation)
   int drive = -1;    ///< DriveBus index
   bool rotary = false;
-  double rapid_per_s = 0;         ///< G00 speed, mm/s | deg/s
-  double acceleration = 0;        ///< mm/s^2 | deg/s^2
-  double jerk = 0;                ///< mm/s^3 | deg/s^3; 0: not limited
-  double jog_per_s = 0;           ///< Cxx.020 jogging speed (0: a tenth of the rapid)
-  double jog_rapid_per_s = 0;     ///< Cxx.021 jogging speed - rapid
-  double jog_distance = 0;        ///< Cxx.022 parametric jogging distance (increment)
-  double in_position_window = 0;  ///< Cxx.023
-  double repos_window = 0.2;      ///< Cxx.086 window for repositioning and NC-block restart
-  double reference_position = 0;  ///< where G74 homing ends, machine coordinates
-  double homing_per_s = 0;        ///< G74 speed (0: the jogging speed)
-  bool homed_at_start = true;     ///< absolute encoder; false: G74 before the first move
+  double rapid_per_s = 0;                 ///< G00 speed, mm/s | deg/s
+  double acceleration = 0;                ///< mm/s^2 | deg/s^2
+  double jerk = 0;                        ///< mm/s^3 | deg/s^3; 0: not limited
+  double jog_per_s = 0;                   ///< Cxx.020 jogging speed (0: a tenth of the rapid)
+  double jog_rapid_per_s = 0;             ///< Cxx.021 jogging speed - rapid
+  double jog_distance = 0;                ///< Cxx.022 parametric jogging distance (increment)
+  double in_position_window = 0;          ///< Cxx.023
+  double repos_window = 0.2;              ///< Cxx.086 window for repositioning and NC-block restart
+  double reference_position = 0;          ///< where G74 homing ends, machine coordinates
+  double homing_per_s = 0;                ///< G74 speed (0: the jogging speed)
+  double travel_min = 0, travel_max = 0;  ///< software limits; equal: none (endless axis)
+  bool homed_at_start = true;             ///< absolute encoder; false: G74 before the first move
 };
 
 /// Process parameters (Bxx.*), REPOS manual 6.

@@ -1,6 +1,7 @@
 #include "control/channel/channel.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "control/nc/parser.hpp"
@@ -227,9 +228,15 @@ void Channel::Jogging(double dt) {
     const double normal = axis.jog_per_s > 0 ? axis.jog_per_s : axis.rapid_per_s / 10;
     const double rapid = axis.jog_rapid_per_s > 0 ? axis.jog_rapid_per_s : axis.rapid_per_s / 2;
     const double speed = (jog_mode_ == JogMode::kRapid ? rapid : normal) * override_;
+    // Jogging stops at the software limits, braking in time.
+    const bool limited = axis.travel_max > axis.travel_min;
+    auto within = [&](double x) {
+      return limited ? std::clamp(x, axis.travel_min, axis.travel_max) : x;
+    };
     if (jog_mode_ == JogMode::kHandwheel) {
       // Follow the counts at most at the jogging rapid, braking so as not to pass the target.
       if (!j.handwheel) j.handwheel = true, j.handwheel_target = commanded_[a];
+      j.handwheel_target = within(j.handwheel_target);
       const double to_go = j.handwheel_target - commanded_[a];
       const double braking = std::sqrt(2 * axis.acceleration * std::abs(to_go));
       const double target = std::copysign(std::min(rapid * override_, braking), to_go);
@@ -249,10 +256,11 @@ void Channel::Jogging(double dt) {
       if (!j.stepping && j.key != 0) {
         j.stepping = true;
         j.from = commanded_[a];
-        j.to = commanded_[a] + j.key * increment;
+        j.to = within(commanded_[a] + j.key * increment);
         j.increment = PathProfile{};
-        j.increment.max_rate = speed / increment;
-        j.increment.max_accel = axis.acceleration / increment;
+        const double distance = std::max(std::abs(j.to - j.from), 1e-12);
+        j.increment.max_rate = speed / distance;
+        j.increment.max_accel = axis.acceleration / distance;
         j.key = 0;  // one increment per press
       }
       if (j.stepping) {
@@ -263,9 +271,17 @@ void Channel::Jogging(double dt) {
       continue;
     }
     // Continuous: towards the jog speed while the key is held, braking when it is released.
-    const double target = j.key * speed, step = axis.acceleration * dt;
+    double target = j.key * speed;
+    const double step = axis.acceleration * dt;
+    if (limited) {
+      const double room =
+          j.key > 0 ? axis.travel_max - commanded_[a] : commanded_[a] - axis.travel_min;
+      target = j.key * std::min(speed, std::sqrt(2 * axis.acceleration * std::max(0.0, room)));
+    }
     j.velocity = std::clamp(target, j.velocity - step, j.velocity + step);
-    commanded_[a] += j.velocity * dt;
+    const double next = commanded_[a] + j.velocity * dt;
+    commanded_[a] = within(next);
+    if (commanded_[a] != next) j.velocity = 0;
   }
 }
 
@@ -542,6 +558,18 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
   end_ = block_.target;
   for (size_t a = 0; a < end_.size(); ++a) end_[a] += translation_[a];
   const size_t n = config_.axes.size();
+  for (size_t a = 0; a < n; ++a) {
+    const ChannelAxis& axis = config_.axes[a];
+    // Checked before the move starts, so the axis never runs into its limit switch.
+    if (axis.travel_max > axis.travel_min &&
+        (end_[a] < axis.travel_min - 1e-9 || end_[a] > axis.travel_max + 1e-9)) {
+      char text[160];
+      std::snprintf(text, sizeof text, "axis %s target %.4f is beyond its travel %.4f .. %.4f",
+                    axis.name.c_str(), end_[a], axis.travel_min, axis.travel_max);
+      Fail(program, block_.block, text, kMsgSoftwareLimit);
+      return false;
+    }
+  }
   std::vector<double> delta(n);
   double max_delta = 0;
   for (size_t a = 0; a < n; ++a)

@@ -18,6 +18,7 @@ inline constexpr int kMsgLeftContour = 401;       ///< continue after jogging of
 inline constexpr int kMsgNoHomeLabel = 402;       ///< reverse without a .HOME label
 inline constexpr int kMsgMdiSyntax = 403;         ///< the MDI text does not parse
 inline constexpr int kMsgNotHomed = 501;          ///< a move of an axis that has no reference
+inline constexpr int kMsgSoftwareLimit = 502;     ///< a target beyond the axis' travel
 
 /// The operator text of a message number ("program error", ...).
 inline const char* MessageText(int number) {

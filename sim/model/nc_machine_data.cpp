@@ -52,6 +52,15 @@ control::axes::AxisParameters ReadAxis(const MachineModel& m, const YamlNode& n,
   a.reference_position = n.Double("reference", 0);
   a.homing_per_s = PerMinute(n, "homing", 0);
   a.homed_at_start = !n.Bool("needs_homing", false);
+  // Software limits: the joint's travel (the axis position is the joint position).
+  const Joint& joint = m.joints[d.motor_joint];
+  if (joint.type == JointType::kPrismatic || joint.type == JointType::kRevolute) {
+    a.travel_min = joint.lower * unit;
+    a.travel_max = joint.upper * unit;
+  }
+  if (a.travel_max > a.travel_min &&
+      (a.reference_position < a.travel_min || a.reference_position > a.travel_max))
+    n["reference"].Fail("outside the axis' travel");
   return a;
 }
 

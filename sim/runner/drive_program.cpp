@@ -120,14 +120,30 @@ bool DriveProgram::Execute(const TimelineStep& step, double t_s,
       if (channel_) channel_->SetSingleBlock(step.level);
       return true;
     case Kind::kNcMode:
-      if (channel_ && !channel_->SetMode(step.level ? control::channel::ChannelMode::kManual
-                                                    : control::channel::ChannelMode::kAutomatic)) {
+      if (channel_ && !channel_->SetMode(static_cast<control::channel::ChannelMode>(step.code))) {
         failures_.push_back(step.text + ": refused while the program runs");
         events.push_back({t_s, "refused", step.text});
       }
       return true;
     case Kind::kNcJogIncrement:
       if (channel_) channel_->SetJogIncrement(step.target);
+      return true;
+    case Kind::kNcJogMode:
+      if (channel_) channel_->SetJogMode(step.code);
+      return true;
+    case Kind::kNcMdi:
+      if (channel_ && !channel_->Mdi(step.mdi)) events.push_back({t_s, "refused", step.text});
+      return true;
+    case Kind::kNcReverse:
+      if (channel_ && !channel_->Reverse()) {
+        failures_.push_back(step.text + ": refused (" +
+                            (channel_->error().empty() ? "not interrupted" : channel_->error()) +
+                            ")");
+        events.push_back({t_s, "refused", step.text});
+      }
+      return true;
+    case Kind::kHandwheel:
+      if (channel_) channel_->Handwheel(step.axis, step.code);
       return true;
     case Kind::kJog:
       // The key goes down when the step begins and comes up after `hold`.

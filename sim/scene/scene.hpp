@@ -65,20 +65,26 @@ struct TimelineStep {
     kNcSingleBlock,
     kNcMode,
     kNcJogIncrement,
+    kNcJogMode,
+    kNcMdi,
+    kNcReverse,
     kJog,
+    kHandwheel,
   } kind;
   double not_before_s = 0;  ///< `at:`; 0 = as soon as the previous step is done
   int drive = -1;
   int io = -1;
   double target = 0;   ///< move: position (mm|deg); speed: deg/s or mm/s; orient: deg
   double feed = 0;     ///< move: mm/s | deg/s
-  bool level = false;  ///< output value; kNcMode: true = manual
+  bool level = false;  ///< output value
+  int code = 0;        ///< kNcMode: ChannelMode; kNcJogMode: JOGM code; kHandwheel: counts
   int axis = -1;       ///< kJog: channel axis index
   int direction = 0;   ///< kJog: +1 | -1
   double wait_s = 0;
   Condition until;
   double timeout_s = 10;
   std::string text;  ///< "timeline[3]: move Z to 250" for events and messages
+  std::string mdi;   ///< kNcMdi: the blocks
 };
 
 struct Expectation {

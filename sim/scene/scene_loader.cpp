@@ -107,19 +107,35 @@ Condition ReadCondition(const MachineModel& m, const YamlNode& n) {
 
 TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const NcSetup& nc) {
   const bool has_nc = nc.present;
-  n.AllowKeys(
-      {"at", "move", "speed", "orient", "off", "output", "wait", "wait_until", "nc", "jog"});
+  n.AllowKeys({"at", "move", "speed", "orient", "off", "output", "wait", "wait_until", "nc", "jog",
+               "handwheel"});
   TimelineStep s{};
   s.not_before_s = n.Double("at", 0);
   std::ostringstream text;
   text << "timeline[" << i << "]: ";
   int actions = 0;
   for (const char* k :
-       {"move", "speed", "orient", "off", "output", "wait", "wait_until", "nc", "jog"})
+       {"move", "speed", "orient", "off", "output", "wait", "wait_until", "nc", "jog", "handwheel"})
     actions += n.Has(k);
   if (actions != 1)
     n.Fail(
-        "a step needs exactly one of move, speed, orient, off, output, wait, wait_until, nc, jog");
+        "a step needs exactly one of move, speed, orient, off, output, wait, wait_until, nc, jog, "
+        "handwheel");
+
+  if (n.Has("handwheel")) {  // turn the handwheel of a channel axis by a number of counts
+    const YamlNode a = n["handwheel"];
+    if (!has_nc) a.Fail("the scene has no nc: section");
+    a.AllowKeys({"axis", "counts"});
+    s.kind = TimelineStep::Kind::kHandwheel;
+    const int drive = RequireDrive(m, a["axis"]);
+    for (size_t k = 0; k < nc.axis_drives.size(); ++k)
+      if (nc.axis_drives[k] == drive) s.axis = static_cast<int>(k);
+    if (s.axis < 0) a["axis"].Fail("not an axis of the NC channel");
+    s.code = a["counts"].Int();
+    text << "handwheel " << a["axis"].String() << " " << s.code << " counts";
+    s.text = text.str();
+    return s;
+  }
 
   if (n.Has("jog")) {  // hold a jog key of a channel axis for a time
     const YamlNode a = n["jog"];
@@ -147,9 +163,28 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
       a.AllowKeys({"mode"});
       s.kind = TimelineStep::Kind::kNcMode;
       const std::string mode = a["mode"].String();
-      if (mode != "manual" && mode != "automatic") a["mode"].Fail("expected manual or automatic");
-      s.level = mode == "manual";
+      using control::channel::ChannelMode;
+      if (mode == "manual")
+        s.code = static_cast<int>(ChannelMode::kManual);
+      else if (mode == "automatic")
+        s.code = static_cast<int>(ChannelMode::kAutomatic);
+      else if (mode == "mdi")
+        s.code = static_cast<int>(ChannelMode::kMdi);
+      else
+        a["mode"].Fail("expected automatic, manual or mdi");
       text << "mode " << mode;
+    } else if (a.IsMap() && a.Has("jog_mode")) {
+      // PxxC.JOGM0..2 as a code 0..7 (control/channel/channel.hpp JogMode).
+      a.AllowKeys({"jog_mode"});
+      s.kind = TimelineStep::Kind::kNcJogMode;
+      s.code = a["jog_mode"].Int();
+      if (s.code < 0 || s.code > 7) a["jog_mode"].Fail("must be 0..7 (JOGM0..2)");
+      text << "jog mode " << s.code;
+    } else if (a.IsMap() && a.Has("mdi")) {
+      a.AllowKeys({"mdi"});
+      s.kind = TimelineStep::Kind::kNcMdi;
+      s.mdi = a["mdi"].String();
+      text << "MDI " << s.mdi;
     } else if (a.IsMap() && a.Has("jog_increment")) {
       a.AllowKeys({"jog_increment"});
       s.kind = TimelineStep::Kind::kNcJogIncrement;
@@ -175,8 +210,12 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
         s.kind = TimelineStep::Kind::kNcStop;
       else if (cmd == "reset")
         s.kind = TimelineStep::Kind::kNcReset;
+      else if (cmd == "reverse")
+        s.kind = TimelineStep::Kind::kNcReverse;
       else
-        a.Fail("expected start, stop, reset, {override: percent} or {single_block: bool}");
+        a.Fail(
+            "expected start, stop, reset, reverse, {mode: ..}, {override: percent}, "
+            "{single_block: bool}, {jog_increment: mm}, {jog_mode: 0..7} or {mdi: blocks}");
       text << "NC " << cmd;
     }
     s.text = text.str();
@@ -429,6 +468,9 @@ Scene LoadScene(const std::string& path) {
         const double unit = a.rotary ? kDegPerRad : kMmPerM;
         a.rapid_per_s = p.velocity_limit * unit;
         a.acceleration = p.acceleration_limit * unit;
+        const Joint& joint = m.joints[p.motor_joint];
+        if (joint.type == JointType::kPrismatic || joint.type == JointType::kRevolute)
+          a.travel_min = joint.lower * unit, a.travel_max = joint.upper * unit;
         chosen.push_back(a);
       }
       // Zero offsets and tool lengths follow the axes they were given for.

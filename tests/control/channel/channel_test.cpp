@@ -465,5 +465,26 @@ TEST(ChannelTest, AuxFunctionsWaitForThePlcAcknowledgement) {
   EXPECT_DOUBLE_EQ(m.X(), 10);
 }
 
+TEST(ChannelTest, SoftwareLimitsStopProgramsBeforeAndJogsAtTheLimit) {
+  auto configure = [](ChannelConfig& c) { c.axes[0].travel_min = 0, c.axes[0].travel_max = 300; };
+  Machine m("N1 G00 X100\nN2 G00 X301\nN3 RET\n", 0, 0, configure);
+  m.channel->Start();
+  m.RunUntilEnd();
+  EXPECT_EQ(m.channel->error_number(), kMsgSoftwareLimit);
+  EXPECT_THAT(
+      m.channel->error(),
+      ::testing::HasSubstr("p.mtc:2:1: error: axis X target 301.0000 is beyond its travel"));
+  EXPECT_DOUBLE_EQ(m.X(), 100);
+  m.channel->Reset();
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->SetJogMode(static_cast<int>(JogMode::kRapid));  // 200 mm/s
+  m.channel->Jog(0, +1);
+  double highest = 0;
+  for (int i = 0; i < 12000; ++i) m.Tick(), highest = std::max(highest, m.X());
+  EXPECT_DOUBLE_EQ(highest, 300);
+  EXPECT_DOUBLE_EQ(m.X(), 300);
+  m.channel->Jog(0, 0);
+}
+
 }  // namespace
 }  // namespace vmt::control::channel
