@@ -64,6 +64,18 @@ Channel::Channel(ChannelConfig config, std::vector<const nc::Program*> programs)
   for (size_t a = 0; a < n; ++a) homed_[a] = config_.axes[a].homed_at_start;
   spindle_ = {DriveMode::kVelocity, 0, 0};
   last_modal_ = config_.initial;
+  for (size_t a = 0; a < n; ++a) {
+    if (config_.axes[a].name == "Z") axis_z_ = static_cast<int>(a);
+    if (config_.axes[a].name == "X") axis_x_ = static_cast<int>(a);
+  }
+}
+
+void Channel::DropLookahead() {
+  compensating_ = false;
+  source_done_ = false;
+  trc_.Reset();
+  ahead_.clear();
+  ready_.clear();
 }
 
 const nc::Program* Channel::ProgramOf(uint32_t index) const {
@@ -90,6 +102,7 @@ std::unique_ptr<nc::Interpreter> Channel::MakeInterpreter() {
     ic.initial = config_.initial;
     running_mdi_ = false;
   }
+  DropLookahead();
   auto interpreter = std::make_unique<nc::Interpreter>(std::move(programs), ic);
   // Incremental moves start from where the axes stand, in program coordinates.
   std::vector<double> position(commanded_.size());
@@ -153,6 +166,7 @@ bool Channel::Reverse() {
     return false;
   }
   // The interrupted block is abandoned where the axes stand; the reverse program starts there.
+  DropLookahead();
   active_ = false;
   homing_ = false;
   dwell_left_s_ = 0;
@@ -328,6 +342,7 @@ void Channel::Reset() {
   interruption_point_.clear();
   if (interpreter_) last_modal_ = interpreter_->modal();
   interpreter_.reset();
+  DropLookahead();
   previous_ = commanded_;
   spindle_ = {DriveMode::kVelocity, 0, 0};
   // Control-Reset drops the G92 shift and returns to the initial modal state (offsets too).
@@ -394,6 +409,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
 }
 
 bool Channel::NextBlock(const AmplifierTelegram& at) {
+  if (compensating_) return NextCompensated(at);
   if (!interpreter_->Next(block_)) {
     if (interpreter_->error())
       Fail(nc::Format(*interpreter_->error(), {interpreter_->ErrorFile()}), kMsgProgramError);
@@ -401,6 +417,158 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
       state_ = ChannelState::kEnded, reversing_ = false;
     return false;
   }
+  if (block_.modal.compensation != 40 && block_.motion != nc::Motion::kNone) {
+    // G41/G42: from here the channel reads ahead, so that each block's path can be offset
+    // with its successor in view.
+    if (axis_z_ < 0 || axis_x_ < 0) {
+      Fail(*ProgramOf(block_.program), block_.block,
+           "tool nose radius compensation G41/G42 needs the axes Z and X", kMsgNotAvailable);
+      return false;
+    }
+    compensating_ = true;
+    source_done_ = false;
+    trc_.Reset();
+    ahead_.clear();
+    ready_.clear();
+    first_tag_ = next_tag_ = 0;
+    last_run_tag_ = -1;
+    contour_point_ = {commanded_[axis_z_] - translation_[axis_z_],
+                      commanded_[axis_x_] - translation_[axis_x_]};
+    if (!PushAhead(block_)) return false;
+    return NextCompensated(at);
+  }
+  return RunBlock(at);
+}
+
+bool Channel::PushAhead(const nc::PreparedBlock& b) {
+  const nc::Program& program = *ProgramOf(b.program);
+  if (b.homing || b.set_position || b.repos || b.measuring) {
+    Fail(program, b.block,
+         "G74, G77, G92 and G100 are not allowed while tool nose radius compensation "
+         "(G41/G42) is active: cancel it with G40 first",
+         kMsgNotAvailable);
+    return false;
+  }
+  ContourElement e;
+  e.tag = next_tag_++;
+  e.start = contour_point_;
+  e.end = e.start;
+  e.rapid = b.motion == nc::Motion::kRapid;
+  e.side = b.modal.compensation == 41   ? CompensationSide::kLeft
+           : b.modal.compensation == 42 ? CompensationSide::kRight
+                                        : CompensationSide::kOff;
+  if (e.side != CompensationSide::kOff) {
+    const auto edge = config_.tools.Find(b.modal.tool, b.modal.correction);
+    if (!edge && b.modal.correction != 0) {
+      Fail(program, b.block,
+           "T" + std::to_string(b.modal.tool) + " D" + std::to_string(b.modal.correction) +
+               " is not in the tool list (G" + std::to_string(b.modal.compensation) + ")",
+           kMsgToolNotInList);
+      return false;
+    }
+    e.nose_radius_mm = edge ? edge->nose_radius : 0;
+    e.edge_position = edge ? edge->edge_position : 0;
+  }
+  if (b.motion != nc::Motion::kNone) {
+    if (b.modal.plane != 18) {
+      Fail(program, b.block, "tool nose radius compensation G41/G42 works in the plane G18",
+           kMsgNotAvailable);
+      return false;
+    }
+    e.end = {b.target[axis_z_], b.target[axis_x_]};
+    if (b.motion == nc::Motion::kArcCw || b.motion == nc::Motion::kArcCcw) {
+      e.kind = b.motion == nc::Motion::kArcCw ? ElementKind::kArcCw : ElementKind::kArcCcw;
+      if (b.has_centre) {
+        e.centre = {e.start.z + b.centre[2], e.start.x + b.centre[0]};
+      } else if (b.radius != 0) {
+        // Centre from R, as the interpolation computes it (R < 0: the arc over 180 degrees).
+        const double dz = e.end.z - e.start.z, dx = e.end.x - e.start.x;
+        const double chord = std::hypot(dz, dx), r = std::abs(b.radius);
+        if (chord < 1e-12 || chord > 2 * r + kArcTolerance) {
+          Fail(program, b.block, "radius R too small for the end point", kMsgArcGeometry);
+          return false;
+        }
+        const double h = std::sqrt(std::max(0.0, r * r - chord * chord / 4));
+        const double side = ((b.radius > 0) == (b.motion == nc::Motion::kArcCw)) ? -1 : 1;
+        e.centre = {(e.start.z + e.end.z) / 2 - side * h * dx / chord,
+                    (e.start.x + e.end.x) / 2 + side * h * dz / chord};
+      } else {
+        Fail(program, b.block, "G02/G03 needs a centre (I/J/K) or a radius R", kMsgArcGeometry);
+        return false;
+      }
+    }
+  }
+  contour_point_ = e.end;
+  ahead_.push_back(b);
+  trc_.Push(e);
+  return true;
+}
+
+bool Channel::NextCompensated(const AmplifierTelegram& at) {
+  ContourElement e;
+  while (ready_.empty()) {
+    while (trc_.Pop(e)) ready_.push_back(e);
+    if (!ready_.empty()) break;
+    if (const auto& err = trc_.error()) {
+      const nc::PreparedBlock& b = ahead_[static_cast<size_t>(err->tag - first_tag_)];
+      Fail(*ProgramOf(b.program), b.block, err->message, kMsgGouge);
+      return false;
+    }
+    if (source_done_ || (!trc_.active() && !trc_.pending())) {
+      // Everything read ahead has run: back to block-by-block.
+      compensating_ = false;
+      ahead_.clear();
+      if (source_done_) {
+        state_ = ChannelState::kEnded, reversing_ = false;
+        return false;
+      }
+      return NextBlock(at);
+    }
+    nc::PreparedBlock b;
+    if (!interpreter_->Next(b)) {
+      if (interpreter_->error()) {
+        Fail(nc::Format(*interpreter_->error(), {interpreter_->ErrorFile()}), kMsgProgramError);
+        return false;
+      }
+      source_done_ = true;
+      trc_.Flush();
+      continue;
+    }
+    if (!PushAhead(b)) return false;
+    if (b.end) source_done_ = true, trc_.Flush();
+  }
+  e = ready_.front();
+  ready_.pop_front();
+  while (first_tag_ < e.tag) ahead_.pop_front(), ++first_tag_;
+  block_ = ahead_.front();
+  // The block runs the tip path the compensation made of it: lines and arcs in Z/X.
+  block_.target[axis_z_] = e.end.z;
+  block_.target[axis_x_] = e.end.x;
+  block_.radius = 0;
+  block_.has_centre = false;
+  const bool moves =
+      std::hypot(e.end.z - e.start.z, e.end.x - e.start.x) > 1e-12 || e.kind != ElementKind::kLine;
+  if (!moves && block_.motion != nc::Motion::kNone) {
+    // A zero-length piece: the other axes of the block may still move.
+  }
+  if (e.kind != ElementKind::kLine) {
+    block_.motion = e.kind == ElementKind::kArcCw ? nc::Motion::kArcCw : nc::Motion::kArcCcw;
+    block_.centre[2] = e.centre.z - e.start.z;
+    block_.centre[0] = e.centre.x - e.start.x;
+    block_.has_centre = true;
+  } else if (block_.motion == nc::Motion::kArcCw || block_.motion == nc::Motion::kArcCcw) {
+    block_.motion = nc::Motion::kLinear;  // an arc the compensation shrank to a point
+  } else if (e.inserted && block_.motion == nc::Motion::kNone) {
+    block_.motion = e.rapid ? nc::Motion::kRapid : nc::Motion::kLinear;
+  }
+  if (e.tag != last_run_tag_) {
+    last_run_tag_ = e.tag;
+    return RunBlock(at);
+  }
+  return StartMotion(at);
+}
+
+bool Channel::RunBlock(const AmplifierTelegram& at) {
   const nc::Program& program = *ProgramOf(block_.program);
   auto unsupported = [&](const std::string& what) {
     Fail(program, block_.block, what + " is not available in the channel yet", kMsgNotAvailable);

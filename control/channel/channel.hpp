@@ -6,6 +6,7 @@
 // drives into the master telegram and leaves the others alone.
 
 #include <algorithm>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -17,6 +18,7 @@
 #include "control/axes/zero_offsets.hpp"
 #include "control/channel/channel_messages.hpp"
 #include "control/channel/path_profile.hpp"
+#include "control/channel/tool_radius_compensation.hpp"
 #include "control/drive_bus.hpp"
 #include "control/nc/interpreter.hpp"
 
@@ -130,6 +132,10 @@ class Channel {
 
  private:
   bool NextBlock(const AmplifierTelegram& at);
+  bool RunBlock(const AmplifierTelegram& at);
+  bool NextCompensated(const AmplifierTelegram& at);
+  bool PushAhead(const nc::PreparedBlock& b);
+  void DropLookahead();
   bool StartMotion(const AmplifierTelegram& at);
   bool UpdateTranslation(const nc::ModalState& modal, const nc::Program& program, int32_t block);
   bool NextHomingStage();
@@ -178,6 +184,16 @@ class Channel {
   bool reversing_ = false;
   bool pending_motion_ = false;  ///< the block's motion waits for the aux acknowledgement
   bool running_mdi_ = false;
+
+  // Tool nose radius compensation (G41/G42): blocks read ahead and the tip path made of them.
+  ToolRadiusCompensation trc_;
+  bool compensating_ = false;
+  bool source_done_ = false;             ///< the program's end has been read ahead
+  std::deque<nc::PreparedBlock> ahead_;  ///< blocks read ahead; ahead_[0] has tag first_tag_
+  std::deque<ContourElement> ready_;     ///< tip path elements ready to run
+  int64_t first_tag_ = 0, next_tag_ = 0, last_run_tag_ = -1;
+  Vec2 contour_point_;             ///< end of the last programmed element pushed (program coords)
+  int axis_z_ = -1, axis_x_ = -1;  ///< channel axes of the G18 plane
   std::shared_ptr<nc::ParseResult> mdi_;
   nc::ModalState last_modal_;
   struct JogAxis {

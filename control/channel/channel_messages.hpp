@@ -14,11 +14,12 @@ inline constexpr int kMsgArcGeometry = 202;       ///< centre/radius do not fit 
 inline constexpr int kMsgArcPlane = 203;          ///< the plane's axes are not in the channel
 inline constexpr int kMsgToolNotInList = 301;     ///< G48/G49 with a T/D the tool list lacks
 inline constexpr int kMsgTranslationInArc = 302;  ///< offset or tool change in an arc block
-inline constexpr int kMsgLeftContour = 401;       ///< continue after jogging off the contour
-inline constexpr int kMsgNoHomeLabel = 402;       ///< reverse without a .HOME label
-inline constexpr int kMsgMdiSyntax = 403;         ///< the MDI text does not parse
-inline constexpr int kMsgNotHomed = 501;          ///< a move of an axis that has no reference
-inline constexpr int kMsgSoftwareLimit = 502;     ///< a target beyond the axis' travel
+inline constexpr int kMsgGouge = 303;          ///< tool nose radius compensation: contour violation
+inline constexpr int kMsgLeftContour = 401;    ///< continue after jogging off the contour
+inline constexpr int kMsgNoHomeLabel = 402;    ///< reverse without a .HOME label
+inline constexpr int kMsgMdiSyntax = 403;      ///< the MDI text does not parse
+inline constexpr int kMsgNotHomed = 501;       ///< a move of an axis that has no reference
+inline constexpr int kMsgSoftwareLimit = 502;  ///< a target beyond the axis' travel
 
 /// The operator text of a message number ("program error", ...).
 inline const char* MessageText(int number) {

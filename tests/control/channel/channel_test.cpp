@@ -486,5 +486,56 @@ TEST(ChannelTest, SoftwareLimitsStopProgramsBeforeAndJogsAtTheLimit) {
   m.channel->Jog(0, 0);
 }
 
+TEST(ChannelTest, ToolNoseRadiusCompensationPutsTheTipOnTheContour) {
+  // Turning tool T1 D1: nose radius 0.8, edge position 3; G42 on an outside diameter.
+  Machine m(
+      "N1 G00 X30 Z110\nN2 G42 T1 D1 G01 X20 Z100 F6000\nN3 Z50\nN4 G02 X25 Z45 I5 K0\n"
+      "N5 G01 Z30\nN6 G40 G00 X40\nN7 RET\n",
+      30, 110, WithOffsetsAndTools);
+  m.channel->Start();
+  double worst_n3 = 0, worst_n5 = 0, worst_arc = 0;
+  bool saw_n3 = false, saw_arc = false;
+  while (m.channel->state() == ChannelState::kRunning && m.t < 20) {
+    m.Tick();
+    const double x = m.channel->position(0), z = m.channel->position(1);
+    if (m.channel->line() == 3) saw_n3 = true, worst_n3 = std::max(worst_n3, std::abs(x - 20));
+    // N4 ends going +X, N5 goes -Z: an outer corner, its arc (tagged N5) ends at Z44.2.
+    if (m.channel->line() == 5 && z < 44.2 - 1e-9) worst_n5 = std::max(worst_n5, std::abs(x - 25));
+    if (m.channel->line() == 4) {
+      // G02 from (Z50, X20) to (Z45, X25) about (Z50, X25) (I5 K0): the nose centre (tip +
+      // (0.8, 0.8)) runs on the inside, at radius 5 - 0.8.
+      saw_arc = true;
+      const double r = std::hypot(z + 0.8 - 50, x + 0.8 - 25);
+      worst_arc = std::max(worst_arc, std::abs(r - (5 - 0.8)));
+    }
+  }
+  ASSERT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  EXPECT_TRUE(saw_n3);
+  EXPECT_TRUE(saw_arc);
+  EXPECT_LT(worst_n3, 1e-9);
+  EXPECT_LT(worst_n5, 1e-9);
+  EXPECT_LT(worst_arc, 1e-6);
+  EXPECT_NEAR(m.X(), 40, 1e-9);  // G40: back on the programmed point
+  EXPECT_NEAR(m.Z(), 30, 1e-9);
+}
+
+TEST(ChannelTest, ToolNoseRadiusCompensationReportsAGouge) {
+  // A 1 mm groove is narrower than the 1.6 mm nose: a contour violation before it is cut.
+  Machine m(
+      "N1 G00 X30 Z110\nN2 G42 T1 D1 G01 X20 Z100 F6000\nN3 Z60\nN4 X15\nN5 Z59\nN6 X20\n"
+      "N7 Z40\nN8 G40 G00 X40\nN9 RET\n",
+      30, 110, WithOffsetsAndTools);
+  m.channel->Start();
+  m.RunUntilEnd();
+  EXPECT_EQ(m.channel->state(), ChannelState::kError);
+  EXPECT_EQ(m.channel->error_number(), kMsgGouge);
+  EXPECT_THAT(m.channel->error(), ::testing::HasSubstr("contour violation (gouge)"));
+  // One block of look-ahead: N4 runs down the groove's first wall (nose centre Z59.2, tip
+  // Z58.4); N5 is found too short for the nose when N6 arrives, before N5 runs.
+  EXPECT_GE(m.channel->position(1), 58.4 - 1e-9);
+  EXPECT_GE(m.channel->position(0), 15 - 1e-9);
+  EXPECT_LE(m.channel->line(), 5u);
+}
+
 }  // namespace
 }  // namespace vmt::control::channel
