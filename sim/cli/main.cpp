@@ -8,9 +8,11 @@
 #include <fstream>
 #include <iostream>
 
+#include "control/gateway/signal_table_format.hpp"
 #include "control/nc/parser.hpp"
 #include "render/image.hpp"
 #include "render/image_compare.hpp"
+#include "sim/model/gateway_layout.hpp"
 #include "sim/model/model_error.hpp"
 #include "sim/runner/runner.hpp"
 #include "sim/runner/scene_renderer.hpp"
@@ -126,6 +128,14 @@ int main(int argc, char** argv) {
   check->add_option("--dialect", dialect, "mtc200 or isg (default: from the file)")
       ->check(CLI::IsMember({"mtc200", "isg"}));
 
+  std::string format = "csv";
+  CLI::App* signals = app.add_subcommand(
+      "signals", "List the NC<->PLC signals and machine I/O of a model for the PLC engineer");
+  signals->add_option("model", scene, "Machine model (machine.yaml)")->required();
+  signals->add_option("--format", format, "csv or json")
+      ->check(CLI::IsMember({"csv", "json"}))
+      ->capture_default_str();
+
   CLI::App* imgdiff = app.add_subcommand(
       "imgdiff", "Compare two PNG pictures: exit 0 equal, 1 different, 2 bad input");
   imgdiff->add_option("a", a, "First PNG")->required();
@@ -149,6 +159,14 @@ int main(int argc, char** argv) {
     if (*run) return Run(scene, backend, until, out);
     if (*snap) return Snapshot(scene, at, camera, out, width, height);
     if (*check) return Check(scene, dialect);
+    if (*signals) {
+      const sim::MachineModel model = sim::LoadMachineModel(scene);
+      const auto table = control::gateway::BuildSignalTable(sim::GatewayLayoutOf(model));
+      const std::string text = format == "json" ? control::gateway::FormatJson(table)
+                                                : control::gateway::FormatCsv(table);
+      std::fwrite(text.data(), 1, text.size(), stdout);
+      return 0;
+    }
     if (*imgdiff) {
       const render::Image ia = render::ReadPng(a), ib = render::ReadPng(b);
       render::CompareOptions opt;

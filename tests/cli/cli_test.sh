@@ -68,5 +68,14 @@ echo "not a png" >"$out/text.png"
 check imgdiff_not_png 2 "text.png" -- "$vmt" imgdiff "$out/a.png" "$out/text.png"
 check imgdiff_golden 0 "equal" -- "$vmt" imgdiff "$src/tests/golden/default_iso_3.2s.png" "$out/run/iso_3.2s.png" --tolerance 8 --allowed-fraction 0.002
 
+# The signal table for the PLC engineer: the manuals' names, instantiated for the lathe.
+check signals_csv 0 "P00C.REPOS,BOOL,PLC->NC,coil,0,1" -- "$vmt" signals "$src/models/lathe-c1/machine.yaml"
+check signals_axis 0 "A01C.JGPOS" -- "$vmt" signals "$src/models/lathe-c1/machine.yaml"
+check signals_spindle 0 "A03.ROTMOD_Q" -- "$vmt" signals "$src/models/lathe-c1/machine.yaml"
+check signals_io 0 "QROTMODE,BOOL" -- "$vmt" signals "$src/models/lathe-c1/machine.yaml"
+check signals_json 0 '"name": "P00S.CREST"' -- "$vmt" signals "$src/models/lathe-c1/machine.yaml" --format json
+check signals_bad_format 2 "" -- "$vmt" signals "$src/models/lathe-c1/machine.yaml" --format xml
+check signals_bad_model 2 "nope.yaml" -- "$vmt" signals "$src/models/nope.yaml"
+
 echo "cli: $passes passed, $fails failed"
 [ "$fails" -eq 0 ]

@@ -1,0 +1,229 @@
+#include "control/gateway/signal_image.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+
+namespace vmt::control::gateway {
+namespace {
+
+[[noreturn]] void Fail(const std::string& what) {
+  std::fprintf(stderr, "gateway: %s\n", what.c_str());
+  std::abort();
+}
+
+bool IsReal(SignalType t) { return t == SignalType::kReal || t == SignalType::kLreal; }
+
+int64_t RealBits(SignalType type, double v) {
+  // A REAL cell holds the binary32 value widened, so that Real() equals what the PLC reads.
+  if (type == SignalType::kReal) v = static_cast<double>(static_cast<float>(v));
+  return std::bit_cast<int64_t>(v);
+}
+
+}  // namespace
+
+SignalImage::SignalImage(std::vector<Signal> table) : table_(std::move(table)) {
+  const int n = size();
+  types_.reserve(n);
+  for (const Signal& s : table_) types_.push_back(s.type);
+  by_name_.resize(n);
+  for (int i = 0; i < n; ++i) by_name_[i] = i;
+  std::sort(by_name_.begin(), by_name_.end(),
+            [this](int a, int b) { return table_[a].name < table_[b].name; });
+  for (int i = 1; i < n; ++i) {
+    if (table_[by_name_[i - 1]].name == table_[by_name_[i]].name) {
+      throw std::invalid_argument("SignalImage: signal name '" + table_[by_name_[i]].name +
+                                  "' occurs twice");
+    }
+  }
+  cells_.assign(n, 0);
+  Reset();
+}
+
+void SignalImage::Reset() {
+  strings_.clear();
+  for (int id = 0; id < size(); ++id) {
+    const SignalType t = types_[id];
+    const double preset = table_[id].preset;
+    if (t == SignalType::kString) {
+      cells_[id] = static_cast<int64_t>(strings_.size());
+      strings_.emplace_back();
+    } else if (IsReal(t)) {
+      cells_[id] = RealBits(t, preset);
+    } else {
+      cells_[id] = static_cast<int64_t>(std::llround(preset));
+    }
+  }
+}
+
+int SignalImage::Find(std::string_view name) const {
+  const auto it =
+      std::lower_bound(by_name_.begin(), by_name_.end(), name,
+                       [this](int id, std::string_view n) { return table_[id].name < n; });
+  if (it == by_name_.end() || table_[*it].name != name) return -1;
+  return *it;
+}
+
+int SignalImage::Require(std::string_view name) const {
+  const int id = Find(name);
+  if (id < 0) Fail("no signal called '" + std::string(name) + "' in the gateway table");
+  return id;
+}
+
+void SignalImage::Check(int id, bool ok_type, const char* accessor) const {
+  if (id < 0 || id >= size()) {
+    Fail(std::string(accessor) + "(" + std::to_string(id) + "): no such signal id (table has " +
+         std::to_string(size()) + ")");
+  }
+  if (!ok_type) {
+    Fail(std::string(accessor) + "(" + table_[id].name + "): the signal is " +
+         ToString(types_[id]));
+  }
+}
+
+bool SignalImage::Bool(int id) const {
+  Check(id, id >= 0 && id < size() && types_[id] == SignalType::kBool, "Bool");
+  return cells_[id] != 0;
+}
+
+void SignalImage::SetBool(int id, bool v) {
+  Check(id, id >= 0 && id < size() && types_[id] == SignalType::kBool, "SetBool");
+  cells_[id] = v ? 1 : 0;
+}
+
+int64_t SignalImage::Int(int id) const {
+  Check(id, id >= 0 && id < size() && IsInteger(types_[id]), "Int");
+  return cells_[id];
+}
+
+void SignalImage::SetInt(int id, int64_t v) {
+  Check(id, id >= 0 && id < size() && IsInteger(types_[id]), "SetInt");
+  const SignalType t = types_[id];
+  if (v < MinValue(t) || v > MaxValue(t)) {
+    Fail("SetInt(" + table_[id].name + ", " + std::to_string(v) + "): outside the range of " +
+         ToString(t));
+  }
+  cells_[id] = v;
+}
+
+double SignalImage::Real(int id) const {
+  Check(id, id >= 0 && id < size() && IsReal(types_[id]), "Real");
+  return std::bit_cast<double>(cells_[id]);
+}
+
+void SignalImage::SetReal(int id, double v) {
+  Check(id, id >= 0 && id < size() && IsReal(types_[id]), "SetReal");
+  cells_[id] = RealBits(types_[id], v);
+}
+
+const std::string& SignalImage::String(int id) const {
+  Check(id, id >= 0 && id < size() && types_[id] == SignalType::kString, "String");
+  return strings_[cells_[id]];
+}
+
+void SignalImage::SetString(int id, std::string_view v) {
+  Check(id, id >= 0 && id < size() && types_[id] == SignalType::kString, "SetString");
+  if (v.size() > static_cast<size_t>(kStringBytes - 1) || v.find('\0') != std::string_view::npos) {
+    Fail("SetString(" + table_[id].name + "): " + std::to_string(v.size()) +
+         " bytes or an embedded NUL; a STRING holds at most " + std::to_string(kStringBytes - 1));
+  }
+  strings_[cells_[id]].assign(v);
+}
+
+namespace {
+
+void CheckRegisters(const SignalImage& image, int id, size_t size, const char* what) {
+  if (id < 0 || id >= image.size()) {
+    Fail(std::string(what) + "(" + std::to_string(id) + "): no such signal id");
+  }
+  const Signal& s = image.table()[id];
+  if (s.type == SignalType::kBool) Fail(std::string(what) + "(" + s.name + "): a BOOL is a bit");
+  if (size != static_cast<size_t>(RegisterCount(s.type))) {
+    Fail(std::string(what) + "(" + s.name + "): " + std::to_string(size) + " registers for " +
+         ToString(s.type) + ", which takes " + std::to_string(RegisterCount(s.type)));
+  }
+}
+
+void PutWords(uint64_t v, std::span<uint16_t> out) {
+  for (size_t i = 0; i < out.size(); ++i) {
+    out[out.size() - 1 - i] = static_cast<uint16_t>(v >> (16 * i));
+  }
+}
+
+uint64_t GetWords(std::span<const uint16_t> in) {
+  uint64_t v = 0;
+  for (uint16_t w : in) v = (v << 16) | w;
+  return v;
+}
+
+}  // namespace
+
+void ToRegisters(const SignalImage& image, int id, std::span<uint16_t> out) {
+  CheckRegisters(image, id, out.size(), "ToRegisters");
+  const SignalType t = image.table()[id].type;
+  switch (t) {
+    case SignalType::kReal:
+      PutWords(std::bit_cast<uint32_t>(static_cast<float>(image.Real(id))), out);
+      return;
+    case SignalType::kLreal:
+      PutWords(std::bit_cast<uint64_t>(image.Real(id)), out);
+      return;
+    case SignalType::kString: {
+      const std::string& s = image.String(id);
+      for (size_t i = 0; i < out.size(); ++i) {
+        const auto byte = [&s](size_t k) -> uint16_t {
+          return k < s.size() ? static_cast<unsigned char>(s[k]) : 0;
+        };
+        out[i] = static_cast<uint16_t>(byte(2 * i) << 8 | byte(2 * i + 1));
+      }
+      return;
+    }
+    default:
+      // Two's complement within the register width: the cast keeps the low bits.
+      PutWords(static_cast<uint64_t>(image.Int(id)), out);
+      return;
+  }
+}
+
+void FromRegisters(SignalImage& image, int id, std::span<const uint16_t> in) {
+  CheckRegisters(image, id, in.size(), "FromRegisters");
+  const SignalType t = image.table()[id].type;
+  const uint64_t v = GetWords(in);
+  switch (t) {
+    case SignalType::kInt:
+      image.SetInt(id, static_cast<int16_t>(v));
+      return;
+    case SignalType::kDint:
+      image.SetInt(id, static_cast<int32_t>(v));
+      return;
+    case SignalType::kUint:
+    case SignalType::kWord:
+    case SignalType::kUdint:
+    case SignalType::kDword:
+      image.SetInt(id, static_cast<int64_t>(v));
+      return;
+    case SignalType::kReal:
+      image.SetReal(id, std::bit_cast<float>(static_cast<uint32_t>(v)));
+      return;
+    case SignalType::kLreal:
+      image.SetReal(id, std::bit_cast<double>(v));
+      return;
+    case SignalType::kString: {
+      std::string s;
+      for (uint16_t w : in) {
+        s.push_back(static_cast<char>(w >> 8));
+        s.push_back(static_cast<char>(w & 0xff));
+      }
+      s.resize(std::min(s.find('\0'), static_cast<size_t>(kStringBytes - 1)));
+      image.SetString(id, s);
+      return;
+    }
+    case SignalType::kBool:
+      return;  // rejected by CheckRegisters
+  }
+}
+
+}  // namespace vmt::control::gateway

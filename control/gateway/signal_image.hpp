@@ -1,0 +1,66 @@
+#pragma once
+// The signal image: the current value of every gateway signal, read and written by the NC
+// kernel, the PLC runtime and the Modbus adapter every cycle. Names are resolved to ids once
+// (Find / Require); the per-tick get/set is an index into flat arrays with a type check.
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "control/gateway/signal_table.hpp"
+
+namespace vmt::control::gateway {
+
+class SignalImage {
+ public:
+  /// Takes the table (usually BuildSignalTable's) and sets every signal to its preset. Throws
+  /// std::invalid_argument if a name occurs twice.
+  explicit SignalImage(std::vector<Signal> table);
+
+  /// Id of the signal called exactly `name` (case-sensitive; aliases are not names), or -1.
+  int Find(std::string_view name) const;
+  /// Id of `name`; aborts naming it if the table has no such signal (for code that needs it).
+  int Require(std::string_view name) const;
+
+  const std::vector<Signal>& table() const { return table_; }
+  int size() const { return static_cast<int>(table_.size()); }
+
+  // Accessors abort (with the signal's name) on an id out of range, on the wrong type (Bool
+  // for kBool; Int for the integer types; Real for kReal and kLreal; String for kString) and
+  // on an integer outside its type's range or a string longer than 83 bytes.
+  bool Bool(int id) const;
+  void SetBool(int id, bool v);
+  int64_t Int(int id) const;
+  void SetInt(int id, int64_t v);
+  /// kReal values are stored rounded to binary32, as a REAL variable and its registers hold them.
+  double Real(int id) const;
+  void SetReal(int id, double v);
+  const std::string& String(int id) const;
+  void SetString(int id, std::string_view v);
+
+  /// Every signal back to its preset (Control-Reset of a simulation, not of the NC).
+  void Reset();
+
+ private:
+  void Check(int id, bool ok_type, const char* accessor) const;
+
+  std::vector<Signal> table_;
+  std::vector<SignalType> types_;     // by id: the type check without touching table_
+  std::vector<int64_t> cells_;        // by id: BOOL/integer value, REAL/LREAL bits, string slot
+  std::vector<std::string> strings_;  // by string slot
+  std::vector<int> by_name_;          // ids sorted by name, for Find
+};
+
+/// Modbus register image of a non-BOOL signal; `out.size()` must be its modbus.count. Words are
+/// sent most significant first: INT/UINT/WORD one register (INT two's complement);
+/// DINT/UDINT/DWORD two registers, high word first; REAL the IEEE-754 binary32 bits, high word
+/// first; LREAL the binary64 bits, most significant word first; STRING two bytes per register,
+/// first character in the high byte, NUL-padded to 84 bytes.
+void ToRegisters(const SignalImage& image, int id, std::span<uint16_t> out);
+/// The inverse of ToRegisters. Every frame decodes: integers are read within the type's width
+/// (0xFFFF is -1 for INT, 65535 for UINT), a STRING ends at its first NUL or after 83 bytes.
+void FromRegisters(SignalImage& image, int id, std::span<const uint16_t> in);
+
+}  // namespace vmt::control::gateway

@@ -1,0 +1,93 @@
+#include "control/gateway/signal_table_format.hpp"
+
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string_view>
+
+namespace vmt::control::gateway {
+namespace {
+
+std::string CsvField(std::string_view field) {
+  if (field.find_first_of(",\"\r\n") == std::string_view::npos) return std::string(field);
+  std::string out = "\"";
+  for (char c : field) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  out += '"';
+  return out;
+}
+
+}  // namespace
+
+std::string FormatCsv(const std::vector<Signal>& table) {
+  std::string out = "name,type,direction,area,address,count,meaning,source\n";
+  for (const Signal& s : table) {
+    out += CsvField(s.name) + ',' + ToString(s.type) + ',' + ToString(s.direction) + ',' +
+           ToString(s.modbus.area) + ',' + std::to_string(s.modbus.address) + ',' +
+           std::to_string(s.modbus.count) + ',' + CsvField(s.meaning) + ',' + CsvField(s.source) +
+           '\n';
+  }
+  return out;
+}
+
+std::string FormatJson(const std::vector<Signal>& table) {
+  using nlohmann::ordered_json;
+  ordered_json doc;
+  doc["format"] = "vmt-gateway-signals";
+  doc["version"] = 1;
+  doc["modbus"] = {
+      {"coil", "BOOL the PLC writes"},
+      {"discrete_input", "BOOL the PLC reads"},
+      {"holding_register", "numeric or STRING the PLC writes"},
+      {"input_register", "numeric or STRING the PLC reads"},
+      {"encoding",
+       "16-bit registers, most significant word first; INT two's complement; DINT/UDINT/DWORD 2 "
+       "registers; REAL IEEE-754 binary32 in 2 registers; LREAL binary64 in 4; STRING(83) 42 "
+       "registers, first character in the high byte, NUL-padded"},
+  };
+  ordered_json signals = ordered_json::array();
+  std::set<std::string> patterns;
+  for (const Signal& s : table) {
+    patterns.insert(s.pattern);
+    ordered_json j;
+    j["name"] = s.name;
+    j["type"] = ToString(s.type);
+    j["direction"] = ToString(s.direction);
+    j["scope"] = ToString(s.scope);
+    j["instance"] = s.instance;
+    if (!s.instance_name.empty()) j["axis_name"] = s.instance_name;
+    j["pattern"] = s.pattern;
+    j["modbus"] = {{"area", ToString(s.modbus.area)},
+                   {"address", s.modbus.address},
+                   {"count", s.modbus.count}};
+    j["meaning"] = s.meaning;
+    if (!s.unit.empty()) j["unit"] = s.unit;
+    j["source"] = s.source;
+    if (!s.aliases.empty()) j["aliases"] = s.aliases;
+    if (s.preset != 0) j["preset"] = s.preset;
+    signals.push_back(std::move(j));
+  }
+  doc["signals"] = std::move(signals);
+
+  ordered_json values = ordered_json::array();
+  for (const ValueName& v : SignalValues()) {
+    if (patterns.count(std::string(v.pattern)) == 0) continue;
+    values.push_back({{"signal_pattern", v.pattern},
+                      {"name", v.name},
+                      {"value", v.value},
+                      {"bit_mask", v.bit_mask},
+                      {"meaning", v.meaning},
+                      {"source", v.source}});
+  }
+  doc["values"] = std::move(values);
+
+  ordered_json unrepresented = ordered_json::array();
+  for (const Unrepresented& u : UnrepresentedNames()) {
+    unrepresented.push_back({{"name", u.name}, {"reason", u.reason}, {"source", u.source}});
+  }
+  doc["unrepresented"] = std::move(unrepresented);
+  return doc.dump(2) + "\n";
+}
+
+}  // namespace vmt::control::gateway

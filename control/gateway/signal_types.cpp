@@ -1,0 +1,147 @@
+#include "control/gateway/signal_types.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+
+namespace vmt::control::gateway {
+
+const char* ToString(SignalType type) {
+  switch (type) {
+    case SignalType::kBool:
+      return "BOOL";
+    case SignalType::kInt:
+      return "INT";
+    case SignalType::kUint:
+      return "UINT";
+    case SignalType::kWord:
+      return "WORD";
+    case SignalType::kDint:
+      return "DINT";
+    case SignalType::kUdint:
+      return "UDINT";
+    case SignalType::kDword:
+      return "DWORD";
+    case SignalType::kReal:
+      return "REAL";
+    case SignalType::kLreal:
+      return "LREAL";
+    case SignalType::kString:
+      return "STRING(83)";
+  }
+  return "?";
+}
+
+const char* ToString(Direction direction) {
+  switch (direction) {
+    case Direction::kPlcToNc:
+      return "PLC->NC";
+    case Direction::kNcToPlc:
+      return "NC->PLC";
+    case Direction::kShared:
+      return "NC<->PLC";
+    case Direction::kMachineToPlc:
+      return "MACHINE->PLC";
+    case Direction::kPlcToMachine:
+      return "PLC->MACHINE";
+  }
+  return "?";
+}
+
+const char* ToString(Scope scope) {
+  switch (scope) {
+    case Scope::kProcess:
+      return "process";
+    case Scope::kAxis:
+      return "axis";
+    case Scope::kSpindle:
+      return "spindle";
+    case Scope::kChangeover:
+      return "changeover";
+    case Scope::kGlobal:
+      return "global";
+    case Scope::kIo:
+      return "io";
+  }
+  return "?";
+}
+
+bool PlcWrites(Direction direction) {
+  return direction == Direction::kPlcToNc || direction == Direction::kShared ||
+         direction == Direction::kPlcToMachine;
+}
+
+int RegisterCount(SignalType type) {
+  switch (type) {
+    case SignalType::kBool:
+    case SignalType::kInt:
+    case SignalType::kUint:
+    case SignalType::kWord:
+      return 1;
+    case SignalType::kDint:
+    case SignalType::kUdint:
+    case SignalType::kDword:
+    case SignalType::kReal:
+      return 2;
+    case SignalType::kLreal:
+      return 4;
+    case SignalType::kString:
+      return kStringBytes / 2;
+  }
+  return 0;
+}
+
+bool IsInteger(SignalType type) {
+  switch (type) {
+    case SignalType::kInt:
+    case SignalType::kUint:
+    case SignalType::kWord:
+    case SignalType::kDint:
+    case SignalType::kUdint:
+    case SignalType::kDword:
+      return true;
+    default:
+      return false;
+  }
+}
+
+namespace {
+[[noreturn]] void NotInteger(SignalType type) {
+  std::fprintf(stderr, "gateway: %s is not an integer type\n", ToString(type));
+  std::abort();
+}
+}  // namespace
+
+int64_t MinValue(SignalType type) {
+  switch (type) {
+    case SignalType::kInt:
+      return -32768;
+    case SignalType::kDint:
+      return -2147483648LL;
+    case SignalType::kUint:
+    case SignalType::kWord:
+    case SignalType::kUdint:
+    case SignalType::kDword:
+      return 0;
+    default:
+      NotInteger(type);
+  }
+}
+
+int64_t MaxValue(SignalType type) {
+  switch (type) {
+    case SignalType::kInt:
+      return 32767;
+    case SignalType::kUint:
+    case SignalType::kWord:
+      return 65535;
+    case SignalType::kDint:
+      return 2147483647LL;
+    case SignalType::kUdint:
+    case SignalType::kDword:
+      return 4294967295LL;
+    default:
+      NotInteger(type);
+  }
+}
+
+}  // namespace vmt::control::gateway
