@@ -767,6 +767,12 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
     return false;
   }
 
+  // Jerk: the axes' limit, as for the acceleration (0: not limited).
+  double axis_jerk = std::numeric_limits<double>::infinity();
+  for (size_t a = 0; a < n; ++a)
+    if (std::abs(delta[a]) >= 1e-12 && config_.axes[a].jerk > 0)
+      axis_jerk = std::min(axis_jerk, config_.axes[a].jerk / std::abs(delta[a]));
+  if (std::isfinite(axis_jerk)) profile_.max_jerk = axis_jerk;
   if (block_.motion == nc::Motion::kRapid) {
     profile_.max_rate = axis_rate;
     profile_.max_accel = axis_accel;
@@ -851,6 +857,9 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
     const double v = std::min(feed, std::sqrt(accel * arc_radius_));
     profile_.max_rate = v / length;
     profile_.max_accel = accel / length;
+    const double jerk = std::min(config_.axes[a0].jerk > 0 ? config_.axes[a0].jerk : HUGE_VAL,
+                                 config_.axes[a1].jerk > 0 ? config_.axes[a1].jerk : HUGE_VAL);
+    profile_.max_jerk = std::isfinite(jerk) ? jerk / length : 0;
   }
   active_ = true;
   return true;

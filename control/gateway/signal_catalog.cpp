@@ -324,6 +324,19 @@ constexpr SignalFamily kFamilies[] = {
      "vmt"},
     {"PxxS.ERRNR", kProcess, kInt, kNcToPlc, "Number of the pending process error; 0 = none",
      "vmt"},
+    // Auxiliary functions with acknowledgement: the manuals give Q functions their own
+    // acknowledgement (Pxx.Qnnnn_Q) but name no strobe for M, H and T.
+    {"PxxS.AUXSTB", kProcess, kBool, kNcToPlc,
+     "Auxiliary functions (M, H, T) of the block output: the block waits for PxxC.AUXACK",
+     "vmt"},
+    {"PxxS.MFUNC", kProcess, kInt, kNcToPlc, "M function number while PxxS.AUXSTB (-1: none)",
+     "vmt", "", "", -1},
+    {"PxxS.HFUNC", kProcess, kInt, kNcToPlc, "H function number while PxxS.AUXSTB (-1: none)",
+     "vmt", "", "", -1},
+    {"PxxS.TFUNC", kProcess, kInt, kNcToPlc, "T number (tool) while PxxS.AUXSTB (-1: none)",
+     "vmt", "", "", -1},
+    {"PxxC.AUXACK", kProcess, kBool, kPlcToNc,
+     "Acknowledge the auxiliary functions output (rising edge): the block goes on", "vmt"},
 
     // ---------------------------------------------------------------------------------------
     // Axis signals (c-axis 4.2 table "Axis Signals"; Axx: axis number xx, from 01: the

@@ -33,10 +33,45 @@ double TrapezoidProfile::At(double t_s) const {
   return start + sign * s;
 }
 
+double SignalNumber(const control::gateway::SignalImage& image, int id) {
+  using control::gateway::SignalType;
+  switch (image.table()[id].type) {
+    case SignalType::kBool:
+      return image.Bool(id) ? 1 : 0;
+    case SignalType::kReal:
+    case SignalType::kLreal:
+      return image.Real(id);
+    case SignalType::kString:
+      return 0;
+    default:
+      return static_cast<double>(image.Int(id));
+  }
+}
+
+void SetSignalNumber(control::gateway::SignalImage& image, int id, double value) {
+  using control::gateway::SignalType;
+  switch (image.table()[id].type) {
+    case SignalType::kBool:
+      image.SetBool(id, value != 0);
+      return;
+    case SignalType::kReal:
+    case SignalType::kLreal:
+      image.SetReal(id, value);
+      return;
+    case SignalType::kString:
+      return;
+    default:
+      image.SetInt(id, std::llround(value));
+  }
+}
+
 bool Holds(const Condition& c, const control::AmplifierTelegram& at,
-           const std::vector<ClutchState>& clutches, const control::channel::Channel* channel) {
+           const std::vector<ClutchState>& clutches, const control::channel::Channel* channel,
+           const control::gateway::SignalImage* image) {
   using namespace control::drive_status;
   switch (c.kind) {
+    case Condition::Kind::kSignal:
+      return image && SignalNumber(*image, c.index) == c.signal_value;
     case Condition::Kind::kInput:
       return (at.inputs[c.index] != 0) == c.value;
     case Condition::Kind::kInPosition:
@@ -54,8 +89,8 @@ bool Holds(const Condition& c, const control::AmplifierTelegram& at,
 }
 
 DriveProgram::DriveProgram(const Scene& scene, const control::AmplifierTelegram& feedback,
-                           control::channel::Channel* channel)
-    : scene_(&scene), channel_(channel) {
+                           control::channel::Channel* channel, control::gateway::SignalImage* image)
+    : scene_(&scene), channel_(channel), image_(image) {
   const MachineModel& m = *scene.model;
   setpoints_.resize(m.drives.size());
   profiles_.resize(m.drives.size());
@@ -145,6 +180,9 @@ bool DriveProgram::Execute(const TimelineStep& step, double t_s,
     case Kind::kHandwheel:
       if (channel_) channel_->Handwheel(step.axis, step.code);
       return true;
+    case Kind::kSignal:
+      if (image_) SetSignalNumber(*image_, step.signal, step.target);
+      return true;
     case Kind::kJog:
       // The key goes down when the step begins and comes up after `hold`.
       if (!channel_) return true;
@@ -162,7 +200,7 @@ bool DriveProgram::Execute(const TimelineStep& step, double t_s,
       const bool moving =
           step.until.kind == Condition::Kind::kInPosition && profiling_[step.until.index] &&
           t_s < profiles_[step.until.index].t0_s + profiles_[step.until.index].Duration();
-      if (!moving && Holds(step.until, at, clutches, channel_)) return true;
+      if (!moving && Holds(step.until, at, clutches, channel_, image_)) return true;
       if (t_s - step_since_s_ >= step.timeout_s) {
         failures_.push_back(step.text + " timed out after " + std::to_string(step.timeout_s) +
                             " s");

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "control/drive_bus.hpp"
+#include "control/gateway/signal_image.hpp"
 #include "sim/scene/scene.hpp"
 
 namespace vmt::sim {
@@ -28,8 +29,11 @@ class DriveProgram {
  public:
   /// `feedback` gives the state at t = 0: servos hold their position, spindles stand at 0.
   /// `channel` (may be null) receives the timeline's NC steps.
+  /// `image` (may be null): the gateway signals the timeline's `signal:` steps write, as the
+  /// default PLC passing panel keys to the NC would.
   DriveProgram(const Scene& scene, const control::AmplifierTelegram& feedback,
-               control::channel::Channel* channel = nullptr);
+               control::channel::Channel* channel = nullptr,
+               control::gateway::SignalImage* image = nullptr);
 
   /// One drive tick at time t: advances the timeline on the feedback of the last tick and fills
   /// the MDT to write. Events are appended to `events`.
@@ -47,6 +51,7 @@ class DriveProgram {
 
   const Scene* scene_;
   control::channel::Channel* channel_;
+  control::gateway::SignalImage* image_;
   std::vector<control::DriveSetpoint> setpoints_;
   std::vector<TrapezoidProfile> profiles_;
   std::vector<bool> profiling_;
@@ -56,8 +61,15 @@ class DriveProgram {
   std::vector<std::string> failures_;
 };
 
-/// Evaluates a condition on the machine's feedback (and the channel, if there is one).
+/// Evaluates a condition on the machine's feedback (and the channel and the gateway signals,
+/// if there are).
 bool Holds(const Condition& c, const control::AmplifierTelegram& at,
-           const std::vector<ClutchState>& clutches, const control::channel::Channel* channel);
+           const std::vector<ClutchState>& clutches, const control::channel::Channel* channel,
+           const control::gateway::SignalImage* image);
+
+/// A signal's value as a number (BOOL 0/1; STRING 0).
+double SignalNumber(const control::gateway::SignalImage& image, int id);
+/// Writes a number into a signal of any numeric type (BOOL: != 0).
+void SetSignalNumber(control::gateway::SignalImage& image, int id, double value);
 
 }  // namespace vmt::sim

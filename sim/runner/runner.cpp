@@ -8,7 +8,9 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "control/gateway/channel_gateway.hpp"
 #include "render/image.hpp"
+#include "sim/model/gateway_layout.hpp"
 #include "sim/runner/drive_program.hpp"
 #include "sim/runner/scene_renderer.hpp"
 
@@ -50,9 +52,12 @@ std::string TraceHeader(const MachineModel& m, bool nc) {
 }
 
 double Measured(const Expectation& e, const control::AmplifierTelegram& at,
-                const std::vector<ClutchState>& clutches) {
+                const std::vector<ClutchState>& clutches,
+                const control::gateway::SignalImage* image) {
   using Q = Expectation::Quantity;
   switch (e.quantity) {
+    case Q::kSignal:
+      return image ? SignalNumber(*image, e.index) : std::nan("");
     case Q::kPosition:
       return at.feedback[e.index].position;
     case Q::kVelocity:
@@ -73,9 +78,10 @@ double Measured(const Expectation& e, const control::AmplifierTelegram& at,
 
 ExpectationResult Check(const Expectation& e, const control::AmplifierTelegram& at,
                         const std::vector<ClutchState>& clutches,
-                        const control::channel::Channel* channel) {
+                        const control::channel::Channel* channel,
+                        const control::gateway::SignalImage* image) {
   ExpectationResult r{e.text, false, ""};
-  const double got = Measured(e, at, clutches);
+  const double got = Measured(e, at, clutches, image);
   if (e.quantity == Expectation::Quantity::kNc) {
     r.passed = channel && channel->state() == e.nc;
     r.detail = std::string("got ") + (channel ? ToString(channel->state()) : "no channel");
@@ -116,7 +122,23 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
     channel = std::make_unique<control::channel::Channel>(config, programs);
     channel->SetFeedOverride(scene.nc.override);
   }
-  DriveProgram program(scene, backend->Read(), channel.get());
+  // The gateway: the channel reads its control signals and writes its status each NC cycle.
+  std::unique_ptr<control::gateway::SignalImage> image;
+  std::unique_ptr<control::gateway::ChannelGateway> gateway;
+  if (channel && scene.nc.signals) {
+    image = std::make_unique<control::gateway::SignalImage>(*scene.nc.signals);
+    std::vector<int> numbers;
+    for (const auto& a : scene.nc.data.axes) numbers.push_back(a.number);
+    int spindle_number = -1;
+    const int sd = scene.nc.data.spindle_drive;
+    for (const auto& a : GatewayLayoutOf(m).axes)
+      if (a.spindle_capable && sd >= 0 && a.name == m.drives[sd].info.name)
+        spindle_number = a.number;
+    gateway = std::make_unique<control::gateway::ChannelGateway>(
+        *image, scene.nc.data.process.number, numbers, spindle_number, sd);
+  }
+  DriveProgram program(scene, backend->Read(), channel.get(), image.get());
+  std::vector<double> last_signals;
   auto nc_state = control::channel::ChannelState::kIdle;
 
   const double duration = options.until_s.value_or(scene.duration_s);
@@ -164,7 +186,10 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
     events.clear();
     program.Tick(t, at, clutches, mdt, events);
     if (channel) {
+      const bool nc_cycle = tick % 4 == 0;
+      if (gateway && nc_cycle) gateway->ReadControls(*channel);
       channel->Tick(at, mdt);
+      if (gateway && nc_cycle) gateway->WriteStatus(*channel, at);
       if (channel->state() != nc_state) {
         nc_state = channel->state();
         nlohmann::ordered_json e = {{"t", t}, {"event", "nc"}, {"state", ToString(nc_state)}};
@@ -174,6 +199,19 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
     }
     for (const ProgramEvent& e : events)
       emit_event({{"t", e.t_s}, {"event", e.kind}, {"text", e.text}});
+    if (image) {
+      // Every change of a gateway signal, either direction, as the PLC engineer traces it.
+      last_signals.resize(image->size(), std::nan(""));
+      for (int id = 0; id < image->size(); ++id) {
+        const double v = SignalNumber(*image, id);
+        if (v != last_signals[id] && !(std::isnan(v) && std::isnan(last_signals[id]))) {
+          if (!std::isnan(last_signals[id]) || v != 0)
+            emit_event(
+                {{"t", t}, {"event", "signal"}, {"name", image->table()[id].name}, {"value", v}});
+          last_signals[id] = v;
+        }
+      }
+    }
     for (size_t k = 0; k < clutches.size(); ++k)
       if (last_clutches.empty() || clutches[k] != last_clutches[k])
         emit_event({{"t", t},
@@ -213,7 +251,7 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
       const bool due = e.at_s < 0 ? tick == last_tick : t >= e.at_s - 1e-9;
       if (checked[i] || !due) continue;
       checked[i] = true;
-      checks[i] = Check(e, at, clutches, channel.get());
+      checks[i] = Check(e, at, clutches, channel.get(), image.get());
       emit_event({{"t", t},
                   {"event", "expectation"},
                   {"text", e.text},

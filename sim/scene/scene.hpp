@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "control/channel/channel.hpp"
+#include "control/gateway/signal_table.hpp"
 #include "control/nc/program.hpp"
 #include "sim/backend/machine_backend.hpp"
 #include "sim/model/machine_model.hpp"
@@ -38,13 +39,24 @@ struct NcSetup {
   double override = 1.0;
   control::nc::ModalState initial;  ///< `initial:` G codes of the scene (e.g. G54)
   bool aux_handshake = false;       ///< M/H/Q/T wait for the PLC's acknowledgement
+  /// The gateway's signals for this machine (vmt signals MODEL); the runner's signal image.
+  std::shared_ptr<const std::vector<control::gateway::Signal>> signals;
 };
 
 /// What a wait_until step or an expectation looks at.
 struct Condition {
-  enum class Kind { kInput, kInPosition, kAtSpeed, kStandstill, kClutch, kNc } kind = Kind::kInput;
-  int index = -1;     ///< I/O point, drive or clutch
-  bool value = true;  ///< input level or status bit wanted
+  enum class Kind {
+    kInput,
+    kInPosition,
+    kAtSpeed,
+    kStandstill,
+    kClutch,
+    kNc,
+    kSignal
+  } kind = Kind::kInput;
+  int index = -1;           ///< I/O point, drive, clutch or gateway signal
+  double signal_value = 1;  ///< kSignal: the value wanted (BOOL as 0/1)
+  bool value = true;        ///< input level or status bit wanted
   ClutchState clutch = ClutchState::kEngaged;
   control::channel::ChannelState nc = control::channel::ChannelState::kEnded;
 };
@@ -70,6 +82,7 @@ struct TimelineStep {
     kNcReverse,
     kJog,
     kHandwheel,
+    kSignal,
   } kind;
   double not_before_s = 0;  ///< `at:`; 0 = as soon as the previous step is done
   int drive = -1;
@@ -78,6 +91,7 @@ struct TimelineStep {
   double feed = 0;     ///< move: mm/s | deg/s
   bool level = false;  ///< output value
   int code = 0;        ///< kNcMode: ChannelMode; kNcJogMode: JOGM code; kHandwheel: counts
+  int signal = -1;     ///< kSignal: gateway signal the (default) PLC writes; value in `target`
   int axis = -1;       ///< kJog: channel axis index
   int direction = 0;   ///< kJog: +1 | -1
   double wait_s = 0;
@@ -95,10 +109,11 @@ struct Expectation {
     kFollowingError,
     kInput,
     kClutch,
-    kNc
+    kNc,
+    kSignal
   } quantity;
   double at_s = -1;  ///< -1: at the end of the run
-  int index = -1;    ///< drive, I/O point or clutch
+  int index = -1;    ///< drive, I/O point, clutch or gateway signal
   double value = 0;
   double tolerance = 0;
   ClutchState clutch = ClutchState::kEngaged;

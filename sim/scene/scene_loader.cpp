@@ -6,6 +6,7 @@
 
 #include "control/nc/parser.hpp"
 #include "sim/kinematic/kinematic_backend.hpp"
+#include "sim/model/gateway_layout.hpp"
 #include "sim/model/model_error.hpp"
 #include "sim/model/nc_machine_data.hpp"
 #include "sim/model/yaml_reader.hpp"
@@ -67,8 +68,31 @@ control::channel::ChannelState ParseNcState(const YamlNode& n) {
   n.Fail("expected idle, running, hold, ended or error");
 }
 
-Condition ReadCondition(const MachineModel& m, const YamlNode& n) {
+int RequireSignal(const NcSetup& nc, const YamlNode& n) {
+  if (!nc.present || !nc.signals) n.Fail("the scene has no nc: section (no gateway signals)");
+  const std::string name = n.String();
+  for (size_t i = 0; i < nc.signals->size(); ++i)
+    if ((*nc.signals)[i].name == name) return static_cast<int>(i);
+  n.Fail("no gateway signal '" + name + "' (vmt signals MODEL lists them)");
+}
+
+// A signal value as written in a scene: true/false for BOOL, a number otherwise.
+double SignalValue(const NcSetup& nc, int id, const YamlNode& n) {
+  if ((*nc.signals)[id].type == control::gateway::SignalType::kBool) return n.Bool() ? 1 : 0;
+  if ((*nc.signals)[id].type == control::gateway::SignalType::kString)
+    n.Fail("STRING signals cannot be set from a scene");
+  return n.Double();
+}
+
+Condition ReadCondition(const MachineModel& m, const YamlNode& n, const NcSetup& nc) {
   Condition c;
+  if (n.Has("signal")) {
+    n.AllowKeys({"signal", "value", "timeout"});
+    c.kind = Condition::Kind::kSignal;
+    c.index = RequireSignal(nc, n["signal"]);
+    c.signal_value = n.Has("value") ? SignalValue(nc, c.index, n["value"]) : 1;
+    return c;
+  }
   if (n.Has("nc")) {
     n.AllowKeys({"nc", "timeout"});
     c.kind = Condition::Kind::kNc;
@@ -100,7 +124,7 @@ Condition ReadCondition(const MachineModel& m, const YamlNode& n) {
     else
       n.Fail("expected one of in_position, at_speed, standstill");
   } else {
-    n.Fail("expected input:, clutch: or axis:");
+    n.Fail("expected input:, clutch:, axis:, nc: or signal:");
   }
   return c;
 }
@@ -108,19 +132,34 @@ Condition ReadCondition(const MachineModel& m, const YamlNode& n) {
 TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const NcSetup& nc) {
   const bool has_nc = nc.present;
   n.AllowKeys({"at", "move", "speed", "orient", "off", "output", "wait", "wait_until", "nc", "jog",
-               "handwheel"});
+               "handwheel", "signal"});
   TimelineStep s{};
   s.not_before_s = n.Double("at", 0);
   std::ostringstream text;
   text << "timeline[" << i << "]: ";
   int actions = 0;
-  for (const char* k :
-       {"move", "speed", "orient", "off", "output", "wait", "wait_until", "nc", "jog", "handwheel"})
+  for (const char* k : {"move", "speed", "orient", "off", "output", "wait", "wait_until", "nc",
+                        "jog", "handwheel", "signal"})
     actions += n.Has(k);
   if (actions != 1)
     n.Fail(
         "a step needs exactly one of move, speed, orient, off, output, wait, wait_until, nc, jog, "
-        "handwheel");
+        "handwheel, signal");
+
+  if (n.Has("signal")) {  // the default PLC passes a panel key or value to the NC
+    const YamlNode a = n["signal"];
+    a.AllowKeys({"name", "value"});
+    s.kind = TimelineStep::Kind::kSignal;
+    s.signal = RequireSignal(nc, a["name"]);
+    const auto& sig = (*nc.signals)[s.signal];
+    if (sig.direction != control::gateway::Direction::kPlcToNc &&
+        sig.direction != control::gateway::Direction::kShared)
+      a["name"].Fail("the NC writes " + sig.name + ": a PLC cannot set it");
+    s.target = SignalValue(nc, s.signal, a["value"]);
+    text << "signal " << sig.name << " = " << Fmt(s.target);
+    s.text = text.str();
+    return s;
+  }
 
   if (n.Has("handwheel")) {  // turn the handwheel of a channel axis by a number of counts
     const YamlNode a = n["handwheel"];
@@ -275,7 +314,7 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
   } else {
     const YamlNode a = n["wait_until"];
     s.kind = TimelineStep::Kind::kWaitUntil;
-    s.until = ReadCondition(m, a);
+    s.until = ReadCondition(m, a, nc);
     s.timeout_s = a.Double("timeout", 10);
     text << "wait until";
     for (const std::string& k : a.Keys())
@@ -285,9 +324,9 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
   return s;
 }
 
-Expectation ReadExpectation(const MachineModel& m, const YamlNode& n, size_t i) {
+Expectation ReadExpectation(const MachineModel& m, const YamlNode& n, size_t i, const NcSetup& nc) {
   n.AllowKeys({"at", "axis", "position", "velocity", "rpm", "following_error", "input", "value",
-               "clutch", "state", "tol", "nc"});
+               "clutch", "state", "tol", "nc", "signal"});
   Expectation e{};
   e.at_s = n.Double("at", -1);
   std::ostringstream text;
@@ -313,6 +352,12 @@ Expectation ReadExpectation(const MachineModel& m, const YamlNode& n, size_t i) 
     e.index = RequireIo(m, n["input"]);
     e.value = n["value"].Bool() ? 1 : 0;
     text << n["input"].String() << " = " << e.value;
+  } else if (n.Has("signal")) {
+    e.quantity = Expectation::Quantity::kSignal;
+    e.index = RequireSignal(nc, n["signal"]);
+    e.value = SignalValue(nc, e.index, n["value"]);
+    e.tolerance = n.Double("tol", 0);
+    text << n["signal"].String() << " = " << Fmt(e.value);
   } else if (n.Has("nc")) {
     e.quantity = Expectation::Quantity::kNc;
     e.nc = ParseNcState(n["nc"]);
@@ -325,7 +370,7 @@ Expectation ReadExpectation(const MachineModel& m, const YamlNode& n, size_t i) 
     e.clutch = ParseClutchState(n["state"]);
     text << "clutch " << n["clutch"].String() << " " << ToString(e.clutch);
   } else {
-    n.Fail("expected axis:, input:, clutch: or nc:");
+    n.Fail("expected axis:, input:, clutch:, nc: or signal:");
   }
   text << (e.at_s < 0 ? std::string(" at the end") : " at " + Fmt(e.at_s) + " s");
   e.text = text.str();
@@ -519,6 +564,8 @@ Scene LoadScene(const std::string& path) {
       }
     }
     s.nc.aux_handshake = nc.Bool("aux_handshake", false);
+    s.nc.signals = std::make_shared<const std::vector<control::gateway::Signal>>(
+        control::gateway::BuildSignalTable(GatewayLayoutOf(m)));
     s.nc.override = nc.Double("override", 100) / 100;
   }
   if (root.Has("timeline")) {
@@ -527,7 +574,8 @@ Scene LoadScene(const std::string& path) {
   }
   if (root.Has("expect")) {
     const YamlNode e = root["expect"];
-    for (size_t i = 0; i < e.size(); ++i) s.expectations.push_back(ReadExpectation(m, e[i], i));
+    for (size_t i = 0; i < e.size(); ++i)
+      s.expectations.push_back(ReadExpectation(m, e[i], i, s.nc));
   }
   if (root.Has("snapshots")) {
     const YamlNode sn = root["snapshots"];

@@ -1,0 +1,179 @@
+#include "control/gateway/channel_gateway.hpp"
+
+#include <cstdio>
+
+namespace vmt::control::gateway {
+namespace {
+
+std::string Number2(int n) {
+  char buf[8];
+  std::snprintf(buf, sizeof buf, "%02d", n);
+  return buf;
+}
+
+}  // namespace
+
+bool ChannelGateway::Edge::Rising(const SignalImage& image) {
+  if (id < 0) return false;
+  const bool now = image.Bool(id);
+  const bool rising = now && !last;
+  last = now;
+  return rising;
+}
+
+ChannelGateway::ChannelGateway(SignalImage& image, int process,
+                               const std::vector<int>& axis_numbers, int spindle_number,
+                               int spindle_drive)
+    : image_(&image), spindle_drive_(spindle_drive) {
+  prefix_ = "P" + Number2(process);
+  const std::string c = prefix_ + "C.", s = prefix_ + "S.";
+  auto_.id = Id(c + "AUTO");
+  manu_.id = Id(c + "MANU");
+  mdi_.id = Id(c + "MDI");
+  start_.id = Id(c + "START");
+  reset_.id = Id(c + "RESET");
+  rev_.id = Id(c + "REV");
+  auxack_.id = Id(c + "AUXACK");
+  stop_ = Id(c + "STOP");
+  sbl_ = Id(c + "SBL");
+  fovr_ = Id(c + "FOVR");
+  if (fovr_ >= 0) last_fovr_ = image.Int(fovr_);  // only changes act (see ReadControls)
+  for (int k = 0; k < 3; ++k) jogm_[k] = Id(c + "JOGM" + std::to_string(k));
+  s_auto_ = Id(s + "AUTO");
+  s_manu_ = Id(s + "MANU");
+  s_mdi_ = Id(s + "MDI");
+  s_run_ = Id(s + "RUN");
+  s_stop_ = Id(s + "STOP");
+  s_rev_ = Id(s + "REV");
+  s_error_ = Id(s + "ERROR");
+  s_errnr_ = Id(s + "ERRNR");
+  s_auxstb_ = Id(s + "AUXSTB");
+  s_mfunc_ = Id(s + "MFUNC");
+  s_hfunc_ = Id(s + "HFUNC");
+  s_tfunc_ = Id(s + "TFUNC");
+  for (int number : axis_numbers) {
+    const std::string a = "A" + Number2(number);
+    AxisSignals sig;
+    sig.jgpos = Id(a + "C.JGPOS");
+    sig.jgneg = Id(a + "C.JGNEG");
+    sig.mvpos = Id(a + "S.MVPOS");
+    sig.mvneg = Id(a + "S.MVNEG");
+    sig.homed = Id(a + "S.HOMED");
+    axes_.push_back(sig);
+  }
+  if (spindle_number > 0) {
+    const std::string a = "A" + Number2(spindle_number) + "S.";
+    n_ncmd_ = Id(a + "N_NCMD");
+    n_nmin_ = Id(a + "N_NMIN");
+    inpos_ = Id(a + "INPOS");
+  }
+  // Q functions the table knows: Pxx.Qnnnn out, Pxx.Qnnnn_Q acknowledgement.
+  const std::string q = prefix_ + ".Q";
+  for (int id = 0; id < image.size(); ++id) {
+    const std::string& name = image.table()[id].name;
+    if (name.rfind(q, 0) != 0 || name.find('_') != std::string::npos) continue;
+    const int ack = Id(name + "_Q");
+    if (ack >= 0) q_.push_back({std::atoi(name.c_str() + q.size()), id, ack});
+  }
+}
+
+void ChannelGateway::ReadControls(channel::Channel& ch) {
+  SignalImage& im = *image_;
+  // Mode selection: the rising edge asks for a mode; the channel refuses while a program runs,
+  // and PxxS.AUTO/MANU/MDI show what it is in.
+  if (auto_.Rising(im)) ch.SetMode(channel::ChannelMode::kAutomatic);
+  if (manu_.Rising(im)) ch.SetMode(channel::ChannelMode::kManual);
+  if (mdi_.Rising(im)) ch.SetMode(channel::ChannelMode::kMdi);
+  if (reset_.Rising(im)) ch.Reset();
+  // Feed hold as long as STOP is 1; START (rising edge) starts or continues.
+  const bool stop = stop_ >= 0 && im.Bool(stop_);
+  if (stop) ch.Stop();
+  if (start_.Rising(im) && !stop) ch.Start();
+  if (rev_.Rising(im)) ch.Reverse();
+  // Levels act when they change, so that the operator's other ways in (a scene's nc: steps)
+  // are not overwritten every cycle.
+  if (sbl_ >= 0 && im.Bool(sbl_) != last_sbl_) ch.SetSingleBlock(last_sbl_ = im.Bool(sbl_));
+  if (fovr_ >= 0) {
+    const int64_t percent = im.Int(fovr_);
+    if (percent != last_fovr_)
+      ch.SetFeedOverride(static_cast<double>(percent) / 100), last_fovr_ = percent;
+  }
+  if (jogm_[0] >= 0 && jogm_[1] >= 0 && jogm_[2] >= 0) {
+    const int code = im.Bool(jogm_[0]) | im.Bool(jogm_[1]) << 1 | im.Bool(jogm_[2]) << 2;
+    if (code != last_jogm_) ch.SetJogMode(code), last_jogm_ = code;
+  }
+  for (size_t a = 0; a < axes_.size(); ++a) {
+    AxisSignals& sig = axes_[a];
+    const bool pos = sig.jgpos >= 0 && im.Bool(sig.jgpos);
+    const bool neg = sig.jgneg >= 0 && im.Bool(sig.jgneg);
+    const int key = pos == neg ? 0 : pos ? 1 : -1;  // both keys: no motion
+    if (key != sig.last_key) ch.Jog(a, key), sig.last_key = key;
+  }
+  // Acknowledgement of the auxiliary functions: AUXACK's edge, or every pending Q function
+  // acknowledged on its own signal.
+  bool ack = auxack_.Rising(im);
+  if (!ch.aux_output().empty() && !ack) {
+    bool all_q = true;
+    for (const nc::AuxFunction& f : ch.aux_output()) {
+      bool acked = false;
+      if (f.letter == 'Q')
+        for (const QSignal& qs : q_)
+          if (qs.number == static_cast<int>(f.value)) acked = im.Bool(qs.ack);
+      all_q = all_q && acked;
+    }
+    ack = all_q;
+  }
+  if (ack) ch.AcknowledgeAux();
+}
+
+void ChannelGateway::WriteStatus(const channel::Channel& ch, const AmplifierTelegram& at) {
+  SignalImage& im = *image_;
+  auto set = [&](int id, bool v) {
+    if (id >= 0) im.SetBool(id, v);
+  };
+  auto set_int = [&](int id, int64_t v) {
+    if (id >= 0) im.SetInt(id, v);
+  };
+  set(s_auto_, ch.mode() == channel::ChannelMode::kAutomatic);
+  set(s_manu_, ch.mode() == channel::ChannelMode::kManual);
+  set(s_mdi_, ch.mode() == channel::ChannelMode::kMdi);
+  set(s_run_, ch.state() == channel::ChannelState::kRunning);
+  set(s_stop_, ch.state() == channel::ChannelState::kHold);
+  set(s_rev_, ch.reversing());
+  set(s_error_, ch.state() == channel::ChannelState::kError);
+  set_int(s_errnr_, ch.error_number());
+  // The strobe is for M, H and T; a Q function has its own signal and acknowledgement.
+  const auto& aux = ch.aux_output();
+  bool strobe = false;
+  for (const nc::AuxFunction& f : aux) strobe = strobe || f.letter != 'Q';
+  set(s_auxstb_, strobe);
+  int64_t m = -1, h = -1, t = -1;
+  for (const nc::AuxFunction& f : aux) {
+    if (f.letter == 'M' && m < 0) m = static_cast<int64_t>(f.value);
+    if (f.letter == 'H' && h < 0) h = static_cast<int64_t>(f.value);
+    if (f.letter == 'T' && t < 0) t = static_cast<int64_t>(f.value);
+  }
+  set_int(s_mfunc_, m);
+  set_int(s_hfunc_, h);
+  set_int(s_tfunc_, t);
+  for (const QSignal& qs : q_) {
+    bool out = false;
+    for (const nc::AuxFunction& f : aux)
+      out = out || (f.letter == 'Q' && static_cast<int>(f.value) == qs.number);
+    im.SetBool(qs.out, out);
+  }
+  for (size_t a = 0; a < axes_.size(); ++a) {
+    const int motion = ch.AxisMotion(a);
+    set(axes_[a].mvpos, motion > 0);
+    set(axes_[a].mvneg, motion < 0);
+    set(axes_[a].homed, ch.homed(a));
+  }
+  if (spindle_drive_ >= 0 && spindle_drive_ < static_cast<int>(at.feedback.size())) {
+    const uint32_t st = at.feedback[spindle_drive_].status;
+    set(n_ncmd_, st & drive_status::kAtSpeed);
+    set(n_nmin_, st & drive_status::kStandstill);
+    set(inpos_, st & drive_status::kInPosition);
+  }
+}
+
+}  // namespace vmt::control::gateway

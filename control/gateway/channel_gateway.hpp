@@ -1,0 +1,60 @@
+#pragma once
+// The gateway between one NC channel (process Pxx) and the PLC's signal image: every NC cycle
+// the channel takes the control signals the PLC wrote (mode selection, cycle start/stop,
+// Control-Reset, single block, overrides, jog keys and jog mode, acknowledgements) and writes
+// its status signals (mode, RUN, STOP, REV, error, auxiliary function output, axis movement and
+// reference, spindle status), as the MTC200's NC/PLC interface does.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "control/channel/channel.hpp"
+#include "control/drive_bus.hpp"
+#include "control/gateway/signal_image.hpp"
+
+namespace vmt::control::gateway {
+
+class ChannelGateway {
+ public:
+  /// `axis_numbers`: Axx number per channel axis; `spindle_number`: Axx of the main spindle
+  /// (-1 if none) and its drive. Signals the image lacks are skipped (a machine without them).
+  ChannelGateway(SignalImage& image, int process, const std::vector<int>& axis_numbers,
+                 int spindle_number, int spindle_drive);
+
+  /// PLC -> NC: acts on the channel (edges for commands, levels for states).
+  void ReadControls(channel::Channel& channel);
+  /// NC -> PLC: the channel's and the drives' state into the image.
+  void WriteStatus(const channel::Channel& channel, const AmplifierTelegram& at);
+
+ private:
+  struct Edge {
+    int id = -1;
+    bool last = false;
+    bool Rising(const SignalImage& image);
+  };
+  int Id(const std::string& name) const { return image_->Find(name); }
+
+  SignalImage* image_;
+  Edge auto_, manu_, mdi_, start_, reset_, rev_, auxack_;
+  int stop_ = -1, sbl_ = -1, fovr_ = -1, jogm_[3] = {-1, -1, -1};
+  int64_t last_fovr_ = -1;
+  bool last_sbl_ = false;
+  int last_jogm_ = -1;
+  struct AxisSignals {
+    int jgpos = -1, jgneg = -1, mvpos = -1, mvneg = -1, homed = -1;
+    int last_key = 0;
+  };
+  std::vector<AxisSignals> axes_;
+  int s_auto_ = -1, s_manu_ = -1, s_mdi_ = -1, s_run_ = -1, s_stop_ = -1, s_rev_ = -1;
+  int s_error_ = -1, s_errnr_ = -1, s_auxstb_ = -1, s_mfunc_ = -1, s_hfunc_ = -1, s_tfunc_ = -1;
+  int spindle_drive_ = -1, n_ncmd_ = -1, n_nmin_ = -1, inpos_ = -1;
+  /// Q functions with their own signal and acknowledgement (Pxx.Qnnnn / Pxx.Qnnnn_Q).
+  struct QSignal {
+    int number, out, ack;
+  };
+  std::vector<QSignal> q_;
+  std::string prefix_;  ///< "P00"
+};
+
+}  // namespace vmt::control::gateway

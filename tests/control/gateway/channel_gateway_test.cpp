@@ -1,0 +1,150 @@
+// The channel through the gateway: control signals act on it each NC cycle, status signals show
+// its state, on an ideal machine (actual = setpoint).
+
+#include "control/gateway/channel_gateway.hpp"
+
+#include <gtest/gtest.h>
+
+#include "control/nc/parser.hpp"
+#include "tests/control/gateway/lathe_layout.hpp"
+
+namespace vmt::control::gateway {
+namespace {
+
+struct Rig {
+  explicit Rig(const std::string& program, bool handshake = false)
+      : image(BuildSignalTable(testing::LatheLayout())) {
+    parsed = nc::ParseProgram(program, "p.mtc", nc::Dialect::kMtc200);
+    EXPECT_TRUE(parsed.ok());
+    channel::ChannelConfig config;
+    for (int d = 0; d < 2; ++d) {
+      channel::ChannelAxis a;
+      a.name = d == 0 ? "X" : "Z";
+      a.number = d + 1;
+      a.drive = d;
+      a.rapid_per_s = 400;
+      a.acceleration = 4000;
+      config.axes.push_back(a);
+    }
+    config.spindle_drive = 2;
+    config.aux_handshake = handshake;
+    ch = std::make_unique<channel::Channel>(config,
+                                            std::vector<const nc::Program*>{&parsed.program});
+    gateway = std::make_unique<ChannelGateway>(image, 0, std::vector<int>{1, 2}, 3, 2);
+    at.feedback.resize(3);
+    mdt.setpoints.resize(3);
+  }
+  // One NC cycle (4 drive ticks).
+  void Cycle(int n = 1) {
+    for (int k = 0; k < n; ++k) {
+      gateway->ReadControls(*ch);
+      for (int i = 0; i < 4; ++i) {
+        ch->Tick(at, mdt);
+        for (int d = 0; d < 2; ++d) at.feedback[d].position = mdt.setpoints[d].value;
+      }
+      gateway->WriteStatus(*ch, at);
+    }
+  }
+  void Set(const char* name, bool v) { image.SetBool(image.Require(name), v); }
+  bool Get(const char* name) const { return image.Bool(image.Require(name)); }
+  int64_t GetInt(const char* name) const { return image.Int(image.Require(name)); }
+  void Press(const char* name) {
+    Set(name, true);
+    Cycle();
+    Set(name, false);
+    Cycle();
+  }
+
+  nc::ParseResult parsed;
+  SignalImage image;
+  std::unique_ptr<channel::Channel> ch;
+  std::unique_ptr<ChannelGateway> gateway;
+  AmplifierTelegram at;
+  MasterTelegram mdt;
+};
+
+TEST(ChannelGateway, StartStopAndStatus) {
+  Rig r("N1 G01 X100 F3000\nN2 RET\n");
+  r.Cycle();
+  EXPECT_TRUE(r.Get("P00S.AUTO"));
+  EXPECT_FALSE(r.Get("P00S.RUN"));
+  EXPECT_TRUE(r.Get("A01S.HOMED"));
+  r.Press("P00C.START");
+  r.Cycle(100);
+  EXPECT_TRUE(r.Get("P00S.RUN"));
+  EXPECT_TRUE(r.Get("A01S.MVPOS"));
+  EXPECT_FALSE(r.Get("A01S.MVNEG"));
+  EXPECT_FALSE(r.Get("A02S.MVPOS"));
+  // Feed hold while STOP is held; START does nothing meanwhile.
+  r.Set("P00C.STOP", true);
+  r.Cycle(100);
+  EXPECT_TRUE(r.Get("P00S.STOP"));
+  EXPECT_FALSE(r.Get("P00S.RUN"));
+  EXPECT_FALSE(r.Get("A01S.MVPOS"));
+  const double held = r.at.feedback[0].position;
+  r.Press("P00C.START");
+  r.Cycle(50);
+  EXPECT_EQ(r.at.feedback[0].position, held);
+  r.Set("P00C.STOP", false);
+  r.Press("P00C.START");
+  r.Cycle(2000);
+  EXPECT_EQ(r.ch->state(), channel::ChannelState::kEnded);
+  EXPECT_DOUBLE_EQ(r.at.feedback[0].position, 100);
+  EXPECT_FALSE(r.Get("P00S.RUN"));
+}
+
+TEST(ChannelGateway, OverrideModesAndJogKeys) {
+  Rig r("N1 RET\n");
+  r.image.SetInt(r.image.Require("P00C.FOVR"), 50);
+  r.Press("P00C.MANU");
+  EXPECT_TRUE(r.Get("P00S.MANU"));
+  EXPECT_FALSE(r.Get("P00S.AUTO"));
+  r.Set("P00C.JOGM0", true);  // code 1: jogging rapid
+  r.Set("A02C.JGNEG", true);
+  r.Cycle(50);
+  EXPECT_EQ(r.ch->jog_mode(), channel::JogMode::kRapid);
+  EXPECT_TRUE(r.Get("A02S.MVNEG"));
+  r.Set("A02C.JGNEG", false);
+  r.Cycle(200);
+  EXPECT_FALSE(r.Get("A02S.MVNEG"));
+  EXPECT_LT(r.at.feedback[1].position, 0);
+  // Both keys at once: no motion.
+  r.Set("A01C.JGPOS", true);
+  r.Set("A01C.JGNEG", true);
+  r.Cycle(50);
+  EXPECT_EQ(r.at.feedback[0].position, 0);
+}
+
+TEST(ChannelGateway, AuxFunctionsWaitForAuxAckAndQFunctionsForTheirOwn) {
+  Rig r("N1 M08 G01 X10 F3000\nN2 Q9992\nN3 G01 X20\nN4 RET\n", true);
+  r.Press("P00C.START");
+  r.Cycle(10);
+  EXPECT_TRUE(r.Get("P00S.AUXSTB"));
+  EXPECT_EQ(r.GetInt("P00S.MFUNC"), 8);
+  EXPECT_EQ(r.at.feedback[0].position, 0);
+  r.Press("P00C.AUXACK");
+  r.Cycle(400);
+  EXPECT_DOUBLE_EQ(r.at.feedback[0].position, 10);
+  EXPECT_TRUE(r.Get("P00.Q9992"));  // N2's Q function waits for Q9992_Q
+  EXPECT_FALSE(r.Get("P00S.AUXSTB"));
+  r.Set("P00.Q9992_Q", true);
+  r.Cycle(2);
+  EXPECT_FALSE(r.Get("P00.Q9992"));
+  r.Cycle(1000);
+  EXPECT_EQ(r.ch->state(), channel::ChannelState::kEnded);
+  EXPECT_DOUBLE_EQ(r.at.feedback[0].position, 20);
+}
+
+TEST(ChannelGateway, ErrorNumberAndReset) {
+  Rig r("N1 G01 X10\nN2 RET\n");  // no feed
+  r.Press("P00C.START");
+  r.Cycle(5);
+  EXPECT_TRUE(r.Get("P00S.ERROR"));
+  EXPECT_EQ(r.GetInt("P00S.ERRNR"), channel::kMsgNoFeed);
+  r.Press("P00C.RESET");
+  EXPECT_FALSE(r.Get("P00S.ERROR"));
+  EXPECT_EQ(r.GetInt("P00S.ERRNR"), 0);
+}
+
+}  // namespace
+}  // namespace vmt::control::gateway
