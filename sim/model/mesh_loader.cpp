@@ -4,16 +4,31 @@
 #include <assimp/scene.h>
 
 #include <assimp/Importer.hpp>
+#include <filesystem>
 #include <sstream>
 #include <stdexcept>
 
 namespace vmt::sim {
 
+MeshCache& MeshCache::Shared() {
+  static MeshCache cache;
+  return cache;
+}
+
 std::shared_ptr<const render::Mesh> MeshCache::Load(const std::string& path,
                                                     const Eigen::Vector3d& scale) {
+  // The file's size and time are part of the key: a file rewritten in the same process (a
+  // test, an edited model) is read again.
   std::ostringstream key;
   key.precision(17);
   key << path << '|' << scale.x() << ',' << scale.y() << ',' << scale.z();
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec) {
+    const auto time = std::filesystem::last_write_time(path, ec);
+    key << '|' << size << '|' << (ec ? 0 : time.time_since_epoch().count());
+  }
+  const std::lock_guard<std::mutex> lock(mutex_);
   if (auto it = meshes_.find(key.str()); it != meshes_.end()) return it->second;
 
   Assimp::Importer importer;

@@ -75,7 +75,7 @@ void LoadUrdf(const std::string& urdf_path, MachineModel& model) {
     throw ModelError(urdf_path, "<robot>",
                      "invalid URDF" + (handler.messages.empty() ? "" : ": " + handler.messages));
 
-  MeshCache meshes;
+  MeshCache& meshes = MeshCache::Shared();
   model.links.clear();
   model.joints.clear();
   std::map<std::string, int> link_index;
