@@ -108,7 +108,11 @@ std::unique_ptr<nc::Interpreter> Channel::MakeInterpreter() {
   std::vector<double> position(commanded_.size());
   for (size_t a = 0; a < position.size(); ++a) position[a] = commanded_[a] - translation_[a];
   interpreter->SetPosition(position);
-  if (events_) interpreter->SetEventSource(events_);
+  interpreter->SetEventSource([this](int n) {
+    if (events_) return events_(n);
+    auto it = own_events_.find(n);
+    return it != own_events_.end() && it->second;
+  });
   return interpreter;
 }
 
@@ -579,6 +583,29 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
   if (block_.has_centre && block_.motion != nc::Motion::kArcCw &&
       block_.motion != nc::Motion::kArcCcw)
     return unsupported("I/J/K outside G02/G03");
+
+  // Instructions of later issues stop the program rather than pass unnoticed. The
+  // #-commands that only steer block search (and its return to the contour) have no effect on
+  // a normal run.
+  for (uint32_t index : block_.instructions) {
+    const nc::Statement& st = program.statements[index];
+    std::string name = st.kind == nc::Statement::Kind::kHashCommand ? "#" + program.texts[st.text]
+                                                                    : program.symbols.Name(st.name);
+    for (const char* steering :
+         {"#DISTANCE PROG START", "#BLOCKSEARCH", "#CAX TRACK", "#VECTOR OFFSET"})
+      if (name.rfind(steering, 0) == 0) name.clear();
+    if (!name.empty()) {
+      Fail(nc::Format({st.pos, "instruction " + name.substr(0, name.find(' ')) +
+                                   " is not available in the channel yet"},
+                      program.files),
+           kMsgNotAvailable);
+      return false;
+    }
+  }
+  for (const auto& [n, set] : block_.events) {
+    own_events_[n] = set;
+    if (event_sink_) event_sink_(n, set);
+  }
 
   const std::vector<double> before = translation_;
   if (!UpdateTranslation(block_.modal, program, block_.block)) return false;

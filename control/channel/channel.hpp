@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <deque>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -108,7 +109,10 @@ class Channel {
   void Jog(size_t axis, int direction);
   /// Direction the axis is commanded to move this NC cycle: +1, -1 or 0 (MVPOS / MVNEG).
   int AxisMotion(size_t axis) const;
+  /// Events (BES/BEC) come from here; without a source, the events the program set itself.
   void SetEventSource(std::function<bool(int)> source) { events_ = std::move(source); }
+  /// SE n / RE n of the program go here (the gateway's Pxx.EVn); the channel also keeps them.
+  void SetEventSink(std::function<void(int, bool)> sink) { event_sink_ = std::move(sink); }
 
   /// One drive tick: reads the feedback, interpolates on the NC cycle, writes setpoints.
   void Tick(const AmplifierTelegram& at, MasterTelegram& mdt);
@@ -149,6 +153,8 @@ class Channel {
   std::vector<const nc::Program*> programs_;
   std::unique_ptr<nc::Interpreter> interpreter_;
   std::function<bool(int)> events_;
+  std::function<void(int, bool)> event_sink_;
+  std::map<int, bool> own_events_;
   ChannelState state_ = ChannelState::kIdle;
   std::string error_;
   double override_ = 1.0;

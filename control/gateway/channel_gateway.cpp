@@ -77,6 +77,21 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
   }
 }
 
+bool ChannelGateway::Event(int n) const {
+  const int id = image_->Find(prefix_ + ".EV" + std::to_string(n));
+  if (id >= 0) return image_->Bool(id);
+  auto it = hidden_events_.find(n);
+  return it != hidden_events_.end() && it->second;
+}
+
+void ChannelGateway::SetEvent(int n, bool value) {
+  const int id = image_->Find(prefix_ + ".EV" + std::to_string(n));
+  if (id >= 0)
+    image_->SetBool(id, value);
+  else
+    hidden_events_[n] = value;
+}
+
 void ChannelGateway::ReadControls(channel::Channel& ch) {
   SignalImage& im = *image_;
   // Mode selection: the rising edge asks for a mode; the channel refuses while a program runs,

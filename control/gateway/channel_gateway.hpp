@@ -6,6 +6,7 @@
 // reference, spindle status), as the MTC200's NC/PLC interface does.
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,11 @@ class ChannelGateway {
   void ReadControls(channel::Channel& channel);
   /// NC -> PLC: the channel's and the drives' state into the image.
   void WriteStatus(const channel::Channel& channel, const AmplifierTelegram& at);
+
+  /// Event n (Pxx.EVn): set by the PLC or by the program's SE/RE, tested by BES/BEC. Events the
+  /// table does not list live here only (the PLC cannot see them).
+  bool Event(int n) const;
+  void SetEvent(int n, bool value);
 
  private:
   struct Edge {
@@ -55,6 +61,7 @@ class ChannelGateway {
   };
   std::vector<QSignal> q_;
   std::string prefix_;  ///< "P00"
+  std::map<int, bool> hidden_events_;
 };
 
 }  // namespace vmt::control::gateway

@@ -18,8 +18,8 @@ std::string Upper(std::string s) {
 std::string Stem(const std::string& name) { return Upper(name.substr(0, name.find('.'))); }
 
 bool HasEffect(const PreparedBlock& b) {
-  return b.motion != Motion::kNone || !b.aux.empty() || b.dwell_s > 0 || b.homing ||
-         b.set_position || b.repos || b.measuring || !b.instructions.empty() || b.end;
+  return b.motion != Motion::kNone || !b.aux.empty() || !b.events.empty() || b.dwell_s > 0 ||
+         b.homing || b.set_position || b.repos || b.measuring || !b.instructions.empty() || b.end;
 }
 
 }  // namespace
@@ -235,6 +235,7 @@ bool Interpreter::Next(PreparedBlock& out) {
     out.has_effective_distance = 0;
     out.aux.clear();
     out.instructions.clear();
+    out.events.clear();
     out.dwell_s = 0;
     out.homing = out.set_position = out.repos = out.measuring = out.end = false;
     if (!Execute(p.blocks[here], out, next)) return false;
@@ -337,7 +338,21 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
       next = calls_.back().return_block;
       calls_.pop_back();
       return true;
-    case Kind::kInstruction:
+    case Kind::kInstruction: {
+      // SE n / RE n: set or reset event n (MTC200; fast-measurement 4.1: SE 30, RE 29).
+      const std::string& name = p.symbols.Name(st.name);
+      if ((name == "SE" || name == "RE") && st.value != kNoExpr) {
+        const double n = Eval(st.value);
+        if (eval_failed_) return Fail(eval_fail_offset_, eval_fail_message_);
+        if (n < 0 || n > 999 || n != std::floor(n))
+          return Fail(st.pos.offset,
+                      name + ": event number " + std::to_string(n) + " is not in 0..999");
+        out.events.emplace_back(static_cast<int>(n), name == "SE");
+        return true;
+      }
+      out.instructions.push_back(static_cast<uint32_t>(&st - p.statements.data()));
+      return true;
+    }
     case Kind::kHashCommand:
       out.instructions.push_back(static_cast<uint32_t>(&st - p.statements.data()));
       return true;

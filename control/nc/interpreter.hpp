@@ -66,8 +66,9 @@ struct PreparedBlock {
   bool repos = false;         ///< G77: return the programmed axes to the interruption point
   bool measuring = false;     ///< G100: measuring move (ISG)
   std::vector<uint32_t> instructions;  ///< MTP, MRY, SETTING(...), #-commands: Program::statements
-  bool end = false;                    ///< M30 / M02 / RET of the main program
-  ModalState modal;                    ///< after the block
+  std::vector<std::pair<int, bool>> events;  ///< SE n (true) / RE n (false), in block order
+  bool end = false;                          ///< M30 / M02 / RET of the main program
+  ModalState modal;                          ///< after the block
 };
 
 struct InterpreterConfig {
@@ -82,7 +83,8 @@ class Interpreter {
   /// Programs by name (upper case, without extension), the first is the main program.
   Interpreter(std::vector<const Program*> programs, InterpreterConfig config);
 
-  /// Events (BES/BEC, E in the manuals) come from the machine and the PLC.
+  /// Events (BES/BEC, E in the manuals) come from the machine and the PLC; SE/RE of the
+  /// program travel in PreparedBlock::events to the channel, which sets them.
   void SetEventSource(std::function<bool(int)> source) { event_ = std::move(source); }
 
   /// Executes up to the next block with an effect. False at the end or after an error.

@@ -136,6 +136,9 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
         spindle_number = a.number;
     gateway = std::make_unique<control::gateway::ChannelGateway>(
         *image, scene.nc.data.process.number, numbers, spindle_number, sd);
+    control::gateway::ChannelGateway* gw = gateway.get();
+    channel->SetEventSource([gw](int n) { return gw->Event(n); });
+    channel->SetEventSink([gw](int n, bool v) { gw->SetEvent(n, v); });
   }
   DriveProgram program(scene, backend->Read(), channel.get(), image.get());
   std::vector<double> last_signals;

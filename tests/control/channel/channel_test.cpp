@@ -537,5 +537,27 @@ TEST(ChannelTest, ToolNoseRadiusCompensationReportsAGouge) {
   EXPECT_LE(m.channel->line(), 5u);
 }
 
+TEST(ChannelTest, ProgramEventsAndInstructionsOfLaterIssues) {
+  // SE sets an event the program itself tests with BES; RE clears it.
+  Machine m(
+      "N1 SE 29\nN2 BES .SET 29\nN3 G00 X1\n.SET\nN4 RE 29\nN5 BES .BAD 29\nN6 G00 X2\n"
+      "N7 RET\n.BAD\nN8 G00 X3\nN9 RET\n");
+  std::vector<std::pair<int, bool>> seen;
+  m.channel->SetEventSink([&](int n, bool v) { seen.emplace_back(n, v); });
+  m.channel->Start();
+  m.RunUntilEnd();
+  ASSERT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  EXPECT_DOUBLE_EQ(m.X(), 2);
+  EXPECT_EQ(seen, (std::vector<std::pair<int, bool>>{{29, true}, {29, false}}));
+  // An instruction the channel does not execute yet stops the program, it is not skipped.
+  Machine mtp("N1 G00 X5\nN2 MTP\nN3 G00 X9\nN4 RET\n");
+  mtp.channel->Start();
+  mtp.RunUntilEnd();
+  EXPECT_EQ(mtp.channel->error_number(), kMsgNotAvailable);
+  EXPECT_THAT(mtp.channel->error(),
+              ::testing::HasSubstr("p.mtc:2:4: error: instruction MTP is not available"));
+  EXPECT_DOUBLE_EQ(mtp.X(), 5);
+}
+
 }  // namespace
 }  // namespace vmt::control::channel

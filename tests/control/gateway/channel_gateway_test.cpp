@@ -31,6 +31,9 @@ struct Rig {
     ch = std::make_unique<channel::Channel>(config,
                                             std::vector<const nc::Program*>{&parsed.program});
     gateway = std::make_unique<ChannelGateway>(image, 0, std::vector<int>{1, 2}, 3, 2);
+    ChannelGateway* gw = gateway.get();
+    ch->SetEventSource([gw](int n) { return gw->Event(n); });
+    ch->SetEventSink([gw](int n, bool v) { gw->SetEvent(n, v); });
     at.feedback.resize(3);
     mdt.setpoints.resize(3);
   }
@@ -133,6 +136,21 @@ TEST(ChannelGateway, AuxFunctionsWaitForAuxAckAndQFunctionsForTheirOwn) {
   r.Cycle(1000);
   EXPECT_EQ(r.ch->state(), channel::ChannelState::kEnded);
   EXPECT_DOUBLE_EQ(r.at.feedback[0].position, 20);
+}
+
+TEST(ChannelGateway, EventsBetweenProgramAndPlc) {
+  // SE 30 shows on P00.EV30; BES 29 tests what the PLC set on P00.EV29; an event the table
+  // does not list (E500) still works inside the NC.
+  Rig r(
+      "N1 SE 30\nN2 SE 500\nN3 BES .GO 29\nN4 G00 X1\nN5 RET\n.GO\nN6 BEC .END 500\n"
+      "N7 G00 X2\n.END\nN8 RET\n");
+  r.Set("P00.EV29", true);
+  r.Press("P00C.START");
+  r.Cycle(500);
+  EXPECT_EQ(r.ch->state(), channel::ChannelState::kEnded) << r.ch->error();
+  EXPECT_TRUE(r.Get("P00.EV30"));
+  EXPECT_TRUE(r.gateway->Event(500));
+  EXPECT_DOUBLE_EQ(r.at.feedback[0].position, 2);
 }
 
 TEST(ChannelGateway, ErrorNumberAndReset) {
