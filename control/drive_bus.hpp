@@ -29,6 +29,9 @@ struct DriveSetpoint {
   double value = 0;
   /// Drive parameter set (SERCOS S-0-0217); selects gains and limits from the machine YAML.
   uint8_t parameter_set = 0;
+  /// Position mode: velocity feed-forward added to the position loop's output, mm/s | deg/s
+  /// (the control's low-lag interpolation, MTC200 G06: the following error falls to ~0).
+  double velocity_feedforward = 0;
 };
 
 /// Status bits of DriveFeedback::status.

@@ -406,9 +406,15 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
   }
   // Fine interpolation: the drives get a straight line between the last two NC cycle points.
   const double f = static_cast<double>(tick_in_cycle_ + 1) / config_.ticks_per_cycle;
-  for (size_t a = 0; a < config_.axes.size(); ++a)
-    mdt.setpoints[config_.axes[a].drive] = {DriveMode::kPosition,
-                                            previous_[a] + (commanded_[a] - previous_[a]) * f, 0};
+  // G06 (low-lag): the drives get the path velocity as feed-forward.
+  const double cycle_s = config_.tick_s * config_.ticks_per_cycle;
+  const bool low_lag = mode_ != ChannelMode::kManual && block_.modal.low_lag &&
+                       (state_ == ChannelState::kRunning || state_ == ChannelState::kHold);
+  for (size_t a = 0; a < config_.axes.size(); ++a) {
+    DriveSetpoint& sp = mdt.setpoints[config_.axes[a].drive];
+    sp = {DriveMode::kPosition, previous_[a] + (commanded_[a] - previous_[a]) * f, 0};
+    if (low_lag) sp.velocity_feedforward = (commanded_[a] - previous_[a]) / cycle_s;
+  }
   if (config_.spindle_drive >= 0) mdt.setpoints[config_.spindle_drive] = spindle_;
 }
 

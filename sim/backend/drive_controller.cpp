@@ -25,6 +25,7 @@ double Wrap(double a) {
 control::DriveSetpoint ToSi(const DriveParams& p, const control::DriveSetpoint& sp) {
   control::DriveSetpoint si = sp;
   if (sp.mode != control::DriveMode::kTorque) si.value = sp.value / Unit(p);
+  si.velocity_feedforward = sp.velocity_feedforward / Unit(p);
   return si;
 }
 
@@ -56,7 +57,8 @@ double DriveController::VelocityReference(const control::DriveSetpoint& sp, doub
   }
   if (!p_->spindle) {
     // Servo: proportional position loop; the master interpolates, the drive only follows.
-    const double v = p_->kv_per_s * (sp.value - position);
+    // With feed-forward (G06) the loop only corrects what the feed-forward leaves.
+    const double v = p_->kv_per_s * (sp.value - position) + sp.velocity_feedforward;
     return std::clamp(v, -p_->velocity_limit, p_->velocity_limit);
   }
   // Spindle orientation (M19): the command is an angle modulo one turn; the drive picks the

@@ -555,12 +555,14 @@ Scene LoadScene(const std::string& path) {
           ms.diameter = g == "G16";
         else if (g == "G94" || g == "G95")
           ms.feed_per_revolution = g == "G95";
+        else if (g == "G05" || g == "G06")
+          ms.low_lag = g == "G06";
         else if (g[0] == 'T' && g.size() > 1 && std::isdigit(static_cast<unsigned char>(g[1])))
           ms.tool = std::stoi(g.substr(1));
         else if (g[0] == 'D' && g.size() > 1 && std::isdigit(static_cast<unsigned char>(g[1])))
           ms.correction = std::stoi(g.substr(1));
         else
-          init[i].Fail("expected G53..G59, G47..G49, G15/G16, G94/G95, Tn or Dn");
+          init[i].Fail("expected G53..G59, G47..G49, G15/G16, G94/G95, G05/G06, Tn or Dn");
       }
     }
     s.nc.aux_handshake = nc.Bool("aux_handshake", false);

@@ -54,5 +54,28 @@ TEST(NcBackendAgreementTest, TurningProgramSamePathOnBothBackends) {
   EXPECT_LT(worst_gap, 0.1 * worst_fe) << "gap " << worst_gap << " vs following error " << worst_fe;
 }
 
+TEST(NcBackendAgreementTest, LowLagG06RemovesMostOfTheFollowingError) {
+  // The same program on the physics lathe, with G05 and with G06 (velocity feed-forward).
+  Scene scene = LoadScene(testing::SourcePath("scenes/turning.yaml"));
+  RunOptions options;
+  options.snapshots = false;
+  options.until_s = 12;
+  options.out_dir = testing::OutputDir("nc_g05");
+  RunScene(scene, options);  // cut short at 12 s: the end-of-run expectations are not the point
+  const std::vector<Row> g05 = Trace(options.out_dir);
+  scene.nc.initial.low_lag = true;
+  options.out_dir = testing::OutputDir("nc_g06");
+  RunScene(scene, options);
+  const std::vector<Row> g06 = Trace(options.out_dir);
+  ASSERT_EQ(g05.size(), g06.size());
+  double fe05 = 0, fe06 = 0;
+  for (size_t i = 0; i < g05.size(); ++i) {
+    fe05 = std::max(fe05, std::abs(g05[i].x_fe));
+    fe06 = std::max(fe06, std::abs(g06[i].x_fe));
+  }
+  EXPECT_GT(fe05, 1.0);
+  EXPECT_LT(fe06, 0.1 * fe05) << "G06 " << fe06 << " mm vs G05 " << fe05 << " mm";
+}
+
 }  // namespace
 }  // namespace vmt::sim
