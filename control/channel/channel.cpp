@@ -10,6 +10,8 @@ namespace vmt::control::channel {
 namespace {
 
 constexpr double kArcTolerance = 0.01;  // mm: start and end radius may differ this much
+// Look-ahead: how far (mm) the path may be thought to round a corner when choosing its speed.
+constexpr double kCornerDeviation = 0.01;
 
 // Plane axes (first, second) by address: G17 X-Y, G18 Z-X, G19 Y-Z; the arc turns
 // counter-clockwise from first to second.
@@ -71,6 +73,8 @@ Channel::Channel(ChannelConfig config, std::vector<const nc::Program*> programs)
 }
 
 void Channel::DropLookahead() {
+  peeked_ = false;
+  carry_speed_ = carry_accel_ = carry_leftover_ = 0;
   compensating_ = false;
   source_done_ = false;
   trc_.Reset();
@@ -201,6 +205,10 @@ void Channel::Fail(const std::string& message, int number) {
 }
 
 void Channel::Fail(const nc::Program& program, int32_t block, const std::string& text, int number) {
+  if (planning_only_) {
+    plan_failed_ = true;  // the look-ahead's plan of a later block: its error comes in its turn
+    return;
+  }
   Fail(nc::Format({program.blocks[block].pos, text}, program.files), number);
 }
 
@@ -399,6 +407,11 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
         Interpolate(dt);
         finished = !active_;
         if (finished && homing_) finished = !NextHomingStage();
+        if (finished && carry_speed_ > 0) {
+          // Blended: the next block runs on from here in the same cycle.
+          finished = NextBlock(at) && !active_;
+          carry_speed_ = carry_accel_ = carry_leftover_ = 0;
+        }
       }
       if (finished && single_block_ && state_ == ChannelState::kRunning)
         state_ = ChannelState::kHold;
@@ -420,7 +433,16 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
 
 bool Channel::NextBlock(const AmplifierTelegram& at) {
   if (compensating_) return NextCompensated(at);
-  if (!interpreter_->Next(block_)) {
+  bool read = false;
+  if (peeked_) {
+    // The block the look-ahead has read already.
+    peeked_ = false;
+    read = peek_ok_;
+    if (read) block_ = peek_;
+  } else {
+    read = interpreter_->Next(block_);
+  }
+  if (!read) {
     if (interpreter_->error())
       Fail(nc::Format(*interpreter_->error(), {interpreter_->ErrorFile()}), kMsgProgramError);
     else
@@ -895,11 +917,32 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
     profile_.max_jerk = std::isfinite(jerk) ? jerk / length : 0;
   }
   active_ = true;
+  segment_length_ = SegmentLength();
+  if (carry_speed_ > 0 && !planning_only_) {
+    // Continuing at speed from the block before (look-ahead): same path speed and
+    // acceleration, from where the last cycle's remainder takes it.
+    profile_.rate = carry_speed_ / segment_length_;
+    profile_.accel = carry_accel_ / segment_length_;
+    profile_.u = std::min(0.5, carry_leftover_ / segment_length_);
+    carry_speed_ = carry_accel_ = carry_leftover_ = 0;
+    ApplyU();
+  }
+  if (!planning_only_) LookAhead(at);
   return true;
 }
 
-void Channel::Interpolate(double dt) {
-  profile_.Advance(dt, state_ == ChannelState::kHold ? 0.0 : override_);
+double Channel::SegmentLength() const {
+  // |dP/du| in axis space (mm and degrees): a line's and a helix's are constant.
+  double sum = 0;
+  for (size_t a = 0; a < end_.size(); ++a) {
+    if (static_cast<int>(a) == arc_axes_[0] || static_cast<int>(a) == arc_axes_[1]) continue;
+    sum += (end_[a] - start_[a]) * (end_[a] - start_[a]);
+  }
+  if (arc_axes_[0] >= 0) sum += std::pow(arc_radius_ * arc_sweep_, 2);
+  return std::max(std::sqrt(sum), 1e-12);
+}
+
+void Channel::ApplyU() {
   const double u = profile_.u;
   for (size_t a = 0; a < commanded_.size(); ++a)
     commanded_[a] = start_[a] + (end_[a] - start_[a]) * u;
@@ -908,9 +951,101 @@ void Channel::Interpolate(double dt) {
     commanded_[arc_axes_[0]] = arc_centre_[0] + arc_radius_ * std::cos(angle);
     commanded_[arc_axes_[1]] = arc_centre_[1] + arc_radius_ * std::sin(angle);
   }
+}
+
+void Channel::LookAhead(const AmplifierTelegram& at) {
+  // Blending between feed moves: read the next block, and if it continues the path (a feed
+  // move with nothing to wait for, in the same frame), end this block at the speed the corner
+  // allows instead of at rest.
+  const auto feed_move = [](nc::Motion m) {
+    return m == nc::Motion::kLinear || m == nc::Motion::kArcCw || m == nc::Motion::kArcCcw;
+  };
+  if (single_block_ || compensating_ || state_ != ChannelState::kRunning ||
+      !feed_move(block_.motion) || block_.end || homing_)
+    return;
+  if (!peeked_) {
+    peeked_ = true;
+    peek_ok_ = interpreter_->Next(peek_);
+  }
+  const nc::PreparedBlock& n = peek_;
+  const nc::ModalState &m0 = block_.modal, &m1 = n.modal;
+  if (!peek_ok_ || !feed_move(n.motion) || !n.aux.empty() || !n.events.empty() ||
+      !n.instructions.empty() || n.dwell_s != 0 || n.homing || n.set_position || n.repos ||
+      n.measuring || n.end || m1.compensation != 40 || m1.zero_offset != m0.zero_offset ||
+      m1.tool_length != m0.tool_length || m1.tool != m0.tool || m1.correction != m0.correction)
+    return;
+  // Plan the next block from this one's end without touching the channel's state.
+  const nc::PreparedBlock current = block_;
+  const std::vector<double> start = start_, end = end_, commanded = commanded_;
+  const double centre[2] = {arc_centre_[0], arc_centre_[1]};
+  const double radius = arc_radius_, angle0 = arc_start_angle_, sweep = arc_sweep_;
+  const int axes[2] = {arc_axes_[0], arc_axes_[1]};
+  const PathProfile profile = profile_;
+  const double length1 = segment_length_;
+  // Directions: the last millionth of this block, the first of the next.
+  std::vector<double> t1(end.size()), t2(end.size());
+  profile_.u = 1 - 1e-6;
+  ApplyU();
+  for (size_t a = 0; a < t1.size(); ++a) t1[a] = end[a] - commanded_[a];
+  block_ = n;
+  commanded_ = end;
+  planning_only_ = true;
+  plan_failed_ = false;
+  active_ = false;  // a next block that moves nothing is no continuation
+  const bool planned = StartMotion(at) && active_ && !plan_failed_;
+  planning_only_ = false;
+  double v2 = 0, length2 = 0, accel2 = 0;
+  if (planned) {
+    length2 = segment_length_;
+    v2 = profile_.max_rate * length2;
+    accel2 = profile_.max_accel * length2;
+    profile_.u = 1e-6;
+    ApplyU();
+    for (size_t a = 0; a < t2.size(); ++a) t2[a] = commanded_[a] - start_[a];
+  }
+  // Back to this block.
+  block_ = current;
+  start_ = start, end_ = end, commanded_ = commanded;
+  arc_centre_[0] = centre[0], arc_centre_[1] = centre[1];
+  arc_radius_ = radius, arc_start_angle_ = angle0, arc_sweep_ = sweep;
+  arc_axes_[0] = axes[0], arc_axes_[1] = axes[1];
+  profile_ = profile;
+  segment_length_ = length1;
+  active_ = true;
+  if (!planned) return;
+  double n1 = 0, n2 = 0, dot = 0;
+  for (size_t a = 0; a < t1.size(); ++a)
+    n1 += t1[a] * t1[a], n2 += t2[a] * t2[a], dot += t1[a] * t2[a];
+  if (n1 <= 0 || n2 <= 0) return;
+  const double cos_turn = std::clamp(dot / std::sqrt(n1 * n2), -1.0, 1.0);
+  const double v1 = profile_.max_rate * length1;
+  const double accel = std::min(profile_.max_accel * length1, accel2);
+  // Corner speed: the centripetal acceleration of an arc kCornerDeviation from the corner
+  // stays within the axes' acceleration (junction deviation); tangent joins keep the feed.
+  double v = std::min(v1, v2);
+  if (cos_turn < 0.99999) {
+    const double sin_half = std::sqrt((1 - cos_turn) / 2);
+    v = std::min(v, std::sqrt(accel * kCornerDeviation * sin_half / std::max(1e-9, 1 - sin_half)));
+  }
+  // The next block must be able to stop within its length (nothing beyond it is known).
+  v = std::min(v, std::sqrt(accel2 * length2));
+  if (v > 1e-9) profile_.end_rate = v / length1;
+}
+
+void Channel::Interpolate(double dt) {
+  const double u_before = profile_.u;
+  profile_.Advance(dt, state_ == ChannelState::kHold ? 0.0 : override_);
+  ApplyU();
   if (profile_.done()) {
     commanded_ = end_;  // exactly the programmed point
     active_ = false;
+    // Ended at speed (look-ahead): the next block takes the speed over at once, with what
+    // this cycle had left of its distance.
+    if (profile_.rate > 0 && peeked_ && peek_ok_) {
+      carry_speed_ = profile_.rate * segment_length_;
+      carry_accel_ = profile_.accel * segment_length_;
+      carry_leftover_ = std::max(0.0, carry_speed_ * dt - (1 - u_before) * segment_length_);
+    }
   }
 }
 

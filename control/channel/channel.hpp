@@ -141,6 +141,9 @@ class Channel {
   bool PushAhead(const nc::PreparedBlock& b);
   void DropLookahead();
   bool StartMotion(const AmplifierTelegram& at);
+  void LookAhead(const AmplifierTelegram& at);
+  double SegmentLength() const;
+  void ApplyU();
   bool UpdateTranslation(const nc::ModalState& modal, const nc::Program& program, int32_t block);
   bool NextHomingStage();
   void Interpolate(double dt);
@@ -190,6 +193,13 @@ class Channel {
   bool reversing_ = false;
   bool pending_motion_ = false;  ///< the block's motion waits for the aux acknowledgement
   bool running_mdi_ = false;
+
+  // Look-ahead between feed moves: the next block read early, the speed carried into it.
+  bool peeked_ = false, peek_ok_ = false;
+  nc::PreparedBlock peek_;
+  bool planning_only_ = false, plan_failed_ = false;
+  double segment_length_ = 1;  ///< |dP/du| of the block in work, axis space
+  double carry_speed_ = 0, carry_accel_ = 0, carry_leftover_ = 0;
 
   // Tool nose radius compensation (G41/G42): blocks read ahead and the tip path made of them.
   ToolRadiusCompensation trc_;

@@ -559,5 +559,91 @@ TEST(ChannelTest, ProgramEventsAndInstructionsOfLaterIssues) {
   EXPECT_DOUBLE_EQ(mtp.X(), 5);
 }
 
+// Speeds per NC cycle (mm/s) of a run to the end, X and Z.
+std::vector<std::pair<double, double>> CycleSpeeds(Machine& m) {
+  std::vector<std::pair<double, double>> v;
+  double x = m.X(), z = m.Z();
+  while (m.channel->state() == ChannelState::kRunning && m.t < 30) {
+    for (int i = 0; i < 4; ++i) m.Tick();
+    v.emplace_back((m.X() - x) / 1e-3, (m.Z() - z) / 1e-3);
+    x = m.X(), z = m.Z();
+  }
+  return v;
+}
+
+TEST(ChannelTest, LookAheadRunsThroughCollinearAndTangentJoinsAtFeed) {
+  // Two collinear G01 blocks: no stop between them; as fast as one block of the whole length.
+  Machine two("N1 G01 X50 F6000\nN2 X100\nN3 RET\n"), one("N1 G01 X100 F6000\nN2 RET\n");
+  two.channel->Start();
+  one.channel->Start();
+  const auto v = CycleSpeeds(two);
+  CycleSpeeds(one);
+  ASSERT_EQ(two.channel->state(), ChannelState::kEnded) << two.channel->error();
+  EXPECT_DOUBLE_EQ(two.X(), 100);
+  EXPECT_NEAR(two.t, one.t, 0.003);
+  double slowest_inside = 1e9, worst_change = 0;
+  // Between the ramps (the join at X50 is in the middle): steady 100 mm/s.
+  for (size_t i = 100; i + 100 < v.size(); ++i) {
+    worst_change = std::max(worst_change, std::abs(v[i].first - v[i - 1].first));
+    slowest_inside = std::min(slowest_inside, v[i].first);
+  }
+  EXPECT_GT(slowest_inside, 99.999);
+  EXPECT_LT(worst_change, 1e-6);
+
+  // A line into a tangent arc keeps the feed too.
+  Machine arc("N1 G01 X10 Z0 F3000\nN2 G01 Z-20\nN3 G02 X20 Z-30 I10 K0\nN4 RET\n", 10, 0);
+  arc.channel->Start();
+  const auto va = CycleSpeeds(arc);
+  ASSERT_EQ(arc.channel->state(), ChannelState::kEnded) << arc.channel->error();
+  double slowest = 1e9;
+  for (size_t i = 50; i + 50 < va.size(); ++i)
+    slowest = std::min(slowest, std::hypot(va[i].first, va[i].second));
+  EXPECT_GT(slowest, 45);  // 50 mm/s, the arc's centripetal limit sqrt(4000 x 10) = 200 is above
+}
+
+TEST(ChannelTest, LookAheadSlowsForCornersAndStopsWhereItMust) {
+  // A right-angle corner: the path passes the corner point exactly, slowly but without a stop.
+  Machine m("N1 G01 X50 F6000\nN2 Z50\nN3 RET\n");
+  m.channel->Start();
+  double at_corner = -1, min_speed = 1e9;
+  while (m.channel->state() == ChannelState::kRunning && m.t < 10) {
+    const double x = m.channel->position(0), z = m.channel->position(1);
+    for (int i = 0; i < 4; ++i) m.Tick();
+    const double speed = std::hypot(m.channel->position(0) - x, m.channel->position(1) - z) / 1e-3;
+    if (m.channel->position(0) == 50 && m.channel->position(1) == 0) at_corner = speed;
+    if (m.channel->position(0) > 49 && m.channel->position(1) < 1)
+      min_speed = std::min(min_speed, speed);
+  }
+  ASSERT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  EXPECT_GE(at_corner, 0);   // the corner point itself is commanded
+  EXPECT_LT(min_speed, 20);  // slow at the corner ...
+  EXPECT_GT(min_speed, 1);   // ... but not stopped
+  // A block with an M function, single block, and rapid moves still stop.
+  Machine aux("N1 G01 X50 F6000\nN2 X100 M08\nN3 RET\n");
+  aux.channel->Start();
+  const auto v = CycleSpeeds(aux);
+  double slowest_mid = 1e9;
+  for (size_t i = 100; i + 100 < v.size(); ++i) slowest_mid = std::min(slowest_mid, v[i].first);
+  EXPECT_LT(slowest_mid, 5);  // at rest at X50 (one cycle's start-up at most)
+}
+
+TEST(ChannelTest, FeedHoldJustBeforeABlendedJoinBrakesIntoTheNextBlock) {
+  Machine m("N1 G01 X50 F6000\nN2 X100\nN3 RET\n");
+  m.channel->Start();
+  while (m.channel->position(0) < 49.9 && m.t < 5) m.Tick();
+  m.channel->Stop();
+  for (int i = 0; i < 2000; ++i) m.Tick();
+  EXPECT_EQ(m.channel->state(), ChannelState::kHold);
+  const double x = m.X();
+  EXPECT_GT(x, 49.9);
+  EXPECT_LT(x, 49.9 + 100 * 100 / (2 * 4000.0) + 0.2);  // the braking distance from 100 mm/s
+  for (int i = 0; i < 400; ++i) m.Tick();
+  EXPECT_EQ(m.X(), x);  // at rest
+  m.channel->Start();
+  m.RunUntilEnd();
+  EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  EXPECT_DOUBLE_EQ(m.X(), 100);
+}
+
 }  // namespace
 }  // namespace vmt::control::channel
