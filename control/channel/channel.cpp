@@ -74,6 +74,9 @@ Channel::Channel(ChannelConfig config, std::vector<const nc::Program*> programs)
 
 void Channel::DropLookahead() {
   peeked_ = false;
+  unpushed_.reset();
+  source_returned_false_ = false;
+  continuation_ready_ = false;
   carry_speed_ = carry_accel_ = carry_leftover_ = 0;
   compensating_ = false;
   source_done_ = false;
@@ -440,7 +443,7 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
     read = peek_ok_;
     if (read) block_ = peek_;
   } else {
-    read = interpreter_->Next(block_);
+    read = ReadNext(block_);
   }
   if (!read) {
     if (interpreter_->error())
@@ -482,7 +485,7 @@ bool Channel::PushAhead(const nc::PreparedBlock& b) {
     return false;
   }
   ContourElement e;
-  e.tag = next_tag_++;
+  e.tag = next_tag_;
   e.start = contour_point_;
   e.end = e.start;
   e.rapid = b.motion == nc::Motion::kRapid;
@@ -530,6 +533,7 @@ bool Channel::PushAhead(const nc::PreparedBlock& b) {
       }
     }
   }
+  ++next_tag_;
   contour_point_ = e.end;
   ahead_.push_back(b);
   trc_.Push(e);
@@ -557,7 +561,7 @@ bool Channel::NextCompensated(const AmplifierTelegram& at) {
       return NextBlock(at);
     }
     nc::PreparedBlock b;
-    if (!interpreter_->Next(b)) {
+    if (!ReadNext(b)) {
       if (interpreter_->error()) {
         Fail(nc::Format(*interpreter_->error(), {interpreter_->ErrorFile()}), kMsgProgramError);
         return false;
@@ -573,31 +577,68 @@ bool Channel::NextCompensated(const AmplifierTelegram& at) {
   ready_.pop_front();
   while (first_tag_ < e.tag) ahead_.pop_front(), ++first_tag_;
   block_ = ahead_.front();
-  // The block runs the tip path the compensation made of it: lines and arcs in Z/X.
-  block_.target[axis_z_] = e.end.z;
-  block_.target[axis_x_] = e.end.x;
-  block_.radius = 0;
-  block_.has_centre = false;
-  const bool moves =
-      std::hypot(e.end.z - e.start.z, e.end.x - e.start.x) > 1e-12 || e.kind != ElementKind::kLine;
-  if (!moves && block_.motion != nc::Motion::kNone) {
-    // A zero-length piece: the other axes of the block may still move.
-  }
-  if (e.kind != ElementKind::kLine) {
-    block_.motion = e.kind == ElementKind::kArcCw ? nc::Motion::kArcCw : nc::Motion::kArcCcw;
-    block_.centre[2] = e.centre.z - e.start.z;
-    block_.centre[0] = e.centre.x - e.start.x;
-    block_.has_centre = true;
-  } else if (block_.motion == nc::Motion::kArcCw || block_.motion == nc::Motion::kArcCcw) {
-    block_.motion = nc::Motion::kLinear;  // an arc the compensation shrank to a point
-  } else if (e.inserted && block_.motion == nc::Motion::kNone) {
-    block_.motion = e.rapid ? nc::Motion::kRapid : nc::Motion::kLinear;
-  }
+  block_ = ElementBlock(e, block_);
   if (e.tag != last_run_tag_) {
     last_run_tag_ = e.tag;
     return RunBlock(at);
   }
   return StartMotion(at);
+}
+
+bool Channel::ReadNext(nc::PreparedBlock& b) {
+  // A block the look-ahead read but could not take (its error comes now), or the end it met.
+  if (unpushed_) {
+    b = *unpushed_;
+    unpushed_.reset();
+    return true;
+  }
+  if (source_returned_false_) return false;
+  return interpreter_->Next(b);
+}
+
+void Channel::FillCompensated() {
+  // Reads ahead under G41/G42 until the compensation has a final element; errors are left for
+  // NextCompensated to report when the channel gets there.
+  ContourElement e;
+  for (int k = 0; k < 4 && ready_.empty(); ++k) {
+    if (source_done_ || trc_.error() || (!trc_.active() && !trc_.pending()) || unpushed_ ||
+        source_returned_false_)
+      return;
+    nc::PreparedBlock b;
+    if (!interpreter_->Next(b)) {
+      source_returned_false_ = true;
+      return;
+    }
+    planning_only_ = true;
+    plan_failed_ = false;
+    const bool pushed = PushAhead(b) && !plan_failed_;
+    planning_only_ = false;
+    if (!pushed) {
+      unpushed_ = b;
+      return;
+    }
+    if (b.end) source_done_ = true, trc_.Flush();
+    while (trc_.Pop(e)) ready_.push_back(e);
+  }
+}
+
+nc::PreparedBlock Channel::ElementBlock(const ContourElement& e, nc::PreparedBlock b) const {
+  // The block runs the tip path the compensation made of it: lines and arcs in Z/X.
+  b.target[axis_z_] = e.end.z;
+  b.target[axis_x_] = e.end.x;
+  b.radius = 0;
+  b.has_centre = false;
+  if (e.kind != ElementKind::kLine) {
+    b.motion = e.kind == ElementKind::kArcCw ? nc::Motion::kArcCw : nc::Motion::kArcCcw;
+    b.centre[2] = e.centre.z - e.start.z;
+    b.centre[0] = e.centre.x - e.start.x;
+    b.has_centre = true;
+  } else if (b.motion == nc::Motion::kArcCw || b.motion == nc::Motion::kArcCcw) {
+    b.motion = nc::Motion::kLinear;  // an arc the compensation shrank to a point
+  } else if (e.inserted && b.motion == nc::Motion::kNone) {
+    b.motion = e.rapid ? nc::Motion::kRapid : nc::Motion::kLinear;
+  }
+  return b;
 }
 
 bool Channel::RunBlock(const AmplifierTelegram& at) {
@@ -960,14 +1001,34 @@ void Channel::LookAhead(const AmplifierTelegram& at) {
   const auto feed_move = [](nc::Motion m) {
     return m == nc::Motion::kLinear || m == nc::Motion::kArcCw || m == nc::Motion::kArcCcw;
   };
-  if (single_block_ || compensating_ || state_ != ChannelState::kRunning ||
-      !feed_move(block_.motion) || block_.end || homing_)
+  continuation_ready_ = false;
+  if (single_block_ || state_ != ChannelState::kRunning || !feed_move(block_.motion) ||
+      block_.end || homing_)
     return;
-  if (!peeked_) {
-    peeked_ = true;
-    peek_ok_ = interpreter_->Next(peek_);
+  nc::PreparedBlock next;
+  if (compensating_) {
+    // Under G41/G42: the next piece of the tip path, reading on until it is final.
+    FillCompensated();
+    if (ready_.empty()) return;
+    const ContourElement& e = ready_.front();
+    const auto index = static_cast<size_t>(e.tag - first_tag_);
+    if (e.tag < first_tag_ || index >= ahead_.size()) return;
+    next = ElementBlock(e, ahead_[index]);
+    if (e.tag == last_run_tag_) {
+      // A further piece of the block in work: its functions have run already.
+      next.aux.clear(), next.events.clear(), next.instructions.clear();
+      next.dwell_s = 0;
+    }
+    next.modal.compensation = 40;  // the tip path itself is not offset again
+    peek_ok_ = true;
+  } else {
+    if (!peeked_) {
+      peeked_ = true;
+      peek_ok_ = interpreter_->Next(peek_);
+    }
+    next = peek_;
   }
-  const nc::PreparedBlock& n = peek_;
+  const nc::PreparedBlock& n = next;
   const nc::ModalState &m0 = block_.modal, &m1 = n.modal;
   if (!peek_ok_ || !feed_move(n.motion) || !n.aux.empty() || !n.events.empty() ||
       !n.instructions.empty() || n.dwell_s != 0 || n.homing || n.set_position || n.repos ||
@@ -1029,7 +1090,7 @@ void Channel::LookAhead(const AmplifierTelegram& at) {
   }
   // The next block must be able to stop within its length (nothing beyond it is known).
   v = std::min(v, std::sqrt(accel2 * length2));
-  if (v > 1e-9) profile_.end_rate = v / length1;
+  if (v > 1e-9) profile_.end_rate = v / length1, continuation_ready_ = true;
 }
 
 void Channel::Interpolate(double dt) {
@@ -1041,7 +1102,7 @@ void Channel::Interpolate(double dt) {
     active_ = false;
     // Ended at speed (look-ahead): the next block takes the speed over at once, with what
     // this cycle had left of its distance.
-    if (profile_.rate > 0 && peeked_ && peek_ok_) {
+    if (profile_.rate > 0 && continuation_ready_) {
       carry_speed_ = profile_.rate * segment_length_;
       carry_accel_ = profile_.accel * segment_length_;
       carry_leftover_ = std::max(0.0, carry_speed_ * dt - (1 - u_before) * segment_length_);

@@ -142,6 +142,9 @@ class Channel {
   void DropLookahead();
   bool StartMotion(const AmplifierTelegram& at);
   void LookAhead(const AmplifierTelegram& at);
+  bool ReadNext(nc::PreparedBlock& b);
+  void FillCompensated();
+  nc::PreparedBlock ElementBlock(const ContourElement& e, nc::PreparedBlock base) const;
   double SegmentLength() const;
   void ApplyU();
   bool UpdateTranslation(const nc::ModalState& modal, const nc::Program& program, int32_t block);
@@ -196,6 +199,9 @@ class Channel {
 
   // Look-ahead between feed moves: the next block read early, the speed carried into it.
   bool peeked_ = false, peek_ok_ = false;
+  bool continuation_ready_ = false;            ///< this block ends at speed into the next
+  std::optional<nc::PreparedBlock> unpushed_;  ///< read ahead under G41/G42, not taken yet
+  bool source_returned_false_ = false;         ///< the read-ahead met the end or an error
   nc::PreparedBlock peek_;
   bool planning_only_ = false, plan_failed_ = false;
   double segment_length_ = 1;  ///< |dP/du| of the block in work, axis space

@@ -645,5 +645,23 @@ TEST(ChannelTest, FeedHoldJustBeforeABlendedJoinBrakesIntoTheNextBlock) {
   EXPECT_DOUBLE_EQ(m.X(), 100);
 }
 
+TEST(ChannelTest, LookAheadUnderToolNoseRadiusCompensation) {
+  // The tip path of N3 - fillet N4 - corner arc - N5 is tangent throughout: no stop on it.
+  Machine m(
+      "N1 G00 X30 Z110\nN2 G42 T1 D1 G01 X20 Z100 F6000\nN3 Z50\nN4 G02 X25 Z45 I5 K0\n"
+      "N5 G01 Z30\nN6 G40 G00 X40\nN7 RET\n",
+      30, 110, WithOffsetsAndTools);
+  m.channel->Start();
+  double slowest = 1e9;
+  while (m.channel->state() == ChannelState::kRunning && m.t < 20) {
+    const double x = m.channel->position(0), z = m.channel->position(1);
+    for (int i = 0; i < 4; ++i) m.Tick();
+    const double speed = std::hypot(m.channel->position(0) - x, m.channel->position(1) - z) / 1e-3;
+    if (z < 60 && z > 35) slowest = std::min(slowest, speed);
+  }
+  ASSERT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  EXPECT_GT(slowest, 40);  // the 0.8 mm corner arc allows sqrt(4000 x 0.8) = 57 mm/s
+}
+
 }  // namespace
 }  // namespace vmt::control::channel
