@@ -66,6 +66,7 @@ Interpreter::Interpreter(std::vector<const Program*> programs, InterpreterConfig
   for (size_t i = 0; i < programs_.size(); ++i) by_name_.emplace(Stem(programs_[i]->name), i);
   position_.assign(config_.axes.size(), 0.0);
   var_cache_.resize(programs_.size());
+  axis_cache_.resize(programs_.size());
 }
 
 bool Interpreter::JumpTo(const std::string& label) {
@@ -90,6 +91,19 @@ const std::string& Interpreter::ErrorFile() const { return programs_[error_progr
 double Interpreter::Variable(const std::string& name) const {
   auto it = variables_.find(Upper(name));
   return it == variables_.end() ? 0.0 : it->second;
+}
+
+int Interpreter::AxisOf(uint32_t address) {
+  std::vector<int8_t>& cache = axis_cache_[current_];
+  if (cache.size() <= address) cache.resize(address + 1, -2);
+  int8_t& axis = cache[address];
+  if (axis == -2) {
+    axis = -1;
+    const std::string& name = program().symbols.Name(address);
+    for (size_t a = 0; a < config_.axes.size(); ++a)
+      if (config_.axes[a] == name) axis = static_cast<int8_t>(a);
+  }
+  return axis;
 }
 
 double& Interpreter::Var(uint32_t name) {
@@ -430,12 +444,10 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
   // they stand (X40 G16 is a diameter, X10 G91 an increment).
   for (int pass = 0; pass < 2; ++pass)
     for (const Word& w : p.Words(block)) {
-      const std::string& address = p.symbols.Name(w.address);
       // A channel axis may be named like an address letter (C, X1): axes are looked up first.
-      int axis = -1;
-      for (size_t a = 0; a < config_.axes.size(); ++a)
-        if (config_.axes[a] == address) axis = static_cast<int>(a);
+      const int axis = AxisOf(w.address);
       if ((axis >= 0) != (pass == 1)) continue;
+      const std::string& address = p.symbols.Name(w.address);
       const double v = w.value == kNoExpr ? w.number : Eval(w.value);
       if (eval_failed_) return Fail(eval_fail_offset_, eval_fail_message_);
       const char letter = address[0];

@@ -122,6 +122,7 @@ class Interpreter {
   double Eval(ExprId id);
   bool Fail(uint32_t offset, std::string message);
   double& Var(uint32_t name);
+  int AxisOf(uint32_t address);  ///< channel axis of an address symbol, -1 if none
   const Program& program() const { return *programs_[current_]; }
 
   std::vector<const Program*> programs_;
@@ -131,6 +132,7 @@ class Interpreter {
   std::vector<double> position_;
   std::map<std::string, double> variables_;
   std::vector<std::vector<double*>> var_cache_;  ///< per program, per symbol id
+  std::vector<std::vector<int8_t>> axis_cache_;  ///< per program, per symbol: axis, -1 none, -2 ?
   std::vector<Frame> calls_;
   std::vector<Loop> loops_;
   std::function<bool(int)> event_;
