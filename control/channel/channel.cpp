@@ -576,8 +576,7 @@ bool Channel::NextCompensated(const AmplifierTelegram& at) {
   e = ready_.front();
   ready_.pop_front();
   while (first_tag_ < e.tag) ahead_.pop_front(), ++first_tag_;
-  block_ = ahead_.front();
-  block_ = ElementBlock(e, block_);
+  block_ = ElementBlock(e, ahead_.front());
   if (e.tag != last_run_tag_) {
     last_run_tag_ = e.tag;
     return RunBlock(at);

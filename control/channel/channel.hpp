@@ -81,6 +81,8 @@ class Channel {
   /// stays interrupted: the axes may be jogged away and the program continued later.
   bool SetMode(ChannelMode mode);
   ChannelMode mode() const { return mode_; }
+  /// Drive ticks per NC cycle: the gateway is served once per cycle.
+  int ticks_per_cycle() const { return config_.ticks_per_cycle; }
   /// Jog increment in mm | deg; 0 jogs continuously while the key is held.
   void SetJogIncrement(double increment) {
     jog_increment_ = std::abs(increment);

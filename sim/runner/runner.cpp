@@ -189,7 +189,7 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
     events.clear();
     program.Tick(t, at, clutches, mdt, events);
     if (channel) {
-      const bool nc_cycle = tick % 4 == 0;
+      const bool nc_cycle = tick % channel->ticks_per_cycle() == 0;
       if (gateway && nc_cycle) gateway->ReadControls(*channel);
       channel->Tick(at, mdt);
       if (gateway && nc_cycle) gateway->WriteStatus(*channel, at);
