@@ -10,11 +10,10 @@
 
 namespace vmt::control::nc {
 
-/// Returns false when the line holds no block (blank or comment only).
-bool ParseMtc200Line(std::string_view line, SourcePos start, Program& program,
-                     std::vector<Diagnostic>& errors, Block& block);
-bool ParseIsgLine(std::string_view line, SourcePos start, Program& program,
-                  std::vector<Diagnostic>& errors, Block& block);
+/// Returns false when the line holds no block (blank or comment only). `expr` holds the program
+/// and its errors; one serves all lines of a program.
+bool ParseMtc200Line(std::string_view line, SourcePos start, ExpressionParser& expr, Block& block);
+bool ParseIsgLine(std::string_view line, SourcePos start, ExpressionParser& expr, Block& block);
 
 /// The start of a block: '/' (block skip) and an N number, both optional.
 void ReadBlockStart(LineScanner& s, Block& block);

@@ -1,5 +1,6 @@
 #include "control/nc/interpreter.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -67,6 +68,9 @@ Interpreter::Interpreter(std::vector<const Program*> programs, InterpreterConfig
   position_.assign(config_.axes.size(), 0.0);
   var_cache_.resize(programs_.size());
   axis_cache_.resize(programs_.size());
+  size_t stack = 1;
+  for (const Program* p : programs_) stack = std::max<size_t>(stack, p->max_stack);
+  stack_.assign(stack, 0.0);
 }
 
 bool Interpreter::JumpTo(const std::string& label) {
@@ -121,69 +125,132 @@ bool Interpreter::Fail(uint32_t offset, std::string message) {
   return false;
 }
 
+void Interpreter::Fault(uint32_t rank, uint32_t offset, std::string message) {
+  if (fault_ && rank >= fault_rank_) return;
+  fault_ = true;
+  fault_rank_ = rank;
+  fault_offset_ = offset;
+  fault_message_ = std::move(message);
+}
+
 double Interpreter::Eval(ExprId id) {
+  using Op = ExprOp;
   const Program& p = program();
-  const Expr& e = p.exprs[id];
-  auto fail = [&](std::string message) {
-    if (!eval_failed_) {
-      eval_failed_ = true;
-      eval_fail_offset_ = e.offset;
-      eval_fail_message_ = std::move(message);
+  const uint32_t* pc = p.code.data() + id;
+  // The stack holds what the deepest expression of the programs needs (Program::max_stack).
+  double* sp = stack_.data();
+  fault_ = false;
+  auto immediate = [&](uint32_t unit) {
+    const uint32_t value = unit >> 8;
+    return value == kWideImmediate ? *pc++ : value;
+  };
+  for (;;) {
+    const uint32_t unit = *pc++;
+    switch (OpOf(unit)) {
+      case Op::kEnd:
+        if (fault_ && !eval_failed_) {
+          eval_failed_ = true;
+          eval_fail_offset_ = fault_offset_;
+          eval_fail_message_ = std::move(fault_message_);
+        }
+        return sp[-1];
+      case Op::kInt:
+        *sp++ = static_cast<double>(static_cast<int32_t>(unit) >> 8);
+        break;
+      case Op::kNumber:
+        *sp++ = p.numbers[immediate(unit)];
+        break;
+      case Op::kVariable:
+        *sp++ = Var(immediate(unit));
+        break;
+      case Op::kOmitted:
+        *sp++ = 0;
+        break;
+      case Op::kNeg:
+        sp[-1] = -sp[-1];
+        break;
+      case Op::kNot:
+        sp[-1] = sp[-1] == 0 ? 1 : 0;
+        break;
+      case Op::kAdd:
+        --sp;
+        sp[-1] = sp[-1] + sp[0];
+        break;
+      case Op::kSub:
+        --sp;
+        sp[-1] = sp[-1] - sp[0];
+        break;
+      case Op::kMul:
+        --sp;
+        sp[-1] = sp[-1] * sp[0];
+        break;
+      case Op::kDiv:
+      case Op::kMod: {
+        const double d = *--sp;
+        if (d == 0) {
+          Fault(pc[1], pc[0], OpOf(unit) == Op::kDiv ? "division by zero" : "MOD by zero");
+          sp[-1] = 0;
+        } else {
+          sp[-1] = OpOf(unit) == Op::kDiv ? sp[-1] / d : std::fmod(sp[-1], d);
+        }
+        pc += 2;
+        break;
+      }
+      case Op::kPow:
+      case Op::kEq:
+      case Op::kNe:
+      case Op::kLt:
+      case Op::kLe:
+      case Op::kGt:
+      case Op::kGe:
+      case Op::kXor:
+        --sp;
+        sp[-1] = ApplyBinary(OpOf(unit), sp[-1], sp[0]);
+        break;
+      case Op::kAndSkip:
+        // A zero left operand decides: the right one is not evaluated (nor its faults).
+        if (sp[-1] == 0) {
+          sp[-1] = 0;
+          pc += *pc + 1;
+        } else {
+          --sp;
+          ++pc;
+        }
+        break;
+      case Op::kOrSkip:
+        if (sp[-1] != 0) {
+          sp[-1] = 1;
+          pc += *pc + 1;
+        } else {
+          --sp;
+          ++pc;
+        }
+        break;
+      case Op::kAnd:
+      case Op::kOr:
+        sp[-1] = sp[-1] != 0;
+        break;
+      case Op::kCall:
+      case Op::kArgs: {
+        const uint32_t name = immediate(unit);
+        const uint32_t count = pc[0], offset = pc[1], rank = pc[2];
+        pc += 3;
+        sp -= count;
+        *sp = OpOf(unit) == Op::kCall ? Call(name, {sp, count}, offset, rank) : 0.0;
+        ++sp;
+        break;
+      }
     }
+  }
+}
+
+double Interpreter::Call(uint32_t id, std::span<const double> args, uint32_t offset,
+                         uint32_t rank) {
+  const std::string& name = program().symbols.Name(id);
+  auto fail = [&](std::string message) {
+    Fault(rank, offset, std::move(message));
     return 0.0;
   };
-  using Op = Expr::Op;
-  switch (e.op) {
-    case Op::kNumber:
-      return e.number;
-    case Op::kVariable:
-      return e.name == 0 ? 0.0 : Var(e.name);
-    case Op::kNeg:
-      return -Eval(e.lhs);
-    case Op::kNot:
-      return Eval(e.lhs) == 0 ? 1 : 0;
-    case Op::kAdd:
-      return Eval(e.lhs) + Eval(e.rhs);
-    case Op::kSub:
-      return Eval(e.lhs) - Eval(e.rhs);
-    case Op::kMul:
-      return Eval(e.lhs) * Eval(e.rhs);
-    case Op::kDiv: {
-      const double d = Eval(e.rhs);
-      if (d == 0) return fail("division by zero");
-      return Eval(e.lhs) / d;
-    }
-    case Op::kMod: {
-      const double d = Eval(e.rhs);
-      if (d == 0) return fail("MOD by zero");
-      return std::fmod(Eval(e.lhs), d);
-    }
-    case Op::kPow:
-      return std::pow(Eval(e.lhs), Eval(e.rhs));
-    case Op::kEq:
-      return Eval(e.lhs) == Eval(e.rhs);
-    case Op::kNe:
-      return Eval(e.lhs) != Eval(e.rhs);
-    case Op::kLt:
-      return Eval(e.lhs) < Eval(e.rhs);
-    case Op::kLe:
-      return Eval(e.lhs) <= Eval(e.rhs);
-    case Op::kGt:
-      return Eval(e.lhs) > Eval(e.rhs);
-    case Op::kGe:
-      return Eval(e.lhs) >= Eval(e.rhs);
-    case Op::kAnd:
-      return (Eval(e.lhs) != 0) && (Eval(e.rhs) != 0);
-    case Op::kOr:
-      return (Eval(e.lhs) != 0) || (Eval(e.rhs) != 0);
-    case Op::kXor:
-      return (Eval(e.lhs) != 0) != (Eval(e.rhs) != 0);
-    case Op::kCall:
-      break;
-  }
-  const std::string& name = p.symbols.Name(e.name);
-  std::vector<double> args;
-  for (ExprId a = e.lhs; a != kNoExpr; a = p.exprs[a].next) args.push_back(Eval(a));
   auto one = [&](double (*f)(double)) {
     if (args.size() != 1) return fail(name + " takes one argument");
     return f(args[0]);

@@ -11,6 +11,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -120,6 +121,9 @@ class Interpreter {
   bool Statement_(const Statement& st, int32_t block, PreparedBlock& out, int32_t& next);
   bool Words(const Block& block, PreparedBlock& out);
   double Eval(ExprId id);
+  double Call(uint32_t name, std::span<const double> args, uint32_t offset, uint32_t rank);
+  /// A fault of the expression being evaluated; the first in tree order (lowest rank) counts.
+  [[gnu::cold]] void Fault(uint32_t rank, uint32_t offset, std::string message);
   bool Fail(uint32_t offset, std::string message);
   double& Var(uint32_t name);
   int AxisOf(uint32_t address);  ///< channel axis of an address symbol, -1 if none
@@ -143,7 +147,11 @@ class Interpreter {
   int64_t executed_ = 0;
   std::optional<Diagnostic> error_;
   uint32_t error_program_ = 0;
-  bool entering_ = false;  ///< a failed $IF/$ELSEIF condition jumped to the next branch
+  bool entering_ = false;      ///< a failed $IF/$ELSEIF condition jumped to the next branch
+  std::vector<double> stack_;  ///< Eval's value stack
+  bool fault_ = false;
+  uint32_t fault_rank_ = 0, fault_offset_ = 0;
+  std::string fault_message_;
   bool eval_failed_ = false;
   uint32_t eval_fail_offset_ = 0;
   std::string eval_fail_message_;

@@ -14,12 +14,12 @@ namespace {
 constexpr std::array kAddresses = {"A", "B", "C", "D", "E", "F", "G", "H", "I", "J", "K",
                                    "M", "Q", "R", "S", "T", "U", "V", "W", "X", "Y", "Z"};
 
-template <size_t N>
-bool OneOf(const std::string& word, const std::array<const char*, N>& list) {
-  for (const char* w : list)
-    if (word == w) return true;
-  return false;
-}
+// kAddresses by letter: a word's address is looked up once per word.
+constexpr std::array<bool, 26> kIsAddress = [] {
+  std::array<bool, 26> is{};
+  for (const char* a : kAddresses) is[a[0] - 'A'] = true;
+  return is;
+}();
 
 // Skips spaces and ( ... ) comments; false (after an error) for an unclosed comment.
 bool SkipSpaceAndComments(LineScanner& s, ExpressionParser& expr) {
@@ -55,10 +55,9 @@ std::string HashCommandText(LineScanner& s) {
 
 }  // namespace
 
-bool ParseIsgLine(std::string_view line, SourcePos start, Program& p,
-                  std::vector<Diagnostic>& errors, Block& block) {
+bool ParseIsgLine(std::string_view line, SourcePos start, ExpressionParser& expr, Block& block) {
   LineScanner s(line, start);
-  ExpressionParser expr(p, errors);
+  Program& p = expr.program();
   if (!SkipSpaceAndComments(s, expr)) return true;
   if (s.AtEnd() || s.Peek() == ';') return false;
   block.pos = s.Pos();
@@ -161,12 +160,12 @@ bool ParseIsgLine(std::string_view line, SourcePos start, Program& p,
       p.statements.push_back(st);
       continue;
     }
-    const std::string letter(1,
-                             static_cast<char>(std::toupper(static_cast<unsigned char>(s.Peek()))));
-    if (!OneOf(letter, kAddresses)) {
+    const char upper = LineScanner::ToUpper(s.Peek());
+    if (upper < 'A' || upper > 'Z' || !kIsAddress[upper - 'A']) {
       expr.Error(pos, "unknown word '" + name + "'");
       return true;
     }
+    const std::string letter(1, upper);
     s.Advance();
     Word w;
     w.offset = pos.offset;

@@ -66,10 +66,9 @@ uint32_t Label(LineScanner& s, ExpressionParser& expr, Program& p, const std::st
 
 }  // namespace
 
-bool ParseMtc200Line(std::string_view line, SourcePos start, Program& p,
-                     std::vector<Diagnostic>& errors, Block& block) {
+bool ParseMtc200Line(std::string_view line, SourcePos start, ExpressionParser& expr, Block& block) {
   LineScanner s(line, start);
-  ExpressionParser expr(p, errors);
+  Program& p = expr.program();
   s.SkipSpace();
   if (s.AtEnd() || s.Peek() == ';') return false;
   block.pos = s.Pos();
@@ -135,18 +134,13 @@ bool ParseMtc200Line(std::string_view line, SourcePos start, Program& p,
       if (s.Peek() == '(') {
         const SourcePos open = s.Pos();
         s.Advance();
-        if (!expr.Arguments(s, open, st.value)) return true;
+        if (!expr.Arguments(s, open, st.name, st.value)) return true;
         s.SkipSpace();
         if (cls == WordClass::kCall && s.Peek() == '=' && s.Peek(1) != '=') {
           // A data location written to: TLD(1,3,,1,12,) = TLD(1,3,,1,12,) + MTD(105,,2,13).
           s.Advance();
-          Expr call;
-          call.op = Expr::Op::kCall;
-          call.name = st.name;
-          call.lhs = st.value;
-          call.offset = pos.offset;
           st.kind = Statement::Kind::kAssign;
-          st.data = expr.Add(call);
+          st.data = expr.CallOf(st.name, st.value, pos.offset);
           if ((st.value = expr.Parse(s)) == kNoExpr) return true;
         }
       } else if (cls == WordClass::kCall) {

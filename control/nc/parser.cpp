@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "control/nc/front_end.hpp"
+#include "control/nc/huge_pages.hpp"
 #include "control/nc/program_check.hpp"
 
 namespace vmt::control::nc {
@@ -18,9 +19,24 @@ std::string Format(const Diagnostic& d, const std::vector<std::string>& files) {
 }
 
 uint32_t Symbols::Intern(std::string_view name) {
-  if (auto it = ids_.find(name); it != ids_.end()) return it->second;
-  const auto id = static_cast<uint32_t>(names_.size());
-  ids_.emplace(names_.emplace_back(name), id);
+  Cached* cached = nullptr;
+  uint64_t key = 0;
+  if (!name.empty() && name.size() < 8) {
+    // Byte by byte: a memcpy into the key stalls its load (store forwarding) on every lookup.
+    for (size_t i = 0; i < name.size(); ++i)
+      key |= uint64_t{static_cast<unsigned char>(name[i])} << (8 * i);
+    key |= uint64_t{name.size()} << 56;
+    cached = &cache_[(key * 0x9E3779B97F4A7C15ull) >> 56];
+    if (cached->key == key) return cached->id;
+  }
+  uint32_t id;
+  if (auto it = ids_.find(name); it != ids_.end()) {
+    id = it->second;
+  } else {
+    id = static_cast<uint32_t>(names_.size());
+    ids_.emplace(names_.emplace_back(name), id);
+  }
+  if (cached) *cached = {key, id};
   return id;
 }
 
@@ -68,11 +84,15 @@ ParseResult ParseProgram(std::string_view text, const std::string& file_name, Di
   Program& p = r.program;
   p.dialect = dialect;
   p.files.push_back(file_name);
-  // Typical blocks are 20-40 bytes with 3-5 values: reserve so that a million-block program
-  // does not spend its time copying the arenas as they grow.
-  p.blocks.reserve(text.size() / 24 + 1);
-  p.exprs.reserve(text.size() / 6 + 1);
-  p.words.reserve(text.size() / 8 + 1);
+  // Reserve the arenas once, for what the text can hold, so that a million-block program does
+  // not spend its time copying them as they grow; huge pages make their first touch cheap.
+  const size_t lines = static_cast<size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
+  ReserveHugePages(p.line_starts, lines);
+  ReserveHugePages(p.blocks, lines);
+  ReserveHugePages(p.statements, lines + lines / 4);
+  ReserveHugePages(p.words, text.size() / 6 + 16);
+  ReserveHugePages(p.code, text.size() / 3 + 16);
+  ExpressionParser expr(p, r.errors);
   const auto parse_line = dialect == Dialect::kIsg ? ParseIsgLine : ParseMtc200Line;
   uint32_t line_number = 0, counter = 0;
   for (size_t i = 0; i <= text.size();) {
@@ -85,7 +105,7 @@ ParseResult ParseProgram(std::string_view text, const std::string& file_name, Di
     block.first_word = static_cast<uint32_t>(p.words.size());
     block.first_statement = static_cast<uint32_t>(p.statements.size());
     const size_t errors_before = r.errors.size();
-    if (parse_line(text.substr(i, end - i), start, p, r.errors, block)) {
+    if (parse_line(text.substr(i, end - i), start, expr, block)) {
       block.counter = ++counter;
       block.num_words = static_cast<uint32_t>(p.words.size()) - block.first_word;
       block.num_statements = static_cast<uint32_t>(p.statements.size()) - block.first_statement;

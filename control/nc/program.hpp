@@ -5,6 +5,8 @@
 // structured control). Expressions live in one arena per program so that decoding a million
 // blocks allocates per block, not per node.
 
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <deque>
 #include <map>
@@ -33,42 +35,104 @@ class Symbols {
  private:
   std::deque<std::string> names_{""};  ///< id 0 is "no name"; a deque keeps the views valid
   std::unordered_map<std::string_view, uint32_t> ids_;
+  // Recently interned short names (P1, X, @100) by their bytes: programs name the same few
+  // things millions of times, and the hash map's lookup was a tenth of the decode time.
+  struct Cached {
+    uint64_t key = 0;  ///< up to 7 bytes of the name, its length in the top byte; 0 = empty
+    uint32_t id = 0;
+  };
+  std::array<Cached, 256> cache_{};
 };
 
-using ExprId = int32_t;  ///< index into Program::exprs; -1 = none
+using ExprId = int32_t;  ///< start of an expression in Program::code; -1 = none
 inline constexpr ExprId kNoExpr = -1;
 
-struct Expr {
-  enum class Op : uint8_t {
-    kNumber,    ///< number
-    kVariable,  ///< name: "@100" (MTC200), "P1", "V.L.DIST" (ISG); name 0 = omitted argument
-    kCall,      ///< name(args...): G(2), M(5), SIN[30], TLD(1,2)
-    kNeg,
-    kNot,
-    kAdd,
-    kSub,
-    kMul,
-    kDiv,
-    kMod,
-    kPow,
-    kEq,
-    kNe,
-    kLt,
-    kLe,
-    kGt,
-    kGe,
-    kAnd,
-    kOr,
-    kXor,
-  };
-  // 32 bytes: expression-heavy programs are mostly these nodes.
-  double number = 0;
-  uint32_t name = 0;
-  ExprId lhs = kNoExpr, rhs = kNoExpr;  ///< operands; for kCall: lhs = first argument
-  ExprId next = kNoExpr;                ///< next argument of a call
-  uint32_t offset = 0;                  ///< in the file; Program::PosAt gives line and column
-  Op op = Op::kNumber;
+/// Expressions are postfix code for a value stack, one 32-bit unit per operation: the operation
+/// in the low byte, an immediate in the upper 24 bits. A decoded tree of 32-byte nodes made the
+/// code of a million-block program half a gigabyte, and first touches of fresh pages dominated
+/// its decoding; this is about a fifth of that. An immediate of kWideImmediate means the value
+/// is in the next unit. Only the places an evaluation can fail (/ MOD calls) keep their source
+/// offset.
+enum class ExprOp : uint8_t {
+  kEnd,       ///< the value of the expression is the top of the stack
+  kInt,       ///< push the immediate, a signed 24-bit integer
+  kNumber,    ///< push Program::numbers[immediate]
+  kVariable,  ///< push the variable named by the immediate: @100, P1, V.L.DIST, a bare name
+  kOmitted,   ///< push 0 for an omitted argument (SETTING (X, Z, , 18))
+  kNeg,
+  kNot,
+  kAdd,
+  kSub,
+  kMul,
+  kPow,
+  kEq,
+  kNe,
+  kLt,
+  kLe,
+  kGt,
+  kGe,
+  kXor,
+  /// Divisor on top; next units: source offset, failure rank (see kCall).
+  kDiv,
+  kMod,
+  /// `lhs AND rhs`: lhs, kAndSkip, n, rhs, kAnd. A zero lhs is the result and the n units after
+  /// it are skipped (the rhs is not evaluated, so its faults are not reported).
+  kAndSkip,
+  kOrSkip,  ///< as kAndSkip: a non-zero lhs gives 1
+  kAnd,     ///< top = top != 0, after the rhs of AND
+  kOr,
+  /// name(args): immediate = name; next units: argument count, source offset of the name, and
+  /// the failure rank: the order in which the faults of an expression would be met by
+  /// evaluating its tree (the divisor of / and MOD and the exponent of ^ before their left
+  /// operand, as the interpreter always did); the first in that order is reported.
+  kCall,
+  kArgs,  ///< an instruction's argument list, laid out as kCall; nothing evaluates it
 };
+
+inline constexpr uint32_t kWideImmediate = 0xFFFFFF;
+inline constexpr uint32_t ExprUnit(ExprOp op, uint32_t immediate = 0) {
+  return static_cast<uint32_t>(op) | immediate << 8;
+}
+inline constexpr ExprOp OpOf(uint32_t unit) { return static_cast<ExprOp>(unit & 0xFF); }
+
+/// The binary operators kAdd .. kMod on values (a divisor is not 0). One definition for the
+/// interpreter and the parser's constant folding, so that both compute the same bits.
+inline double ApplyBinary(ExprOp op, double l, double r) {
+  switch (op) {
+    case ExprOp::kAdd:
+      return l + r;
+    case ExprOp::kSub:
+      return l - r;
+    case ExprOp::kMul:
+      return l * r;
+    case ExprOp::kPow:
+      return std::pow(l, r);
+    case ExprOp::kEq:
+      return l == r;
+    case ExprOp::kNe:
+      return l != r;
+    case ExprOp::kLt:
+      return l < r;
+    case ExprOp::kLe:
+      return l <= r;
+    case ExprOp::kGt:
+      return l > r;
+    case ExprOp::kGe:
+      return l >= r;
+    case ExprOp::kXor:
+      return (l != 0) != (r != 0);
+    case ExprOp::kDiv:
+      return l / r;
+    case ExprOp::kMod:
+      return std::fmod(l, r);
+    case ExprOp::kAnd:
+      return (l != 0) && (r != 0);
+    case ExprOp::kOr:
+      return (l != 0) || (r != 0);
+    default:
+      return 0;
+  }
+}
 
 /// An address with a value: G01, X-30.5, S1=0, RX50, F2000, M=@100, X[P1*2]. Most values are
 /// plain numbers; they are kept in the word, not in the expression arena (a million-block
@@ -102,7 +166,7 @@ struct Statement {
   Kind kind = Kind::kInstruction;
   uint32_t name = 0;       ///< mnemonic, variable or instruction name
   uint32_t target = 0;     ///< label or subprogram name
-  ExprId value = kNoExpr;  ///< assigned value, condition, event, or first argument (args chain)
+  ExprId value = kNoExpr;  ///< assigned value, condition, event, or argument list (kArgs)
   ExprId limit = kNoExpr, step = kNoExpr;  ///< $FOR var = value, limit, step
   ExprId data = kNoExpr;  ///< kAssign to a data location: the call TLD(...) | OTD(...) | MTD(...)
   uint32_t text = 0;      ///< #-command text: index into Program::texts
@@ -129,7 +193,9 @@ struct Program {
   std::vector<Block> blocks;
   std::vector<Word> words;
   std::vector<Statement> statements;
-  std::vector<Expr> exprs;
+  std::vector<uint32_t> code;      ///< expressions, see ExprOp
+  std::vector<double> numbers;     ///< constants of the code that are not small integers
+  uint32_t max_stack = 0;          ///< deepest value stack an expression of `code` needs
   std::vector<std::string> texts;  ///< #-command texts (kept out of Statement: it stays small)
   Symbols symbols;
   std::map<uint32_t, int32_t> labels;  ///< label -> block index
@@ -137,6 +203,9 @@ struct Program {
 
   /// Line and column of a file offset (words and expressions keep only the offset).
   SourcePos PosAt(uint32_t offset) const;
+  /// An expression as fully parenthesised infix text, e.g. "((@100 + 2) * (3 ^ 2))",
+  /// "SETTING(X, Z, , 18)": for tests and diagnostics.
+  std::string ExprText(ExprId id) const;
 
   std::span<const Word> Words(const Block& b) const {
     return {words.data() + b.first_word, b.num_words};

@@ -158,6 +158,102 @@ TEST(InterpreterTest, RuntimeErrorsPointAtTheSource) {
   EXPECT_THAT(Execute({{"a.mtc", "N1 .L JSR .L\n"}}).error, HasSubstr("nested deeper than 16"));
 }
 
+TEST(InterpreterTest, EveryOperatorOnVariablesAndFolded) {
+  // Each operator once on variables (evaluated from the code) and once on constants (folded
+  // by the parser): both must give what the operator means, bit for bit the same.
+  struct Case {
+    const char* op;
+    double a, b;
+    double expected;
+  };
+  const Case cases[] = {
+      {"+", 7, 2.5, 9.5}, {"-", 7, 2.5, 4.5},   {"*", 7, 2.5, 17.5},
+      {"/", 7, 2, 3.5},   {"MOD", 7.5, 2, 1.5}, {"MOD", -7, 3, std::fmod(-7.0, 3.0)},
+      {"^", 2, 10, 1024}, {"**", 9, 0.5, 3},    {"==", 2, 2, 1},
+      {"==", 2, 3, 0},    {"<>", 2, 3, 1},      {"!=", 2, 2, 0},
+      {"<", 2, 3, 1},     {"<", 3, 3, 0},       {"<=", 3, 3, 1},
+      {">", 3, 2, 1},     {">", 2, 2, 0},       {">=", 2, 2, 1},
+      {"AND", 2, -1, 1},  {"AND", 0, 5, 0},     {"AND", 5, 0, 0},
+      {"OR", 0, 0, 0},    {"OR", 0, -2, 1},     {"OR", 3, 0, 1},
+      {"XOR", 1, 1, 0},   {"XOR", 0, 4, 1},     {"XOR", -0.0, 0, 0},
+  };
+  for (const Case& c : cases) {
+    const std::string a = std::to_string(c.a), b = std::to_string(c.b);
+    const ProgramRun r =
+        Execute({{"a.isg", "%a\nP1 = " + a + "\nP2 = " + b + "\nP3 = P1 " + c.op +
+                               " P2\nP4 = " + a + " " + c.op + " " + b + "\nM30\n"}});
+    ASSERT_EQ(r.error, "") << c.op;
+    EXPECT_EQ(r.interpreter->Variable("P3"), c.expected) << a << " " << c.op << " " << b;
+    EXPECT_EQ(r.interpreter->Variable("P4"), c.expected) << a << " " << c.op << " " << b;
+  }
+  const ProgramRun r = Execute({{"a.isg",
+                                 "%a\nP1 = 3\nP2 = -P1\nP3 = NOT P1\nP4 = NOT [P1 - 3]\n"
+                                 "P5 = -P1 ^ 2\nP6 = 2 ^ 3 ^ 2\nP7 = P1 - 1 - 1\n"
+                                 "P8 = SQRT[P1 * 3] + ABS[-P1] + INT[2.7] + ROUND[2.5]\n"
+                                 "P9 = SIN[30] + COS[60] + ATAN[1] + EXP[0] + LN[1]\nM30\n"}});
+  ASSERT_EQ(r.error, "");
+  EXPECT_EQ(r.interpreter->Variable("P2"), -3);
+  EXPECT_EQ(r.interpreter->Variable("P3"), 0);
+  EXPECT_EQ(r.interpreter->Variable("P4"), 1);
+  EXPECT_EQ(r.interpreter->Variable("P5"), -9);   // power before unary minus
+  EXPECT_EQ(r.interpreter->Variable("P6"), 512);  // to the right
+  EXPECT_EQ(r.interpreter->Variable("P7"), 1);    // to the left
+  EXPECT_EQ(r.interpreter->Variable("P8"), 3 + 3 + 2 + 3);
+  EXPECT_DOUBLE_EQ(r.interpreter->Variable("P9"), 0.5 + 0.5 + 45 + 1 + 0);
+}
+
+TEST(InterpreterTest, ExpressionFaultsInTreeOrder) {
+  // The first fault an expression meets is reported, in the order the interpreter has always
+  // evaluated: left before right, but the divisor before the division before the dividend,
+  // the exponent before the base; AND / OR do not evaluate a right side they do not need.
+  // (The expected positions are what the tree evaluator before the postfix code reported.)
+  auto error = [](const std::string& expression) {
+    return Execute({{"a.mtc", "N1 @2=0\nN2 @1=" + expression + "\n"}}).error;
+  };
+  EXPECT_EQ(error("(1/@2) + (2 MOD @2)"), "a.mtc:2:9: error: division by zero");
+  EXPECT_EQ(error("(1/@2) == (2 MOD @2)"), "a.mtc:2:9: error: division by zero");
+  EXPECT_EQ(error("(1/@2) XOR (2 MOD @2)"), "a.mtc:2:9: error: division by zero");
+  EXPECT_EQ(error("(1/@2) ^ (2 MOD @2)"), "a.mtc:2:19: error: MOD by zero");
+  EXPECT_EQ(error("(1/@2) / (2 MOD @2)"), "a.mtc:2:19: error: MOD by zero");
+  EXPECT_EQ(error("(1/@2) / @2"), "a.mtc:2:14: error: division by zero");
+  EXPECT_EQ(error("(1/@2) MOD 0"), "a.mtc:2:14: error: MOD by zero");
+  EXPECT_EQ(error("SQRT(-1) / (1/@2) / (2 MOD @2)"), "a.mtc:2:30: error: MOD by zero");
+  EXPECT_EQ(error("@2 AND (1/@2)"), "");
+  EXPECT_EQ(error("1 OR (1/@2)"), "");
+  EXPECT_EQ(error("1 AND (1/@2)"), "a.mtc:2:15: error: division by zero");
+  EXPECT_EQ(error("@2 OR (1/@2)"), "a.mtc:2:15: error: division by zero");
+  EXPECT_EQ(error("(1/@2) AND (2 MOD @2)"), "a.mtc:2:9: error: division by zero");
+  EXPECT_EQ(error("SIN(1/@2, 2 MOD @2)"), "a.mtc:2:12: error: division by zero");
+  EXPECT_EQ(error("SIN(1, 2)"), "a.mtc:2:7: error: SIN takes one argument");
+  EXPECT_EQ(error("SQRT(-1/@2)"), "a.mtc:2:14: error: division by zero");
+  EXPECT_EQ(error("SQRT(-1) + LN(0)"), "a.mtc:2:7: error: SQRT of a negative number");
+  EXPECT_EQ(error("LN(0) ^ SQRT(-1)"), "a.mtc:2:15: error: SQRT of a negative number");
+  EXPECT_EQ(error("FOO(1/@2)"), "a.mtc:2:12: error: division by zero");
+  EXPECT_EQ(error("FOO(1) + G(99)"), "a.mtc:2:7: error: function FOO is not available");
+  EXPECT_EQ(error("G(99)"), "a.mtc:2:7: error: G(99): no such modal group");
+  EXPECT_EQ(error("5/(2-2)"), "a.mtc:2:8: error: division by zero");
+  EXPECT_EQ(error("(1/@2) ^ (2 MOD @2) ^ (3/@2)"), "a.mtc:2:31: error: division by zero");
+  EXPECT_EQ(error("-(1/@2) ^ -(2 MOD @2)"), "a.mtc:2:21: error: MOD by zero");
+  EXPECT_EQ(error("NOT (1/@2) OR (2/@2)"), "a.mtc:2:13: error: division by zero");
+  EXPECT_EQ(error("(1/@2)*(2/@2)/(3/@2)/(4/@2)"), "a.mtc:2:30: error: division by zero");
+  EXPECT_EQ(error("@2 AND (1/@2) OR (2 MOD @2)"), "a.mtc:2:27: error: MOD by zero");
+  EXPECT_EQ(error("1 AND @2 OR (3/@2) AND (4/@2)"), "a.mtc:2:21: error: division by zero");
+  EXPECT_EQ(error("G(1/@2, 2/@2)"), "a.mtc:2:10: error: division by zero");
+  EXPECT_EQ(error("TLD(1/@2) + 3 MOD @2"), "a.mtc:2:12: error: division by zero");
+}
+
+TEST(InterpreterTest, DeepAndWideExpressions) {
+  // Right-nested sums and long argument lists need a deep value stack.
+  std::string nested = "@1";
+  for (int i = 0; i < 60; ++i) nested = "@1 + (" + nested + ")";
+  std::string args = "SQRT(-1";
+  for (int i = 0; i < 300; ++i) args += ", @1 * " + std::to_string(i);
+  args += ")";
+  const ProgramRun r = Execute({{"a.mtc", "N1 @1=2\nN2 @2=" + nested + "\nN3 @3=" + args + "\n"}});
+  EXPECT_EQ(r.interpreter->Variable("@2"), 122);
+  EXPECT_EQ(r.error, "a.mtc:3:7: error: SQRT takes one argument");
+}
+
 TEST(InterpreterTest, SeedCAxisProgramRuns) {
   // C-axis manual, spiral groove at the face end, with RX as the effective distance.
   InterpreterConfig config;

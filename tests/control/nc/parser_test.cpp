@@ -21,28 +21,28 @@ std::string Errors(const ParseResult& r) {
   return all;
 }
 
-// Evaluates a constant expression tree (numbers and operators only) for checking the parse.
+// Evaluates a constant expression (numbers and operators only) for checking the parse.
 double Eval(const Program& p, ExprId id) {
-  const Expr& e = p.exprs.at(id);
-  using Op = Expr::Op;
-  switch (e.op) {
-    case Op::kNumber:
-      return e.number;
-    case Op::kNeg:
-      return -Eval(p, e.lhs);
-    case Op::kAdd:
-      return Eval(p, e.lhs) + Eval(p, e.rhs);
-    case Op::kSub:
-      return Eval(p, e.lhs) - Eval(p, e.rhs);
-    case Op::kMul:
-      return Eval(p, e.lhs) * Eval(p, e.rhs);
-    case Op::kDiv:
-      return Eval(p, e.lhs) / Eval(p, e.rhs);
-    case Op::kPow:
-      return std::pow(Eval(p, e.lhs), Eval(p, e.rhs));
-    default:
-      ADD_FAILURE() << "not constant";
+  std::vector<double> stack;
+  for (size_t pc = static_cast<size_t>(id);;) {
+    const uint32_t unit = p.code.at(pc++);
+    const ExprOp op = OpOf(unit);
+    if (op == ExprOp::kEnd) return stack.at(0);
+    if (op == ExprOp::kInt) {
+      stack.push_back(static_cast<int32_t>(unit) >> 8);
+    } else if (op == ExprOp::kNumber) {
+      stack.push_back(p.numbers.at(unit >> 8));
+    } else if (op == ExprOp::kNeg) {
+      stack.back() = -stack.back();
+    } else if (op >= ExprOp::kAdd && op <= ExprOp::kMod) {
+      const double r = stack.back();
+      stack.pop_back();
+      stack.back() = ApplyBinary(op, stack.back(), r);
+      if (op == ExprOp::kDiv || op == ExprOp::kMod) pc += 2;
+    } else {
+      ADD_FAILURE() << "not constant: " << p.ExprText(id);
       return 0;
+    }
   }
 }
 
@@ -59,7 +59,7 @@ TEST(Mtc200Test, SignedAndComputedValues) {
   EXPECT_NE(w[1].value, kNoExpr);
   EXPECT_DOUBLE_EQ(Value(r.program, w[1]), -6);
   EXPECT_DOUBLE_EQ(Value(r.program, w[2]), 0.5);
-  EXPECT_EQ(r.program.exprs[w[3].value].op, Expr::Op::kNeg);
+  EXPECT_EQ(r.program.ExprText(w[3].value), "-@100");
 }
 
 TEST(Mtc200Test, WordsNumbersLabelsAndComments) {
@@ -100,8 +100,7 @@ TEST(Mtc200Test, IndexedAddressesAndAssignedValues) {
   EXPECT_EQ(p.symbols.Name(w[5].address), "S");
   EXPECT_DOUBLE_EQ(Value(p, w[5]), 1000);
   EXPECT_EQ(p.symbols.Name(w[6].address), "M");
-  EXPECT_EQ(p.exprs[w[6].value].op, Expr::Op::kVariable);
-  EXPECT_EQ(p.symbols.Name(p.exprs[w[6].value].name), "@100");
+  EXPECT_EQ(p.ExprText(w[6].value), "@100");
 }
 
 TEST(Mtc200Test, VariablesBranchesAndCalls) {
@@ -121,16 +120,11 @@ TEST(Mtc200Test, VariablesBranchesAndCalls) {
   const Statement& assign = p.Statements(p.blocks[2])[0];
   EXPECT_EQ(assign.kind, Statement::Kind::kAssign);
   EXPECT_EQ(p.symbols.Name(assign.name), "@100");
-  const Expr& sub = p.exprs[assign.value];
-  EXPECT_EQ(sub.op, Expr::Op::kSub);
-  EXPECT_EQ(p.exprs[sub.lhs].op, Expr::Op::kCall);
-  EXPECT_EQ(p.symbols.Name(p.exprs[sub.lhs].name), "G");
+  EXPECT_EQ(p.ExprText(assign.value), "(G(2) - 17)");
   EXPECT_EQ(p.Statements(p.blocks[2])[1].kind, Statement::Kind::kBranch);
   EXPECT_EQ(p.Statements(p.blocks[2])[1].jump, 0);
-  // (@100+2)*3^2: power binds tighter than *, parentheses group.
-  const Expr& mul = p.exprs[p.Statements(p.blocks[3])[0].value];
-  EXPECT_EQ(mul.op, Expr::Op::kMul);
-  EXPECT_EQ(p.exprs[mul.rhs].op, Expr::Op::kPow);
+  // (@100+2)*3^2: power binds tighter than * (and 3^2 is folded), parentheses group.
+  EXPECT_EQ(p.ExprText(p.Statements(p.blocks[3])[0].value), "((@100 + 2) * 9)");
   EXPECT_EQ(p.Statements(p.blocks[3])[1].kind, Statement::Kind::kCall);
   const auto& last = p.Statements(p.blocks[5]);
   ASSERT_EQ(last.size(), 4u);
@@ -146,12 +140,9 @@ TEST(Mtc200Test, MeasuringInstructionsWithOmittedArguments) {
   const Program& p = r.program;
   const Statement& st = p.Statements(p.blocks[0])[0];
   EXPECT_EQ(p.symbols.Name(st.name), "SETTING");
-  int n = 0;
-  for (ExprId a = st.value; a != kNoExpr; a = p.exprs[a].next) ++n;
-  EXPECT_EQ(n, 7);
-  const Expr& third = p.exprs[p.exprs[p.exprs[st.value].next].next];
-  EXPECT_EQ(third.op, Expr::Op::kVariable);
-  EXPECT_EQ(third.name, 0u);  // omitted
+  // Seven arguments, the third omitted.
+  EXPECT_EQ(p.ExprText(st.value), "SETTING(X, Z, , 18, 48, 16, 3)");
+  EXPECT_EQ(p.ExprText(p.Statements(p.blocks[1])[0].value), "COMPARE(10, 1, 2, 8)");
   EXPECT_EQ(p.Statements(p.blocks[2])[0].value, kNoExpr);
 }
 
@@ -193,8 +184,89 @@ TEST(IsgTest, HeaderParametersStructuresAndCommands) {
   EXPECT_EQ(p.symbols.Name(p.Statements(p.blocks[9])[0].target), "SUB_1");
   const Word& x = p.Words(p.blocks[4])[1];
   EXPECT_DOUBLE_EQ(Value(p, p.Words(p.blocks[4])[2]), -5);
-  EXPECT_EQ(p.exprs[x.value].op, Expr::Op::kMul);
+  EXPECT_EQ(p.ExprText(x.value), "(P1 * 2)");
   EXPECT_EQ(p.blocks.back().number, -1);
+}
+
+TEST(ExpressionTest, PrecedenceAndOperatorsAsPostfixCode) {
+  const ParseResult r =
+      Mtc("N1 @1=@2 OR @3 AND @4 == @5 + @6 * @7 ^ -@8\n"
+          "N2 @1=@2 XOR NOT @3 <> @4 != @5 < @6 <= @7 > @8 >= @9\n"
+          "N3 @1=@2 - @3 - @4 / @5 MOD @6 ** @7 ^ @8\n"
+          "N4 @1=+-+@2 or @3 and @4 xor @5 mod @6\n");
+  ASSERT_TRUE(r.ok()) << Errors(r);
+  const Program& p = r.program;
+  auto text = [&](size_t b) { return p.ExprText(p.Statements(p.blocks[b])[0].value); };
+  EXPECT_EQ(text(0), "(@2 OR (@3 AND (@4 == (@5 + (@6 * (@7 ^ -@8))))))");
+  EXPECT_EQ(text(1), "(@2 XOR ((((((NOT @3 <> @4) <> @5) < @6) <= @7) > @8) >= @9))");
+  EXPECT_EQ(text(2), "((@2 - @3) - ((@4 / @5) MOD (@6 ^ (@7 ^ @8))))");
+  EXPECT_EQ(text(3), "((-@2 OR (@3 AND @4)) XOR (@5 MOD @6))");
+}
+
+TEST(ExpressionTest, ConstantsAreFoldedExceptDivisionByZero) {
+  const ParseResult r =
+      Isg("N1 P1 = 1 + 2 * 3 - [4 - 1] ^ 2\n"
+          "N2 P1 = [P2 + 2 * 3] * [1 / 4] + -[2] - NOT 0\n"
+          "N3 P1 = 5 / [2 - 2] + 7 MOD 0 + 7 MOD 4\n"
+          "N4 P1 = 2 ^ 0.5 + 0.1 + [1 < 2] + [1 AND 0] + [0 OR 3] + [1 XOR 1] + [2 == 2]\n"
+          "N5 P1 = -0 + 8388607 + 8388608 - -8388608 - -8388609\n"
+          "N6 X[-3 * 2] Y-[0] Z[0.5 * 3]\n");
+  ASSERT_TRUE(r.ok()) << Errors(r);
+  const Program& p = r.program;
+  auto value = [&](size_t b) { return p.Statements(p.blocks[b])[0].value; };
+  EXPECT_EQ(p.ExprText(value(0)), "-2");
+  EXPECT_EQ(p.ExprText(value(1)), "((((P2 + 6) * 0.25) + -2) - 1)");
+  // A division by zero stays in the code: it is a fault at run time, at its place.
+  EXPECT_EQ(p.ExprText(value(2)), "(((5 / 0) + (7 MOD 0)) + 3)");
+  const double folded = std::pow(2.0, 0.5) + 0.1 + 1 + 0 + 1 + 0 + 1;
+  EXPECT_EQ(Eval(p, value(3)), folded);  // bit for bit what the interpreter computes
+  EXPECT_EQ(Eval(p, value(4)), -0.0 + 8388607 + 8388608 + 8388608 + 8388609);
+  EXPECT_EQ(p.ExprText(value(4)), "33554432");
+  const auto words = p.Words(p.blocks[5]);
+  EXPECT_EQ(p.ExprText(words[0].value), "-6");
+  EXPECT_EQ(p.ExprText(words[1].value), "-0");
+  EXPECT_TRUE(std::signbit(Eval(p, words[1].value)));
+  EXPECT_EQ(Eval(p, words[2].value), 1.5);
+}
+
+TEST(ExpressionTest, CallsAndArgumentLists) {
+  const ParseResult r =
+      Mtc("N1 @1=SIN(30) + TLD(1, , @2 + 1, ) - G( 2 ) * FOO()\n"
+          "N2 SETTING (X, Z, , 18)\n"
+          "N3 SETTING (,)\n"
+          "N4 TLD() = 5\n"
+          "N5 MTD(1,2) = MTD(1,2) * 2\n");
+  ASSERT_TRUE(r.ok()) << Errors(r);
+  const Program& p = r.program;
+  EXPECT_EQ(p.ExprText(p.Statements(p.blocks[0])[0].value),
+            "((SIN(30) + TLD(1, , (@2 + 1), )) - (G(2) * FOO()))");
+  EXPECT_EQ(p.ExprText(p.Statements(p.blocks[1])[0].value), "SETTING(X, Z, , 18)");
+  EXPECT_EQ(p.ExprText(p.Statements(p.blocks[2])[0].value), "SETTING(, )");
+  const Statement& empty = p.Statements(p.blocks[3])[0];
+  EXPECT_EQ(empty.kind, Statement::Kind::kAssign);
+  EXPECT_EQ(p.ExprText(empty.data), "TLD()");
+  EXPECT_EQ(p.ExprText(empty.value), "5");
+  const Statement& data = p.Statements(p.blocks[4])[0];
+  EXPECT_EQ(p.ExprText(data.data), "MTD(1, 2)");
+  EXPECT_EQ(p.ExprText(data.value), "(MTD(1, 2) * 2)");
+}
+
+TEST(ExpressionTest, ManyConstantsAndNamesStayDistinct) {
+  // The parser's caches of constants and names must never mix two of them up.
+  std::string text = "%many\n";
+  for (int i = 0; i < 3000; ++i)
+    text += "P" + std::to_string(i % 700 + 1) + " = " + std::to_string(i) + ".25 + V.L.A" +
+            std::to_string(i % 300) + " * " + std::to_string(i * 7 % 1000) + ".5\n";
+  const ParseResult r = Isg(text);
+  ASSERT_TRUE(r.ok()) << Errors(r);
+  const Program& p = r.program;
+  for (int i = 0; i < 3000; ++i) {
+    const Statement& st = p.Statements(p.blocks[i + 1])[0];
+    ASSERT_EQ(p.symbols.Name(st.name), "P" + std::to_string(i % 700 + 1));
+    ASSERT_EQ(p.ExprText(st.value), "(" + std::to_string(i) + ".25 + (V.L.A" +
+                                        std::to_string(i % 300) + " * " +
+                                        std::to_string(i * 7 % 1000) + ".5))");
+  }
 }
 
 struct BadCase {
@@ -245,6 +317,12 @@ TEST(ParserTest, DeepNestingIsAnErrorNotACrash) {
   const ParseResult r = Mtc(deep);
   ASSERT_FALSE(r.ok());
   EXPECT_THAT(Errors(r), HasSubstr("nested too deeply"));
+  // The 65th level is the fault, where it starts (before its unary plus).
+  const ParseResult at = Mtc("N1 @1=" + std::string(64, '(') + " +1\n");
+  EXPECT_THAT(Errors(at), HasSubstr("t.mtc:1:72: error: expression nested too deeply"));
+  // Unary plus is no nesting, and a long run of it no deep recursion either.
+  EXPECT_TRUE(Mtc("N1 @1=" + std::string(1000000, '+') + "1\n").ok());
+  EXPECT_THAT(Errors(Mtc("N1 @1=" + std::string(65, '-') + "1\n")), HasSubstr("nested too deeply"));
 }
 
 TEST(ParserTest, ReportsEveryBadBlockAndKeepsTheGoodOnes) {

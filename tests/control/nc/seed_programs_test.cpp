@@ -68,8 +68,8 @@ TEST(SeedProgramsTest, DataLocationsAreAssignable) {
   ASSERT_TRUE(r.ok());
   const Statement& st = r.program.Statements(r.program.blocks[0])[0];
   EXPECT_EQ(st.kind, Statement::Kind::kAssign);
-  EXPECT_EQ(r.program.exprs[st.data].op, Expr::Op::kCall);
-  EXPECT_EQ(r.program.exprs[st.value].op, Expr::Op::kAdd);
+  EXPECT_EQ(r.program.ExprText(st.data), "TLD(1, 3, , 1, 12, )");
+  EXPECT_EQ(r.program.ExprText(st.value), "(TLD(1, 3, , 1, 12, ) + MTD(105, , 2, 13))");
 }
 
 }  // namespace
