@@ -1,5 +1,5 @@
 #pragma once
-// One NC channel in automatic mode: it runs a program through the interpreter, interpolates
+// One NC channel: in automatic mode it runs a program through the interpreter, interpolates
 // each prepared block on the NC cycle (G00 with every axis at its rapid limit, ending together;
 // G01/G02/G03 at path feed, acceleration-limited; feed override; feed hold on the path),
 // fine-interpolates to the drive tick, and commands the spindle. It writes setpoints for its own
@@ -17,7 +17,9 @@
 #include "control/axes/axis_parameters.hpp"
 #include "control/axes/tool_table.hpp"
 #include "control/axes/zero_offsets.hpp"
+#include "control/channel/block_motion.hpp"
 #include "control/channel/channel_messages.hpp"
+#include "control/channel/look_ahead.hpp"
 #include "control/channel/path_profile.hpp"
 #include "control/channel/tool_radius_compensation.hpp"
 #include "control/drive_bus.hpp"
@@ -145,10 +147,11 @@ class Channel {
   bool StartMotion(const AmplifierTelegram& at);
   void LookAhead(const AmplifierTelegram& at);
   bool ReadNext(nc::PreparedBlock& b);
-  void FillCompensated();
+  bool Peek(size_t k);
+  void FillCompensated(size_t elements);
+  bool PeekCompensated(size_t k, nc::PreparedBlock& out);
   nc::PreparedBlock ElementBlock(const ContourElement& e, nc::PreparedBlock base) const;
-  double SegmentLength() const;
-  void ApplyU();
+  double SpindleRevPerS(const AmplifierTelegram& at) const;
   bool UpdateTranslation(const nc::ModalState& modal, const nc::Program& program, int32_t block);
   bool NextHomingStage();
   void Interpolate(double dt);
@@ -171,9 +174,7 @@ class Channel {
   // The block in work.
   bool active_ = false;
   nc::PreparedBlock block_;
-  std::vector<double> start_, end_;
-  double arc_centre_[2] = {0, 0}, arc_radius_ = 0, arc_start_angle_ = 0, arc_sweep_ = 0;
-  int arc_axes_[2] = {-1, -1};  ///< channel axes of the arc plane, -1 when not an arc
+  BlockMotion motion_;
   PathProfile profile_;
   double dwell_left_s_ = 0;
 
@@ -199,14 +200,15 @@ class Channel {
   bool pending_motion_ = false;  ///< the block's motion waits for the aux acknowledgement
   bool running_mdi_ = false;
 
-  // Look-ahead between feed moves: the next block read early, the speed carried into it.
-  bool peeked_ = false, peek_ok_ = false;
-  bool continuation_ready_ = false;            ///< this block ends at speed into the next
-  std::optional<nc::PreparedBlock> unpushed_;  ///< read ahead under G41/G42, not taken yet
-  bool source_returned_false_ = false;         ///< the read-ahead met the end or an error
-  nc::PreparedBlock peek_;
+  // Look-ahead between feed moves: the next blocks read early, the speed carried into them.
+  std::deque<nc::PreparedBlock> peeked_;        ///< read from the interpreter, not run yet
+  std::vector<LookAheadLeg> legs_;              ///< the blocks read ahead (scratch)
+  std::vector<SpeedTarget> targets_;            ///< speed limits ahead of the block in work
+  std::vector<ProfileTarget> profile_targets_;  ///< the same in the profile's u
+  bool continuation_ready_ = false;             ///< this block ends at speed into the next
+  std::optional<nc::PreparedBlock> unpushed_;   ///< read ahead under G41/G42, not taken yet
+  bool source_returned_false_ = false;          ///< the read-ahead met the end or an error
   bool planning_only_ = false, plan_failed_ = false;
-  double segment_length_ = 1;  ///< |dP/du| of the block in work, axis space
   double carry_speed_ = 0, carry_accel_ = 0, carry_leftover_ = 0;
 
   // Tool nose radius compensation (G41/G42): blocks read ahead and the tip path made of them.

@@ -32,6 +32,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 
 namespace vmt::control::channel {
 
@@ -125,12 +126,14 @@ double RisingRoot(double a, double jerk, double dt, const Piece& piece) {
 }
 
 /// Highest acceleration x at the end of a cycle (see Cycle) such that the rate, with the
-/// acceleration then brought to zero at full jerk, never exceeds v + gap (the rate is v at the
-/// cycle's start; gap may be negative). +-infinity as RisingRoot.
-inline double CapAccel(double gap, double a, double jerk, double dt) {
+/// acceleration then brought to zero at full jerk (settle_jerk, if lower: a later block's),
+/// never exceeds v + gap (the rate is v at the cycle's start; gap may be negative). +-infinity
+/// as RisingRoot.
+inline double CapAccel(double gap, double a, double jerk, double dt, double settle_jerk = 0) {
+  const double settle = settle_jerk > 0 ? settle_jerk : jerk;
   // Highest rate ahead minus v + gap: the rate gained in the cycle plus max(x, 0)^2 / (2 jerk).
   return RisingRoot(a, jerk, dt, [&](double x) {
-    const double peak = x > 0 ? 1 / (2 * jerk) : 0;
+    const double peak = x > 0 ? 1 / (2 * settle) : 0;
     if (x >= a) return Quadratic{peak, dt / 2, a * dt / 2 - gap};
     return Quadratic{1 / (2 * jerk) + peak, dt - a / jerk, a * a / (2 * jerk) - gap};
   });
@@ -148,6 +151,62 @@ inline double FloorAccel(double gap, double a, double jerk, double dt) {
   });
 }
 
+/// Distance until the rate, braking as hard as it may, first comes down to `to`, for a limit the
+/// path passes on its way down (a corner, a slower block): the deceleration need not be back at
+/// zero there, only shallow enough that the rate could still come to rest from it without
+/// falling below zero (at most sqrt(jerk to), with a margin). A rising acceleration is brought to zero at
+/// `settle_jerk` (<= jerk: the limit of the block beyond). Meaningful when the rate must come
+/// down: PeakRate(v, a, settle_jerk) > to.
+inline double CrossAt(double v, double a, double to, double jerk, double decel, double settle_jerk,
+                      double lag) {
+  // Distance of a ramp of the acceleration from a0 at jerk js (signed) for t seconds.
+  const auto ramp = [](double v0, double a0, double js, double t) {
+    return t * (v0 + t * (a0 / 2 + t * js / 6));
+  };
+  double distance = 0;
+  if (a > 0) {
+    const double t = a / settle_jerk;
+    distance = ramp(v, a, -settle_jerk, t);
+    v += a * a / (2 * settle_jerk);
+    a = 0;
+  }
+  // From the deceleration at `to` the rate falls by deepest^2 / (2 jerk) = to / 2 more while
+  // the acceleration comes back to zero: well clear of zero, where the profile's floor would
+  // make it ease off early. A discrete-time controller follows the curve a cycle at a time:
+  // aim lower by the rate that deceleration sheds in `lag` seconds.
+  const double deepest_at_to = std::min(decel, std::sqrt(jerk * to));
+  to = std::max(0.0, to - deepest_at_to * lag);
+  if (v <= to) return distance;
+  const double dv = v - to;
+  if (-a <= deepest_at_to) {
+    // Down to -h, held, and back up to -deepest_at_to where the rate reaches `to`.
+    const double h = std::sqrt((2 * jerk * dv + a * a + deepest_at_to * deepest_at_to) / 2);
+    if (h <= deepest_at_to) {
+      // Reaches `to` while the deceleration still builds: v + a t - jerk t^2 / 2 = to.
+      const double t = (a + std::sqrt(a * a + 2 * jerk * dv)) / jerk;
+      return distance + ramp(v, a, -jerk, t);
+    }
+    const double depth = std::min(h, decel);
+    const double t1 = (depth + a) / jerk;
+    const double v1 = v + (a * a - depth * depth) / (2 * jerk);
+    const double shed_last = (depth * depth - deepest_at_to * deepest_at_to) / (2 * jerk);
+    const double t2 = std::max(0.0, (v1 - to - shed_last) / depth);
+    const double v2 = v1 - depth * t2;
+    return distance + ramp(v, a, -jerk, t1) + t2 * (v1 - depth * t2 / 2) +
+           ramp(v2, -depth, jerk, (depth - deepest_at_to) / jerk);
+  }
+  // Decelerating harder already than allowed at `to`: held, then eased off to it.
+  const double shed_easing = (a * a - deepest_at_to * deepest_at_to) / (2 * jerk);
+  if (shed_easing >= dv) {
+    // Reaches `to` while easing off: v + a t + jerk t^2 / 2 = to.
+    const double t = (-a - std::sqrt(std::max(0.0, a * a - 2 * jerk * dv))) / jerk;
+    return distance + ramp(v, a, jerk, t);
+  }
+  const double hold = (dv - shed_easing) / -a;
+  const double v1 = v + a * hold;
+  return distance + hold * (v + a * hold / 2) + ramp(v1, a, jerk, (-a - deepest_at_to) / jerk);
+}
+
 /// Rate reached when the acceleration is brought to zero at full jerk, if it is rising; the
 /// rate itself otherwise (the highest rate ahead).
 inline double PeakRate(double v, double a, double jerk) {
@@ -155,6 +214,21 @@ inline double PeakRate(double v, double a, double jerk) {
 }
 
 }  // namespace path_profile_detail
+
+/// A speed limit ahead of the block (look-ahead), in the block's u: the rate must be down to
+/// `rate` where u reaches `u`, braking at no more than `decel` and `jerk` (0: the profile's).
+struct ProfileTarget {
+  double u = 1;
+  double rate = 0;
+  double decel = 0;
+  double jerk = 0;
+  /// Passed on the way: the rate must be down to `rate` there, but may still be falling (a
+  /// corner or a slower block); otherwise the path comes to rest or to a steady rate there.
+  bool pass = false;
+  /// Jerk of the block beyond a passed limit (0: as `jerk`): a rising acceleration must settle
+  /// within it without passing `rate`.
+  double settle_jerk = 0;
+};
 
 struct PathProfile {
   double u = 0;          ///< 0 at the block start, 1 at its end
@@ -170,6 +244,11 @@ struct PathProfile {
   /// fit into the block: the caller goes on braking in the next block (ContinueFrom with
   /// override 0); with end_rate 0 the stop is at u = 1 at the latest.
   double end_rate = 0;
+  /// Look-ahead: speed limits at and beyond the block's end, sorted by u, the last one at rest.
+  /// With them the profile brakes for each in time, whichever block it lies in, and runs
+  /// through u = 1 with the rate and acceleration it has (end_rate unused): done() with u > 1
+  /// by the distance the cycle went on into the next block. The caller keeps them alive.
+  std::span<const ProfileTarget> ahead;
 
   bool done() const { return u >= 1; }
 
@@ -185,18 +264,23 @@ struct PathProfile {
   /// One cycle of dt seconds at `override` (0 = hold: brake to a stop on the path).
   void Advance(double dt, double override) {
     if (done() || !(dt > 0)) return;
-    if (max_jerk > 0 && max_accel > 0)
+    // Limits ahead that brake with a jerk limit need the jerk-limited profile, even in a block
+    // whose own jerk is not limited.
+    const bool jerk_ahead =
+        std::any_of(ahead.begin(), ahead.end(), [](const ProfileTarget& t) { return t.jerk > 0; });
+    if ((max_jerk > 0 || jerk_ahead) && max_accel > 0)
       AdvanceJerkLimited(dt, override);
     else
       AdvanceTrapezoid(dt, override);
   }
 
- private:
   // Jerk used at most, in max_accel per cycle: beyond, the acceleration switches within a
   // quarter cycle anyway, and the cap keeps the arithmetic finite for huge limits.
   static constexpr double kJerkCap = 4;
   // Cycles by which the last ramp of braking to the block end is planned longer (see BrakeTo).
   static constexpr double kRampLag = 0.75;
+
+ private:
   // Closer to the end than this (in u) the block counts as done once it is not held.
   static constexpr double kEndSlack = 1e-12;
   // Most steps of the search for the acceleration that lands on the braking curve (about one
@@ -207,8 +291,23 @@ struct PathProfile {
   void AdvanceTrapezoid(double dt, double override) {
     const double remaining = 1 - u;
     const double end = std::max(0.0, end_rate);
-    // Fastest rate from which the end can still be reached braking at max_accel.
-    const double braking = std::sqrt(end * end + 2 * max_accel * remaining);
+    // Fastest rate for this cycle from which, where the cycle ends, braking at `decel` still
+    // reaches `to` within `to_go`: v^2 + 2 decel dt v <= to^2 + 2 decel to_go. Sampled at the
+    // cycle's end, not its start, so that the steps land on the braking curve, not beyond.
+    const auto braking_rate = [dt](double to, double decel, double to_go) {
+      const double b = decel * dt;
+      return std::sqrt(b * b + to * to + 2 * decel * std::max(0.0, to_go)) - b;
+    };
+    // Without limits ahead: the trapezoid as it always was, sampled at the cycle's start.
+    double braking = std::sqrt(end * end + 2 * max_accel * remaining);
+    if (!ahead.empty()) {
+      braking = std::numeric_limits<double>::infinity();
+      for (const ProfileTarget& t : ahead)
+        if (t.u >= u)
+          braking = std::min(
+              braking, braking_rate(t.rate, t.decel > 0 ? std::min(t.decel, max_accel) : max_accel,
+                                    t.u - u));
+    }
     const double target = std::min(max_rate * std::max(0.0, override), braking);
     const double step = max_accel * dt;
     const double previous = rate;
@@ -216,6 +315,7 @@ struct PathProfile {
     if (rate < 0) rate = 0;
     u += rate * dt;
     accel = (rate - previous) / dt;
+    if (!ahead.empty()) return;  // through the block's end at speed
     // Arrived: within the last cycle, or crawling at the end of the braking ramp.
     if (u >= 1 || (remaining < 1e-9 && override > 0) || (rate * dt >= remaining && override > 0)) {
       u = 1;
@@ -230,7 +330,8 @@ struct PathProfile {
       double u, v, a;
     };
     const double max_a = max_accel;
-    const double jerk = std::min(max_jerk, kJerkCap * max_a / dt);
+    const double jerk =
+        max_jerk > 0 ? std::min(max_jerk, kJerkCap * max_a / dt) : kJerkCap * max_a / dt;
     const double jdt = jerk * dt;
     const double lag = kRampLag * dt;
     const double end = std::max(0.0, end_rate);
@@ -242,7 +343,19 @@ struct PathProfile {
       rate = end_v;
       accel = end_a;
     };
-    if (remaining <= kEndSlack && override > 0) return arrive(std::min(v, end), 0);
+    // Without limits ahead: end_rate at u = 1, where the profile arrives. With them: each of
+    // them, and the path runs on through u = 1.
+    const bool through = !ahead.empty();
+    const ProfileTarget end_target{1, end, max_a, jerk};
+    const std::span<const ProfileTarget> targets =
+        through ? ahead : std::span<const ProfileTarget>(&end_target, 1);
+    const auto jerk_of = [&](const ProfileTarget& t) {
+      return t.jerk > 0 ? std::min(t.jerk, jerk) : jerk;
+    };
+    const auto decel_of = [&](const ProfileTarget& t) {
+      return t.decel > 0 ? std::min(t.decel, max_a) : max_a;
+    };
+    if (!through && remaining <= kEndSlack && override > 0) return arrive(std::min(v, end), 0);
 
     // How precisely a cycle lands on the braking curve (see below): a billionth of the travel
     // in the previous cycle or this one, and u's rounding.
@@ -251,7 +364,7 @@ struct PathProfile {
     // The braking curve to end_rate ends within this cycle, and the rest of the block is no
     // longer than what the rest of the cycle could still cover within the limits (at end_rate,
     // and by speeding up towards the target and back): arrive.
-    if (d::PeakRate(v, a, jerk) > end) {
+    if (!through && d::PeakRate(v, a, jerk) > end) {
       const d::Braking b = d::BrakeTo(v, a, end, jerk, max_a, lag);
       const double t = dt - b.time, cruise = std::min(end, target);
       const double spare =
@@ -264,12 +377,22 @@ struct PathProfile {
       const d::CycleEnd c = d::Cycle(v, a, x, jerk, dt);
       return State{u + c.distance, c.rate, x};
     };
-    // Distance by which braking to end_rate from s overshoots u = 1 (<= 0: fits).
-    const auto overshoot = [&](const State& s) {
-      return d::BrakeTo(s.v, s.a, end, jerk, max_a, lag).distance - (1 - s.u);
+    // Distance by which braking to target t from s overshoots it (<= 0: fits).
+    const auto settle_jerk_of = [&](const ProfileTarget& t) {
+      return t.settle_jerk > 0 ? std::min(t.settle_jerk, jerk_of(t)) : jerk_of(t);
+    };
+    const auto overshoot = [&](const ProfileTarget& t, const State& s) {
+      const double distance =
+          t.pass ? d::CrossAt(s.v, s.a, t.rate, jerk_of(t), decel_of(t), settle_jerk_of(t), lag)
+                 : d::BrakeTo(s.v, s.a, t.rate, jerk_of(t), decel_of(t), lag).distance;
+      return distance - (t.u - s.u);
+    };
+    const auto fits_one = [&](const ProfileTarget& t, const State& s) {
+      return d::PeakRate(s.v, s.a, settle_jerk_of(t)) <= t.rate || overshoot(t, s) <= 0;
     };
     const auto fits = [&](const State& s) {
-      return d::PeakRate(s.v, s.a, jerk) <= end || overshoot(s) <= 0;
+      return std::all_of(targets.begin(), targets.end(),
+                         [&](const ProfileTarget& t) { return fits_one(t, s); });
     };
 
     // 1. Speed. Accelerations reachable this cycle, and the lowest that keeps the rate >= 0
@@ -298,28 +421,38 @@ struct PathProfile {
       settle = fits(next);
     }
 
-    // 2. Path end: the largest acceleration from which braking to end_rate still fits.
+    // 2. Limits ahead: the largest acceleration from which braking to each still fits.
     if (!settle) {
       next = step(x);
-      if (!fits(next)) {
-        // At or below x_cap the rate stays <= end_rate anyway; above, overshoot rises with x.
-        const double x_cap = d::CapAccel(end - v, a, jerk, dt);
+      for (const ProfileTarget& t : targets) {
+        if (fits_one(t, next)) continue;
+        const double tj = settle_jerk_of(t);
+        const auto g_of = [&](double xx) { return overshoot(t, step(xx)); };
+        // At or below x_cap the rate stays <= the target's anyway; above, overshoot rises with
+        // x. Lowering x for one target only helps the others.
+        const double x_cap = d::CapAccel(t.rate - v, a, jerk, dt, tj);
         double lo = std::max(x_floor, x_cap), hi = x;
+        if (through && lo >= hi) {
+          // A limit ahead that no acceleration meets any more: brake as hard as possible.
+          x = std::min(x, x_floor);
+          next = step(x);
+          continue;
+        }
         if (lo < hi) {
-          double g_lo = overshoot(step(lo)), g_hi = overshoot(next);
+          double g_lo = g_of(lo), g_hi = overshoot(t, next);
           // The overshoot has a kink where the cycle turns from falling to rising: bracket
           // the root on one side of it.
           if (g_lo <= 0 && a > lo && a < hi) {
-            const double g = overshoot(step(a));
+            const double g = g_of(a);
             (g <= 0 ? lo : hi) = a;
             (g <= 0 ? g_lo : g_hi) = g;
           }
           if (g_lo > 0) {
-            hi = lo;  // capped at end_rate, or braking as hard as it can
+            hi = lo;  // capped at the target's rate, or braking as hard as it can
           } else {
             // Illinois (regula falsi that halves the weight of an end kept twice), with a
             // bisection every other step unless the bracket halved since: the overshoot is
-            // steep where the rate would dip below end_rate.
+            // steep where the rate would dip below the target's.
             int kept = 0;
             const double tolerance = 1e-9 * jdt, landed = -precision;
             double width = hi - lo;
@@ -330,7 +463,7 @@ struct PathProfile {
                 width = hi - lo;
               }
               if (!(m > lo && m < hi)) m = (lo + hi) / 2;
-              const double g = overshoot(step(m));
+              const double g = g_of(m);
               if (g <= 0) {
                 lo = m, g_lo = g;
                 if (kept == -1) g_hi /= 2;
@@ -366,6 +499,13 @@ struct PathProfile {
       next.a = std::max(next.a, 0.0);
     }
     next.u = std::max(next.u, u);
+    if (through) {
+      // Through the block's end at speed: the rest of the cycle's travel belongs to the next.
+      u = next.u >= 1 - kEndSlack ? std::max(next.u, 1.0) : next.u;
+      rate = next.v;
+      accel = next.a;
+      return;
+    }
     // Arrived: past the end, or short of it by a rounding remainder, unless that last step of
     // the acceleration to zero would pass the jerk limit (the remainder is then one more cycle).
     if (next.u >= 1 || (1 - next.u <= kEndSlack && override > 0 && std::abs(a) <= jdt)) {

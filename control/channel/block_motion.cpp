@@ -1,0 +1,207 @@
+#include "control/channel/block_motion.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+
+#include "control/channel/channel_messages.hpp"
+
+namespace vmt::control::channel {
+namespace {
+
+// Plane axes (first, second) by address: G17 X-Y, G18 Z-X, G19 Y-Z; the arc turns
+// counter-clockwise from first to second.
+void PlaneAxes(int plane, const char*& first, const char*& second, char& i_first, char& i_second) {
+  if (plane == 17)
+    first = "X", second = "Y", i_first = 'I', i_second = 'J';
+  else if (plane == 19)
+    first = "Y", second = "Z", i_first = 'J', i_second = 'K';
+  else
+    first = "Z", second = "X", i_first = 'K', i_second = 'I';
+}
+
+double Length(const BlockMotion& m) {
+  // |dP/du| in axis space: a line's and a helix's are constant.
+  double sum = 0;
+  for (size_t a = 0; a < m.end.size(); ++a) {
+    if (static_cast<int>(a) == m.arc_axes[0] || static_cast<int>(a) == m.arc_axes[1]) continue;
+    sum += (m.end[a] - m.start[a]) * (m.end[a] - m.start[a]);
+  }
+  if (m.arc_axes[0] >= 0) sum += std::pow(m.arc_radius * m.arc_sweep, 2);
+  return std::max(std::sqrt(sum), 1e-12);
+}
+
+}  // namespace
+
+void BlockMotion::PointAt(double u, std::vector<double>& out) const {
+  out.resize(start.size());
+  for (size_t a = 0; a < start.size(); ++a) out[a] = start[a] + (end[a] - start[a]) * u;
+  if (arc_axes[0] >= 0) {
+    const double angle = arc_start_angle + arc_sweep * u;
+    out[arc_axes[0]] = arc_centre[0] + arc_radius * std::cos(angle);
+    out[arc_axes[1]] = arc_centre[1] + arc_radius * std::sin(angle);
+  }
+}
+
+std::vector<double> BlockMotion::Direction(double u) const {
+  std::vector<double> d(start.size());
+  for (size_t a = 0; a < start.size(); ++a) d[a] = end[a] - start[a];
+  if (arc_axes[0] >= 0) {
+    const double angle = arc_start_angle + arc_sweep * u;
+    d[arc_axes[0]] = -arc_radius * arc_sweep * std::sin(angle);
+    d[arc_axes[1]] = arc_radius * arc_sweep * std::cos(angle);
+  }
+  return d;
+}
+
+std::optional<MotionError> PlanBlockMotion(const nc::PreparedBlock& block,
+                                           const std::vector<double>& start,
+                                           const std::vector<double>& translation,
+                                           const std::vector<axes::AxisParameters>& axes,
+                                           double spindle_rev_per_s, BlockMotion& out) {
+  out = BlockMotion{};
+  out.start = start;
+  out.end = block.target;
+  const size_t n = axes.size();
+  for (size_t a = 0; a < n; ++a) {
+    out.end[a] += translation[a];
+    const axes::AxisParameters& axis = axes[a];
+    if (axis.travel_max > axis.travel_min &&
+        (out.end[a] < axis.travel_min - 1e-9 || out.end[a] > axis.travel_max + 1e-9)) {
+      char text[160];
+      std::snprintf(text, sizeof text, "axis %s target %.4f is beyond its travel %.4f .. %.4f",
+                    axis.name.c_str(), out.end[a], axis.travel_min, axis.travel_max);
+      return MotionError{text, kMsgSoftwareLimit};
+    }
+  }
+  std::vector<double> delta(n);
+  double max_delta = 0;
+  for (size_t a = 0; a < n; ++a)
+    max_delta = std::max(max_delta, std::abs(delta[a] = out.end[a] - start[a]));
+  const bool arc = block.motion == nc::Motion::kArcCw || block.motion == nc::Motion::kArcCcw;
+  if (max_delta < 1e-12 && !arc) return std::nullopt;
+
+  // Per-axis limits on du/dt and d2u/dt2 for a straight move in axis space.
+  double axis_rate = std::numeric_limits<double>::infinity();
+  double axis_accel = std::numeric_limits<double>::infinity();
+  for (size_t a = 0; a < n; ++a) {
+    if (std::abs(delta[a]) < 1e-12) continue;
+    axis_rate = std::min(axis_rate, axes[a].rapid_per_s / std::abs(delta[a]));
+    axis_accel = std::min(axis_accel, axes[a].acceleration / std::abs(delta[a]));
+  }
+
+  // Path feed, mm/s: F mm/min, or mm/rev times the spindle speed (G95).
+  double feed = block.modal.feed / 60.0;
+  if (block.modal.feed_per_revolution) feed = block.modal.feed * std::abs(spindle_rev_per_s);
+  if (block.motion != nc::Motion::kRapid && feed <= 0)
+    return MotionError{"no feed programmed (F)", kMsgNoFeed};
+
+  // Jerk: the axes' limit, as for the acceleration (0: not limited).
+  double axis_jerk = std::numeric_limits<double>::infinity();
+  for (size_t a = 0; a < n; ++a)
+    if (std::abs(delta[a]) >= 1e-12 && axes[a].jerk > 0)
+      axis_jerk = std::min(axis_jerk, axes[a].jerk / std::abs(delta[a]));
+  if (std::isfinite(axis_jerk)) out.max_jerk = axis_jerk;
+  if (block.motion == nc::Motion::kRapid) {
+    out.max_rate = axis_rate;
+    out.max_accel = axis_accel;
+  } else if (!arc) {
+    // Feed moves accelerate along the path at the least limit of the linear axes that move,
+    // whatever the direction, so that the look-ahead sees the same limits in every block of a
+    // contour (look_ahead.hpp); each axis stays within its own limit, as its share of the path
+    // is at most 1. Rotary axes keep their own share.
+    double span2 = 0;
+    for (size_t a = 0; a < n; ++a) span2 += delta[a] * delta[a];
+    const double span = std::sqrt(span2);
+    double path_accel = std::numeric_limits<double>::infinity();
+    double path_jerk = std::numeric_limits<double>::infinity();
+    for (size_t a = 0; a < n; ++a) {
+      if (std::abs(delta[a]) < 1e-12) continue;
+      const double share = axes[a].rotary ? std::abs(delta[a]) : span;
+      path_accel = std::min(path_accel, axes[a].acceleration / share);
+      if (axes[a].jerk > 0) path_jerk = std::min(path_jerk, axes[a].jerk / share);
+    }
+    axis_accel = path_accel;
+    out.max_jerk = std::isfinite(path_jerk) ? path_jerk : 0;
+    // Path length over the linear axes; rotary axes count with their effective distance
+    // (RX: radius at which the C axis' motion counts, C-axis manual 1.2), or alone in deg.
+    double length2 = 0, rotary2 = 0;
+    for (size_t a = 0; a < n; ++a) {
+      if (!axes[a].rotary)
+        length2 += delta[a] * delta[a];
+      else if (block.has_effective_distance & 1)
+        length2 += std::pow(block.effective_distance[0] * delta[a] * std::numbers::pi / 180, 2);
+      else
+        rotary2 += delta[a] * delta[a];
+    }
+    const double length = std::sqrt(length2 > 0 ? length2 : rotary2);
+    out.max_rate = std::min(feed / length, axis_rate);
+    out.max_accel = axis_accel;
+  } else {
+    const char *first, *second;
+    char i_first, i_second;
+    PlaneAxes(block.modal.plane, first, second, i_first, i_second);
+    for (size_t a = 0; a < n; ++a) {
+      if (axes[a].name == first) out.arc_axes[0] = static_cast<int>(a);
+      if (axes[a].name == second) out.arc_axes[1] = static_cast<int>(a);
+    }
+    if (out.arc_axes[0] < 0 || out.arc_axes[1] < 0)
+      return MotionError{std::string("the arc plane G") + std::to_string(block.modal.plane) +
+                             " needs axes " + first + " and " + second,
+                         kMsgArcPlane};
+    const int a0 = out.arc_axes[0], a1 = out.arc_axes[1];
+    const double s0 = start[a0], s1 = start[a1], e0 = out.end[a0], e1 = out.end[a1];
+    const bool cw = block.motion == nc::Motion::kArcCw;
+    double c0, c1;
+    if (block.has_centre) {
+      c0 = s0 + block.centre[i_first - 'I'];
+      c1 = s1 + block.centre[i_second - 'I'];
+    } else if (block.radius != 0) {
+      // Centre from R: on the chord's bisector; R < 0 picks the arc over 180 degrees.
+      const double dx = e0 - s0, dy = e1 - s1, chord = std::hypot(dx, dy);
+      const double r = std::abs(block.radius);
+      if (chord < 1e-12 || chord > 2 * r + kArcTolerance)
+        return MotionError{"radius R too small for the end point", kMsgArcGeometry};
+      const double h = std::sqrt(std::max(0.0, r * r - chord * chord / 4));
+      const double side = ((block.radius > 0) == cw) ? -1 : 1;
+      c0 = (s0 + e0) / 2 - side * h * dy / chord;
+      c1 = (s1 + e1) / 2 + side * h * dx / chord;
+    } else {
+      return MotionError{"G02/G03 needs a centre (I/J/K) or a radius R", kMsgArcGeometry};
+    }
+    const double r_start = std::hypot(s0 - c0, s1 - c1), r_end = std::hypot(e0 - c0, e1 - c1);
+    if (std::abs(r_start - r_end) > kArcTolerance || r_start < 1e-9)
+      return MotionError{"end point not on the arc (radius " + std::to_string(r_start) +
+                             " at the start, " + std::to_string(r_end) + " at the end)",
+                         kMsgArcGeometry};
+    out.arc_centre[0] = c0;
+    out.arc_centre[1] = c1;
+    out.arc_radius = r_start;
+    out.arc_start_angle = std::atan2(s1 - c1, s0 - c0);
+    double sweep = std::atan2(e1 - c1, e0 - c0) - out.arc_start_angle;
+    if (cw) {
+      while (sweep >= -1e-12) sweep -= 2 * std::numbers::pi;
+    } else {
+      while (sweep <= 1e-12) sweep += 2 * std::numbers::pi;
+    }
+    if (std::abs(std::abs(sweep) - 2 * std::numbers::pi) < 1e-9 &&
+        std::hypot(e0 - s0, e1 - s1) > 1e-9)
+      sweep = std::fmod(sweep, 2 * std::numbers::pi);
+    out.arc_sweep = sweep;
+    const double length = out.arc_radius * std::abs(sweep);
+    const double accel = std::min(axes[a0].acceleration, axes[a1].acceleration);
+    // Centripetal acceleration v^2/r must stay within the axes' limit too.
+    const double v = std::min(feed, std::sqrt(accel * out.arc_radius));
+    out.max_rate = v / length;
+    out.max_accel = accel / length;
+    const double jerk = std::min(axes[a0].jerk > 0 ? axes[a0].jerk : HUGE_VAL,
+                                 axes[a1].jerk > 0 ? axes[a1].jerk : HUGE_VAL);
+    out.max_jerk = std::isfinite(jerk) ? jerk / length : 0;
+  }
+  out.length = Length(out);
+  out.moves = true;
+  return std::nullopt;
+}
+
+}  // namespace vmt::control::channel

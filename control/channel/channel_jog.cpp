@@ -1,0 +1,117 @@
+// Manual mode of the channel: the jog keys move the axes continuously, by increments or by
+// handwheel (JogMode), braking in time at the software limits.
+#include <cmath>
+
+#include "control/channel/channel.hpp"
+
+namespace vmt::control::channel {
+
+void Channel::SetJogMode(int code) {
+  jog_mode_ = static_cast<JogMode>(std::clamp(code, 0, 7));
+  switch (jog_mode_) {
+    case JogMode::kIncrement1:
+      jog_increment_ = 0.001;
+      break;
+    case JogMode::kIncrement10:
+      jog_increment_ = 0.01;
+      break;
+    case JogMode::kIncrement100:
+      jog_increment_ = 0.1;
+      break;
+    case JogMode::kIncrement1000:
+      jog_increment_ = 1;
+      break;
+    default:
+      jog_increment_ = 0;
+  }
+  for (size_t a = 0; a < jog_.size(); ++a) {
+    jog_[a].handwheel = jog_mode_ == JogMode::kHandwheel;
+    jog_[a].handwheel_target = commanded_[a];
+  }
+}
+
+void Channel::Handwheel(size_t axis, int counts) {
+  if (mode_ != ChannelMode::kManual || jog_mode_ != JogMode::kHandwheel || axis >= jog_.size())
+    return;
+  take_over_pending_ = true;
+  JogAxis& j = jog_[axis];
+  if (!j.handwheel) j.handwheel = true, j.handwheel_target = commanded_[axis];
+  j.handwheel_target += counts * config_.handwheel_per_count;
+}
+
+void Channel::Jog(size_t axis, int direction) {
+  if (mode_ != ChannelMode::kManual || axis >= jog_.size()) return;
+  jog_[axis].key = direction > 0 ? 1 : direction < 0 ? -1 : 0;
+  take_over_pending_ = true;
+}
+
+int Channel::AxisMotion(size_t axis) const {
+  const double d = commanded_[axis] - previous_[axis];
+  return d > 0 ? 1 : d < 0 ? -1 : 0;
+}
+
+void Channel::Jogging(double dt) {
+  for (size_t a = 0; a < jog_.size(); ++a) {
+    JogAxis& j = jog_[a];
+    const ChannelAxis& axis = config_.axes[a];
+    const double normal = axis.jog_per_s > 0 ? axis.jog_per_s : axis.rapid_per_s / 10;
+    const double rapid = axis.jog_rapid_per_s > 0 ? axis.jog_rapid_per_s : axis.rapid_per_s / 2;
+    const double speed = (jog_mode_ == JogMode::kRapid ? rapid : normal) * override_;
+    // Jogging stops at the software limits, braking in time.
+    const bool limited = axis.travel_max > axis.travel_min;
+    auto within = [&](double x) {
+      return limited ? std::clamp(x, axis.travel_min, axis.travel_max) : x;
+    };
+    if (jog_mode_ == JogMode::kHandwheel) {
+      // Follow the counts at most at the jogging rapid, braking so as not to pass the target.
+      if (!j.handwheel) j.handwheel = true, j.handwheel_target = commanded_[a];
+      j.handwheel_target = within(j.handwheel_target);
+      const double to_go = j.handwheel_target - commanded_[a];
+      const double braking = std::sqrt(2 * axis.acceleration * std::abs(to_go));
+      const double target = std::copysign(std::min(rapid * override_, braking), to_go);
+      const double step = axis.acceleration * dt;
+      j.velocity = std::clamp(target, j.velocity - step, j.velocity + step);
+      if (std::abs(to_go) <= std::abs(j.velocity * dt) || std::abs(to_go) < 1e-9) {
+        commanded_[a] = j.handwheel_target;
+        j.velocity = 0;
+      } else {
+        commanded_[a] += j.velocity * dt;
+      }
+      continue;
+    }
+    const double increment = jog_mode_ == JogMode::kParametric ? axis.jog_distance : jog_increment_;
+    if (increment > 0 || j.stepping) {
+      // Incremental: a key press starts one increment, which then runs to its end.
+      if (!j.stepping && j.key != 0) {
+        j.stepping = true;
+        j.from = commanded_[a];
+        j.to = within(commanded_[a] + j.key * increment);
+        j.increment = PathProfile{};
+        const double distance = std::max(std::abs(j.to - j.from), 1e-12);
+        j.increment.max_rate = speed / distance;
+        j.increment.max_accel = axis.acceleration / distance;
+        j.key = 0;  // one increment per press
+      }
+      if (j.stepping) {
+        j.increment.Advance(dt, 1.0);
+        commanded_[a] = j.from + (j.to - j.from) * j.increment.u;
+        if (j.increment.done()) commanded_[a] = j.to, j.stepping = false;
+      }
+      continue;
+    }
+    // Continuous: towards the jog speed while the key is held, braking when it is released.
+    double target = j.key * speed;
+    const double step = axis.acceleration * dt;
+    if (limited) {
+      const double room =
+          j.key > 0 ? axis.travel_max - commanded_[a] : commanded_[a] - axis.travel_min;
+      target = j.key * std::min(speed, std::sqrt(2 * axis.acceleration * std::max(0.0, room)));
+    }
+    j.velocity = std::clamp(target, j.velocity - step, j.velocity + step);
+    const double next = commanded_[a] + j.velocity * dt;
+    commanded_[a] = within(next);
+    if (commanded_[a] != next) j.velocity = 0;
+  }
+}
+
+}  // namespace vmt::control::channel

@@ -1,0 +1,318 @@
+// Block preparation of the channel: blocks come from the interpreter, or, under G41/G42, from
+// the tool nose radius compensation, which reads ahead until each piece of the tip path is
+// final; the look-ahead reads on to choose the speed at which the block in work may end.
+#include <cmath>
+
+#include "control/channel/channel.hpp"
+#include "control/channel/look_ahead.hpp"
+
+namespace vmt::control::channel {
+
+bool Channel::NextBlock(const AmplifierTelegram& at) {
+  if (compensating_) return NextCompensated(at);
+  const bool read = ReadNext(block_);
+  if (!read) {
+    if (interpreter_->error())
+      Fail(nc::Format(*interpreter_->error(), {interpreter_->ErrorFile()}), kMsgProgramError);
+    else
+      state_ = ChannelState::kEnded, reversing_ = false;
+    return false;
+  }
+  if (block_.modal.compensation != 40 && block_.motion != nc::Motion::kNone) {
+    // G41/G42: from here the channel reads ahead, so that each block's path can be offset
+    // with its successor in view.
+    if (axis_z_ < 0 || axis_x_ < 0) {
+      Fail(*ProgramOf(block_.program), block_.block,
+           "tool nose radius compensation G41/G42 needs the axes Z and X", kMsgNotAvailable);
+      return false;
+    }
+    compensating_ = true;
+    source_done_ = false;
+    trc_.Reset();
+    ahead_.clear();
+    ready_.clear();
+    first_tag_ = next_tag_ = 0;
+    last_run_tag_ = -1;
+    contour_point_ = {commanded_[axis_z_] - translation_[axis_z_],
+                      commanded_[axis_x_] - translation_[axis_x_]};
+    if (!PushAhead(block_)) return false;
+    return NextCompensated(at);
+  }
+  return RunBlock(at);
+}
+
+bool Channel::PushAhead(const nc::PreparedBlock& b) {
+  const nc::Program& program = *ProgramOf(b.program);
+  if (b.homing || b.set_position || b.repos || b.measuring) {
+    Fail(program, b.block,
+         "G74, G77, G92 and G100 are not allowed while tool nose radius compensation "
+         "(G41/G42) is active: cancel it with G40 first",
+         kMsgNotAvailable);
+    return false;
+  }
+  ContourElement e;
+  e.tag = next_tag_;
+  e.start = contour_point_;
+  e.end = e.start;
+  e.rapid = b.motion == nc::Motion::kRapid;
+  e.side = b.modal.compensation == 41   ? CompensationSide::kLeft
+           : b.modal.compensation == 42 ? CompensationSide::kRight
+                                        : CompensationSide::kOff;
+  if (e.side != CompensationSide::kOff) {
+    const auto edge = config_.tools.Find(b.modal.tool, b.modal.correction);
+    if (!edge && b.modal.correction != 0) {
+      Fail(program, b.block,
+           "T" + std::to_string(b.modal.tool) + " D" + std::to_string(b.modal.correction) +
+               " is not in the tool list (G" + std::to_string(b.modal.compensation) + ")",
+           kMsgToolNotInList);
+      return false;
+    }
+    e.nose_radius_mm = edge ? edge->nose_radius : 0;
+    e.edge_position = edge ? edge->edge_position : 0;
+  }
+  if (b.motion != nc::Motion::kNone) {
+    if (b.modal.plane != 18) {
+      Fail(program, b.block, "tool nose radius compensation G41/G42 works in the plane G18",
+           kMsgNotAvailable);
+      return false;
+    }
+    e.end = {b.target[axis_z_], b.target[axis_x_]};
+    if (b.motion == nc::Motion::kArcCw || b.motion == nc::Motion::kArcCcw) {
+      e.kind = b.motion == nc::Motion::kArcCw ? ElementKind::kArcCw : ElementKind::kArcCcw;
+      if (b.has_centre) {
+        e.centre = {e.start.z + b.centre[2], e.start.x + b.centre[0]};
+      } else if (b.radius != 0) {
+        // Centre from R, as the interpolation computes it (R < 0: the arc over 180 degrees).
+        const double dz = e.end.z - e.start.z, dx = e.end.x - e.start.x;
+        const double chord = std::hypot(dz, dx), r = std::abs(b.radius);
+        if (chord < 1e-12 || chord > 2 * r + kArcTolerance) {
+          Fail(program, b.block, "radius R too small for the end point", kMsgArcGeometry);
+          return false;
+        }
+        const double h = std::sqrt(std::max(0.0, r * r - chord * chord / 4));
+        const double side = ((b.radius > 0) == (b.motion == nc::Motion::kArcCw)) ? -1 : 1;
+        e.centre = {(e.start.z + e.end.z) / 2 - side * h * dx / chord,
+                    (e.start.x + e.end.x) / 2 + side * h * dz / chord};
+      } else {
+        Fail(program, b.block, "G02/G03 needs a centre (I/J/K) or a radius R", kMsgArcGeometry);
+        return false;
+      }
+    }
+  }
+  ++next_tag_;
+  contour_point_ = e.end;
+  ahead_.push_back(b);
+  trc_.Push(e);
+  return true;
+}
+
+bool Channel::NextCompensated(const AmplifierTelegram& at) {
+  ContourElement e;
+  while (ready_.empty()) {
+    while (trc_.Pop(e)) ready_.push_back(e);
+    if (!ready_.empty()) break;
+    if (const auto& err = trc_.error()) {
+      const nc::PreparedBlock& b = ahead_[static_cast<size_t>(err->tag - first_tag_)];
+      Fail(*ProgramOf(b.program), b.block, err->message, kMsgGouge);
+      return false;
+    }
+    if (source_done_ || (!trc_.active() && !trc_.pending())) {
+      // Everything read ahead has run: back to block-by-block.
+      compensating_ = false;
+      ahead_.clear();
+      if (source_done_) {
+        state_ = ChannelState::kEnded, reversing_ = false;
+        return false;
+      }
+      return NextBlock(at);
+    }
+    nc::PreparedBlock b;
+    if (!ReadNext(b)) {
+      if (interpreter_->error()) {
+        Fail(nc::Format(*interpreter_->error(), {interpreter_->ErrorFile()}), kMsgProgramError);
+        return false;
+      }
+      source_done_ = true;
+      trc_.Flush();
+      continue;
+    }
+    if (!PushAhead(b)) return false;
+    if (b.end) source_done_ = true, trc_.Flush();
+  }
+  e = ready_.front();
+  ready_.pop_front();
+  while (first_tag_ < e.tag) ahead_.pop_front(), ++first_tag_;
+  block_ = ElementBlock(e, ahead_.front());
+  if (e.tag != last_run_tag_) {
+    last_run_tag_ = e.tag;
+    return RunBlock(at);
+  }
+  return StartMotion(at);
+}
+
+bool Channel::ReadNext(nc::PreparedBlock& b) {
+  // Blocks the look-ahead has read, a block it read but could not take (its error comes now),
+  // or the end it met.
+  if (!peeked_.empty()) {
+    b = std::move(peeked_.front());
+    peeked_.pop_front();
+    return true;
+  }
+  if (unpushed_) {
+    b = *unpushed_;
+    unpushed_.reset();
+    return true;
+  }
+  if (source_returned_false_) return false;
+  return interpreter_->Next(b);
+}
+
+bool Channel::Peek(size_t k) {
+  // Reads on from the interpreter until block k after the one in work is there.
+  while (peeked_.size() <= k) {
+    if (unpushed_ || source_returned_false_) return false;
+    nc::PreparedBlock b;
+    if (!interpreter_->Next(b)) {
+      source_returned_false_ = true;
+      return false;
+    }
+    peeked_.push_back(std::move(b));
+  }
+  return true;
+}
+
+void Channel::FillCompensated(size_t elements) {
+  // Reads ahead under G41/G42 until the compensation has `elements` final pieces; errors are
+  // left for NextCompensated to report when the channel gets there.
+  ContourElement e;
+  for (size_t reads = 0; reads < elements + 4 && ready_.size() < elements; ++reads) {
+    if (source_done_ || trc_.error() || (!trc_.active() && !trc_.pending()) || unpushed_ ||
+        source_returned_false_)
+      return;
+    nc::PreparedBlock b;
+    if (!peeked_.empty()) {
+      b = std::move(peeked_.front());
+      peeked_.pop_front();
+    } else if (!interpreter_->Next(b)) {
+      source_returned_false_ = true;
+      return;
+    }
+    planning_only_ = true;
+    plan_failed_ = false;
+    const bool pushed = PushAhead(b) && !plan_failed_;
+    planning_only_ = false;
+    if (!pushed) {
+      unpushed_ = b;
+      return;
+    }
+    if (b.end) source_done_ = true, trc_.Flush();
+    while (trc_.Pop(e)) ready_.push_back(e);
+  }
+}
+
+bool Channel::PeekCompensated(size_t k, nc::PreparedBlock& out) {
+  // Piece k after the one in work of the tip path, as a block of its own.
+  FillCompensated(k + 1);
+  if (ready_.size() <= k) return false;
+  const ContourElement& e = ready_[k];
+  const auto index = static_cast<size_t>(e.tag - first_tag_);
+  if (e.tag < first_tag_ || index >= ahead_.size()) return false;
+  out = ElementBlock(e, ahead_[index]);
+  if (e.tag == (k == 0 ? last_run_tag_ : ready_[k - 1].tag)) {
+    // A further piece of a block already started: its functions have run already.
+    out.aux.clear(), out.events.clear(), out.instructions.clear();
+    out.dwell_s = 0;
+  }
+  out.modal.compensation = 40;  // the tip path itself is not offset again
+  return true;
+}
+
+nc::PreparedBlock Channel::ElementBlock(const ContourElement& e, nc::PreparedBlock b) const {
+  // The block runs the tip path the compensation made of it: lines and arcs in Z/X.
+  b.target[axis_z_] = e.end.z;
+  b.target[axis_x_] = e.end.x;
+  b.radius = 0;
+  b.has_centre = false;
+  if (e.kind != ElementKind::kLine) {
+    b.motion = e.kind == ElementKind::kArcCw ? nc::Motion::kArcCw : nc::Motion::kArcCcw;
+    b.centre[2] = e.centre.z - e.start.z;
+    b.centre[0] = e.centre.x - e.start.x;
+    b.has_centre = true;
+  } else if (b.motion == nc::Motion::kArcCw || b.motion == nc::Motion::kArcCcw) {
+    b.motion = nc::Motion::kLinear;  // an arc the compensation shrank to a point
+  } else if (e.inserted && b.motion == nc::Motion::kNone) {
+    b.motion = e.rapid ? nc::Motion::kRapid : nc::Motion::kLinear;
+  }
+  return b;
+}
+
+void Channel::LookAhead(const AmplifierTelegram& at) {
+  // Blending between feed moves: read the blocks after this one while they continue the path
+  // (feed moves with nothing to wait for, in the same frame); their corners and feeds become
+  // the speed targets the profile brakes for (look_ahead.hpp), the last one at rest.
+  const auto feed_move = [](nc::Motion m) {
+    return m == nc::Motion::kLinear || m == nc::Motion::kArcCw || m == nc::Motion::kArcCcw;
+  };
+  continuation_ready_ = false;
+  targets_.clear();
+  if (single_block_ || state_ != ChannelState::kRunning || !feed_move(block_.motion) ||
+      block_.end || homing_ || !motion_.moves)
+    return;
+  const double cycle_s = config_.tick_s * config_.ticks_per_cycle;
+  const double speed = motion_.max_rate * motion_.length;
+  const double accel = motion_.max_accel * motion_.length;
+  const double spindle_rev_per_s = SpindleRevPerS(at);
+  legs_.clear();
+  std::vector<double> direction = motion_.Direction(1);
+  std::vector<double> from = motion_.end;
+  double reach = 0, top_speed = speed, least_accel = accel, least_jerk = HUGE_VAL;
+  nc::PreparedBlock next;
+  BlockMotion m;
+  for (size_t k = 0; k < kLookAheadBlocks; ++k) {
+    if (compensating_ ? !PeekCompensated(k, next) : !Peek(k)) break;
+    const nc::PreparedBlock& n = compensating_ ? next : peeked_[k];
+    const nc::ModalState &m0 = block_.modal, &m1 = n.modal;
+    if (!feed_move(n.motion) || !n.aux.empty() || !n.events.empty() || !n.instructions.empty() ||
+        n.dwell_s != 0 || n.homing || n.set_position || n.repos || n.measuring || n.end ||
+        m1.compensation != 40 || m1.zero_offset != m0.zero_offset ||
+        m1.tool_length != m0.tool_length || m1.tool != m0.tool || m1.correction != m0.correction)
+      break;
+    bool homed = true;
+    for (size_t a = 0; a < homed_.size(); ++a)
+      if (!homed_[a] && (n.programmed >> a & 1)) homed = false;
+    // A block that moves nothing, or cannot be planned (its error comes in its turn), ends the
+    // path known.
+    if (!homed ||
+        PlanBlockMotion(n, from, translation_, config_.axes, spindle_rev_per_s, m).has_value() ||
+        !m.moves)
+      break;
+    const std::vector<double> d = m.Direction(0);
+    double n1 = 0, n2 = 0, dot = 0;
+    for (size_t a = 0; a < d.size(); ++a)
+      n1 += direction[a] * direction[a], n2 += d[a] * d[a], dot += direction[a] * d[a];
+    if (n1 <= 0 || n2 <= 0) break;
+    LookAheadLeg leg;
+    // A block takes at least one NC cycle, however short it is.
+    leg.max_speed = std::min(m.max_rate * m.length, m.length / cycle_s);
+    leg.accel = m.max_accel * m.length;
+    leg.jerk = m.max_jerk * m.length;
+    leg.length = m.length;
+    leg.cos_turn = std::clamp(dot / std::sqrt(n1 * n2), -1.0, 1.0);
+    legs_.push_back(leg);
+    direction = m.Direction(1);
+    from = m.end;
+    // Enough known once the path so far could stop from the fastest speed in it.
+    reach += m.length;
+    top_speed = std::max(top_speed, leg.max_speed);
+    least_accel = std::min(least_accel, leg.accel);
+    if (leg.jerk > 0) least_jerk = std::min(least_jerk, leg.jerk);
+    if (reach >= BrakingDistance(top_speed, 0, least_accel,
+                                 std::isfinite(least_jerk) ? least_jerk : 0, cycle_s))
+      break;
+  }
+  if (legs_.empty()) return;
+  PlanTargets(motion_.length, speed, accel, motion_.max_jerk * motion_.length, legs_, targets_);
+  continuation_ready_ = std::min(targets_[0].corner, targets_[0].feed) > 1e-9;
+  if (!continuation_ready_) targets_.clear();
+}
+}  // namespace vmt::control::channel
