@@ -124,14 +124,28 @@ std::optional<MotionError> PlanBlockMotion(const nc::PreparedBlock& block,
     }
     axis_accel = path_accel;
     out.max_jerk = std::isfinite(path_jerk) ? path_jerk : 0;
-    // Path length over the linear axes; rotary axes count with their effective distance
-    // (RX: radius at which the C axis' motion counts, C-axis manual 1.2), or alone in deg.
+    // Path length over the linear axes; a rotary axis counts with its effective distance
+    // (C-axis manual 1.2: RX, RY, RZ, the tool contact point's position vector, constant over
+    // the block): the tool moves at the rotation times the vector's distance from the rotation
+    // axis (A about X, B about Y, C about Z). Without effective distances a rotary axis counts
+    // alone, in degrees.
     double length2 = 0, rotary2 = 0;
     for (size_t a = 0; a < n; ++a) {
-      if (!axes[a].rotary)
+      if (!axes[a].rotary) {
         length2 += delta[a] * delta[a];
-      else if (block.has_effective_distance & 1)
-        length2 += std::pow(block.effective_distance[0] * delta[a] * std::numbers::pi / 180, 2);
+        continue;
+      }
+      const char about = axes[a].name.empty() ? 'C' : axes[a].name[0];
+      const int along = about == 'A' ? 0 : about == 'B' ? 1 : 2;
+      double radius2 = 0;
+      bool effective = false;
+      for (int k = 0; k < 3; ++k) {
+        if (k == along || !(block.has_effective_distance >> k & 1)) continue;
+        effective = true;
+        radius2 += block.effective_distance[k] * block.effective_distance[k];
+      }
+      if (effective)
+        length2 += radius2 * std::pow(delta[a] * std::numbers::pi / 180, 2);
       else
         rotary2 += delta[a] * delta[a];
     }

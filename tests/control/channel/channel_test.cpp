@@ -761,5 +761,30 @@ TEST(ChannelTest, LookAheadStopsAtAReversal) {
   EXPECT_LT(slowest_mid, 5);
 }
 
+TEST(ChannelTest, EffectiveDistanceGivesTheRotaryAxisItsPathSpeed) {
+  // C-axis manual 1.2: RX, RY, RZ are the tool contact point's position; the C axis (about Z)
+  // moves it at the rotation times its distance from Z. C90 at RX50: 78.5 mm at 20 mm/s.
+  const auto with_c = [](ChannelConfig& c) {
+    ChannelAxis axis = Axis("C", 2, 3600);
+    axis.rotary = true;
+    axis.acceleration = 100000;
+    c.axes.push_back(axis);
+    c.spindle_drive = -1;
+  };
+  const auto seconds = [&](const std::string& block) {
+    Machine m("N1 " + block + "\nN2 RET\n", 0, 0, with_c);
+    m.channel->Start();
+    m.RunUntilEnd();
+    EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+    EXPECT_NEAR(m.channel->position(2), 90, 1e-9);
+    return m.t;
+  };
+  const double rx = seconds("G01 C90 RX50 F1200");
+  EXPECT_NEAR(rx, 50 * std::numbers::pi / 2 / 20, 0.02);
+  EXPECT_NEAR(seconds("G01 C90 RX30 RY40 F1200"), rx, 1e-3);    // the same distance from Z
+  EXPECT_NEAR(seconds("G01 C90 RZ50 F1200"), 90 / 20.0, 0.02);  // along Z: no distance, in deg
+  EXPECT_NEAR(seconds("G01 C90 F1200"), 90 / 20.0, 0.02);       // no effective distance: deg
+}
+
 }  // namespace
 }  // namespace vmt::control::channel
