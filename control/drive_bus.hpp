@@ -63,6 +63,9 @@ struct DriveInfo {
 struct IoInfo {
   std::string name;  ///< e.g. QROTMODE (out), IROTMODE (in), as in the C-axis manual's PLC program
   bool is_output = false;
+  /// An operator's key (machine key table, repositioning manual 8.1): an input of the PLC that
+  /// the operator presses, not the machine; the backends leave it alone.
+  bool key = false;
 };
 
 /// Master data telegram: written by the control every drive cycle.

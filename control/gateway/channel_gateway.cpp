@@ -44,6 +44,7 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
   s_mdi_ = Id(s + "MDI");
   s_run_ = Id(s + "RUN");
   s_stop_ = Id(s + "STOP");
+  s_repos_ = Id(s + "REPOS");
   s_rev_ = Id(s + "REV");
   s_error_ = Id(s + "ERROR");
   s_errnr_ = Id(s + "ERRNR");
@@ -154,6 +155,9 @@ void ChannelGateway::WriteStatus(const channel::Channel& ch, const AmplifierTele
   set(s_mdi_, ch.mode() == channel::ChannelMode::kMdi);
   set(s_run_, ch.state() == channel::ChannelState::kRunning);
   set(s_stop_, ch.state() == channel::ChannelState::kHold);
+  // Repositioning manual 2.x: set each time the program is interrupted, reset when it resumes
+  // or on Control-Reset.
+  set(s_repos_, ch.state() == channel::ChannelState::kHold);
   set(s_rev_, ch.reversing());
   set(s_error_, ch.state() == channel::ChannelState::kError);
   set_int(s_errnr_, ch.error_number());

@@ -53,6 +53,7 @@ class ChannelGateway {
   };
   std::vector<AxisSignals> axes_;
   int s_auto_ = -1, s_manu_ = -1, s_mdi_ = -1, s_run_ = -1, s_stop_ = -1, s_rev_ = -1;
+  int s_repos_ = -1;
   int s_error_ = -1, s_errnr_ = -1, s_auxstb_ = -1, s_mfunc_ = -1, s_hfunc_ = -1, s_tfunc_ = -1;
   int spindle_drive_ = -1, n_ncmd_ = -1, n_nmin_ = -1, inpos_ = -1;
   /// Q functions with their own signal and acknowledgement (Pxx.Qnnnn / Pxx.Qnnnn_Q).

@@ -59,6 +59,20 @@ void SignalImage::Reset() {
   }
 }
 
+void SignalImage::CopyValuesFrom(const SignalImage& other) {
+  if (other.size() != size()) Fail("CopyValuesFrom: an image of another table");
+  cells_ = other.cells_;
+  strings_ = other.strings_;
+}
+
+void SignalImage::CopyValue(int id, const SignalImage& other) {
+  Check(id, other.size() == size(), "CopyValue");
+  if (types_[id] == SignalType::kString)
+    strings_[cells_[id]] = other.strings_[other.cells_[id]];
+  else
+    cells_[id] = other.cells_[id];
+}
+
 int SignalImage::Find(std::string_view name) const {
   const auto it =
       std::lower_bound(by_name_.begin(), by_name_.end(), name,

@@ -43,6 +43,11 @@ class SignalImage {
   /// Every signal back to its preset (Control-Reset of a simulation, not of the NC).
   void Reset();
 
+  /// Every value from `other`, an image of the same table (the PLC latching its inputs).
+  void CopyValuesFrom(const SignalImage& other);
+  /// One signal's value from `other`, an image of the same table (the PLC writing an output).
+  void CopyValue(int id, const SignalImage& other);
+
  private:
   void Check(int id, bool ok_type, const char* accessor) const;
 

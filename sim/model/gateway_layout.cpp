@@ -16,7 +16,9 @@ control::gateway::GatewayLayout GatewayLayoutOf(const MachineModel& m) {
     layout.axes.push_back({highest + 1, m.drives[m.nc.spindle_drive].info.name, true, false});
   for (const control::IoInfo& io : m.io)
     layout.io.push_back({io.name, io.is_output,
-                         io.is_output ? "valve (machine output)" : "sensor (machine input)"});
+                         io.is_output ? "valve (machine output)"
+                         : io.key     ? "machine key (operator input)"
+                                      : "sensor (machine input)"});
   return layout;
 }
 

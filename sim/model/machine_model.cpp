@@ -121,9 +121,10 @@ MachineModel LoadMachineModel(const std::string& machine_yaml_path) {
     for (size_t i = 0; i < io.size(); ++i) {
       io[i].AllowKeys({"name", "dir"});
       const std::string dir = io[i]["dir"].String();
-      if (dir != "in" && dir != "out") io[i]["dir"].Fail("expected in or out");
+      if (dir != "in" && dir != "out" && dir != "key")
+        io[i]["dir"].Fail("expected in, out or key");
       if (control::IndexOf(m.io, io[i]["name"].String()) >= 0) io[i]["name"].Fail("duplicate");
-      m.io.push_back({io[i]["name"].String(), dir == "out"});
+      m.io.push_back({io[i]["name"].String(), dir == "out", dir == "key"});
     }
   }
 

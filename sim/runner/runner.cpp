@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "control/gateway/channel_gateway.hpp"
+#include "control/plc/plc_programs.hpp"
 #include "render/image.hpp"
 #include "sim/model/gateway_layout.hpp"
 #include "sim/runner/drive_program.hpp"
@@ -140,6 +141,23 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
     channel->SetEventSource([gw](int n) { return gw->Event(n); });
     channel->SetEventSink([gw](int n, bool v) { gw->SetEvent(n, v); });
   }
+  // The embedded PLC: scanned at its period against the gateway; the machine's sensors reach
+  // it through the image (as over a field bus) and its valves go out to the machine.
+  std::unique_ptr<control::plc::PlcRuntime> plc;
+  int64_t plc_every = 0;
+  std::vector<std::pair<int, int>> plc_inputs, plc_outputs;  // I/O point, signal id
+  if (scene.plc.present && image) {
+    auto made = control::plc::MakePlcProgram(scene.plc.program, *image);
+    if (!made) throw std::runtime_error("no PLC program '" + scene.plc.program + "'");
+    plc_every = std::llround(scene.plc.period_s / kDriveTickS);
+    plc = std::make_unique<control::plc::PlcRuntime>(
+        *image, std::move(*made), control::plc::PlcTime(plc_every * 250));
+    for (size_t i = 0; i < m.io.size(); ++i) {
+      const int id = image->Find(m.io[i].name);
+      if (id < 0 || m.io[i].key) continue;  // keys are the operator's, not the machine's
+      (m.io[i].is_output ? plc_outputs : plc_inputs).emplace_back(static_cast<int>(i), id);
+    }
+  }
   DriveProgram program(scene, backend->Read(), channel.get(), image.get());
   std::vector<double> last_signals;
   auto nc_state = control::channel::ChannelState::kIdle;
@@ -188,6 +206,12 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
 
     events.clear();
     program.Tick(t, at, clutches, mdt, events);
+    if (plc && tick % plc_every == 0) {
+      for (const auto& [io, id] : plc_inputs) image->SetBool(id, at.inputs[io] != 0);
+      plc->Scan();
+    }
+    if (plc)
+      for (const auto& [io, id] : plc_outputs) mdt.outputs[io] = image->Bool(id) ? 1 : 0;
     if (channel) {
       const bool nc_cycle = tick % channel->ticks_per_cycle() == 0;
       if (gateway && nc_cycle) gateway->ReadControls(*channel);
@@ -222,7 +246,8 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
                     {"name", m.clutches[k].name},
                     {"state", ToString(clutches[k])}});
     for (size_t i = 0; i < at.inputs.size(); ++i)
-      if (!m.io[i].is_output && (last_inputs.empty() || at.inputs[i] != last_inputs[i]))
+      if (!m.io[i].is_output && !m.io[i].key &&
+          (last_inputs.empty() || at.inputs[i] != last_inputs[i]))
         emit_event({{"t", t}, {"event", "input"}, {"name", m.io[i].name}, {"value", at.inputs[i]}});
     last_clutches = clutches;
     last_inputs = at.inputs;

@@ -43,6 +43,13 @@ struct NcSetup {
   std::shared_ptr<const std::vector<control::gateway::Signal>> signals;
 };
 
+/// The embedded PLC program (plc_programs.hpp) and its scan time.
+struct PlcSetup {
+  bool present = false;
+  std::string program;
+  double period_s = 0.004;  ///< DESIGN.md: 4 ms, 16 drive ticks
+};
+
 /// What a wait_until step or an expectation looks at.
 struct Condition {
   enum class Kind {
@@ -138,6 +145,7 @@ struct Scene {
   Workpiece workpiece;
   InitialState initial;
   NcSetup nc;
+  PlcSetup plc;
   std::vector<TimelineStep> timeline;
   std::vector<Expectation> expectations;
   std::vector<SnapshotSpec> snapshots;

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "control/nc/parser.hpp"
+#include "control/plc/plc_programs.hpp"
 #include "sim/kinematic/kinematic_backend.hpp"
 #include "sim/model/gateway_layout.hpp"
 #include "sim/model/model_error.hpp"
@@ -152,9 +153,14 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
     s.kind = TimelineStep::Kind::kSignal;
     s.signal = RequireSignal(nc, a["name"]);
     const auto& sig = (*nc.signals)[s.signal];
-    if (sig.direction != control::gateway::Direction::kPlcToNc &&
-        sig.direction != control::gateway::Direction::kShared)
+    // The timeline plays the PLC and the operator: it writes what a PLC drives and presses
+    // the machine keys; the NC's status and the machine's sensors are not its to set.
+    const int io = control::IndexOf(m.io, sig.name);
+    const bool key = io >= 0 && m.io[io].key;
+    if (sig.direction == control::gateway::Direction::kNcToPlc)
       a["name"].Fail("the NC writes " + sig.name + ": a PLC cannot set it");
+    if (sig.direction == control::gateway::Direction::kMachineToPlc && !key)
+      a["name"].Fail(sig.name + " is a sensor of the machine: a PLC cannot set it");
     s.target = SignalValue(nc, s.signal, a["value"]);
     text << "signal " << sig.name << " = " << Fmt(s.target);
     s.text = text.str();
@@ -388,7 +394,7 @@ const NamedCamera* Scene::Camera(const std::string& name) const {
 Scene LoadScene(const std::string& path) {
   const YamlNode root = YamlNode::LoadFile(path);
   if (!root.IsMap()) root.Fail("a scene file is a map");
-  root.AllowKeys({"scene", "model", "backend", "duration", "trace_period", "workpiece", "initial",
+  root.AllowKeys({"scene", "model", "backend", "duration", "trace_period", "workpiece", "initial", "plc",
                   "nc", "timeline", "expect", "snapshots", "cameras"});
   Scene s;
   s.file = path;
@@ -569,6 +575,25 @@ Scene LoadScene(const std::string& path) {
     s.nc.signals = std::make_shared<const std::vector<control::gateway::Signal>>(
         control::gateway::BuildSignalTable(GatewayLayoutOf(m)));
     s.nc.override = nc.Double("override", 100) / 100;
+  }
+  if (root.Has("plc")) {
+    // The embedded PLC: a program of the manuals, scanned against the gateway signals.
+    const YamlNode plc = root["plc"];
+    plc.AllowKeys({"program", "period_ms"});
+    if (!s.nc.present) plc.Fail("a PLC program needs the nc: section (the gateway signals)");
+    s.plc.present = true;
+    s.plc.program = plc["program"].String();
+    const auto names = control::plc::PlcProgramNames();
+    if (std::find(names.begin(), names.end(), s.plc.program) == names.end()) {
+      std::string list;
+      for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+      plc["program"].Fail("no PLC program '" + s.plc.program + "' (there are: " + list + ")");
+    }
+    const double period_ms = plc.Double("period_ms", 4);
+    const double ticks = period_ms * 1e-3 / kDriveTickS;
+    if (!(ticks >= 1) || std::abs(ticks - std::round(ticks)) > 1e-9 || ticks > 4000)
+      plc["period_ms"].Fail("must be a multiple of the 0.25 ms drive tick, at most 1000 ms");
+    s.plc.period_s = std::round(ticks) * kDriveTickS;
   }
   if (root.Has("timeline")) {
     const YamlNode t = root["timeline"];

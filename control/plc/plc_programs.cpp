@@ -1,0 +1,40 @@
+#include "control/plc/plc_programs.hpp"
+
+#include <memory>
+
+#include "control/plc/programs/repos_machine_keys.hpp"
+
+namespace vmt::control::plc {
+namespace {
+
+struct Entry {
+  std::string_view name;
+  PlcProgram (*make)(const gateway::SignalImage&);
+};
+
+template <typename Program>
+PlcProgram Make(const gateway::SignalImage& image) {
+  // std::function needs a copyable target; the program's state lives on the heap once.
+  auto program = std::make_shared<Program>(image);
+  return [program](PlcScan& scan) { (*program)(scan); };
+}
+
+constexpr Entry kPrograms[] = {
+    {"repos_machine_keys", &Make<ReposMachineKeys>},
+};
+
+}  // namespace
+
+std::vector<std::string> PlcProgramNames() {
+  std::vector<std::string> names;
+  for (const Entry& e : kPrograms) names.emplace_back(e.name);
+  return names;
+}
+
+std::optional<PlcProgram> MakePlcProgram(std::string_view name, const gateway::SignalImage& image) {
+  for (const Entry& e : kPrograms)
+    if (name == e.name) return e.make(image);
+  return std::nullopt;
+}
+
+}  // namespace vmt::control::plc

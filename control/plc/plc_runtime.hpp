@@ -1,0 +1,78 @@
+#pragma once
+// The PLC's scan cycle against the signal image, as a PLC runs it: at the start of a cycle the
+// inputs are latched (the program sees one consistent copy, whatever changes meanwhile), the
+// program runs on that copy, and at the end the signals a PLC drives are written back. Time is
+// the PLC's own clock, advanced by the period each scan: nothing reads the wall clock.
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "control/gateway/signal_image.hpp"
+
+namespace vmt::control::plc {
+
+using PlcTime = std::chrono::microseconds;
+
+/// What a program sees and writes during one scan. Reads come from the latched inputs (and the
+/// program's own writes of this scan); writes are allowed only to signals a PLC drives (PLC to
+/// NC, PLC to machine, shared) and reach the image at the end of the scan.
+class PlcScan {
+ public:
+  PlcScan(gateway::SignalImage& latched, const std::vector<bool>& writable, PlcTime now,
+          uint64_t cycle)
+      : latched_(latched), writable_(writable), now_(now), cycle_(cycle) {}
+
+  PlcTime now() const { return now_; }       ///< PLC time at the start of this scan
+  uint64_t cycle() const { return cycle_; }  ///< scans before this one
+  bool first_scan() const { return cycle_ == 0; }
+
+  bool Bool(int id) const { return latched_.Bool(id); }
+  int64_t Int(int id) const { return latched_.Int(id); }
+  double Real(int id) const { return latched_.Real(id); }
+  void SetBool(int id, bool v) { Writable(id), latched_.SetBool(id, v); }
+  void SetInt(int id, int64_t v) { Writable(id), latched_.SetInt(id, v); }
+  void SetReal(int id, double v) { Writable(id), latched_.SetReal(id, v); }
+
+ private:
+  void Writable(int id) const;
+
+  gateway::SignalImage& latched_;
+  const std::vector<bool>& writable_;
+  PlcTime now_;
+  uint64_t cycle_;
+};
+
+/// A PLC program: called once per scan. Programs resolve their signal ids when they are made
+/// (plc_programs.hpp) and keep their function block instances as members.
+using PlcProgram = std::function<void(PlcScan&)>;
+
+/// True for the signals a PLC may write: PLC to NC, PLC to machine, and the shared ones.
+bool PlcDrives(gateway::Direction direction);
+
+class PlcRuntime {
+ public:
+  /// `image` must outlive the runtime. The period is the scan time (DESIGN.md: 4 ms).
+  PlcRuntime(gateway::SignalImage& image, PlcProgram program, PlcTime period);
+
+  /// One scan: latch, run the program, write the outputs; then the PLC clock moves on.
+  void Scan();
+
+  PlcTime now() const { return now_; }
+  PlcTime period() const { return period_; }
+  uint64_t cycles() const { return cycles_; }
+
+ private:
+  gateway::SignalImage& image_;
+  gateway::SignalImage latched_;
+  PlcProgram program_;
+  PlcTime period_;
+  PlcTime now_{0};
+  uint64_t cycles_ = 0;
+  std::vector<bool> writable_;  ///< by id
+  std::vector<int> outputs_;    ///< ids written back at the end of a scan
+};
+
+}  // namespace vmt::control::plc
