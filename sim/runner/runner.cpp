@@ -101,13 +101,55 @@ ExpectationResult Check(const Expectation& e, const control::AmplifierTelegram& 
 
 }  // namespace
 
-RunResult RunScene(const Scene& scene, const RunOptions& options) {
-  const auto wall_start = std::chrono::steady_clock::now();
-  const MachineModel& m = *scene.model;
-  std::unique_ptr<MachineBackend> backend =
-      MakeBackend(options.backend.value_or(scene.backend), m, scene.initial);
-  // The NC channel, if the scene has one: its axes move at the drives' rapid and acceleration.
+// Everything a run holds between ticks.
+struct SceneRun::State {
+  State(const Scene& scene, const RunOptions& options);
+  void Step();
+  RunResult Finish();
+
+  void emit_trace(const std::string& row) {
+    digest.Add(row);
+    if (writing) trace_file << row;
+  }
+  void emit_event(nlohmann::ordered_json event) {
+    // Times on the tick grid, without binary noise (3.4995, not 3.4995000000000003).
+    event["t"] = std::round(event["t"].get<double>() * 1e6) / 1e6;
+    if (writing) events_file << event.dump() << '\n';
+  }
+
+  const Scene& scene;
+  const RunOptions options;
+  const MachineModel& m;
+  const std::chrono::steady_clock::time_point wall_start = std::chrono::steady_clock::now();
+  std::unique_ptr<MachineBackend> backend;
   std::unique_ptr<control::channel::Channel> channel;
+  std::unique_ptr<control::gateway::SignalImage> image;
+  std::unique_ptr<control::gateway::ChannelGateway> gateway;
+  std::unique_ptr<control::plc::PlcRuntime> plc;
+  bool field_bus = false;  ///< the machine's I/O goes through the image (a PLC is there)
+  int64_t plc_every = 16;  ///< drive ticks per PLC cycle
+  std::vector<std::pair<int, int>> plc_inputs, plc_outputs;  // I/O point, signal id
+  std::unique_ptr<DriveProgram> program;
+  std::vector<double> last_signals;
+  control::channel::ChannelState nc_state = control::channel::ChannelState::kIdle;
+  int64_t tick = 0, last_tick = 0, trace_every = 1;
+  bool writing = false, finished = false;
+  std::ofstream trace_file, events_file;
+  Fnv1a64 digest;
+  RunResult result;
+  std::unique_ptr<SceneRenderer> renderer;
+  std::vector<bool> snapped, checked;
+  std::vector<ExpectationResult> checks;
+  std::vector<ClutchState> clutches, last_clutches;
+  std::vector<uint8_t> last_inputs;
+  control::MasterTelegram mdt;
+  std::vector<ProgramEvent> events;
+};
+
+SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
+    : scene(scene_), options(options_), m(*scene_.model) {
+  backend = MakeBackend(options.backend.value_or(scene.backend), m, scene.initial);
+  // The NC channel, if the scene has one: its axes move at the drives' rapid and acceleration.
   if (scene.nc.present) {
     control::channel::ChannelConfig config;
     config.axes = scene.nc.data.axes;
@@ -124,8 +166,6 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
     channel->SetFeedOverride(scene.nc.override);
   }
   // The gateway: the channel reads its control signals and writes its status each NC cycle.
-  std::unique_ptr<control::gateway::SignalImage> image;
-  std::unique_ptr<control::gateway::ChannelGateway> gateway;
   if (channel && scene.nc.signals) {
     image = std::make_unique<control::gateway::SignalImage>(*scene.nc.signals);
     std::vector<int> numbers;
@@ -143,32 +183,28 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
   }
   // The embedded PLC: scanned at its period against the gateway; the machine's sensors reach
   // it through the image (as over a field bus) and its valves go out to the machine.
-  std::unique_ptr<control::plc::PlcRuntime> plc;
-  int64_t plc_every = 0;
-  std::vector<std::pair<int, int>> plc_inputs, plc_outputs;  // I/O point, signal id
-  if (scene.plc.present && image) {
+  // An external PLC (vmt serve) takes the embedded program's place.
+  plc_every = std::llround(scene.plc.period_s / kDriveTickS);
+  if (image && scene.plc.present && !options.external_plc) {
     auto made = control::plc::MakePlcProgram(scene.plc.program, *image);
     if (!made) throw std::runtime_error("no PLC program '" + scene.plc.program + "'");
-    plc_every = std::llround(scene.plc.period_s / kDriveTickS);
-    plc = std::make_unique<control::plc::PlcRuntime>(
-        *image, std::move(*made), control::plc::PlcTime(plc_every * 250));
+    plc = std::make_unique<control::plc::PlcRuntime>(*image, std::move(*made),
+                                                     control::plc::PlcTime(plc_every * 250));
+  }
+  field_bus = image && (plc || options.external_plc);
+  if (field_bus) {
     for (size_t i = 0; i < m.io.size(); ++i) {
       const int id = image->Find(m.io[i].name);
       if (id < 0 || m.io[i].key) continue;  // keys are the operator's, not the machine's
       (m.io[i].is_output ? plc_outputs : plc_inputs).emplace_back(static_cast<int>(i), id);
     }
   }
-  DriveProgram program(scene, backend->Read(), channel.get(), image.get());
-  std::vector<double> last_signals;
-  auto nc_state = control::channel::ChannelState::kIdle;
+  program = std::make_unique<DriveProgram>(scene, backend->Read(), channel.get(), image.get());
 
-  const double duration = options.until_s.value_or(scene.duration_s);
-  const int64_t last_tick = std::llround(duration / kDriveTickS);
-  const int64_t trace_every =
-      std::max<int64_t>(1, std::llround(scene.trace_period_s / kDriveTickS));
-  const bool writing = !options.out_dir.empty();
+  last_tick = std::llround(options.until_s.value_or(scene.duration_s) / kDriveTickS);
+  trace_every = std::max<int64_t>(1, std::llround(scene.trace_period_s / kDriveTickS));
+  writing = !options.out_dir.empty();
 
-  std::ofstream trace_file, events_file;
   if (writing) {
     std::filesystem::create_directories(options.out_dir);
     trace_file.open(options.out_dir + "/trace.csv", std::ios::binary);
@@ -176,137 +212,126 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
     if (!trace_file || !events_file)
       throw std::runtime_error("cannot write to output folder " + options.out_dir);
   }
-  Fnv1a64 digest;
-  auto emit_trace = [&](const std::string& row) {
-    digest.Add(row);
-    if (writing) trace_file << row;
-  };
-  auto emit_event = [&](nlohmann::ordered_json event) {
-    // Times on the tick grid, without binary noise (3.4995, not 3.4995000000000003).
-    event["t"] = std::round(event["t"].get<double>() * 1e6) / 1e6;
-    if (writing) events_file << event.dump() << '\n';
-  };
   emit_trace(TraceHeader(m, channel != nullptr));
 
-  RunResult result;
-  std::unique_ptr<SceneRenderer> renderer;
-  std::vector<bool> snapped(scene.snapshots.size(), false);
-  std::vector<bool> checked(scene.expectations.size(), false);
-  std::vector<ExpectationResult> checks(scene.expectations.size());
-  std::vector<ClutchState> clutches(m.clutches.size());
-  std::vector<ClutchState> last_clutches;
-  std::vector<uint8_t> last_inputs;
-  control::MasterTelegram mdt;
-  std::vector<ProgramEvent> events;
+  snapped.assign(scene.snapshots.size(), false);
+  checked.assign(scene.expectations.size(), false);
+  checks.resize(scene.expectations.size());
+  clutches.resize(m.clutches.size());
+}
 
-  for (int64_t tick = 0;; ++tick) {
-    const double t = tick * kDriveTickS;
-    const control::AmplifierTelegram& at = backend->Read();
-    for (size_t k = 0; k < clutches.size(); ++k) clutches[k] = backend->Clutch(static_cast<int>(k));
+void SceneRun::State::Step() {
+  const double t = tick * kDriveTickS;
+  const control::AmplifierTelegram& at = backend->Read();
+  for (size_t k = 0; k < clutches.size(); ++k) clutches[k] = backend->Clutch(static_cast<int>(k));
 
-    events.clear();
-    program.Tick(t, at, clutches, mdt, events);
-    if (plc && tick % plc_every == 0) {
-      for (const auto& [io, id] : plc_inputs) image->SetBool(id, at.inputs[io] != 0);
-      plc->Scan();
+  events.clear();
+  program->Tick(t, at, clutches, mdt, events);
+  if (field_bus && tick % plc_every == 0) {
+    for (const auto& [io, id] : plc_inputs) image->SetBool(id, at.inputs[io] != 0);
+    if (plc) plc->Scan();
+  }
+  if (field_bus)
+    for (const auto& [io, id] : plc_outputs) mdt.outputs[io] = image->Bool(id) ? 1 : 0;
+  if (channel) {
+    const bool nc_cycle = tick % channel->ticks_per_cycle() == 0;
+    if (gateway && nc_cycle) gateway->ReadControls(*channel);
+    channel->Tick(at, mdt);
+    if (gateway && nc_cycle) gateway->WriteStatus(*channel, at);
+    if (channel->state() != nc_state) {
+      nc_state = channel->state();
+      nlohmann::ordered_json e = {{"t", t}, {"event", "nc"}, {"state", ToString(nc_state)}};
+      if (!channel->error().empty()) e["error"] = channel->error();
+      emit_event(e);
     }
-    if (plc)
-      for (const auto& [io, id] : plc_outputs) mdt.outputs[io] = image->Bool(id) ? 1 : 0;
-    if (channel) {
-      const bool nc_cycle = tick % channel->ticks_per_cycle() == 0;
-      if (gateway && nc_cycle) gateway->ReadControls(*channel);
-      channel->Tick(at, mdt);
-      if (gateway && nc_cycle) gateway->WriteStatus(*channel, at);
-      if (channel->state() != nc_state) {
-        nc_state = channel->state();
-        nlohmann::ordered_json e = {{"t", t}, {"event", "nc"}, {"state", ToString(nc_state)}};
-        if (!channel->error().empty()) e["error"] = channel->error();
-        emit_event(e);
+  }
+  for (const ProgramEvent& e : events)
+    emit_event({{"t", e.t_s}, {"event", e.kind}, {"text", e.text}});
+  if (image) {
+    // Every change of a gateway signal, either direction, as the PLC engineer traces it.
+    last_signals.resize(image->size(), std::nan(""));
+    for (int id = 0; id < image->size(); ++id) {
+      const double v = SignalNumber(*image, id);
+      if (v != last_signals[id] && !(std::isnan(v) && std::isnan(last_signals[id]))) {
+        if (!std::isnan(last_signals[id]) || v != 0)
+          emit_event(
+              {{"t", t}, {"event", "signal"}, {"name", image->table()[id].name}, {"value", v}});
+        last_signals[id] = v;
       }
     }
-    for (const ProgramEvent& e : events)
-      emit_event({{"t", e.t_s}, {"event", e.kind}, {"text", e.text}});
-    if (image) {
-      // Every change of a gateway signal, either direction, as the PLC engineer traces it.
-      last_signals.resize(image->size(), std::nan(""));
-      for (int id = 0; id < image->size(); ++id) {
-        const double v = SignalNumber(*image, id);
-        if (v != last_signals[id] && !(std::isnan(v) && std::isnan(last_signals[id]))) {
-          if (!std::isnan(last_signals[id]) || v != 0)
-            emit_event(
-                {{"t", t}, {"event", "signal"}, {"name", image->table()[id].name}, {"value", v}});
-          last_signals[id] = v;
-        }
-      }
-    }
-    for (size_t k = 0; k < clutches.size(); ++k)
-      if (last_clutches.empty() || clutches[k] != last_clutches[k])
-        emit_event({{"t", t},
-                    {"event", "clutch"},
-                    {"name", m.clutches[k].name},
-                    {"state", ToString(clutches[k])}});
-    for (size_t i = 0; i < at.inputs.size(); ++i)
-      if (!m.io[i].is_output && !m.io[i].key &&
-          (last_inputs.empty() || at.inputs[i] != last_inputs[i]))
-        emit_event({{"t", t}, {"event", "input"}, {"name", m.io[i].name}, {"value", at.inputs[i]}});
-    last_clutches = clutches;
-    last_inputs = at.inputs;
-
-    if (tick % trace_every == 0 || tick == last_tick) {
-      std::string row;
-      char buf[32];
-      std::snprintf(buf, sizeof buf, "%.6f", t);
-      row = buf;
-      for (size_t d = 0; d < m.drives.size(); ++d) {
-        const control::DriveFeedback& fb = at.feedback[d];
-        Append(row,
-               mdt.setpoints[d].mode == control::DriveMode::kOff ? 0.0 : mdt.setpoints[d].value);
-        Append(row, fb.position);
-        Append(row, fb.velocity);
-        if (m.drives[d].spindle || m.drives[d].info.kind == control::AxisKind::kRotary)
-          Append(row, fb.velocity / 6.0);
-      }
-      for (ClutchState c : clutches) Append(row, static_cast<int>(c));
-      if (channel) {
-        Append(row, static_cast<int>(channel->state()));
-        Append(row, channel->line());
-      }
-      emit_trace(row + "\n");
-    }
-
-    for (size_t i = 0; i < scene.expectations.size(); ++i) {
-      const Expectation& e = scene.expectations[i];
-      const bool due = e.at_s < 0 ? tick == last_tick : t >= e.at_s - 1e-9;
-      if (checked[i] || !due) continue;
-      checked[i] = true;
-      checks[i] = Check(e, at, clutches, channel.get(), image.get());
+  }
+  for (size_t k = 0; k < clutches.size(); ++k)
+    if (last_clutches.empty() || clutches[k] != last_clutches[k])
       emit_event({{"t", t},
-                  {"event", "expectation"},
-                  {"text", e.text},
-                  {"passed", checks[i].passed},
-                  {"detail", checks[i].detail}});
-    }
+                  {"event", "clutch"},
+                  {"name", m.clutches[k].name},
+                  {"state", ToString(clutches[k])}});
+  for (size_t i = 0; i < at.inputs.size(); ++i)
+    if (!m.io[i].is_output && !m.io[i].key &&
+        (last_inputs.empty() || at.inputs[i] != last_inputs[i]))
+      emit_event({{"t", t}, {"event", "input"}, {"name", m.io[i].name}, {"value", at.inputs[i]}});
+  last_clutches = clutches;
+  last_inputs = at.inputs;
 
-    for (size_t i = 0; i < scene.snapshots.size(); ++i) {
-      const SnapshotSpec& s = scene.snapshots[i];
-      if (snapped[i] || t < s.at_s - 1e-9 || !options.snapshots) continue;
-      snapped[i] = true;
-      if (!renderer) renderer = std::make_unique<SceneRenderer>(m, scene.workpiece);
-      const render::Image image =
-          renderer->Render(backend->JointPositions(), *scene.Camera(s.camera), s.width, s.height);
-      if (writing) {
-        const std::string path = options.out_dir + "/" + s.file;
-        render::WritePng(path, image);
-        result.snapshot_files.push_back(path);
-        emit_event({{"t", t}, {"event", "snapshot"}, {"camera", s.camera}, {"file", s.file}});
-      }
+  if (tick % trace_every == 0 || tick == last_tick) {
+    std::string row;
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6f", t);
+    row = buf;
+    for (size_t d = 0; d < m.drives.size(); ++d) {
+      const control::DriveFeedback& fb = at.feedback[d];
+      Append(row, mdt.setpoints[d].mode == control::DriveMode::kOff ? 0.0 : mdt.setpoints[d].value);
+      Append(row, fb.position);
+      Append(row, fb.velocity);
+      if (m.drives[d].spindle || m.drives[d].info.kind == control::AxisKind::kRotary)
+        Append(row, fb.velocity / 6.0);
     }
-
-    if (tick == last_tick) break;
-    backend->Write(mdt);
-    backend->Step();
+    for (ClutchState c : clutches) Append(row, static_cast<int>(c));
+    if (channel) {
+      Append(row, static_cast<int>(channel->state()));
+      Append(row, channel->line());
+    }
+    emit_trace(row + "\n");
   }
 
+  for (size_t i = 0; i < scene.expectations.size(); ++i) {
+    const Expectation& e = scene.expectations[i];
+    const bool due = e.at_s < 0 ? tick == last_tick : t >= e.at_s - 1e-9;
+    if (checked[i] || !due) continue;
+    checked[i] = true;
+    checks[i] = Check(e, at, clutches, channel.get(), image.get());
+    emit_event({{"t", t},
+                {"event", "expectation"},
+                {"text", e.text},
+                {"passed", checks[i].passed},
+                {"detail", checks[i].detail}});
+  }
+
+  for (size_t i = 0; i < scene.snapshots.size(); ++i) {
+    const SnapshotSpec& s = scene.snapshots[i];
+    if (snapped[i] || t < s.at_s - 1e-9 || !options.snapshots) continue;
+    snapped[i] = true;
+    if (!renderer) renderer = std::make_unique<SceneRenderer>(m, scene.workpiece);
+    const render::Image image =
+        renderer->Render(backend->JointPositions(), *scene.Camera(s.camera), s.width, s.height);
+    if (writing) {
+      const std::string path = options.out_dir + "/" + s.file;
+      render::WritePng(path, image);
+      result.snapshot_files.push_back(path);
+      emit_event({{"t", t}, {"event", "snapshot"}, {"camera", s.camera}, {"file", s.file}});
+    }
+  }
+
+  if (tick == last_tick) {
+    finished = true;
+    return;
+  }
+  backend->Write(mdt);
+  backend->Step();
+  ++tick;
+}
+
+RunResult SceneRun::State::Finish() {
   result.simulated_s = last_tick * kDriveTickS;
   result.final_joint_positions = backend->JointPositions();
   result.trace_digest = digest.Hex();
@@ -317,7 +342,7 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
     if (!checks[i].passed)
       result.failures.push_back(checks[i].text + " (" + checks[i].detail + ")");
   }
-  for (const std::string& f : program.failures()) result.failures.push_back(f);
+  for (const std::string& f : program->failures()) result.failures.push_back(f);
   // An NC error fails the run unless the scene expects it.
   if (channel && !channel->error().empty()) {
     bool expected = false;
@@ -351,6 +376,22 @@ RunResult RunScene(const Scene& scene, const RunOptions& options) {
     std::ofstream(options.out_dir + "/summary.json") << summary.dump(2) << '\n';
   }
   return result;
+}
+
+SceneRun::SceneRun(const Scene& scene, const RunOptions& options)
+    : state_(std::make_unique<State>(scene, options)) {}
+SceneRun::~SceneRun() = default;
+bool SceneRun::done() const { return state_->finished; }
+void SceneRun::Step() { state_->Step(); }
+RunResult SceneRun::Finish() { return state_->Finish(); }
+control::gateway::SignalImage* SceneRun::image() { return state_->image.get(); }
+int64_t SceneRun::ticks_per_plc_cycle() const { return state_->plc_every; }
+double SceneRun::time_s() const { return state_->tick * kDriveTickS; }
+
+RunResult RunScene(const Scene& scene, const RunOptions& options) {
+  SceneRun run(scene, options);
+  while (!run.done()) run.Step();
+  return run.Finish();
 }
 
 }  // namespace vmt::sim

@@ -3,10 +3,12 @@
 // lockstep, no wall clock in the loop), records the trace (CSV), the events (JSON lines), the
 // snapshots and a summary with the trace digest.
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "control/gateway/signal_image.hpp"
 #include "sim/scene/scene.hpp"
 
 namespace vmt::sim {
@@ -16,6 +18,9 @@ struct RunOptions {
   std::optional<double> until_s;       ///< overrides the scene's duration
   std::string out_dir;                 ///< empty: write nothing (tests, benchmarks)
   bool snapshots = true;               ///< render the scene's snapshots
+  /// The PLC is outside (vmt serve): no embedded program runs; the machine's I/O still goes
+  /// through the signal image, which the external PLC reads and writes.
+  bool external_plc = false;
 };
 
 struct ExpectationResult {
@@ -33,6 +38,27 @@ struct RunResult {
   std::vector<std::string> snapshot_files;
   std::vector<double> final_joint_positions;  ///< m | rad, at the end of the run
   bool ok() const { return failures.empty(); }
+};
+
+/// A run one drive tick at a time, for whoever paces it (vmt serve: an external PLC's cycles).
+/// Throws std::runtime_error when an output file cannot be written.
+class SceneRun {
+ public:
+  SceneRun(const Scene& scene, const RunOptions& options);
+  ~SceneRun();
+  bool done() const;
+  /// One drive tick; after the scene's last tick done() is true.
+  void Step();
+  /// Checks what is left, writes summary.json; call once, when done or stopping early.
+  RunResult Finish();
+  /// The gateway signals, null without an nc: section.
+  control::gateway::SignalImage* image();
+  int64_t ticks_per_plc_cycle() const;
+  double time_s() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
 };
 
 /// Throws std::runtime_error when an output file cannot be written.
