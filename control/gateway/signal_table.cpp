@@ -228,4 +228,12 @@ std::vector<Signal> BuildSignalTable(const GatewayLayout& layout) {
   return table;
 }
 
+int LockstepCycleRegister(const std::vector<Signal>& table) {
+  int end = 0;
+  for (const Signal& s : table)
+    if (s.modbus.area == ModbusAddress::kHoldingRegister)
+      end = std::max(end, s.modbus.address + s.modbus.count);
+  return end;
+}
+
 }  // namespace vmt::control::gateway

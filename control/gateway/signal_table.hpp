@@ -98,4 +98,8 @@ std::string InstanceName(std::string_view pattern, int number);
 /// or a Modbus area that overflows 65536 addresses.
 std::vector<Signal> BuildSignalTable(const GatewayLayout& layout);
 
+/// The holding register an external PLC writes to step the simulation in lockstep (vmt serve
+/// --lockstep, control/plc/modbus_server.hpp): one past the table's last holding register.
+int LockstepCycleRegister(const std::vector<Signal>& table);
+
 }  // namespace vmt::control::gateway

@@ -12,6 +12,7 @@
 #include "control/nc/parser.hpp"
 #include "render/image.hpp"
 #include "render/image_compare.hpp"
+#include "sim/cli/serve.hpp"
 #include "sim/model/gateway_layout.hpp"
 #include "sim/model/model_error.hpp"
 #include "sim/runner/runner.hpp"
@@ -136,6 +137,21 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"csv", "json"}))
       ->capture_default_str();
 
+  sim::ServeOptions serve_options;
+  bool realtime = false;
+  CLI::App* serve = app.add_subcommand(
+      "serve", "Run a scene with its PLC outside, over Modbus TCP (lockstep or real time)");
+  serve->add_option("scene", serve_options.scene, "Scene file (YAML)")->required();
+  serve->add_option("--modbus", serve_options.endpoint, "HOST:PORT to listen on (port 0: any)")
+      ->capture_default_str();
+  bool lockstep = false;
+  serve->add_flag("--lockstep", lockstep,
+                  "The PLC steps the simulation a cycle at a time (default)");
+  serve->add_flag("--realtime", realtime, "Run against the wall clock; report cycle lateness");
+  serve->add_option("--until", serve_options.until_s, "Stop at this simulated time, seconds")
+      ->check(CLI::PositiveNumber);
+  serve->add_option("--out", serve_options.out_dir, "Output folder")->capture_default_str();
+
   CLI::App* imgdiff = app.add_subcommand(
       "imgdiff", "Compare two PNG pictures: exit 0 equal, 1 different, 2 bad input");
   imgdiff->add_option("a", a, "First PNG")->required();
@@ -159,6 +175,14 @@ int main(int argc, char** argv) {
     if (*run) return Run(scene, backend, until, out);
     if (*snap) return Snapshot(scene, at, camera, out, width, height);
     if (*check) return Check(scene, dialect);
+    if (*serve) {
+      if (realtime && lockstep) {
+        std::fprintf(stderr, "vmt: error: --lockstep and --realtime exclude each other\n");
+        return 2;
+      }
+      serve_options.lockstep = !realtime;
+      return sim::Serve(serve_options);
+    }
     if (*signals) {
       const sim::MachineModel model = sim::LoadMachineModel(scene);
       const auto table = control::gateway::BuildSignalTable(sim::GatewayLayoutOf(model));

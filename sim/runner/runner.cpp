@@ -106,6 +106,7 @@ struct SceneRun::State {
   State(const Scene& scene, const RunOptions& options);
   void Step();
   RunResult Finish();
+  void ReadFieldBus();
 
   void emit_trace(const std::string& row) {
     digest.Add(row);
@@ -199,6 +200,7 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
       (m.io[i].is_output ? plc_outputs : plc_inputs).emplace_back(static_cast<int>(i), id);
     }
   }
+  if (field_bus) ReadFieldBus();
   program = std::make_unique<DriveProgram>(scene, backend->Read(), channel.get(), image.get());
 
   last_tick = std::llround(options.until_s.value_or(scene.duration_s) / kDriveTickS);
@@ -225,12 +227,12 @@ void SceneRun::State::Step() {
   const control::AmplifierTelegram& at = backend->Read();
   for (size_t k = 0; k < clutches.size(); ++k) clutches[k] = backend->Clutch(static_cast<int>(k));
 
+  // The PLC scans at the start of its cycle, on the machine's inputs as they stand then (the
+  // field bus copied them at the end of the last tick); an external PLC has scanned just before
+  // this tick, on the same inputs, so both see and act alike.
+  if (plc && tick % plc_every == 0) plc->Scan();
   events.clear();
   program->Tick(t, at, clutches, mdt, events);
-  if (field_bus && tick % plc_every == 0) {
-    for (const auto& [io, id] : plc_inputs) image->SetBool(id, at.inputs[io] != 0);
-    if (plc) plc->Scan();
-  }
   if (field_bus)
     for (const auto& [io, id] : plc_outputs) mdt.outputs[io] = image->Bool(id) ? 1 : 0;
   if (channel) {
@@ -329,6 +331,12 @@ void SceneRun::State::Step() {
   backend->Write(mdt);
   backend->Step();
   ++tick;
+  if (field_bus && tick % plc_every == 0) ReadFieldBus();
+}
+
+void SceneRun::State::ReadFieldBus() {
+  const control::AmplifierTelegram& at = backend->Read();
+  for (const auto& [io, id] : plc_inputs) image->SetBool(id, at.inputs[io] != 0);
 }
 
 RunResult SceneRun::State::Finish() {

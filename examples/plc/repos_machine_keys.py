@@ -1,0 +1,99 @@
+#!/usr/bin/python3
+"""An external PLC over Modbus TCP: the repositioning manual's machine-key program (8.2), the
+same logic vmt ships embedded (control/plc/programs/repos_machine_keys.cpp), here as a PLC
+outside the simulation would run it against `vmt serve SCENE --lockstep`.
+
+Each cycle, as a PLC scans: read the inputs, compute, write the outputs, then write the next
+cycle number to the lockstep cycle register: vmt runs one PLC cycle of the simulation and only
+then answers, so the next read sees its result. The addresses come from `vmt signals MODEL
+--format json` (the PLC engineer's map). Runs until vmt ends the scene and closes the
+connection.
+
+    vmt signals models/lathe-c1/machine.yaml --format json > signals.json
+    vmt serve scenes/repos-machine-keys.yaml --modbus 127.0.0.1:5020 --lockstep &
+    examples/plc/repos_machine_keys.py --port 5020 --signals signals.json
+
+Needs python3-pymodbus (Debian package).
+"""
+
+import argparse
+import json
+import sys
+
+from pymodbus.client import ModbusTcpClient
+
+
+class Gateway:
+    """Reads and writes BOOL gateway signals by name through their Modbus addresses."""
+
+    def __init__(self, client, signals):
+        self.client = client
+        self.where = {s["name"]: s["modbus"] for s in signals["signals"]}
+        self.cycle_register = signals["modbus"]["lockstep_cycle_register"]
+
+    def read(self, name):
+        a = self.where[name]
+        if a["area"] == "coil":
+            r = self.client.read_coils(a["address"], 1, slave=1)
+        elif a["area"] == "discrete_input":
+            r = self.client.read_discrete_inputs(a["address"], 1, slave=1)
+        else:
+            raise ValueError(f"{name} is not a BOOL signal")
+        if r.isError():
+            raise ConnectionError(f"reading {name}: {r}")
+        return bool(r.bits[0])
+
+    def write(self, name, value):
+        a = self.where[name]
+        if a["area"] != "coil":
+            raise ValueError(f"{name} is not a BOOL the PLC writes")
+        r = self.client.write_coil(a["address"], value, slave=1)
+        if r.isError():
+            raise ConnectionError(f"writing {name}: {r}")
+
+    def run_cycle(self, number):
+        r = self.client.write_register(self.cycle_register, number % 65536, slave=1)
+        if r.isError():
+            raise ConnectionError(f"cycle {number}: {r}")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--host", default="127.0.0.1")
+    ap.add_argument("--port", type=int, required=True)
+    ap.add_argument("--signals", required=True, help="vmt signals MODEL --format json")
+    args = ap.parse_args()
+    with open(args.signals, encoding="utf-8") as f:
+        signals = json.load(f)
+    client = ModbusTcpClient(args.host, port=args.port)
+    if not client.connect():
+        print(f"cannot connect to {args.host}:{args.port}", file=sys.stderr)
+        return 2
+    io = Gateway(client, signals)
+    repos = resta = False  # the program's outputs, held by their own contacts
+    cycle = 0
+    try:
+        while True:
+            # Inputs, latched for this scan.
+            possible = io.read("P00S.REPOS")
+            key_repos, key_resta = io.read("mREPOS"), io.read("mRESTA")
+            off = io.read("mRaR_OFF")
+            # Network 1: repositioning / NC-block restart permitted.
+            ok = possible and not off
+            # Networks 2 and 3: each call holds itself until the other key or the enable drops.
+            repos, resta = ((key_repos or repos) and ok and not key_resta,
+                            (key_resta or resta) and ok and not key_repos)
+            io.write("P00C.REPOS", repos)
+            io.write("P00C.RESTA", resta)
+            cycle += 1
+            io.run_cycle(cycle)
+    except ConnectionError:
+        pass  # vmt has ended the scene
+    finally:
+        client.close()
+    print(f"repos_machine_keys: {cycle} cycles")
+    return 0 if cycle > 0 else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
