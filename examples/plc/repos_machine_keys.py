@@ -21,6 +21,7 @@ import json
 import sys
 
 from pymodbus.client import ModbusTcpClient
+from pymodbus.exceptions import ModbusException
 
 
 class Gateway:
@@ -87,8 +88,8 @@ def main():
             io.write("P00C.RESTA", resta)
             cycle += 1
             io.run_cycle(cycle)
-    except ConnectionError:
-        pass  # vmt has ended the scene
+    except (ConnectionError, ModbusException, OSError):
+        pass  # vmt has ended the scene and closed the connection
     finally:
         client.close()
     print(f"repos_machine_keys: {cycle} cycles")
