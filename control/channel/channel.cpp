@@ -259,6 +259,24 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
     if (!interpreter_) interpreter_ = MakeInterpreter();
   }
   if (!holding_positions_) return;
+  // The drives answer for themselves: one that is not ready (a fault: its power stage is off)
+  // or lags beyond its limit stops the channel at once, every other axis holding where it is.
+  if (state_ != ChannelState::kError) {
+    for (size_t a = 0; a < config_.axes.size(); ++a) {
+      const uint32_t status = at.feedback[config_.axes[a].drive].status;
+      if (!(status & drive_status::kReady))
+        Fail("axis " + config_.axes[a].name + ": drive not ready (drive fault)", kMsgDriveFault);
+      else if (status & drive_status::kFollowingError)
+        Fail("axis " + config_.axes[a].name + ": following error beyond its limit",
+             kMsgFollowingError);
+      if (state_ == ChannelState::kError) break;
+    }
+    if (config_.spindle_drive >= 0 && state_ != ChannelState::kError &&
+        !(at.feedback[config_.spindle_drive].status & drive_status::kReady)) {
+      spindle_ = {DriveMode::kVelocity, 0, 0};
+      Fail("spindle: drive not ready (drive fault)", kMsgDriveFault);
+    }
+  }
 
   if (++tick_in_cycle_ >= config_.ticks_per_cycle) {
     tick_in_cycle_ = 0;

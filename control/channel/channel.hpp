@@ -111,6 +111,11 @@ class Channel {
   /// Jog key of a channel axis: +1 positive, -1 negative, 0 released. Manual mode only; an
   /// increment, once started, is completed.
   void Jog(size_t axis, int direction);
+  /// A fault outside the program (the PLC stopped, ...): immediate stop, the error state with
+  /// `number` and `text`; Control-Reset clears it.
+  void MachineFault(const std::string& text, int number) {
+    if (state_ != ChannelState::kError) Fail(text, number);
+  }
   /// Direction the axis is commanded to move this NC cycle: +1, -1 or 0 (MVPOS / MVNEG).
   int AxisMotion(size_t axis) const;
   /// Events (BES/BEC) come from here; without a source, the events the program set itself.

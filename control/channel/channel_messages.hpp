@@ -20,6 +20,9 @@ inline constexpr int kMsgNoHomeLabel = 402;    ///< reverse without a .HOME labe
 inline constexpr int kMsgMdiSyntax = 403;      ///< the MDI text does not parse
 inline constexpr int kMsgNotHomed = 501;       ///< a move of an axis that has no reference
 inline constexpr int kMsgSoftwareLimit = 502;  ///< a target beyond the axis' travel
+inline constexpr int kMsgDriveFault = 503;     ///< a drive of the channel is not ready
+inline constexpr int kMsgFollowingError = 504;  ///< an axis lags beyond its following error limit
+inline constexpr int kMsgPlcFault = 505;        ///< the PLC stopped (watchdog)
 
 /// The operator text of a message number ("program error", ...).
 inline const char* MessageText(int number) {
@@ -46,6 +49,16 @@ inline const char* MessageText(int number) {
       return "MDI block error";
     case kMsgNotHomed:
       return "axis not homed";
+    case kMsgSoftwareLimit:
+      return "software limit";
+    case kMsgGouge:
+      return "contour violation (tool nose radius)";
+    case kMsgDriveFault:
+      return "drive not ready";
+    case kMsgFollowingError:
+      return "following error too large";
+    case kMsgPlcFault:
+      return "PLC not running";
     default:
       return "";
   }

@@ -154,9 +154,9 @@ inline double FloorAccel(double gap, double a, double jerk, double dt) {
 /// Distance until the rate, braking as hard as it may, first comes down to `to`, for a limit the
 /// path passes on its way down (a corner, a slower block): the deceleration need not be back at
 /// zero there, only shallow enough that the rate could still come to rest from it without
-/// falling below zero (at most sqrt(jerk to), with a margin). A rising acceleration is brought to zero at
-/// `settle_jerk` (<= jerk: the limit of the block beyond). Meaningful when the rate must come
-/// down: PeakRate(v, a, settle_jerk) > to.
+/// falling below zero (at most sqrt(jerk to), with a margin). A rising acceleration is brought to
+/// zero at `settle_jerk` (<= jerk: the limit of the block beyond). Meaningful when the rate must
+/// come down: PeakRate(v, a, settle_jerk) > to.
 inline double CrossAt(double v, double a, double to, double jerk, double decel, double settle_jerk,
                       double lag) {
   // Distance of a ramp of the acceleration from a0 at jerk js (signed) for t seconds.

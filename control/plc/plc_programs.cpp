@@ -2,6 +2,7 @@
 
 #include <memory>
 
+#include "control/plc/programs/c_axis_changeover.hpp"
 #include "control/plc/programs/repos_machine_keys.hpp"
 
 namespace vmt::control::plc {
@@ -21,6 +22,7 @@ PlcProgram Make(const gateway::SignalImage& image) {
 
 constexpr Entry kPrograms[] = {
     {"repos_machine_keys", &Make<ReposMachineKeys>},
+    {"c_axis_changeover", &Make<CAxisChangeover>},
 };
 
 }  // namespace

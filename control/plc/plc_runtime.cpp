@@ -32,12 +32,19 @@ PlcRuntime::PlcRuntime(gateway::SignalImage& image, PlcProgram program, PlcTime 
 }
 
 void PlcRuntime::Scan() {
+  if (stopped_) return;
   latched_.CopyValuesFrom(image_);
   PlcScan scan(latched_, writable_, now_, cycles_);
   program_(scan);
   for (int id : outputs_) image_.CopyValue(id, latched_);
   now_ += period_;
   ++cycles_;
+}
+
+void PlcRuntime::Stop() {
+  stopped_ = true;
+  gateway::SignalImage presets(image_.table());
+  for (int id : outputs_) image_.CopyValue(id, presets);
 }
 
 }  // namespace vmt::control::plc

@@ -57,8 +57,13 @@ class PlcRuntime {
   /// `image` must outlive the runtime. The period is the scan time (DESIGN.md: 4 ms).
   PlcRuntime(gateway::SignalImage& image, PlcProgram program, PlcTime period);
 
-  /// One scan: latch, run the program, write the outputs; then the PLC clock moves on.
+  /// One scan: latch, run the program, write the outputs; then the PLC clock moves on. A
+  /// stopped PLC does not scan.
   void Scan();
+  /// The PLC stops (its watchdog tripped): every signal it drives falls back to its preset, as
+  /// a PLC's outputs drop when it halts, and no further scan runs.
+  void Stop();
+  bool stopped() const { return stopped_; }
 
   PlcTime now() const { return now_; }
   PlcTime period() const { return period_; }
@@ -71,6 +76,7 @@ class PlcRuntime {
   PlcTime period_;
   PlcTime now_{0};
   uint64_t cycles_ = 0;
+  bool stopped_ = false;
   std::vector<bool> writable_;  ///< by id
   std::vector<int> outputs_;    ///< ids written back at the end of a scan
 };

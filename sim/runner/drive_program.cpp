@@ -96,6 +96,9 @@ DriveProgram::DriveProgram(const Scene& scene, const control::AmplifierTelegram&
   profiles_.resize(m.drives.size());
   profiling_.assign(m.drives.size(), false);
   outputs_.assign(m.io.size(), 0);
+  faults_.sensor.assign(m.io.size(), -1);
+  faults_.valve.assign(m.io.size(), -1);
+  faults_.drive.assign(m.drives.size(), false);
   for (size_t d = 0; d < m.drives.size(); ++d) {
     if (m.drives[d].spindle)
       setpoints_[d] = {DriveMode::kVelocity, 0, 0};
@@ -183,6 +186,18 @@ bool DriveProgram::Execute(const TimelineStep& step, double t_s,
     case Kind::kSignal:
       if (image_) SetSignalNumber(*image_, step.signal, step.target);
       return true;
+    case Kind::kFault: {
+      using F = TimelineStep::Fault;
+      faults_.any = true;
+      if (step.fault == F::kSensorStuck) faults_.sensor[step.io] = step.level;
+      if (step.fault == F::kValveStuck) faults_.valve[step.io] = step.level;
+      if (step.fault == F::kDrive) faults_.drive[step.drive] = true;
+      if (step.fault == F::kPlcOverrun) faults_.plc_missed_scans = step.code;
+      if (step.fault == F::kClear && step.io >= 0)
+        faults_.sensor[step.io] = faults_.valve[step.io] = -1;
+      if (step.fault == F::kClear && step.drive >= 0) faults_.drive[step.drive] = false;
+      return true;
+    }
     case Kind::kJog:
       // The key goes down when the step begins and comes up after `hold`.
       if (!channel_) return true;

@@ -25,6 +25,16 @@ struct TrapezoidProfile {
   double At(double t_s) const;
 };
 
+/// Faults the timeline has injected and not cleared (TimelineStep::Fault); the runner applies
+/// them between the machine and the control.
+struct InjectedFaults {
+  std::vector<int8_t> sensor;    ///< per I/O point: -1 none, else the level it is stuck at
+  std::vector<int8_t> valve;     ///< per I/O point: -1 none, else the level it stays at
+  std::vector<bool> drive;       ///< per drive: power stage off, not ready
+  int64_t plc_missed_scans = 0;  ///< scans the PLC is yet to miss (set by an overrun fault)
+  bool any = false;
+};
+
 class DriveProgram {
  public:
   /// `feedback` gives the state at t = 0: servos hold their position, spindles stand at 0.
@@ -42,6 +52,7 @@ class DriveProgram {
             std::vector<ProgramEvent>& events);
 
   bool finished() const { return next_ >= scene_->timeline.size(); }
+  InjectedFaults& faults() { return faults_; }
   /// Steps that did not complete (wait_until timeouts), as messages.
   const std::vector<std::string>& failures() const { return failures_; }
 
@@ -59,6 +70,7 @@ class DriveProgram {
   size_t next_ = 0;
   double step_since_s_ = -1;  ///< when the current blocking step began
   std::vector<std::string> failures_;
+  InjectedFaults faults_;
 };
 
 /// Evaluates a condition on the machine's feedback (and the channel and the gateway signals,

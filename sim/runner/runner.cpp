@@ -18,6 +18,9 @@
 namespace vmt::sim {
 namespace {
 
+// PLC cycles a scan may be overdue before the watchdog stops the PLC.
+constexpr int64_t kPlcWatchdogCycles = 2;
+
 // Fixed formatting: the trace bytes, and so the digest, depend only on the simulation.
 void Append(std::string& row, double v) {
   char buf[32];
@@ -107,6 +110,9 @@ struct SceneRun::State {
   void Step();
   RunResult Finish();
   void ReadFieldBus();
+  const control::AmplifierTelegram& Faulted(const control::AmplifierTelegram& raw);
+  void ApplyOutputFaults();
+  void ScanPlc(double t);
 
   void emit_trace(const std::string& row) {
     digest.Add(row);
@@ -145,6 +151,8 @@ struct SceneRun::State {
   std::vector<uint8_t> last_inputs;
   control::MasterTelegram mdt;
   std::vector<ProgramEvent> events;
+  control::AmplifierTelegram faulted_at;  ///< the machine as the control sees it, faults applied
+  int64_t plc_overdue = 0;                ///< scans in a row the PLC has missed
 };
 
 SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
@@ -200,8 +208,8 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
       (m.io[i].is_output ? plc_outputs : plc_inputs).emplace_back(static_cast<int>(i), id);
     }
   }
-  if (field_bus) ReadFieldBus();
   program = std::make_unique<DriveProgram>(scene, backend->Read(), channel.get(), image.get());
+  if (field_bus) ReadFieldBus();
 
   last_tick = std::llround(options.until_s.value_or(scene.duration_s) / kDriveTickS);
   trace_every = std::max<int64_t>(1, std::llround(scene.trace_period_s / kDriveTickS));
@@ -224,13 +232,13 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
 
 void SceneRun::State::Step() {
   const double t = tick * kDriveTickS;
-  const control::AmplifierTelegram& at = backend->Read();
+  const control::AmplifierTelegram& at = Faulted(backend->Read());
   for (size_t k = 0; k < clutches.size(); ++k) clutches[k] = backend->Clutch(static_cast<int>(k));
 
   // The PLC scans at the start of its cycle, on the machine's inputs as they stand then (the
   // field bus copied them at the end of the last tick); an external PLC has scanned just before
   // this tick, on the same inputs, so both see and act alike.
-  if (plc && tick % plc_every == 0) plc->Scan();
+  if (plc && tick % plc_every == 0) ScanPlc(t);
   events.clear();
   program->Tick(t, at, clutches, mdt, events);
   if (field_bus)
@@ -328,14 +336,62 @@ void SceneRun::State::Step() {
     finished = true;
     return;
   }
+  ApplyOutputFaults();
   backend->Write(mdt);
   backend->Step();
   ++tick;
   if (field_bus && tick % plc_every == 0) ReadFieldBus();
 }
 
+// Faults between the machine and the control (timeline `fault:` steps): a stuck sensor reads
+// its stuck level, a faulted drive reports itself not ready.
+const control::AmplifierTelegram& SceneRun::State::Faulted(const control::AmplifierTelegram& raw) {
+  InjectedFaults& f = program->faults();
+  if (!f.any) return raw;
+  faulted_at = raw;
+  for (size_t i = 0; i < f.sensor.size(); ++i)
+    if (f.sensor[i] >= 0) faulted_at.inputs[i] = static_cast<uint8_t>(f.sensor[i]);
+  for (size_t d = 0; d < f.drive.size(); ++d)
+    if (f.drive[d])
+      faulted_at.feedback[d].status &=
+          ~(control::drive_status::kReady | control::drive_status::kEnabled);
+  return faulted_at;
+}
+
+// A stuck valve stays where it is whatever the PLC commands; a faulted drive's power stage is
+// off, so its axis coasts.
+void SceneRun::State::ApplyOutputFaults() {
+  InjectedFaults& f = program->faults();
+  if (!f.any) return;
+  for (size_t i = 0; i < f.valve.size(); ++i)
+    if (f.valve[i] >= 0) mdt.outputs[i] = static_cast<uint8_t>(f.valve[i]);
+  for (size_t d = 0; d < f.drive.size(); ++d)
+    if (f.drive[d]) mdt.setpoints[d] = {control::DriveMode::kOff, 0, 0};
+}
+
+// The PLC scans unless an overrun makes it miss its cycles; after two missed cycles its watchdog
+// stops it (its outputs drop) and the NC stops with "PLC not running".
+void SceneRun::State::ScanPlc(double t) {
+  InjectedFaults& f = program->faults();
+  if (plc->stopped()) return;
+  if (f.plc_missed_scans > 0) {
+    --f.plc_missed_scans;
+    if (++plc_overdue > kPlcWatchdogCycles) {
+      plc->Stop();
+      if (channel)
+        channel->MachineFault(
+            "PLC watchdog: " + std::to_string(plc_overdue) + " scans missed, the PLC has stopped",
+            control::channel::kMsgPlcFault);
+      emit_event({{"t", t}, {"event", "plc"}, {"state", "stopped"}, {"reason", "watchdog"}});
+    }
+    return;
+  }
+  plc_overdue = 0;
+  plc->Scan();
+}
+
 void SceneRun::State::ReadFieldBus() {
-  const control::AmplifierTelegram& at = backend->Read();
+  const control::AmplifierTelegram& at = Faulted(backend->Read());
   for (const auto& [io, id] : plc_inputs) image->SetBool(id, at.inputs[io] != 0);
 }
 

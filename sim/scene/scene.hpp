@@ -90,6 +90,7 @@ struct TimelineStep {
     kJog,
     kHandwheel,
     kSignal,
+    kFault,
   } kind;
   double not_before_s = 0;  ///< `at:`; 0 = as soon as the previous step is done
   int drive = -1;
@@ -106,6 +107,10 @@ struct TimelineStep {
   double timeout_s = 10;
   std::string text;  ///< "timeline[3]: move Z to 250" for events and messages
   std::string mdi;   ///< kNcMdi: the blocks
+  /// kFault: what fails. A sensor or valve sticks at `level` (io), a drive loses its power
+  /// stage (drive), the PLC misses `code` scans (its watchdog trips after two), or a fault is
+  /// cleared again (io or drive).
+  enum class Fault { kSensorStuck, kValveStuck, kDrive, kPlcOverrun, kClear } fault{};
 };
 
 struct Expectation {

@@ -133,20 +133,63 @@ Condition ReadCondition(const MachineModel& m, const YamlNode& n, const NcSetup&
 TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const NcSetup& nc) {
   const bool has_nc = nc.present;
   n.AllowKeys({"at", "move", "speed", "orient", "off", "output", "wait", "wait_until", "nc", "jog",
-               "handwheel", "signal"});
+               "handwheel", "signal", "fault"});
   TimelineStep s{};
   s.not_before_s = n.Double("at", 0);
   std::ostringstream text;
   text << "timeline[" << i << "]: ";
   int actions = 0;
   for (const char* k : {"move", "speed", "orient", "off", "output", "wait", "wait_until", "nc",
-                        "jog", "handwheel", "signal"})
+                        "jog", "handwheel", "signal", "fault"})
     actions += n.Has(k);
   if (actions != 1)
     n.Fail(
         "a step needs exactly one of move, speed, orient, off, output, wait, wait_until, nc, jog, "
-        "handwheel, signal");
+        "handwheel, signal, fault");
 
+  if (n.Has("fault")) {
+    // Fault injection: what breaks on a real machine, for the PLC program and the NC to meet.
+    const YamlNode f = n["fault"];
+    f.AllowKeys({"sensor", "valve", "drive", "plc", "cycles", "stuck", "clear"});
+    s.kind = TimelineStep::Kind::kFault;
+    using F = TimelineStep::Fault;
+    const auto io_point = [&](const YamlNode& name, bool output) {
+      const int io = control::IndexOf(m.io, name.String());
+      if (io < 0 || m.io[io].is_output != output || m.io[io].key)
+        name.Fail(std::string("no machine ") +
+                  (output ? "valve (io dir: out)" : "sensor (io dir: in)") + " called '" +
+                  name.String() + "'");
+      return io;
+    };
+    if (f.Has("sensor") || f.Has("valve")) {
+      const bool valve = f.Has("valve");
+      s.io = io_point(f[valve ? "valve" : "sensor"], valve);
+      s.fault = valve ? F::kValveStuck : F::kSensorStuck;
+      s.level = f["stuck"].Bool();
+      text << "fault: " << (valve ? "valve " : "sensor ") << m.io[s.io].name << " stuck at "
+           << s.level;
+    } else if (f.Has("drive")) {
+      s.drive = RequireDrive(m, f["drive"]);
+      s.fault = F::kDrive;
+      text << "fault: drive " << m.drives[s.drive].info.name << " not ready";
+    } else if (f.Has("plc")) {
+      if (f["plc"].String() != "overrun") f["plc"].Fail("expected overrun");
+      s.fault = F::kPlcOverrun;
+      s.code = f.Int("cycles", 10);
+      if (s.code < 1 || s.code > 1000000) f["cycles"].Fail("must be 1..1000000");
+      text << "fault: PLC misses " << s.code << " scans";
+    } else if (f.Has("clear")) {
+      const std::string what = f["clear"].String();
+      s.fault = F::kClear;
+      s.io = control::IndexOf(m.io, what);
+      if (s.io < 0) s.drive = RequireDrive(m, f["clear"]);
+      text << "fault cleared: " << what;
+    } else {
+      f.Fail("expected sensor, valve, drive, plc or clear");
+    }
+    s.text = text.str();
+    return s;
+  }
   if (n.Has("signal")) {  // the default PLC passes a panel key or value to the NC
     const YamlNode a = n["signal"];
     a.AllowKeys({"name", "value"});
@@ -394,8 +437,8 @@ const NamedCamera* Scene::Camera(const std::string& name) const {
 Scene LoadScene(const std::string& path) {
   const YamlNode root = YamlNode::LoadFile(path);
   if (!root.IsMap()) root.Fail("a scene file is a map");
-  root.AllowKeys({"scene", "model", "backend", "duration", "trace_period", "workpiece", "initial", "plc",
-                  "nc", "timeline", "expect", "snapshots", "cameras"});
+  root.AllowKeys({"scene", "model", "backend", "duration", "trace_period", "workpiece", "initial",
+                  "plc", "nc", "timeline", "expect", "snapshots", "cameras"});
   Scene s;
   s.file = path;
   s.name = root["scene"].String();

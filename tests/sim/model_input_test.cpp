@@ -184,6 +184,24 @@ TEST(SceneInputTest, Errors) {
               HasSubstr("timeline[0].move.to: 400 is beyond the travel of X (0 .. 300)"));
   EXPECT_THAT(SceneError("initial_travel", "duration: 1\ninitial: {Z: -5}\n"),
               HasSubstr("initial.Z: -5 is beyond the travel of Z (0 .. 650)"));
+  EXPECT_THAT(
+      SceneError("fault_valve_is_sensor",
+                 "duration: 1\ntimeline:\n  - fault: {valve: IROTMODE, stuck: true}\n"),
+      HasSubstr("timeline[0].fault.valve: no machine valve (io dir: out) called 'IROTMODE'"));
+  EXPECT_THAT(SceneError("fault_plc", "duration: 1\ntimeline:\n  - fault: {plc: crash}\n"),
+              HasSubstr("timeline[0].fault.plc: expected overrun"));
+  EXPECT_THAT(SceneError("fault_empty", "duration: 1\ntimeline:\n  - fault: {stuck: true}\n"),
+              HasSubstr("timeline[0].fault: expected sensor, valve, drive, plc or clear"));
+  EXPECT_THAT(SceneError("plc_without_nc", "duration: 1\nplc: {program: repos_machine_keys}\n"),
+              HasSubstr("plc: a PLC program needs the nc: section"));
+  EXPECT_THAT(SceneError("plc_unknown",
+                         "duration: 1\nnc: {program: " + SourcePath("scenes/nc/stepped_shaft.mtc") +
+                             "}\nplc: {program: nope}\n"),
+              HasSubstr("plc.program: no PLC program 'nope' (there are: repos_machine_keys"));
+  EXPECT_THAT(SceneError("plc_period",
+                         "duration: 1\nnc: {program: " + SourcePath("scenes/nc/stepped_shaft.mtc") +
+                             "}\nplc: {program: repos_machine_keys, period_ms: 0.3}\n"),
+              HasSubstr("plc.period_ms: must be a multiple of the 0.25 ms drive tick"));
 }
 
 TEST(SceneInputTest, GarbageNeverCrashes) {

@@ -37,6 +37,7 @@ struct Machine {
     if (configure) configure(config);
     channel = std::make_unique<Channel>(config, std::vector<const nc::Program*>{&parsed.program});
     at.feedback.resize(3);
+    for (DriveFeedback& f : at.feedback) f.status = drive_status::kReady;  // drives ready
     at.feedback[0].position = x;
     at.feedback[1].position = z;
     mdt.setpoints.resize(3);

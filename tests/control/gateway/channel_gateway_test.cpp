@@ -35,6 +35,7 @@ struct Rig {
     ch->SetEventSource([gw](int n) { return gw->Event(n); });
     ch->SetEventSink([gw](int n, bool v) { gw->SetEvent(n, v); });
     at.feedback.resize(3);
+    for (DriveFeedback& f : at.feedback) f.status = drive_status::kReady;  // drives ready
     mdt.setpoints.resize(3);
   }
   // One NC cycle (4 drive ticks).
