@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "control/plc/programs/c_axis_changeover.hpp"
+#include "control/plc/programs/probe_block.hpp"
 #include "control/plc/programs/repos_machine_keys.hpp"
 
 namespace vmt::control::plc {
@@ -23,6 +24,7 @@ PlcProgram Make(const gateway::SignalImage& image) {
 constexpr Entry kPrograms[] = {
     {"repos_machine_keys", &Make<ReposMachineKeys>},
     {"c_axis_changeover", &Make<CAxisChangeover>},
+    {"probe_block", &Make<ProbeBlockProgram>},
 };
 
 }  // namespace

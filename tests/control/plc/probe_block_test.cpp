@@ -300,10 +300,9 @@ struct AxisCase {
 
 TEST(QMFB1AxxTest, ParameterErrorsAtTheBlock) {
   const AxisCase cases[] = {
-      {0, 0, 0, 1},     {33, 1, 1, 2},  {1, 33, 1, 3},  {1, 1, 33, 4},  {-1, 1, 1, 5},
-      {1, -1, 1, 6},    {1, 1, -1, 7},  {33, -1, 0, 2},  // "> 32" before "< 1"
-      {1, 1, 33, 4},    {-1, 0, 33, 4}, {32, 0, 0, 0},  {1, 0, 0, 0},   {0, 0, 3, 0},
-      {-5, -5, -5, 5},
+      {0, 0, 0, 1},  {33, 1, 1, 2},  {1, 33, 1, 3}, {1, 1, 33, 4}, {-1, 1, 1, 5}, {1, -1, 1, 6},
+      {1, 1, -1, 7}, {33, -1, 0, 2},  // "> 32" before "< 1"
+      {1, 1, 33, 4}, {-1, 0, 33, 4}, {32, 0, 0, 0}, {1, 0, 0, 0},  {0, 0, 3, 0},  {-5, -5, -5, 5},
   };
   for (const AxisCase& c : cases) {
     SCOPED_TRACE(::testing::Message() << c.nr1 << ", " << c.nr2 << ", " << c.nr3);
@@ -451,10 +450,10 @@ TEST(QMFB1AxxTest, Errors28To38And40WritingTheDrives) {
     int axis, parameter, fehler;
   };
   const Case cases[] = {
-      {0, 303, 28}, {1, 303, 29}, {2, 303, 30}, {0, 307, 31}, {1, 307, 32}, {2, 307, 33},
-      {0, 169, 34}, {1, 169, 35}, {2, 169, 36}, {0, 170, 37}, {1, 170, 38},
-      {2, 170, 40},  // the manual gives no number for S-0-0170 of axis 3
-      {1, 401, 40},  // a parameter the block does not write
+      {0, 303, 28}, {1, 303, 29}, {2, 303, 30}, {0, 307, 31}, {1, 307, 32},
+      {2, 307, 33}, {0, 169, 34}, {1, 169, 35}, {2, 169, 36}, {0, 170, 37},
+      {1, 170, 38}, {2, 170, 40},  // the manual gives no number for S-0-0170 of axis 3
+      {1, 401, 40},                // a parameter the block does not write
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(::testing::Message() << "axis " << c.axis + 1 << " S-0-0" << c.parameter);
@@ -527,8 +526,8 @@ TEST(QMFB1AxxTest, DisableResetsEverythingIncludingTheInitialisation) {
   EXPECT_TRUE(b.fb.QDDS_1);
   b.fb.ENABLE = false;
   b.Scan();
-  EXPECT_FALSE(b.fb.QDDS_1 || b.fb.Init_OK_1 || b.fb.Init_OK_2 || b.fb.Q_MTst1 ||
-               b.fb.Q_MTstOK || b.fb.FEHLER);
+  EXPECT_FALSE(b.fb.QDDS_1 || b.fb.Init_OK_1 || b.fb.Init_OK_2 || b.fb.Q_MTst1 || b.fb.Q_MTstOK ||
+               b.fb.FEHLER);
   b.fb.ENABLE = true;
   b.fb.EV_Mess = false;
   b.Scan();
@@ -547,7 +546,9 @@ struct Plant {
   explicit Plant(gateway::GatewayLayout layout)
       : image(gateway::BuildSignalTable(layout)),
         program(std::make_shared<ProbeBlockProgram>(image)),
-        plc(image, [p = program](PlcScan& s) { (*p)(s); }, kScan) {}
+        plc(
+            image, [p = program](PlcScan& s) { (*p)(s); }, kScan) {}
+  Plant(const Plant&) = delete;  // the runtime holds the image by reference
 
   int Id(const char* name) const { return image.Require(name); }
   bool Bool(const char* name) const { return image.Bool(Id(name)); }
@@ -567,16 +568,15 @@ gateway::GatewayLayout ThreeAxes() {
 }
 
 /// The user's side of the wiring: the block enabled on axes 1 and 2, as the lathe measures.
-Plant LathePlant(gateway::GatewayLayout layout = ThreeAxes()) {
-  Plant p(std::move(layout));
+void WireLathe(Plant& p) {
   p.Set("QMFB1A00.ENABLE", true);
   p.SetInt("QMFB1A00.ACHS_NR_1", 1);
   p.SetInt("QMFB1A00.ACHS_NR_2", 2);
-  return p;
 }
 
 TEST(ProbeBlockProgramTest, RunsTheMeasuringSequenceOnTheGateway) {
-  Plant p = LathePlant();
+  Plant p(ThreeAxes());
+  WireLathe(p);
   p.Scan();
   EXPECT_FALSE(p.fb().FEHLER);
 
@@ -635,7 +635,8 @@ TEST(ProbeBlockProgramTest, RunsTheMeasuringSequenceOnTheGateway) {
 }
 
 TEST(ProbeBlockProgramTest, OutputPinsAreWrittenWhereThePlcDrivesThem) {
-  Plant p = LathePlant();
+  Plant p(ThreeAxes());
+  WireLathe(p);
   p.SetInt("QMFB1A00.ACHS_NR_1", 0);
   p.SetInt("QMFB1A00.ACHS_NR_2", 0);
   p.Scan();  // must not write a signal the PLC does not drive
@@ -653,7 +654,8 @@ TEST(ProbeBlockProgramTest, PinsChooseTheEventsTheQFunctionAndTheAxes) {
   gateway::GatewayLayout layout = ThreeAxes();
   layout.events = {31, 32};
   layout.q_functions = {9990};
-  Plant p = LathePlant(layout);
+  Plant p(layout);
+  WireLathe(p);
   p.SetInt("QMFB1A00.Q_Nummer", 9990);
   p.SetInt("QMFB1A00.Koll_EV", 31);
   p.SetInt("QMFB1A00.Touch_EV", 32);
@@ -694,7 +696,8 @@ TEST(ProbeBlockProgramTest, PinsChooseTheEventsTheQFunctionAndTheAxes) {
 }
 
 TEST(ProbeBlockProgramTest, AnAxisTheMachineDoesNotHaveIsError40) {
-  Plant p = LathePlant();
+  Plant p(ThreeAxes());
+  WireLathe(p);
   p.SetInt("QMFB1A00.ACHS_NR_2", 5);  // a valid number, but no axis 5 on this machine
   p.Set("P00.Q9992", true);
   p.Scan(6);
@@ -704,7 +707,8 @@ TEST(ProbeBlockProgramTest, AnAxisTheMachineDoesNotHaveIsError40) {
 }
 
 TEST(ProbeBlockProgramTest, ThePageStandInDecidesTheMeasuringAxes) {
-  Plant p = LathePlant();
+  Plant p(ThreeAxes());
+  WireLathe(p);
   p.SetInt("QMFB1A00.ACHS_NR_2", 0);  // the lathe's page asks for axis 2 as well
   p.Set("P00.Q9992", true);
   p.Scan(3);
@@ -719,7 +723,8 @@ TEST(ProbeBlockProgramTest, ThePageStandInDecidesTheMeasuringAxes) {
 }
 
 TEST(ProbeBlockProgramTest, DisablingReleasesTheLatchEnableAndTouchesNoEvent) {
-  Plant p = LathePlant();
+  Plant p(ThreeAxes());
+  WireLathe(p);
   p.Set("QMFB1A00.I_MT_OK1", true);
   p.Set("P00.Q9992", true);
   p.Scan(5);
@@ -739,7 +744,8 @@ TEST(ProbeBlockProgramTest, DisablingReleasesTheLatchEnableAndTouchesNoEvent) {
 }
 
 TEST(ProbeBlockProgramTest, AMeasuringProcessTheMachineDoesNotHaveSeesNoNc) {
-  Plant p = LathePlant();
+  Plant p(ThreeAxes());
+  WireLathe(p);
   p.SetInt("QMFB1A00.MessProc", 1);
   p.Set("P00.Q9992", true);
   p.Set("P00.EV29", true);
