@@ -34,14 +34,4 @@ std::vector<double> InitialJointPositions(const MachineModel& model, const Initi
   return q;
 }
 
-void ReadInputs(const MachineModel& model, const std::vector<uint8_t>& outputs,
-                const std::vector<DogClutchLogic>& clutches, std::vector<uint8_t>& inputs) {
-  for (size_t i = 0; i < model.io.size(); ++i) inputs[i] = model.io[i].is_output ? outputs[i] : 0;
-  for (size_t k = 0; k < clutches.size(); ++k) {
-    const DogClutch& c = model.clutches[k];
-    inputs[c.sensor_engaged] = clutches[k].EngagedSwitch();
-    inputs[c.sensor_released] = clutches[k].ReleasedSwitch();
-  }
-}
-
 }  // namespace vmt::sim

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "control/drive_bus.hpp"
+#include "sim/backend/actuator.hpp"
 #include "sim/backend/dog_clutch.hpp"
 #include "sim/model/machine_model.hpp"
 
@@ -29,15 +30,13 @@ class MachineBackend : public control::DriveBus {
   /// Joint positions (m | rad), one per model joint: what the renderer and PathGuard pose.
   virtual std::vector<double> JointPositions() const = 0;
   virtual ClutchState Clutch(int index) const = 0;
+  /// Stroke of an actuator (machine.yaml order): 0 off end .. 1 on end.
+  virtual double ActuatorStroke(int index) const = 0;
   virtual const MachineModel& model() const = 0;
 };
 
 /// Joint positions for an initial state: drive positions on their motor joints through their
 /// ratios, then gear and engaged-clutch partners. Throws std::invalid_argument on unknown names.
 std::vector<double> InitialJointPositions(const MachineModel& model, const InitialState& init);
-
-/// The digital inputs the machine shows: outputs read back, clutch end-position switches.
-void ReadInputs(const MachineModel& model, const std::vector<uint8_t>& outputs,
-                const std::vector<DogClutchLogic>& clutches, std::vector<uint8_t>& inputs);
 
 }  // namespace vmt::sim

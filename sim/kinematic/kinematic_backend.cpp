@@ -7,7 +7,9 @@ KinematicBackend::KinematicBackend(const MachineModel& model, const InitialState
   for (const DriveParams& p : model.drives) controllers_.emplace_back(p);
   clutches_.resize(model.clutches.size());
   clutch_offsets_.assign(model.clutches.size(), 0.0);
+  actuators_.resize(model.actuators.size());
   q_ = InitialJointPositions(model, init);
+  held_.assign(q_.size(), 0);
   qd_.assign(q_.size(), 0.0);
   for (size_t k = 0; k < model.clutches.size(); ++k) {
     auto it = init.clutch_engaged.find(model.clutches[k].name);
@@ -72,6 +74,14 @@ void KinematicBackend::Step() {
   q_before_ = q_;
   const std::vector<double>& q_before = q_before_;
 
+  // A clamp holds its joint and what is coupled to it: the ideal machine's clamp never slips.
+  std::fill(held_.begin(), held_.end(), 0);
+  for (size_t k = 0; k < actuators_.size(); ++k) {
+    const Actuator& a = model_->actuators[k];
+    actuators_[k].Step(a, mdt_.outputs[a.valve], dt);
+    if (actuators_[k].Holds(a)) held_[model_->drives[a.holds_drive].motor_joint] = 1;
+  }
+
   // Enabled drives lead their coupled group, first in YAML order; a second enabled drive on the
   // same group follows (on the real machine it would fight: the PLC must switch enables).
   // Groups without an enabled drive stand still: an ideal machine has no inertia to coast on.
@@ -85,7 +95,10 @@ void KinematicBackend::Step() {
     const bool leads =
         sp.mode == control::DriveMode::kPosition || sp.mode == control::DriveMode::kVelocity;
     int64_t& led = group_led_[group_[p.motor_joint]];
-    if (!leads || led == ticks_) continue;
+    bool held = false;
+    for (size_t j = 0; j < held_.size(); ++j)
+      held = held || (held_[j] && group_[j] == group_[p.motor_joint]);
+    if (!leads || led == ticks_ || held) continue;
     led = ticks_;
     q_[p.motor_joint] = q_before[p.motor_joint] + p.ratio * v_ref * dt;
     for (const Follower& f : followers_[p.motor_joint])
@@ -116,7 +129,7 @@ void KinematicBackend::UpdateFeedback() {
     at_.feedback[d] =
         controllers_[d].Feedback(q_[p.motor_joint] / p.ratio, qd_[p.motor_joint] / p.ratio, 0);
   }
-  ReadInputs(*model_, mdt_.outputs, clutches_, at_.inputs);
+  ReadInputs(*model_, mdt_.outputs, clutches_, actuators_, at_.feedback, at_.inputs);
 }
 
 }  // namespace vmt::sim

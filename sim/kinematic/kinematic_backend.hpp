@@ -24,6 +24,7 @@ class KinematicBackend : public MachineBackend {
   double time_s() const override { return ticks_ * kDriveTickS; }
   std::vector<double> JointPositions() const override { return q_; }
   ClutchState Clutch(int index) const override { return clutches_[index].state; }
+  double ActuatorStroke(int index) const override { return actuators_[index].stroke; }
   const MachineModel& model() const override { return *model_; }
 
  private:
@@ -34,6 +35,8 @@ class KinematicBackend : public MachineBackend {
   std::vector<DriveController> controllers_;
   std::vector<DogClutchLogic> clutches_;
   std::vector<double> clutch_offsets_;
+  std::vector<ActuatorLogic> actuators_;
+  std::vector<uint8_t> held_;  ///< per joint: a clamp holds it this tick
   std::vector<double> q_, qd_;
   std::vector<double> q_before_;
 

@@ -30,6 +30,67 @@ int RequireIo(const MachineModel& m, const YamlNode& node, bool output) {
   return i;
 }
 
+int OptionalIo(const MachineModel& m, const YamlNode& map, const char* key, bool output) {
+  return map.Has(key) ? RequireIo(m, map[key], output) : -1;
+}
+
+void ReadActuators(MachineModel& m, const YamlNode& list) {
+  for (size_t i = 0; i < list.size(); ++i) {
+    const YamlNode a = list[i];
+    a.AllowKeys({"name", "valve", "on_switch", "off_switch", "time_on", "time_off", "holds",
+                 "hold_torque"});
+    Actuator d;
+    d.name = a["name"].String();
+    for (const Actuator& other : m.actuators)
+      if (other.name == d.name) a["name"].Fail("duplicate actuator name");
+    d.valve = RequireIo(m, a["valve"], true);
+    d.on_switch = OptionalIo(m, a, "on_switch", false);
+    d.off_switch = OptionalIo(m, a, "off_switch", false);
+    d.time_on_s = a["time_on"].Double();
+    d.time_off_s = a["time_off"].Double();
+    if (d.time_on_s <= 0) a["time_on"].Fail("must be > 0");
+    if (d.time_off_s <= 0) a["time_off"].Fail("must be > 0");
+    if (a.Has("holds")) {
+      d.holds_drive = m.DriveIndex(a["holds"].String());
+      if (d.holds_drive < 0) a["holds"].Fail("no drive named '" + a["holds"].String() + "'");
+      d.hold_torque = a["hold_torque"].Double();
+      if (d.hold_torque <= 0) a["hold_torque"].Fail("must be > 0");
+    } else if (a.Has("hold_torque")) {
+      a["hold_torque"].Fail("only a device that holds a drive (holds:) has a hold torque");
+    }
+    m.actuators.push_back(d);
+  }
+}
+
+void ReadPositionSwitches(MachineModel& m, const YamlNode& list) {
+  for (size_t i = 0; i < list.size(); ++i) {
+    const YamlNode p = list[i];
+    p.AllowKeys({"name", "drive", "pitch", "window"});
+    PositionSwitch ps;
+    ps.input = RequireIo(m, p["name"], false);
+    ps.drive = m.DriveIndex(p["drive"].String());
+    if (ps.drive < 0) p["drive"].Fail("no drive named '" + p["drive"].String() + "'");
+    ps.pitch = p["pitch"].Double();
+    ps.window = p["window"].Double();
+    if (ps.pitch <= 0) p["pitch"].Fail("must be > 0");
+    if (ps.window <= 0 || ps.window >= ps.pitch / 2) p["window"].Fail("must be in (0, pitch/2)");
+    m.position_switches.push_back(ps);
+  }
+}
+
+// An input shows one thing: two devices on one switch would overwrite each other silently.
+void CheckSwitchesDrivenOnce(const MachineModel& m, const YamlNode& root) {
+  std::vector<int> driven(m.io.size(), 0);
+  for (const DogClutch& k : m.clutches) ++driven[k.sensor_engaged], ++driven[k.sensor_released];
+  for (const Actuator& a : m.actuators) {
+    if (a.on_switch >= 0) ++driven[a.on_switch];
+    if (a.off_switch >= 0) ++driven[a.off_switch];
+  }
+  for (const PositionSwitch& p : m.position_switches) ++driven[p.input];
+  for (size_t i = 0; i < driven.size(); ++i)
+    if (driven[i] > 1) root["io"].Fail("input '" + m.io[i].name + "' is the switch of more than one device");
+}
+
 DriveParams ReadDrive(const MachineModel& m, const YamlNode& d) {
   d.AllowKeys({"name", "kind", "type", "joint", "ratio", "kv", "velocity_kp", "velocity_ti",
                "torque_limit", "velocity_limit", "acceleration_limit", "encoder_resolution",
@@ -107,7 +168,8 @@ int MachineModel::DriveIndex(const std::string& n) const {
 
 MachineModel LoadMachineModel(const std::string& machine_yaml_path) {
   const YamlNode root = YamlNode::LoadFile(machine_yaml_path);
-  root.AllowKeys({"machine", "urdf", "io", "drives", "couplings", "cameras", "nc"});
+  root.AllowKeys({"machine", "urdf", "io", "drives", "couplings", "actuators",
+                  "position_switches", "cameras", "nc"});
   MachineModel m;
   m.yaml_path = machine_yaml_path;
   m.name = root["machine"].String();
@@ -172,6 +234,10 @@ MachineModel LoadMachineModel(const std::string& machine_yaml_path) {
       }
     }
   }
+
+  if (root.Has("actuators")) ReadActuators(m, root["actuators"]);
+  if (root.Has("position_switches")) ReadPositionSwitches(m, root["position_switches"]);
+  CheckSwitchesDrivenOnce(m, root);
 
   if (root.Has("cameras")) {
     const YamlNode cams = root["cameras"];

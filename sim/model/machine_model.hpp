@@ -94,6 +94,28 @@ struct DogClutch {
   int sensor_engaged = -1, sensor_released = -1;  ///< I/O indices (inputs)
 };
 
+/// A valve-driven device beside the clutches (tailstock quill, turret clamp, coolant pump, door,
+/// probe switch-on). Its valve (monostable: spring or second coil returns it) moves it to its on
+/// end in time_on and back to its off end in time_off; end switches report the two ends.
+struct Actuator {
+  std::string name;
+  int valve = -1;                       ///< I/O index (output)
+  int on_switch = -1, off_switch = -1;  ///< I/O indices (inputs), -1 when the device has none
+  double time_on_s = 0, time_off_s = 0;
+  /// A clamp: the drive's joint is held unless the device is fully on (released), with up to
+  /// hold_torque (N | N m, load side) -- a drive that pushes against it lags and faults.
+  int holds_drive = -1;
+  double hold_torque = 0;
+};
+
+/// A cam switch on an axis: on while the drive's position is within `window` of a multiple of
+/// `pitch` (turret in position at a station), machine units (mm | deg).
+struct PositionSwitch {
+  int input = -1;  ///< I/O index
+  int drive = -1;
+  double pitch = 0, window = 0;
+};
+
 struct MachineModel {
   std::string name;
   std::string yaml_path, urdf_path;
@@ -103,6 +125,8 @@ struct MachineModel {
   std::vector<control::IoInfo> io;
   std::vector<GearCoupling> gears;
   std::vector<DogClutch> clutches;
+  std::vector<Actuator> actuators;
+  std::vector<PositionSwitch> position_switches;
   std::vector<NamedCamera> cameras;
   NcMachineData nc;  ///< machine.yaml `nc:`; not present for a machine without NC
 

@@ -4,6 +4,7 @@
 #include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
 #include <BulletDynamics/Featherstone/btMultiBodyGearConstraint.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
 #include <btBulletDynamicsCommon.h>
 
@@ -15,6 +16,8 @@ namespace {
 // Gears are stiff: their position error is corrected within a few ticks.
 constexpr double kGearErp = 0.2;
 constexpr double kGearMaxImpulse = 1e9;
+// A clamp pulls a joint that crept under its hold torque back to where it clamped.
+constexpr double kClampPositionGain = 0.2;
 // Coulomb friction is smoothed over this speed so that standstill does not chatter.
 constexpr double kFrictionSmoothing = 1e-4;
 
@@ -33,6 +36,7 @@ struct PhysicsBackend::World {
   std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;
   std::vector<std::unique_ptr<btMultiBodyGearConstraint>> gears;
   std::vector<std::unique_ptr<btMultiBodyGearConstraint>> clutch_gears;  ///< null when open
+  std::vector<std::unique_ptr<btMultiBodyJointMotor>> clamps;  ///< per actuator, null when free
 
   std::unique_ptr<btMultiBodyGearConstraint> Gear(int motor_joint, int load_joint, double ratio,
                                                   double offset) {
@@ -55,6 +59,8 @@ PhysicsBackend::PhysicsBackend(const MachineModel& model, const InitialState& in
   for (const DriveParams& p : model.drives) controllers_.emplace_back(p);
   clutches_.resize(model.clutches.size());
   world_->clutch_gears.resize(model.clutches.size());
+  actuators_.resize(model.actuators.size());
+  world_->clamps.resize(model.actuators.size());
   world_->world.setGravity(btVector3(0, -9.81, 0));
 
   // Link i of the multibody is joint i of the model (joints are in topological order and
@@ -129,6 +135,9 @@ PhysicsBackend::PhysicsBackend(const MachineModel& model, const InitialState& in
     }
   }
 
+  for (size_t k = 0; k < model.actuators.size(); ++k)
+    if (actuators_[k].Holds(model.actuators[k])) Clamp(static_cast<int>(k), true);
+
   mdt_.setpoints.resize(model.drives.size());
   mdt_.outputs.assign(model.io.size(), 0);
   at_.feedback.resize(model.drives.size());
@@ -138,6 +147,8 @@ PhysicsBackend::PhysicsBackend(const MachineModel& model, const InitialState& in
 }
 
 PhysicsBackend::~PhysicsBackend() {
+  for (auto& c : world_->clamps)
+    if (c) world_->world.removeMultiBodyConstraint(c.get());
   for (auto& g : world_->clutch_gears)
     if (g) world_->world.removeMultiBodyConstraint(g.get());
   for (auto& g : world_->gears) world_->world.removeMultiBodyConstraint(g.get());
@@ -182,6 +193,24 @@ void PhysicsBackend::Uncouple(int k) {
   world_->clutch_gears[k].reset();
 }
 
+void PhysicsBackend::Clamp(int k, bool hold) {
+  std::unique_ptr<btMultiBodyJointMotor>& c = world_->clamps[k];
+  if (!hold) {
+    if (c) world_->world.removeMultiBodyConstraint(c.get());
+    c.reset();
+    return;
+  }
+  if (c) return;
+  const Actuator& a = model_->actuators[k];
+  const DriveParams& p = model_->drives[a.holds_drive];
+  btMultiBody& mb = *world_->body;
+  // The hold torque is load side; the joint is the drive's motor joint.
+  c = std::make_unique<btMultiBodyJointMotor>(&mb, p.motor_joint, 0.0,
+                                              a.hold_torque / p.ratio * kDriveTickS);
+  c->setPositionTarget(mb.getJointPos(p.motor_joint), kClampPositionGain);
+  world_->world.addMultiBodyConstraint(c.get());
+}
+
 void PhysicsBackend::Step() {
   const double dt = kDriveTickS;
   btMultiBody& mb = *world_->body;
@@ -202,6 +231,12 @@ void PhysicsBackend::Step() {
     const double qd = mb.getJointVel(static_cast<int>(j));
     mb.addJointTorque(static_cast<int>(j),
                       -joint.damping * qd - joint.friction * std::tanh(qd / kFrictionSmoothing));
+  }
+
+  for (size_t k = 0; k < actuators_.size(); ++k) {
+    const Actuator& a = model_->actuators[k];
+    actuators_[k].Step(a, mdt_.outputs[a.valve], dt);
+    if (a.holds_drive >= 0) Clamp(static_cast<int>(k), actuators_[k].Holds(a));
   }
 
   world_->world.stepSimulation(dt, 0, dt);
@@ -228,7 +263,7 @@ void PhysicsBackend::UpdateFeedback(const std::vector<double>& torques) {
     at_.feedback[d] = controllers_[d].Feedback(mb.getJointPos(p.motor_joint) / p.ratio,
                                                mb.getJointVel(p.motor_joint) / p.ratio, torques[d]);
   }
-  ReadInputs(*model_, mdt_.outputs, clutches_, at_.inputs);
+  ReadInputs(*model_, mdt_.outputs, clutches_, actuators_, at_.feedback, at_.inputs);
 }
 
 }  // namespace vmt::sim

@@ -2,7 +2,8 @@
 // The physics machine: one Bullet Featherstone multibody (btMultiBody, double precision) with
 // the bed as fixed base and every URDF joint as a link, stepped at the 250 us drive tick. Drives
 // close their loops on the joint coordinates and act as joint torques; the belt is a
-// btMultiBodyGearConstraint; the dog clutch adds one when its dogs mesh.
+// btMultiBodyGearConstraint; the dog clutch adds one when its dogs mesh; a clamp (turret) holds
+// its joint with a joint motor limited to the clamp's hold torque.
 //
 // Why Featherstone rather than rigid bodies with hinge/slider constraints: joint coordinates are
 // the state itself, so an encoder reads exactly the joint (no constraint drift between carriage
@@ -36,6 +37,7 @@ class PhysicsBackend : public MachineBackend {
   double time_s() const override { return ticks_ * kDriveTickS; }
   std::vector<double> JointPositions() const override;
   ClutchState Clutch(int index) const override { return clutches_[index].state; }
+  double ActuatorStroke(int index) const override { return actuators_[index].stroke; }
   const MachineModel& model() const override { return *model_; }
 
   /// Joint velocities (m/s | rad/s).
@@ -45,12 +47,14 @@ class PhysicsBackend : public MachineBackend {
   struct World;
   void Couple(int clutch_index);
   void Uncouple(int clutch_index);
+  void Clamp(int actuator_index, bool hold);
   void UpdateFeedback(const std::vector<double>& torques);
 
   const MachineModel* model_;
   std::vector<control::DriveInfo> drive_infos_;
   std::vector<DriveController> controllers_;
   std::vector<DogClutchLogic> clutches_;
+  std::vector<ActuatorLogic> actuators_;
   std::unique_ptr<World> world_;
   control::MasterTelegram mdt_;
   control::AmplifierTelegram at_;

@@ -22,6 +22,8 @@ TEST(BackendAgreementTest, SameMovesSamePathWithinFollowingError) {
   PhysicsBackend physics(m, init);
   KinematicBackend kinematic(m, init);
   Bench bp(physics), bk(kinematic);
+  bp.Output("QTURRET_UNCLAMP", true);  // unclamped within 0.08 s, before T starts at 0.5 s
+  bk.Output("QTURRET_UNCLAMP", true);
 
   // Z and X on trapezoidal profiles at once, then the turret indexes.
   const TrapezoidProfile z{500, 250, 300, 4000, 0}, x{200, 80, 200, 4000, 0.1},

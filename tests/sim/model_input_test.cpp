@@ -77,6 +77,38 @@ TEST(ModelInputTest, MissingKey) {
   EXPECT_THAT(e, HasSubstr("missing required key 'torque_limit'"));
 }
 
+TEST(ModelInputTest, ActuatorErrorsNameTheirPath) {
+  struct Case {
+    const char* name;
+    const char* from;
+    const char* to;
+    const char* path;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"actuator_valve_is_input", "valve: QTAILSTOCK,", "valve: ITAILSTOCK_FWD,",
+       "actuators[0].valve", "must be an output"},
+      {"actuator_unknown_switch", "on_switch: ICOOLANT_PRESSURE", "on_switch: IPUMP",
+       "actuators[2].on_switch", "no I/O point 'IPUMP'"},
+      {"actuator_zero_time", "time_on: 0.4", "time_on: 0", "actuators[2].time_on", "must be > 0"},
+      {"actuator_unknown_drive", "holds: T,", "holds: Q,", "actuators[1].holds",
+       "no drive named 'Q'"},
+      {"actuator_shared_switch", "on_switch: IPROBE_READY", "on_switch: IDOOR_OPEN", "io",
+       "'IDOOR_OPEN' is the switch of more than one device"},
+      {"position_switch_window", "pitch: 30, window: 0.05", "pitch: 30, window: 15",
+       "position_switches[0].window", "must be in (0, pitch/2)"},
+      {"position_switch_drive", "drive: T, pitch", "drive: TT, pitch", "position_switches[0].drive",
+       "no drive named 'TT'"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::string e =
+        LoadEdited(c.name, [&](std::string s) { return Replace(s, c.from, c.to); });
+    EXPECT_THAT(e, HasSubstr(c.path));
+    EXPECT_THAT(e, HasSubstr(c.message));
+  }
+}
+
 TEST(ModelInputTest, UnknownKeyIsNotIgnored) {
   const std::string e = LoadEdited("unknown_key", [](std::string s) {
     return Replace(s, "    teeth: 24", "    teeth: 24\n    teath: 25");

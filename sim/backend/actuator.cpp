@@ -1,0 +1,38 @@
+#include "sim/backend/actuator.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+
+namespace vmt::sim {
+
+void ActuatorLogic::Step(const Actuator& a, bool valve, double dt_s) {
+  stroke = valve ? std::min(1.0, stroke + dt_s / a.time_on_s)
+                 : std::max(0.0, stroke - dt_s / a.time_off_s);
+}
+
+bool PositionSwitchOn(const PositionSwitch& p, double drive_position) {
+  const double off = drive_position - p.pitch * std::round(drive_position / p.pitch);
+  return std::abs(off) <= p.window;
+}
+
+void ReadInputs(const MachineModel& model, const std::vector<uint8_t>& outputs,
+                const std::vector<DogClutchLogic>& clutches,
+                const std::vector<ActuatorLogic>& actuators,
+                const std::vector<control::DriveFeedback>& feedback, std::vector<uint8_t>& inputs) {
+  for (size_t i = 0; i < model.io.size(); ++i) inputs[i] = model.io[i].is_output ? outputs[i] : 0;
+  for (size_t k = 0; k < clutches.size(); ++k) {
+    const DogClutch& c = model.clutches[k];
+    inputs[c.sensor_engaged] = clutches[k].EngagedSwitch();
+    inputs[c.sensor_released] = clutches[k].ReleasedSwitch();
+  }
+  for (size_t k = 0; k < actuators.size(); ++k) {
+    const Actuator& a = model.actuators[k];
+    if (a.on_switch >= 0) inputs[a.on_switch] = actuators[k].OnSwitch();
+    if (a.off_switch >= 0) inputs[a.off_switch] = actuators[k].OffSwitch();
+  }
+  for (const PositionSwitch& p : model.position_switches)
+    inputs[p.input] = PositionSwitchOn(p, feedback[p.drive].position);
+}
+
+}  // namespace vmt::sim
