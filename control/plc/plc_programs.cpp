@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "control/plc/programs/c_axis_changeover.hpp"
+#include "control/plc/programs/machine_panel.hpp"
 #include "control/plc/programs/probe_block.hpp"
 #include "control/plc/programs/repos_machine_keys.hpp"
 
@@ -25,6 +26,7 @@ constexpr Entry kPrograms[] = {
     {"repos_machine_keys", &Make<ReposMachineKeys>},
     {"c_axis_changeover", &Make<CAxisChangeover>},
     {"probe_block", &Make<ProbeBlockProgram>},
+    {"machine_panel", &Make<MachinePanel>},
 };
 
 }  // namespace

@@ -130,10 +130,38 @@ Condition ReadCondition(const MachineModel& m, const YamlNode& n, const NcSetup&
   return c;
 }
 
-TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const NcSetup& nc) {
+// `press: KEY` or `press: {name: KEY, for: S}`: the operator presses a machine key and lets it
+// go after `for` seconds (0.1 s), three steps of the timeline.
+std::vector<TimelineStep> ReadPress(const MachineModel& m, const YamlNode& n, size_t i,
+                                    const NcSetup& nc) {
+  n.AllowKeys({"at", "press"});
+  const YamlNode a = n["press"];
+  const YamlNode name = a.IsMap() ? a["name"] : a;
+  if (a.IsMap()) a.AllowKeys({"name", "for"});
+  const double hold_s = a.IsMap() ? a.Double("for", 0.1) : 0.1;
+  if (!(hold_s > 0)) a["for"].Fail("must be > 0");
+  const int io = control::IndexOf(m.io, name.String());
+  if (io < 0 || !m.io[io].key) name.Fail("'" + name.String() + "' is not a key (io dir: key)");
+  TimelineStep press{}, hold{}, release{};
+  press.kind = release.kind = TimelineStep::Kind::kSignal;
+  press.signal = release.signal = RequireSignal(nc, name);
+  press.not_before_s = n.Double("at", 0);
+  press.target = 1;
+  release.target = 0;
+  hold.kind = TimelineStep::Kind::kWait;
+  hold.wait_s = hold_s;
+  const std::string at = "timeline[" + std::to_string(i) + "]: ";
+  press.text = at + "press " + name.String();
+  hold.text = at + "hold " + name.String() + " " + Fmt(hold_s) + " s";
+  release.text = at + "release " + name.String();
+  return {press, hold, release};
+}
+
+TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const NcSetup& nc,
+                      bool plc) {
   const bool has_nc = nc.present;
   n.AllowKeys({"at", "move", "speed", "orient", "off", "output", "wait", "wait_until", "nc", "jog",
-               "handwheel", "signal", "fault"});
+               "handwheel", "signal", "fault", "press"});
   TimelineStep s{};
   s.not_before_s = n.Double("at", 0);
   std::ostringstream text;
@@ -144,7 +172,7 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
     actions += n.Has(k);
   if (actions != 1)
     n.Fail(
-        "a step needs exactly one of move, speed, orient, off, output, wait, wait_until, nc, jog, "
+        "a step needs exactly one of move, speed, orient, off, output, wait, wait_until, nc, jog, press, "
         "handwheel, signal, fault");
 
   if (n.Has("fault")) {
@@ -204,6 +232,9 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
       a["name"].Fail("the NC writes " + sig.name + ": a PLC cannot set it");
     if (sig.direction == control::gateway::Direction::kMachineToPlc && !key)
       a["name"].Fail(sig.name + " is a sensor of the machine: a PLC cannot set it");
+    if (plc && !key)
+      a["name"].Fail("the scene's PLC program writes " + sig.name +
+                     ": with plc: the timeline only presses the operator's keys");
     s.target = SignalValue(nc, s.signal, a["value"]);
     text << "signal " << sig.name << " = " << Fmt(s.target);
     s.text = text.str();
@@ -353,6 +384,8 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
     s.kind = TimelineStep::Kind::kOutput;
     s.io = RequireIo(m, a["name"]);
     if (!m.io[s.io].is_output) a["name"].Fail("'" + a["name"].String() + "' is an input");
+    if (plc)
+      a["name"].Fail("the scene's PLC program drives the valves (a fault: step makes one stick)");
     s.level = a["value"].Bool();
     text << "output " << a["name"].String() << " = " << (s.level ? 1 : 0);
   } else if (n.Has("wait")) {
@@ -640,7 +673,13 @@ Scene LoadScene(const std::string& path) {
   }
   if (root.Has("timeline")) {
     const YamlNode t = root["timeline"];
-    for (size_t i = 0; i < t.size(); ++i) s.timeline.push_back(ReadStep(m, t[i], i, s.nc));
+    for (size_t i = 0; i < t.size(); ++i) {
+      if (t[i].Has("press")) {
+        for (TimelineStep& step : ReadPress(m, t[i], i, s.nc)) s.timeline.push_back(step);
+        continue;
+      }
+      s.timeline.push_back(ReadStep(m, t[i], i, s.nc, s.plc.present));
+    }
   }
   if (root.Has("expect")) {
     const YamlNode e = root["expect"];

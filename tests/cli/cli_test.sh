@@ -25,7 +25,7 @@ check imgdiff_help 0 "--diff" -- "$vmt" imgdiff --help
 check no_subcommand 2 "" -- "$vmt"
 check unknown_option 2 "" -- "$vmt" run "$src/scenes/default.yaml" --bogus
 
-check run_kinematic 0 "8 passed, 0 failed" -- "$vmt" run "$src/scenes/default.yaml" --backend kinematic --out "$out/run"
+check run_kinematic 0 "10 passed, 0 failed" -- "$vmt" run "$src/scenes/default.yaml" --backend kinematic --out "$out/run"
 for f in trace.csv events.jsonl summary.json iso_3.2s.png work_3.2s.png; do
   check "run_wrote_$f" 0 "" -- test -s "$out/run/$f"
 done

@@ -283,13 +283,7 @@ ProbeBlockProgram::ProbeBlockProgram(const gateway::SignalImage& image)
       I_MTast2(RequireSignal(image, "QMFB1A00.I_MTast2")),
       AXDdisabl(RequireSignal(image, "QMFB1A00.AXDdisabl")),
       MTDdisabl(RequireSignal(image, "QMFB1A00.MTDdisabl")) {
-  // The catalog makes the block's outputs NC -> PLC signals (it sees the block on the NC's
-  // side of the gateway), which a PLC program may not write: those pins are written only where
-  // the PLC drives them, and the block's state is always in `Measuring`.
-  const auto pin = [&image](const char* name) {
-    const int id = RequireSignal(image, name);
-    return Pin{id, PlcDrives(image.table()[id].direction)};
-  };
+  const auto pin = [&image](const char* name) { return RequireSignal(image, name); };
   IDDS = {pin("QMFB1A00.IDDS_1"), pin("QMFB1A00.IDDS_2"), pin("QMFB1A00.IDDS_3")};
   Init_OK = {pin("QMFB1A00.Init_OK_1"), pin("QMFB1A00.Init_OK_2"), pin("QMFB1A00.Init_OK_3")};
   QDDS = {pin("QMFB1A00.QDDS_1"), pin("QMFB1A00.QDDS_2"), pin("QMFB1A00.QDDS_3")};
@@ -304,6 +298,10 @@ ProbeBlockProgram::ProbeBlockProgram(const gateway::SignalImage& image)
   AXDaktiv = pin("QMFB1A00.AXDaktiv");
   MTDaktiv = pin("QMFB1A00.MTDaktiv");
   P_Dat_ovr = pin("QMFB1A00.P_Dat_ovr");
+
+  probe_ready_ = image.Find("IPROBE_READY");
+  probe_contact_ = image.Find("IPROBE_CONTACT");
+  probe_on_ = image.Find("QPROBE_ON");
 
   // Events, Q functions and axes are chosen by the pins (Koll_EV, Q_Nummer, MessProc, ACHS_NR_n)
   // each scan, so every one the machine has is indexed here.
@@ -343,6 +341,9 @@ void ProbeBlockProgram::operator()(PlcScan& s) {
   m.ACHS_NR_1 = int16(ACHS_NR[0]);
   m.ACHS_NR_2 = int16(ACHS_NR[1]);
   m.ACHS_NR_3 = int16(ACHS_NR[2]);
+  // Typical application, network 2: the probe's ready and contact inputs on probe 1's pins.
+  if (probe_ready_ >= 0) s.SetBool(I_MT_OK1, s.Bool(probe_ready_));
+  if (probe_contact_ >= 0) s.SetBool(I_MTast1, s.Bool(probe_contact_));
   m.I_MT_OK1 = s.Bool(I_MT_OK1);
   m.I_MTast1 = s.Bool(I_MTast1);
   m.I_MT_OK2 = s.Bool(I_MT_OK2);
@@ -357,7 +358,7 @@ void ProbeBlockProgram::operator()(PlcScan& s) {
   for (int n = 0; n < 3; ++n) {
     const int id = AxisId(axis_idds_, axes[n]);
     idds[n] = id >= 0 && s.Bool(id);
-    if (IDDS[n].writable) s.SetBool(IDDS[n].id, idds[n]);
+    s.SetBool(IDDS[n], idds[n]);
   }
   m.IDDS_1 = idds[0];
   m.IDDS_2 = idds[1];
@@ -405,22 +406,21 @@ void ProbeBlockProgram::operator()(PlcScan& s) {
   }
   qdds_axes_ = std::move(named);
 
-  const auto out = [&s](const Pin& pin, bool v) {
-    if (pin.writable) s.SetBool(pin.id, v);
-  };
+  const auto out = [&s](int pin, bool v) { s.SetBool(pin, v); };
   const std::array<bool, 3> init_ok = {m.Init_OK_1, m.Init_OK_2, m.Init_OK_3};
   for (int n = 0; n < 3; ++n) {
     out(Init_OK[n], init_ok[n]);
     out(QDDS[n], qdds[n]);
   }
   out(Q_MTst1, m.Q_MTst1);
+  if (probe_on_ >= 0) s.SetBool(probe_on_, m.Q_MTst1);
   out(Q_MTst2, m.Q_MTst2);
   out(Q_MTstOK, m.Q_MTstOK);
   out(Q_MTstKol, m.Q_MTstKol);
   out(Q_MTstKmp, m.Q_MTstKmp);
   out(Q_MTst, m.Q_MTst);
   out(FEHLER, m.FEHLER);
-  if (FEHLER_NR.writable) s.SetInt(FEHLER_NR.id, m.FEHLER_NR);
+  s.SetInt(FEHLER_NR, m.FEHLER_NR);
   out(AXDaktiv, m.AXDaktiv);
   out(MTDaktiv, m.MTDaktiv);
   out(P_Dat_ovr, m.P_Dat_ovr);

@@ -146,24 +146,22 @@ struct ProbeBlockProgram {
   BasisMessPage basis_page{false, false, true, true, false};
 
  private:
-  struct Pin {
-    int id = -1;
-    bool writable = false;  ///< the PLC drives the gateway signal (PlcDrives)
-  };
-
   // Input pins.
   int ENABLE, RESET, Q_Nummer, Koll_EV, Mess_EV, Touch_EV, BasisPage, MessProc;
   std::array<int, 3> ACHS_NR;
   int I_MT_OK1, I_MTast1, I_MT_OK2, I_MTast2, AXDdisabl, MTDdisabl;
-  std::array<Pin, 3> IDDS;
+  std::array<int, 3> IDDS;
   // Output pins.
-  std::array<Pin, 3> Init_OK, QDDS;
-  Pin Q_MTst1, Q_MTst2, Q_MTstOK, Q_MTstKol, Q_MTstKmp, Q_MTst, FEHLER, FEHLER_NR, AXDaktiv,
+  std::array<int, 3> Init_OK, QDDS;
+  int Q_MTst1, Q_MTst2, Q_MTstOK, Q_MTstKol, Q_MTstKmp, Q_MTst, FEHLER, FEHLER_NR, AXDaktiv,
       MTDaktiv, P_Dat_ovr;
 
   // The NC's signals, by process and number / by axis number (-1: not on this machine).
   std::map<std::pair<int, int>, int> events_, q_functions_, q_acks_;
   std::array<int, 33> axis_qdds_, axis_idds_;
+  // The probe's wiring where the machine has it (lathe-c1: IPROBE_READY / IPROBE_CONTACT to
+  // I_MT_OK1 / I_MTast1, Q_MTst1 switching the probe on with QPROBE_ON); -1: not wired.
+  int probe_ready_ = -1, probe_contact_ = -1, probe_on_ = -1;
   std::vector<int> qdds_axes_;  ///< axes whose AxxC.QDDS the program wrote last scan
   int q_ack_ = -1;              ///< the Pxx.Qnnnn_Q written last scan
 };

@@ -174,8 +174,9 @@ TEST(SignalTable, KnownTypesAndDirections) {
       {"P00.EV29", SignalType::kBool, Direction::kShared},
       {"QMFB1A00.ENABLE", SignalType::kBool, Direction::kPlcToNc},
       {"QMFB1A00.ACHS_NR_1", SignalType::kInt, Direction::kPlcToNc},
-      {"QMFB1A00.FEHLER_NR", SignalType::kInt, Direction::kNcToPlc},
-      {"QMFB1A00.Q_MTstKol", SignalType::kBool, Direction::kNcToPlc},
+      // The block runs in the PLC: its outputs are the PLC's to write too.
+      {"QMFB1A00.FEHLER_NR", SignalType::kInt, Direction::kPlcToNc},
+      {"QMFB1A00.Q_MTstKol", SignalType::kBool, Direction::kPlcToNc},
       {"P00.mc_cmd_bs_type_w", SignalType::kUint, Direction::kPlcToNc},
       {"P00.mc_cmd_bs_type_r", SignalType::kUint, Direction::kNcToPlc},
       {"P00.mc_cmd_bs_deviation_max_w", SignalType::kUdint, Direction::kPlcToNc},

@@ -634,20 +634,44 @@ TEST(ProbeBlockProgramTest, RunsTheMeasuringSequenceOnTheGateway) {
   EXPECT_FALSE(p.Bool("P00.EV7"));
 }
 
-TEST(ProbeBlockProgramTest, OutputPinsAreWrittenWhereThePlcDrivesThem) {
+// The block runs in the PLC: its outputs are PLC variables, shown on the gateway.
+TEST(ProbeBlockProgramTest, OutputPinsShowTheBlocksOutputs) {
   Plant p(ThreeAxes());
   WireLathe(p);
   p.SetInt("QMFB1A00.ACHS_NR_1", 0);
   p.SetInt("QMFB1A00.ACHS_NR_2", 0);
-  p.Scan();  // must not write a signal the PLC does not drive
+  p.Scan();
   EXPECT_EQ(p.fb().FEHLER_NR, 1);
-  const int fehler_nr = p.Id("QMFB1A00.FEHLER_NR");
-  if (PlcDrives(p.image.table()[fehler_nr].direction)) {
-    EXPECT_EQ(p.image.Int(fehler_nr), 1);
-    EXPECT_TRUE(p.Bool("QMFB1A00.FEHLER"));
-  } else {
-    EXPECT_EQ(p.image.Int(fehler_nr), 0);
-  }
+  EXPECT_EQ(p.image.Int(p.Id("QMFB1A00.FEHLER_NR")), 1);
+  EXPECT_TRUE(p.Bool("QMFB1A00.FEHLER"));
+}
+
+// On a machine with the probe in its I/O map, the program wires it as the typical application
+// does: ready and contact to probe 1's pins, the probe request switching the probe on.
+TEST(ProbeBlockProgramTest, TheMachinesProbeIsWiredToProbeOne) {
+  gateway::GatewayLayout layout = ThreeAxes();
+  layout.io = {{"QPROBE_ON", true, "probe activation"},
+               {"IPROBE_READY", false, "probe ready"},
+               {"IPROBE_CONTACT", false, "stylus deflected"}};
+  Plant p(layout);
+  WireLathe(p);
+  p.Set("P00.Q9992", true);
+  for (int i = 0; i < 10 && !p.Bool("P00.Q9992_Q"); ++i) p.Scan();
+  p.Set("P00.Q9992", false);
+  p.Scan();
+  EXPECT_FALSE(p.Bool("QPROBE_ON"));
+  p.Set("P00.EV29", true);
+  p.Scan();
+  EXPECT_TRUE(p.Bool("QPROBE_ON"));  // the measuring program requests probe 1
+  EXPECT_FALSE(p.fb().Q_MTstOK);
+  p.Set("IPROBE_READY", true);
+  p.Scan();
+  EXPECT_TRUE(p.Bool("QMFB1A00.I_MT_OK1"));
+  EXPECT_TRUE(p.fb().Q_MTstOK);
+  p.Set("IPROBE_CONTACT", true);  // displaced during the approach: a collision
+  p.Scan();
+  EXPECT_TRUE(p.Bool("QMFB1A00.I_MTast1"));
+  EXPECT_TRUE(p.fb().Q_MTstKol);
 }
 
 TEST(ProbeBlockProgramTest, PinsChooseTheEventsTheQFunctionAndTheAxes) {

@@ -1,0 +1,156 @@
+// The machine_panel PLC program: panel keys to NC control signals, the door, quill and coolant
+// with their interlocks, and the auxiliary-function acknowledgement.
+
+#include "control/plc/programs/machine_panel.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "control/gateway/signal_table.hpp"
+#include "control/plc/plc_programs.hpp"
+
+namespace vmt::control::plc {
+namespace {
+
+class MachinePanelTest : public ::testing::Test {
+ protected:
+  static gateway::SignalImage Image() {
+    gateway::GatewayLayout layout;
+    layout.processes = {0};
+    layout.axes = {{1, "X", false, false}, {2, "Z", false, false}, {3, "S1", true, false}};
+    for (const char* out : {"QDOOR_OPEN", "QTAILSTOCK", "QCOOLANT"})
+      layout.io.push_back({out, true, "valve"});
+    for (const char* in : {"IDOOR_CLOSED", "ICOOLANT_PRESSURE", "ITAILSTOCK_FWD"})
+      layout.io.push_back({in, false, "switch"});
+    for (const char* key : {"mAUTO", "mMANU", "mSTART", "mSTOP", "mRESET", "mSBL", "mCOOLANT",
+                            "mDOOR", "mTAILSTOCK", "mJGPOS_X", "mJGNEG_X", "mJGPOS_Z",
+                            "mJGNEG_Z", "mREPOS", "mRESTA", "mRaR_OFF"})
+      layout.io.push_back({key, false, "key"});
+    return gateway::SignalImage(gateway::BuildSignalTable(layout));
+  }
+
+  MachinePanelTest()
+      : image(Image()), plc(image, *MakePlcProgram("machine_panel", image), PlcTime(4000)) {
+    Set("IDOOR_CLOSED", true);
+    Set("A03S.N_NMIN", true);
+  }
+
+  void Set(const std::string& name, bool v) { image.SetBool(image.Require(name), v); }
+  bool Get(const std::string& name) const { return image.Bool(image.Require(name)); }
+  /// The operator presses a key for two scans and lets it go.
+  void Press(const std::string& key) {
+    Set(key, true);
+    plc.Scan();
+    plc.Scan();
+    Set(key, false);
+    plc.Scan();
+  }
+
+  gateway::SignalImage image;
+  PlcRuntime plc;
+};
+
+TEST_F(MachinePanelTest, KeysBecomeControlSignals) {
+  Set("mAUTO", true);
+  plc.Scan();
+  EXPECT_TRUE(Get("P00C.AUTO"));
+  Set("mAUTO", false);
+  plc.Scan();
+  EXPECT_FALSE(Get("P00C.AUTO"));
+  Set("mJGNEG_Z", true);
+  plc.Scan();
+  EXPECT_TRUE(Get("A02C.JGNEG"));
+  EXPECT_FALSE(Get("A01C.JGNEG"));
+  Set("mJGNEG_Z", false);
+  Press("mSBL");
+  EXPECT_TRUE(Get("P00C.SBL"));  // toggled on, stays
+  Press("mSBL");
+  EXPECT_FALSE(Get("P00C.SBL"));
+}
+
+TEST_F(MachinePanelTest, FeedHoldHoldsUntilStart) {
+  Press("mSTOP");
+  EXPECT_TRUE(Get("P00C.STOP"));  // held after the key is let go
+  Set("mSTART", true);
+  plc.Scan();
+  EXPECT_FALSE(Get("P00C.STOP"));
+  EXPECT_TRUE(Get("P00C.START"));
+  Set("mSTART", false);
+  plc.Scan();
+  EXPECT_FALSE(Get("P00C.START"));
+}
+
+TEST_F(MachinePanelTest, DoorOpensOnlyAtRestAndAnOpenDoorHoldsTheFeed) {
+  Set("P00S.RUN", true);
+  Press("mDOOR");
+  EXPECT_FALSE(Get("QDOOR_OPEN"));  // the program runs
+  Set("P00S.RUN", false);
+  Set("A03S.N_NMIN", false);
+  Press("mDOOR");
+  EXPECT_FALSE(Get("QDOOR_OPEN"));  // the spindle turns
+  Set("A03S.N_NMIN", true);
+  Press("mDOOR");
+  EXPECT_TRUE(Get("QDOOR_OPEN"));
+  Set("IDOOR_CLOSED", false);
+  plc.Scan();
+  EXPECT_TRUE(Get("P00C.STOP"));
+  Set("mSTART", true);
+  Set("mJGPOS_X", true);
+  plc.Scan();
+  EXPECT_FALSE(Get("P00C.START"));  // no cycle start with the door open
+  EXPECT_FALSE(Get("A01C.JGPOS"));  // nor jogging
+  Set("mSTART", false);
+  Set("mJGPOS_X", false);
+  Press("mDOOR");
+  EXPECT_FALSE(Get("QDOOR_OPEN"));  // closes at any time
+}
+
+TEST_F(MachinePanelTest, QuillMovesOnlyWhileTheProgramDoesNotRun) {
+  Set("P00S.RUN", true);
+  Press("mTAILSTOCK");
+  EXPECT_FALSE(Get("QTAILSTOCK"));
+  Set("P00S.RUN", false);
+  Press("mTAILSTOCK");
+  EXPECT_TRUE(Get("QTAILSTOCK"));
+  Press("mTAILSTOCK");
+  EXPECT_FALSE(Get("QTAILSTOCK"));
+}
+
+// M08 waits for the pressure switch; M09 and other functions are acknowledged at once; each
+// acknowledgement is a pulse, so a function that follows at once gets its own edge.
+TEST_F(MachinePanelTest, AuxiliaryFunctionsAreAcknowledgedAsPulses) {
+  image.SetInt(image.Require("P00S.MFUNC"), 8);
+  Set("P00S.AUXSTB", true);
+  plc.Scan();
+  EXPECT_TRUE(Get("QCOOLANT"));
+  EXPECT_FALSE(Get("P00C.AUXACK"));
+  plc.Scan();
+  EXPECT_FALSE(Get("P00C.AUXACK"));  // no pressure yet
+  Set("ICOOLANT_PRESSURE", true);
+  plc.Scan();
+  EXPECT_TRUE(Get("P00C.AUXACK"));
+  // The NC has moved on to the next block's M03 before the PLC saw AUXSTB drop.
+  image.SetInt(image.Require("P00S.MFUNC"), 3);
+  plc.Scan();
+  EXPECT_FALSE(Get("P00C.AUXACK"));  // the pulse ends
+  plc.Scan();
+  EXPECT_TRUE(Get("P00C.AUXACK"));  // M03 gets an edge of its own
+  EXPECT_TRUE(Get("QCOOLANT"));
+  image.SetInt(image.Require("P00S.MFUNC"), 9);
+  plc.Scan();
+  plc.Scan();
+  EXPECT_FALSE(Get("QCOOLANT"));
+  Set("P00S.AUXSTB", false);
+  Press("mCOOLANT");
+  EXPECT_TRUE(Get("QCOOLANT"));  // the key toggles it too
+}
+
+TEST_F(MachinePanelTest, RepositioningKeysAreANetworkOfIt) {
+  Set("P00S.REPOS", true);
+  Press("mREPOS");
+  EXPECT_TRUE(Get("P00C.REPOS"));
+}
+
+}  // namespace
+}  // namespace vmt::control::plc
