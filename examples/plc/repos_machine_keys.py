@@ -18,44 +18,13 @@ Needs python3-pymodbus (Debian package).
 
 import argparse
 import json
+import os
 import sys
 
-from pymodbus.client import ModbusTcpClient
-from pymodbus.exceptions import ModbusException
-
-
-class Gateway:
-    """Reads and writes BOOL gateway signals by name through their Modbus addresses."""
-
-    def __init__(self, client, signals):
-        self.client = client
-        self.where = {s["name"]: s["modbus"] for s in signals["signals"]}
-        self.cycle_register = signals["modbus"]["lockstep_cycle_register"]
-
-    def read(self, name):
-        a = self.where[name]
-        if a["area"] == "coil":
-            r = self.client.read_coils(a["address"], 1, slave=1)
-        elif a["area"] == "discrete_input":
-            r = self.client.read_discrete_inputs(a["address"], 1, slave=1)
-        else:
-            raise ValueError(f"{name} is not a BOOL signal")
-        if r.isError():
-            raise ConnectionError(f"reading {name}: {r}")
-        return bool(r.bits[0])
-
-    def write(self, name, value):
-        a = self.where[name]
-        if a["area"] != "coil":
-            raise ValueError(f"{name} is not a BOOL the PLC writes")
-        r = self.client.write_coil(a["address"], value, slave=1)
-        if r.isError():
-            raise ConnectionError(f"writing {name}: {r}")
-
-    def run_cycle(self, number):
-        r = self.client.write_register(self.cycle_register, number % 65536, slave=1)
-        if r.isError():
-            raise ConnectionError(f"cycle {number}: {r}")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pymodbus.client import ModbusTcpClient  # noqa: E402
+from pymodbus.exceptions import ModbusException  # noqa: E402
+from vmt_modbus import Gateway  # noqa: E402
 
 
 def main():
@@ -76,16 +45,18 @@ def main():
     try:
         while True:
             # Inputs, latched for this scan.
-            possible = io.read("P00S.REPOS")
-            key_repos, key_resta = io.read("mREPOS"), io.read("mRESTA")
-            off = io.read("mRaR_OFF")
+            io.latch(["P00S.REPOS", "mREPOS", "mRESTA", "mRaR_OFF"])
+            possible = io.get("P00S.REPOS")
+            key_repos, key_resta = io.get("mREPOS"), io.get("mRESTA")
+            off = io.get("mRaR_OFF")
             # Network 1: repositioning / NC-block restart permitted.
             ok = possible and not off
             # Networks 2 and 3: each call holds itself until the other key or the enable drops.
             repos, resta = ((key_repos or repos) and ok and not key_resta,
                             (key_resta or resta) and ok and not key_repos)
-            io.write("P00C.REPOS", repos)
-            io.write("P00C.RESTA", resta)
+            io.set("P00C.REPOS", repos)
+            io.set("P00C.RESTA", resta)
+            io.flush(["P00C.REPOS", "P00C.RESTA"])
             cycle += 1
             io.run_cycle(cycle)
     except (ConnectionError, ModbusException, OSError):

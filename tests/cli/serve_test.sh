@@ -44,6 +44,25 @@ if start_serve "$out/external" lockstep; then
   grep -q '"expectations_failed": 0' "$out/external/summary.json" || fail "external expectations failed"
 fi
 
+# Lockstep with a PLC that drives valves and acknowledges M functions: the panel program in
+# Python gives the embedded machine_panel's run, byte for byte.
+scene=$src/scenes/machine-panel.yaml
+"$vmt" run "$scene" --out "$out/panel_embedded" >"$out/panel_embedded.log" 2>&1 || fail "embedded panel run"
+if start_serve "$out/panel_external" lockstep; then
+  timeout 120 "$python" "$src/examples/plc/machine_panel.py" --port "$port" \
+    --signals "$out/signals.json" >"$out/panel_client.log" 2>&1 || { fail "python panel PLC"; cat "$out/panel_client.log"; }
+  wait $serve_pid || { fail "vmt serve (panel) exit $?"; cat "$out/panel_external/serve.log"; }
+  d1=$(grep -o '"trace_digest": "[0-9a-f]*"' "$out/panel_embedded/summary.json")
+  d2=$(grep -o '"trace_digest": "[0-9a-f]*"' "$out/panel_external/summary.json")
+  [ -n "$d1" ] && [ "$d1" = "$d2" ] || fail "panel trace digest embedded $d1 vs external $d2"
+  grep '"signal"' "$out/panel_embedded/events.jsonl" >"$out/panel_embedded.signals"
+  grep '"signal"' "$out/panel_external/events.jsonl" >"$out/panel_external.signals"
+  cmp -s "$out/panel_embedded.signals" "$out/panel_external.signals" ||
+    { fail "panel signal changes differ"; diff "$out/panel_embedded.signals" "$out/panel_external.signals" | head; }
+  grep -q '"expectations_failed": 0' "$out/panel_external/summary.json" || fail "external panel expectations failed"
+fi
+scene=$src/scenes/repos-machine-keys.yaml
+
 # mbpoll reads the status, and writing an NC status address is refused.
 if start_serve "$out/mbpoll" lockstep; then
   addr=$("$python" -c "import json,sys; d=json.load(open(sys.argv[1])); print([s['modbus']['address'] for s in d['signals'] if s['name']=='P00S.RUN'][0])" "$out/signals.json")

@@ -1,0 +1,128 @@
+#!/usr/bin/python3
+"""An external PLC over Modbus TCP: lathe-c1's panel and machine program, the same logic vmt
+ships embedded (control/plc/programs/machine_panel.cpp), run against `vmt serve SCENE
+--lockstep`: panel keys to the NC's control signals, the door, tailstock quill and coolant with
+their interlocks, M08 acknowledged on the coolant pressure, and the repositioning keys (8.2).
+
+    vmt signals models/lathe-c1/machine.yaml --format json > signals.json
+    vmt serve scenes/machine-panel.yaml --modbus 127.0.0.1:5020 --lockstep &
+    examples/plc/machine_panel.py --port 5020 --signals signals.json
+
+Needs python3-pymodbus (Debian package).
+"""
+
+import argparse
+import json
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pymodbus.client import ModbusTcpClient  # noqa: E402
+from pymodbus.exceptions import ModbusException  # noqa: E402
+from vmt_modbus import Gateway  # noqa: E402
+
+KEYS = ["mAUTO", "mMANU", "mSTART", "mSTOP", "mRESET", "mSBL", "mCOOLANT", "mDOOR",
+        "mTAILSTOCK", "mREPOS", "mRESTA", "mRaR_OFF"]
+JOG = {"mJGPOS_X": "A01C.JGPOS", "mJGNEG_X": "A01C.JGNEG",
+       "mJGPOS_Z": "A02C.JGPOS", "mJGNEG_Z": "A02C.JGNEG"}
+INPUTS = KEYS + list(JOG) + ["P00S.RUN", "P00S.AUXSTB", "P00S.MFUNC", "P00S.REPOS",
+                             "A03S.N_NMIN", "IDOOR_CLOSED", "ICOOLANT_PRESSURE"]
+# P00C.REPOS/RESTA hold themselves (8.2): the program reads back what it wrote.
+OUTPUTS = ["P00C.AUTO", "P00C.MANU", "P00C.RESET", "P00C.SBL", "P00C.STOP", "P00C.START",
+           "P00C.AUXACK", "P00C.REPOS", "P00C.RESTA", "QDOOR_OPEN", "QTAILSTOCK",
+           "QCOOLANT"] + list(JOG.values())
+
+
+class Edge:
+    """R_TRIG."""
+
+    def __init__(self):
+        self.last = False
+
+    def __call__(self, clk):
+        q = clk and not self.last
+        self.last = clk
+        return q
+
+
+class MachinePanel:
+    def __init__(self):
+        self.edges = {k: Edge() for k in ("mSTART", "mSTOP", "mSBL", "mCOOLANT", "mDOOR",
+                                          "mTAILSTOCK")}
+        self.feed_hold = self.single_block = self.coolant = self.door_open = False
+        self.quill = self.aux_acked = False
+
+    def scan(self, io):
+        g = io.get
+        running, at_rest, door_closed = g("P00S.RUN"), g("A03S.N_NMIN"), g("IDOOR_CLOSED")
+        edge = {k: e(g(k)) for k, e in self.edges.items()}
+        if edge["mDOOR"]:
+            self.door_open = False if self.door_open else (not running and at_rest)
+        io.set("QDOOR_OPEN", self.door_open)
+        io.set("P00C.AUTO", g("mAUTO"))
+        io.set("P00C.MANU", g("mMANU"))
+        io.set("P00C.RESET", g("mRESET"))
+        if edge["mSBL"]:
+            self.single_block = not self.single_block
+        io.set("P00C.SBL", self.single_block)
+        if edge["mSTOP"]:
+            self.feed_hold = True
+        if edge["mSTART"] and door_closed:
+            self.feed_hold = False
+        io.set("P00C.STOP", self.feed_hold or not door_closed)
+        io.set("P00C.START", g("mSTART") and not self.feed_hold and door_closed)
+        for key, signal in JOG.items():
+            io.set(signal, g(key) and door_closed)
+        if edge["mTAILSTOCK"] and not running:
+            self.quill = not self.quill
+        io.set("QTAILSTOCK", self.quill)
+        if edge["mCOOLANT"]:
+            self.coolant = not self.coolant
+        strobe = g("P00S.AUXSTB")
+        m = g("P00S.MFUNC") if strobe else -1
+        if m == 8:
+            self.coolant = True
+        if m == 9:
+            self.coolant = False
+        io.set("QCOOLANT", self.coolant)
+        ack = strobe and (m != 8 or g("ICOOLANT_PRESSURE")) and not self.aux_acked
+        io.set("P00C.AUXACK", ack)
+        self.aux_acked = ack
+        # Repositioning manual 8.2, networks 1 to 3.
+        ok = g("P00S.REPOS") and not g("mRaR_OFF")
+        repos = (g("mREPOS") or io.values.get("P00C.REPOS", False)) and ok and not g("mRESTA")
+        resta = (g("mRESTA") or io.values.get("P00C.RESTA", False)) and ok and not g("mREPOS")
+        io.set("P00C.REPOS", repos)
+        io.set("P00C.RESTA", resta)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--host", default="127.0.0.1")
+    ap.add_argument("--port", type=int, required=True)
+    ap.add_argument("--signals", required=True, help="vmt signals MODEL --format json")
+    args = ap.parse_args()
+    with open(args.signals, encoding="utf-8") as f:
+        signals = json.load(f)
+    client = ModbusTcpClient(args.host, port=args.port)
+    if not client.connect():
+        print(f"cannot connect to {args.host}:{args.port}", file=sys.stderr)
+        return 2
+    io, program, cycle = Gateway(client, signals), MachinePanel(), 0
+    try:
+        while True:
+            io.latch(INPUTS)
+            program.scan(io)
+            io.flush(OUTPUTS)
+            cycle += 1
+            io.run_cycle(cycle)
+    except (ConnectionError, ModbusException, OSError):
+        pass  # vmt has ended the scene and closed the connection
+    finally:
+        client.close()
+    print(f"machine_panel: {cycle} cycles")
+    return 0 if cycle > 0 else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
