@@ -46,6 +46,7 @@ Channel::Channel(ChannelConfig config, std::vector<const nc::Program*> programs)
   homed_.resize(n);
   for (size_t a = 0; a < n; ++a) homed_[a] = config_.axes[a].homed_at_start;
   spindle_ = {DriveMode::kVelocity, 0, 0};
+  if (config_.headstock) headstock_.emplace(*config_.headstock);
   last_modal_ = config_.initial;
   for (size_t a = 0; a < n; ++a) {
     if (config_.axes[a].name == "Z") axis_z_ = static_cast<int>(a);
@@ -125,6 +126,9 @@ bool Channel::Reverse() {
     return false;
   }
   // The interrupted block is abandoned where the axes stand; the reverse program starts there.
+  // A changeover in progress is given up and the original mode restored (C-axis manual 2.3).
+  if (headstock_) headstock_->Abandon();
+  waiting_for_ = axes::HeadstockMode::kNone;
   DropLookahead();
   active_ = false;
   homing_ = false;
@@ -164,6 +168,9 @@ void Channel::Fail(const nc::Program& program, int32_t block, const std::string&
 }
 
 bool Channel::SetMode(ChannelMode mode) {
+  // C-axis manual 2.3: a mode change during a changeover is an immediate stop.
+  if (state_ == ChannelState::kRunning && headstock_ && headstock_->busy() && mode != mode_)
+    Stop();
   if (state_ == ChannelState::kRunning) return false;
   // MDI and an interrupted automatic program do not share the interpreter: MDI needs the
   // program ended or reset first.
@@ -219,6 +226,9 @@ void Channel::Stop() {
 }
 
 void Channel::Reset() {
+  // Control-Reset aborts a changeover; the mode is again what the PLC acknowledges (2.3).
+  if (headstock_) headstock_->TakeModeFromPlc(headstock_plc_);
+  waiting_for_ = axes::HeadstockMode::kNone;
   state_ = ChannelState::kIdle;
   error_.clear();
   error_number_ = 0;
@@ -282,12 +292,18 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
     tick_in_cycle_ = 0;
     previous_ = commanded_;
     const double dt = config_.tick_s * config_.ticks_per_cycle;
+    if (headstock_) HeadstockCycle(at, dt);
     if (mode_ == ChannelMode::kManual) {
       Jogging(dt);
     } else if (state_ == ChannelState::kRunning || state_ == ChannelState::kHold) {
       bool finished = false;
       if (!aux_output_.empty()) {
         // The block waits for the PLC's acknowledgement of its auxiliary functions.
+      } else if (waiting_for_ != axes::HeadstockMode::kNone) {
+        // Block preparation and execution wait until the changeover ends (C-axis manual 1.2).
+        if (headstock_->mode() == waiting_for_)
+          finished = RunBlock(at) && !active_ && dwell_left_s_ <= 0 &&
+                     waiting_for_ == axes::HeadstockMode::kNone;
       } else if (pending_motion_) {
         pending_motion_ = false;
         if (StartMotion(at)) finished = !active_ && dwell_left_s_ <= 0 && !homing_;
@@ -295,7 +311,8 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
         if (state_ == ChannelState::kRunning) dwell_left_s_ -= dt;
         finished = dwell_left_s_ <= 0;
       } else if (!active_ && state_ == ChannelState::kRunning) {
-        finished = NextBlock(at) && !active_ && dwell_left_s_ <= 0;
+        finished = NextBlock(at) && !active_ && dwell_left_s_ <= 0 &&
+                   waiting_for_ == axes::HeadstockMode::kNone;
       }
       if (active_) {
         Interpolate(dt);
@@ -323,10 +340,58 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
     if (low_lag) sp.velocity_feedforward = (commanded_[a] - previous_[a]) / cycle_s;
   }
   if (config_.spindle_drive >= 0) mdt.setpoints[config_.spindle_drive] = spindle_;
+  if (headstock_) {
+    const DriveSetpoint rotary = mdt.setpoints[config_.axes[config_.rotary_axis].drive];
+    headstock_->WriteSetpoints(spindle_, rotary, at, mdt);
+  }
+}
+
+void Channel::HeadstockCycle(const AmplifierTelegram& at, double dt) {
+  if (!headstock_known_) {
+    headstock_->TakeModeFromPlc(headstock_plc_);  // power-on mode (2.3)
+    headstock_known_ = true;
+  }
+  // The sequence and the PLC's motion functions halt while the program is stopped (2.3).
+  axes::HeadstockPlc plc = headstock_plc_;
+  plc.stop = plc.stop || state_ == ChannelState::kHold || state_ == ChannelState::kError;
+  if (!headstock_->Cycle(plc, at, dt) && state_ != ChannelState::kError)
+    Fail(headstock_->error(), kMsgChangeoverAck);
+  // The rotary axis follows its actual position wherever the NC does not position it: its
+  // command value is up to date when rotary axis mode begins (5).
+  const size_t r = static_cast<size_t>(config_.rotary_axis);
+  const bool positioned = headstock_->mode() == axes::HeadstockMode::kRotary ||
+                          (headstock_->config().separate_servo() && !headstock_->busy() &&
+                           plc.rotary_ready);
+  if (headstock_->TakeOverRotary() || !positioned || !plc.rotary_ready) {
+    commanded_[r] = previous_[r] = at.feedback[config_.axes[r].drive].position;
+    jog_[r].handwheel_target = commanded_[r];
+  }
+}
+
+axes::HeadstockMode Channel::ModeNeeded(const nc::PreparedBlock& b) const {
+  // C-axis manual 4.2: G00/G01/G02/G03 with the rotary axis' name select rotary axis mode;
+  // M3, M4, M5, M19 (and G33, G63, G64) spindle mode.
+  for (const nc::AuxFunction& f : b.aux)
+    if (f.letter == 'M' && (f.value == 3 || f.value == 4 || f.value == 5 || f.value == 19))
+      return axes::HeadstockMode::kSpindle;
+  const bool interpolates = b.motion == nc::Motion::kRapid || b.motion == nc::Motion::kLinear ||
+                            b.motion == nc::Motion::kArcCw || b.motion == nc::Motion::kArcCcw;
+  if (interpolates && (b.programmed >> config_.rotary_axis & 1))
+    return axes::HeadstockMode::kRotary;
+  return axes::HeadstockMode::kNone;
 }
 
 bool Channel::RunBlock(const AmplifierTelegram& at) {
   const nc::Program& program = *ProgramOf(block_.program);
+  if (headstock_) {
+    const axes::HeadstockMode need = ModeNeeded(block_);
+    if (need != axes::HeadstockMode::kNone && headstock_->mode() != need) {
+      headstock_->Request(need);
+      waiting_for_ = need;
+      return true;
+    }
+    waiting_for_ = axes::HeadstockMode::kNone;
+  }
   auto unsupported = [&](const std::string& what) {
     Fail(program, block_.block, what + " is not available in the channel yet", kMsgNotAvailable);
     return false;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "control/axes/axis_parameters.hpp"
+#include "control/axes/headstock_changeover.hpp"
 #include "control/axes/tool_table.hpp"
 #include "control/axes/zero_offsets.hpp"
 #include "control/channel/block_motion.hpp"
@@ -43,6 +44,10 @@ struct ChannelConfig {
   /// block goes on; off, they count as acknowledged at once.
   bool aux_handshake = false;
   double handwheel_per_count = 0.01;  ///< mm | deg per handwheel count
+  /// A spindle with a rotary axis mode (C-axis manual): the blocks and jog keys that need the
+  /// other mode wait for the changeover. Absent: the spindle is only a spindle.
+  std::optional<axes::HeadstockConfig> headstock;
+  int rotary_axis = -1;  ///< the channel axis of the headstock's rotary axis mode (C)
 };
 
 enum class ChannelState { kIdle, kRunning, kHold, kEnded, kError };
@@ -115,6 +120,13 @@ class Channel {
   /// `number` and `text`; Control-Reset clears it.
   void MachineFault(const std::string& text, int number) {
     if (state_ != ChannelState::kError) Fail(text, number);
+  }
+  /// The PLC's side of the headstock changeover (ROTMOD_Q, SPMOD_Q, enables, AXD idents),
+  /// given by the gateway every NC cycle.
+  void SetHeadstockPlc(const axes::HeadstockPlc& plc) { headstock_plc_ = plc; }
+  /// The headstock changeover, null without one.
+  const axes::HeadstockChangeover* headstock() const {
+    return headstock_ ? &*headstock_ : nullptr;
   }
   /// Direction the axis is commanded to move this NC cycle: +1, -1 or 0 (MVPOS / MVNEG).
   int AxisMotion(size_t axis) const;
@@ -239,6 +251,13 @@ class Channel {
   std::vector<JogAxis> jog_;
   std::vector<double> interruption_point_;  ///< commanded position when manual was entered
   DriveSetpoint spindle_;
+  // Headstock changeover: the mode a block needs, the one the block in work waits for.
+  axes::HeadstockMode ModeNeeded(const nc::PreparedBlock& b) const;
+  void HeadstockCycle(const AmplifierTelegram& at, double dt);
+  std::optional<axes::HeadstockChangeover> headstock_;
+  axes::HeadstockPlc headstock_plc_;
+  bool headstock_known_ = false;  ///< the power-on mode has been taken from the PLC
+  axes::HeadstockMode waiting_for_ = axes::HeadstockMode::kNone;
 };
 
 }  // namespace vmt::control::channel

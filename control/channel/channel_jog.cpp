@@ -41,6 +41,9 @@ void Channel::Handwheel(size_t axis, int counts) {
 
 void Channel::Jog(size_t axis, int direction) {
   if (mode_ != ChannelMode::kManual || axis >= jog_.size()) return;
+  // C-axis manual 4.2: jogging the rotary axis selects rotary axis mode; it moves once there.
+  if (headstock_ && static_cast<int>(axis) == config_.rotary_axis && direction != 0)
+    headstock_->Request(axes::HeadstockMode::kRotary);
   jog_[axis].key = direction > 0 ? 1 : direction < 0 ? -1 : 0;
   take_over_pending_ = true;
 }
@@ -52,6 +55,9 @@ int Channel::AxisMotion(size_t axis) const {
 
 void Channel::Jogging(double dt) {
   for (size_t a = 0; a < jog_.size(); ++a) {
+    if (headstock_ && static_cast<int>(a) == config_.rotary_axis &&
+        headstock_->mode() != axes::HeadstockMode::kRotary)
+      continue;
     JogAxis& j = jog_[a];
     const ChannelAxis& axis = config_.axes[a];
     const double normal = axis.jog_per_s > 0 ? axis.jog_per_s : axis.rapid_per_s / 10;

@@ -23,6 +23,8 @@ inline constexpr int kMsgSoftwareLimit = 502;  ///< a target beyond the axis' tr
 inline constexpr int kMsgDriveFault = 503;     ///< a drive of the channel is not ready
 inline constexpr int kMsgFollowingError = 504;  ///< an axis lags beyond its following error limit
 inline constexpr int kMsgPlcFault = 505;        ///< the PLC stopped (watchdog)
+/// ROTMOD_Q / SPMOD_Q removed in the mode it acknowledges (C-axis manual 4.1: process error).
+inline constexpr int kMsgChangeoverAck = 506;
 
 /// The operator text of a message number ("program error", ...).
 inline const char* MessageText(int number) {
@@ -59,6 +61,8 @@ inline const char* MessageText(int number) {
       return "following error too large";
     case kMsgPlcFault:
       return "PLC not running";
+    case kMsgChangeoverAck:
+      return "spindle / rotary axis mode acknowledgement removed";
     default:
       return "";
   }

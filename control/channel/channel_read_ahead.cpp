@@ -277,6 +277,10 @@ void Channel::LookAhead(const AmplifierTelegram& at) {
         m1.compensation != 40 || m1.zero_offset != m0.zero_offset ||
         m1.tool_length != m0.tool_length || m1.tool != m0.tool || m1.correction != m0.correction)
       break;
+    // A block that needs a spindle / rotary axis changeover is reached at rest.
+    if (headstock_ && ModeNeeded(n) != axes::HeadstockMode::kNone &&
+        ModeNeeded(n) != headstock_->mode())
+      break;
     bool homed = true;
     for (size_t a = 0; a < homed_.size(); ++a)
       if (!homed_[a] && (n.programmed >> a & 1)) homed = false;

@@ -23,7 +23,7 @@ bool ChannelGateway::Edge::Rising(const SignalImage& image) {
 
 ChannelGateway::ChannelGateway(SignalImage& image, int process,
                                const std::vector<int>& axis_numbers, int spindle_number,
-                               int spindle_drive)
+                               int spindle_drive, int rotary_number)
     : image_(&image), spindle_drive_(spindle_drive) {
   prefix_ = "P" + Number2(process);
   const std::string c = prefix_ + "C.", s = prefix_ + "S.";
@@ -67,6 +67,20 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
     n_ncmd_ = Id(a + "N_NCMD");
     n_nmin_ = Id(a + "N_NMIN");
     inpos_ = Id(a + "INPOS");
+  }
+  if (spindle_number > 0 && rotary_number > 0) {
+    const std::string sp = "A" + Number2(spindle_number), rot = "A" + Number2(rotary_number);
+    Headstock& h = headstock_;
+    h.rotmod = Id(sp + ".ROTMOD");
+    h.spmod = Id(sp + ".SPMOD");
+    h.rotmod_q = Id(sp + ".ROTMOD_Q");
+    h.spmod_q = Id(sp + ".SPMOD_Q");
+    h.spindle_ready = Id(sp + "C.READY");
+    h.rotary_ready = Id(rot + "C.READY");
+    for (int k = 0; k < 4; ++k) {
+      h.spindle_axd[k] = Id(sp + ".AXD." + std::to_string(65012 + k));
+      h.rotary_axd[k] = Id(rot + ".AXD." + std::to_string(65012 + k));
+    }
   }
   // Q functions the table knows: Pxx.Qnnnn out, Pxx.Qnnnn_Q acknowledgement.
   const std::string q = prefix_ + ".Q";
@@ -140,6 +154,21 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
     ack = all_q;
   }
   if (ack) ch.AcknowledgeAux();
+
+  if (ch.headstock()) {
+    const Headstock& h = headstock_;
+    axes::HeadstockPlc plc;
+    const auto level = [&](int id, bool missing) { return id >= 0 ? im.Bool(id) : missing; };
+    plc.rotmod_q = level(h.rotmod_q, false);
+    plc.spmod_q = level(h.spmod_q, false);
+    plc.spindle_ready = level(h.spindle_ready, true);
+    plc.rotary_ready = level(h.rotary_ready, true);
+    for (int k = 0; k < 4; ++k) {
+      plc.spindle_axd[k] = h.spindle_axd[k] >= 0 ? im.Int(h.spindle_axd[k]) : 0;
+      plc.rotary_axd[k] = h.rotary_axd[k] >= 0 ? im.Int(h.rotary_axd[k]) : 0;
+    }
+    ch.SetHeadstockPlc(plc);
+  }
 }
 
 void ChannelGateway::WriteStatus(const channel::Channel& ch, const AmplifierTelegram& at) {
@@ -186,6 +215,19 @@ void ChannelGateway::WriteStatus(const channel::Channel& ch, const AmplifierTele
     set(axes_[a].mvpos, motion > 0);
     set(axes_[a].mvneg, motion < 0);
     set(axes_[a].homed, ch.homed(a));
+  }
+  if (const axes::HeadstockChangeover* hs = ch.headstock()) {
+    const Headstock& h = headstock_;
+    set(h.rotmod, hs->rotmod());
+    set(h.spmod, hs->spmod());
+    // 65012's acknowledgement bits (8..10) are the drive's answer to the PLC's request bits.
+    const auto answer = [&](int id, int64_t word) {
+      if (id < 0) return;
+      const int64_t v = (im.Int(id) & ~int64_t{0xff00}) | (word & 0xff00);
+      if (v != im.Int(id)) im.SetInt(id, v);
+    };
+    answer(h.spindle_axd[0], hs->SpindleFunctionWord());
+    if (hs->config().separate_servo()) answer(h.rotary_axd[0], hs->RotaryFunctionWord());
   }
   if (spindle_drive_ >= 0 && spindle_drive_ < static_cast<int>(at.feedback.size())) {
     const uint32_t st = at.feedback[spindle_drive_].status;

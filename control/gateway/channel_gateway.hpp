@@ -20,8 +20,11 @@ class ChannelGateway {
  public:
   /// `axis_numbers`: Axx number per channel axis; `spindle_number`: Axx of the main spindle
   /// (-1 if none) and its drive. Signals the image lacks are skipped (a machine without them).
+  /// `rotary_number`: Axx of the rotary axis of the spindle's rotary axis mode (C-axis manual
+  /// 3: a separate servo; the spindle's own number for a spindle with rotary axis capability;
+  /// -1 if the spindle has no rotary mode).
   ChannelGateway(SignalImage& image, int process, const std::vector<int>& axis_numbers,
-                 int spindle_number, int spindle_drive);
+                 int spindle_number, int spindle_drive, int rotary_number = -1);
 
   /// PLC -> NC: acts on the channel (edges for commands, levels for states).
   void ReadControls(channel::Channel& channel);
@@ -56,6 +59,13 @@ class ChannelGateway {
   int s_repos_ = -1;
   int s_error_ = -1, s_errnr_ = -1, s_auxstb_ = -1, s_mfunc_ = -1, s_hfunc_ = -1, s_tfunc_ = -1;
   int spindle_drive_ = -1, n_ncmd_ = -1, n_nmin_ = -1, inpos_ = -1;
+  /// The headstock changeover (C-axis manual 4.1-4.3): ROTMOD/SPMOD out, their
+  /// acknowledgements, the drives' enables (AxxC.READY) and AXD idents 65012..65015 in.
+  struct Headstock {
+    int rotmod = -1, spmod = -1, rotmod_q = -1, spmod_q = -1;
+    int spindle_ready = -1, rotary_ready = -1;
+    int spindle_axd[4] = {-1, -1, -1, -1}, rotary_axd[4] = {-1, -1, -1, -1};
+  } headstock_;
   /// Q functions with their own signal and acknowledgement (Pxx.Qnnnn / Pxx.Qnnnn_Q).
   struct QSignal {
     int number, out, ack;

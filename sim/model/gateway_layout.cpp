@@ -12,8 +12,17 @@ control::gateway::GatewayLayout GatewayLayoutOf(const MachineModel& m) {
     layout.axes.push_back({a.number, a.name, false, a.rotary});
     highest = std::max(highest, a.number);
   }
-  if (m.nc.spindle_drive >= 0)
-    layout.axes.push_back({highest + 1, m.drives[m.nc.spindle_drive].info.name, true, false});
+  if (m.nc.spindle_drive >= 0) {
+    const int number = m.nc.spindle_number > 0 ? m.nc.spindle_number : highest + 1;
+    // A spindle with rotary axis capability (C-axis manual 2) is one axis with two
+    // designations: its rotary axis' entry becomes spindle-capable.
+    auto same = std::find_if(layout.axes.begin(), layout.axes.end(),
+                             [&](const auto& a) { return a.number == number; });
+    if (same != layout.axes.end())
+      same->spindle_capable = true;
+    else
+      layout.axes.push_back({number, m.drives[m.nc.spindle_drive].info.name, true, false});
+  }
   for (const control::IoInfo& io : m.io)
     layout.io.push_back({io.name, io.is_output,
                          io.is_output ? "valve (machine output)"

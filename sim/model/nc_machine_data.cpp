@@ -140,10 +140,31 @@ NcMachineData ReadNcMachineData(const MachineModel& m, const YamlNode& node) {
     nc.axes.push_back(a);
   }
   if (node.Has("spindle")) {
-    const YamlNode s = node["spindle"];
+    // `spindle: S1`, or `spindle: {drive: S1, number: 3, rotary_axis: C,
+    // rotary_parameter_set: 1}` for a spindle with a rotary axis mode.
+    const YamlNode sp = node["spindle"];
+    const YamlNode s = sp.IsMap() ? sp["drive"] : sp;
     nc.spindle_drive = m.DriveIndex(s.String());
     if (nc.spindle_drive < 0) s.Fail("no drive '" + s.String() + "'");
     if (!m.drives[nc.spindle_drive].spindle) s.Fail("not a spindle drive");
+    if (sp.IsMap()) {
+      sp.AllowKeys({"drive", "number", "rotary_axis", "rotary_parameter_set"});
+      nc.spindle_number = sp.Int("number", -1);
+      if (sp.Has("number") && (nc.spindle_number < 1 || nc.spindle_number > 99))
+        sp["number"].Fail("must be in 1..99 (Axx)");
+      if (sp.Has("rotary_axis")) {
+        nc.rotary_axis = AxisIndex(nc.axes, sp["rotary_axis"].String());
+        if (nc.rotary_axis < 0)
+          sp["rotary_axis"].Fail("no NC axis '" + sp["rotary_axis"].String() + "'");
+        if (!nc.axes[nc.rotary_axis].rotary) sp["rotary_axis"].Fail("not a rotary axis");
+      }
+      nc.rotary_parameter_set = sp.Int("rotary_parameter_set", 0);
+      if (nc.rotary_parameter_set < 0 || nc.rotary_parameter_set > 7)
+        sp["rotary_parameter_set"].Fail("must be in 0..7");
+      for (const auto& a : nc.axes)
+        if (a.number == nc.spindle_number && a.drive != nc.spindle_drive)
+          sp["number"].Fail("axis number used twice");
+    }
   }
   if (node.Has("zero_offsets")) nc.zero_offsets = ReadZeroOffsets(nc.axes, node["zero_offsets"]);
   if (node.Has("tools")) nc.tools = ReadToolTable(nc.axes, node["tools"]);

@@ -19,6 +19,12 @@ struct NcMachineData {
   control::axes::ProcessParameters process;
   std::vector<control::axes::AxisParameters> axes;  ///< channel axes, in channel order
   int spindle_drive = -1;
+  int spindle_number = -1;  ///< Axx of the spindle; -1: one past the highest axis number
+  /// The spindle's rotary axis mode (C-axis manual): the channel axis that is its rotary axis
+  /// (a separate servo, section 3, or on the spindle's own drive, section 2), -1 if none; and
+  /// the drive parameter set of rotary axis mode (section 2, 0: no switch).
+  int rotary_axis = -1;
+  int rotary_parameter_set = 0;
   control::axes::ZeroOffsetTable zero_offsets;
   control::axes::ToolTable tools;
 };

@@ -153,6 +153,13 @@ struct SceneRun::State {
   std::vector<ProgramEvent> events;
   control::AmplifierTelegram faulted_at;  ///< the machine as the control sees it, faults applied
   int64_t plc_overdue = 0;                ///< scans in a row the PLC has missed
+  /// Without a PLC the runner acknowledges the headstock changeover at once, as a PLC does
+  /// when no mechanical changeover is needed (C-axis manual 4.2), and reports spindle mode at
+  /// power-on; a timeline that writes ROTMOD_Q / SPMOD_Q itself turns this off.
+  bool default_headstock_plc = false;
+  void AcknowledgeHeadstock();
+  control::axes::HeadstockMode headstock_mode = control::axes::HeadstockMode::kNone;
+  control::axes::HeadstockMode headstock_target = control::axes::HeadstockMode::kNone;
 };
 
 SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
@@ -169,6 +176,14 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     config.initial = scene.nc.initial;
     config.aux_handshake = scene.nc.aux_handshake;
     config.tick_s = kDriveTickS;
+    if (scene.nc.data.rotary_axis >= 0 && scene.nc.data.spindle_drive >= 0) {
+      control::axes::HeadstockConfig h;
+      h.spindle_drive = scene.nc.data.spindle_drive;
+      h.rotary_drive = scene.nc.data.axes[scene.nc.data.rotary_axis].drive;
+      h.rotary_parameter_set = static_cast<uint8_t>(scene.nc.data.rotary_parameter_set);
+      config.headstock = h;
+      config.rotary_axis = scene.nc.data.rotary_axis;
+    }
     std::vector<const control::nc::Program*> programs;
     for (const auto& parsed : scene.nc.programs) programs.push_back(&parsed->program);
     channel = std::make_unique<control::channel::Channel>(config, programs);
@@ -182,10 +197,13 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     int spindle_number = -1;
     const int sd = scene.nc.data.spindle_drive;
     for (const auto& a : GatewayLayoutOf(m).axes)
-      if (a.spindle_capable && sd >= 0 && a.name == m.drives[sd].info.name)
+      if (a.spindle_capable && sd >= 0 &&
+          (a.name == m.drives[sd].info.name || scene.nc.data.spindle_number == a.number))
         spindle_number = a.number;
+    const int ra = scene.nc.data.rotary_axis;
     gateway = std::make_unique<control::gateway::ChannelGateway>(
-        *image, scene.nc.data.process.number, numbers, spindle_number, sd);
+        *image, scene.nc.data.process.number, numbers, spindle_number, sd,
+        ra >= 0 ? numbers[ra] : -1);
     control::gateway::ChannelGateway* gw = gateway.get();
     channel->SetEventSource([gw](int n) { return gw->Event(n); });
     channel->SetEventSink([gw](int n, bool v) { gw->SetEvent(n, v); });
@@ -206,6 +224,14 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
       const int id = image->Find(m.io[i].name);
       if (id < 0 || m.io[i].key) continue;  // keys are the operator's, not the machine's
       (m.io[i].is_output ? plc_outputs : plc_inputs).emplace_back(static_cast<int>(i), id);
+    }
+  }
+  if (image && !field_bus && channel && channel->headstock()) {
+    default_headstock_plc = true;
+    for (const TimelineStep& step : scene.timeline) {
+      if (step.kind != TimelineStep::Kind::kSignal) continue;
+      const std::string& name = image->table()[step.signal].name;
+      if (name.ends_with(".ROTMOD_Q") || name.ends_with(".SPMOD_Q")) default_headstock_plc = false;
     }
   }
   program = std::make_unique<DriveProgram>(scene, backend->Read(), channel.get(), image.get());
@@ -245,9 +271,28 @@ void SceneRun::State::Step() {
     for (const auto& [io, id] : plc_outputs) mdt.outputs[io] = image->Bool(id) ? 1 : 0;
   if (channel) {
     const bool nc_cycle = tick % channel->ticks_per_cycle() == 0;
+    if (gateway && nc_cycle && default_headstock_plc) AcknowledgeHeadstock();
     if (gateway && nc_cycle) gateway->ReadControls(*channel);
     channel->Tick(at, mdt);
     if (gateway && nc_cycle) gateway->WriteStatus(*channel, at);
+    if (const auto* hs = channel->headstock(); hs && hs->target() != headstock_target) {
+      // The operator's display: the axis designation of the mode (S1 <-> C, 2.3 position
+      // indication) once the changeover is complete.
+      headstock_target = hs->target();
+      emit_event({{"t", t},
+                  {"event", "headstock"},
+                  {"mode", ToString(hs->mode())},
+                  {"target", ToString(hs->target())}});
+    }
+    if (const auto* hs = channel->headstock(); hs && hs->mode() != headstock_mode) {
+      headstock_mode = hs->mode();
+      const std::string shown =
+          headstock_mode == control::axes::HeadstockMode::kRotary
+              ? scene.nc.data.axes[scene.nc.data.rotary_axis].name
+              : m.drives[scene.nc.data.spindle_drive].info.name;
+      emit_event({{"t", t}, {"event", "headstock"}, {"mode", ToString(headstock_mode)},
+                  {"axis", shown}});
+    }
     if (channel->state() != nc_state) {
       nc_state = channel->state();
       nlohmann::ordered_json e = {{"t", t}, {"event", "nc"}, {"state", ToString(nc_state)}};
@@ -341,6 +386,16 @@ void SceneRun::State::Step() {
   backend->Step();
   ++tick;
   if (field_bus && tick % plc_every == 0) ReadFieldBus();
+}
+
+void SceneRun::State::AcknowledgeHeadstock() {
+  const control::axes::HeadstockChangeover& hs = *channel->headstock();
+  for (int id = 0; id < image->size(); ++id) {
+    const std::string& pattern = image->table()[id].pattern;
+    if (pattern == "Axx.ROTMOD_Q") image->SetBool(id, hs.rotmod());
+    if (pattern == "Axx.SPMOD_Q")
+      image->SetBool(id, hs.spmod() || (!hs.busy() && hs.mode() == control::axes::HeadstockMode::kNone));
+  }
 }
 
 // Faults between the machine and the control (timeline `fault:` steps): a stuck sensor reads
