@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <array>
 #include <cerrno>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <new>
 #include <stdexcept>
@@ -74,6 +76,7 @@ struct ModbusServer::State {
   int open_clients = 0;
   std::vector<pollfd> fds;
   Stats stats;
+  bool polling = false;  // inside Poll: the clients vector is being worked on
 
   ~State() {
     for (Client& c : clients) {
@@ -501,6 +504,12 @@ ModbusServer& ModbusServer::operator=(ModbusServer&&) noexcept = default;
 
 void ModbusServer::Poll(int timeout_ms) {
   State& s = *state_;
+  // Cleared on every way out, so that DropClients can tell a call from on_cycle.
+  struct Polling {
+    bool& flag;
+    explicit Polling(bool& f) : flag(f) { flag = true; }
+    ~Polling() { flag = false; }
+  } polling(s.polling);
   try {
     s.fds.clear();
     s.fds.push_back({s.listen_fd, POLLIN, 0});
@@ -518,6 +527,16 @@ void ModbusServer::Poll(int timeout_ms) {
   }
   if (s.fds[0].revents != 0) s.Accept();
   std::erase_if(s.clients, [](const Client& c) { return c.closed; });
+}
+
+void ModbusServer::DropClients() {
+  State& s = *state_;
+  if (s.polling) {
+    std::fprintf(stderr, "ModbusServer::DropClients called from inside Poll (on_cycle)\n");
+    std::abort();
+  }
+  for (Client& c : s.clients) s.Drop(c);
+  s.clients.clear();
 }
 
 int ModbusServer::port() const { return state_->port; }

@@ -65,6 +65,9 @@ struct ModbusServerStats {
   uint64_t clients_dropped = 0;
   uint64_t clients_refused = 0;  ///< closed at once because max_clients were connected
   uint64_t cycles = 0;           ///< cycle register writes that ran a cycle
+  /// Every request answered, normally or with an exception: each one shows a PLC at the other
+  /// end (vmt serve's link watchdog looks at whether this has moved).
+  uint64_t requests() const { return requests_served + exceptions_sent; }
 };
 
 class ModbusServer {
@@ -84,6 +87,12 @@ class ModbusServer {
   /// Waits at most `timeout_ms` (negative: until something happens) for a connection or data,
   /// accepts new clients, serves every complete request that has arrived, and returns.
   void Poll(int timeout_ms);
+
+  /// Closes every client connection (each counts in clients_dropped), as when the PLC's link
+  /// goes down; the server keeps listening and accepts new clients. A request partly received
+  /// is discarded. Call it between Polls: from inside Poll (on_cycle) it aborts, since Poll is
+  /// then working on those connections.
+  void DropClients();
 
   int port() const;  ///< the bound port
   const Stats& stats() const;

@@ -11,6 +11,15 @@ bool PlcDrives(gateway::Direction direction) {
          direction == Direction::kShared;
 }
 
+void DropPlcOutputs(gateway::SignalImage& image) {
+  using gateway::Direction;
+  const gateway::SignalImage presets(image.table());
+  for (int id = 0; id < image.size(); ++id) {
+    const Direction d = image.table()[id].direction;
+    if (d == Direction::kPlcToNc || d == Direction::kPlcToMachine) image.CopyValue(id, presets);
+  }
+}
+
 void PlcScan::Writable(int id) const {
   // A PLC program that writes an NC status or a machine input is wrong as compiled code is
   // wrong: stop with its name rather than let the write vanish at the end of the scan.
@@ -43,8 +52,7 @@ void PlcRuntime::Scan() {
 
 void PlcRuntime::Stop() {
   stopped_ = true;
-  gateway::SignalImage presets(image_.table());
-  for (int id : outputs_) image_.CopyValue(id, presets);
+  DropPlcOutputs(image_);
 }
 
 }  // namespace vmt::control::plc

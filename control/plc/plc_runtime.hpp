@@ -52,6 +52,11 @@ using PlcProgram = std::function<void(PlcScan&)>;
 /// True for the signals a PLC may write: PLC to NC, PLC to machine, and the shared ones.
 bool PlcDrives(gateway::Direction direction);
 
+/// A PLC that halts or whose link is lost: every signal only the PLC writes (PLC to NC, PLC to
+/// machine) falls back to its preset, as a PLC's outputs drop. Shared signals (events, AXD
+/// idents) keep their value: the NC writes them too, and what it wrote is still true.
+void DropPlcOutputs(gateway::SignalImage& image);
+
 class PlcRuntime {
  public:
   /// `image` must outlive the runtime. The period is the scan time (DESIGN.md: 4 ms).
@@ -60,8 +65,8 @@ class PlcRuntime {
   /// One scan: latch, run the program, write the outputs; then the PLC clock moves on. A
   /// stopped PLC does not scan.
   void Scan();
-  /// The PLC stops (its watchdog tripped): every signal it drives falls back to its preset, as
-  /// a PLC's outputs drop when it halts, and no further scan runs.
+  /// The PLC stops (its watchdog tripped): its outputs drop (DropPlcOutputs) and no further
+  /// scan runs.
   void Stop();
   bool stopped() const { return stopped_; }
 

@@ -76,6 +76,17 @@ class Gateway:
                 self._check(self.client.write_coil(a["address"], v, slave=1), f"writing {name}")
                 self.written[name] = v
 
+    def forget_writes(self):
+        """The next flush writes every output again (after a reconnection)."""
+        self.written = {}
+
+    def last_cycle(self, cycle):
+        """The simulation's last cycle after a drop: `cycle` if its write ran, else the one
+        before (the register holds the number modulo 65536)."""
+        r = self._check(self.client.read_holding_registers(self.cycle_register, 1, slave=1),
+                        "reading the cycle register")
+        return cycle - 1 + (r.registers[0] - (cycle - 1)) % 65536
+
     def run_cycle(self, number):
         self._check(self.client.write_register(self.cycle_register, number % 65536, slave=1),
                     f"cycle {number}")

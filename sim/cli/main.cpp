@@ -151,6 +151,21 @@ int main(int argc, char** argv) {
   serve->add_option("--until", serve_options.until_s, "Stop at this simulated time, seconds")
       ->check(CLI::PositiveNumber);
   serve->add_option("--out", serve_options.out_dir, "Output folder")->capture_default_str();
+  serve
+      ->add_option("--plc-timeout", serve_options.plc_timeout_ms,
+                   "Real time: ms without a Modbus request after which the PLC link is lost "
+                   "(its outputs drop, the NC stops with message 505)")
+      ->check(CLI::Range(0.001, 3.6e6))
+      ->capture_default_str();
+  serve
+      ->add_option("--idle-timeout", serve_options.idle_timeout_s,
+                   "Lockstep: s of wall time without a cycle write after which serve stops "
+                   "early (exit 3)")
+      ->check(CLI::Range(0.001, 8.64e4))
+      ->capture_default_str();
+  serve->footer(
+      "Exit status: 0 the scene ended and passed, 1 it ended with failures, 2 bad input, 3 "
+      "stopped early (lockstep idle timeout, SIGINT or SIGTERM); serve.json says why.");
 
   CLI::App* imgdiff = app.add_subcommand(
       "imgdiff", "Compare two PNG pictures: exit 0 equal, 1 different, 2 bad input");

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "control/plc/modbus_server.hpp"
@@ -26,6 +28,26 @@ double Percentile(std::vector<double> v, double p) {
   return v[std::min(v.size() - 1, static_cast<size_t>(p * static_cast<double>(v.size())))];
 }
 
+std::string Fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+// The real-time PLC link watchdog: a PLC that sends nothing for the timeout is lost. It counts
+// PLC cycles, so that the event falls at the simulated time the timeout ends, and it also
+// waits for the wall time: after a late stretch the cycles catch up faster than the wall clock
+// and the PLC has had no chance to be heard.
+struct PlcLinkWatch {
+  int64_t timeout_cycles = 1;
+  std::chrono::steady_clock::duration timeout{};
+  uint64_t seen_requests = 0;
+  int64_t heard_cycle = 0;  ///< cycle before which the last request was seen
+  std::chrono::steady_clock::time_point heard_at;
+  bool lost = false;
+  int losses = 0;
+};
+
 }  // namespace
 
 int Serve(const ServeOptions& o) {
@@ -42,9 +64,20 @@ int Serve(const ServeOptions& o) {
     throw std::invalid_argument("--modbus " + o.endpoint + ": the port is not a number");
   }
 
+  if (!(o.plc_timeout_ms > 0) || o.plc_timeout_ms > 3.6e6)
+    throw std::invalid_argument("--plc-timeout " + Fmt(o.plc_timeout_ms) +
+                                ": expected milliseconds, > 0 and at most an hour");
+  if (!(o.idle_timeout_s > 0) || o.idle_timeout_s > 8.64e4)
+    throw std::invalid_argument("--idle-timeout " + Fmt(o.idle_timeout_s) +
+                                ": expected seconds, > 0 and at most a day");
+
   const Scene scene = LoadScene(o.scene);
   RunOptions run_options;
   run_options.external_plc = true;
+  // The fault step runs inside a cycle, which in lockstep runs inside Poll: the connections are
+  // dropped once that Poll has returned.
+  bool drop_clients = false;
+  run_options.on_plc_client_gone = [&drop_clients] { drop_clients = true; };
   run_options.out_dir = o.out_dir;
   if (o.until_s > 0) run_options.until_s = o.until_s;
   SceneRun run(scene, run_options);
@@ -70,22 +103,81 @@ int Serve(const ServeOptions& o) {
 
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
+  using Clock = std::chrono::steady_clock;
+  const auto drop_if_asked = [&] {
+    if (!drop_clients) return;
+    drop_clients = false;
+    server.DropClients();
+    std::fprintf(stderr, "vmt serve: %.4f s: fault: every Modbus client dropped\n", run.time_s());
+  };
+  std::string stop_reason = "end of scene";
   std::vector<double> lateness_ms;
+  PlcLinkWatch link;
   if (o.lockstep) {
-    while (!run.done() && !g_stop) server.Poll(100);
+    // The client is the clock: no link watchdog, but a client that vanished must not keep
+    // serve waiting for ever.
+    const auto idle = std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(o.idle_timeout_s));
+    const int poll_ms = static_cast<int>(std::clamp(o.idle_timeout_s * 1000, 1.0, 100.0));
+    uint64_t cycles = 0;
+    auto cycle_at = Clock::now();
+    while (!run.done()) {
+      if (g_stop) {
+        stop_reason = "signal";
+        break;
+      }
+      server.Poll(poll_ms);
+      drop_if_asked();
+      const auto now = Clock::now();
+      if (server.stats().cycles != cycles) {
+        cycles = server.stats().cycles;
+        cycle_at = now;
+      } else if (now - cycle_at >= idle) {
+        stop_reason = "idle timeout: no cycle written for " + Fmt(o.idle_timeout_s) + " s";
+        break;
+      }
+    }
   } else {
     // Real time: each PLC cycle starts at its wall-clock time; between cycles the server
     // answers the PLC. Lateness = how long after its time a cycle started.
-    using Clock = std::chrono::steady_clock;
     const auto period = std::chrono::microseconds(ticks * 250);
+    const int64_t timeout_us = std::llround(o.plc_timeout_ms * 1000);
+    link.timeout_cycles = std::max<int64_t>(1, (timeout_us + period.count() - 1) / period.count());
+    link.timeout = std::chrono::microseconds(timeout_us);
+    const std::string lost =
+        "Modbus: no request for " + Fmt(o.plc_timeout_ms) + " ms, the PLC link is lost";
     const auto start = Clock::now();
-    for (int64_t n = 0; !run.done() && !g_stop; ++n) {
+    link.heard_at = start;
+    for (int64_t n = 0; !run.done(); ++n) {
+      if (g_stop) {
+        stop_reason = "signal";
+        break;
+      }
       const auto due = start + n * period;
       for (auto now = Clock::now(); now < due; now = Clock::now())
         server.Poll(static_cast<int>(std::max<int64_t>(
             0, std::chrono::duration_cast<std::chrono::milliseconds>(due - now).count())));
-      lateness_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - due).count());
+      const auto now = Clock::now();
+      lateness_ms.push_back(std::chrono::duration<double, std::milli>(now - due).count());
+      // The link watchdog looks at the start of the cycle, where the embedded PLC's scans.
+      if (server.stats().requests() != link.seen_requests) {
+        link.seen_requests = server.stats().requests();
+        link.heard_cycle = n;
+        link.heard_at = now;
+        if (link.lost) {
+          link.lost = false;
+          run.PlcRunning();
+          std::fprintf(stderr, "vmt serve: %.4f s: the PLC answers again\n", run.time_s());
+        }
+      } else if (!link.lost && n - link.heard_cycle >= link.timeout_cycles &&
+                 now - link.heard_at >= link.timeout) {
+        link.lost = true;
+        ++link.losses;
+        run.PlcLost(lost);
+        std::fprintf(stderr, "vmt serve: %.4f s: %s\n", run.time_s(), lost.c_str());
+      }
       cycle();
+      drop_if_asked();
       server.Poll(0);
     }
   }
@@ -94,6 +186,7 @@ int Serve(const ServeOptions& o) {
   nlohmann::ordered_json serve = {{"scene", scene.name},
                                   {"mode", o.lockstep ? "lockstep" : "realtime"},
                                   {"stopped_early", !run.done()},
+                                  {"stop_reason", stop_reason},
                                   {"simulated_time_s", run.time_s()},
                                   {"trace_digest", r.trace_digest},
                                   {"modbus",
@@ -103,10 +196,16 @@ int Serve(const ServeOptions& o) {
                                     {"clients_dropped", st.clients_dropped},
                                     {"clients_refused", st.clients_refused},
                                     {"cycles", st.cycles}}}};
-  if (!o.lockstep)
+  if (o.lockstep) {
+    serve["idle_timeout_s"] = o.idle_timeout_s;
+  } else {
     serve["cycle_lateness_ms"] = {{"p50", Percentile(lateness_ms, 0.5)},
                                   {"p99", Percentile(lateness_ms, 0.99)},
                                   {"max", Percentile(lateness_ms, 1.0)}};
+    serve["plc_link"] = {{"timeout_ms", o.plc_timeout_ms},
+                         {"timeout_cycles", link.timeout_cycles},
+                         {"lost", link.losses}};
+  }
   if (!o.out_dir.empty()) std::ofstream(o.out_dir + "/serve.json") << serve.dump(2) << '\n';
   std::printf("%s: %.3f s simulated, trace digest %s, %llu Modbus requests, %llu exceptions\n",
               scene.name.c_str(), run.time_s(), r.trace_digest.c_str(),
@@ -117,6 +216,11 @@ int Serve(const ServeOptions& o) {
                 Percentile(lateness_ms, 0.5), Percentile(lateness_ms, 0.99),
                 Percentile(lateness_ms, 1.0));
   for (const std::string& f : r.failures) std::fprintf(stderr, "FAILED: %s\n", f.c_str());
+  if (!run.done()) {
+    std::fprintf(stderr, "vmt serve: stopped early at %.4f s: %s\n", run.time_s(),
+                 stop_reason.c_str());
+    return kServeStoppedEarly;
+  }
   return r.ok() ? 0 : 1;
 }
 

@@ -2,10 +2,22 @@
 // vmt serve: a scene with its PLC outside, over Modbus TCP. In lockstep the external PLC steps
 // the simulation one PLC cycle per write of the cycle register; in real time the simulation
 // runs against the wall clock and reports how late its cycles were.
+//
+// A PLC that goes away is met as on the machine. In real time the NC watches the link: a PLC
+// that sends no request (read or write, any client) for plc_timeout_ms is lost (SceneRun::
+// PlcLost: its outputs drop, the NC stops with message 505, an event records it); a client
+// that answers again later is recorded as the PLC running again. In lockstep the PLC is the
+// clock, so nothing runs without it: after idle_timeout_s of wall time without a cycle write
+// serve stops early, writes everything computed so far and exits with kServeStoppedEarly.
+// The scene's `fault: {plc: client_gone}` step disconnects every Modbus client.
 
 #include <string>
 
 namespace vmt::sim {
+
+/// Exit code of a serve that stopped before the scene's end: the lockstep idle timeout, or
+/// SIGINT / SIGTERM. (0: the run ended and passed; 1: it ended with failures; 2: bad input.)
+inline constexpr int kServeStoppedEarly = 3;
 
 struct ServeOptions {
   std::string scene;
@@ -13,10 +25,18 @@ struct ServeOptions {
   bool lockstep = true;                     ///< else real time
   double until_s = 0;                       ///< 0: the scene's duration
   std::string out_dir = "out";
+  /// Real time: the PLC link's timeout, as a field bus's (ms, > 0). Checked in whole PLC
+  /// cycles (rounded up) and against the wall clock, so a late cycle does not trip it.
+  double plc_timeout_ms = 100;
+  /// Lockstep: wall time without a cycle write after which serve stops early (s, > 0).
+  double idle_timeout_s = 30;
 };
 
-/// Serves until the scene's end; returns the exit code (0 ok, 1 failed expectations). Throws
-/// on bad input (scene, endpoint) and when it cannot listen.
+/// Serves until the scene's end; returns the exit code (0 ok, 1 failed expectations,
+/// kServeStoppedEarly). Writes serve.json beside the run's files: mode, stopped_early,
+/// stop_reason ("end of scene", "signal", "idle timeout: no cycle written for 30 s"), Modbus
+/// counts, and in real time the cycle lateness and the PLC link's losses. Throws on bad input
+/// (scene, endpoint, timeouts) and when it cannot listen.
 int Serve(const ServeOptions& options);
 
 }  // namespace vmt::sim

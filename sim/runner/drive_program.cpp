@@ -193,6 +193,7 @@ bool DriveProgram::Execute(const TimelineStep& step, double t_s,
       if (step.fault == F::kValveStuck) faults_.valve[step.io] = step.level;
       if (step.fault == F::kDrive) faults_.drive[step.drive] = true;
       if (step.fault == F::kPlcOverrun) faults_.plc_missed_scans = step.code;
+      if (step.fault == F::kPlcClientGone) ++faults_.plc_client_gone;
       if (step.fault == F::kClear && step.io >= 0)
         faults_.sensor[step.io] = faults_.valve[step.io] = -1;
       if (step.fault == F::kClear && step.drive >= 0) faults_.drive[step.drive] = false;

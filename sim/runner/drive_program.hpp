@@ -32,6 +32,9 @@ struct InjectedFaults {
   std::vector<int8_t> valve;     ///< per I/O point: -1 none, else the level it stays at
   std::vector<bool> drive;       ///< per drive: power stage off, not ready
   int64_t plc_missed_scans = 0;  ///< scans the PLC is yet to miss (set by an overrun fault)
+  /// client_gone steps so far: from the first on the PLC's link is gone for good (embedded: it
+  /// misses every scan; vmt serve drops its Modbus clients once per step).
+  int plc_client_gone = 0;
   bool any = false;
 };
 

@@ -10,6 +10,7 @@
 
 #include "control/gateway/channel_gateway.hpp"
 #include "control/plc/plc_programs.hpp"
+#include "control/plc/plc_runtime.hpp"
 #include "render/image.hpp"
 #include "sim/model/gateway_layout.hpp"
 #include "sim/runner/drive_program.hpp"
@@ -113,6 +114,7 @@ struct SceneRun::State {
   const control::AmplifierTelegram& Faulted(const control::AmplifierTelegram& raw);
   void ApplyOutputFaults();
   void ScanPlc(double t);
+  void StopPlc(double t, const std::string& reason, const std::string& nc_text);
 
   void emit_trace(const std::string& row) {
     digest.Add(row);
@@ -160,6 +162,7 @@ struct SceneRun::State {
   void AcknowledgeHeadstock();
   control::axes::HeadstockMode headstock_mode = control::axes::HeadstockMode::kNone;
   control::axes::HeadstockMode headstock_target = control::axes::HeadstockMode::kNone;
+  int plc_client_gone_told = 0;           ///< client_gone steps passed to the callback
 };
 
 SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
@@ -267,6 +270,12 @@ void SceneRun::State::Step() {
   if (plc && tick % plc_every == 0) ScanPlc(t);
   events.clear();
   program->Tick(t, at, clutches, mdt, events);
+  // An external PLC's client is gone: vmt serve drops the connections (an embedded PLC misses
+  // its scans instead, ScanPlc).
+  for (InjectedFaults& f = program->faults(); plc_client_gone_told < f.plc_client_gone;) {
+    ++plc_client_gone_told;
+    if (options.external_plc && options.on_plc_client_gone) options.on_plc_client_gone();
+  }
   if (field_bus)
     for (const auto& [io, id] : plc_outputs) mdt.outputs[io] = image->Bool(id) ? 1 : 0;
   if (channel) {
@@ -424,25 +433,32 @@ void SceneRun::State::ApplyOutputFaults() {
     if (f.drive[d]) mdt.setpoints[d] = {control::DriveMode::kOff, 0, 0};
 }
 
-// The PLC scans unless an overrun makes it miss its cycles; after two missed cycles its watchdog
-// stops it (its outputs drop) and the NC stops with "PLC not running".
+// The PLC scans unless an overrun makes it miss its cycles or its link is gone; after two missed
+// cycles its watchdog stops it (its outputs drop) and the NC stops with "PLC not running".
 void SceneRun::State::ScanPlc(double t) {
   InjectedFaults& f = program->faults();
   if (plc->stopped()) return;
-  if (f.plc_missed_scans > 0) {
-    --f.plc_missed_scans;
-    if (++plc_overdue > kPlcWatchdogCycles) {
-      plc->Stop();
-      if (channel)
-        channel->MachineFault(
-            "PLC watchdog: " + std::to_string(plc_overdue) + " scans missed, the PLC has stopped",
-            control::channel::kMsgPlcFault);
-      emit_event({{"t", t}, {"event", "plc"}, {"state", "stopped"}, {"reason", "watchdog"}});
-    }
+  if (f.plc_missed_scans > 0 || f.plc_client_gone > 0) {
+    if (f.plc_missed_scans > 0) --f.plc_missed_scans;
+    if (++plc_overdue > kPlcWatchdogCycles)
+      StopPlc(
+          t, "watchdog",
+          "PLC watchdog: " + std::to_string(plc_overdue) + " scans missed, the PLC has stopped");
     return;
   }
   plc_overdue = 0;
   plc->Scan();
+}
+
+// The reaction of the manuals to a PLC that is no longer there, whoever notices it: its outputs
+// drop, the NC stops at once with message 505, and the event records why.
+void SceneRun::State::StopPlc(double t, const std::string& reason, const std::string& nc_text) {
+  if (plc)
+    plc->Stop();
+  else if (image)
+    control::plc::DropPlcOutputs(*image);
+  if (channel) channel->MachineFault(nc_text, control::channel::kMsgPlcFault);
+  emit_event({{"t", t}, {"event", "plc"}, {"state", "stopped"}, {"reason", reason}});
 }
 
 void SceneRun::State::ReadFieldBus() {
@@ -451,7 +467,8 @@ void SceneRun::State::ReadFieldBus() {
 }
 
 RunResult SceneRun::State::Finish() {
-  result.simulated_s = last_tick * kDriveTickS;
+  // A run stopped early (vmt serve) has simulated only up to where it stopped.
+  result.simulated_s = (finished ? last_tick : tick) * kDriveTickS;
   result.final_joint_positions = backend->JointPositions();
   result.trace_digest = digest.Hex();
   for (size_t i = 0; i < checks.size(); ++i) {
@@ -473,6 +490,9 @@ RunResult SceneRun::State::Finish() {
   result.expectations = checks;
   result.wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  // The files are complete now, whether or not the run object lives on.
+  trace_file.flush();
+  events_file.flush();
 
   if (writing) {
     nlohmann::ordered_json summary;
@@ -506,6 +526,10 @@ RunResult SceneRun::Finish() { return state_->Finish(); }
 control::gateway::SignalImage* SceneRun::image() { return state_->image.get(); }
 int64_t SceneRun::ticks_per_plc_cycle() const { return state_->plc_every; }
 double SceneRun::time_s() const { return state_->tick * kDriveTickS; }
+void SceneRun::PlcLost(const std::string& reason) { state_->StopPlc(time_s(), reason, reason); }
+void SceneRun::PlcRunning() {
+  state_->emit_event({{"t", time_s()}, {"event", "plc"}, {"state", "running"}});
+}
 
 RunResult RunScene(const Scene& scene, const RunOptions& options) {
   SceneRun run(scene, options);

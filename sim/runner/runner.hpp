@@ -3,6 +3,7 @@
 // lockstep, no wall clock in the loop), records the trace (CSV), the events (JSON lines), the
 // snapshots and a summary with the trace digest.
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -21,6 +22,9 @@ struct RunOptions {
   /// The PLC is outside (vmt serve): no embedded program runs; the machine's I/O still goes
   /// through the signal image, which the external PLC reads and writes.
   bool external_plc = false;
+  /// With external_plc: a `fault: {plc: client_gone}` step has run (vmt serve then drops its
+  /// Modbus clients, after the Poll that is running the cycle). Called from Step.
+  std::function<void()> on_plc_client_gone;
 };
 
 struct ExpectationResult {
@@ -54,6 +58,15 @@ class SceneRun {
   /// The gateway signals, null without an nc: section.
   control::gateway::SignalImage* image();
   int64_t ticks_per_plc_cycle() const;
+  /// The PLC is lost (vmt serve: its Modbus link timed out). As when the embedded PLC's
+  /// watchdog stops it: every signal only the PLC writes falls back to its preset (its valves
+  /// drop), the NC stops at once with message 505 and `reason` as its text, and the event
+  /// {"event":"plc","state":"stopped","reason":...} is recorded at the current time. An
+  /// embedded PLC stays stopped; an external one may come back (PlcRunning).
+  void PlcLost(const std::string& reason);
+  /// The external PLC answers again after PlcLost: records {"event":"plc","state":"running"}.
+  /// The NC stays in its error until Control-Reset, as after any immediate stop.
+  void PlcRunning();
   double time_s() const;
 
  private:

@@ -108,9 +108,17 @@ struct TimelineStep {
   std::string text;  ///< "timeline[3]: move Z to 250" for events and messages
   std::string mdi;   ///< kNcMdi: the blocks
   /// kFault: what fails. A sensor or valve sticks at `level` (io), a drive loses its power
-  /// stage (drive), the PLC misses `code` scans (its watchdog trips after two), or a fault is
-  /// cleared again (io or drive).
-  enum class Fault { kSensorStuck, kValveStuck, kDrive, kPlcOverrun, kClear } fault{};
+  /// stage (drive), the PLC misses `code` scans (its watchdog trips after two), the PLC's
+  /// Modbus client is gone for good (embedded: every scan from then on is missed; vmt serve:
+  /// every client is disconnected), or a fault is cleared again (io or drive).
+  enum class Fault {
+    kSensorStuck,
+    kValveStuck,
+    kDrive,
+    kPlcOverrun,
+    kPlcClientGone,
+    kClear
+  } fault{};
 };
 
 struct Expectation {

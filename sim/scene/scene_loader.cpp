@@ -201,11 +201,20 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
       s.fault = F::kDrive;
       text << "fault: drive " << m.drives[s.drive].info.name << " not ready";
     } else if (f.Has("plc")) {
-      if (f["plc"].String() != "overrun") f["plc"].Fail("expected overrun");
-      s.fault = F::kPlcOverrun;
-      s.code = f.Int("cycles", 10);
-      if (s.code < 1 || s.code > 1000000) f["cycles"].Fail("must be 1..1000000");
-      text << "fault: PLC misses " << s.code << " scans";
+      const std::string what = f["plc"].String();
+      if (what == "client_gone") {
+        // Gone for good: there is no `clear:` for it, as a lost PLC does not come back by itself.
+        f.AllowKeys({"plc"});
+        s.fault = F::kPlcClientGone;
+        text << "fault: PLC client gone";
+      } else if (what == "overrun") {
+        s.fault = F::kPlcOverrun;
+        s.code = f.Int("cycles", 10);
+        if (s.code < 1 || s.code > 1000000) f["cycles"].Fail("must be 1..1000000");
+        text << "fault: PLC misses " << s.code << " scans";
+      } else {
+        f["plc"].Fail("expected overrun or client_gone");
+      }
     } else if (f.Has("clear")) {
       const std::string what = f["clear"].String();
       s.fault = F::kClear;

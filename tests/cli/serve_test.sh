@@ -2,7 +2,10 @@
 # vmt serve with an external PLC: the Python example PLC steps the scene in lockstep over Modbus
 # TCP and must give the same run as the same program embedded (trace digest and every gateway
 # signal change); mbpoll reads the status as any Modbus tool would; a bad write gets an
-# exception. Usage: serve_test.sh VMT SRC OUT
+# exception. A PLC that goes away: in real time the link watchdog stops the NC (and stays quiet
+# while a client polls), in lockstep the idle timeout ends serve, and the client_gone fault
+# drops the clients. Timeouts are generous: no assert depends on the machine being fast.
+# Usage: serve_test.sh VMT SRC OUT
 set -u
 vmt=$1 src=$2 out=$3
 rm -rf "$out" && mkdir -p "$out"
@@ -12,16 +15,26 @@ python=/usr/bin/python3  # Debian's, with python3-pymodbus
 scene=$src/scenes/repos-machine-keys.yaml
 
 # Start vmt serve on a free port; prints the port it listens on.
-start_serve() {  # start_serve OUTDIR MODE
-  mkdir -p "$1"
-  "$vmt" serve "$scene" --modbus 127.0.0.1:0 "--$2" --out "$1" >"$1/serve.log" 2>&1 &
-  serve_pid=$!
-  for _ in $(seq 100); do
-    port=$(sed -n 's/.*Modbus TCP on 127.0.0.1:\([0-9]*\).*/\1/p' "$1/serve.log")
+start_serve() {  # start_serve OUTDIR MODE [SCENE [OPTION...]]
+  local dir=$1 mode=$2 what=${3:-$scene}
+  shift $(($# < 3 ? $# : 3))
+  mkdir -p "$dir"
+  timeout 300 "$vmt" serve "$what" --modbus 127.0.0.1:0 "--$mode" --out "$dir" "$@" \
+    >"$dir/serve.log" 2>&1 &
+  serve_pid=$!  # timeout's, which passes signals on and exits with serve's status
+  for _ in $(seq 1200); do
+    port=$(sed -n 's/.*Modbus TCP on 127.0.0.1:\([0-9]*\).*/\1/p' "$dir/serve.log")
     [ -n "$port" ] && return 0
     sleep 0.05
   done
-  fail "vmt serve did not start"; cat "$1/serve.log"; return 1
+  fail "vmt serve did not start"; cat "$dir/serve.log"; return 1
+}
+
+# json FILE EXPR: fails the test unless the Python expression EXPR holds for the file's data `d`.
+json() {
+  "$python" -c 'import json, sys
+d = json.load(open(sys.argv[1]))
+sys.exit(0 if eval(sys.argv[2]) else 1)' "$1" "$2" || fail "$1: $2"
 }
 
 "$vmt" signals "$src/models/lathe-c1/machine.yaml" --format json >"$out/signals.json" ||
@@ -75,8 +88,88 @@ if start_serve "$out/mbpoll" lockstep; then
   mbpoll -m tcp -a 1 -p "$port" -0 -t 4 -r $((cyc + 1)) -1 127.0.0.1 7 >"$out/mbpoll_write.log" 2>&1 &&
     fail "mbpoll write past the map succeeded"
   grep -qi "illegal data address" "$out/mbpoll_write.log" || { fail "no exception 02"; cat "$out/mbpoll_write.log"; }
-  kill $serve_pid; wait $serve_pid 2>/dev/null
-  grep -q '"stopped_early": true' "$out/mbpoll/serve.json" || fail "serve.json after SIGTERM"
+  kill $serve_pid; wait $serve_pid; rc=$?
+  [ $rc = 3 ] || fail "serve after SIGTERM: exit $rc, not 3"
+  json "$out/mbpoll/serve.json" 'd["stopped_early"] and d["stop_reason"] == "signal"'
+fi
+
+# The example PLC, started before serve on a free port and connecting as soon as serve listens
+# (with --retry): imported and ready, it is there from serve's first cycle on.
+start_client() {  # start_client DIR OPTION...; sets port and client_pid
+  local dir=$1
+  shift
+  mkdir -p "$dir"
+  port=$("$python" -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+  timeout 300 "$python" "$src/examples/plc/repos_machine_keys.py" --port "$port" --retry 120 \
+    --signals "$out/signals.json" "$@" >"$dir/client.log" 2>&1 &
+  client_pid=$!
+  for _ in $(seq 1200); do grep -q connecting "$dir/client.log" && break; sleep 0.05; done
+}
+
+# Real time with an external PLC that polls throughout: the link watchdog (which runs from the
+# first cycle) stays quiet.
+rt=$out/realtime
+start_client "$rt" --realtime
+timeout 300 "$vmt" serve "$scene" --modbus "127.0.0.1:$port" --realtime --until 1.5 \
+  --plc-timeout 1000 --out "$rt" >"$rt/serve.log" 2>&1
+rc=$?
+kill $client_pid 2>/dev/null; wait $client_pid 2>/dev/null  # it would try to reconnect
+# 1: expectations after 1.5 s are not reached.
+[ $rc = 0 ] || [ $rc = 1 ] || { fail "realtime serve exit $rc"; cat "$rt/serve.log" "$rt/client.log"; }
+json "$rt/serve.json" 'd["mode"] == "realtime" and not d["stopped_early"]'
+json "$rt/serve.json" 'all(k in d["cycle_lateness_ms"] for k in ("p50", "p99", "max"))'
+json "$rt/serve.json" 'd["modbus"]["clients_accepted"] >= 1 and d["modbus"]["requests"] > 100'
+json "$rt/serve.json" 'd["plc_link"] == {"timeout_ms": 1000, "timeout_cycles": 250, "lost": 0}'
+grep -q '"event":"plc"' "$rt/events.jsonl" && fail "PLC lost while the client polled"
+
+# Real time without a PLC: after 100 ms the link is lost, the NC stops with message 505.
+rt=$out/realtime-no-plc
+mkdir -p "$rt"
+timeout 300 "$vmt" serve "$scene" --modbus 127.0.0.1:0 --realtime --until 0.5 --out "$rt" \
+  >"$rt/serve.log" 2>&1
+rc=$?
+[ $rc = 1 ] || { fail "realtime serve without a PLC: exit $rc, not 1"; cat "$rt/serve.log"; }
+lost='Modbus: no request for 100 ms, the PLC link is lost'
+grep -q "\"event\":\"plc\",\"state\":\"stopped\",\"reason\":\"$lost\"" "$rt/events.jsonl" ||
+  fail "no PLC stopped event"
+grep -q '"name":"P00S.ERRNR","value":505.0' "$rt/events.jsonl" || fail "no message 505"
+json "$rt/summary.json" '"NC error: '"$lost"'" in d["failures"]'
+json "$rt/serve.json" 'd["plc_link"]["lost"] == 1'
+
+# Lockstep with a PLC that stops after 50 cycles: serve gives up after 1 s of wall time without
+# a cycle write and still writes what it computed (as far as the cycles went: a PLC stalled for
+# a second on a loaded machine ends it sooner, which changes nothing here).
+start_client "$out/idle" --cycles 50
+SECONDS=0
+timeout 300 "$vmt" serve "$scene" --modbus "127.0.0.1:$port" --lockstep --idle-timeout 1 \
+  --out "$out/idle" >"$out/idle/serve.log" 2>&1
+rc=$?
+kill $client_pid 2>/dev/null; wait $client_pid 2>/dev/null
+[ $rc = 3 ] || { fail "idle serve: exit $rc, not 3"; cat "$out/idle/serve.log"; }
+[ $SECONDS -lt 120 ] || fail "idle timeout took $SECONDS s"
+json "$out/idle/serve.json" 'd["stopped_early"] and d["stop_reason"] == "idle timeout: no cycle written for 1 s"'
+json "$out/idle/serve.json" '1 <= d["modbus"]["cycles"] <= 50'
+json "$out/idle/serve.json" 'abs(d["simulated_time_s"] - 0.004 * d["modbus"]["cycles"]) < 1e-9'
+json "$out/idle/summary.json" 'd["simulated_time_s"] < 0.21 and d["failures"]'
+
+# The client_gone fault: embedded, the PLC's watchdog stops it (the scene expects message 505);
+# served, every client is dropped and a PLC that reconnects carries on to the end.
+gone=$src/scenes/fault-plc-client-gone.yaml
+"$vmt" run "$gone" --out "$out/gone-embedded" >"$out/gone-embedded.log" 2>&1 ||
+  { fail "embedded client_gone run"; cat "$out/gone-embedded.log"; }
+grep -q '"event":"plc","state":"stopped","reason":"watchdog"' "$out/gone-embedded/events.jsonl" ||
+  fail "client_gone: no watchdog event"
+if start_serve "$out/gone-served" lockstep "$gone" --idle-timeout 20; then
+  # It would go on trying to connect after the end: stopped once serve is done.
+  timeout 300 "$python" "$src/examples/plc/repos_machine_keys.py" --port "$port" --retry 120 \
+    --signals "$out/signals.json" >"$out/gone-served/client.log" 2>&1 &
+  client_pid=$!
+  wait $serve_pid
+  kill $client_pid 2>/dev/null; wait $client_pid 2>/dev/null
+  json "$out/gone-served/serve.json" 'd["stop_reason"] == "end of scene"'
+  json "$out/gone-served/serve.json" 'd["modbus"]["clients_dropped"] >= 1'
+  json "$out/gone-served/serve.json" 'd["modbus"]["clients_accepted"] >= 2'
+  grep -q "fault: every Modbus client dropped" "$out/gone-served/serve.log" || fail "no drop logged"
 fi
 
 [ $fails = 0 ] && echo "serve test: all passed" || echo "serve test: $fails failed"

@@ -221,7 +221,10 @@ TEST(SceneInputTest, Errors) {
                  "duration: 1\ntimeline:\n  - fault: {valve: IROTMODE, stuck: true}\n"),
       HasSubstr("timeline[0].fault.valve: no machine valve (io dir: out) called 'IROTMODE'"));
   EXPECT_THAT(SceneError("fault_plc", "duration: 1\ntimeline:\n  - fault: {plc: crash}\n"),
-              HasSubstr("timeline[0].fault.plc: expected overrun"));
+              HasSubstr("timeline[0].fault.plc: expected overrun or client_gone"));
+  EXPECT_THAT(SceneError("fault_client_gone_cycles",
+                         "duration: 1\ntimeline:\n  - fault: {plc: client_gone, cycles: 3}\n"),
+              HasSubstr("timeline[0].fault.cycles: unknown key 'cycles' (expected one of: plc)"));
   EXPECT_THAT(SceneError("fault_empty", "duration: 1\ntimeline:\n  - fault: {stuck: true}\n"),
               HasSubstr("timeline[0].fault: expected sensor, valve, drive, plc or clear"));
   EXPECT_THAT(SceneError("plc_without_nc", "duration: 1\nplc: {program: repos_machine_keys}\n"),

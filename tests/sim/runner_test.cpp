@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <vector>
 
 #include "render/image.hpp"
 #include "render/image_compare.hpp"
@@ -77,6 +78,50 @@ TEST(RunnerTest, FailedExpectationAndTimeoutAreReported) {
   EXPECT_THAT(r.failures[0], HasSubstr("expect[0]: Z position 50"));
   EXPECT_THAT(r.failures[1], HasSubstr("timeline[1]: wait until input=IROTMODE"));
   EXPECT_THAT(r.failures[1], HasSubstr("timed out"));
+}
+
+// An external PLC (vmt serve): the client_gone step reaches the callback once, and a PLC
+// declared lost drops what it wrote and stops the NC with 505, as the embedded watchdog does.
+TEST(RunnerTest, ExternalPlcLostDropsItsOutputsAndStopsTheNc) {
+  const Scene scene = LoadScene(SourcePath("scenes/fault-plc-client-gone.yaml"));
+  {
+    std::vector<double> gone_at;
+    const SceneRun* at = nullptr;
+    RunOptions o;
+    o.external_plc = true;
+    o.on_plc_client_gone = [&] { gone_at.push_back(at->time_s()); };
+    SceneRun run(scene, o);
+    at = &run;
+    while (!run.done()) run.Step();
+    ASSERT_EQ(gone_at.size(), 1u);
+    EXPECT_NEAR(gone_at[0], 1.0, 1e-9);
+  }
+
+  RunOptions options;
+  options.external_plc = true;
+  options.out_dir = OutputDir("external_plc_lost");
+  SceneRun run(scene, options);
+  control::gateway::SignalImage& image = *run.image();
+  const int repos = image.Require("P00C.REPOS"), errnr = image.Require("P00S.ERRNR");
+  const int run_signal = image.Require("P00S.RUN");
+  while (run.time_s() < 0.2) run.Step();
+  image.SetBool(repos, true);  // as the external PLC writes it
+  run.PlcLost("Modbus: no request for 100 ms, the PLC link is lost");
+  EXPECT_FALSE(image.Bool(repos));
+  for (int i = 0; i < 8; ++i) run.Step();  // an NC cycle shows the error on the gateway
+  EXPECT_EQ(image.Int(errnr), 505);
+  EXPECT_FALSE(image.Bool(run_signal));
+  run.PlcRunning();
+  image.SetBool(repos, true);  // the PLC writes again; the NC stays in its error
+  while (!run.done()) run.Step();
+  run.Finish();
+  const std::string events = testing::ReadBytes(options.out_dir + "/events.jsonl");
+  EXPECT_THAT(events, HasSubstr("{\"t\":0.2,\"event\":\"plc\",\"state\":\"stopped\","
+                                "\"reason\":\"Modbus: no request for 100 ms, the PLC link is "
+                                "lost\"}"));
+  EXPECT_THAT(events, HasSubstr("\"event\":\"plc\",\"state\":\"running\"}"));
+  EXPECT_THAT(events, HasSubstr("\"state\":\"error\",\"error\":\"Modbus: no request for 100 ms"));
+  EXPECT_THAT(events, HasSubstr("\"name\":\"P00S.ERRNR\",\"value\":505.0}"));
 }
 
 TEST(SnapshotTest, SameSnapshotSameBytes) {

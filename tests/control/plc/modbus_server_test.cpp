@@ -655,6 +655,52 @@ TEST_F(ModbusServerTest, MaxClientsRefusesTheRest) {
   EXPECT_EQ(one.stats().clients_refused, 1u);
 }
 
+// The PLC's link goes down (vmt serve's client_gone fault): every connection closes, and the
+// server goes on accepting and serving.
+TEST_F(ModbusServerTest, DropClientsClosesEveryConnectionAndServesNewOnes) {
+  const ModbusAddress& fovr = At(image_, "P00C.FOVR");
+  Raw a(server_.port());
+  Raw b(server_.port());
+  for (int i = 0; i < 200 && server_.clients() < 2; ++i) server_.Poll(10);
+  ASSERT_EQ(server_.clients(), 2);
+  // A request half sent when the link goes is discarded with it.
+  const std::vector<uint8_t> f = Frame(1, Pdu(0x03, fovr.address, 1));
+  ASSERT_TRUE(b.Send({f.begin(), f.begin() + 9}));
+  server_.Poll(10);
+  server_.DropClients();
+  EXPECT_EQ(server_.clients(), 0);
+  EXPECT_EQ(server_.stats().clients_dropped, 2u);
+  EXPECT_TRUE(a.Closed());
+  EXPECT_TRUE(b.Closed());
+  server_.DropClients();  // none left: nothing happens
+  EXPECT_EQ(server_.stats().clients_dropped, 2u);
+
+  Raw c(server_.port());
+  ASSERT_TRUE(c.Send(f));
+  for (int i = 0; i < 200 && server_.stats().requests() == 0; ++i) server_.Poll(10);
+  EXPECT_EQ(c.Receive(11).size(), 11u);
+  EXPECT_EQ(server_.clients(), 1);
+  EXPECT_EQ(server_.stats().clients_accepted, 3u);
+  EXPECT_EQ(server_.stats().requests(), 1u);
+}
+
+TEST(ModbusServerCycleTest, DropClientsFromInsideACycleAborts) {
+  SignalImage image = MakeImage();
+  ModbusServer::Options o;
+  o.cycle_register = Extent(image, ModbusAddress::kHoldingRegister);
+  ModbusServer* self = nullptr;
+  o.on_cycle = [&self](uint32_t) { self->DropClients(); };
+  ModbusServer server(image, o);
+  self = &server;
+  EXPECT_DEATH(
+      {
+        Raw raw(server.port());
+        raw.Send(Frame(1, Pdu(0x06, *o.cycle_register, 1)));
+        for (int i = 0; i < 200; ++i) server.Poll(10);
+      },
+      "DropClients called from inside Poll");
+}
+
 TEST(ModbusServerCycleTest, HandshakeRunsOneCyclePerWrite) {
   SignalImage image = MakeImage();
   const int holding = Extent(image, ModbusAddress::kHoldingRegister);

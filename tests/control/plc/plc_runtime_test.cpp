@@ -75,6 +75,40 @@ TEST(PlcRuntimeTest, OnlySignalsThePlcDrivesAreWritten) {
   EXPECT_FALSE(PlcDrives(gateway::Direction::kMachineToPlc));
 }
 
+// A stopped or lost PLC: what only it writes drops to the presets; what the NC writes, the
+// machine's sensors and the events both sides write stay.
+TEST(PlcRuntimeTest, StopDropsWhatOnlyThePlcWrites) {
+  gateway::SignalImage image = LatheImage();
+  const int control = image.Require("P00C.REPOS"), valve = image.Require("QROTMODE");
+  const int status = image.Require("P00S.RUN"), sensor = image.Require("IROTMODE");
+  int shared = -1;
+  for (int id = 0; id < image.size() && shared < 0; ++id)
+    if (image.table()[id].direction == gateway::Direction::kShared &&
+        image.table()[id].type == gateway::SignalType::kBool)
+      shared = id;
+  ASSERT_GE(shared, 0);
+  PlcRuntime plc(
+      image,
+      [&](PlcScan& s) {
+        s.SetBool(control, true);
+        s.SetBool(valve, true);
+      },
+      PlcTime(4000));
+  plc.Scan();
+  image.SetBool(status, true);
+  image.SetBool(sensor, true);
+  image.SetBool(shared, true);
+  plc.Stop();
+  EXPECT_TRUE(plc.stopped());
+  EXPECT_FALSE(image.Bool(control));
+  EXPECT_FALSE(image.Bool(valve));
+  EXPECT_TRUE(image.Bool(status));
+  EXPECT_TRUE(image.Bool(sensor));
+  EXPECT_TRUE(image.Bool(shared));
+  plc.Scan();  // a stopped PLC does not scan
+  EXPECT_FALSE(image.Bool(control));
+}
+
 TEST(ReposMachineKeysTest, KeysCallRepositioningOrRestartWhileItIsPossible) {
   gateway::SignalImage image = LatheImage();
   auto program = MakePlcProgram("repos_machine_keys", image);
