@@ -156,8 +156,9 @@ struct SceneRun::State {
   control::AmplifierTelegram faulted_at;  ///< the machine as the control sees it, faults applied
   int64_t plc_overdue = 0;                ///< scans in a row the PLC has missed
   /// Without a PLC the runner acknowledges the headstock changeover at once, as a PLC does
-  /// when no mechanical changeover is needed (C-axis manual 4.2), and reports spindle mode at
-  /// power-on; a timeline that writes ROTMOD_Q / SPMOD_Q itself turns this off.
+  /// when no mechanical changeover is needed (C-axis manual 4.2), reports spindle mode at
+  /// power-on and enables the drives (AxxC.READY); a timeline that writes ROTMOD_Q / SPMOD_Q
+  /// itself turns this off.
   bool default_headstock_plc = false;
   void AcknowledgeHeadstock();
   control::axes::HeadstockMode headstock_mode = control::axes::HeadstockMode::kNone;
@@ -401,6 +402,7 @@ void SceneRun::State::AcknowledgeHeadstock() {
   const control::axes::HeadstockChangeover& hs = *channel->headstock();
   for (int id = 0; id < image->size(); ++id) {
     const std::string& pattern = image->table()[id].pattern;
+    if (pattern == "AxxC.READY") image->SetBool(id, true);  // every drive enabled
     if (pattern == "Axx.ROTMOD_Q") image->SetBool(id, hs.rotmod());
     if (pattern == "Axx.SPMOD_Q")
       image->SetBool(id, hs.spmod() || (!hs.busy() && hs.mode() == control::axes::HeadstockMode::kNone));

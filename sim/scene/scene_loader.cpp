@@ -619,6 +619,11 @@ Scene LoadScene(const std::string& path) {
       };
       for (auto& row : s.nc.data.zero_offsets.g54_to_g59) row = column(row);
       for (auto& edge : s.nc.data.tools.edges) edge.length = column(edge.length);
+      // The headstock's rotary axis mode only if its rotary axis is among the chosen ones.
+      const int ra = s.nc.data.rotary_axis;
+      s.nc.data.rotary_axis = -1;
+      for (size_t k = 0; k < chosen.size() && ra >= 0; ++k)
+        if (chosen[k].name == m.nc.axes[ra].name) s.nc.data.rotary_axis = static_cast<int>(k);
       s.nc.data.axes = chosen;
     } else if (!m.nc.present) {
       nc.Fail("the machine has no nc: section: list the channel's axes (axes: [X, Z])");
