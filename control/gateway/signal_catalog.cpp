@@ -1,4 +1,12 @@
+// The signal catalog: the MTC200 process signals, operator panel and axis signals, the names
+// left out, and the whole table, joined from the pieces by manual in its order.
+
 #include "control/gateway/signal_catalog.hpp"
+
+#include <initializer_list>
+#include <vector>
+
+#include "control/gateway/signal_catalog_parts.hpp"
 
 namespace vmt::control::gateway {
 namespace {
@@ -7,13 +15,10 @@ using enum SignalType;
 using enum Direction;
 using enum Scope;
 
-// Manual files; string-literal macros so that "file section" concatenates at compile time.
-#define REPOS "mtc200-repositioning-and-nc-block-restart.md "
-#define CAXIS "mtc200-c-axis.md "
-#define FMEAS "mtc200-fast-measurement.md "
-#define BSRCH "twincat-cnc-block-search-de.md "
-
-constexpr SignalFamily kFamilies[] = {
+// The table in pieces, in its order: the process signals named by the MTC200 manuals, then the
+// block search (signal_catalog_block_search.cpp), the operator panel and axis signals, then the
+// fast-measurement function block (signal_catalog_measuring.cpp).
+constexpr SignalFamily kProcessFamilies[] = {
     // ---------------------------------------------------------------------------------------
     // Process signals named by the manuals (Pxx: process xx, from 00; fast-measurement 3.1
     // calls process 0 the master process, repositioning 8.2 writes P00C.REPOS).
@@ -106,188 +111,9 @@ constexpr SignalFamily kFamilies[] = {
     {"Pxx.MSG_WR_N", kProcess, kDint, kPlcToNc,
      "Numeric parameter of MSG_WR_N, shown in place of '@' in the message text",
      FMEAS "7.2 Typical Application networks 13-17"},
+};
 
-    // ---------------------------------------------------------------------------------------
-    // Block search of the ISG kernel (TwinCAT manual): CNC objects, read/written by the PLC
-    // before the program start; one set per channel (Pxx = channel index xx of gpCh[], i.e.
-    // the channel <Cp> = xx + 1 of the index groups).
-    {"Pxx.mc_cmd_bs_type_w", kProcess, kUint, kPlcToNc,
-     "Block search type: 0 none (default), 1 file offset, 3 block counter, 4 block number",
-     BSRCH "5.1 (COM port 553, index group 0x12010<Cp>, offset 0x49, read/write)"},
-    {"Pxx.mc_cmd_bs_type_r", kProcess, kUint, kNcToPlc,
-     "Block search type: 0 none, 1 file offset, 3 block counter, 4 block number, 5 program end",
-     BSRCH "5.1 (COM port 553, index group 0x12010<Cp>, offset 0x61, read)"},
-    {"Pxx.mc_cmd_bs_auto_return_w", kProcess, kBool, kPlcToNc,
-     "Return to the contour automatically (straight line at rapid limits) after block search",
-     BSRCH "4.2; 5.1 (COM port 553, index group 0x12010<Cp>, offset 0x4B, read/write)"},
-    {"Pxx.mc_cmd_bs_auto_return_r", kProcess, kBool, kNcToPlc,
-     "Return to the contour automatically after block search (read back)",
-     BSRCH "5.1 (COM port 553, index group 0x12010<Cp>, offset 0x4B, read)"},
-    {"Pxx.mc_cmd_bs_no_hold_at_restart_w", kProcess, kBool, kPlcToNc,
-     "Continue directly after returning to the contour, without further operator input",
-     BSRCH "5.1 (COM port 553, index group 0x12010<Cp>, offset 0x79, read/write)"},
-    {"Pxx.mc_cmd_bs_no_hold_at_restart_r", kProcess, kBool, kNcToPlc,
-     "Continue directly after returning to the contour (read back)",
-     BSRCH "5.1 (COM port 553, index group 0x12010<Cp>, offset 0x7A, read)"},
-    {"Pxx.mc_cmd_bs_deviation_max_w", kProcess, kUdint, kPlcToNc,
-     "Maximum deviation between actual and restart position when machining resumes (ignored "
-     "with automatic return); default 0",
-     BSRCH "4.2; 5.1 (COM port 553, index group 0x12010<Cp>, offset 0x4C, read/write)", "0.1 um"},
-    {"Pxx.mc_cmd_bs_deviation_max_r", kProcess, kUdint, kNcToPlc,
-     "Maximum deviation between actual and restart position (read back)",
-     BSRCH "5.1 (COM port 553, index group 0x12010<Cp>, offset 0x64, read)", "0.1 um"},
-    {"Pxx.mc_command_file_offset_w", kProcess, kDint, kPlcToNc,
-     "Entry point: file offset before which the program is skipped (with any block search type "
-     "or without block search); default 0",
-     BSRCH "3.6; 5.1 (COM port 553, index group 0x12010<Cp>, offset 0x11, write)", "byte"},
-    {"Pxx.mc_cmd_bs_breakpoint_position_w", kProcess, kLreal, kPlcToNc,
-     "Breakpoint: automatic stop (like M0) at this distance from program start",
-     BSRCH "3.5; 5.1 (COM port 553, index group 0x12010<Cp>, offset 0x7B, read/write)", "0.1 um"},
-    {"Pxx.mc_cmd_bs_breakpoint_position_r", kProcess, kLreal, kNcToPlc,
-     "Breakpoint distance from program start (read back)",
-     BSRCH "5.1 (COM port 553, index group 0x12010<Cp>, offset 0x11, read)", "0.1 um"},
-    {"Pxx.mc_cmd_bs_distance_prog_start_w", kProcess, kLreal, kPlcToNc,
-     "Distance from program start (or the last #DISTANCE PROG START CLEAR) at which real "
-     "machining begins",
-     BSRCH "4.1.2; 5.1.1 (COM port 553, index group 0x12010<Cp>, offset 0x44, read/write)",
-     "0.1 um"},
-    {"Pxx.mc_cmd_bs_distance_prog_start_r", kProcess, kLreal, kNcToPlc,
-     "Distance from program start at which real machining begins (read back)",
-     BSRCH "5.1.1 (COM port 553, index group 0x12010<Cp>, offset 0x45, read)", "0.1 um"},
-    {"Pxx.mc_cmd_bs_covered_distance_w", kProcess, kLreal, kPlcToNc,
-     "Covered distance within the NC block at which machining continues, 0.0..1000.0 per mille; "
-     "default 0.0",
-     BSRCH "4.1.1; 5.1.1 (COM port 553, index group 0x12010<Cp>, offset 0x4A, read/write)",
-     "0.1 % (per mille)"},
-    {"Pxx.mc_cmd_bs_covered_distance_r", kProcess, kLreal, kNcToPlc,
-     "Covered distance within the NC block at which machining continues (read back)",
-     BSRCH "5.1.1 (COM port 553, index group 0x12010<Cp>, offset 0x62, read)", "0.1 % (per mille)"},
-    {"Pxx.mc_cmd_bs_pos_start_offset_w", kProcess, kDint, kPlcToNc,
-     "Type 1: file offset of the restart position (start of a line), 0..MAX_SGN32",
-     BSRCH "5.2.1 (index group 0x000201<ii>, offset 0x50, write)", "byte"},
-    {"Pxx.mc_cmd_bs_pos_start_offset_r", kProcess, kDint, kNcToPlc,
-     "Type 1: file offset of the restart position (read back)",
-     BSRCH "5.2.1 (index group 0x000201<ii>, offset 0x68, read)", "byte"},
-    {"Pxx.mc_cmd_bs_pos_start_name_w", kProcess, kString, kPlcToNc,
-     "Type 1: file of the restart position, as started in automatic mode (including its path)",
-     BSRCH "5.2.1 (index group 0x000201<ii>, offset 0x4F, write)"},
-    {"Pxx.mc_cmd_bs_pos_start_name_r", kProcess, kString, kNcToPlc,
-     "Type 1: file of the restart position (read back)",
-     BSRCH "5.2.1 (index group 0x000201<ii>, offset 0x67, read)"},
-    {"Pxx.mc_cmd_bs_pos_start_type_w", kProcess, kUint, kPlcToNc,
-     "Type 1: path of the restart file: 0 main program path (default), 1 subprogram path",
-     BSRCH "5.2.1 (index group 0x000201<ii>, offset 0x4E, write)"},
-    {"Pxx.mc_cmd_bs_pos_start_type_r", kProcess, kUint, kNcToPlc,
-     "Type 1: path of the restart file (read back)",
-     BSRCH "5.2.1 (index group 0x000201<ii>, offset 0x66, read)"},
-    {"Pxx.mc_cmd_bs_pos_start_count_w", kProcess, kInt, kPlcToNc,
-     "Type 1: pass count of the restart position (loops), 1..MAX_SGN16, default 1",
-     BSRCH "5.2.1 (index group 0x000201<ii>, offset 0x51, write)", "", "", 1},
-    {"Pxx.mc_cmd_bs_pos_start_count_r", kProcess, kInt, kNcToPlc,
-     "Type 1: pass count of the restart position (read back)",
-     BSRCH "5.2.1 (index group 0x000201<ii>, offset 0x69, read)", "", "", 1},
-    {"Pxx.mc_cmd_bs_pos_end_offset_w", kProcess, kDint, kPlcToNc,
-     "Type 1: file offset of the end position (start of a line), 0..MAX_SGN32",
-     BSRCH "5.2.2 (index group 0x000201<ii>, offset 0x54, write)", "byte"},
-    {"Pxx.mc_cmd_bs_pos_end_offset_r", kProcess, kDint, kNcToPlc,
-     "Type 1: file offset of the end position (read back)",
-     BSRCH "5.2.2 (index group 0x000201<ii>, offset 0x6C, read)", "byte"},
-    {"Pxx.mc_cmd_bs_pos_end_name_w", kProcess, kString, kPlcToNc,
-     "Type 1: file of the end position, as started in automatic mode (including its path)",
-     BSRCH "5.2.2 (index group 0x000201<ii>, offset 0x53, write)"},
-    {"Pxx.mc_cmd_bs_pos_end_name_r", kProcess, kString, kNcToPlc,
-     "Type 1: file of the end position (read back)",
-     BSRCH "5.2.2 (index group 0x000201<ii>, offset 0x6B, read)"},
-    {"Pxx.mc_cmd_bs_pos_end_type_w", kProcess, kUint, kPlcToNc,
-     "Type 1: path of the end file: 0 main program path (default), 1 subprogram path",
-     BSRCH "5.2.2 (index group 0x000201<ii>, offset 0x52, write)"},
-    {"Pxx.mc_cmd_bs_pos_end_type_r", kProcess, kUint, kNcToPlc,
-     "Type 1: path of the end file (read back)",
-     BSRCH "5.2.2 (index group 0x000201<ii>, offset 0x6A, read)"},
-    {"Pxx.mc_cmd_bs_pos_end_count_w", kProcess, kInt, kPlcToNc,
-     "Type 1: pass count of the end position (loops), 1..MAX_SGN16, default 1",
-     BSRCH "5.2.2 (index group 0x000201<ii>, offset 0x55, write)", "", "", 1},
-    {"Pxx.mc_cmd_bs_pos_end_count_r", kProcess, kInt, kNcToPlc,
-     "Type 1: pass count of the end position (read back)",
-     BSRCH "5.2.2 (index group 0x000201<ii>, offset 0x6D, read)", "", "", 1},
-    {"Pxx.mc_cmd_bs_intern_block_count_w", kProcess, kUdint, kPlcToNc,
-     "Type 3: block counter (decoded lines since program start) at which machining continues",
-     BSRCH "3.2; 5.3 (index group 0x000201<ii>, offset 0x5E, write)"},
-    {"Pxx.mc_cmd_bs_intern_block_count_r", kProcess, kUdint, kNcToPlc,
-     "Type 3: block counter at which machining continues (read back)",
-     BSRCH "5.3 (index group 0x000201<ii>, offset 0x76, read)"},
-    {"Pxx.mc_cmd_bs_block_number_w", kProcess, kUdint, kPlcToNc,
-     "Type 4: block number (N word) at which machining continues",
-     BSRCH "3.3; 5.4 (index group 0x000201<ii>, offset 0x5F, write)"},
-    {"Pxx.mc_cmd_bs_block_number_r", kProcess, kUdint, kNcToPlc,
-     "Type 4: block number at which machining continues (read back)",
-     BSRCH "5.4 (index group 0x000201<ii>, offset 0x77, read)"},
-    {"Pxx.mc_cmd_bs_block_number_pass_w", kProcess, kUdint, kPlcToNc,
-     "Type 4: pass count of the block number (loops), default 1",
-     BSRCH "3.3; 5.4 (index group 0x000201<ii>, offset 0x60, write)", "", "", 1},
-    {"Pxx.mc_cmd_bs_block_number_pass_r", kProcess, kUdint, kNcToPlc,
-     "Type 4: pass count of the block number (read back)",
-     BSRCH "5.4 (index group 0x000201<ii>, offset 0x78, read)", "", "", 1},
-    {"Pxx.mc_cmd_bs_block_nbr_prog_name_w", kProcess, kString, kPlcToNc,
-     "Type 4: name (%...) of the program the block number lies in (optional)",
-     BSRCH "3.3; 5.4 (COM port 553, index group 0x12010<Cp>, offset 0xAF, write)"},
-    {"Pxx.mc_cmd_bs_block_nbr_prog_name_r", kProcess, kString, kNcToPlc,
-     "Type 4: name of the program the block number lies in (read back)",
-     BSRCH "5.4 (COM port 553, index group 0x12010<Cp>, offset 0xB0, read)"},
-    {"Pxx.distance_from_program_start", kProcess, kLreal, kNcToPlc,
-     "Distance travelled since program start or the last #DISTANCE PROG START CLEAR",
-     BSRCH "5.5 (GEO port 551, index group 0x12130<Cp>, offset 0x56, read)", "increment",
-     "distance from program start"},
-
-    // Block search status and handshake in the HLI (gpCh[channel_idx]^.<path>; the older
-    // pMC[]^.addr^.StateBahn_Data.* names of CNC builds < 2800 are aliases).
-    {"Pxx.bahn_state.block_search_active_r", kProcess, kBool, kNcToPlc,
-     "Block search active: the interpolator runs without axis motion (states HLI_BS_ACTIVE and "
-     "HLI_BS_WAIT_FOR_PLC_OFF)",
-     BSRCH "5.6; 5.6.1", "", "StateBahn_Data.X_BlockSearchActive"},
-    {"Pxx.bahn_state.block_search_state_r", kProcess, kInt, kNcToPlc,
-     "Block search state HLI_BS_* (0..6)", BSRCH "5.6; 5.6.1", "",
-     "StateBahn_Data.W_BlockSearchState"},
-    {"Pxx.bahn_state.covered_distance_r", kProcess, kDint, kNcToPlc,
-     "Covered part of the current block's path, 0..1000 (main axes, else the slowest "
-     "additional axis)",
-     BSRCH "4.1.1; 5.6; 5.6.1", "0.1 % (per mille)", "StateBahn_Data.D_CoveredDistance"},
-    {"Pxx.bahn_state.dist_prog_start", kProcess, kLreal, kNcToPlc,
-     "Distance travelled in the NC program since program start or the last #DISTANCE PROG START "
-     "CLEAR (LREAL from CNC V3.1.3104.01, UDINT before)",
-     BSRCH "4.1.2; 5.6; 5.6.1", "0.1 um",
-     "StateBahn_Data.D_DistProgStartHigh;StateBahn_Data.D_DistProgStartLow"},
-    {"Pxx.bahn_state.block_count_r", kProcess, kUdint, kNcToPlc,
-     "Line counter: decoded NC line (all lines read, incl. repeated, empty and comment lines) the "
-     "interpolator's current job comes from",
-     BSRCH "3.2; 5.6; 5.6.1", "", "StateBahn_Data.D_BlockCount"},
-    {"Pxx.bahn_state.block_search_path_deviation_r", kProcess, kUdint, kNcToPlc,
-     "Distance of the actual positions from the restart position (from HLI_BS_WAIT_FOR_PLC_OFF; "
-     "cyclic in HLI_BS_RETURNING_TO_CONTOUR), 0..MAX_SGN32",
-     BSRCH "5.6; 5.6.1", "0.1 um", "StateBahn_Data.D_BlockSearchPathDeviation"},
-    {"Pxx.bahn_state.stop_conditions_r", kProcess, kDint, kNcToPlc,
-     "Stop conditions: why the current motion is held (HLI_SC_* bits)", BSRCH "5.6; 5.6.1", "",
-     "StateBahn_Data.D_StopConditions"},
-    {"Pxx.bahn_lc_control.block_search.command_r", kProcess, kBool, kNcToPlc,
-     "Block search on/off handshake, signal of the CNC: TRUE = program started in block search "
-     "mode, FALSE = restart position reached (block search off)",
-     BSRCH "7 (LC_CONTROL_BOOL_UNIT)", "", "LCControlBoolUnit_BlockSearch.X_Command"},
-    {"Pxx.bahn_lc_control.block_search.state_r", kProcess, kBool, kPlcToNc,
-     "Block search on/off handshake, signal of the PLC: TRUE = PLC acknowledged ON (ready for "
-     "block search), FALSE = PLC acknowledged OFF (ready for real axis motion)",
-     BSRCH "7 (LC_CONTROL_BOOL_UNIT)", "", "LCControlBoolUnit_BlockSearch.X_State;state_w"},
-    {"Pxx.bahn_lc_control.block_search.enable_w", kProcess, kBool, kPlcToNc,
-     "Block search on/off handshake, request: TRUE = the PLC wants to be informed of every "
-     "block search on/off change",
-     BSRCH "7 (LC_CONTROL_BOOL_UNIT)", "", "LCControlBoolUnit_BlockSearch.X_Enable"},
-    {"Pxx.SuspendAxisOutput", kProcess, kBool, kPlcToNc,
-     "The channel's axes are lent to a JogOfPath channel; block search may already start",
-     BSRCH "4.2.1 (HLI.channel.SuspendAxisOutput)"},
-    {"Pxx.SuspendOutput", kProcess, kBool, kPlcToNc,
-     "Suspend the channel's output while the other channel (block search / JogOfPath) moves the "
-     "axes",
-     BSRCH "4.2.1 (HLI.BlockSearchChannel.SuspendOutput, HLI.JogOfPathChannel.SuspendOutput)"},
-
+constexpr SignalFamily kPanelAndAxisFamilies[] = {
     // ---------------------------------------------------------------------------------------
     // Operator panel signals the NC needs that no manual names (source "vmt"). The manuals
     // speak of the modes (automatic, semi-automatic, MDI, manual: c-axis 2.3), the start button
@@ -451,189 +277,9 @@ constexpr SignalFamily kFamilies[] = {
     {"Axx.AXD.65015", kChangeover, kDint, kShared,
      "Ident 65015 (P-7-3575): spindle angle for 'spindle positioning' (0..360 deg)",
      CAXIS "2.2; 3.2; 4.4", "0.0001 deg"},
-
-    // ---------------------------------------------------------------------------------------
-    // Fast-measurement function block QMFB1Axx (7.2): the control vendor supplies it to the SPS
-    // program; vmt offers one instance, QMFB1A00 (the name the manual's figure 7-26 and its
-    // example use; "xx" is not an axis number: the block serves the axes ACHS_NR_1..3).
-    // The block runs in the SPS: its inputs and its outputs are both SPS variables, written by
-    // the SPS (an external PLC that runs the block writes both over Modbus).
-    {"QMFB1A00.ENABLE", kGlobal, kBool, kPlcToNc,
-     "0 = FB not processed, pending errors cleared, FB reset; 1 = FB processed", FMEAS "7.2"},
-    {"QMFB1A00.RESET", kGlobal, kBool, kPlcToNc, "Clear errors and reset the measuring sequence",
-     FMEAS "7.2"},
-    {"QMFB1A00.Q_Nummer", kGlobal, kInt, kPlcToNc,
-     "Number of the Q function that triggers reading the initialisation values from the machine "
-     "data (preset 9992)",
-     FMEAS "7.2", "", "", 9992},
-    {"QMFB1A00.Koll_EV", kGlobal, kInt, kPlcToNc,
-     "Number of the 'switch on collision monitoring' event (preset 29)", FMEAS "7.2", "", "", 29},
-    {"QMFB1A00.Mess_EV", kGlobal, kInt, kPlcToNc,
-     "Number of the 'NC block measuring path active' event (preset 30)", FMEAS "7.2", "", "", 30},
-    {"QMFB1A00.Touch_EV", kGlobal, kInt, kPlcToNc,
-     "Number of the 'probe is displaced' event (preset 7)", FMEAS "7.2", "", "", 7},
-    {"QMFB1A00.BasisPage", kGlobal, kInt, kPlcToNc,
-     "Number of the base measurement page with the initialisation values (preset 90)",
-     FMEAS "3.1; 7.2", "", "", 90},
-    {"QMFB1A00.MessProc", kGlobal, kInt, kPlcToNc, "Number of the NC process used for measurement",
-     FMEAS "7.2"},
-    {"QMFB1A00.ACHS_NR_1", kGlobal, kInt, kPlcToNc,
-     "Axis number of the 1st measuring axis; 0 = axis does not exist", FMEAS "7.2"},
-    {"QMFB1A00.ACHS_NR_2", kGlobal, kInt, kPlcToNc,
-     "Axis number of the 2nd measuring axis; 0 = axis does not exist", FMEAS "7.2"},
-    {"QMFB1A00.ACHS_NR_3", kGlobal, kInt, kPlcToNc,
-     "Axis number of the 3rd measuring axis; 0 = axis does not exist", FMEAS "7.2"},
-    {"QMFB1A00.I_MT_OK1", kGlobal, kBool, kPlcToNc, "Probe 1 ready message", FMEAS "7.2"},
-    {"QMFB1A00.I_MTast1", kGlobal, kBool, kPlcToNc,
-     "Probe 1 measuring contact (same contact logic as at the drive)", FMEAS "7.2"},
-    {"QMFB1A00.I_MT_OK2", kGlobal, kBool, kPlcToNc, "Probe 2 ready message", FMEAS "7.2"},
-    {"QMFB1A00.I_MTast2", kGlobal, kBool, kPlcToNc,
-     "Probe 2 measuring contact (same contact logic as at the drive)", FMEAS "7.2"},
-    {"QMFB1A00.IDDS_1", kGlobal, kBool, kPlcToNc,
-     "Axis 1 real-time status bit (AxxS.IDDS): TRUE when the drive accepted the measured value",
-     FMEAS "7.2"},
-    {"QMFB1A00.IDDS_2", kGlobal, kBool, kPlcToNc,
-     "Axis 2 real-time status bit (AxxS.IDDS): TRUE when the drive accepted the measured value",
-     FMEAS "7.2"},
-    {"QMFB1A00.IDDS_3", kGlobal, kBool, kPlcToNc,
-     "Axis 3 real-time status bit (AxxS.IDDS): TRUE when the drive accepted the measured value",
-     FMEAS "7.2"},
-    {"QMFB1A00.AXDdisabl", kGlobal, kBool, kPlcToNc,
-     "Disable communication via the AXD channel (AXD_WR initialises the drives)", FMEAS "7.2"},
-    {"QMFB1A00.MTDdisabl", kGlobal, kBool, kPlcToNc,
-     "Disable communication via MTD (reading the probe data from the base measurement page)",
-     FMEAS "7.2"},
-    {"QMFB1A00.Init_OK_1", kGlobal, kBool, kPlcToNc, "1st measuring axis prepared for measurement",
-     FMEAS "7.2"},
-    {"QMFB1A00.Init_OK_2", kGlobal, kBool, kPlcToNc, "2nd measuring axis prepared for measurement",
-     FMEAS "7.2"},
-    {"QMFB1A00.Init_OK_3", kGlobal, kBool, kPlcToNc, "3rd measuring axis prepared for measurement",
-     FMEAS "7.2"},
-    {"QMFB1A00.QDDS_1", kGlobal, kBool, kPlcToNc,
-     "Real-time control bit of the 1st measuring axis: wire to AxxC.QDDS to enable the latch",
-     FMEAS "7.2"},
-    {"QMFB1A00.QDDS_2", kGlobal, kBool, kPlcToNc,
-     "Real-time control bit of the 2nd measuring axis: wire to AxxC.QDDS to enable the latch",
-     FMEAS "7.2"},
-    {"QMFB1A00.QDDS_3", kGlobal, kBool, kPlcToNc,
-     "Real-time control bit of the 3rd measuring axis: wire to AxxC.QDDS to enable the latch",
-     FMEAS "7.2"},
-    {"QMFB1A00.Q_MTst1", kGlobal, kBool, kPlcToNc,
-     "Activate probe 1: the measuring program requests probe 1", FMEAS "7.2"},
-    {"QMFB1A00.Q_MTst2", kGlobal, kBool, kPlcToNc,
-     "Activate probe 2: the measuring program requests probe 2", FMEAS "7.2"},
-    {"QMFB1A00.Q_MTstOK", kGlobal, kBool, kPlcToNc,
-     "The probe the measuring program requested is ready for measurement", FMEAS "7.2"},
-    {"QMFB1A00.Q_MTstKol", kGlobal, kBool, kPlcToNc,
-     "Probe collision: the requested probe was displaced during the approach to the measuring "
-     "path (trigger an NC stop, suppress advance start)",
-     FMEAS "7.2", "", "Q_MTstKOl"},
-    {"QMFB1A00.Q_MTstKmp", kGlobal, kBool, kPlcToNc,
-     "Test point not found: probe not displaced up to the end of the measuring path block "
-     "(trigger an NC stop, suppress advance start)",
-     FMEAS "7.2", "", "Q_MTstKMp"},
-    {"QMFB1A00.Q_MTst", kGlobal, kBool, kPlcToNc, "Selected probe has been displaced", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER", kGlobal, kBool, kPlcToNc,
-     "Error detected (trigger an NC stop, suppress advance start, show FEHLER_NR)", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", kGlobal, kInt, kPlcToNc, "Error number (figure 7-28)", FMEAS "7.2"},
-    {"QMFB1A00.AXDaktiv", kGlobal, kBool, kPlcToNc,
-     "Transfer via the AXD channel active (AXD_WR writes drive data)", FMEAS "7.2"},
-    {"QMFB1A00.MTDaktiv", kGlobal, kBool, kPlcToNc,
-     "Transfer via MTD active (MTD_RD reads machine data pages over a process data channel)",
-     FMEAS "7.2"},
-    {"QMFB1A00.P_Dat_ovr", kGlobal, kBool, kPlcToNc,
-     "Process data channel overflow: all eight process data channels to the NC process are "
-     "occupied",
-     FMEAS "7.2"},
 };
 
-constexpr ValueName kValues[] = {
-    // Block search state (twincat 5.6, figure 26).
-    {"Pxx.bahn_state.block_search_state_r", "HLI_BS_INACTIVE", 0, false, "Block search off",
-     BSRCH "5.6; 5.6.1"},
-    {"Pxx.bahn_state.block_search_state_r", "HLI_BS_WAIT_FOR_PLC_ON", 1, false,
-     "Waiting for the PLC to acknowledge block search ON", BSRCH "5.6; 5.6.1; 7"},
-    {"Pxx.bahn_state.block_search_state_r", "HLI_BS_ACTIVE", 2, false,
-     "Searching the restart position without axis motion", BSRCH "5.6; 5.6.1"},
-    {"Pxx.bahn_state.block_search_state_r", "HLI_BS_WAIT_FOR_PLC_OFF", 3, false,
-     "Restart position found; waiting for the PLC to acknowledge block search OFF",
-     BSRCH "5.6; 5.6.1; 7"},
-    {"Pxx.bahn_state.block_search_state_r", "HLI_BS_WAIT_RETURN_TO_CONTOUR", 4, false,
-     "Hold after block search off: waiting before the return to the contour",
-     BSRCH "4.2.1; 5.6; 5.6.1"},
-    {"Pxx.bahn_state.block_search_state_r", "HLI_BS_RETURNING_TO_CONTOUR", 5, false,
-     "Moving: returning to the contour", BSRCH "4.2.1; 5.6; 5.6.1"},
-    {"Pxx.bahn_state.block_search_state_r", "HLI_BS_WAIT_FOR_CONTINUE_CONTOUR", 6, false,
-     "Hold: contour reached (or breakpoint); waiting for 'continue motion'",
-     BSRCH "3.5; 4.2.1; 5.6; 5.6.1"},
-    // Stop conditions (twincat 5.6 "Wertebereich der Haltebedingungen").
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_FEEDHOLD", 0x0001, true, "Path feed hold",
-     BSRCH "5.6"},
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_VFG", 0x0002, true,
-     "Axis-specific feed enable missing", BSRCH "5.6"},
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_SINGLE_BLOCK", 0x0004, true,
-     "Single block mode active", BSRCH "5.6"},
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_M00_OR_M01", 0x0010, true,
-     "M00 (programmed stop) or M01 (optional stop) active", BSRCH "5.6"},
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_PLC_ACKNOWLEDGE", 0x0020, true,
-     "Waiting for an acknowledgement from the PLC (e.g. M or H functions)", BSRCH "5.6"},
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_OVERRIDE_ZERO", 0x0040, true, "Override = 0",
-     BSRCH "5.6"},
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_OVERRIDE_RAPID_ZERO", 0x0080, true,
-     "Override = 0 in rapid blocks", BSRCH "5.6"},
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_DELAY_TIME", 0x0200, true, "Dwell time",
-     BSRCH "5.6"},
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_CHANNEL_SYNC", 0x0800, true,
-     "Channel synchronisation active", BSRCH "5.6"},
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_IPO_INPUT_EMPTY", 0x1000, true,
-     "Interpolator input FIFO empty", BSRCH "5.6"},
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_IPO_INPUT_DISABLED", 0x2000, true,
-     "Reading of function blocks (e.g. motion blocks) disabled", BSRCH "5.6"},
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_WAIT_FOR_AXES", 0x8000, true,
-     "Waiting for a requested axis exchange to finish", BSRCH "5.6"},
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_CHANNEL_ERROR", 0x00010000, true,
-     "An error occurred in the channel", BSRCH "5.6"},
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_WAIT_TECHNO_ACK", 0x00020000, true,
-     "Waiting for the acknowledgement of M/H/S/T technology functions", BSRCH "5.6"},
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_W_C_AFTER_COLLISION", 0x00040000, true,
-     "Waiting to continue after a detected collision", BSRCH "5.6"},
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_SLOPE_SUPPLY_PROBLEM", 0x00080000, true,
-     "Block supply problem (HSC slope only)", BSRCH "5.6"},
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_BACK_INTERPOLATION", 0x00100000, true,
-     "Back interpolation after tracking mode active", BSRCH "5.6"},
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_STOP_REVERSIBLE", 0x00200000, true,
-     "Stop at M00, but the program may still be run backwards", BSRCH "5.6"},
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_BREAKPOINT_STOP", 0x00400000, true,
-     "Stop at the breakpoint", BSRCH "3.5; 5.6"},
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_M0_STOP", 0x02000000, true,
-     "Stop after an M00 function", BSRCH "5.6"},
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_M1_STOP", 0x04000000, true,
-     "Stop after an M01 function", BSRCH "5.6"},
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_INSERT_STOP_AT_DIST", 0x08000000, true,
-     "Stop at an M function inserted by the control unit 'insert stop marks'", BSRCH "5.6"},
-    {"Pxx.bahn_state.stop_conditions_r", "HLI_SC_DEC_SYN_CHAN_EMPTY", 0x10000000, true,
-     "Decoder waits for synchronisation; the NC channel has no jobs", BSRCH "5.6"},
-    // Block search type (twincat 5.1; type 6 from 3.5.1).
-    {"Pxx.mc_cmd_bs_type_w", "", 0, false, "No block search (default)", BSRCH "5.1"},
-    {"Pxx.mc_cmd_bs_type_w", "", 1, false, "Type 1: restart position by file offset",
-     BSRCH "3.1; 5.1"},
-    {"Pxx.mc_cmd_bs_type_w", "", 3, false, "Type 3: restart position by block counter",
-     BSRCH "3.2; 5.1"},
-    {"Pxx.mc_cmd_bs_type_w", "", 4, false,
-     "Type 4: restart position by block number (+ pass counter, program name)", BSRCH "3.3; 5.1"},
-    {"Pxx.mc_cmd_bs_type_w", "SIMULATION", 6, false,
-     "Type 6: breakpoint only, without block search (not in the object's list of values)",
-     BSRCH "3.5.1"},
-    {"Pxx.mc_cmd_bs_type_r", "", 0, false, "No block search", BSRCH "5.1"},
-    {"Pxx.mc_cmd_bs_type_r", "", 1, false, "Type 1: file offset", BSRCH "5.1"},
-    {"Pxx.mc_cmd_bs_type_r", "", 3, false, "Type 3: block counter", BSRCH "5.1"},
-    {"Pxx.mc_cmd_bs_type_r", "", 4, false, "Type 4: block number", BSRCH "5.1"},
-    {"Pxx.mc_cmd_bs_type_r", "", 5, false, "Type 5: to program end (M17, M30)", BSRCH "3.4; 5.1"},
-    {"Pxx.mc_cmd_bs_pos_start_type_w", "HP", 0, false, "Main program path (default)",
-     BSRCH "5.2.1"},
-    {"Pxx.mc_cmd_bs_pos_start_type_w", "UP", 1, false, "Subprogram path", BSRCH "5.2.1"},
-    {"Pxx.mc_cmd_bs_pos_end_type_w", "HP", 0, false, "Main program path (default)", BSRCH "5.2.2"},
-    {"Pxx.mc_cmd_bs_pos_end_type_w", "UP", 1, false, "Subprogram path", BSRCH "5.2.2"},
+constexpr ValueName kAxisValues[] = {
     // Ident number 65012 bits (c-axis 2.2).
     {"Axx.AXD.65012", "Bit 0", 0x0001, true, "Spindle hunting specification (KDA only)",
      CAXIS "2.2; 3.2"},
@@ -646,72 +292,6 @@ constexpr ValueName kValues[] = {
      CAXIS "2.2; 3.2"},
     {"Axx.AXD.65012", "Bit 10", 0x0400, true, "Spindle speed specification acknowledgement",
      CAXIS "2.2; 3.2"},
-    // Error numbers of the measuring function block (fast-measurement figure 7-28).
-    {"QMFB1A00.FEHLER_NR", "", 1, false,
-     "Parameter error at the FB: no axis specified (ACHS_NR_1..3 all 0)", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 2, false, "Parameter error at the FB: ACHS_NR_1 > 32", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 3, false, "Parameter error at the FB: ACHS_NR_2 > 32", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 4, false, "Parameter error at the FB: ACHS_NR_3 > 32", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 5, false, "Parameter error at the FB: ACHS_NR_1 < 1", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 6, false, "Parameter error at the FB: ACHS_NR_2 < 1", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 7, false, "Parameter error at the FB: ACHS_NR_3 < 1", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 10, false,
-     "Execution error in the NC program: probe not initialised (Q9992)", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 11, false,
-     "Parameter error in the measuring pages: no axis requested for measurement", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 12, false, "Execution error in the NC program: no EV29 before EV30",
-     FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 13, false,
-     "Execution error in the NC program: measuring path event set before the collision "
-     "monitoring event",
-     FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 20, false,
-     "Parameter error in the measuring pages: 1st axis requested but ACHS_NR_1 = 0", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 21, false,
-     "Parameter error in the measuring pages: 2nd axis requested but ACHS_NR_2 = 0", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 22, false,
-     "Parameter error in the measuring pages: 3rd axis requested but ACHS_NR_3 = 0", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 23, false,
-     "NC/SPS communication: reading the probe selection from the base measurement page failed",
-     FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 24, false,
-     "NC/SPS communication: reading the probe logic from the base measurement page failed",
-     FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 25, false,
-     "NC/SPS communication: reading 'measuring with axis 1' from the base measurement page failed",
-     FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 26, false,
-     "NC/SPS communication: reading 'measuring with axis 2' from the base measurement page failed",
-     FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 27, false,
-     "NC/SPS communication: reading 'measuring with axis 3' from the base measurement page failed",
-     FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 28, false,
-     "NC/SPS communication: error writing SERCOS data item S_0_303 axis 1", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 29, false,
-     "NC/SPS communication: error writing SERCOS data item S_0_303 axis 2", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 30, false,
-     "NC/SPS communication: error writing SERCOS data item S_0_303 axis 3", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 31, false,
-     "NC/SPS communication: error writing SERCOS data item S_0_307 axis 1", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 32, false,
-     "NC/SPS communication: error writing SERCOS data item S_0_307 axis 2", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 33, false,
-     "NC/SPS communication: error writing SERCOS data item S_0_307 axis 3", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 34, false,
-     "NC/SPS communication: error writing SERCOS data item S_0_169 axis 1", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 35, false,
-     "NC/SPS communication: error writing SERCOS data item S_0_169 axis 2", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 36, false,
-     "NC/SPS communication: error writing SERCOS data item S_0_169 axis 3", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 37, false,
-     "NC/SPS communication: error writing SERCOS data item S_0_170 axis 1", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 38, false,
-     "NC/SPS communication: error writing SERCOS data item S_0_170 axis 2", FMEAS "7.2"},
-    {"QMFB1A00.FEHLER_NR", "", 40, false,
-     "Parameter error in the measuring pages or SPS: axis designation parameters, or parameters "
-     "of a non-existent axis",
-     FMEAS "7.2"},
 };
 
 constexpr Unrepresented kUnrepresented[] = {
@@ -738,15 +318,26 @@ constexpr Unrepresented kUnrepresented[] = {
     {"HLI_SYS_CH_MAXIDX", "Array bound of gpCh[], not a signal", BSRCH "7"},
 };
 
-#undef REPOS
-#undef CAXIS
-#undef FMEAS
-#undef BSRCH
+template <typename T>
+std::vector<T> Joined(std::initializer_list<std::span<const T>> pieces) {
+  std::vector<T> all;
+  for (std::span<const T> piece : pieces) all.insert(all.end(), piece.begin(), piece.end());
+  return all;
+}
 
 }  // namespace
 
-std::span<const SignalFamily> SignalFamilies() { return kFamilies; }
-std::span<const ValueName> SignalValues() { return kValues; }
+std::span<const SignalFamily> SignalFamilies() {
+  static const std::vector<SignalFamily> families = Joined<SignalFamily>(
+      {kProcessFamilies, catalog::BlockSearchFamilies(), kPanelAndAxisFamilies,
+       catalog::MeasuringFamilies()});
+  return families;
+}
+std::span<const ValueName> SignalValues() {
+  static const std::vector<ValueName> values =
+      Joined<ValueName>({catalog::BlockSearchValues(), kAxisValues, catalog::MeasuringValues()});
+  return values;
+}
 std::span<const Unrepresented> UnrepresentedNames() { return kUnrepresented; }
 
 }  // namespace vmt::control::gateway

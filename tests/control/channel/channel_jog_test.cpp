@@ -1,0 +1,127 @@
+// Jogging on the channel in manual mode: continuous, incremental, rapid, parametric and
+// handwheel jogs, a program jogged away from, and the software limits of programs and jogs.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "channel_test_support.hpp"
+#include "control/channel/channel.hpp"
+
+namespace vmt::control::channel {
+namespace {
+
+using namespace testing;  // vmt::control::channel::testing
+
+TEST(ChannelTest, ContinuousJogWhileTheKeyIsHeld) {
+  Machine m("N1 RET\n", 50, 0);
+  m.channel->Jog(0, +1);  // automatic mode: ignored
+  for (int i = 0; i < 400; ++i) m.Tick();
+  EXPECT_EQ(m.X(), 50);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->Jog(0, +1);
+  for (int i = 0; i < 4000; ++i) m.Tick();  // 1 s at 40 mm/s (a tenth of the rapid)
+  EXPECT_EQ(m.channel->AxisMotion(0), 1);
+  EXPECT_NEAR(m.X(), 50 + 40 - 40 * 40 / (2 * 4000.0), 0.05);
+  m.channel->Jog(0, 0);
+  for (int i = 0; i < 400; ++i) m.Tick();
+  const double stopped = m.X();
+  for (int i = 0; i < 400; ++i) m.Tick();
+  EXPECT_EQ(m.X(), stopped);
+  EXPECT_EQ(m.channel->AxisMotion(0), 0);
+  EXPECT_EQ(m.Z(), 0);
+}
+
+TEST(ChannelTest, IncrementalJogMovesExactlyOneIncrementPerPress) {
+  Machine m("N1 RET\n", 50, 20);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->SetJogIncrement(0.1);
+  for (int press = 0; press < 3; ++press) {
+    m.channel->Jog(1, -1);
+    for (int i = 0; i < 800; ++i) m.Tick();
+    m.channel->Jog(1, 0);
+    for (int i = 0; i < 40; ++i) m.Tick();
+  }
+  EXPECT_NEAR(m.Z(), 19.7, 1e-9);
+  EXPECT_EQ(m.X(), 50);
+}
+
+TEST(ChannelTest, JoggedAwayProgramDoesNotJumpBackToThePath) {
+  Machine m("N1 G01 X100 F600\nN2 RET\n");
+  m.channel->Start();
+  for (int i = 0; i < 2000; ++i) m.Tick();
+  m.channel->Stop();
+  for (int i = 0; i < 400; ++i) m.Tick();
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->Jog(1, +1);  // Z away from the contour
+  for (int i = 0; i < 400; ++i) m.Tick();
+  m.channel->Jog(1, 0);
+  for (int i = 0; i < 400; ++i) m.Tick();
+  const double z = m.Z();
+  ASSERT_GT(z, 1);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kAutomatic));
+  m.channel->Start();
+  for (int i = 0; i < 400; ++i) m.Tick();
+  EXPECT_EQ(m.channel->state(), ChannelState::kError);
+  EXPECT_THAT(m.channel->error(), ::testing::HasSubstr("axis Z has left the contour"));
+  EXPECT_EQ(m.Z(), z);  // nothing jumped
+}
+
+TEST(ChannelTest, JogModesRapidParametricAndHandwheel) {
+  auto configure = [](ChannelConfig& c) {
+    c.axes[0].jog_per_s = 20;
+    c.axes[0].jog_rapid_per_s = 80;
+    c.axes[0].jog_distance = 2.5;
+  };
+  Machine m("N1 RET\n", 0, 0, configure);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->SetJogMode(static_cast<int>(JogMode::kRapid));
+  m.channel->Jog(0, +1);
+  for (int i = 0; i < 4000; ++i) m.Tick();
+  m.channel->Jog(0, 0);
+  for (int i = 0; i < 400; ++i) m.Tick();
+  EXPECT_NEAR(m.X(), 80, 0.5);  // 1 s at 80 mm/s
+  const double x0 = m.X();
+  m.channel->SetJogMode(static_cast<int>(JogMode::kParametric));
+  m.channel->Jog(0, -1);
+  for (int i = 0; i < 4000; ++i) m.Tick();
+  m.channel->Jog(0, 0);
+  EXPECT_NEAR(m.X(), x0 - 2.5, 1e-9);
+  m.channel->SetJogMode(static_cast<int>(JogMode::kIncrement100));
+  m.channel->Jog(0, +1);
+  for (int i = 0; i < 400; ++i) m.Tick();
+  m.channel->Jog(0, 0);
+  EXPECT_NEAR(m.X(), x0 - 2.4, 1e-9);
+  // Handwheel: 250 counts of 0.01 mm, the keys do nothing.
+  m.channel->SetJogMode(static_cast<int>(JogMode::kHandwheel));
+  m.channel->Jog(1, +1);
+  m.channel->Handwheel(0, 250);
+  for (int i = 0; i < 4000; ++i) m.Tick();
+  EXPECT_NEAR(m.X(), x0 - 2.4 + 2.5, 1e-9);
+  EXPECT_EQ(m.Z(), 0);
+}
+
+TEST(ChannelTest, SoftwareLimitsStopProgramsBeforeAndJogsAtTheLimit) {
+  auto configure = [](ChannelConfig& c) { c.axes[0].travel_min = 0, c.axes[0].travel_max = 300; };
+  Machine m("N1 G00 X100\nN2 G00 X301\nN3 RET\n", 0, 0, configure);
+  m.channel->Start();
+  m.RunUntilEnd();
+  EXPECT_EQ(m.channel->error_number(), kMsgSoftwareLimit);
+  EXPECT_THAT(
+      m.channel->error(),
+      ::testing::HasSubstr("p.mtc:2:1: error: axis X target 301.0000 is beyond its travel"));
+  EXPECT_DOUBLE_EQ(m.X(), 100);
+  m.channel->Reset();
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->SetJogMode(static_cast<int>(JogMode::kRapid));  // 200 mm/s
+  m.channel->Jog(0, +1);
+  double highest = 0;
+  for (int i = 0; i < 12000; ++i) m.Tick(), highest = std::max(highest, m.X());
+  EXPECT_DOUBLE_EQ(highest, 300);
+  EXPECT_DOUBLE_EQ(m.X(), 300);
+  m.channel->Jog(0, 0);
+}
+
+}  // namespace
+}  // namespace vmt::control::channel

@@ -1,0 +1,74 @@
+#pragma once
+// Shared by the channel tests (channel_*_test.cpp): the channel on an ideal machine (actual =
+// setpoint) with axes X and Z and a spindle, and a configuration with zero offsets and tools.
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "control/channel/channel.hpp"
+#include "control/nc/parser.hpp"
+
+namespace vmt::control::channel::testing {
+
+inline ChannelAxis Axis(const std::string& name, int drive, double rapid_per_s) {
+  ChannelAxis a;
+  a.name = name;
+  a.number = drive + 1;
+  a.drive = drive;
+  a.rapid_per_s = rapid_per_s;
+  a.acceleration = 4000;
+  return a;
+}
+
+struct Machine {
+  explicit Machine(const std::string& program, double x = 0, double z = 0,
+                   const std::function<void(ChannelConfig&)>& configure = {},
+                   nc::Dialect dialect = nc::Dialect::kMtc200) {
+    parsed = nc::ParseProgram(program, dialect == nc::Dialect::kIsg ? "p.isg" : "p.mtc", dialect);
+    EXPECT_TRUE(parsed.ok()) << nc::Format(parsed.errors[0], parsed.program.files);
+    ChannelConfig config;
+    config.axes = {Axis("X", 0, 400), Axis("Z", 1, 500)};
+    config.spindle_drive = 2;
+    if (configure) configure(config);
+    channel = std::make_unique<Channel>(config, std::vector<const nc::Program*>{&parsed.program});
+    at.feedback.resize(3);
+    for (DriveFeedback& f : at.feedback) f.status = drive_status::kReady;  // drives ready
+    at.feedback[0].position = x;
+    at.feedback[1].position = z;
+    mdt.setpoints.resize(3);
+  }
+  // One drive tick of an ideal machine: the actual position is the setpoint.
+  void Tick() {
+    channel->Tick(at, mdt);
+    for (int d = 0; d < 2; ++d)
+      if (mdt.setpoints[d].mode == DriveMode::kPosition)
+        at.feedback[d].position = mdt.setpoints[d].value;
+    t += 250e-6;
+  }
+  double RunUntilEnd(double limit = 60) {
+    while (channel->state() != ChannelState::kEnded && channel->state() != ChannelState::kError &&
+           t < limit)
+      Tick();
+    return t;
+  }
+  double X() const { return at.feedback[0].position; }
+  double Z() const { return at.feedback[1].position; }
+
+  nc::ParseResult parsed;
+  std::unique_ptr<Channel> channel;
+  AmplifierTelegram at;
+  MasterTelegram mdt;
+  double t = 0;
+};
+
+inline void WithOffsetsAndTools(ChannelConfig& c) {
+  c.zero_offsets.g54_to_g59[0] = {5, 100};   // G54: X+5, Z+100
+  c.zero_offsets.g54_to_g59[1] = {-2, 200};  // G55
+  c.tools.edges = {{1, 1, {0, 0}, 0.8, 3}, {2, 1, {1.5, -4}, 0.4, 3}};
+}
+
+}  // namespace vmt::control::channel::testing
