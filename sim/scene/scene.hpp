@@ -97,6 +97,7 @@ struct TimelineStep {
   int io = -1;
   double target = 0;   ///< move: position (mm|deg); speed: deg/s or mm/s; orient: deg
   double feed = 0;     ///< move: mm/s | deg/s
+  int parameter_set = 0;  ///< move, speed, orient: the drive parameter set the setpoint names
   bool level = false;  ///< output value
   int code = 0;        ///< kNcMode: ChannelMode; kNcJogMode: JOGM code; kHandwheel: counts
   int signal = -1;     ///< kSignal: gateway signal the (default) PLC writes; value in `target`

@@ -242,6 +242,9 @@ TEST(SceneInputTest, Errors) {
   EXPECT_THAT(
       SceneError("bad_feed", "duration: 1\ntimeline:\n  - move: {axis: Z, to: 1, feed: -5}\n"),
       HasSubstr("timeline[0].move.feed: must be > 0"));
+  EXPECT_THAT(SceneError("bad_parameter_set",
+                         "duration: 1\ntimeline:\n  - speed: {axis: S1, rpm: 10, parameter_set: 8}\n"),
+              HasSubstr("timeline[0].speed.parameter_set: expected 0..7"));
   EXPECT_THAT(SceneError("bad_camera", "duration: 1\nsnapshots:\n  - {at: 0, camera: nope}\n"),
               HasSubstr("snapshots[0].camera: no camera 'nope'"));
   EXPECT_THAT(SceneError("bad_backend", "duration: 1\nbackend: quantum\n"),
