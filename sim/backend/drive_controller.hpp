@@ -38,7 +38,8 @@ inline constexpr double kOverspeedFactor = 1.2;
 class DriveController {
  public:
   explicit DriveController(const DriveParams& params)
-      : p_(&params), set_(&params.parameter_sets.at(0)),
+      : p_(&params),
+        set_(&params.parameter_sets.at(0)),
         counts_per_unit_(1 / params.encoder_resolution) {}
 
   /// Velocity the drive asks for this tick (m/s | rad/s), given the setpoint in SI, the encoder

@@ -57,14 +57,14 @@ struct DriveParameterSet {
   /// Spindle behaviour in position mode: M19 orientation along the drive's own profile. A servo
   /// set follows the master's cyclically interpolated position through the Kv loop instead.
   bool spindle = false;
-  double kv_per_s = 30;           ///< position loop gain
-  double velocity_kp = 0;         ///< velocity loop P gain, N s/m | N m s/rad (load side)
-  double velocity_ti_s = 0.01;    ///< velocity loop integral time
-  double torque_limit = 0;        ///< N | N m (load side)
-  double velocity_limit = 0;      ///< m/s | rad/s
-  double acceleration_limit = 0;  ///< m/s^2 | rad/s^2 (spindle ramp, profiles)
-  double in_position_window = 0;  ///< m | rad
-  double standstill_window = 0;   ///< m/s | rad/s
+  double kv_per_s = 30;              ///< position loop gain
+  double velocity_kp = 0;            ///< velocity loop P gain, N s/m | N m s/rad (load side)
+  double velocity_ti_s = 0.01;       ///< velocity loop integral time
+  double torque_limit = 0;           ///< N | N m (load side)
+  double velocity_limit = 0;         ///< m/s | rad/s
+  double acceleration_limit = 0;     ///< m/s^2 | rad/s^2 (spindle ramp, profiles)
+  double in_position_window = 0;     ///< m | rad
+  double standstill_window = 0;      ///< m/s | rad/s
   double following_error_limit = 0;  ///< m | rad
   double positioning_speed = 0;      ///< rad/s, spindle M19 orientation speed
 };
@@ -74,8 +74,8 @@ struct DriveParameterSet {
 /// Gains and limits are stored in SI (m or rad) after loading.
 struct DriveParams : DriveParameterSet {
   control::DriveInfo info;
-  int motor_joint = -1;           ///< joint the motor torque acts on
-  double ratio = 1;               ///< motor units per load unit (belt, gear reduction)
+  int motor_joint = -1;  ///< joint the motor torque acts on
+  double ratio = 1;      ///< motor units per load unit (belt, gear reduction)
   /// `encoder: load`: the joint a load-side (external) encoder reads, for the position loop and
   /// the feedback position; the velocity loop stays on the motor. -1: the motor encoder
   /// (motor_joint / ratio).

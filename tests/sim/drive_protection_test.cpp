@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "sim/runner/runner.hpp"
 #include "sim_test_support.hpp"
 
 namespace vmt::sim {
@@ -55,8 +56,7 @@ TEST(DriveProtectionTest, OverloadTripsAfterTheOverloadTime) {
   EXPECT_EQ(bench.Feedback("T").status & (kReady | kTripped), kReady);
   // Enabled again it pushes again, and the overload time counts from 0.
   bench.Command("T", DriveMode::kPosition, 30);
-  EXPECT_NEAR(bench.RunUntil([&] { return bench.Feedback("T").status & kOverload; }, 2), 1.0,
-              0.01);
+  EXPECT_NEAR(bench.RunUntil([&] { return bench.Feedback("T").status & kOverload; }, 2), 1.0, 0.01);
 }
 
 TEST(DriveProtectionTest, OverloadTimeFromTheModel) {
@@ -132,6 +132,31 @@ TEST_P(OverspeedTest, SwitchToASlowerSetWhileFastTrips) {
 INSTANTIATE_TEST_SUITE_P(Backends, OverspeedTest,
                          ::testing::Values(BackendKind::kPhysics, BackendKind::kKinematic),
                          [](const auto& info) { return std::string(ToString(info.param)); });
+
+// A scene names a set the spindle does not have: events.jsonl says which drive tripped and why,
+// and when the fault is reset.
+TEST(DriveProtectionTest, TripsAreEvents) {
+  const std::string dir = testing::OutputDir("trip_events");
+  const std::string path = dir + "/scene.yaml";
+  std::ofstream(path) << "scene: trip-events\nmodel: "
+                      << testing::SourcePath("models/lathe-c1/machine.yaml")
+                      << "\nbackend: kinematic\nduration: 0.2\ntimeline:\n"
+                         "  - speed: {axis: S1, rpm: 100, parameter_set: 2}\n"
+                         "  - wait: 0.1\n"
+                         "  - off: {axis: S1}\n";
+  RunOptions options;
+  options.out_dir = dir;
+  options.snapshots = false;
+  RunScene(LoadScene(path), options);
+  const std::string events = testing::ReadBytes(dir + "/events.jsonl");
+  EXPECT_NE(events.find("\"event\":\"drive\",\"name\":\"S1\",\"overload\":false,"
+                        "\"overspeed\":false,\"parameter_set_error\":true}"),
+            std::string::npos)
+      << events;
+  EXPECT_NE(events.find("\"event\":\"drive\",\"name\":\"S1\",\"overload\":false,"
+                        "\"overspeed\":false,\"parameter_set_error\":false}"),
+            std::string::npos);
+}
 
 }  // namespace
 }  // namespace vmt::sim

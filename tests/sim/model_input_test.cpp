@@ -134,8 +134,8 @@ TEST(ModelInputTest, DriveKeyErrorsNameTheirPath) {
       {"encoder_no_joint", "    encoder: load\n", "drives[0]", "missing required key 'load_joint'"},
       {"encoder_unknown_joint", "    encoder: load\n    load_joint: spindel\n",
        "drives[0].load_joint", "no joint 'spindel'"},
-      {"encoder_joint_kind", "    encoder: load\n    load_joint: spindle\n",
-       "drives[0].load_joint", "joint type does not match the drive's kind"},
+      {"encoder_joint_kind", "    encoder: load\n    load_joint: spindle\n", "drives[0].load_joint",
+       "joint type does not match the drive's kind"},
       {"encoder_motor_joint", "    encoder: load\n    load_joint: z_carriage\n",
        "drives[0].load_joint", "is the motor joint"},
       {"load_joint_alone", "    load_joint: tailstock\n", "drives[0].load_joint",
@@ -242,9 +242,10 @@ TEST(SceneInputTest, Errors) {
   EXPECT_THAT(
       SceneError("bad_feed", "duration: 1\ntimeline:\n  - move: {axis: Z, to: 1, feed: -5}\n"),
       HasSubstr("timeline[0].move.feed: must be > 0"));
-  EXPECT_THAT(SceneError("bad_parameter_set",
-                         "duration: 1\ntimeline:\n  - speed: {axis: S1, rpm: 10, parameter_set: 8}\n"),
-              HasSubstr("timeline[0].speed.parameter_set: expected 0..7"));
+  EXPECT_THAT(
+      SceneError("bad_parameter_set",
+                 "duration: 1\ntimeline:\n  - speed: {axis: S1, rpm: 10, parameter_set: 8}\n"),
+      HasSubstr("timeline[0].speed.parameter_set: expected 0..7"));
   EXPECT_THAT(SceneError("bad_camera", "duration: 1\nsnapshots:\n  - {at: 0, camera: nope}\n"),
               HasSubstr("snapshots[0].camera: no camera 'nope'"));
   EXPECT_THAT(SceneError("bad_backend", "duration: 1\nbackend: quantum\n"),
