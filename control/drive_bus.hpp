@@ -27,7 +27,11 @@ enum class AxisKind : uint8_t { kLinear, kRotary };
 struct DriveSetpoint {
   DriveMode mode = DriveMode::kOff;
   double value = 0;
-  /// Drive parameter set (SERCOS S-0-0217); selects gains and limits from the machine YAML.
+  /// Drive parameter set (SERCOS S-0-0217, 0..7); selects gains and limits from the machine
+  /// YAML (drive key parameter_sets; set 0 is the drive's own keys). A switch acts in the cycle
+  /// that names the new set; only at standstill is it bumpless. A set the drive does not have
+  /// trips it (kParameterSetError). In a set of type servo, position mode follows `value` as
+  /// an absolute (not wrapped) position; in a spindle set it orients to `value` modulo 360 (M19).
   uint8_t parameter_set = 0;
   /// Position mode: velocity feed-forward added to the position loop's output, mm/s | deg/s
   /// (the control's low-lag interpolation, MTC200 G06: the following error falls to ~0).
@@ -43,10 +47,20 @@ inline constexpr uint32_t kStandstill = 1u << 3;   ///< |velocity| < standstill 
 inline constexpr uint32_t kAtSpeed = 1u << 4;      ///< velocity mode: actual == command (ramp done)
 inline constexpr uint32_t kTorqueLimit = 1u << 5;  ///< output saturated at the torque limit
 inline constexpr uint32_t kFollowingError = 1u << 6;  ///< following error above its limit
+// Drive faults. Each trips the drive: power stage off (the axis coasts), kReady and kEnabled
+// clear. A fault latches until a setpoint with mode kOff (controller enable removed: the drive's
+// fault reset) arrives once its cause is gone.
+inline constexpr uint32_t kOverload = 1u << 7;   ///< net time at the torque limit > overload_time
+inline constexpr uint32_t kOverspeed = 1u << 8;  ///< |velocity| > 1.2 x the velocity limit
+inline constexpr uint32_t kParameterSetError = 1u << 9;  ///< setpoint names a set it does not have
 }  // namespace drive_status
 
 struct DriveFeedback {
-  double position = 0;  ///< encoder-quantised actual position (rotary: not wrapped)
+  /// Encoder-quantised actual position (rotary: not wrapped): the position loop's encoder,
+  /// which is a load-side (external) one on a drive that has it.
+  double position = 0;
+  /// The velocity loop's, i.e. the motor's, in load units (ratio applied), also on a drive with
+  /// a load-side encoder: with the load uncoupled it shows the motor turning.
   double velocity = 0;
   double torque = 0;           ///< motor torque referred to the load
   double following_error = 0;  ///< position mode: command - actual

@@ -1,5 +1,11 @@
 #!/usr/bin/env python3
-"""Generate the lathe-c1 machine model: models/lathe-c1/{machine.urdf,README.md,meshes/*.obj}.
+"""Generate a lathe machine model: models/lathe-<variant>/{machine.urdf,README.md,meshes/*.obj}.
+
+Variants (same bed, carriage, cross slide, turret and tailstock):
+  c1  main spindle driven by motor S1 through a belt; C-axis servo geared onto the spindle
+      through a dog clutch (C-axis manual 3: rotary axis mode using a separate servo drive)
+  c2  main spindle driven directly by a frameless motor whose drive is also the C axis (C-axis
+      manual 2: main spindle drive with rotary axis capability): no belt, no servo, no clutch
 
 Python 3 standard library only. The output is deterministic (same bytes on every run): all
 numbers are written with fixed formatting, all lists are emitted in a fixed order.
@@ -11,262 +17,20 @@ Conventions (see models/lathe-c1/README.md, which this script also writes):
 
 Every mesh file is one closed, consistently wound (outward) solid, written in its link's frame,
 with per-vertex normals; every mesh that is also used as collision geometry is one convex solid.
-Run:  python3 tools/gen_lathe_model.py
+Run:  python3 tools/gen_lathe_model.py [--variant c1|c2] [-q]
 """
 
+import argparse
 import math
 import os
-import sys
+
+from lathe_geometry import (SEG_SMALL, Frame, Mesh, axis_frame, composite, cross, deg, f6,
+                            fnum, fvec, rotz)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-MODEL_DIR = os.path.join(ROOT, "models", "lathe-c1")
-MESH_DIR = os.path.join(MODEL_DIR, "meshes")
-
-SEG_BIG = 96     # segments of cylinders with radius >= 0.05 m
-SEG_SMALL = 48   # segments of smaller cylinders
 
 TOOL_R = 0.18    # tool tips: radius from the turret axis, at z = 0 of the turret frame
 DISC_R = 0.13    # turret disc circumradius (12-sided)
-
-
-# --------------------------------------------------------------------------- small vector maths
-def add(a, b):
-    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
-
-
-def sub(a, b):
-    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
-
-
-def scale(a, s):
-    return (a[0] * s, a[1] * s, a[2] * s)
-
-
-def dot(a, b):
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-
-def cross(a, b):
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-def normalize(a):
-    n = math.sqrt(dot(a, a))
-    return (a[0] / n, a[1] / n, a[2] / n)
-
-
-def f6(x):
-    """Mesh coordinates: fixed 6 decimals (micrometres), never '-0.000000'."""
-    s = "%.6f" % x
-    return "0.000000" if s == "-0.000000" else s
-
-
-def fnum(x):
-    """URDF numbers: 9 decimals, trailing zeros stripped, never '-0'."""
-    s = ("%.9f" % x).rstrip("0").rstrip(".")
-    return "0" if s in ("-0", "", "-") else s
-
-
-def fvec(v):
-    return " ".join(fnum(c) for c in v)
-
-
-def deg(a):
-    return math.radians(a)
-
-
-class Frame:
-    """Placement of a local primitive in its link frame: origin + rotation (columns ex ey ez)."""
-
-    def __init__(self, origin=(0.0, 0.0, 0.0), ex=(1.0, 0.0, 0.0), ey=(0.0, 1.0, 0.0),
-                 ez=(0.0, 0.0, 1.0)):
-        self.o, self.ex, self.ey, self.ez = origin, ex, ey, ez
-
-    def p(self, v):
-        return add(self.o, add(add(scale(self.ex, v[0]), scale(self.ey, v[1])),
-                               scale(self.ez, v[2])))
-
-    def n(self, v):
-        return normalize(add(add(scale(self.ex, v[0]), scale(self.ey, v[1])),
-                             scale(self.ez, v[2])))
-
-
-IDENT = Frame()
-
-
-def rotz(angle, origin=(0.0, 0.0, 0.0)):
-    """Frame rotated by `angle` about z: local x = radial ray at `angle`, local y = tangential."""
-    c, s = math.cos(angle), math.sin(angle)
-    return Frame(origin, (c, s, 0.0), (-s, c, 0.0), (0.0, 0.0, 1.0))
-
-
-def axis_frame(origin, axis):
-    """Frame whose local z is `axis` (for cylinders and cones along any direction)."""
-    a = normalize(axis)
-    helper = (0.0, 0.0, 1.0) if abs(a[2]) < 0.9 else (1.0, 0.0, 0.0)
-    ex = normalize(cross(helper, a))
-    ey = cross(a, ex)
-    return Frame(origin, ex, ey, a)
-
-
-# --------------------------------------------------------------------------------------- meshes
-class Mesh:
-    def __init__(self, name):
-        self.name = name
-        self.tris = []
-
-    def tri(self, a, b, c, na, nb, nc):
-        # Wind counter-clockwise seen from outside: the face normal must agree with the
-        # vertex normals (which the primitives compute as outward normals).
-        fn = cross(sub(b, a), sub(c, a))
-        if dot(fn, add(add(na, nb), nc)) < 0.0:
-            b, c, nb, nc = c, b, nc, nb
-        self.tris.append(((a, na), (b, nb), (c, nc)))
-
-    def quad(self, a, b, c, d, na, nb, nc, nd):
-        self.tri(a, b, c, na, nb, nc)
-        self.tri(a, c, d, na, nc, nd)
-
-    # ---------------------------------------------------------------------------- primitives
-    def prism(self, poly, z0, z1, frame=IDENT):
-        """Convex polygon `poly` (local x, y) extruded from local z0 to z1; flat shading."""
-        area = 0.0
-        for i in range(len(poly)):
-            x0, y0 = poly[i]
-            x1, y1 = poly[(i + 1) % len(poly)]
-            area += x0 * y1 - x1 * y0
-        if area < 0.0:
-            poly = list(reversed(poly))
-        n = len(poly)
-        bot = [frame.p((x, y, z0)) for x, y in poly]
-        top = [frame.p((x, y, z1)) for x, y in poly]
-        nb, nt = frame.n((0, 0, -1)), frame.n((0, 0, 1))
-        for i in range(1, n - 1):
-            self.tri(bot[0], bot[i], bot[i + 1], nb, nb, nb)
-            self.tri(top[0], top[i], top[i + 1], nt, nt, nt)
-        for i in range(n):
-            j = (i + 1) % n
-            dx = poly[j][0] - poly[i][0]
-            dy = poly[j][1] - poly[i][1]
-            ns = frame.n((dy, -dx, 0.0))
-            self.quad(bot[i], bot[j], top[j], top[i], ns, ns, ns, ns)
-
-    def box(self, x0, x1, y0, y1, z0, z1, frame=IDENT):
-        self.prism([(x0, y0), (x1, y0), (x1, y1), (x0, y1)], z0, z1, frame)
-
-    def ngon_prism(self, n, circumradius, z0, z1, frame=IDENT, phase=0.0):
-        poly = [(circumradius * math.cos(phase + 2 * math.pi * i / n),
-                 circumradius * math.sin(phase + 2 * math.pi * i / n)) for i in range(n)]
-        self.prism(poly, z0, z1, frame)
-
-    def frustum(self, r0, r1, z0, z1, nseg, frame=IDENT, cap0=True, cap1=True):
-        """Solid of revolution about local z: radius r0 at z0 to r1 at z1; smooth sides,
-        flat caps (fan around the centre). r0 or r1 may be 0 (cone apex)."""
-        h = z1 - z0
-        ang = [2.0 * math.pi * i / nseg for i in range(nseg)]
-        ring0 = [frame.p((r0 * math.cos(a), r0 * math.sin(a), z0)) for a in ang]
-        ring1 = [frame.p((r1 * math.cos(a), r1 * math.sin(a), z1)) for a in ang]
-
-        def side_n(a):
-            return frame.n((h * math.cos(a), h * math.sin(a), r0 - r1))
-
-        for i in range(nseg):
-            j = (i + 1) % nseg
-            ni, nj = side_n(ang[i]), side_n(ang[j])
-            if r0 == 0.0:
-                nm = side_n(ang[i] + math.pi / nseg)
-                self.tri(ring0[i], ring1[i], ring1[j], nm, ni, nj)
-            elif r1 == 0.0:
-                nm = side_n(ang[i] + math.pi / nseg)
-                self.tri(ring0[i], ring0[j], ring1[i], ni, nj, nm)
-            else:
-                self.quad(ring0[i], ring0[j], ring1[j], ring1[i], ni, nj, nj, ni)
-        if cap0 and r0 > 0.0:
-            c, nc = frame.p((0, 0, z0)), frame.n((0, 0, -1))
-            for i in range(nseg):
-                self.tri(c, ring0[i], ring0[(i + 1) % nseg], nc, nc, nc)
-        if cap1 and r1 > 0.0:
-            c, nc = frame.p((0, 0, z1)), frame.n((0, 0, 1))
-            for i in range(nseg):
-                self.tri(c, ring1[i], ring1[(i + 1) % nseg], nc, nc, nc)
-
-    def cylinder(self, r, z0, z1, frame=IDENT, nseg=None):
-        if nseg is None:
-            nseg = SEG_BIG if r >= 0.05 else SEG_SMALL
-        self.frustum(r, r, z0, z1, nseg, frame)
-
-    def sphere(self, centre, r, nlon=32, nlat=16):
-        def pt(i, j):
-            th = math.pi * i / nlat                  # from +z pole
-            ph = 2.0 * math.pi * (j % nlon) / nlon
-            n = (math.sin(th) * math.cos(ph), math.sin(th) * math.sin(ph), math.cos(th))
-            return add(centre, scale(n, r)), n
-
-        top, ntop = add(centre, (0, 0, r)), (0.0, 0.0, 1.0)
-        bot, nbot = add(centre, (0, 0, -r)), (0.0, 0.0, -1.0)
-        for j in range(nlon):
-            a, na = pt(1, j)
-            b, nb = pt(1, j + 1)
-            self.tri(top, a, b, ntop, na, nb)
-            a, na = pt(nlat - 1, j)
-            b, nb = pt(nlat - 1, j + 1)
-            self.tri(bot, a, b, nbot, na, nb)
-        for i in range(1, nlat - 1):
-            for j in range(nlon):
-                a, na = pt(i, j)
-                b, nb = pt(i, j + 1)
-                c, nc = pt(i + 1, j + 1)
-                d, nd = pt(i + 1, j)
-                self.quad(a, b, c, d, na, nb, nc, nd)
-
-    # ---------------------------------------------------------------------------- output
-    def obj_text(self):
-        """Wavefront OBJ text; positions and normals deduplicated by their printed form."""
-        vidx, nidx, vlines, nlines, flines = {}, {}, [], [], []
-        for t in self.tris:
-            idx = []
-            for p, n in t:
-                vs = "v %s %s %s" % (f6(p[0]), f6(p[1]), f6(p[2]))
-                ns = "vn %s %s %s" % (f6(n[0]), f6(n[1]), f6(n[2]))
-                if vs not in vidx:
-                    vidx[vs] = len(vlines) + 1
-                    vlines.append(vs)
-                if ns not in nidx:
-                    nidx[ns] = len(nlines) + 1
-                    nlines.append(ns)
-                idx.append("%d//%d" % (vidx[vs], nidx[ns]))
-            flines.append("f " + " ".join(idx))
-        head = ["# lathe-c1 mesh %s -- generated by tools/gen_lathe_model.py, do not edit" %
-                self.name, "# units: metres, link frame; %d triangles" % len(self.tris),
-                "o %s" % self.name]
-        return "\n".join(head + vlines + nlines + flines) + "\n"
-
-    def check_closed(self):
-        """Every edge used exactly once in each direction (closed, consistently wound), and
-        positive enclosed volume (outward winding). Uses the printed coordinates."""
-        key = {}
-        edges = {}
-        vol = 0.0
-        pts = []
-        for t in self.tris:
-            ids = []
-            for p, _ in t:
-                k = (f6(p[0]), f6(p[1]), f6(p[2]))
-                if k not in key:
-                    key[k] = len(pts)
-                    pts.append(tuple(float(c) for c in k))
-                ids.append(key[k])
-            for a, b in ((ids[0], ids[1]), (ids[1], ids[2]), (ids[2], ids[0])):
-                edges[(a, b)] = edges.get((a, b), 0) + 1
-            a, b, c = (pts[i] for i in ids)
-            vol += dot(a, cross(b, c)) / 6.0
-        for (a, b), cnt in edges.items():
-            if cnt != 1 or edges.get((b, a), 0) != 1:
-                raise SystemExit("mesh %s: not closed / inconsistent winding at edge %r"
-                                 % (self.name, (a, b)))
-        if vol <= 0.0:
-            raise SystemExit("mesh %s: non-positive volume %g" % (self.name, vol))
-        return vol
 
 
 # ------------------------------------------------------------------------------------ materials
@@ -294,50 +58,6 @@ MATERIALS = [
 ]
 
 
-# ------------------------------------------------------------------------------ mass properties
-def _prim(kind, *a):
-    """(volume, centre, (Ixx, Iyy, Izz) per unit mass about own centre) of a primitive."""
-    if kind == "box":
-        x0, x1, y0, y1, z0, z1 = a
-        sx, sy, sz = x1 - x0, y1 - y0, z1 - z0
-        return (sx * sy * sz, ((x0 + x1) / 2, (y0 + y1) / 2, (z0 + z1) / 2),
-                ((sy * sy + sz * sz) / 12, (sx * sx + sz * sz) / 12, (sx * sx + sy * sy) / 12))
-    if kind in ("cylz", "cylx"):
-        # cylz: centre (cx, cy), r, z0, z1 (axis z); cylx: centre (cy, cz), r, x0, x1 (axis x)
-        c1, c2, r, s0, s1 = a
-        h = s1 - s0
-        ia, ip = r * r / 2, (3 * r * r + h * h) / 12
-        if kind == "cylz":
-            return (math.pi * r * r * h, (c1, c2, (s0 + s1) / 2), (ip, ip, ia))
-        return (math.pi * r * r * h, ((s0 + s1) / 2, c1, c2), (ia, ip, ip))
-    raise ValueError(kind)
-
-
-def composite(mass, parts, izz=None):
-    """Uniform-density composite of primitives scaled to `mass`: (mass, com, diag inertia about
-    the com in link axes). Products of inertia are neglected. `izz` overrides Izz (rotor values
-    given by the machine data)."""
-    ps = [_prim(*p) for p in parts]
-    vol = sum(p[0] for p in ps)
-    com = (0.0, 0.0, 0.0)
-    for v, c, _ in ps:
-        com = add(com, scale(c, v / vol))
-    ixx = iyy = izz_c = 0.0
-    for v, c, i in ps:
-        m = mass * v / vol
-        d = sub(c, com)
-        ixx += m * (i[0] + d[1] ** 2 + d[2] ** 2)
-        iyy += m * (i[1] + d[0] ** 2 + d[2] ** 2)
-        izz_c += m * (i[2] + d[0] ** 2 + d[1] ** 2)
-    if izz is not None:
-        izz_c = izz
-    inertia = (ixx, iyy, izz_c)
-    a, b, c = inertia
-    if not (a + b >= c and a + c >= b and b + c >= a and min(inertia) > 0):
-        raise SystemExit("inertia %r violates the triangle inequality" % (inertia,))
-    return mass, com, inertia
-
-
 # ------------------------------------------------------------------------------------ the model
 def station_angle(k):
     """Turret-frame angle of station k (1..12), from +x toward +y. With turret joint angle
@@ -345,9 +65,38 @@ def station_angle(k):
     return deg(180.0 - (k - 1) * 30.0)
 
 
-def build():
-    """Returns (links, joints, meshes). A link is a dict with name, inertial, parts; a part is
-    (name, mesh name, material, collide)."""
+def build_c1_motors(part, link):
+    """lathe-c1's spindle motor S1 (belt to the spindle) and C-axis servo (clutch K)."""
+    # ----------------------------------------------------------------------------- s1_motor
+    P = []
+    part("s1_motor_cap").cylinder(0.09, -0.15, -0.12)
+    P.append(("s1_motor_cap", "s1_motor_cap", "motor_cap_blue", True))
+    part("s1_motor_body").cylinder(0.09, -0.12, 0.15)
+    P.append(("s1_motor_body", "s1_motor_body", "motor_black", True))
+    part("s1_motor_pulley").cylinder(0.06, 0.15, 0.19)
+    P.append(("s1_motor_pulley", "s1_motor_pulley", "pulley_alu", True))
+    part("s1_motor_key").box(0.045, 0.0615, -0.006, 0.006, 0.17, 0.1915)
+    P.append(("s1_motor_key", "s1_motor_key", "marker_orange", False))
+    link("s1_motor", composite(30.0, [("cylz", 0.0, 0.0, 0.09, -0.15, 0.15),
+                                      ("cylz", 0.0, 0.0, 0.06, 0.15, 0.19)], izz=0.05), P)
+
+    # ------------------------------------------------------------------------------ c_motor
+    P = []
+    part("c_motor_cap").cylinder(0.06, -0.11, -0.08)
+    P.append(("c_motor_cap", "c_motor_cap", "motor_cap_green", True))
+    part("c_motor_body").cylinder(0.06, -0.08, 0.11)
+    P.append(("c_motor_body", "c_motor_body", "motor_black", True))
+    part("c_motor_pinion").cylinder(0.03, 0.11, 0.15)
+    P.append(("c_motor_pinion", "c_motor_pinion", "pulley_alu", True))
+    part("c_motor_key").box(0.02, 0.0315, -0.004, 0.004, 0.13, 0.1515)
+    P.append(("c_motor_key", "c_motor_key", "marker_orange", False))
+    link("c_motor", composite(12.0, [("cylz", 0.0, 0.0, 0.06, -0.11, 0.11),
+                                     ("cylz", 0.0, 0.0, 0.03, 0.11, 0.15)], izz=0.003), P)
+
+
+def build(variant):
+    """Returns (links, joints, meshes, stations) of variant c1 or c2. A link is a dict with
+    name, inertial, parts; a part is (name, mesh name, material, collide)."""
     meshes = {}
     links = []
 
@@ -375,10 +124,15 @@ def build():
     part("bed_nose_ring").cylinder(0.13, -0.02, -0.006)
     P.append(("bed_nose_ring", "bed_nose_ring", "bed_blue", True))
     # motor brackets (the motors are links of their own; 2 mm clearance below them)
-    part("bed_s1_mount").box(0.26, 0.38, -0.40, -0.272, -0.46, -0.24)
-    P.append(("bed_s1_mount", "bed_s1_mount", "bed_blue", True))
-    part("bed_c_mount").box(-0.34, -0.26, -0.40, -0.212, -0.44, -0.26)
-    P.append(("bed_c_mount", "bed_c_mount", "bed_blue", True))
+    if variant == "c1":
+        part("bed_s1_mount").box(0.26, 0.38, -0.40, -0.272, -0.46, -0.24)
+        P.append(("bed_s1_mount", "bed_s1_mount", "bed_blue", True))
+        part("bed_c_mount").box(-0.34, -0.26, -0.40, -0.212, -0.44, -0.26)
+        P.append(("bed_c_mount", "bed_c_mount", "bed_blue", True))
+    else:
+        # the frameless motor's stator sits in the headstock; its end cover shows at the back
+        part("bed_stator_cover").cylinder(0.14, -0.56, -0.50)
+        P.append(("bed_stator_cover", "bed_stator_cover", "motor_cap_blue", True))
     bolts = part("bed_bolts")    # hex bolt heads on the headstock face (visual only)
     for bx, by in ((-0.17, 0.19), (0.17, 0.19), (-0.17, -0.37), (0.17, -0.37),
                    (-0.17, -0.09), (0.17, -0.09)):
@@ -408,36 +162,17 @@ def build():
     jaw_parts = [("box", 0.0585 * math.cos(deg(a)) - 0.02, 0.0585 * math.cos(deg(a)) + 0.02,
                   0.0585 * math.sin(deg(a)) - 0.02, 0.0585 * math.sin(deg(a)) + 0.02, 0.10, 0.14)
                  for a in (0.0, 120.0, 240.0)]
-    link("spindle", composite(45.0, [("cylz", 0.0, 0.0, 0.11, 0.0, 0.02),
-                                     ("cylz", 0.0, 0.0, 0.105, 0.02, 0.10)] + jaw_parts,
-                              izz=0.25), P)
-
-    # ----------------------------------------------------------------------------- s1_motor
-    P = []
-    part("s1_motor_cap").cylinder(0.09, -0.15, -0.12)
-    P.append(("s1_motor_cap", "s1_motor_cap", "motor_cap_blue", True))
-    part("s1_motor_body").cylinder(0.09, -0.12, 0.15)
-    P.append(("s1_motor_body", "s1_motor_body", "motor_black", True))
-    part("s1_motor_pulley").cylinder(0.06, 0.15, 0.19)
-    P.append(("s1_motor_pulley", "s1_motor_pulley", "pulley_alu", True))
-    part("s1_motor_key").box(0.045, 0.0615, -0.006, 0.006, 0.17, 0.1915)
-    P.append(("s1_motor_key", "s1_motor_key", "marker_orange", False))
-    link("s1_motor", composite(30.0, [("cylz", 0.0, 0.0, 0.09, -0.15, 0.15),
-                                      ("cylz", 0.0, 0.0, 0.06, 0.15, 0.19)], izz=0.05), P)
-
-    # ------------------------------------------------------------------------------ c_motor
-    P = []
-    part("c_motor_cap").cylinder(0.06, -0.11, -0.08)
-    P.append(("c_motor_cap", "c_motor_cap", "motor_cap_green", True))
-    part("c_motor_body").cylinder(0.06, -0.08, 0.11)
-    P.append(("c_motor_body", "c_motor_body", "motor_black", True))
-    part("c_motor_pinion").cylinder(0.03, 0.11, 0.15)
-    P.append(("c_motor_pinion", "c_motor_pinion", "pulley_alu", True))
-    part("c_motor_key").box(0.02, 0.0315, -0.004, 0.004, 0.13, 0.1515)
-    P.append(("c_motor_key", "c_motor_key", "marker_orange", False))
-    link("c_motor", composite(12.0, [("cylz", 0.0, 0.0, 0.06, -0.11, 0.11),
-                                     ("cylz", 0.0, 0.0, 0.03, 0.11, 0.15)], izz=0.003), P)
-
+    spindle_parts = [("cylz", 0.0, 0.0, 0.11, 0.0, 0.02),
+                     ("cylz", 0.0, 0.0, 0.105, 0.02, 0.10)] + jaw_parts
+    if variant == "c1":
+        link("spindle", composite(45.0, spindle_parts, izz=0.25), P)
+    else:
+        # c2: the frameless motor's rotor sits on the spindle shaft inside the headstock
+        # (hidden, so no mesh): 15 kg more, Izz 0.25 + 0.07 kg m^2.
+        link("spindle", composite(60.0, spindle_parts + [("cylz", 0.0, 0.0, 0.07, -0.45, -0.012)],
+                                  izz=0.32), P)
+    if variant == "c1":
+        build_c1_motors(part, link)
     # ---------------------------------------------------------------------------- z_carriage
     P = []
     part("z_carriage_saddle").box(0.14, 0.56, -0.34, -0.22, 0.02, 0.40)
@@ -601,18 +336,41 @@ def build():
         ("tailstock", "prismatic", "bed", "tailstock", (0, 0, 0.20), (0, 0, 0), (0, 0, 1),
          {"lower": 0.0, "upper": 0.70, "effort": 4000, "velocity": 0.2}, 50.0, 20.0),
     ]
+    if variant != "c1":
+        joints = [j for j in joints if j[0] not in ("s1_motor", "c_motor")]
     return links, joints, meshes, stations
 
 
 # ----------------------------------------------------------------------------------- emitters
-def urdf_text(links, joints):
+VARIANT_FLAG = {"c1": "", "c2": " --variant c2"}
+
+README_INTRO = {
+    "c1": [],
+    "c2": ["lathe-c1's bed, carriage, cross slide, turret and tailstock; the main spindle is",
+           "driven directly by a frameless motor (C-axis manual 2: main spindle drive with rotary",
+           "axis capability): the rotor sits on the spindle shaft inside the headstock, the",
+           "stator in the headstock (its end cover `bed_stator_cover` shows at the back). No belt,",
+           "no C-axis servo, no clutch: the one drive S1 is the spindle in speed control and the",
+           "C axis in position control, with a drive parameter set for each.",
+           ""],
+}
+
+SPINDLE_NOTES = {
+    "c1": ["- `spindle`, `s1_motor`, `c_motor`: continuous about +z. The belt (S1) and the C-axis",
+           "  dog clutch are couplings in `machine.yaml`, not URDF joints."],
+    "c2": ["- `spindle`: continuous about +z, the frameless motor's rotor included in its",
+           "  inertia (Izz 0.32 kg m^2: chuck 0.25, rotor 0.07); drive S1 acts on it directly."],
+}
+
+def urdf_text(links, joints, variant):
     L = ['<?xml version="1.0"?>',
-         "<!-- lathe-c1: generated by tools/gen_lathe_model.py, do not edit; regenerate with",
-         "     python3 tools/gen_lathe_model.py.",
+         "<!-- lathe-%s: generated by tools/gen_lathe_model.py, do not edit; regenerate with"
+         % variant,
+         "     python3 tools/gen_lathe_model.py%s." % VARIANT_FLAG[variant],
          "     World = bed frame: x radial (machine X, toward the turret), y UP, z spindle axis",
          "     (machine Z, toward the tailstock); origin on the spindle axis in the headstock face",
          "     plane. Gravity is -y. Units: m, rad, kg. Meshes are in their link frames. -->",
-         '<robot name="lathe_c1">']
+         '<robot name="lathe_%s">' % variant]
     for name, rgba in MATERIALS:
         L.append('  <material name="%s"><color rgba="%s"/></material>'
                  % (name, " ".join("%.2f" % c for c in rgba)))
@@ -656,13 +414,13 @@ def urdf_text(links, joints):
     return "\n".join(L) + "\n"
 
 
-def readme_text(links, joints, meshes, stations):
-    L = ["# lathe-c1 machine model",
-         "",
+def readme_text(links, joints, meshes, stations, variant):
+    L = ["# lathe-%s machine model" % variant,
+         ""] + README_INTRO[variant] + [
          "Generated by `tools/gen_lathe_model.py` (Python 3, standard library only; deterministic",
          "output). Do not edit `machine.urdf` or `meshes/` by hand: regenerate with",
          "",
-         "    python3 tools/gen_lathe_model.py",
+         "    python3 tools/gen_lathe_model.py%s" % VARIANT_FLAG[variant],
          "",
          "`machine.yaml` (axes, drives, couplings, I/O) is written by hand and refers to the joint",
          "names below.",
@@ -699,9 +457,7 @@ def readme_text(links, joints, meshes, stations):
         L.append("| `%s` | %s | %s -> %s | %s | %s | %s |" % (
             name, jtype, parent, child, org, "-" if axis is None else fvec(axis), lim))
     L += ["",
-          "Joint notes:",
-          "- `spindle`, `s1_motor`, `c_motor`: continuous about +z. The belt (S1) and the C-axis",
-          "  dog clutch are couplings in `machine.yaml`, not URDF joints.",
+          "Joint notes:"] + SPINDLE_NOTES[variant] + [
           "- `turret` frame: origin on the turret axis, at the tool-tip plane; at zero joint",
           "  positions it lies at (0.18, 0, 0.06) in the world. Wide limits (+-2 pi): it indexes.",
           "- `s2_spindle` child +z points outward along station 4's ray; the end-mill tip is at",
@@ -740,22 +496,29 @@ def write(path, text):
 
 
 def main():
-    quiet = "-q" in sys.argv[1:]
-    links, joints, meshes, stations = build()
-    os.makedirs(MESH_DIR, exist_ok=True)
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--variant", choices=("c1", "c2"), default="c1")
+    parser.add_argument("-q", dest="quiet", action="store_true", help="no mesh table")
+    args = parser.parse_args()
+    variant = args.variant
+    model_dir = os.path.join(ROOT, "models", "lathe-" + variant)
+    mesh_dir = os.path.join(model_dir, "meshes")
+    links, joints, meshes, stations = build(variant)
+    os.makedirs(mesh_dir, exist_ok=True)
     total_tris = total_bytes = 0
     rows = []
     for name in sorted(meshes):
         m = meshes[name]
         m.check_closed()
-        text = m.obj_text()
-        write(os.path.join(MESH_DIR, name + ".obj"), text)
+        text = m.obj_text("lathe-" + variant)
+        write(os.path.join(mesh_dir, name + ".obj"), text)
         total_tris += len(m.tris)
         total_bytes += len(text)
         rows.append("%-32s %6d triangles %8d bytes" % (name + ".obj", len(m.tris), len(text)))
-    write(os.path.join(MODEL_DIR, "machine.urdf"), urdf_text(links, joints))
-    write(os.path.join(MODEL_DIR, "README.md"), readme_text(links, joints, meshes, stations))
-    if not quiet:
+    write(os.path.join(model_dir, "machine.urdf"), urdf_text(links, joints, variant))
+    write(os.path.join(model_dir, "README.md"),
+          readme_text(links, joints, meshes, stations, variant))
+    if not args.quiet:
         print("\n".join(rows))
         print("%d meshes, %d triangles, %d bytes of OBJ" % (len(meshes), total_tris, total_bytes))
 

@@ -29,11 +29,34 @@ control::DriveSetpoint ToSi(const DriveParams& p, const control::DriveSetpoint& 
   return si;
 }
 
+void DriveController::SelectParameterSet(uint8_t number) {
+  set_number_ = number;
+  set_ = &p_->parameter_sets[number];
+  // The integral is torque: it carries over unchanged (bumpless), but never beyond the new limit.
+  integral_ = std::clamp(integral_, -set_->torque_limit, set_->torque_limit);
+  orient_command_ = std::nan("");  // an orientation in progress re-plans with the new set
+}
+
 double DriveController::VelocityReference(const control::DriveSetpoint& sp, double position,
                                           double velocity, double dt_s) {
   using control::DriveMode;
+  using namespace control::drive_status;
+  // The set first: the overspeed threshold is the active set's velocity limit.
+  const bool set_exists = sp.parameter_set < p_->parameter_sets.size();
+  if (!set_exists)
+    faults_ |= kParameterSetError;
+  else if (sp.parameter_set != set_number_)
+    SelectParameterSet(sp.parameter_set);
+  const bool overspeed = std::abs(velocity) > kOverspeedFactor * set_->velocity_limit;
+  if (overspeed) faults_ |= kOverspeed;
+  // Fault reset: controller enable off and the cause gone.
+  if (faults_ && sp.mode == DriveMode::kOff && set_exists && !overspeed) {
+    faults_ = 0;
+    overload_s_ = 0;
+  }
+
   const DriveMode previous = mode_;
-  mode_ = sp.mode;
+  mode_ = faults_ ? DriveMode::kOff : sp.mode;  // tripped: power stage off
   command_ = sp.value;
   if (mode_ != previous) {
     // Bumpless change of mode: ramps start from where the axis is.
@@ -41,25 +64,26 @@ double DriveController::VelocityReference(const control::DriveSetpoint& sp, doub
     if (previous == DriveMode::kOff) integral_ = 0;
     orient_command_ = std::nan("");
   }
+  const DriveParameterSet& g = *set_;
   switch (mode_) {
     case DriveMode::kOff:
     case DriveMode::kTorque:
       ramp_velocity_ = velocity;
       return velocity;
     case DriveMode::kVelocity: {
-      const double target = std::clamp(sp.value, -p_->velocity_limit, p_->velocity_limit);
-      const double step = p_->acceleration_limit * dt_s;
+      const double target = std::clamp(sp.value, -g.velocity_limit, g.velocity_limit);
+      const double step = g.acceleration_limit * dt_s;
       ramp_velocity_ += std::clamp(target - ramp_velocity_, -step, step);
       return ramp_velocity_;
     }
     case DriveMode::kPosition:
       break;
   }
-  if (!p_->spindle) {
+  if (!g.spindle) {
     // Servo: proportional position loop; the master interpolates, the drive only follows.
     // With feed-forward (G06) the loop only corrects what the feed-forward leaves.
-    const double v = p_->kv_per_s * (sp.value - position) + sp.velocity_feedforward;
-    return std::clamp(v, -p_->velocity_limit, p_->velocity_limit);
+    const double v = g.kv_per_s * (sp.value - position) + sp.velocity_feedforward;
+    return std::clamp(v, -g.velocity_limit, g.velocity_limit);
   }
   // Spindle orientation (M19): the command is an angle modulo one turn; the drive picks the
   // shortest way once per command and brakes so that it arrives without overshoot.
@@ -68,39 +92,44 @@ double DriveController::VelocityReference(const control::DriveSetpoint& sp, doub
     orient_target_ = position + Wrap(sp.value - position);
   }
   const double error = orient_target_ - position;
-  const double braking = std::sqrt(2 * p_->acceleration_limit * std::abs(error));
-  const double limit = std::min(p_->positioning_speed, braking);
-  const double v = std::clamp(p_->kv_per_s * error, -limit, limit);
-  const double step = p_->acceleration_limit * dt_s;
+  const double braking = std::sqrt(2 * g.acceleration_limit * std::abs(error));
+  const double limit = std::min(g.positioning_speed, braking);
+  const double v = std::clamp(g.kv_per_s * error, -limit, limit);
+  const double step = g.acceleration_limit * dt_s;
   ramp_velocity_ += std::clamp(v - ramp_velocity_, -step, step);
   return ramp_velocity_;
 }
 
 double DriveController::Torque(double velocity_reference, double velocity, double dt_s) {
   using control::DriveMode;
+  const DriveParameterSet& g = *set_;
+  double torque = 0;
   if (mode_ == DriveMode::kOff) {
     saturated_ = false;
-    return 0;
+  } else if (mode_ == DriveMode::kTorque) {
+    torque = std::clamp(command_, -g.torque_limit, g.torque_limit);
+    saturated_ = torque != command_;
+  } else {
+    const double error = velocity_reference - velocity;
+    const double proportional = g.velocity_kp * error;
+    const double candidate = integral_ + proportional * dt_s / g.velocity_ti_s;
+    const double unclamped = proportional + candidate;
+    torque = std::clamp(unclamped, -g.torque_limit, g.torque_limit);
+    saturated_ = torque != unclamped;
+    // Anti-windup: integrate only while the output is not pushing further into the limit.
+    if (!saturated_ || (unclamped > 0) != (error > 0)) integral_ = candidate;
   }
-  if (mode_ == DriveMode::kTorque) {
-    const double t = std::clamp(command_, -p_->torque_limit, p_->torque_limit);
-    saturated_ = t != command_;
-    return t;
-  }
-  const double error = velocity_reference - velocity;
-  const double proportional = p_->velocity_kp * error;
-  const double candidate = integral_ + proportional * dt_s / p_->velocity_ti_s;
-  const double unclamped = proportional + candidate;
-  const double torque = std::clamp(unclamped, -p_->torque_limit, p_->torque_limit);
-  saturated_ = torque != unclamped;
-  // Anti-windup: integrate only while the output is not pushing further into the limit.
-  if (!saturated_ || (unclamped > 0) != (error > 0)) integral_ = candidate;
+  // Overload (the amplifier's i2t, simplified): net time at the torque limit; the trip takes
+  // the power stage off from the next tick.
+  overload_s_ = saturated_ ? overload_s_ + dt_s : std::max(0.0, overload_s_ - dt_s);
+  if (overload_s_ >= p_->overload_time_s) faults_ |= control::drive_status::kOverload;
   return torque;
 }
 
 control::DriveFeedback DriveController::Feedback(double position, double velocity,
                                                  double torque) const {
   using namespace control::drive_status;
+  const DriveParameterSet& g = *set_;
   const double unit = Unit(*p_);
   const double res = p_->encoder_resolution;
   // floor(x + 0.5), not round(): the same for an encoder, and no libm call on the hot path.
@@ -109,19 +138,21 @@ control::DriveFeedback DriveController::Feedback(double position, double velocit
   fb.position = quantised * unit;
   fb.velocity = velocity * unit;
   fb.torque = torque;
-  fb.status = kReady;
-  if (mode_ != control::DriveMode::kOff) fb.status |= kEnabled;
-  if (std::abs(velocity) < p_->standstill_window) fb.status |= kStandstill;
+  // A trip of this tick shows at once, though the power stage goes off with the next tick.
+  const control::DriveMode mode = faults_ ? control::DriveMode::kOff : mode_;
+  fb.status = faults_ ? faults_ : kReady;
+  if (mode != control::DriveMode::kOff) fb.status |= kEnabled;
+  if (std::abs(velocity) < g.standstill_window) fb.status |= kStandstill;
   if (saturated_) fb.status |= kTorqueLimit;
-  if (mode_ == control::DriveMode::kPosition) {
-    const double target = p_->spindle ? orient_target_ : command_;
+  if (mode == control::DriveMode::kPosition) {
+    const double target = g.spindle ? orient_target_ : command_;
     fb.following_error = (target - quantised) * unit;
-    if (std::abs(target - quantised) < p_->in_position_window) fb.status |= kInPosition;
-    if (std::abs(target - quantised) > p_->following_error_limit) fb.status |= kFollowingError;
+    if (std::abs(target - quantised) < g.in_position_window) fb.status |= kInPosition;
+    if (std::abs(target - quantised) > g.following_error_limit) fb.status |= kFollowingError;
   }
-  if (mode_ == control::DriveMode::kVelocity) {
-    const double target = std::clamp(command_, -p_->velocity_limit, p_->velocity_limit);
-    if (ramp_velocity_ == target && std::abs(velocity - target) < p_->standstill_window)
+  if (mode == control::DriveMode::kVelocity) {
+    const double target = std::clamp(command_, -g.velocity_limit, g.velocity_limit);
+    if (ramp_velocity_ == target && std::abs(velocity - target) < g.standstill_window)
       fb.status |= kAtSpeed;
   }
   return fb;

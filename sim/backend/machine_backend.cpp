@@ -16,6 +16,12 @@ std::vector<double> InitialJointPositions(const MachineModel& model, const Initi
     const double unit = p.info.kind == control::AxisKind::kLinear ? kMmPerM : kDegPerRad;
     q[p.motor_joint] = p.ratio * value / unit;
     known[p.motor_joint] = true;
+    // A load-side encoder reads its own joint: place that one too, so that the drive reads the
+    // initial value (unless another drive placed it already).
+    if (p.load_joint >= 0 && !known[p.load_joint]) {
+      q[p.load_joint] = value / unit;
+      known[p.load_joint] = true;
+    }
   }
   std::vector<CouplingEdge> edges;
   for (const GearCoupling& g : model.gears)

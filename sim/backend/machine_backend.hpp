@@ -36,7 +36,8 @@ class MachineBackend : public control::DriveBus {
 };
 
 /// Joint positions for an initial state: drive positions on their motor joints through their
-/// ratios, then gear and engaged-clutch partners. Throws std::invalid_argument on unknown names.
+/// ratios (and on a load-side encoder's joint), then gear and engaged-clutch partners. Throws
+/// std::invalid_argument on unknown names.
 std::vector<double> InitialJointPositions(const MachineModel& model, const InitialState& init);
 
 }  // namespace vmt::sim

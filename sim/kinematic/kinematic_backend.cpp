@@ -89,11 +89,13 @@ void KinematicBackend::Step() {
     DriveController& ctrl = controllers_[d];
     const DriveParams& p = model_->drives[d];
     const control::DriveSetpoint sp = ToSi(p, mdt_.setpoints[d]);
-    const double pos = q_before[p.motor_joint] / p.ratio;
+    // Position loop on its encoder (possibly load side), velocity loop on the motor.
+    const double pos = EncoderPosition(p, [&q_before](int j) { return q_before[j]; });
     const double vel = qd_[p.motor_joint] / p.ratio;
     const double v_ref = ctrl.VelocityReference(sp, pos, vel, dt);
-    const bool leads =
-        sp.mode == control::DriveMode::kPosition || sp.mode == control::DriveMode::kVelocity;
+    // The controller's mode, not the setpoint's: a tripped drive's power stage is off.
+    const bool leads = ctrl.mode() == control::DriveMode::kPosition ||
+                       ctrl.mode() == control::DriveMode::kVelocity;
     int64_t& led = group_led_[group_[p.motor_joint]];
     bool held = false;
     for (size_t j = 0; j < held_.size(); ++j)
@@ -126,8 +128,8 @@ void KinematicBackend::Step() {
 void KinematicBackend::UpdateFeedback() {
   for (size_t d = 0; d < controllers_.size(); ++d) {
     const DriveParams& p = model_->drives[d];
-    at_.feedback[d] =
-        controllers_[d].Feedback(q_[p.motor_joint] / p.ratio, qd_[p.motor_joint] / p.ratio, 0);
+    at_.feedback[d] = controllers_[d].Feedback(EncoderPosition(p, [this](int j) { return q_[j]; }),
+                                               qd_[p.motor_joint] / p.ratio, 0);
   }
   ReadInputs(*model_, mdt_.outputs, clutches_, actuators_, at_.feedback, at_.inputs);
 }

@@ -2,7 +2,8 @@
 // The ideal machine: every enabled drive moves exactly at its own velocity reference (position
 // loop Kv, ramps, M19 profile of DriveController), so a position command is followed with the
 // first-order lag 1/Kv of a perfect velocity loop; gears and an engaged clutch tie joints
-// exactly. No masses, no torque. For fast studies, block search, and as the reference the
+// exactly. No masses, no torque (so no drive ever overloads; overspeed and parameter-set faults
+// trip as on the physics backend). For fast studies, block search, and as the reference the
 // physics backend is checked against.
 
 #include "sim/backend/coupling_graph.hpp"

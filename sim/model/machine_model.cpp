@@ -91,11 +91,67 @@ void CheckSwitchesDrivenOnce(const MachineModel& m, const YamlNode& root) {
     if (driven[i] > 1) root["io"].Fail("input '" + m.io[i].name + "' is the switch of more than one device");
 }
 
+// The gains and limits of a parameter set. Set 0 (`base` null) is the drive's own keys and needs
+// them all; an entry of parameter_sets takes set 0's value for every key it does not name.
+DriveParameterSet ReadParameterSet(const YamlNode& n, control::AxisKind kind,
+                                   const DriveParameterSet* base) {
+  DriveParameterSet g = base ? *base : DriveParameterSet{};
+  if (!base || n.Has("type")) {
+    const std::string type = n.String("type", "servo");
+    if (type != "servo" && type != "spindle") n["type"].Fail("expected servo or spindle");
+    g.spindle = type == "spindle";
+  }
+  const double s = ToSi(kind);
+  // `scale` takes machine units to SI (a gain per unit divides by it); every gain and limit is a
+  // positive number.
+  auto read = [&](const char* key, double& field, double scale, bool per_unit = false) {
+    if (base && !n.Has(key)) return;
+    const double v = n[key].Double();
+    if (v <= 0) n[key].Fail("must be > 0");
+    field = per_unit ? v / scale : v * scale;
+  };
+  read("kv", g.kv_per_s, 1);
+  read("velocity_kp", g.velocity_kp, s, true);  // N per (mm/s) -> N per (m/s)
+  read("velocity_ti", g.velocity_ti_s, 1);
+  read("torque_limit", g.torque_limit, 1);
+  read("velocity_limit", g.velocity_limit, s);
+  read("acceleration_limit", g.acceleration_limit, s);
+  read("in_position_window", g.in_position_window, s);
+  read("standstill_window", g.standstill_window, s);
+  read("following_error_limit", g.following_error_limit, s);
+  if (!base && !n.Has("positioning_speed"))
+    g.positioning_speed = 360 * s;
+  else
+    read("positioning_speed", g.positioning_speed, s);
+  return g;
+}
+
+// `encoder: load` closes the position loop on another joint's encoder (C-axis manual 3.1: the
+// external spindle encoder of a separate servo); the motor's own encoder is the default.
+void ReadEncoder(const MachineModel& m, const YamlNode& d, DriveParams& p) {
+  const std::string encoder = d.String("encoder", "motor");
+  if (encoder != "motor" && encoder != "load") d["encoder"].Fail("expected motor or load");
+  if (encoder == "motor") {
+    if (d.Has("load_joint"))
+      d["load_joint"].Fail("only a drive with encoder: load has a load_joint");
+    return;
+  }
+  const YamlNode j = d["load_joint"];
+  p.load_joint = RequireJoint(m, j);
+  if (p.load_joint == p.motor_joint)
+    j.Fail("is the motor joint: a load-side encoder sits on the load, another joint");
+  const JointType jt = m.joints[p.load_joint].type;
+  if (jt == JointType::kFixed ||
+      (jt == JointType::kPrismatic) != (p.info.kind == control::AxisKind::kLinear))
+    j.Fail("joint type does not match the drive's kind");
+}
+
 DriveParams ReadDrive(const MachineModel& m, const YamlNode& d) {
   d.AllowKeys({"name", "kind", "type", "joint", "ratio", "kv", "velocity_kp", "velocity_ti",
                "torque_limit", "velocity_limit", "acceleration_limit", "encoder_resolution",
                "in_position_window", "standstill_window", "following_error_limit",
-               "positioning_speed", "spec"});
+               "positioning_speed", "encoder", "load_joint", "overload_time", "parameter_sets",
+               "spec"});
   DriveParams p;
   p.info.name = d["name"].String();
   const std::string kind = d["kind"].String();
@@ -105,34 +161,36 @@ DriveParams ReadDrive(const MachineModel& m, const YamlNode& d) {
     p.info.kind = control::AxisKind::kRotary;
   else
     d["kind"].Fail("expected linear or rotary, got \"" + kind + "\"");
-  const std::string type = d.String("type", "servo");
-  if (type != "servo" && type != "spindle") d["type"].Fail("expected servo or spindle");
-  p.spindle = type == "spindle";
+  static_cast<DriveParameterSet&>(p) = ReadParameterSet(d, p.info.kind, nullptr);
   p.motor_joint = RequireJoint(m, d["joint"]);
   const JointType jt = m.joints[p.motor_joint].type;
   const bool joint_linear = jt == JointType::kPrismatic;
   if (jt == JointType::kFixed || joint_linear != (p.info.kind == control::AxisKind::kLinear))
     d["joint"].Fail("joint type does not match kind " + kind);
+  ReadEncoder(m, d, p);
 
   const double s = ToSi(p.info.kind);
-  auto positive = [&](const char* key) {
-    const double v = d[key].Double();
-    if (v <= 0) d[key].Fail("must be > 0");
-    return v;
-  };
   p.ratio = d.Double("ratio", 1.0);
   if (p.ratio == 0) d["ratio"].Fail("must not be 0");
-  p.kv_per_s = positive("kv");
-  p.velocity_kp = positive("velocity_kp") / s;  // N per (mm/s) -> N per (m/s)
-  p.velocity_ti_s = positive("velocity_ti");
-  p.torque_limit = positive("torque_limit");
-  p.velocity_limit = positive("velocity_limit") * s;
-  p.acceleration_limit = positive("acceleration_limit") * s;
-  p.encoder_resolution = positive("encoder_resolution") * s;
-  p.in_position_window = positive("in_position_window") * s;
-  p.standstill_window = positive("standstill_window") * s;
-  p.following_error_limit = positive("following_error_limit") * s;
-  p.positioning_speed = d.Double("positioning_speed", 360) * s;
+  p.encoder_resolution = d["encoder_resolution"].Double() * s;
+  if (p.encoder_resolution <= 0) d["encoder_resolution"].Fail("must be > 0");
+  p.overload_time_s = d.Double("overload_time", 1.0);
+  if (p.overload_time_s <= 0) d["overload_time"].Fail("must be > 0");
+
+  p.parameter_sets.push_back(static_cast<const DriveParameterSet&>(p));
+  if (d.Has("parameter_sets")) {
+    const YamlNode sets = d["parameter_sets"];
+    // SERCOS numbers sets 0..7 (C-axis manual 2.2: "Valid entries are figures between 0 and 7").
+    if (sets.size() > 7) sets.Fail("at most 7 entries: sets 1..7 (set 0 is the drive's own keys)");
+    for (size_t i = 0; i < sets.size(); ++i) {
+      const YamlNode set = sets[i];
+      if (!set.IsMap()) set.Fail("expected a map of overrides of set 0's keys");
+      set.AllowKeys({"type", "kv", "velocity_kp", "velocity_ti", "torque_limit", "velocity_limit",
+                     "acceleration_limit", "in_position_window", "standstill_window",
+                     "following_error_limit", "positioning_speed"});
+      p.parameter_sets.push_back(ReadParameterSet(set, p.info.kind, &p.parameter_sets[0]));
+    }
+  }
   if (d.Has("spec")) {
     const YamlNode spec = d["spec"];
     spec.AllowKeys({"settle_time", "overshoot"});

@@ -49,24 +49,44 @@ struct Joint {
   double friction = 0;                              ///< N | N m
 };
 
-/// A drive's controller, as a servo or spindle amplifier would be parameterised.
-/// Gains and limits are stored in SI (m or rad) after loading.
-struct DriveParams {
-  control::DriveInfo info;
-  bool spindle = false;           ///< spindle amplifier: velocity mode with ramp, M19 positioning
-  int motor_joint = -1;           ///< joint the motor torque acts on
-  double ratio = 1;               ///< motor units per load unit (belt, gear reduction)
-  double kv_per_s = 30;           ///< position loop gain
-  double velocity_kp = 0;         ///< velocity loop P gain, N s/m | N m s/rad (load side)
-  double velocity_ti_s = 0.01;    ///< velocity loop integral time
-  double torque_limit = 0;        ///< N | N m (load side)
-  double velocity_limit = 0;      ///< m/s | rad/s
-  double acceleration_limit = 0;  ///< m/s^2 | rad/s^2 (spindle ramp, profiles)
-  double encoder_resolution = 0;  ///< m | rad, load side
-  double in_position_window = 0;  ///< m | rad
-  double standstill_window = 0;   ///< m/s | rad/s
+/// The gains and limits one drive parameter set holds. A drive has up to eight (SERCOS S-0-0217
+/// selects one each cycle, DriveSetpoint::parameter_set; C-axis manual 2.2: a main spindle with
+/// rotary axis capability has one for spindle mode and one for rotary axis mode). SI after
+/// loading (m or rad).
+struct DriveParameterSet {
+  /// Spindle behaviour in position mode: M19 orientation along the drive's own profile. A servo
+  /// set follows the master's cyclically interpolated position through the Kv loop instead.
+  bool spindle = false;
+  double kv_per_s = 30;              ///< position loop gain
+  double velocity_kp = 0;            ///< velocity loop P gain, N s/m | N m s/rad (load side)
+  double velocity_ti_s = 0.01;       ///< velocity loop integral time
+  double torque_limit = 0;           ///< N | N m (load side)
+  double velocity_limit = 0;         ///< m/s | rad/s
+  double acceleration_limit = 0;     ///< m/s^2 | rad/s^2 (spindle ramp, profiles)
+  double in_position_window = 0;     ///< m | rad
+  double standstill_window = 0;      ///< m/s | rad/s
   double following_error_limit = 0;  ///< m | rad
   double positioning_speed = 0;      ///< rad/s, spindle M19 orientation speed
+};
+
+/// A drive's controller, as a servo or spindle amplifier would be parameterised. Its own gains
+/// and limits (the DriveParameterSet it derives from) are parameter set 0.
+/// Gains and limits are stored in SI (m or rad) after loading.
+struct DriveParams : DriveParameterSet {
+  control::DriveInfo info;
+  int motor_joint = -1;  ///< joint the motor torque acts on
+  double ratio = 1;      ///< motor units per load unit (belt, gear reduction)
+  /// `encoder: load`: the joint a load-side (external) encoder reads, for the position loop and
+  /// the feedback position; the velocity loop stays on the motor. -1: the motor encoder
+  /// (motor_joint / ratio).
+  int load_joint = -1;
+  double encoder_resolution = 0;  ///< m | rad, load side
+  /// The amplifier trips (kOverload) after this long at its torque limit, s (net: time below
+  /// the limit counts back down).
+  double overload_time_s = 1;
+  /// Every set the drive has: [0] is the drive's own keys, [n] = YAML parameter_sets[n - 1]
+  /// (set 0 with that entry's overrides).
+  std::vector<DriveParameterSet> parameter_sets;
   // Step response spec the tests hold the drive to (machine YAML `spec:`).
   double spec_settle_time_s = 0;
   double spec_overshoot = 0;  ///< m | rad

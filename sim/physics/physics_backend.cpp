@@ -218,7 +218,8 @@ void PhysicsBackend::Step() {
   std::vector<double>& torques = torques_;  // member: no allocation per tick
   for (size_t d = 0; d < controllers_.size(); ++d) {
     const DriveParams& p = model_->drives[d];
-    const double pos = mb.getJointPos(p.motor_joint) / p.ratio;
+    // Position loop on its encoder (possibly load side), velocity loop on the motor.
+    const double pos = EncoderPosition(p, [&mb](int j) { return mb.getJointPos(j); });
     const double vel = mb.getJointVel(p.motor_joint) / p.ratio;
     DriveController& ctrl = controllers_[d];
     const double v_ref = ctrl.VelocityReference(ToSi(p, mdt_.setpoints[d]), pos, vel, dt);
@@ -260,8 +261,9 @@ void PhysicsBackend::UpdateFeedback(const std::vector<double>& torques) {
   const btMultiBody& mb = *world_->body;
   for (size_t d = 0; d < controllers_.size(); ++d) {
     const DriveParams& p = model_->drives[d];
-    at_.feedback[d] = controllers_[d].Feedback(mb.getJointPos(p.motor_joint) / p.ratio,
-                                               mb.getJointVel(p.motor_joint) / p.ratio, torques[d]);
+    at_.feedback[d] =
+        controllers_[d].Feedback(EncoderPosition(p, [&mb](int j) { return mb.getJointPos(j); }),
+                                 mb.getJointVel(p.motor_joint) / p.ratio, torques[d]);
   }
   ReadInputs(*model_, mdt_.outputs, clutches_, actuators_, at_.feedback, at_.inputs);
 }

@@ -107,6 +107,10 @@ DriveProgram::DriveProgram(const Scene& scene, const control::AmplifierTelegram&
   }
 }
 
+namespace {
+uint8_t ParameterSet(const TimelineStep& step) { return static_cast<uint8_t>(step.parameter_set); }
+}  // namespace
+
 bool DriveProgram::Execute(const TimelineStep& step, double t_s,
                            const control::AmplifierTelegram& at,
                            const std::vector<ClutchState>& clutches,
@@ -117,23 +121,27 @@ bool DriveProgram::Execute(const TimelineStep& step, double t_s,
     case Kind::kMove: {
       const DriveParams& p = m.drives[step.drive];
       const double unit = p.info.kind == control::AxisKind::kLinear ? kMmPerM : kDegPerRad;
+      // The profile keeps to the limits of the set the move names (set 0's if the drive lacks
+      // it: the drive reports that itself).
+      const size_t set = static_cast<size_t>(step.parameter_set);
+      const DriveParameterSet& g = set < p.parameter_sets.size() ? p.parameter_sets[set] : p;
       // Start where the command is, or where the axis is if it was not position controlled.
       const double from = setpoints_[step.drive].mode == DriveMode::kPosition
                               ? setpoints_[step.drive].value
                               : at.feedback[step.drive].position;
-      profiles_[step.drive] = {from, step.target, std::min(step.feed, p.velocity_limit * unit),
-                               p.acceleration_limit * unit, t_s};
+      profiles_[step.drive] = {from, step.target, std::min(step.feed, g.velocity_limit * unit),
+                               g.acceleration_limit * unit, t_s};
       profiling_[step.drive] = true;
-      setpoints_[step.drive] = {DriveMode::kPosition, from, 0};
+      setpoints_[step.drive] = {DriveMode::kPosition, from, ParameterSet(step)};
       return true;
     }
     case Kind::kSpeed:
       profiling_[step.drive] = false;
-      setpoints_[step.drive] = {DriveMode::kVelocity, step.target, 0};
+      setpoints_[step.drive] = {DriveMode::kVelocity, step.target, ParameterSet(step)};
       return true;
     case Kind::kOrient:
       profiling_[step.drive] = false;
-      setpoints_[step.drive] = {DriveMode::kPosition, step.target, 0};
+      setpoints_[step.drive] = {DriveMode::kPosition, step.target, ParameterSet(step)};
       return true;
     case Kind::kOff:
       profiling_[step.drive] = false;

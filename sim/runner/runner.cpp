@@ -151,6 +151,7 @@ struct SceneRun::State {
   std::vector<ExpectationResult> checks;
   std::vector<ClutchState> clutches, last_clutches;
   std::vector<uint8_t> last_inputs;
+  std::vector<uint32_t> last_faults;  ///< per drive: its fault bits at the last tick
   control::MasterTelegram mdt;
   std::vector<ProgramEvent> events;
   control::AmplifierTelegram faulted_at;  ///< the machine as the control sees it, faults applied
@@ -335,6 +336,19 @@ void SceneRun::State::Step() {
     if (!m.io[i].is_output && !m.io[i].key &&
         (last_inputs.empty() || at.inputs[i] != last_inputs[i]))
       emit_event({{"t", t}, {"event", "input"}, {"name", m.io[i].name}, {"value", at.inputs[i]}});
+  // A drive's trips (overload, overspeed, missing parameter set) as they come and go.
+  using namespace control::drive_status;
+  last_faults.resize(at.feedback.size(), 0);
+  for (size_t d = 0; d < at.feedback.size(); ++d) {
+    const uint32_t faults = at.feedback[d].status & (kOverload | kOverspeed | kParameterSetError);
+    if (faults == last_faults[d]) continue;
+    nlohmann::ordered_json e = {{"t", t}, {"event", "drive"}, {"name", m.drives[d].info.name}};
+    e["overload"] = (faults & kOverload) != 0;
+    e["overspeed"] = (faults & kOverspeed) != 0;
+    e["parameter_set_error"] = (faults & kParameterSetError) != 0;
+    emit_event(e);
+    last_faults[d] = faults;
+  }
   last_clutches = clutches;
   last_inputs = at.inputs;
 

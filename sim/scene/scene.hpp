@@ -95,13 +95,14 @@ struct TimelineStep {
   double not_before_s = 0;  ///< `at:`; 0 = as soon as the previous step is done
   int drive = -1;
   int io = -1;
-  double target = 0;   ///< move: position (mm|deg); speed: deg/s or mm/s; orient: deg
-  double feed = 0;     ///< move: mm/s | deg/s
-  bool level = false;  ///< output value
-  int code = 0;        ///< kNcMode: ChannelMode; kNcJogMode: JOGM code; kHandwheel: counts
-  int signal = -1;     ///< kSignal: gateway signal the (default) PLC writes; value in `target`
-  int axis = -1;       ///< kJog: channel axis index
-  int direction = 0;   ///< kJog: +1 | -1
+  double target = 0;      ///< move: position (mm|deg); speed: deg/s or mm/s; orient: deg
+  double feed = 0;        ///< move: mm/s | deg/s
+  int parameter_set = 0;  ///< move, speed, orient: the drive parameter set the setpoint names
+  bool level = false;     ///< output value
+  int code = 0;           ///< kNcMode: ChannelMode; kNcJogMode: JOGM code; kHandwheel: counts
+  int signal = -1;        ///< kSignal: gateway signal the (default) PLC writes; value in `target`
+  int axis = -1;          ///< kJog: channel axis index
+  int direction = 0;      ///< kJog: +1 | -1
   double wait_s = 0;
   Condition until;
   double timeout_s = 10;

@@ -56,6 +56,15 @@ void RequireWithinTravel(const MachineModel& m, int drive, double value, const Y
                Fmt(hi) + ")");
 }
 
+// `parameter_set:` of a drive step (0..7, as SERCOS numbers them). A set the drive lacks is
+// not refused here: the drive reports it (kParameterSetError), which a scene may want to show.
+int ReadDriveParameterSet(const YamlNode& step, std::ostringstream& text) {
+  const int set = step.Int("parameter_set", 0);
+  if (set < 0 || set > 7) step["parameter_set"].Fail("expected 0..7");
+  if (set != 0) text << " (parameter set " << set << ")";
+  return set;
+}
+
 bool IsRotary(const MachineModel& m, int drive) {
   return m.drives[drive].info.kind == control::AxisKind::kRotary;
 }
@@ -352,7 +361,7 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
 
   if (n.Has("move")) {
     const YamlNode a = n["move"];
-    a.AllowKeys({"axis", "to", "feed"});
+    a.AllowKeys({"axis", "to", "feed", "parameter_set"});
     s.kind = TimelineStep::Kind::kMove;
     s.drive = RequireDrive(m, a["axis"]);
     s.target = a["to"].Double();
@@ -360,27 +369,30 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
     s.feed = a["feed"].Double() / 60.0;  // mm/min | deg/min, as F words
     if (s.feed <= 0) a["feed"].Fail("must be > 0");
     text << "move " << a["axis"].String() << " to " << Fmt(s.target) << " at F" << Fmt(s.feed * 60);
+    s.parameter_set = ReadDriveParameterSet(a, text);
   } else if (n.Has("speed")) {
     const YamlNode a = n["speed"];
     s.kind = TimelineStep::Kind::kSpeed;
     s.drive = RequireDrive(m, a["axis"]);
     if (IsRotary(m, s.drive)) {
-      a.AllowKeys({"axis", "rpm"});
+      a.AllowKeys({"axis", "rpm", "parameter_set"});
       s.target = a["rpm"].Double() * 6.0;  // rpm -> deg/s
       text << "speed " << a["axis"].String() << " " << Fmt(a["rpm"].Double()) << " rpm";
     } else {
-      a.AllowKeys({"axis", "feed"});
+      a.AllowKeys({"axis", "feed", "parameter_set"});
       s.target = a["feed"].Double() / 60.0;
       text << "speed " << a["axis"].String() << " F" << Fmt(a["feed"].Double());
     }
+    s.parameter_set = ReadDriveParameterSet(a, text);
   } else if (n.Has("orient")) {
     const YamlNode a = n["orient"];
-    a.AllowKeys({"axis", "to"});
+    a.AllowKeys({"axis", "to", "parameter_set"});
     s.kind = TimelineStep::Kind::kOrient;
     s.drive = RequireDrive(m, a["axis"]);
     if (!m.drives[s.drive].spindle) a["axis"].Fail("orient needs a spindle drive");
     s.target = a["to"].Double();
     text << "orient " << a["axis"].String() << " to " << Fmt(s.target);
+    s.parameter_set = ReadDriveParameterSet(a, text);
   } else if (n.Has("off")) {
     const YamlNode a = n["off"];
     a.AllowKeys({"axis"});

@@ -109,6 +109,50 @@ TEST(ModelInputTest, ActuatorErrorsNameTheirPath) {
   }
 }
 
+// Drive keys of parameter sets, the load-side encoder and the overload time.
+TEST(ModelInputTest, DriveKeyErrorsNameTheirPath) {
+  struct Case {
+    const char* name;
+    const char* insert;  // after Z's following_error_limit
+    const char* path;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"set_unknown_key", "    parameter_sets:\n      - {kv: 10, kvv: 3}\n",
+       "drives[0].parameter_sets[0].kvv", "unknown key 'kvv'"},
+      {"set_negative", "    parameter_sets:\n      - {kv: -1}\n", "drives[0].parameter_sets[0].kv",
+       "must be > 0"},
+      {"set_type", "    parameter_sets:\n      - {type: stepper}\n",
+       "drives[0].parameter_sets[0].type", "expected servo or spindle"},
+      {"set_too_many", "    parameter_sets: [{}, {}, {}, {}, {}, {}, {}, {}]\n",
+       "drives[0].parameter_sets", "at most 7 entries"},
+      {"set_not_a_map", "    parameter_sets: [10]\n", "drives[0].parameter_sets[0]",
+       "expected a map"},
+      {"sets_not_a_list", "    parameter_sets: {kv: 10}\n", "drives[0].parameter_sets",
+       "expected a list"},
+      {"encoder_kind", "    encoder: rotor\n", "drives[0].encoder", "expected motor or load"},
+      {"encoder_no_joint", "    encoder: load\n", "drives[0]", "missing required key 'load_joint'"},
+      {"encoder_unknown_joint", "    encoder: load\n    load_joint: spindel\n",
+       "drives[0].load_joint", "no joint 'spindel'"},
+      {"encoder_joint_kind", "    encoder: load\n    load_joint: spindle\n", "drives[0].load_joint",
+       "joint type does not match the drive's kind"},
+      {"encoder_motor_joint", "    encoder: load\n    load_joint: z_carriage\n",
+       "drives[0].load_joint", "is the motor joint"},
+      {"load_joint_alone", "    load_joint: tailstock\n", "drives[0].load_joint",
+       "only a drive with encoder: load has a load_joint"},
+      {"overload_time", "    overload_time: 0\n", "drives[0].overload_time", "must be > 0"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::string at = "    following_error_limit: 20  # mm\n";
+    const std::string e =
+        LoadEdited(c.name, [&](std::string s) { return Replace(s, at, at + c.insert); });
+    EXPECT_THAT(e, HasSubstr("machine.yaml:"));
+    EXPECT_THAT(e, HasSubstr(c.path));
+    EXPECT_THAT(e, HasSubstr(c.message));
+  }
+}
+
 TEST(ModelInputTest, UnknownKeyIsNotIgnored) {
   const std::string e = LoadEdited("unknown_key", [](std::string s) {
     return Replace(s, "    teeth: 24", "    teeth: 24\n    teath: 25");
@@ -198,6 +242,10 @@ TEST(SceneInputTest, Errors) {
   EXPECT_THAT(
       SceneError("bad_feed", "duration: 1\ntimeline:\n  - move: {axis: Z, to: 1, feed: -5}\n"),
       HasSubstr("timeline[0].move.feed: must be > 0"));
+  EXPECT_THAT(
+      SceneError("bad_parameter_set",
+                 "duration: 1\ntimeline:\n  - speed: {axis: S1, rpm: 10, parameter_set: 8}\n"),
+      HasSubstr("timeline[0].speed.parameter_set: expected 0..7"));
   EXPECT_THAT(SceneError("bad_camera", "duration: 1\nsnapshots:\n  - {at: 0, camera: nope}\n"),
               HasSubstr("snapshots[0].camera: no camera 'nope'"));
   EXPECT_THAT(SceneError("bad_backend", "duration: 1\nbackend: quantum\n"),

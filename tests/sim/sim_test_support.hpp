@@ -2,6 +2,8 @@
 // Shared by the sim tests: the lathe model (loaded once) and a small driver that commands drives
 // and steps a backend.
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -39,6 +41,26 @@ inline const MachineModel& Lathe() {
   return model;
 }
 
+/// `s` with the first `from` replaced by `to`; fails the test if `from` is not there.
+inline std::string ReplaceOnce(std::string s, const std::string& from, const std::string& to) {
+  const size_t at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << "fixture text not found: " << from;
+  if (at != std::string::npos) s.replace(at, from.size(), to);
+  return s;
+}
+
+/// lathe-c1 with `edit` applied to its machine.yaml, written to a scratch folder as `name`.yaml
+/// and loaded from there; the URDF and meshes stay where they are. Throws ModelError.
+inline MachineModel EditedLathe(const std::string& name,
+                                const std::function<std::string(std::string)>& edit) {
+  std::string yaml = ReadBytes(SourcePath("models/lathe-c1/machine.yaml"));
+  yaml = ReplaceOnce(yaml, "urdf: machine.urdf",
+                     "urdf: " + SourcePath("models/lathe-c1/machine.urdf"));
+  const std::string path = OutputDir("edited_models") + "/" + name + ".yaml";
+  std::ofstream(path) << edit(yaml);
+  return LoadMachineModel(path);
+}
+
 /// Commands drives of a backend directly, as the PLC/NC would through the DriveBus.
 class Bench {
  public:
@@ -55,8 +77,9 @@ class Bench {
   }
   int Drive(const std::string& name) const { return backend_.model().DriveIndex(name); }
   int Io(const std::string& name) const { return control::IndexOf(backend_.model().io, name); }
-  void Command(const std::string& drive, control::DriveMode mode, double value) {
-    mdt_.setpoints[Drive(drive)] = {mode, value, 0};
+  void Command(const std::string& drive, control::DriveMode mode, double value,
+               uint8_t parameter_set = 0) {
+    mdt_.setpoints[Drive(drive)] = {mode, value, parameter_set};
   }
   void Output(const std::string& name, bool on) { mdt_.outputs[Io(name)] = on; }
   const control::DriveFeedback& Feedback(const std::string& drive) const {

@@ -1,0 +1,102 @@
+// lathe-c2: a main spindle with rotary axis capability (C-axis manual 2). One drive, S1, on the
+// spindle itself: speed control and M19 with parameter set 0, position control as the C axis
+// with set 1.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "sim_test_support.hpp"
+
+namespace vmt::sim {
+namespace {
+
+using control::DriveMode;
+using namespace control::drive_status;
+using testing::Bench;
+
+const MachineModel& LatheC2() {
+  static const MachineModel model =
+      LoadMachineModel(testing::SourcePath("models/lathe-c2/machine.yaml"));
+  return model;
+}
+
+TEST(LatheC2ModelTest, Loads) {
+  const MachineModel& m = LatheC2();
+  EXPECT_EQ(m.name, "lathe-c2");
+  EXPECT_EQ(m.drives.size(), 6u);  // Z X T W S1 S2: no C servo
+  EXPECT_TRUE(m.clutches.empty());
+  EXPECT_TRUE(m.gears.empty());
+  EXPECT_LT(m.JointIndex("s1_motor"), 0);
+  EXPECT_LT(m.JointIndex("c_motor"), 0);
+  EXPECT_LT(control::IndexOf(m.io, "QROTMODE"), 0);
+  EXPECT_GE(control::IndexOf(m.io, "QTURRET_UNCLAMP"), 0);
+  const DriveParams& s1 = m.drives[m.DriveIndex("S1")];
+  EXPECT_EQ(s1.motor_joint, m.JointIndex("spindle"));
+  EXPECT_EQ(s1.ratio, 1);
+  ASSERT_EQ(s1.parameter_sets.size(), 2u);
+  EXPECT_TRUE(s1.parameter_sets[0].spindle);
+  EXPECT_FALSE(s1.parameter_sets[1].spindle);
+  EXPECT_EQ(s1.parameter_sets[1].kv_per_s, 30);
+  EXPECT_EQ(m.nc.spindle_drive, m.DriveIndex("S1"));
+  for (const Link& l : m.links)
+    for (const Visual& v : l.visuals) EXPECT_FALSE(v.mesh->indices.empty()) << v.mesh_file;
+}
+
+class LatheC2SpindleTest : public ::testing::TestWithParam<BackendKind> {};
+
+// Spindle mode, then at standstill rotary axis mode: the same drive follows an interpolated
+// position with the C axis' lag (v / Kv of set 1), then orients again as a spindle.
+TEST_P(LatheC2SpindleTest, SpeedControlThenPositionControlThenM19) {
+  auto backend = MakeBackend(GetParam(), LatheC2(), {});
+  Bench bench(*backend);
+  const int s1 = bench.Drive("S1");
+  bench.Command("S1", DriveMode::kVelocity, 1000 * 6);
+  ASSERT_GT(bench.RunUntil([&] { return bench.Feedback("S1").status & kAtSpeed; }, 2), 0);
+  bench.Command("S1", DriveMode::kVelocity, 0);
+  ASSERT_GT(bench.RunUntil([&] { return bench.Feedback("S1").status & kStandstill; }, 2), 0);
+  bench.Run(0.2);
+
+  // Rotary axis mode: set 1, position control from where the spindle stands.
+  const double start = bench.Feedback("S1").position;
+  bench.Command("S1", DriveMode::kPosition, start, 1);
+  const double v = 300;  // deg/s
+  bench.Run(0.3, [&] { bench.mdt().setpoints[s1].value += v * kDriveTickS; });
+  EXPECT_NEAR(bench.Feedback("S1").following_error, v / 30, 0.05 * v / 30);
+  EXPECT_TRUE(bench.Feedback("S1").status & kReady);
+  bench.Run(0.5);
+  EXPECT_NEAR(bench.Feedback("S1").position, start + 90, 0.005);
+  EXPECT_TRUE(bench.Feedback("S1").status & kInPosition);
+
+  // Spindle mode again: M19 with set 0 orients modulo one turn.
+  bench.Command("S1", DriveMode::kPosition, 45, 0);
+  ASSERT_GT(bench.RunUntil(
+                [&] {
+                  return (bench.Feedback("S1").status & kInPosition) &&
+                         (bench.Feedback("S1").status & kStandstill);
+                },
+                3),
+            0);
+  const double angle = std::fmod(bench.Feedback("S1").position, 360.0);
+  EXPECT_NEAR(angle < 0 ? angle + 360 : angle, 45, 0.05);
+}
+
+// Rotary axis mode at spindle speed: 1000 rpm is far above 1.2 x the C axis' 200 rpm, so the
+// switch trips the drive (the NC must stop the spindle first).
+TEST_P(LatheC2SpindleTest, SwitchToTheRotaryAxisSetAtSpeedTrips) {
+  auto backend = MakeBackend(GetParam(), LatheC2(), {});
+  Bench bench(*backend);
+  bench.Command("S1", DriveMode::kVelocity, 1000 * 6);
+  ASSERT_GT(bench.RunUntil([&] { return bench.Feedback("S1").status & kAtSpeed; }, 2), 0);
+  bench.Command("S1", DriveMode::kPosition, bench.Feedback("S1").position, 1);
+  bench.Run(kDriveTickS);
+  EXPECT_TRUE(bench.Feedback("S1").status & kOverspeed);
+  EXPECT_FALSE(bench.Feedback("S1").status & kReady);
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, LatheC2SpindleTest,
+                         ::testing::Values(BackendKind::kPhysics, BackendKind::kKinematic),
+                         [](const auto& info) { return std::string(ToString(info.param)); });
+
+}  // namespace
+}  // namespace vmt::sim
