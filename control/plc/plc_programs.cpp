@@ -22,9 +22,17 @@ PlcProgram Make(const gateway::SignalImage& image) {
   return [program](PlcScan& scan) { (*program)(scan); };
 }
 
+PlcProgram MakeWrongChangeover(const gateway::SignalImage& image) {
+  CAxisChangeoverConfig config;
+  config.acknowledge_before_clutch = true;
+  auto program = std::make_shared<CAxisChangeover>(image, config);
+  return [program](PlcScan& scan) { (*program)(scan); };
+}
+
 constexpr Entry kPrograms[] = {
     {"repos_machine_keys", &Make<ReposMachineKeys>},
     {"c_axis_changeover", &Make<CAxisChangeover>},
+    {"c_axis_changeover_wrong", &MakeWrongChangeover},
     {"probe_block", &Make<ProbeBlockProgram>},
     {"machine_panel", &Make<MachinePanel>},
 };

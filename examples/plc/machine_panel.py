@@ -2,7 +2,8 @@
 """An external PLC over Modbus TCP: lathe-c1's panel and machine program, the same logic vmt
 ships embedded (control/plc/programs/machine_panel.cpp), run against `vmt serve SCENE
 --lockstep`: panel keys to the NC's control signals, the door, tailstock quill and coolant with
-their interlocks, M08 acknowledged on the coolant pressure, and the repositioning keys (8.2).
+their interlocks, M08 acknowledged on the coolant pressure, the repositioning keys (8.2) and the
+C-axis changeover (C-axis manual 4.4, c_axis_changeover.py).
 
     vmt signals models/lathe-c1/machine.yaml --format json > signals.json
     vmt serve scenes/machine-panel.yaml --modbus 127.0.0.1:5020 --lockstep &
@@ -19,6 +20,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from pymodbus.client import ModbusTcpClient  # noqa: E402
 from pymodbus.exceptions import ModbusException  # noqa: E402
+from c_axis_changeover import CAxisChangeover  # noqa: E402
 from vmt_modbus import Gateway  # noqa: E402
 
 KEYS = ["mAUTO", "mMANU", "mSTART", "mSTOP", "mRESET", "mSBL", "mCOOLANT", "mDOOR",
@@ -101,6 +103,7 @@ def main():
     ap.add_argument("--host", default="127.0.0.1")
     ap.add_argument("--port", type=int, required=True)
     ap.add_argument("--signals", required=True, help="vmt signals MODEL --format json")
+    ap.add_argument("--period", type=float, default=4.0, help="the scene's PLC period, ms")
     args = ap.parse_args()
     with open(args.signals, encoding="utf-8") as f:
         signals = json.load(f)
@@ -109,11 +112,13 @@ def main():
         print(f"cannot connect to {args.host}:{args.port}", file=sys.stderr)
         return 2
     io, program, cycle = Gateway(client, signals), MachinePanel(), 0
+    changeover = CAxisChangeover(signals)
     try:
         while True:
-            io.latch(INPUTS)
+            io.latch(INPUTS + changeover.inputs)
             program.scan(io)
-            io.flush(OUTPUTS)
+            changeover.scan(io, cycle * args.period)
+            io.flush(OUTPUTS + changeover.outputs)
             cycle += 1
             io.run_cycle(cycle)
     except (ConnectionError, ModbusException, OSError):

@@ -52,12 +52,18 @@ class Gateway:
             a = self.where[name]
             lo, got = data[a["area"]]
             v = got[a["address"] - lo]
+            t = self.types[name]
             if a["area"] in ("coil", "discrete_input"):
                 self.values[name] = bool(v)
-            elif self.types[name] == "INT":
+            elif t == "INT":
                 self.values[name] = v - 65536 if v >= 32768 else v
+            elif t == "WORD":
+                self.values[name] = v
+            elif t in ("DINT", "UDINT", "DWORD"):
+                v = v << 16 | got[a["address"] - lo + 1]  # most significant word first
+                self.values[name] = v - (1 << 32) if t == "DINT" and v >= 1 << 31 else v
             else:
-                raise ValueError(f"{name}: only BOOL and INT signals here")
+                raise ValueError(f"{name}: only BOOL, INT, WORD and DINT signals here")
 
     def get(self, name):
         return self.values[name]
@@ -66,15 +72,27 @@ class Gateway:
         self.values[name] = value
 
     def flush(self, names):
-        """Writes the named coils whose value differs from what was last written."""
+        """Writes the named outputs (coils, and INT / WORD / DINT holding registers) whose
+        value differs from what was last written."""
         for name in names:
             a = self.where[name]
-            if a["area"] != "coil":
-                raise ValueError(f"{name} is not a BOOL the PLC writes")
-            v = bool(self.values.get(name, False))
-            if self.written.get(name) != v:
-                self._check(self.client.write_coil(a["address"], v, slave=1), f"writing {name}")
-                self.written[name] = v
+            if a["area"] == "coil":
+                v = bool(self.values.get(name, False))
+            elif a["area"] == "holding_register" and self.types[name] in ("INT", "WORD", "DINT"):
+                v = int(self.values.get(name, 0))
+            else:
+                raise ValueError(f"{name} is not a BOOL, INT, WORD or DINT the PLC writes")
+            if self.written.get(name) == v:
+                continue
+            if a["area"] == "coil":
+                r = self.client.write_coil(a["address"], v, slave=1)
+            elif a["count"] == 1:
+                r = self.client.write_register(a["address"], v % 65536, slave=1)
+            else:
+                u = v % (1 << 32)
+                r = self.client.write_registers(a["address"], [u >> 16, u & 0xFFFF], slave=1)
+            self._check(r, f"writing {name}")
+            self.written[name] = v
 
     def forget_writes(self):
         """The next flush writes every output again (after a reconnection)."""

@@ -162,6 +162,7 @@ struct SceneRun::State {
   /// itself turns this off.
   bool default_headstock_plc = false;
   void AcknowledgeHeadstock();
+  void StartHeadstockPlc();
   control::axes::HeadstockMode headstock_mode = control::axes::HeadstockMode::kNone;
   control::axes::HeadstockMode headstock_target = control::axes::HeadstockMode::kNone;
   int plc_client_gone_told = 0;           ///< client_gone steps passed to the callback
@@ -238,6 +239,8 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
       const std::string& name = image->table()[step.signal].name;
       if (name.ends_with(".ROTMOD_Q") || name.ends_with(".SPMOD_Q")) default_headstock_plc = false;
     }
+    if (default_headstock_plc && channel->headstock()->config().separate_servo())
+      StartHeadstockPlc();
   }
   program = std::make_unique<DriveProgram>(scene, backend->Read(), channel.get(), image.get());
   if (field_bus) ReadFieldBus();
@@ -410,6 +413,30 @@ void SceneRun::State::Step() {
   backend->Step();
   ++tick;
   if (field_bus && tick % plc_every == 0) ReadFieldBus();
+}
+
+// A headstock with a separate C servo needs its clutch switched before the PLC may acknowledge
+// (C-axis manual 4.4): without a PLC of the scene's own, the manual's typical program runs as the
+// machine's PLC for it, with its valves and switches on the field bus; nothing else is.
+void SceneRun::State::StartHeadstockPlc() {
+  auto made = control::plc::MakePlcProgram("c_axis_changeover", *image);
+  if (!made) return;
+  plc = std::make_unique<control::plc::PlcRuntime>(*image, std::move(*made),
+                                                   control::plc::PlcTime(plc_every * 250));
+  field_bus = true;
+  default_headstock_plc = false;
+  for (size_t i = 0; i < m.io.size(); ++i) {
+    const std::string& name = m.io[i].name;
+    if (name != "QROTMODE" && name != "QSPMODE" && name != "IROTMODE" && name != "ISPMODE")
+      continue;
+    for (const TimelineStep& step : scene.timeline)
+      if (step.kind == TimelineStep::Kind::kOutput && step.io == static_cast<int>(i))
+        throw std::runtime_error(step.text + ": valve " + name +
+                                 " is switched by the headstock changeover PLC (C-axis manual "
+                                 "4.4) in a scene with an NC and no plc:");
+    const int id = image->Find(name);
+    if (id >= 0) (m.io[i].is_output ? plc_outputs : plc_inputs).emplace_back(static_cast<int>(i), id);
+  }
 }
 
 void SceneRun::State::AcknowledgeHeadstock() {

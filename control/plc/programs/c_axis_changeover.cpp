@@ -165,7 +165,7 @@ void CAxisChangeover::operator()(PlcScan& s) {
   // ROTMOD_Q is applied for as long as rotary axis mode is selected (4.1: after Control-Reset
   // and power-on as well); MPENDOR makes it drop in the scan after the NC asks for spindle mode
   // (network 12 resets it), before the clutch has moved.
-  s.SetBool(ROTMOD_Q, clutch_engaged && MPENDOR);
+  s.SetBool(ROTMOD_Q, config.acknowledge_before_clutch ? M_ROTAC : clutch_engaged && MPENDOR);
 
   // Networks 12-13: changeover to spindle mode: SPMOD(ACTIVE := 1, AXIS := ISP_NR).
   M_SPLAC = s.Bool(SPMOD);

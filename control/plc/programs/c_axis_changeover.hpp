@@ -38,6 +38,11 @@ struct CAxisChangeoverConfig {
   /// vmt: message numbers (Pxx.MSG_WR) for a clutch that did not engage / did not release.
   int MSG_ROTERR = 220;
   int MSG_SPERR = 221;
+
+  /// The deliberately wrong variant ("c_axis_changeover_wrong"): ROTMOD_Q is given with the
+  /// valve, before IROTMODE reports the clutch meshed, so the NC positions C while the servo
+  /// may still turn a gear the spindle is not coupled to.
+  bool acknowledge_before_clutch = false;
 };
 
 struct CAxisChangeover {

@@ -43,6 +43,10 @@ MachinePanel::MachinePanel(const gateway::SignalImage& image)
     }
   }
   if (image.Find("mREPOS") >= 0) repos.emplace(image);
+  // A headstock whose spindle has a rotary axis mode through clutch K.
+  bool rotmod = false;
+  for (const gateway::Signal& s : image.table()) rotmod = rotmod || s.pattern == "Axx.ROTMOD";
+  if (rotmod && image.Find("QROTMODE") >= 0) changeover.emplace(image);
 }
 
 void MachinePanel::operator()(PlcScan& s) {
@@ -96,6 +100,7 @@ void MachinePanel::operator()(PlcScan& s) {
   aux_acked = ack;
 
   if (repos) (*repos)(s);
+  if (changeover) (*changeover)(s);
 }
 
 }  // namespace vmt::control::plc

@@ -9,12 +9,14 @@
 //  - M08 is acknowledged when the coolant pressure switch reports flow (a pump that never
 //    builds pressure keeps the block waiting, visibly), every other M/H/T function at once
 //    (the NC itself runs M3/M4/M5/M19).
-// The repositioning manual's machine keys (8.2) are a network of it (ReposMachineKeys).
+// The repositioning manual's machine keys (8.2) are a network of it (ReposMachineKeys), and so is
+// the C-axis manual's changeover of a headstock with a clutch (4.4, CAxisChangeover).
 
 #include <optional>
 #include <vector>
 
 #include "control/gateway/signal_image.hpp"
+#include "control/plc/programs/c_axis_changeover.hpp"
 #include "control/plc/iec_standard_blocks.hpp"
 #include "control/plc/plc_runtime.hpp"
 #include "control/plc/programs/repos_machine_keys.hpp"
@@ -43,6 +45,7 @@ struct MachinePanel {
        quill = false;
   bool aux_acked = false;  ///< AUXACK pulsed last scan: drop it for one scan (edge for the NC)
   std::optional<ReposMachineKeys> repos;
+  std::optional<CAxisChangeover> changeover;
 };
 
 }  // namespace vmt::control::plc
