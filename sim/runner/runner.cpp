@@ -417,7 +417,8 @@ void SceneRun::State::Step() {
 
 // A headstock with a separate C servo needs its clutch switched before the PLC may acknowledge
 // (C-axis manual 4.4): without a PLC of the scene's own, the manual's typical program runs as the
-// machine's PLC for it, with its valves and switches on the field bus; nothing else is.
+// machine's PLC for it. It sees every sensor, as a PLC does, and drives the clutch valves alone:
+// the timeline keeps the other valves.
 void SceneRun::State::StartHeadstockPlc() {
   auto made = control::plc::MakePlcProgram("c_axis_changeover", *image);
   if (!made) return;
@@ -427,15 +428,19 @@ void SceneRun::State::StartHeadstockPlc() {
   default_headstock_plc = false;
   for (size_t i = 0; i < m.io.size(); ++i) {
     const std::string& name = m.io[i].name;
-    if (name != "QROTMODE" && name != "QSPMODE" && name != "IROTMODE" && name != "ISPMODE")
+    const int id = image->Find(name);
+    if (id < 0 || m.io[i].key) continue;
+    if (!m.io[i].is_output) {
+      plc_inputs.emplace_back(static_cast<int>(i), id);
       continue;
+    }
+    if (name != "QROTMODE" && name != "QSPMODE") continue;
     for (const TimelineStep& step : scene.timeline)
       if (step.kind == TimelineStep::Kind::kOutput && step.io == static_cast<int>(i))
         throw std::runtime_error(step.text + ": valve " + name +
                                  " is switched by the headstock changeover PLC (C-axis manual "
                                  "4.4) in a scene with an NC and no plc:");
-    const int id = image->Find(name);
-    if (id >= 0) (m.io[i].is_output ? plc_outputs : plc_inputs).emplace_back(static_cast<int>(i), id);
+    plc_outputs.emplace_back(static_cast<int>(i), id);
   }
 }
 
