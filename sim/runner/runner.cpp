@@ -165,7 +165,7 @@ struct SceneRun::State {
   void StartHeadstockPlc();
   control::axes::HeadstockMode headstock_mode = control::axes::HeadstockMode::kNone;
   control::axes::HeadstockMode headstock_target = control::axes::HeadstockMode::kNone;
-  int plc_client_gone_told = 0;           ///< client_gone steps passed to the callback
+  int plc_client_gone_told = 0;  ///< client_gone steps passed to the callback
 };
 
 SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
@@ -300,12 +300,11 @@ void SceneRun::State::Step() {
     }
     if (const auto* hs = channel->headstock(); hs && hs->mode() != headstock_mode) {
       headstock_mode = hs->mode();
-      const std::string shown =
-          headstock_mode == control::axes::HeadstockMode::kRotary
-              ? scene.nc.data.axes[scene.nc.data.rotary_axis].name
-              : m.drives[scene.nc.data.spindle_drive].info.name;
-      emit_event({{"t", t}, {"event", "headstock"}, {"mode", ToString(headstock_mode)},
-                  {"axis", shown}});
+      const std::string shown = headstock_mode == control::axes::HeadstockMode::kRotary
+                                    ? scene.nc.data.axes[scene.nc.data.rotary_axis].name
+                                    : m.drives[scene.nc.data.spindle_drive].info.name;
+      emit_event(
+          {{"t", t}, {"event", "headstock"}, {"mode", ToString(headstock_mode)}, {"axis", shown}});
     }
     if (channel->state() != nc_state) {
       nc_state = channel->state();
@@ -451,7 +450,8 @@ void SceneRun::State::AcknowledgeHeadstock() {
     if (pattern == "AxxC.READY") image->SetBool(id, true);  // every drive enabled
     if (pattern == "Axx.ROTMOD_Q") image->SetBool(id, hs.rotmod());
     if (pattern == "Axx.SPMOD_Q")
-      image->SetBool(id, hs.spmod() || (!hs.busy() && hs.mode() == control::axes::HeadstockMode::kNone));
+      image->SetBool(
+          id, hs.spmod() || (!hs.busy() && hs.mode() == control::axes::HeadstockMode::kNone));
   }
 }
 

@@ -407,7 +407,8 @@ TEST(CAxisChangeoverWrongTest, AcknowledgesBeforeTheClutchHasMeshed) {
   CAxisChangeoverConfig config;
   config.acknowledge_before_clutch = true;
   auto program = std::make_shared<CAxisChangeover>(image, config);
-  PlcRuntime plc(image, [p = program](PlcScan& s) { (*p)(s); }, kPeriod);
+  PlcRuntime plc(
+      image, [p = program](PlcScan& s) { (*p)(s); }, kPeriod);
   Clutch clutch{image};
   clutch.Released();
   clutch.blocked = true;  // dogs on dogs: IROTMODE never comes
@@ -423,7 +424,8 @@ TEST(CAxisChangeoverWrongTest, AcknowledgesBeforeTheClutchHasMeshed) {
   // The right program waits for the switch.
   gateway::SignalImage right_image(gateway::BuildSignalTable(LatheLayout()));
   auto right = std::make_shared<CAxisChangeover>(right_image);
-  PlcRuntime right_plc(right_image, [p = right](PlcScan& s) { (*p)(s); }, kPeriod);
+  PlcRuntime right_plc(
+      right_image, [p = right](PlcScan& s) { (*p)(s); }, kPeriod);
   Clutch right_clutch{right_image};
   right_clutch.Released();
   right_clutch.blocked = true;

@@ -23,9 +23,9 @@ class MachinePanelTest : public ::testing::Test {
       layout.io.push_back({out, true, "valve"});
     for (const char* in : {"IDOOR_CLOSED", "ICOOLANT_PRESSURE", "ITAILSTOCK_FWD"})
       layout.io.push_back({in, false, "switch"});
-    for (const char* key : {"mAUTO", "mMANU", "mSTART", "mSTOP", "mRESET", "mSBL", "mCOOLANT",
-                            "mDOOR", "mTAILSTOCK", "mJGPOS_X", "mJGNEG_X", "mJGPOS_Z",
-                            "mJGNEG_Z", "mREPOS", "mRESTA", "mRaR_OFF"})
+    for (const char* key :
+         {"mAUTO", "mMANU", "mSTART", "mSTOP", "mRESET", "mSBL", "mCOOLANT", "mDOOR", "mTAILSTOCK",
+          "mJGPOS_X", "mJGNEG_X", "mJGPOS_Z", "mJGNEG_Z", "mREPOS", "mRESTA", "mRaR_OFF"})
       layout.io.push_back({key, false, "key"});
     return gateway::SignalImage(gateway::BuildSignalTable(layout));
   }
@@ -156,14 +156,16 @@ TEST(MachinePanelChangeoverTest, RunsTheChangeoverWhenTheSpindleHasARotaryAxisMo
   // lathe-c1: S1 (A03) with its rotary axis mode C (A04) through clutch K.
   gateway::GatewayLayout layout;
   layout.processes = {0};
-  layout.axes = {{1, "X", false, false}, {2, "Z", false, false}, {3, "S1", true, false},
+  layout.axes = {{1, "X", false, false},
+                 {2, "Z", false, false},
+                 {3, "S1", true, false},
                  {4, "C", false, true}};
   for (const char* out : {"QDOOR_OPEN", "QTAILSTOCK", "QCOOLANT", "QROTMODE", "QSPMODE"})
     layout.io.push_back({out, true, "valve"});
   for (const char* in : {"IDOOR_CLOSED", "ICOOLANT_PRESSURE", "IROTMODE", "ISPMODE"})
     layout.io.push_back({in, false, "switch"});
-  for (const char* key : {"mAUTO", "mMANU", "mSTART", "mSTOP", "mRESET", "mSBL", "mCOOLANT",
-                          "mDOOR", "mTAILSTOCK"})
+  for (const char* key :
+       {"mAUTO", "mMANU", "mSTART", "mSTOP", "mRESET", "mSBL", "mCOOLANT", "mDOOR", "mTAILSTOCK"})
     layout.io.push_back({key, false, "key"});
   gateway::SignalImage image(gateway::BuildSignalTable(layout));
   PlcRuntime plc(image, *MakePlcProgram("machine_panel", image), PlcTime(4000));
