@@ -177,6 +177,7 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     config.axes = scene.nc.data.axes;
     config.process = scene.nc.data.process;
     config.spindle_drive = scene.nc.data.spindle_drive;
+    if (config.spindle_drive >= 0) config.spindle.name = m.drives[config.spindle_drive].info.name;
     config.zero_offsets = scene.nc.data.zero_offsets;
     config.tools = scene.nc.data.tools;
     config.initial = scene.nc.initial;
@@ -300,11 +301,10 @@ void SceneRun::State::Step() {
     }
     if (const auto* hs = channel->headstock(); hs && hs->mode() != headstock_mode) {
       headstock_mode = hs->mode();
-      const std::string shown = headstock_mode == control::axes::HeadstockMode::kRotary
-                                    ? scene.nc.data.axes[scene.nc.data.rotary_axis].name
-                                    : m.drives[scene.nc.data.spindle_drive].info.name;
-      emit_event(
-          {{"t", t}, {"event", "headstock"}, {"mode", ToString(headstock_mode)}, {"axis", shown}});
+      emit_event({{"t", t},
+                  {"event", "headstock"},
+                  {"mode", ToString(headstock_mode)},
+                  {"axis", channel->HeadstockAxisName()}});
     }
     if (channel->state() != nc_state) {
       nc_state = channel->state();
