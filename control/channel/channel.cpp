@@ -179,8 +179,14 @@ bool Channel::SetMode(ChannelMode mode) {
     for (JogAxis& j : jog_) j = JogAxis{};
     // Where the program was interrupted: the contour the axes must come back to.
     if (mode == ChannelMode::kManual && interruption_point_.empty() &&
-        state_ == ChannelState::kHold)
+        state_ == ChannelState::kHold) {
       interruption_point_ = commanded_;
+      // Outside rotary axis mode (a changeover included) the NC does not position the rotary
+      // axis: its command follows the actual position, which the spindle or the PLC's motion
+      // functions move (C-axis manual 4.2, 4.3). It has no point on the contour to return to.
+      if (headstock_ && headstock_->mode() != axes::HeadstockMode::kRotary)
+        interruption_point_[config_.rotary_axis] = std::nan("");
+    }
     if (mode == ChannelMode::kMdi || mode_ == ChannelMode::kMdi) {
       if (interpreter_) last_modal_ = interpreter_->modal();
       interpreter_.reset();
@@ -200,13 +206,15 @@ void Channel::Start() {
   if (state_ == ChannelState::kHold) {
     // Continuing from off the contour would jump back to the path: the axes must first be
     // repositioned to the interruption point (REPOS manual; the REPOS function is issue 6's).
-    for (size_t a = 0; a < commanded_.size() && !interruption_point_.empty(); ++a)
+    for (size_t a = 0; a < commanded_.size() && !interruption_point_.empty(); ++a) {
+      if (std::isnan(interruption_point_[a])) continue;  // not on the contour (SetMode)
       if (std::abs(commanded_[a] - interruption_point_[a]) > 1e-6) {
         Fail("axis " + config_.axes[a].name +
                  " has left the contour at the interruption point: reposition it first",
              kMsgLeftContour);
         return;
       }
+    }
     interruption_point_.clear();
     state_ = ChannelState::kRunning;
     return;
@@ -304,6 +312,8 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
         if (headstock_->mode() == waiting_for_)
           finished = RunBlock(at) && !active_ && dwell_left_s_ <= 0 &&
                      waiting_for_ == axes::HeadstockMode::kNone;
+        else if (state_ == ChannelState::kRunning)
+          headstock_->Request(waiting_for_);  // again, if a jog key turned the changeover round
       } else if (pending_motion_) {
         pending_motion_ = false;
         if (StartMotion(at)) finished = !active_ && dwell_left_s_ <= 0 && !homing_;
@@ -339,11 +349,12 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
     sp = {DriveMode::kPosition, previous_[a] + (commanded_[a] - previous_[a]) * f, 0};
     if (low_lag) sp.velocity_feedforward = (commanded_[a] - previous_[a]) / cycle_s;
   }
+  // The rotary axis' setpoint is taken before the spindle's is written: on a main spindle with
+  // rotary axis capability (C-axis manual 2) both are the same drive.
+  DriveSetpoint rotary;
+  if (headstock_) rotary = mdt.setpoints[config_.axes[config_.rotary_axis].drive];
   if (config_.spindle_drive >= 0) mdt.setpoints[config_.spindle_drive] = spindle_;
-  if (headstock_) {
-    const DriveSetpoint rotary = mdt.setpoints[config_.axes[config_.rotary_axis].drive];
-    headstock_->WriteSetpoints(spindle_, rotary, at, mdt);
-  }
+  if (headstock_) headstock_->WriteSetpoints(spindle_, rotary, at, mdt);
 }
 
 void Channel::HeadstockCycle(const AmplifierTelegram& at, double dt) {
@@ -351,11 +362,15 @@ void Channel::HeadstockCycle(const AmplifierTelegram& at, double dt) {
     headstock_->TakeModeFromPlc(headstock_plc_);  // power-on mode (2.3)
     headstock_known_ = true;
   }
-  // The sequence and the PLC's motion functions halt while the program is stopped (2.3).
+  // The sequence and the PLC's motion functions halt while the program is stopped (2.3), but
+  // not a changeover that a jog key commanded in manual mode.
   axes::HeadstockPlc plc = headstock_plc_;
-  plc.stop = plc.stop || state_ == ChannelState::kHold || state_ == ChannelState::kError;
+  const bool held =
+      state_ == ChannelState::kHold && !(mode_ == ChannelMode::kManual && jog_changeover_);
+  plc.stop = plc.stop || held || state_ == ChannelState::kError;
   if (!headstock_->Cycle(plc, at, dt) && state_ != ChannelState::kError)
     Fail(headstock_->error(), kMsgChangeoverAck);
+  if (!headstock_->busy()) jog_changeover_ = false;
   // The rotary axis follows its actual position wherever the NC does not position it: its
   // command value is up to date when rotary axis mode begins (5).
   const size_t r = static_cast<size_t>(config_.rotary_axis);

@@ -258,6 +258,7 @@ class Channel {
   axes::HeadstockPlc headstock_plc_;
   bool headstock_known_ = false;  ///< the power-on mode has been taken from the PLC
   axes::HeadstockMode waiting_for_ = axes::HeadstockMode::kNone;
+  bool jog_changeover_ = false;  ///< the changeover in progress is a jog key's (manual mode)
 };
 
 }  // namespace vmt::control::channel

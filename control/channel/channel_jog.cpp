@@ -42,8 +42,12 @@ void Channel::Handwheel(size_t axis, int counts) {
 void Channel::Jog(size_t axis, int direction) {
   if (mode_ != ChannelMode::kManual || axis >= jog_.size()) return;
   // C-axis manual 4.2: jogging the rotary axis selects rotary axis mode; it moves once there.
-  if (headstock_ && static_cast<int>(axis) == config_.rotary_axis && direction != 0)
+  if (headstock_ && static_cast<int>(axis) == config_.rotary_axis && direction != 0) {
     headstock_->Request(axes::HeadstockMode::kRotary);
+    // 2.3 Jogging Movements: the key aborts an interrupted changeover and commands its own,
+    // which the interrupted program's immediate stop does not hold (HeadstockCycle).
+    jog_changeover_ = headstock_->busy();
+  }
   jog_[axis].key = direction > 0 ? 1 : direction < 0 ? -1 : 0;
   take_over_pending_ = true;
 }
