@@ -86,7 +86,10 @@ bool HeadstockChangeover::Cycle(const HeadstockPlc& plc, const AmplifierTelegram
     case ChangeoverPhase::kInternal:
       // (2): decelerate in speed control; the parameter set goes with the setpoints.
       spindle_fn_.setpoint = rotary_fn_.setpoint = {DriveMode::kVelocity, 0, 0};
-      if (Standstill(at, config_.spindle_drive) && Standstill(at, config_.rotary_drive))
+      // 2.3 Immediate Stop: the internal sequence stops and its commands stay pending, so no
+      // ROTMOD / SPMOD goes out to the PLC while the stop is in force.
+      if (!plc.stop && Standstill(at, config_.spindle_drive) &&
+          Standstill(at, config_.rotary_drive))
         phase_ = ChangeoverPhase::kExternal;
       return true;
     case ChangeoverPhase::kExternal: {
@@ -140,8 +143,13 @@ void HeadstockChangeover::RunFunction(Function& f, const std::array<int64_t, 4>&
                                   -axd::kMaxSpeedRpm, axd::kMaxSpeedRpm);
     const double target = rpm * 6;
     const double accel = static_cast<double>(axd[kAxdAccel]) * kDegPerRad;
-    const double step = accel > 0 ? accel * dt_s : std::abs(target - f.speed);
-    f.speed += std::clamp(target - f.speed, -step, step);
+    // The last step lands exactly on the target: speed + (target - speed) need not equal
+    // target in floating point, and the acknowledgement below compares for equality.
+    const double step = accel > 0 ? accel * dt_s : HUGE_VAL;
+    if (std::abs(target - f.speed) <= step)
+      f.speed = target;
+    else
+      f.speed += std::copysign(step, target - f.speed);
     f.setpoint.value = f.speed;
     if (f.speed == target) f.word |= axd::kSpeedSpecAck;
   } else {

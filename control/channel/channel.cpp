@@ -180,8 +180,14 @@ bool Channel::SetMode(ChannelMode mode) {
     for (JogAxis& j : jog_) j = JogAxis{};
     // Where the program was interrupted: the contour the axes must come back to.
     if (mode == ChannelMode::kManual && interruption_point_.empty() &&
-        state_ == ChannelState::kHold)
+        state_ == ChannelState::kHold) {
       interruption_point_ = commanded_;
+      // Outside rotary axis mode (a changeover included) the NC does not position the rotary
+      // axis: its command follows the actual position, which the spindle or the PLC's motion
+      // functions move (C-axis manual 4.2, 4.3). It has no point on the contour to return to.
+      if (headstock_ && headstock_->mode() != axes::HeadstockMode::kRotary)
+        interruption_point_[config_.rotary_axis] = std::nan("");
+    }
     if (mode == ChannelMode::kMdi || mode_ == ChannelMode::kMdi) {
       if (interpreter_) last_modal_ = interpreter_->modal();
       interpreter_.reset();
@@ -206,6 +212,7 @@ void Channel::Start() {
       if (headstock_ && static_cast<int>(a) == config_.rotary_axis &&
           headstock_->mode() != axes::HeadstockMode::kRotary)
         continue;
+      if (std::isnan(interruption_point_[a])) continue;  // not on the contour (SetMode)
       if (std::abs(commanded_[a] - interruption_point_[a]) > 1e-6) {
         Fail("axis " + config_.axes[a].name +
                  " has left the contour at the interruption point: reposition it first",
@@ -309,6 +316,8 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
         if (headstock_->mode() == waiting_for_)
           finished = RunBlock(at) && !active_ && dwell_left_s_ <= 0 && !orienting_ &&
                      waiting_for_ == axes::HeadstockMode::kNone;
+        else if (state_ == ChannelState::kRunning)
+          headstock_->Request(waiting_for_);  // again, if a jog key turned the changeover round
       } else if (pending_motion_) {
         pending_motion_ = false;
         if (StartMotion(at)) finished = !active_ && dwell_left_s_ <= 0 && !homing_ && !orienting_;

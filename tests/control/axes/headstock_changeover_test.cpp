@@ -1,0 +1,684 @@
+// The NC side of the headstock changeover (C-axis manual 2.3, 3.3, 4.1-4.3, figures 4-1 / 4-2),
+// driven by a scripted PLC (HeadstockPlc) and scripted drives, for both machine kinds: a
+// separate C servo engaged through a clutch (section 3) and one main spindle drive with a
+// rotary parameter set (section 2).
+
+#include "control/axes/headstock_changeover.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace vmt::control::axes {
+namespace {
+
+constexpr double kDt = 1e-3;  // the NC cycle
+
+enum class Kind { kServo, kFrameless };
+
+// Section 3: spindle on drive 0, C servo on drive 1. Section 2: one drive 0 for both, the
+// rotary axis mode in its parameter set 1.
+HeadstockConfig ConfigOf(Kind kind) {
+  HeadstockConfig c;
+  c.spindle_drive = 0;
+  c.rotary_drive = kind == Kind::kServo ? 1 : 0;
+  c.rotary_parameter_set = kind == Kind::kServo ? 0 : 1;
+  return c;
+}
+
+// The headstock with a scripted PLC and drives. Each drive follows its setpoint as a drive on
+// the bus does: velocity ramped at kAccel, position reached at once, off coasts down.
+struct Rig {
+  static constexpr double kAccel = 3600;  // deg/s^2
+
+  explicit Rig(Kind kind, bool rotmod_q = false, bool spmod_q = true)
+      : config(ConfigOf(kind)), hs(config) {
+    const size_t drives = kind == Kind::kServo ? 2 : 1;
+    at.feedback.resize(drives);
+    mdt.setpoints.resize(drives);
+    for (DriveFeedback& f : at.feedback) f.status = drive_status::kReady;
+    plc.rotmod_q = rotmod_q;
+    plc.spmod_q = spmod_q;
+    hs.TakeModeFromPlc(plc);
+    Settle();
+  }
+
+  // One NC cycle: the sequence, the setpoints, and the drives' answer.
+  bool Cycle() {
+    const bool ok = hs.Cycle(plc, at, kDt);
+    hs.WriteSetpoints(spindle_cmd, rotary_cmd, at, mdt);
+    for (size_t d = 0; d < at.feedback.size(); ++d) {
+      DriveFeedback& f = at.feedback[d];
+      const DriveSetpoint& sp = mdt.setpoints[d];
+      if (sp.mode == DriveMode::kPosition) {
+        f.velocity = (sp.value - f.position) / kDt;
+        f.position = sp.value;
+      } else {
+        const double target = sp.mode == DriveMode::kVelocity ? sp.value : 0;
+        const double step = kAccel * kDt;
+        f.velocity = std::clamp(target, f.velocity - step, f.velocity + step);
+        f.position += f.velocity * kDt;
+      }
+      f.status = drive_status::kReady;
+      if (std::abs(f.velocity) < 0.01) f.status |= drive_status::kStandstill;
+    }
+    return ok;
+  }
+  void Run(int cycles) {
+    for (int i = 0; i < cycles; ++i) EXPECT_TRUE(Cycle()) << hs.error();
+  }
+  // Cycles until the phase is `phase`, at most `limit`; the number of cycles it took.
+  int RunUntil(ChangeoverPhase phase, int limit = 10000) {
+    int n = 0;
+    while (hs.phase() != phase && n < limit) {
+      EXPECT_TRUE(Cycle()) << hs.error();
+      ++n;
+    }
+    EXPECT_EQ(hs.phase(), phase);
+    return n;
+  }
+  void Settle() { Run(3); }
+
+  // The PLC acknowledges `mode` (and only it), as a PLC without a mechanism does.
+  void Acknowledge(HeadstockMode mode) {
+    plc.rotmod_q = mode == HeadstockMode::kRotary;
+    plc.spmod_q = mode == HeadstockMode::kSpindle;
+  }
+  const DriveSetpoint& Spindle() const { return mdt.setpoints[config.spindle_drive]; }
+  const DriveSetpoint& Rotary() const { return mdt.setpoints[config.rotary_drive]; }
+  const DriveFeedback& SpindleFb() const { return at.feedback[config.spindle_drive]; }
+  const DriveFeedback& RotaryFb() const { return at.feedback[config.rotary_drive]; }
+
+  HeadstockConfig config;
+  HeadstockChangeover hs;
+  HeadstockPlc plc;
+  AmplifierTelegram at;
+  MasterTelegram mdt;
+  DriveSetpoint spindle_cmd{DriveMode::kVelocity, 0, 0};
+  DriveSetpoint rotary_cmd{DriveMode::kPosition, 0, 0};
+};
+
+class HeadstockChangeoverKinds : public ::testing::TestWithParam<Kind> {};
+INSTANTIATE_TEST_SUITE_P(Machine, HeadstockChangeoverKinds,
+                         ::testing::Values(Kind::kServo, Kind::kFrameless), [](const auto& info) {
+                           return info.param == Kind::kServo ? "SeparateServo" : "OneDrive";
+                         });
+
+// ---- Power-on (2.3, 3.3) ---------------------------------------------------------------------
+
+TEST_P(HeadstockChangeoverKinds, PowerOnTakesTheModeThePlcAcknowledges) {
+  struct Case {
+    bool rotmod_q, spmod_q;
+    HeadstockMode mode;
+  };
+  for (const Case& c :
+       {Case{true, false, HeadstockMode::kRotary}, Case{false, true, HeadstockMode::kSpindle},
+        Case{false, false, HeadstockMode::kNone}, Case{true, true, HeadstockMode::kNone}}) {
+    SCOPED_TRACE(::testing::Message() << "ROTMOD_Q " << c.rotmod_q << " SPMOD_Q " << c.spmod_q);
+    HeadstockChangeover hs(ConfigOf(GetParam()));
+    HeadstockPlc plc;
+    plc.rotmod_q = c.rotmod_q;
+    plc.spmod_q = c.spmod_q;
+    hs.TakeModeFromPlc(plc);
+    EXPECT_EQ(hs.mode(), c.mode);
+    EXPECT_FALSE(hs.busy());
+    EXPECT_EQ(hs.target(), c.mode);
+    EXPECT_EQ(hs.rotmod(), c.mode == HeadstockMode::kRotary);
+    EXPECT_EQ(hs.spmod(), c.mode == HeadstockMode::kSpindle);
+    // Rotary axis mode at power-on: the position command value is taken from the actual one.
+    EXPECT_EQ(hs.TakeOverRotary(), c.mode == HeadstockMode::kRotary);
+    EXPECT_FALSE(hs.TakeOverRotary());  // once
+    EXPECT_TRUE(hs.error().empty());
+  }
+}
+
+TEST_P(HeadstockChangeoverKinds, PowerOnInNeitherModeChangesOverWhenAModeIsNeeded) {
+  Rig r(GetParam(), false, false);
+  ASSERT_EQ(r.hs.mode(), HeadstockMode::kNone);
+  r.Run(50);  // no acknowledgement to hold: no process error
+  EXPECT_FALSE(r.hs.rotmod());
+  EXPECT_FALSE(r.hs.spmod());
+  r.hs.Request(HeadstockMode::kRotary);
+  EXPECT_EQ(r.hs.phase(), ChangeoverPhase::kInternal);
+  r.RunUntil(ChangeoverPhase::kExternal);
+  EXPECT_TRUE(r.hs.rotmod());
+  r.Acknowledge(HeadstockMode::kRotary);
+  r.RunUntil(ChangeoverPhase::kNone);
+  EXPECT_EQ(r.hs.mode(), HeadstockMode::kRotary);
+}
+
+TEST_P(HeadstockChangeoverKinds, RequestForTheCurrentModeOrNoneDoesNothing) {
+  Rig r(GetParam());
+  r.hs.Request(HeadstockMode::kSpindle);
+  EXPECT_FALSE(r.hs.busy());
+  r.hs.Request(HeadstockMode::kNone);
+  EXPECT_FALSE(r.hs.busy());
+  EXPECT_EQ(r.hs.mode(), HeadstockMode::kSpindle);
+  r.hs.Abandon();  // nothing to abandon
+  EXPECT_FALSE(r.hs.busy());
+  EXPECT_EQ(r.hs.mode(), HeadstockMode::kSpindle);
+}
+
+// ---- The sequence of figures 4-1 / 4-2 -----------------------------------------------------
+
+TEST_P(HeadstockChangeoverKinds, SpindleToRotaryAndBack) {
+  Rig r(GetParam());
+  const bool servo = GetParam() == Kind::kServo;
+  const uint8_t rotary_set = r.config.rotary_parameter_set;
+  // The spindle turns at 100 rpm (M3).
+  r.spindle_cmd = {DriveMode::kVelocity, 600, 0};
+  r.Run(400);
+  ASSERT_NEAR(r.SpindleFb().velocity, 600, 1e-9);
+  EXPECT_EQ(r.Spindle().mode, DriveMode::kVelocity);
+  EXPECT_EQ(r.Spindle().parameter_set, 0);
+  EXPECT_TRUE(r.hs.spmod());
+
+  // (1) activate, (2) internal changeover: decelerate to standstill in speed control, with the
+  // parameter set of rotary axis mode; nothing goes to the PLC yet.
+  r.hs.Request(HeadstockMode::kRotary);
+  EXPECT_TRUE(r.hs.busy());
+  EXPECT_EQ(r.hs.target(), HeadstockMode::kRotary);
+  EXPECT_EQ(r.hs.mode(), HeadstockMode::kNone);
+  EXPECT_FALSE(r.hs.rotmod());
+  EXPECT_FALSE(r.hs.spmod());
+  ASSERT_TRUE(r.Cycle());
+  EXPECT_EQ(r.hs.phase(), ChangeoverPhase::kInternal);
+  EXPECT_EQ(r.Spindle().mode, DriveMode::kVelocity);
+  EXPECT_EQ(r.Spindle().value, 0);
+  EXPECT_EQ(r.Spindle().parameter_set, rotary_set);
+  if (servo) {
+    EXPECT_EQ(r.Rotary().mode, DriveMode::kVelocity);
+  }
+  EXPECT_LT(r.SpindleFb().velocity, 600);
+  // 600 deg/s at 3600 deg/s^2: about 167 cycles to standstill.
+  const int braking = r.RunUntil(ChangeoverPhase::kExternal);
+  EXPECT_GT(braking, 150);
+  EXPECT_LT(braking, 180);
+  EXPECT_TRUE(r.SpindleFb().status & drive_status::kStandstill);
+
+  // (3) external changeover: ROTMOD out until the PLC acknowledges with ROTMOD_Q alone.
+  EXPECT_TRUE(r.hs.rotmod());
+  EXPECT_FALSE(r.hs.spmod());
+  r.Run(100);
+  EXPECT_EQ(r.hs.phase(), ChangeoverPhase::kExternal);
+  r.plc.rotmod_q = true;  // SPMOD_Q still applied: not yet the end of the changeover
+  r.Run(20);
+  EXPECT_EQ(r.hs.phase(), ChangeoverPhase::kExternal);
+  EXPECT_FALSE(r.hs.TakeOverRotary());
+  // (4) deactivate, (5) position control: the rotary command value is taken over once.
+  r.rotary_cmd = {DriveMode::kPosition, r.RotaryFb().position, 0};
+  r.plc.spmod_q = false;
+  ASSERT_TRUE(r.Cycle());
+  EXPECT_FALSE(r.hs.busy());
+  EXPECT_EQ(r.hs.mode(), HeadstockMode::kRotary);
+  EXPECT_TRUE(r.hs.TakeOverRotary());
+  EXPECT_FALSE(r.hs.TakeOverRotary());
+  EXPECT_TRUE(r.hs.rotmod());
+  EXPECT_FALSE(r.hs.spmod());
+  EXPECT_EQ(r.Rotary().mode, DriveMode::kPosition);
+  EXPECT_EQ(r.Rotary().parameter_set, rotary_set);
+  // The rotary axis follows the NC; the spindle command no longer reaches the drive.
+  r.spindle_cmd = {DriveMode::kVelocity, 1200, 0};
+  r.rotary_cmd = {DriveMode::kPosition, 45, 0};
+  r.Run(5);
+  EXPECT_EQ(r.Rotary().mode, DriveMode::kPosition);
+  EXPECT_EQ(r.Rotary().value, 45);
+  EXPECT_NEAR(r.RotaryFb().position, 45, 1e-12);
+  if (servo) {
+    EXPECT_EQ(r.Spindle().value, 0);  // the spindle drive holds still
+  }
+
+  // Back: rotary axis -> spindle mode. The internal changeover goes to speed control in set 0.
+  r.spindle_cmd = {DriveMode::kVelocity, 0, 0};
+  r.hs.Request(HeadstockMode::kSpindle);
+  EXPECT_FALSE(r.hs.rotmod());
+  ASSERT_TRUE(r.Cycle());
+  EXPECT_EQ(r.Spindle().mode, DriveMode::kVelocity);
+  EXPECT_EQ(r.Spindle().parameter_set, 0);
+  if (servo) {
+    EXPECT_EQ(r.Rotary().mode, DriveMode::kVelocity);
+  }
+  r.RunUntil(ChangeoverPhase::kExternal);
+  EXPECT_TRUE(r.hs.spmod());
+  EXPECT_FALSE(r.hs.rotmod());
+  r.Run(30);  // ROTMOD_Q still applied
+  EXPECT_EQ(r.hs.phase(), ChangeoverPhase::kExternal);
+  r.Acknowledge(HeadstockMode::kSpindle);
+  ASSERT_TRUE(r.Cycle());
+  EXPECT_EQ(r.hs.mode(), HeadstockMode::kSpindle);
+  EXPECT_FALSE(r.hs.TakeOverRotary());
+  r.spindle_cmd = {DriveMode::kVelocity, -300, 0};
+  r.Run(200);
+  EXPECT_EQ(r.Spindle().mode, DriveMode::kVelocity);
+  EXPECT_EQ(r.Spindle().value, -300);
+  EXPECT_EQ(r.Spindle().parameter_set, 0);
+  EXPECT_NEAR(r.SpindleFb().velocity, -300, 1e-9);
+}
+
+TEST(HeadstockChangeoverTest, OneDriveWithoutARotaryParameterSetKeepsSetZero) {
+  // 2.2: "Entering 0 suppresses the changeover" of the parameter set.
+  HeadstockConfig c = ConfigOf(Kind::kFrameless);
+  c.rotary_parameter_set = 0;
+  HeadstockChangeover hs(c);
+  HeadstockPlc plc;
+  plc.spmod_q = true;
+  hs.TakeModeFromPlc(plc);
+  AmplifierTelegram at;
+  at.feedback.resize(1);
+  at.feedback[0].status = drive_status::kReady | drive_status::kStandstill;
+  MasterTelegram mdt;
+  mdt.setpoints.resize(1);
+  hs.Request(HeadstockMode::kRotary);
+  ASSERT_TRUE(hs.Cycle(plc, at, kDt));
+  plc = {};
+  plc.rotmod_q = true;
+  ASSERT_TRUE(hs.Cycle(plc, at, kDt));
+  ASSERT_EQ(hs.mode(), HeadstockMode::kRotary);
+  hs.WriteSetpoints({DriveMode::kVelocity, 0, 0}, {DriveMode::kPosition, 10, 0}, at, mdt);
+  EXPECT_EQ(mdt.setpoints[0].mode, DriveMode::kPosition);
+  EXPECT_EQ(mdt.setpoints[0].value, 10);
+  EXPECT_EQ(mdt.setpoints[0].parameter_set, 0);
+}
+
+TEST_P(HeadstockChangeoverKinds, ModeStaysWhileTheDriveHasNotStopped) {
+  Rig r(GetParam());
+  r.spindle_cmd = {DriveMode::kVelocity, 600, 0};
+  r.Run(400);
+  r.hs.Request(HeadstockMode::kRotary);
+  // A PLC that acknowledges at once still waits for the internal changeover.
+  r.Acknowledge(HeadstockMode::kRotary);
+  r.Run(50);
+  EXPECT_EQ(r.hs.phase(), ChangeoverPhase::kInternal);
+  EXPECT_FALSE(r.hs.rotmod());
+  r.RunUntil(ChangeoverPhase::kNone);
+  EXPECT_EQ(r.hs.mode(), HeadstockMode::kRotary);
+}
+
+// ---- The acknowledgement is a level (4.1) ----------------------------------------------------
+
+TEST_P(HeadstockChangeoverKinds, AcknowledgementRemovedInItsModeIsAProcessError) {
+  Rig r(GetParam(), true, false);
+  ASSERT_EQ(r.hs.mode(), HeadstockMode::kRotary);
+  r.plc.rotmod_q = false;
+  EXPECT_FALSE(r.Cycle());
+  EXPECT_THAT(r.hs.error(), ::testing::HasSubstr("ROTMOD_Q"));
+
+  Rig s(GetParam());
+  ASSERT_EQ(s.hs.mode(), HeadstockMode::kSpindle);
+  s.plc.rotmod_q = true;  // the other one as well: SPMOD_Q is still there, no error
+  s.Run(5);
+  s.plc.spmod_q = false;
+  EXPECT_FALSE(s.Cycle());
+  EXPECT_THAT(s.hs.error(), ::testing::HasSubstr("SPMOD_Q"));
+  // Control-Reset takes the mode from the PLC again and clears the error.
+  s.hs.TakeModeFromPlc(s.plc);
+  EXPECT_TRUE(s.hs.error().empty());
+  EXPECT_EQ(s.hs.mode(), HeadstockMode::kRotary);
+  s.Run(5);
+}
+
+TEST_P(HeadstockChangeoverKinds, AcknowledgementsMayChangeDuringTheChangeover) {
+  Rig r(GetParam());
+  r.hs.Request(HeadstockMode::kRotary);
+  r.RunUntil(ChangeoverPhase::kExternal);
+  r.plc.spmod_q = false;  // the clutch has left spindle mode, not yet reached rotary
+  r.Run(100);
+  EXPECT_EQ(r.hs.phase(), ChangeoverPhase::kExternal);
+  r.plc.rotmod_q = true;
+  r.Run(1);
+  EXPECT_EQ(r.hs.mode(), HeadstockMode::kRotary);
+}
+
+// ---- AXD motion functions, 65012..65015 (2.2, 3.2, 4.2 note) --------------------------------
+
+// Puts the rig into the external phase of a changeover to rotary axis mode.
+void ToExternal(Rig& r) {
+  r.hs.Request(HeadstockMode::kRotary);
+  r.RunUntil(ChangeoverPhase::kExternal);
+}
+
+TEST_P(HeadstockChangeoverKinds, MotionFunctionsAreIgnoredOutsideTheChangeover) {
+  Rig r(GetParam());
+  r.spindle_cmd = {DriveMode::kVelocity, 120, 0};
+  for (int64_t fn : {axd::kHunting, axd::kPositioning, axd::kSpeedSpec}) {
+    r.plc.spindle_axd = {fn, 1000000, 10, 900000};
+    r.plc.rotary_axd = r.plc.spindle_axd;
+    r.Run(100);
+    EXPECT_EQ(r.hs.SpindleFunctionWord(), 0);
+    EXPECT_EQ(r.hs.RotaryFunctionWord(), 0);
+    EXPECT_EQ(r.Spindle().value, 120);  // the NC's command, not the function's
+  }
+  // Nor during the internal changeover.
+  r.hs.Request(HeadstockMode::kRotary);
+  ASSERT_TRUE(r.Cycle());
+  ASSERT_EQ(r.hs.phase(), ChangeoverPhase::kInternal);
+  EXPECT_EQ(r.hs.SpindleFunctionWord(), 0);
+  EXPECT_EQ(r.Spindle().value, 0);
+  r.RunUntil(ChangeoverPhase::kExternal);
+  r.plc.spindle_axd = {};
+  r.Acknowledge(HeadstockMode::kRotary);
+  r.Run(1);
+  // And no more after it: the word drops, the drive is the NC's again.
+  r.plc.spindle_axd = {axd::kSpeedSpec, 1000000, 10, 0};
+  r.Run(20);
+  EXPECT_EQ(r.hs.SpindleFunctionWord(), 0);
+  EXPECT_EQ(r.Rotary().mode, DriveMode::kPosition);
+}
+
+TEST_P(HeadstockChangeoverKinds, HuntingOscillatesWithoutNetRotation) {
+  Rig r(GetParam());
+  ToExternal(r);
+  const double start = r.SpindleFb().position;
+  r.plc.spindle_axd[kAxdFunction] = axd::kHunting;
+  ASSERT_TRUE(r.Cycle());
+  EXPECT_EQ(r.hs.SpindleFunctionWord(), axd::kHunting | axd::kHuntingAck);
+  double lo = start, hi = start;
+  bool forward = false, backward = false;
+  for (int i = 0; i < 2000; ++i) {
+    ASSERT_TRUE(r.Cycle());
+    EXPECT_EQ(r.Spindle().mode, DriveMode::kVelocity);
+    EXPECT_EQ(std::abs(r.Spindle().value), r.config.hunting_speed);
+    forward = forward || r.Spindle().value > 0;
+    backward = backward || r.Spindle().value < 0;
+    lo = std::min(lo, r.SpindleFb().position);
+    hi = std::max(hi, r.SpindleFb().position);
+  }
+  EXPECT_TRUE(forward && backward);
+  // About a quarter period either side of the start, no drift.
+  const double swing = r.config.hunting_speed * r.config.hunting_half_period_s / 2;
+  EXPECT_NEAR(hi - start, swing, 0.2);
+  EXPECT_NEAR(start - lo, swing, 0.2);
+  // Switched off: the acknowledgement goes, the drive stops.
+  r.plc.spindle_axd[kAxdFunction] = 0;
+  r.Run(10);
+  EXPECT_EQ(r.hs.SpindleFunctionWord(), 0);
+  EXPECT_EQ(r.Spindle().value, 0);
+}
+
+TEST_P(HeadstockChangeoverKinds, PositioningIsAcknowledgedInTheWindow) {
+  Rig r(GetParam());
+  ToExternal(r);
+  r.plc.spindle_axd = {axd::kPositioning, 0, 0, 900000};  // 90.0000 deg
+  ASSERT_TRUE(r.Cycle());
+  EXPECT_EQ(r.hs.SpindleFunctionWord(), axd::kPositioning);  // not there yet
+  EXPECT_GT(r.Spindle().value, 0);
+  EXPECT_LE(r.Spindle().value, r.config.positioning_speed);
+  int n = 0;
+  while (!(r.hs.SpindleFunctionWord() & axd::kPositioningAck) && n < 20000) {
+    ASSERT_TRUE(r.Cycle());
+    ++n;
+  }
+  EXPECT_EQ(r.hs.SpindleFunctionWord(), axd::kPositioning | axd::kPositioningAck);
+  EXPECT_NEAR(r.SpindleFb().position, 90, r.config.positioning_window);
+  EXPECT_GT(n * kDt, 90 / r.config.positioning_speed);  // at most the positioning speed
+  // The shorter way round: from 90 to 350 deg goes backwards through 0.
+  r.plc.spindle_axd[kAxdAngle] = 3500000;
+  r.Run(1);
+  EXPECT_LT(r.Spindle().value, 0);
+  r.Run(20000);
+  EXPECT_NEAR(r.SpindleFb().position, -10, r.config.positioning_window);
+  EXPECT_TRUE(r.hs.SpindleFunctionWord() & axd::kPositioningAck);
+}
+
+TEST_P(HeadstockChangeoverKinds, SpeedSpecificationRampsAndIsLimitedTo1000Rpm) {
+  Rig r(GetParam());
+  ToExternal(r);
+  // 65013 = 100 rpm in 0.0001 rpm, 65014 = 5 rad/s^2 (286.5 deg/s^2): 600 deg/s in 2.09 s.
+  r.plc.spindle_axd = {axd::kSpeedSpec, 1000000, 5, 0};
+  r.Run(1000);
+  EXPECT_EQ(r.hs.SpindleFunctionWord(), axd::kSpeedSpec);  // ramping: not yet acknowledged
+  EXPECT_NEAR(r.Spindle().value, 5 * 180 / M_PI * 1.0, 1e-6);
+  r.Run(1100);
+  EXPECT_EQ(r.hs.SpindleFunctionWord(), axd::kSpeedSpec | axd::kSpeedSpecAck);
+  EXPECT_EQ(r.Spindle().value, 600);
+  // "The value may also be modified while the spindle function is activated."
+  r.plc.spindle_axd[kAxdSpeed] = -500000;  // -50 rpm
+  r.Run(1);
+  EXPECT_EQ(r.hs.SpindleFunctionWord(), axd::kSpeedSpec);
+  r.Run(3500);  // 900 deg/s at 286.5 deg/s^2
+  EXPECT_EQ(r.Spindle().value, -300);
+  EXPECT_TRUE(r.hs.SpindleFunctionWord() & axd::kSpeedSpecAck);
+  // "The maximum speed is limited to 1000 rpm."
+  r.plc.spindle_axd = {axd::kSpeedSpec, 25000000, 0, 0};  // 2500 rpm, no ramp
+  r.Run(1);
+  EXPECT_EQ(r.Spindle().value, 6000);
+  EXPECT_TRUE(r.hs.SpindleFunctionWord() & axd::kSpeedSpecAck);
+  r.plc.spindle_axd = {axd::kSpeedSpec, -25000000, 0, 0};
+  r.Run(1);
+  EXPECT_EQ(r.Spindle().value, -6000);
+}
+
+TEST_P(HeadstockChangeoverKinds, SpeedSpecificationIsAcknowledgedForAnySpeedAndAcceleration) {
+  // The ramp must end exactly on the speed asked for, whatever the numbers.
+  for (const auto& [speed, accel] : {std::pair<int64_t, int64_t>{333333, 3},
+                                     {123457, 7},
+                                     {-987654, 11},
+                                     {1, 1},
+                                     {9999999, 13}}) {
+    SCOPED_TRACE(::testing::Message() << "65013 " << speed << " 65014 " << accel);
+    Rig r(GetParam());
+    ToExternal(r);
+    r.plc.spindle_axd = {axd::kSpeedSpec, speed, accel, 0};
+    r.Run(20000);
+    EXPECT_TRUE(r.hs.SpindleFunctionWord() & axd::kSpeedSpecAck);
+    EXPECT_NEAR(r.Spindle().value, speed * 1e-4 * 6, 1e-9);
+  }
+  // Changed while active, without a ramp (65014 = 0): the new speed at once, acknowledged.
+  Rig r(GetParam());
+  ToExternal(r);
+  r.plc.spindle_axd = {axd::kSpeedSpec, -4326496, 0, 0};
+  r.Run(1);
+  ASSERT_TRUE(r.hs.SpindleFunctionWord() & axd::kSpeedSpecAck);
+  r.plc.spindle_axd[kAxdSpeed] = 339343;
+  r.Run(1);
+  EXPECT_TRUE(r.hs.SpindleFunctionWord() & axd::kSpeedSpecAck);
+  EXPECT_NEAR(r.Spindle().value, 339343 * 1e-4 * 6, 1e-9);
+}
+
+TEST(HeadstockChangeoverTest, SeparateServoRunsTheFunctionsOfBothDrives) {
+  // 4.3: "the SPS may use the following motion functions during that phase for both drives".
+  Rig r(Kind::kServo);
+  ToExternal(r);
+  r.plc.spindle_axd = {axd::kHunting, 0, 0, 0};
+  r.plc.rotary_axd = {axd::kSpeedSpec, 100000, 0, 0};  // 10 rpm at once
+  r.Run(2);
+  EXPECT_EQ(r.hs.SpindleFunctionWord(), axd::kHunting | axd::kHuntingAck);
+  EXPECT_EQ(r.hs.RotaryFunctionWord(), axd::kSpeedSpec | axd::kSpeedSpecAck);
+  EXPECT_EQ(std::abs(r.Spindle().value), r.config.hunting_speed);
+  EXPECT_EQ(r.Rotary().mode, DriveMode::kVelocity);
+  EXPECT_EQ(r.Rotary().value, 60);
+}
+
+TEST(HeadstockChangeoverTest, OneDriveIgnoresTheRotaryAxisIdents) {
+  Rig r(Kind::kFrameless);
+  ToExternal(r);
+  r.plc.rotary_axd = {axd::kSpeedSpec, 100000, 0, 0};
+  r.Run(10);
+  EXPECT_EQ(r.hs.RotaryFunctionWord(), 0);
+  EXPECT_EQ(r.Spindle().value, 0);
+}
+
+// ---- Immediate stop (2.3, 3.3) ---------------------------------------------------------------
+
+TEST_P(HeadstockChangeoverKinds, ImmediateStopHaltsTheMotionFunctions) {
+  for (int64_t fn : {axd::kHunting, axd::kPositioning, axd::kSpeedSpec}) {
+    SCOPED_TRACE(::testing::Message() << "65012 " << fn);
+    Rig r(GetParam());
+    ToExternal(r);
+    r.plc.spindle_axd = {fn, 1000000, 0, 900000};
+    r.Run(50);
+    ASSERT_NE(r.Spindle().value, 0);
+    r.plc.stop = true;
+    r.Run(1);
+    EXPECT_EQ(r.Spindle().mode, DriveMode::kVelocity);
+    EXPECT_EQ(r.Spindle().value, 0);
+    EXPECT_EQ(r.hs.SpindleFunctionWord() & 0xff00, 0);  // no acknowledgement while stopped
+    r.Run(500);
+    EXPECT_TRUE(r.SpindleFb().status & drive_status::kStandstill);
+    const double held = r.SpindleFb().position;
+    r.Run(200);
+    EXPECT_EQ(r.SpindleFb().position, held);
+    EXPECT_EQ(r.hs.phase(), ChangeoverPhase::kExternal);  // pending, not given up
+    // The stop released, the function goes on.
+    r.plc.stop = false;
+    r.Run(100);
+    EXPECT_NE(r.SpindleFb().position, held);
+  }
+}
+
+TEST_P(HeadstockChangeoverKinds, ImmediateStopHoldsTheInternalSequence) {
+  // 2.3: "Upon an immediate stop during a changeover process, the MTC stops the internal
+  // sequence and brings the axes to a standstill. The NC causes the internal commands to be
+  // pending": no ROTMOD goes out while the stop is in force.
+  Rig r(GetParam());
+  r.spindle_cmd = {DriveMode::kVelocity, 600, 0};
+  r.Run(400);
+  r.hs.Request(HeadstockMode::kRotary);
+  r.plc.stop = true;
+  r.Run(1000);
+  EXPECT_TRUE(r.SpindleFb().status & drive_status::kStandstill);  // brought to a standstill
+  EXPECT_EQ(r.hs.phase(), ChangeoverPhase::kInternal);
+  EXPECT_FALSE(r.hs.rotmod());
+  r.plc.stop = false;
+  r.Run(1);
+  EXPECT_EQ(r.hs.phase(), ChangeoverPhase::kExternal);
+  EXPECT_TRUE(r.hs.rotmod());
+}
+
+// ---- Turning round and reverse ---------------------------------------------------------------
+
+TEST_P(HeadstockChangeoverKinds, RequestForTheOtherModeTurnsTheChangeoverRound) {
+  Rig r(GetParam());
+  r.hs.Request(HeadstockMode::kRotary);
+  r.RunUntil(ChangeoverPhase::kExternal);
+  r.plc.spindle_axd[kAxdFunction] = axd::kHunting;
+  r.Run(10);
+  ASSERT_TRUE(r.hs.rotmod());
+  r.hs.Request(HeadstockMode::kSpindle);
+  EXPECT_EQ(r.hs.target(), HeadstockMode::kSpindle);
+  EXPECT_EQ(r.hs.phase(), ChangeoverPhase::kInternal);
+  EXPECT_FALSE(r.hs.rotmod());
+  EXPECT_FALSE(r.hs.spmod());
+  r.RunUntil(ChangeoverPhase::kExternal);
+  EXPECT_TRUE(r.hs.spmod());
+  ASSERT_TRUE(r.Cycle());  // the PLC still acknowledges spindle mode
+  EXPECT_FALSE(r.hs.busy());
+  EXPECT_EQ(r.hs.mode(), HeadstockMode::kSpindle);
+  EXPECT_FALSE(r.hs.TakeOverRotary());
+}
+
+TEST_P(HeadstockChangeoverKinds, AbandonRestoresTheOriginalMode) {
+  for (const bool from_rotary : {false, true}) {
+    SCOPED_TRACE(from_rotary ? "from rotary" : "from spindle");
+    Rig r(GetParam(), from_rotary, !from_rotary);
+    const HeadstockMode original = from_rotary ? HeadstockMode::kRotary : HeadstockMode::kSpindle;
+    const HeadstockMode other = from_rotary ? HeadstockMode::kSpindle : HeadstockMode::kRotary;
+    r.hs.TakeOverRotary();
+    r.hs.Request(other);
+    r.RunUntil(ChangeoverPhase::kExternal);
+    r.Run(10);
+    r.hs.Abandon();
+    EXPECT_EQ(r.hs.target(), original);
+    r.RunUntil(ChangeoverPhase::kNone);
+    EXPECT_EQ(r.hs.mode(), original);
+    EXPECT_EQ(r.hs.rotmod(), from_rotary);
+    EXPECT_EQ(r.hs.spmod(), !from_rotary);
+    EXPECT_EQ(r.hs.TakeOverRotary(), from_rotary);
+  }
+  // Abandoned during the internal changeover, too.
+  Rig r(GetParam());
+  r.hs.Request(HeadstockMode::kRotary);
+  ASSERT_TRUE(r.Cycle());
+  r.hs.Abandon();
+  r.RunUntil(ChangeoverPhase::kNone);
+  EXPECT_EQ(r.hs.mode(), HeadstockMode::kSpindle);
+}
+
+TEST_P(HeadstockChangeoverKinds, AbandonAfterTurningRoundStillRestoresTheFirstMode) {
+  Rig r(GetParam());
+  r.hs.Request(HeadstockMode::kRotary);
+  r.RunUntil(ChangeoverPhase::kExternal);
+  r.hs.Request(HeadstockMode::kSpindle);
+  r.hs.Request(HeadstockMode::kRotary);
+  r.hs.Abandon();
+  EXPECT_EQ(r.hs.target(), HeadstockMode::kSpindle);
+  r.RunUntil(ChangeoverPhase::kNone);
+  EXPECT_EQ(r.hs.mode(), HeadstockMode::kSpindle);
+}
+
+TEST_P(HeadstockChangeoverKinds, AbandonFromNeitherModeEndsInNeither) {
+  Rig r(GetParam(), false, false);
+  r.hs.Request(HeadstockMode::kRotary);
+  r.RunUntil(ChangeoverPhase::kExternal);
+  r.hs.Abandon();
+  EXPECT_FALSE(r.hs.busy());
+  EXPECT_EQ(r.hs.mode(), HeadstockMode::kNone);
+  EXPECT_FALSE(r.hs.rotmod());
+  EXPECT_FALSE(r.hs.spmod());
+  r.Run(10);
+}
+
+TEST_P(HeadstockChangeoverKinds, ControlResetAbandonsTheChangeoverForThePlcsMode) {
+  Rig r(GetParam());
+  r.hs.Request(HeadstockMode::kRotary);
+  r.RunUntil(ChangeoverPhase::kExternal);
+  r.plc.spindle_axd[kAxdFunction] = axd::kHunting;
+  r.Run(10);
+  ASSERT_NE(r.hs.SpindleFunctionWord(), 0);
+  r.hs.TakeModeFromPlc(r.plc);  // SPMOD_Q still applied
+  EXPECT_FALSE(r.hs.busy());
+  EXPECT_EQ(r.hs.mode(), HeadstockMode::kSpindle);
+  EXPECT_EQ(r.hs.SpindleFunctionWord(), 0);
+  r.Run(10);
+  EXPECT_EQ(r.hs.SpindleFunctionWord(), 0);
+}
+
+// ---- Controller enables, AxxC.READY (4.3) ----------------------------------------------------
+
+TEST(HeadstockChangeoverTest, SeparateServoDriveWithoutItsEnableIsOff) {
+  Rig r(Kind::kServo, true, false);
+  r.rotary_cmd = {DriveMode::kPosition, 30, 0};
+  // Rotary axis mode, the PLC has switched the spindle's enable off (4.4: it idles).
+  r.plc.spindle_ready = false;
+  r.Run(2);
+  EXPECT_EQ(r.Spindle().mode, DriveMode::kOff);
+  EXPECT_EQ(r.Rotary().mode, DriveMode::kPosition);
+  EXPECT_EQ(r.Rotary().value, 30);
+  // Spindle mode, the servo's enable off: it is in follow-up, torque-free.
+  Rig s(Kind::kServo);
+  s.spindle_cmd = {DriveMode::kVelocity, 600, 0};
+  s.plc.rotary_ready = false;
+  s.Run(2);
+  EXPECT_EQ(s.Rotary().mode, DriveMode::kOff);
+  EXPECT_EQ(s.Spindle().mode, DriveMode::kVelocity);
+  EXPECT_EQ(s.Spindle().value, 600);
+  // During the changeover the enables are the PLC's too (3.1 of figure 4-2).
+  s.hs.Request(HeadstockMode::kRotary);
+  s.RunUntil(ChangeoverPhase::kExternal);
+  s.plc.rotary_axd = {axd::kHunting, 0, 0, 0};
+  s.Run(5);
+  EXPECT_EQ(s.Rotary().mode, DriveMode::kOff);
+  s.plc.rotary_ready = true;
+  s.plc.spindle_ready = false;
+  s.Run(5);
+  EXPECT_EQ(s.Spindle().mode, DriveMode::kOff);
+  EXPECT_EQ(s.Rotary().mode, DriveMode::kVelocity);
+  EXPECT_EQ(std::abs(s.Rotary().value), s.config.hunting_speed);
+}
+
+TEST(HeadstockChangeoverTest, OneDriveWithoutItsEnableIsOffInEveryMode) {
+  for (const bool rotary : {false, true}) {
+    Rig r(Kind::kFrameless, rotary, !rotary);
+    r.plc.spindle_ready = false;
+    r.Run(2);
+    EXPECT_EQ(r.Spindle().mode, DriveMode::kOff);
+    r.plc.spindle_ready = true;
+    r.Run(1);
+    EXPECT_EQ(r.Spindle().mode, rotary ? DriveMode::kPosition : DriveMode::kVelocity);
+  }
+}
+
+}  // namespace
+}  // namespace vmt::control::axes
