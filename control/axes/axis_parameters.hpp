@@ -26,6 +26,20 @@ struct AxisParameters {
   double homing_per_s = 0;                ///< G74 speed (0: the jogging speed)
   double travel_min = 0, travel_max = 0;  ///< software limits; equal: none (endless axis)
   bool homed_at_start = true;             ///< absolute encoder; false: G74 before the first move
+  /// Main spindle mode (C-axis manual 2.2, a parameter "provided with a new parameter number"
+  /// the manual does not print): "Jogging spindle position", where AxxC.M19 positions the
+  /// spindle, deg. The spindle's "Jogging speed" (AxxC.M3/M4) is jog_per_s, in deg/s.
+  double jog_spindle_position = 0;
+  /// The reference is kept while the position encoder's signal frequency stays within the limit
+  /// frequency of its interface (C-axis manual 2.3 and 3.3 Homing):
+  ///   n_max [1/s] * impulses or oscillations per revolution <= limit frequency [1/s].
+  /// The manual names these quantities but gives them no parameter numbers. 0: not monitored
+  /// (e.g. the INDRAMAT gear-type encoder, good up to 24000 rpm: reference lost only at power-off).
+  double encoder_periods_per_rev = 0;  ///< impulses (square) or oscillations (sine) per rev
+  /// Limit frequency of the encoder interface, Hz: DDS and main spindle units 150 kHz for sine,
+  /// 1 MHz for square-wave signals (3.3); the main spindle interface for incremental encoders
+  /// 100 kHz (2.3).
+  double encoder_limit_hz = 0;
 };
 
 /// Process parameters (Bxx.*), REPOS manual 6.

@@ -47,6 +47,7 @@ Channel::Channel(ChannelConfig config, std::vector<const nc::Program*> programs)
   for (size_t a = 0; a < n; ++a) homed_[a] = config_.axes[a].homed_at_start;
   spindle_ = {DriveMode::kVelocity, 0, 0};
   if (config_.headstock) headstock_.emplace(*config_.headstock);
+  spindle_homed_ = config_.spindle.homed_at_start;
   last_modal_ = config_.initial;
   for (size_t a = 0; a < n; ++a) {
     if (config_.axes[a].name == "Z") axis_z_ = static_cast<int>(a);
@@ -133,6 +134,7 @@ bool Channel::Reverse() {
   active_ = false;
   homing_ = false;
   dwell_left_s_ = 0;
+  orienting_ = false;
   aux_output_.clear();
   error_.clear();
   error_number_ = 0;
@@ -169,8 +171,7 @@ void Channel::Fail(const nc::Program& program, int32_t block, const std::string&
 
 bool Channel::SetMode(ChannelMode mode) {
   // C-axis manual 2.3: a mode change during a changeover is an immediate stop.
-  if (state_ == ChannelState::kRunning && headstock_ && headstock_->busy() && mode != mode_)
-    Stop();
+  if (state_ == ChannelState::kRunning && headstock_ && headstock_->busy() && mode != mode_) Stop();
   if (state_ == ChannelState::kRunning) return false;
   // MDI and an interrupted automatic program do not share the interpreter: MDI needs the
   // program ended or reset first.
@@ -195,18 +196,23 @@ bool Channel::SetMode(ChannelMode mode) {
 }
 
 void Channel::Start() {
-  if (mode_ == ChannelMode::kManual) return;
+  if (mode_ == ChannelMode::kManual || !process_enable_) return;
   if (mode_ == ChannelMode::kMdi && !mdi_) return;
   if (state_ == ChannelState::kHold) {
     // Continuing from off the contour would jump back to the path: the axes must first be
     // repositioned to the interruption point (REPOS manual; the REPOS function is issue 6's).
-    for (size_t a = 0; a < commanded_.size() && !interruption_point_.empty(); ++a)
+    for (size_t a = 0; a < commanded_.size() && !interruption_point_.empty(); ++a) {
+      // The rotary axis outside rotary axis mode follows the spindle: no contour to leave.
+      if (headstock_ && static_cast<int>(a) == config_.rotary_axis &&
+          headstock_->mode() != axes::HeadstockMode::kRotary)
+        continue;
       if (std::abs(commanded_[a] - interruption_point_[a]) > 1e-6) {
         Fail("axis " + config_.axes[a].name +
                  " has left the contour at the interruption point: reposition it first",
              kMsgLeftContour);
         return;
       }
+    }
     interruption_point_.clear();
     state_ = ChannelState::kRunning;
     return;
@@ -236,6 +242,7 @@ void Channel::Reset() {
   homing_ = false;
   reversing_ = false;
   dwell_left_s_ = 0;
+  orienting_ = false;
   aux_output_.clear();
   interruption_point_.clear();
   if (interpreter_) last_modal_ = interpreter_->modal();
@@ -243,14 +250,25 @@ void Channel::Reset() {
   DropLookahead();
   previous_ = commanded_;
   spindle_ = {DriveMode::kVelocity, 0, 0};
+  spindle_referencing_ = false;
+  manual_changeover_ = false;
+  // A real control acknowledges its drives' errors with Control-Reset: the drives that tripped
+  // get their controller enable removed for a cycle (the drive's fault reset), see Tick.
+  trip_reset_pending_ = true;
   // Control-Reset drops the G92 shift and returns to the initial modal state (offsets too).
   std::fill(shift_.begin(), shift_.end(), 0.0);
   last_modal_ = config_.initial;
   for (size_t a = 0; a < translation_.size(); ++a)
     translation_[a] = config_.zero_offsets.Offset(config_.initial.zero_offset, a);
+  if (headstock_) {
+    const size_t r = static_cast<size_t>(config_.rotary_axis);
+    rotary_translation_ = translation_[r];
+    if (!RotaryOffsetsActive()) translation_[r] = 0;
+  }
 }
 
 void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
+  if (trip_reset_pending_) CollectTrips(at);
   if (take_over_pending_ && !holding_positions_) {
     for (size_t a = 0; a < config_.axes.size(); ++a)
       commanded_[a] = at.feedback[config_.axes[a].drive].position;
@@ -268,30 +286,17 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
     }
     if (!interpreter_) interpreter_ = MakeInterpreter();
   }
-  if (!holding_positions_) return;
-  // The drives answer for themselves: one that is not ready (a fault: its power stage is off)
-  // or lags beyond its limit stops the channel at once, every other axis holding where it is.
-  if (state_ != ChannelState::kError) {
-    for (size_t a = 0; a < config_.axes.size(); ++a) {
-      const uint32_t status = at.feedback[config_.axes[a].drive].status;
-      if (!(status & drive_status::kReady))
-        Fail("axis " + config_.axes[a].name + ": drive not ready (drive fault)", kMsgDriveFault);
-      else if (status & drive_status::kFollowingError)
-        Fail("axis " + config_.axes[a].name + ": following error beyond its limit",
-             kMsgFollowingError);
-      if (state_ == ChannelState::kError) break;
-    }
-    if (config_.spindle_drive >= 0 && state_ != ChannelState::kError &&
-        !(at.feedback[config_.spindle_drive].status & drive_status::kReady)) {
-      spindle_ = {DriveMode::kVelocity, 0, 0};
-      Fail("spindle: drive not ready (drive fault)", kMsgDriveFault);
-    }
+  if (!holding_positions_) {
+    AcknowledgeDriveTrips(mdt);
+    return;
   }
+  CheckDrives(at);
 
   if (++tick_in_cycle_ >= config_.ticks_per_cycle) {
     tick_in_cycle_ = 0;
     previous_ = commanded_;
     const double dt = config_.tick_s * config_.ticks_per_cycle;
+    TrackReferences(at, dt);
     if (headstock_) HeadstockCycle(at, dt);
     if (mode_ == ChannelMode::kManual) {
       Jogging(dt);
@@ -302,16 +307,21 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
       } else if (waiting_for_ != axes::HeadstockMode::kNone) {
         // Block preparation and execution wait until the changeover ends (C-axis manual 1.2).
         if (headstock_->mode() == waiting_for_)
-          finished = RunBlock(at) && !active_ && dwell_left_s_ <= 0 &&
+          finished = RunBlock(at) && !active_ && dwell_left_s_ <= 0 && !orienting_ &&
                      waiting_for_ == axes::HeadstockMode::kNone;
       } else if (pending_motion_) {
         pending_motion_ = false;
-        if (StartMotion(at)) finished = !active_ && dwell_left_s_ <= 0 && !homing_;
+        if (StartMotion(at)) finished = !active_ && dwell_left_s_ <= 0 && !homing_ && !orienting_;
       } else if (dwell_left_s_ > 0) {
         if (state_ == ChannelState::kRunning) dwell_left_s_ -= dt;
         finished = dwell_left_s_ <= 0;
+      } else if (orienting_) {
+        // M19 ends when the spindle reports itself in position.
+        orienting_ = spindle_.mode == DriveMode::kPosition &&
+                     !(at.feedback[config_.spindle_drive].status & drive_status::kInPosition);
+        finished = !orienting_;
       } else if (!active_ && state_ == ChannelState::kRunning) {
-        finished = NextBlock(at) && !active_ && dwell_left_s_ <= 0 &&
+        finished = NextBlock(at) && !active_ && dwell_left_s_ <= 0 && !orienting_ &&
                    waiting_for_ == axes::HeadstockMode::kNone;
       }
       if (active_) {
@@ -320,7 +330,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
         if (finished && homing_) finished = !NextHomingStage();
         if (finished && carry_speed_ > 0) {
           // Blended: the next block runs on from here in the same cycle.
-          finished = NextBlock(at) && !active_;
+          finished = NextBlock(at) && !active_ && !orienting_;
           carry_speed_ = carry_accel_ = carry_leftover_ = 0;
         }
       }
@@ -339,46 +349,21 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
     sp = {DriveMode::kPosition, previous_[a] + (commanded_[a] - previous_[a]) * f, 0};
     if (low_lag) sp.velocity_feedforward = (commanded_[a] - previous_[a]) / cycle_s;
   }
-  if (config_.spindle_drive >= 0) mdt.setpoints[config_.spindle_drive] = spindle_;
-  if (headstock_) {
-    const DriveSetpoint rotary = mdt.setpoints[config_.axes[config_.rotary_axis].drive];
-    headstock_->WriteSetpoints(spindle_, rotary, at, mdt);
-  }
+  // The rotary axis' setpoint before the spindle's: one drive for both in section 2.
+  const DriveSetpoint rotary =
+      headstock_ ? mdt.setpoints[config_.axes[config_.rotary_axis].drive] : DriveSetpoint{};
+  const DriveSetpoint spindle = SpindleSetpoint();
+  if (config_.spindle_drive >= 0) mdt.setpoints[config_.spindle_drive] = spindle;
+  if (headstock_) headstock_->WriteSetpoints(spindle, rotary, at, mdt);
+  AcknowledgeDriveTrips(mdt);
 }
 
-void Channel::HeadstockCycle(const AmplifierTelegram& at, double dt) {
-  if (!headstock_known_) {
-    headstock_->TakeModeFromPlc(headstock_plc_);  // power-on mode (2.3)
-    headstock_known_ = true;
-  }
-  // The sequence and the PLC's motion functions halt while the program is stopped (2.3).
-  axes::HeadstockPlc plc = headstock_plc_;
-  plc.stop = plc.stop || state_ == ChannelState::kHold || state_ == ChannelState::kError;
-  if (!headstock_->Cycle(plc, at, dt) && state_ != ChannelState::kError)
-    Fail(headstock_->error(), kMsgChangeoverAck);
-  // The rotary axis follows its actual position wherever the NC does not position it: its
-  // command value is up to date when rotary axis mode begins (5).
-  const size_t r = static_cast<size_t>(config_.rotary_axis);
-  const bool positioned = headstock_->mode() == axes::HeadstockMode::kRotary ||
-                          (headstock_->config().separate_servo() && !headstock_->busy() &&
-                           plc.rotary_ready);
-  if (headstock_->TakeOverRotary() || !positioned || !plc.rotary_ready) {
-    commanded_[r] = previous_[r] = at.feedback[config_.axes[r].drive].position;
-    jog_[r].handwheel_target = commanded_[r];
-  }
-}
-
-axes::HeadstockMode Channel::ModeNeeded(const nc::PreparedBlock& b) const {
-  // C-axis manual 4.2: G00/G01/G02/G03 with the rotary axis' name select rotary axis mode;
-  // M3, M4, M5, M19 (and G33, G63, G64) spindle mode.
-  for (const nc::AuxFunction& f : b.aux)
-    if (f.letter == 'M' && (f.value == 3 || f.value == 4 || f.value == 5 || f.value == 19))
-      return axes::HeadstockMode::kSpindle;
-  const bool interpolates = b.motion == nc::Motion::kRapid || b.motion == nc::Motion::kLinear ||
-                            b.motion == nc::Motion::kArcCw || b.motion == nc::Motion::kArcCcw;
-  if (interpolates && (b.programmed >> config_.rotary_axis & 1))
-    return axes::HeadstockMode::kRotary;
-  return axes::HeadstockMode::kNone;
+DriveSetpoint Channel::SpindleSetpoint() const {
+  // C-axis manual 2.3: under M3/M4 (and M19) only the spindle override acts on the spindle,
+  // never the feed override. M19's positioning speed is the drive's own.
+  DriveSetpoint sp = spindle_;
+  if (sp.mode == DriveMode::kVelocity) sp.value *= spindle_override_;
+  return sp;
 }
 
 uint64_t Channel::FollowUpAxes(const nc::PreparedBlock& b) const {
@@ -397,10 +382,23 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
     const axes::HeadstockMode need = ModeNeeded(block_);
     if (need != axes::HeadstockMode::kNone && headstock_->mode() != need) {
       headstock_->Request(need);
+      manual_changeover_ = false;
       waiting_for_ = need;
       return true;
     }
     waiting_for_ = axes::HeadstockMode::kNone;
+    // C-axis manual 2.3: offsets of the rotary axis are programmed only in rotary axis mode.
+    // The manual is silent on G92 C in spindle mode; a control refuses it rather than shift an
+    // axis it does not position.
+    const size_t r = static_cast<size_t>(config_.rotary_axis);
+    if (block_.set_position && (block_.programmed >> r & 1) &&
+        headstock_->mode() != axes::HeadstockMode::kRotary) {
+      Fail(program, block_.block,
+           "G92 of " + config_.axes[r].name + " outside rotary axis mode: program " +
+               config_.axes[r].name + " in a G00/G01 block first",
+           kMsgOffsetInSpindleMode);
+      return false;
+    }
   }
   auto unsupported = [&](const std::string& what) {
     Fail(program, block_.block, what + " is not available in the channel yet", kMsgNotAvailable);
@@ -444,6 +442,8 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
       if (block_.programmed >> a & 1) {
         shift_[a] += commanded_[a] - (block_.target[a] + translation_[a]);
         translation_[a] = commanded_[a] - block_.target[a];
+        if (headstock_ && static_cast<int>(a) == config_.rotary_axis)
+          rotary_translation_ = translation_[a];
       }
   }
   const bool arc = block_.motion == nc::Motion::kArcCw || block_.motion == nc::Motion::kArcCcw;
@@ -462,7 +462,7 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
     if (m == 3) spindle_ = {DriveMode::kVelocity, rpm * 6, 0};
     if (m == 4) spindle_ = {DriveMode::kVelocity, -rpm * 6, 0};
     if (m == 5) spindle_ = {DriveMode::kVelocity, 0, 0};
-    if (m == 19) spindle_ = {DriveMode::kPosition, 0, 0};
+    if (m == 19) spindle_ = {DriveMode::kPosition, 0, 0}, spindle_referencing_ = orienting_ = true;
   }
   // An S word alone changes the speed of a running spindle.
   if (spindle_.mode == DriveMode::kVelocity && spindle_.value != 0)
@@ -506,6 +506,13 @@ bool Channel::UpdateTranslation(const nc::ModalState& modal, const nc::Program& 
   for (size_t a = 0; a < translation_.size(); ++a) {
     const double length = edge && a < edge->length.size() ? edge->length[a] : 0;
     translation_[a] = config_.zero_offsets.Offset(modal.zero_offset, a) + shift_[a] - sign * length;
+  }
+  if (headstock_) {
+    // The rotary axis' offsets act in rotary axis mode only (C-axis manual 2.3 Zero Point
+    // Shifts); they stay selected meanwhile and come back with it (see RotaryOffsetsActive).
+    const size_t r = static_cast<size_t>(config_.rotary_axis);
+    rotary_translation_ = translation_[r];
+    if (!RotaryOffsetsActive()) translation_[r] = 0;
   }
   return true;
 }

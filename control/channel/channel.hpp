@@ -34,7 +34,11 @@ using ChannelAxis = axes::AxisParameters;
 struct ChannelConfig {
   std::vector<ChannelAxis> axes;
   axes::ProcessParameters process;
-  int spindle_drive = -1;   ///< main spindle (S, M3/M4/M5/M19); -1 if none
+  int spindle_drive = -1;  ///< main spindle (S, M3/M4/M5/M19); -1 if none
+  /// The main spindle's axis parameters: its designation (S1), jogging speed and jogging
+  /// spindle position (AxxC.M3/M4/M19), encoder limits and reference at power-on. Its `drive`
+  /// and `number` are not read (spindle_drive is). An empty name shows as "S1".
+  axes::AxisParameters spindle;
   int ticks_per_cycle = 4;  ///< NC cycle 1 ms at the 250 us drive tick
   double tick_s = 250e-6;
   axes::ZeroOffsetTable zero_offsets;
@@ -81,7 +85,19 @@ class Channel {
   void Start();  ///< cycle start: run, or resume after a hold
   void Stop();   ///< feed hold: brake on the path
   void Reset();  ///< Control-Reset: stop, back to the program start
+  /// Feed override: the axes of the path, the rotary axis too (C-axis manual 2.3, 3.3).
   void SetFeedOverride(double fraction) { override_ = std::clamp(fraction, 0.0, 2.0); }
+  /// Spindle override (AxxC.SOVR): the spindle's speed under M3/M4, never the feed axes.
+  void SetSpindleOverride(double fraction) { spindle_override_ = std::clamp(fraction, 0.0, 2.0); }
+  /// Process enabling signal (PxxC.ENABL). Removed: immediate stop (a running program holds, a
+  /// changeover halts, jogging axes brake) and no start until it is back (C-axis manual 2.3).
+  void SetProcessEnable(bool on);
+  bool process_enabled() const { return process_enable_; }
+  /// The spindle keys of manual mode, AxxC.M3 / M4 / M5 / M19 (rising edges; C-axis manual
+  /// 4.2): `m` = 3, 4, 5 or 19. They select spindle mode on a headstock (aborting a changeover an
+  /// immediate stop interrupted), then turn the spindle at its jogging speed, stop it or position
+  /// it to its jogging spindle position. Ignored outside manual mode.
+  void ManualSpindle(int m);
   /// Single block (semi-automatic): after each block the channel holds until the next start.
   void SetSingleBlock(bool on) { single_block_ = on; }
   /// Changes the mode; refused (false) while a program runs. An interrupted program (hold)
@@ -125,9 +141,7 @@ class Channel {
   /// given by the gateway every NC cycle.
   void SetHeadstockPlc(const axes::HeadstockPlc& plc) { headstock_plc_ = plc; }
   /// The headstock changeover, null without one.
-  const axes::HeadstockChangeover* headstock() const {
-    return headstock_ ? &*headstock_ : nullptr;
-  }
+  const axes::HeadstockChangeover* headstock() const { return headstock_ ? &*headstock_ : nullptr; }
   /// Direction the axis is commanded to move this NC cycle: +1, -1 or 0 (MVPOS / MVNEG).
   int AxisMotion(size_t axis) const;
   /// Events (BES/BEC) come from here; without a source, the events the program set itself.
@@ -145,8 +159,19 @@ class Channel {
   int error_number() const { return error_number_; }
   /// The modal state of the program (initial state before the first block).
   const nc::ModalState& modal() const;
-  /// Axis referenced (homed): from the start, or after G74.
+  /// Axis referenced (homed): from the start, or after G74; the rotary axis of a headstock
+  /// also after M19 on the same drive, and it loses it when its encoder runs too fast.
   bool homed(size_t axis) const { return homed_[axis]; }
+  /// The main spindle's reference (AxxS.HOMED of the spindle): established by M19, lost when
+  /// its encoder's frequency exceeds the limit (C-axis manual 2.3, 3.3 Homing).
+  bool spindle_homed() const;
+  /// Position indication of a headstock (C-axis manual 2.3, 3.3): the axis designation shown,
+  /// the spindle's (S1) or the rotary axis' (C), switched only when a changeover has completed.
+  /// Empty without a headstock.
+  std::string HeadstockAxisName() const;
+  /// The value shown beside it: the rotary axis' position in program coordinates, or the
+  /// spindle's actual position (0..360 deg).
+  double HeadstockPosition() const;
   /// Translation program -> axis position of a channel axis under the current modal state:
   /// zero offset + G92 shift - tool length.
   double Translation(size_t axis) const { return translation_[axis]; }
@@ -256,10 +281,35 @@ class Channel {
   /// The rotary axis as a PlanBlockMotion follow_up bit while the NC does not position it.
   uint64_t FollowUpAxes(const nc::PreparedBlock& b) const;
   void HeadstockCycle(const AmplifierTelegram& at, double dt);
+  /// A changeover commanded by a manual key (jog of the rotary axis, spindle keys).
+  void ManualChangeover(axes::HeadstockMode target);
+  /// The rotary axis' zero offsets and G92 shift act (rotary axis mode, 2.3).
+  bool RotaryOffsetsActive() const;
+  /// References of spindle and rotary axis: M19, encoder frequency (2.3, 3.3).
+  void TrackReferences(const AmplifierTelegram& at, double dt);
+  /// Drives: faults stop the channel; Control-Reset acknowledges trips.
+  void CheckDrives(const AmplifierTelegram& at);
+  void CollectTrips(const AmplifierTelegram& at);
+  void AcknowledgeDriveTrips(MasterTelegram& mdt);
+  DriveSetpoint SpindleSetpoint() const;
   std::optional<axes::HeadstockChangeover> headstock_;
   axes::HeadstockPlc headstock_plc_;
   bool headstock_known_ = false;  ///< the power-on mode has been taken from the PLC
   axes::HeadstockMode waiting_for_ = axes::HeadstockMode::kNone;
+  bool manual_changeover_ = false;  ///< the changeover in progress was commanded by a key
+  /// The mode whose designation the user interface shows (the last completed changeover's).
+  axes::HeadstockMode shown_mode_ = axes::HeadstockMode::kSpindle;
+  double rotary_translation_ = 0;  ///< the rotary axis' translation in rotary axis mode
+  double spindle_override_ = 1.0;
+  bool process_enable_ = true;
+  bool spindle_homed_ = true;         ///< a separate spindle's reference (section 3)
+  bool spindle_referencing_ = false;  ///< M19 runs: the reference comes when it is in position
+  bool orienting_ = false;            ///< the block waits for M19's spindle positioning to end
+  double spindle_position_ = 0;       ///< the spindle's actual position at the last NC cycle
+  std::vector<double> encoder_last_;  ///< per drive: position at the last NC cycle
+  bool trip_reset_pending_ = false;   ///< Control-Reset: acknowledge the drives' trips
+  std::vector<int> trip_reset_drives_;
+  int trip_reset_ticks_ = 0;
 };
 
 }  // namespace vmt::control::channel

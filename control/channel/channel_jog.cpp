@@ -31,7 +31,8 @@ void Channel::SetJogMode(int code) {
 }
 
 void Channel::Handwheel(size_t axis, int counts) {
-  if (mode_ != ChannelMode::kManual || jog_mode_ != JogMode::kHandwheel || axis >= jog_.size())
+  if (mode_ != ChannelMode::kManual || jog_mode_ != JogMode::kHandwheel || axis >= jog_.size() ||
+      !process_enable_)
     return;
   take_over_pending_ = true;
   JogAxis& j = jog_[axis];
@@ -42,8 +43,9 @@ void Channel::Handwheel(size_t axis, int counts) {
 void Channel::Jog(size_t axis, int direction) {
   if (mode_ != ChannelMode::kManual || axis >= jog_.size()) return;
   // C-axis manual 4.2: jogging the rotary axis selects rotary axis mode; it moves once there.
-  if (headstock_ && static_cast<int>(axis) == config_.rotary_axis && direction != 0)
-    headstock_->Request(axes::HeadstockMode::kRotary);
+  if (headstock_ && static_cast<int>(axis) == config_.rotary_axis && direction != 0 &&
+      process_enable_)
+    ManualChangeover(axes::HeadstockMode::kRotary);
   jog_[axis].key = direction > 0 ? 1 : direction < 0 ? -1 : 0;
   take_over_pending_ = true;
 }
@@ -88,7 +90,7 @@ void Channel::Jogging(double dt) {
     const double increment = jog_mode_ == JogMode::kParametric ? axis.jog_distance : jog_increment_;
     if (increment > 0 || j.stepping) {
       // Incremental: a key press starts one increment, which then runs to its end.
-      if (!j.stepping && j.key != 0) {
+      if (!j.stepping && j.key != 0 && process_enable_) {
         j.stepping = true;
         j.from = commanded_[a];
         j.to = within(commanded_[a] + j.key * increment);
@@ -105,13 +107,15 @@ void Channel::Jogging(double dt) {
       }
       continue;
     }
-    // Continuous: towards the jog speed while the key is held, braking when it is released.
-    double target = j.key * speed;
+    // Continuous: towards the jog speed while the key is held, braking when it is released or
+    // the process enabling signal is removed (C-axis manual 2.3: axes to a standstill).
+    const int key = process_enable_ ? j.key : 0;
+    double target = key * speed;
     const double step = axis.acceleration * dt;
     if (limited) {
       const double room =
           j.key > 0 ? axis.travel_max - commanded_[a] : commanded_[a] - axis.travel_min;
-      target = j.key * std::min(speed, std::sqrt(2 * axis.acceleration * std::max(0.0, room)));
+      target = key * std::min(speed, std::sqrt(2 * axis.acceleration * std::max(0.0, room)));
     }
     j.velocity = std::clamp(target, j.velocity - step, j.velocity + step);
     const double next = commanded_[a] + j.velocity * dt;

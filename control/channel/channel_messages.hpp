@@ -14,13 +14,15 @@ inline constexpr int kMsgArcGeometry = 202;       ///< centre/radius do not fit 
 inline constexpr int kMsgArcPlane = 203;          ///< the plane's axes are not in the channel
 inline constexpr int kMsgToolNotInList = 301;     ///< G48/G49 with a T/D the tool list lacks
 inline constexpr int kMsgTranslationInArc = 302;  ///< offset or tool change in an arc block
-inline constexpr int kMsgGouge = 303;          ///< tool nose radius compensation: contour violation
-inline constexpr int kMsgLeftContour = 401;    ///< continue after jogging off the contour
-inline constexpr int kMsgNoHomeLabel = 402;    ///< reverse without a .HOME label
-inline constexpr int kMsgMdiSyntax = 403;      ///< the MDI text does not parse
-inline constexpr int kMsgNotHomed = 501;       ///< a move of an axis that has no reference
-inline constexpr int kMsgSoftwareLimit = 502;  ///< a target beyond the axis' travel
-inline constexpr int kMsgDriveFault = 503;     ///< a drive of the channel is not ready
+inline constexpr int kMsgGouge = 303;  ///< tool nose radius compensation: contour violation
+/// G92 of the rotary axis outside rotary axis mode (C-axis manual 2.3 Zero Point Shifts).
+inline constexpr int kMsgOffsetInSpindleMode = 304;
+inline constexpr int kMsgLeftContour = 401;     ///< continue after jogging off the contour
+inline constexpr int kMsgNoHomeLabel = 402;     ///< reverse without a .HOME label
+inline constexpr int kMsgMdiSyntax = 403;       ///< the MDI text does not parse
+inline constexpr int kMsgNotHomed = 501;        ///< a move of an axis that has no reference
+inline constexpr int kMsgSoftwareLimit = 502;   ///< a target beyond the axis' travel
+inline constexpr int kMsgDriveFault = 503;      ///< a drive of the channel is not ready
 inline constexpr int kMsgFollowingError = 504;  ///< an axis lags beyond its following error limit
 inline constexpr int kMsgPlcFault = 505;        ///< the PLC stopped (watchdog)
 /// ROTMOD_Q / SPMOD_Q removed in the mode it acknowledges (C-axis manual 4.1: process error).
@@ -53,6 +55,8 @@ inline const char* MessageText(int number) {
       return "axis not homed";
     case kMsgSoftwareLimit:
       return "software limit";
+    case kMsgOffsetInSpindleMode:
+      return "zero offset of the rotary axis in spindle mode";
     case kMsgGouge:
       return "contour violation (tool nose radius)";
     case kMsgDriveFault:

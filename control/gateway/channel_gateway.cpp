@@ -38,6 +38,8 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
   sbl_ = Id(c + "SBL");
   fovr_ = Id(c + "FOVR");
   if (fovr_ >= 0) last_fovr_ = image.Int(fovr_);  // only changes act (see ReadControls)
+  enabl_ = Id(c + "ENABL");
+  if (enabl_ >= 0) last_enabl_ = image.Bool(enabl_);
   for (int k = 0; k < 3; ++k) jogm_[k] = Id(c + "JOGM" + std::to_string(k));
   s_auto_ = Id(s + "AUTO");
   s_manu_ = Id(s + "MANU");
@@ -64,6 +66,12 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
   }
   if (spindle_number > 0) {
     const std::string a = "A" + Number2(spindle_number) + "S.";
+    const std::string ac = "A" + Number2(spindle_number) + "C.";
+    const char* keys[4] = {"M3", "M4", "M5", "M19"};
+    for (int k = 0; k < 4; ++k) spindle_m_[k].id = Id(ac + keys[k]);
+    sovr_ = Id(ac + "SOVR");
+    if (sovr_ >= 0) last_sovr_ = image.Int(sovr_);
+    spindle_homed_ = Id(a + "HOMED");
     n_ncmd_ = Id(a + "N_NCMD");
     n_nmin_ = Id(a + "N_NMIN");
     inpos_ = Id(a + "INPOS");
@@ -115,6 +123,9 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
   if (manu_.Rising(im)) ch.SetMode(channel::ChannelMode::kManual);
   if (mdi_.Rising(im)) ch.SetMode(channel::ChannelMode::kMdi);
   if (reset_.Rising(im)) ch.Reset();
+  // The process enabling signal, before START and the keys: without it nothing starts.
+  if (enabl_ >= 0 && im.Bool(enabl_) != last_enabl_)
+    ch.SetProcessEnable(last_enabl_ = im.Bool(enabl_));
   // Feed hold as long as STOP is 1; START (rising edge) starts or continues.
   const bool stop = stop_ >= 0 && im.Bool(stop_);
   if (stop) ch.Stop();
@@ -128,6 +139,14 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
     if (percent != last_fovr_)
       ch.SetFeedOverride(static_cast<double>(percent) / 100), last_fovr_ = percent;
   }
+  if (sovr_ >= 0) {
+    const int64_t percent = im.Int(sovr_);
+    if (percent != last_sovr_)
+      ch.SetSpindleOverride(static_cast<double>(percent) / 100), last_sovr_ = percent;
+  }
+  const int spindle_m[4] = {3, 4, 5, 19};
+  for (int k = 0; k < 4; ++k)
+    if (spindle_m_[k].Rising(im)) ch.ManualSpindle(spindle_m[k]);
   if (jogm_[0] >= 0 && jogm_[1] >= 0 && jogm_[2] >= 0) {
     const int code = im.Bool(jogm_[0]) | im.Bool(jogm_[1]) << 1 | im.Bool(jogm_[2]) << 2;
     if (code != last_jogm_) ch.SetJogMode(code), last_jogm_ = code;
@@ -229,6 +248,8 @@ void ChannelGateway::WriteStatus(const channel::Channel& ch, const AmplifierTele
     answer(h.spindle_axd[0], hs->SpindleFunctionWord());
     if (hs->config().separate_servo()) answer(h.rotary_axd[0], hs->RotaryFunctionWord());
   }
+  // A spindle that is also a channel axis (C-axis manual section 2) has one reference.
+  set(spindle_homed_, ch.spindle_homed());
   if (spindle_drive_ >= 0 && spindle_drive_ < static_cast<int>(at.feedback.size())) {
     const uint32_t st = at.feedback[spindle_drive_].status;
     set(n_ncmd_, st & drive_status::kAtSpeed);

@@ -48,6 +48,14 @@ class ChannelGateway {
   Edge auto_, manu_, mdi_, start_, reset_, rev_, auxack_;
   int stop_ = -1, sbl_ = -1, fovr_ = -1, jogm_[3] = {-1, -1, -1};
   int64_t last_fovr_ = -1;
+  /// PxxC.ENABL, the process enabling signal: acts when it changes (C-axis manual 2.3).
+  int enabl_ = -1;
+  bool last_enabl_ = true;
+  /// The main spindle's keys AxxC.M3 / M4 / M5 / M19 (rising edges), its override AxxC.SOVR
+  /// (acts when it changes) and its reference AxxS.HOMED (C-axis manual 4.2).
+  Edge spindle_m_[4];
+  int sovr_ = -1, spindle_homed_ = -1;
+  int64_t last_sovr_ = -1;
   bool last_sbl_ = false;
   int last_jogm_ = -1;
   struct AxisSignals {

@@ -117,8 +117,11 @@ void KinematicBackend::Step() {
     clutches_[k].Step(c, mdt_.outputs[c.valve_engage], mdt_.outputs[c.valve_release], phase, slip,
                       dt);
     const bool engaged = clutches_[k].state == ClutchState::kEngaged;
+    // The dogs mesh where they stand, within the phase tolerance (their play): snapping to the
+    // exact tooth would move the follower up to the tolerance in one tick, through the motor
+    // ratio a speed far beyond the drives' limits (an overspeed trip of the C servo).
     if (!was_engaged && engaged)
-      clutch_offsets_[k] = DogClutchLogic::MeshOffset(c, q_[c.motor_joint], q_[c.load_joint]);
+      clutch_offsets_[k] = q_[c.load_joint] - q_[c.motor_joint] / c.ratio;
     if (engaged != was_engaged) RebuildPlan();
   }
   ++ticks_;

@@ -166,7 +166,7 @@ struct SceneRun::State {
   void StartHeadstockPlc();
   control::axes::HeadstockMode headstock_mode = control::axes::HeadstockMode::kNone;
   control::axes::HeadstockMode headstock_target = control::axes::HeadstockMode::kNone;
-  int plc_client_gone_told = 0;           ///< client_gone steps passed to the callback
+  int plc_client_gone_told = 0;  ///< client_gone steps passed to the callback
 };
 
 SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
@@ -178,6 +178,7 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     config.axes = scene.nc.data.axes;
     config.process = scene.nc.data.process;
     config.spindle_drive = scene.nc.data.spindle_drive;
+    if (config.spindle_drive >= 0) config.spindle.name = m.drives[config.spindle_drive].info.name;
     config.zero_offsets = scene.nc.data.zero_offsets;
     config.tools = scene.nc.data.tools;
     config.initial = scene.nc.initial;
@@ -301,12 +302,10 @@ void SceneRun::State::Step() {
     }
     if (const auto* hs = channel->headstock(); hs && hs->mode() != headstock_mode) {
       headstock_mode = hs->mode();
-      const std::string shown =
-          headstock_mode == control::axes::HeadstockMode::kRotary
-              ? scene.nc.data.axes[scene.nc.data.rotary_axis].name
-              : m.drives[scene.nc.data.spindle_drive].info.name;
-      emit_event({{"t", t}, {"event", "headstock"}, {"mode", ToString(headstock_mode)},
-                  {"axis", shown}});
+      emit_event({{"t", t},
+                  {"event", "headstock"},
+                  {"mode", ToString(headstock_mode)},
+                  {"axis", channel->HeadstockAxisName()}});
     }
     if (channel->state() != nc_state) {
       nc_state = channel->state();
@@ -433,7 +432,8 @@ void SceneRun::State::Step() {
 
 // A headstock with a separate C servo needs its clutch switched before the PLC may acknowledge
 // (C-axis manual 4.4): without a PLC of the scene's own, the manual's typical program runs as the
-// machine's PLC for it, with its valves and switches on the field bus; nothing else is.
+// machine's PLC for it. It sees every sensor, as a PLC does, and drives the clutch valves alone:
+// the timeline keeps the other valves.
 void SceneRun::State::StartHeadstockPlc() {
   auto made = control::plc::MakePlcProgram("c_axis_changeover", *image);
   if (!made) return;
@@ -443,15 +443,19 @@ void SceneRun::State::StartHeadstockPlc() {
   default_headstock_plc = false;
   for (size_t i = 0; i < m.io.size(); ++i) {
     const std::string& name = m.io[i].name;
-    if (name != "QROTMODE" && name != "QSPMODE" && name != "IROTMODE" && name != "ISPMODE")
+    const int id = image->Find(name);
+    if (id < 0 || m.io[i].key) continue;
+    if (!m.io[i].is_output) {
+      plc_inputs.emplace_back(static_cast<int>(i), id);
       continue;
+    }
+    if (name != "QROTMODE" && name != "QSPMODE") continue;
     for (const TimelineStep& step : scene.timeline)
       if (step.kind == TimelineStep::Kind::kOutput && step.io == static_cast<int>(i))
         throw std::runtime_error(step.text + ": valve " + name +
                                  " is switched by the headstock changeover PLC (C-axis manual "
                                  "4.4) in a scene with an NC and no plc:");
-    const int id = image->Find(name);
-    if (id >= 0) (m.io[i].is_output ? plc_outputs : plc_inputs).emplace_back(static_cast<int>(i), id);
+    plc_outputs.emplace_back(static_cast<int>(i), id);
   }
 }
 
@@ -462,7 +466,8 @@ void SceneRun::State::AcknowledgeHeadstock() {
     if (pattern == "AxxC.READY") image->SetBool(id, true);  // every drive enabled
     if (pattern == "Axx.ROTMOD_Q") image->SetBool(id, hs.rotmod());
     if (pattern == "Axx.SPMOD_Q")
-      image->SetBool(id, hs.spmod() || (!hs.busy() && hs.mode() == control::axes::HeadstockMode::kNone));
+      image->SetBool(
+          id, hs.spmod() || (!hs.busy() && hs.mode() == control::axes::HeadstockMode::kNone));
   }
 }
 

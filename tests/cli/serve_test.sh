@@ -97,6 +97,25 @@ if start_serve "$out/wrong_external" lockstep "$scene"; then
     { fail "wrong PLC signal changes differ"; diff "$out/wrong_embedded.signals" "$out/wrong_external.signals" | head; }
   grep -q '"expectations_failed": 0' "$out/wrong_external/summary.json" || fail "external wrong-PLC expectations failed"
 fi
+
+# The C-axis changeover (4.4) over Modbus: the Python program takes the place of the one the
+# runner runs for a scene without plc:, writes the AXD idents (DINT registers) and switches the
+# clutch, and the run is the embedded one's, byte for byte.
+scene=$src/scenes/c-axis-switching.yaml
+"$vmt" run "$scene" --out "$out/cax_embedded" >"$out/cax_embedded.log" 2>&1 || fail "embedded c-axis run"
+if start_serve "$out/cax_external" lockstep; then
+  timeout 120 "$python" "$src/examples/plc/c_axis_changeover.py" --port "$port" \
+    --signals "$out/signals.json" >"$out/cax_client.log" 2>&1 || { fail "python changeover PLC"; cat "$out/cax_client.log"; }
+  wait $serve_pid || { fail "vmt serve (c-axis) exit $?"; cat "$out/cax_external/serve.log"; }
+  d1=$(grep -o '"trace_digest": "[0-9a-f]*"' "$out/cax_embedded/summary.json")
+  d2=$(grep -o '"trace_digest": "[0-9a-f]*"' "$out/cax_external/summary.json")
+  [ -n "$d1" ] && [ "$d1" = "$d2" ] || fail "c-axis trace digest embedded $d1 vs external $d2"
+  grep '"signal"' "$out/cax_embedded/events.jsonl" >"$out/cax_embedded.signals"
+  grep '"signal"' "$out/cax_external/events.jsonl" >"$out/cax_external.signals"
+  cmp -s "$out/cax_embedded.signals" "$out/cax_external.signals" ||
+    { fail "c-axis signal changes differ"; diff "$out/cax_embedded.signals" "$out/cax_external.signals" | head; }
+  grep -q '"expectations_failed": 0' "$out/cax_external/summary.json" || fail "external c-axis expectations failed"
+fi
 scene=$src/scenes/repos-machine-keys.yaml
 
 # mbpoll reads the status, and writing an NC status address is refused.

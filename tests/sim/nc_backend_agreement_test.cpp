@@ -77,5 +77,21 @@ TEST(NcBackendAgreementTest, LowLagG06RemovesMostOfTheFollowingError) {
   EXPECT_LT(fe06, 0.1 * fe05) << "G06 " << fe06 << " mm vs G05 " << fe05 << " mm";
 }
 
+TEST(NcBackendAgreementTest, CAxisProgramsRunOnBothBackends) {
+  // The changeover to rotary axis mode (clutch K, hunting) and the RX path velocity of the
+  // C-axis manual's programs: every expectation of the scenes holds on either backend.
+  for (const char* name : {"scenes/c-axis-switching.yaml", "scenes/c-axis-spiral-groove.yaml"}) {
+    const Scene scene = LoadScene(testing::SourcePath(name));
+    for (BackendKind backend : {BackendKind::kPhysics, BackendKind::kKinematic}) {
+      RunOptions options;
+      options.snapshots = false;
+      options.backend = backend;
+      const RunResult result = RunScene(scene, options);
+      EXPECT_TRUE(result.ok()) << name
+                               << (backend == BackendKind::kPhysics ? " physics" : " kinematic");
+    }
+  }
+}
+
 }  // namespace
 }  // namespace vmt::sim

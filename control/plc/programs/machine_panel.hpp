@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "control/gateway/signal_image.hpp"
-#include "control/plc/programs/c_axis_changeover.hpp"
 #include "control/plc/iec_standard_blocks.hpp"
 #include "control/plc/plc_runtime.hpp"
+#include "control/plc/programs/c_axis_changeover.hpp"
 #include "control/plc/programs/repos_machine_keys.hpp"
 
 namespace vmt::control::plc {
@@ -41,8 +41,7 @@ struct MachinePanel {
 
   // PLC memory.
   R_TRIG start_key, stop_key, sbl_key, coolant_key, door_key, quill_key;
-  bool feed_hold = false, single_block = false, coolant = false, door_open = false,
-       quill = false;
+  bool feed_hold = false, single_block = false, coolant = false, door_open = false, quill = false;
   bool aux_acked = false;  ///< AUXACK pulsed last scan: drop it for one scan (edge for the NC)
   std::optional<ReposMachineKeys> repos;
   std::optional<CAxisChangeover> changeover;

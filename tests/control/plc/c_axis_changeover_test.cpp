@@ -20,8 +20,9 @@ using namespace std::chrono_literals;
 
 constexpr PlcTime kPeriod = 4ms;
 
-// lathe-c1 as sim/model/gateway_layout.cpp lays it out once the C servo is an NC axis: the NC
-// axes in their order, the spindle after the highest of them, then the machine's I/O.
+// A lathe with a C servo as NC axis 3 and the spindle as axis 4, then the machine's I/O
+// (lathe-c1 numbers them the other way round, S1 = A03 and C = A04; the first test checks that
+// the program finds either).
 gateway::GatewayLayout LatheLayout(bool with_c = true) {
   gateway::GatewayLayout layout;
   layout.processes = {0};
@@ -155,7 +156,7 @@ TEST_F(CAxisChangeoverTest, FindsTheSpindleAndTheCServoByTheirSignals) {
 }
 
 TEST(CAxisChangeoverSetupTest, AMachineWithoutTheCServoAsAnAxisCannotRunIt) {
-  // lathe-c1 as the model lays it out today: S1 is A03 and C is no NC axis.
+  // A lathe whose C servo is no NC axis: S1 is A03.
   const gateway::SignalImage image(gateway::BuildSignalTable(LatheLayout(false)));
   try {
     CAxisChangeover program(image);
@@ -397,6 +398,41 @@ TEST_F(CAxisChangeoverTest, PowerOnInRotaryAxisModeAcknowledgesAtOnce) {
   EXPECT_TRUE(B("QROTMODE"));
   EXPECT_TRUE(B("A03C.READY"));
   EXPECT_FALSE(B("A04C.READY"));
+}
+
+TEST(CAxisChangeoverWrongTest, AcknowledgesBeforeTheClutchHasMeshed) {
+  // The deliberately wrong variant: ROTMOD_Q comes with the valve, while the dogs are still on
+  // their way (or blocked), so the NC would position C with the spindle not coupled.
+  gateway::SignalImage image(gateway::BuildSignalTable(LatheLayout()));
+  CAxisChangeoverConfig config;
+  config.acknowledge_before_clutch = true;
+  auto program = std::make_shared<CAxisChangeover>(image, config);
+  PlcRuntime plc(
+      image, [p = program](PlcScan& s) { (*p)(s); }, kPeriod);
+  Clutch clutch{image};
+  clutch.Released();
+  clutch.blocked = true;  // dogs on dogs: IROTMODE never comes
+  image.SetBool(image.Require("A04.SPMOD"), true);
+  plc.Scan();
+  image.SetBool(image.Require("A04.SPMOD"), false);
+  image.SetBool(image.Require("A04.ROTMOD"), true);
+  clutch.Step();
+  plc.Scan();
+  EXPECT_TRUE(image.Bool(image.Require("QROTMODE")));
+  EXPECT_TRUE(image.Bool(image.Require("A04.ROTMOD_Q")));
+  EXPECT_FALSE(image.Bool(image.Require("IROTMODE")));
+  // The right program waits for the switch.
+  gateway::SignalImage right_image(gateway::BuildSignalTable(LatheLayout()));
+  auto right = std::make_shared<CAxisChangeover>(right_image);
+  PlcRuntime right_plc(
+      right_image, [p = right](PlcScan& s) { (*p)(s); }, kPeriod);
+  Clutch right_clutch{right_image};
+  right_clutch.Released();
+  right_clutch.blocked = true;
+  right_image.SetBool(right_image.Require("A04.ROTMOD"), true);
+  for (int n = 0; n < 50; ++n) right_clutch.Step(), right_plc.Scan();
+  EXPECT_TRUE(right_image.Bool(right_image.Require("QROTMODE")));
+  EXPECT_FALSE(right_image.Bool(right_image.Require("A04.ROTMOD_Q")));
 }
 
 }  // namespace

@@ -23,9 +23,9 @@ class MachinePanelTest : public ::testing::Test {
       layout.io.push_back({out, true, "valve"});
     for (const char* in : {"IDOOR_CLOSED", "ICOOLANT_PRESSURE", "ITAILSTOCK_FWD"})
       layout.io.push_back({in, false, "switch"});
-    for (const char* key : {"mAUTO", "mMANU", "mSTART", "mSTOP", "mRESET", "mSBL", "mCOOLANT",
-                            "mDOOR", "mTAILSTOCK", "mJGPOS_X", "mJGNEG_X", "mJGPOS_Z",
-                            "mJGNEG_Z", "mREPOS", "mRESTA", "mRaR_OFF"})
+    for (const char* key :
+         {"mAUTO", "mMANU", "mSTART", "mSTOP", "mRESET", "mSBL", "mCOOLANT", "mDOOR", "mTAILSTOCK",
+          "mJGPOS_X", "mJGNEG_X", "mJGPOS_Z", "mJGNEG_Z", "mREPOS", "mRESTA", "mRaR_OFF"})
       layout.io.push_back({key, false, "key"});
     return gateway::SignalImage(gateway::BuildSignalTable(layout));
   }
@@ -150,6 +150,33 @@ TEST_F(MachinePanelTest, RepositioningKeysAreANetworkOfIt) {
   Set("P00S.REPOS", true);
   Press("mREPOS");
   EXPECT_TRUE(Get("P00C.REPOS"));
+}
+
+TEST(MachinePanelChangeoverTest, RunsTheChangeoverWhenTheSpindleHasARotaryAxisMode) {
+  // lathe-c1: S1 (A03) with its rotary axis mode C (A04) through clutch K.
+  gateway::GatewayLayout layout;
+  layout.processes = {0};
+  layout.axes = {{1, "X", false, false},
+                 {2, "Z", false, false},
+                 {3, "S1", true, false},
+                 {4, "C", false, true}};
+  for (const char* out : {"QDOOR_OPEN", "QTAILSTOCK", "QCOOLANT", "QROTMODE", "QSPMODE"})
+    layout.io.push_back({out, true, "valve"});
+  for (const char* in : {"IDOOR_CLOSED", "ICOOLANT_PRESSURE", "IROTMODE", "ISPMODE"})
+    layout.io.push_back({in, false, "switch"});
+  for (const char* key :
+       {"mAUTO", "mMANU", "mSTART", "mSTOP", "mRESET", "mSBL", "mCOOLANT", "mDOOR", "mTAILSTOCK"})
+    layout.io.push_back({key, false, "key"});
+  gateway::SignalImage image(gateway::BuildSignalTable(layout));
+  PlcRuntime plc(image, *MakePlcProgram("machine_panel", image), PlcTime(4000));
+  image.SetBool(image.Require("ISPMODE"), true);
+  plc.Scan();
+  EXPECT_TRUE(image.Bool(image.Require("A03.SPMOD_Q")));  // power-on: clutch out, spindle mode
+  EXPECT_EQ(image.Int(image.Require("A04.AXD.65013")), 10000);
+  image.SetBool(image.Require("A03.ROTMOD"), true);
+  plc.Scan();
+  EXPECT_TRUE(image.Bool(image.Require("QROTMODE")));
+  EXPECT_EQ(image.Int(image.Require("A04.AXD.65012")), 0b100);  // C hunts
 }
 
 }  // namespace

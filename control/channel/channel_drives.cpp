@@ -1,0 +1,107 @@
+// The channel and its drives: faults stop the program with an NC error message naming the
+// drive's trip; Control-Reset acknowledges the trips (SERCOS drives reset a latched error when
+// their controller enable is removed).
+#include <algorithm>
+
+#include "control/channel/channel.hpp"
+
+namespace vmt::control::channel {
+namespace {
+
+constexpr uint32_t kTrips =
+    drive_status::kOverload | drive_status::kOverspeed | drive_status::kParameterSetError;
+
+}  // namespace
+
+void Channel::CheckDrives(const AmplifierTelegram& at) {
+  auto tripped_text = [](uint32_t status) -> std::string {
+    std::string causes;
+    auto add = [&](uint32_t bit, const char* what) {
+      if (status & bit) causes += (causes.empty() ? "" : ", ") + std::string(what);
+    };
+    add(drive_status::kOverload, "overload");
+    add(drive_status::kOverspeed, "overspeed");
+    add(drive_status::kParameterSetError, "parameter set error");
+    return causes.empty() ? "drive not ready (drive fault)" : "drive error: " + causes;
+  };
+  auto acknowledging = [&](int drive) {
+    return trip_reset_ticks_ > 0 && std::find(trip_reset_drives_.begin(), trip_reset_drives_.end(),
+                                              drive) != trip_reset_drives_.end();
+  };
+  // A drive without power (tripped, not ready) is in follow-up: the NC takes its actual
+  // position as command value (C-axis manual 4.2: "In a powerless state, the NC corrects the
+  // actual values and assigns them to the command values"), so that it does not jump back to
+  // the old command when it is powered again after Control-Reset.
+  for (size_t a = 0; a < config_.axes.size(); ++a) {
+    const DriveFeedback& fb = at.feedback[config_.axes[a].drive];
+    if ((fb.status & kTrips) || !(fb.status & drive_status::kReady))
+      commanded_[a] = previous_[a] = fb.position;
+  }
+  if (state_ == ChannelState::kError) return;
+  // The drives answer for themselves: one that is not ready (a fault: its power stage is off)
+  // or lags beyond its limit stops the channel at once, every other axis holding where it is.
+  // Its trips are named in the message (the drive's diagnosis, as a control displays it).
+  const int failed_drive = [&] {
+    for (size_t a = 0; a < config_.axes.size(); ++a) {
+      const int d = config_.axes[a].drive;
+      const uint32_t status = at.feedback[d].status;
+      if (acknowledging(d)) continue;
+      if (!(status & drive_status::kReady)) {
+        // One drive for spindle and rotary axis (section 2): named as the display shows it.
+        const bool shared = headstock_ && static_cast<int>(a) == config_.rotary_axis &&
+                            !headstock_->config().separate_servo();
+        const std::string name = shared ? HeadstockAxisName() : config_.axes[a].name;
+        Fail("axis " + name + ": " + tripped_text(status), kMsgDriveFault);
+        return d;
+      }
+      if (status & drive_status::kFollowingError) {
+        Fail("axis " + config_.axes[a].name + ": following error beyond its limit",
+             kMsgFollowingError);
+        return d;
+      }
+    }
+    const int s = config_.spindle_drive;
+    if (s >= 0 && !acknowledging(s) && !(at.feedback[s].status & drive_status::kReady)) {
+      spindle_ = {DriveMode::kVelocity, 0, 0};
+      Fail("spindle: " + tripped_text(at.feedback[s].status), kMsgDriveFault);
+      return s;
+    }
+    return -1;
+  }();
+  // 2.3 / 3.3 Errors: a drive of the headstock failing during a changeover: the NC proceeds as
+  // at power-on (the mode is again the one the PLC acknowledges).
+  if (failed_drive >= 0 && headstock_ && headstock_->busy() &&
+      (failed_drive == headstock_->config().spindle_drive ||
+       failed_drive == headstock_->config().rotary_drive)) {
+    headstock_->TakeModeFromPlc(headstock_plc_);
+    waiting_for_ = axes::HeadstockMode::kNone;
+  }
+}
+
+void Channel::CollectTrips(const AmplifierTelegram& at) {
+  // Control-Reset acknowledges the drives' errors as a real control does: a drive that tripped
+  // gets its controller enable removed (kOff, the drive's fault reset) for one NC cycle, then
+  // the channel's setpoints again (AcknowledgeDriveTrips). Meanwhile it is not reported; a
+  // cause still present trips it again, and CheckDrives reports it after that cycle.
+  trip_reset_pending_ = false;
+  trip_reset_drives_.clear();
+  auto collect = [&](int d) {
+    if (d >= 0 && d < static_cast<int>(at.feedback.size()) && (at.feedback[d].status & kTrips) &&
+        std::find(trip_reset_drives_.begin(), trip_reset_drives_.end(), d) ==
+            trip_reset_drives_.end())
+      trip_reset_drives_.push_back(d);
+  };
+  for (const ChannelAxis& a : config_.axes) collect(a.drive);
+  collect(config_.spindle_drive);
+  if (headstock_) collect(headstock_->config().rotary_drive);
+  trip_reset_ticks_ = trip_reset_drives_.empty() ? 0 : config_.ticks_per_cycle;
+}
+
+void Channel::AcknowledgeDriveTrips(MasterTelegram& mdt) {
+  if (trip_reset_ticks_ <= 0) return;
+  for (int d : trip_reset_drives_)
+    if (d < static_cast<int>(mdt.setpoints.size())) mdt.setpoints[d] = {DriveMode::kOff, 0, 0};
+  if (--trip_reset_ticks_ == 0) trip_reset_drives_.clear();
+}
+
+}  // namespace vmt::control::channel

@@ -1,0 +1,161 @@
+// The headstock's operating states in the channel (C-axis manual 2.3 and 3.3): the changeover
+// as blocks and manual keys need it, immediate stop and the process enabling signal, the
+// rotary axis' zero offsets, the references of spindle and rotary axis, and the position
+// indication (S1 <-> C).
+#include <cmath>
+
+#include "control/channel/channel.hpp"
+
+namespace vmt::control::channel {
+void Channel::HeadstockCycle(const AmplifierTelegram& at, double dt) {
+  if (!headstock_known_) {
+    headstock_->TakeModeFromPlc(headstock_plc_);  // power-on mode (2.3)
+    headstock_known_ = true;
+  }
+  // Immediate stop (2.3, 3.3): the PLC's motion functions halt and ROTMOD / SPMOD stay pending
+  // while the program is stopped, an error is pending or the process enabling signal is
+  // missing. A changeover a manual key commanded after the program was interrupted is manual
+  // mode's own and runs.
+  axes::HeadstockPlc plc = headstock_plc_;
+  const bool interrupted = state_ == ChannelState::kHold && !manual_changeover_;
+  plc.stop = plc.stop || interrupted || state_ == ChannelState::kError || !process_enable_;
+  if (!headstock_->Cycle(plc, at, dt) && state_ != ChannelState::kError)
+    Fail(headstock_->error(), kMsgChangeoverAck);
+  if (!headstock_->busy()) manual_changeover_ = false;
+  // A key may have left the other mode, or neither (2.3 Jogging Movements): the block that
+  // waits commands its changeover again at the next opportunity.
+  if (waiting_for_ != axes::HeadstockMode::kNone && state_ == ChannelState::kRunning &&
+      !headstock_->busy() && headstock_->mode() != waiting_for_)
+    headstock_->Request(waiting_for_);
+  // Position indication (2.3): the designation of the new mode once the changeover is done.
+  if (headstock_->mode() != axes::HeadstockMode::kNone) shown_mode_ = headstock_->mode();
+  const size_t r = static_cast<size_t>(config_.rotary_axis);
+  translation_[r] = RotaryOffsetsActive() ? rotary_translation_ : 0;
+  // The rotary axis follows its actual position wherever the NC does not position it: its
+  // command value is up to date when rotary axis mode begins (5).
+  const bool positioned =
+      headstock_->mode() == axes::HeadstockMode::kRotary ||
+      (headstock_->config().separate_servo() && !headstock_->busy() && plc.rotary_ready);
+  if (headstock_->TakeOverRotary() || !positioned || !plc.rotary_ready) {
+    commanded_[r] = previous_[r] = at.feedback[config_.axes[r].drive].position;
+    jog_[r].handwheel_target = commanded_[r];
+  }
+}
+
+axes::HeadstockMode Channel::ModeNeeded(const nc::PreparedBlock& b) const {
+  // C-axis manual 4.2: G00/G01/G02/G03 with the rotary axis' name select rotary axis mode;
+  // M3, M4, M5, M19 (and G33, G63, G64) spindle mode.
+  for (const nc::AuxFunction& f : b.aux)
+    if (f.letter == 'M' && (f.value == 3 || f.value == 4 || f.value == 5 || f.value == 19))
+      return axes::HeadstockMode::kSpindle;
+  const bool interpolates = b.motion == nc::Motion::kRapid || b.motion == nc::Motion::kLinear ||
+                            b.motion == nc::Motion::kArcCw || b.motion == nc::Motion::kArcCcw;
+  // G74 of the rotary axis homes it in position control: rotary axis mode too (the manual
+  // names G74 as a way to home, 2.3, but not its mode; only rotary mode positions C).
+  if ((interpolates || b.homing) && (b.programmed >> config_.rotary_axis & 1))
+    return axes::HeadstockMode::kRotary;
+  return axes::HeadstockMode::kNone;
+}
+
+void Channel::ManualChangeover(axes::HeadstockMode target) {
+  // 2.3 / 3.3 Jogging Movements: the keys abort a changeover an immediate stop interrupted
+  // before the NC commands the new one.
+  const bool stopped = state_ == ChannelState::kHold || state_ == ChannelState::kError;
+  if (headstock_->busy() && !manual_changeover_ && stopped) headstock_->Abandon();
+  headstock_->Request(target);
+  if (headstock_->busy()) manual_changeover_ = true;
+}
+
+void Channel::ManualSpindle(int m) {
+  if (mode_ != ChannelMode::kManual || config_.spindle_drive < 0) return;
+  if (m != 3 && m != 4 && m != 5 && m != 19) return;
+  // Without the process enabling signal nothing starts; a stop is always taken.
+  if (m != 5 && !process_enable_) return;
+  // 4.2: "The NC automatically switches over to main spindle mode if rotary axis mode is active
+  // when one of these commands is started"; the command acts once spindle mode is there.
+  if (headstock_) ManualChangeover(axes::HeadstockMode::kSpindle);
+  const double speed = config_.spindle.jog_per_s;  // main spindle "Jogging speed"
+  if (m == 3) spindle_ = {DriveMode::kVelocity, speed, 0};
+  if (m == 4) spindle_ = {DriveMode::kVelocity, -speed, 0};
+  if (m == 5) spindle_ = {DriveMode::kVelocity, 0, 0};
+  if (m == 19) {
+    spindle_ = {DriveMode::kPosition, config_.spindle.jog_spindle_position, 0};
+    spindle_referencing_ = true;
+  }
+  spindle_referencing_ = spindle_referencing_ && m == 19;
+  take_over_pending_ = true;
+}
+
+void Channel::SetProcessEnable(bool on) {
+  process_enable_ = on;
+  // 2.3 Process Enabling Signal: removed, the NC initiates an immediate stop, stops program
+  // execution (and so the changeover's internal sequence, HeadstockCycle) and brings the axes
+  // to a standstill (Jogging brakes them). The manual describes it for a changeover; a real
+  // control does the same without one.
+  if (!on) Stop();
+}
+
+bool Channel::RotaryOffsetsActive() const {
+  // 2.3 Zero Point Shifts: offsets of the rotary axis cannot act in spindle operation;
+  // changing over to it cancels them, changing back to rotary axis mode re-activates them
+  // unless G53 cleared them meanwhile. The selection (G54..G59) and the G92 shift stay modal
+  // through spindle mode, so a G53 programmed there is what rotary axis mode finds. (The
+  // manual's own example, 1.2, selects G54 in a spindle block and then positions C90.)
+  return headstock_ && headstock_->mode() == axes::HeadstockMode::kRotary;
+}
+
+void Channel::TrackReferences(const AmplifierTelegram& at, double dt) {
+  // 2.3 / 3.3 Homing: the reference is kept while the encoder's frequency,
+  //   speed [1/s] * impulses or oscillations per revolution,
+  // stays within the limit frequency of its interface; beyond it counts are lost.
+  const int spindle = config_.spindle_drive;
+  const int rotary = headstock_ ? config_.axes[config_.rotary_axis].drive : -1;
+  encoder_last_.resize(at.feedback.size(), std::nan(""));
+  auto too_fast = [&](int drive, const axes::AxisParameters& p) {
+    const double last = encoder_last_[drive];
+    const double position = at.feedback[drive].position;
+    encoder_last_[drive] = position;
+    if (p.encoder_limit_hz <= 0 || p.encoder_periods_per_rev <= 0 || std::isnan(last)) return false;
+    const double rev_per_s = std::abs(position - last) / 360 / dt;
+    return rev_per_s * p.encoder_periods_per_rev > p.encoder_limit_hz;
+  };
+  if (rotary >= 0 && too_fast(rotary, config_.axes[config_.rotary_axis]))
+    homed_[config_.rotary_axis] = false;
+  // Section 2: spindle and rotary axis are one drive with one encoder and one reference.
+  if (spindle >= 0 && spindle != rotary && too_fast(spindle, config_.spindle))
+    spindle_homed_ = false;
+  if (spindle < 0) return;
+  spindle_position_ = at.feedback[spindle].position;
+  // M19 establishes the reference (2.3: "by crossing the related zero impulse", then it
+  // moves to the command position): it is there when the spindle reports itself in position.
+  // It needs spindle mode on a headstock: in rotary mode M19 waits for its changeover.
+  const bool spindle_mode = !headstock_ || headstock_->mode() == axes::HeadstockMode::kSpindle;
+  if (spindle_referencing_ && spindle_mode && spindle_.mode == DriveMode::kPosition &&
+      (at.feedback[spindle].status & drive_status::kInPosition)) {
+    spindle_referencing_ = false;
+    spindle_homed_ = true;
+    if (spindle == rotary) homed_[config_.rotary_axis] = true;
+  }
+  if (spindle_.mode != DriveMode::kPosition) spindle_referencing_ = false;
+}
+
+bool Channel::spindle_homed() const {
+  if (headstock_ && !headstock_->config().separate_servo()) return homed_[config_.rotary_axis];
+  return spindle_homed_;
+}
+
+std::string Channel::HeadstockAxisName() const {
+  if (!headstock_) return "";
+  if (shown_mode_ == axes::HeadstockMode::kRotary) return config_.axes[config_.rotary_axis].name;
+  return config_.spindle.name.empty() ? "S1" : config_.spindle.name;
+}
+
+double Channel::HeadstockPosition() const {
+  if (!headstock_) return 0;
+  const size_t r = static_cast<size_t>(config_.rotary_axis);
+  if (shown_mode_ == axes::HeadstockMode::kRotary) return commanded_[r] - translation_[r];
+  const double a = std::fmod(spindle_position_, 360.0);
+  return a < 0 ? a + 360 : a;
+}
+
+}  // namespace vmt::control::channel

@@ -1,0 +1,149 @@
+// The headstock's signals through the gateway (C-axis manual 2.3, 4.2): the spindle keys
+// AxxC.M3/M4/M5/M19 and the spindle override AxxC.SOVR of the main spindle, the process
+// enabling signal PxxC.ENABL, the spindle's reference AxxS.HOMED. Lathe layout: X A01, Z A02,
+// main spindle S1 A03 (drive 2), C servo A04 (drive 3).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "control/gateway/channel_gateway.hpp"
+#include "control/nc/parser.hpp"
+#include "tests/control/gateway/lathe_layout.hpp"
+
+namespace vmt::control::gateway {
+namespace {
+
+struct HeadstockRig {
+  HeadstockRig() : image(BuildSignalTable(testing::LatheLayout())) {
+    parsed = nc::ParseProgram("N1 RET\n", "p.mtc", nc::Dialect::kMtc200);
+    EXPECT_TRUE(parsed.ok());
+    channel::ChannelConfig config;
+    const char* names[3] = {"X", "Z", "C"};
+    const int drives[3] = {0, 1, 3};
+    const int numbers[3] = {1, 2, 4};
+    for (int a = 0; a < 3; ++a) {
+      channel::ChannelAxis axis;
+      axis.name = names[a];
+      axis.number = numbers[a];
+      axis.drive = drives[a];
+      axis.rotary = a == 2;
+      axis.rapid_per_s = 400;
+      axis.acceleration = 4000;
+      config.axes.push_back(axis);
+    }
+    config.spindle_drive = 2;
+    config.spindle.name = "S1";
+    config.spindle.jog_per_s = 600;
+    config.spindle.jog_spindle_position = 45;
+    config.spindle.homed_at_start = false;
+    axes::HeadstockConfig h;
+    h.spindle_drive = 2;
+    h.rotary_drive = 3;
+    config.headstock = h;
+    config.rotary_axis = 2;
+    ch = std::make_unique<channel::Channel>(config,
+                                            std::vector<const nc::Program*>{&parsed.program});
+    gateway = std::make_unique<ChannelGateway>(image, 0, std::vector<int>{1, 2, 4}, 3, 2, 4);
+    at.feedback.resize(4);
+    mdt.setpoints.resize(4);
+    Set("A03.SPMOD_Q", true);  // the PLC: spindle mode, both drives enabled
+    Set("A03C.READY", true);
+    Set("A04C.READY", true);
+  }
+  // One NC cycle on ideal drives; the PLC acknowledges the changeover at once.
+  void Cycle(int n = 1) {
+    for (int k = 0; k < n; ++k) {
+      if (const axes::HeadstockChangeover* hs = ch->headstock();
+          hs && (hs->busy() || hs->mode() != axes::HeadstockMode::kNone)) {
+        Set("A03.ROTMOD_Q", hs->rotmod());
+        Set("A03.SPMOD_Q", hs->spmod());
+      }
+      gateway->ReadControls(*ch);
+      for (int i = 0; i < 4; ++i) {
+        ch->Tick(at, mdt);
+        for (int d = 0; d < 4; ++d) {
+          DriveFeedback& f = at.feedback[d];
+          const DriveSetpoint& sp = mdt.setpoints[d];
+          f.velocity = sp.mode == DriveMode::kVelocity ? sp.value : 0;
+          if (sp.mode == DriveMode::kPosition) f.position = sp.value;
+          if (sp.mode == DriveMode::kVelocity) f.position += sp.value * 250e-6;
+          f.status = drive_status::kReady;
+          if (std::abs(f.velocity) < 1e-9) f.status |= drive_status::kStandstill;
+          if (sp.mode == DriveMode::kPosition) f.status |= drive_status::kInPosition;
+        }
+      }
+      gateway->WriteStatus(*ch, at);
+    }
+  }
+  void Set(const char* name, bool v) { image.SetBool(image.Require(name), v); }
+  bool Get(const char* name) const { return image.Bool(image.Require(name)); }
+  void Press(const char* name) {
+    Set(name, true);
+    Cycle();
+    Set(name, false);
+    Cycle();
+  }
+
+  nc::ParseResult parsed;
+  SignalImage image;
+  std::unique_ptr<channel::Channel> ch;
+  std::unique_ptr<ChannelGateway> gateway;
+  AmplifierTelegram at;
+  MasterTelegram mdt;
+};
+
+TEST(ChannelGatewayHeadstock, SpindleKeysOverrideAndReference) {
+  HeadstockRig r;
+  r.Press("P00C.MANU");
+  ASSERT_EQ(r.ch->mode(), channel::ChannelMode::kManual);
+  EXPECT_FALSE(r.Get("A03S.HOMED"));
+  r.Press("A03C.M3");
+  r.Cycle(4);
+  EXPECT_DOUBLE_EQ(r.at.feedback[2].velocity, 600);
+  r.image.SetInt(r.image.Require("A03C.SOVR"), 50);
+  r.Cycle();
+  EXPECT_DOUBLE_EQ(r.at.feedback[2].velocity, 300);
+  r.image.SetInt(r.image.Require("P00C.FOVR"), 10);  // the feed override does not act
+  r.Cycle();
+  EXPECT_DOUBLE_EQ(r.at.feedback[2].velocity, 300);
+  r.Press("A03C.M4");
+  EXPECT_DOUBLE_EQ(r.at.feedback[2].velocity, -300);
+  r.Press("A03C.M19");
+  r.Cycle(2);
+  EXPECT_DOUBLE_EQ(r.at.feedback[2].position, 45);
+  EXPECT_TRUE(r.Get("A03S.HOMED"));  // M19 referenced the spindle
+  r.Press("A03C.M5");
+  EXPECT_DOUBLE_EQ(r.at.feedback[2].velocity, 0);
+  // Jogging C selects rotary axis mode; M3 selects spindle mode again.
+  r.Set("A04C.JGPOS", true);
+  r.Cycle(20);
+  EXPECT_TRUE(r.Get("A03.ROTMOD"));
+  r.Set("A04C.JGPOS", false);
+  r.Press("A03C.M3");
+  r.Cycle(20);
+  EXPECT_TRUE(r.Get("A03.SPMOD"));
+  EXPECT_EQ(r.ch->HeadstockAxisName(), "S1");
+}
+
+TEST(ChannelGatewayHeadstock, ProcessEnableRemovedStopsAndBlocksTheSpindleKeys) {
+  HeadstockRig r;
+  r.Set("P00C.ENABL", true);
+  r.Press("P00C.MANU");
+  r.Press("A03C.M3");
+  EXPECT_DOUBLE_EQ(r.at.feedback[2].velocity, 600);
+  r.Set("P00C.ENABL", false);
+  r.Cycle();
+  EXPECT_FALSE(r.ch->process_enabled());
+  r.Press("A03C.M5");  // a stop is always taken
+  EXPECT_DOUBLE_EQ(r.at.feedback[2].velocity, 0);
+  r.Press("A03C.M3");  // nothing starts
+  EXPECT_DOUBLE_EQ(r.at.feedback[2].velocity, 0);
+  r.Set("P00C.ENABL", true);
+  r.Cycle();
+  r.Press("A03C.M3");
+  EXPECT_DOUBLE_EQ(r.at.feedback[2].velocity, 600);
+}
+
+}  // namespace
+}  // namespace vmt::control::gateway
