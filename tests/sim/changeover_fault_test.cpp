@@ -117,7 +117,7 @@ TEST(ChangeoverFaultTest, SpindleStartedWithTheClutchInOverloadsTheSpindleDrive)
   EXPECT_NEAR(Number(trips[0], "t"), m.drives[m.DriveIndex("S1")].overload_time_s, 0.1);
   const auto error = Lines(o.events, {"\"event\":\"nc\"", "\"state\":\"error\""});
   ASSERT_EQ(error.size(), 1u);
-  EXPECT_THAT(error[0], HasSubstr("spindle: drive not ready"));
+  EXPECT_THAT(error[0], HasSubstr("spindle: drive error: overload"));
   // The C servo held the spindle within its own limit: no trip of C.
   EXPECT_TRUE(Lines(o.events, {"\"event\":\"drive\"", "\"name\":\"C\""}).empty());
 }
