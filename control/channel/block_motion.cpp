@@ -59,12 +59,17 @@ std::optional<MotionError> PlanBlockMotion(const nc::PreparedBlock& block,
                                            const std::vector<double>& start,
                                            const std::vector<double>& translation,
                                            const std::vector<axes::AxisParameters>& axes,
-                                           double spindle_rev_per_s, BlockMotion& out) {
+                                           double spindle_rev_per_s, BlockMotion& out,
+                                           uint64_t follow_up) {
   out = BlockMotion{};
   out.start = start;
   out.end = block.target;
   const size_t n = axes.size();
   for (size_t a = 0; a < n; ++a) {
+    if (follow_up >> a & 1) {
+      out.end[a] = start[a];
+      continue;
+    }
     out.end[a] += translation[a];
     const axes::AxisParameters& axis = axes[a];
     if (axis.travel_max > axis.travel_min &&

@@ -4,6 +4,7 @@
 // profile. A function of the block, where it starts and the machine data only, so that the
 // look-ahead can plan blocks before they run.
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -42,10 +43,14 @@ struct MotionError {
 /// coordinates; `translation` (zero offset, G92 shift, tool length) takes it to the axes.
 /// `spindle_rev_per_s` turns a feed per revolution (G95) into a path feed. A target beyond an
 /// axis' travel is an error before the move starts, so the axis never meets its limit switch.
+/// Axes in `follow_up` (bit per axis) stay where they are: the NC does not position them (a
+/// rotary axis while its spindle is in spindle mode, C-axis manual 4.3), so their actual
+/// position, which start holds, is no move of the block.
 std::optional<MotionError> PlanBlockMotion(const nc::PreparedBlock& block,
                                            const std::vector<double>& start,
                                            const std::vector<double>& translation,
                                            const std::vector<axes::AxisParameters>& axes,
-                                           double spindle_rev_per_s, BlockMotion& out);
+                                           double spindle_rev_per_s, BlockMotion& out,
+                                           uint64_t follow_up = 0);
 
 }  // namespace vmt::control::channel

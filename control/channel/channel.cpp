@@ -375,6 +375,16 @@ DriveSetpoint Channel::SpindleSetpoint() const {
   return sp;
 }
 
+uint64_t Channel::FollowUpAxes(const nc::PreparedBlock& b) const {
+  // Outside rotary axis mode the rotary axis tracks its actual position (HeadstockCycle); a
+  // block that does not program it leaves it there rather than moving it back to where the
+  // program last put it (with a load-side encoder it reads the turning spindle).
+  if (!headstock_ || config_.rotary_axis < 0 || headstock_->mode() == axes::HeadstockMode::kRotary)
+    return 0;
+  const uint64_t bit = uint64_t{1} << config_.rotary_axis;
+  return b.programmed & bit ? 0 : bit;
+}
+
 bool Channel::RunBlock(const AmplifierTelegram& at) {
   const nc::Program& program = *ProgramOf(block_.program);
   if (headstock_) {
@@ -586,7 +596,7 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
     }
 
   if (const auto error = PlanBlockMotion(block_, commanded_, translation_, config_.axes,
-                                         SpindleRevPerS(at), motion_)) {
+                                         SpindleRevPerS(at), motion_, FollowUpAxes(block_))) {
     Fail(program, block_.block, error->text, error->number);
     return false;
   }

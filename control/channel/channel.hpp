@@ -278,6 +278,8 @@ class Channel {
   DriveSetpoint spindle_;
   // Headstock changeover: the mode a block needs, the one the block in work waits for.
   axes::HeadstockMode ModeNeeded(const nc::PreparedBlock& b) const;
+  /// The rotary axis as a PlanBlockMotion follow_up bit while the NC does not position it.
+  uint64_t FollowUpAxes(const nc::PreparedBlock& b) const;
   void HeadstockCycle(const AmplifierTelegram& at, double dt);
   /// A changeover commanded by a manual key (jog of the rotary axis, spindle keys).
   void ManualChangeover(axes::HeadstockMode target);

@@ -9,7 +9,9 @@ the networks and what vmt adds), run against `vmt serve SCENE --lockstep`:
     examples/plc/c_axis_changeover.py --port 5020 --signals signals.json
 
 With --wrong it runs the deliberately wrong variant (acknowledges ROTMOD_Q as soon as the valve
-is switched, without waiting for IROTMODE), whose consequence the NC reports.
+is switched, without waiting for IROTMODE), whose consequence the NC reports: against
+scenes/fault-changeover-wrong-plc.yaml, C lags on the spindle's encoder and the NC stops with
+504, as with the embedded c_axis_changeover_wrong (tests/cli/serve_test.sh).
 machine_panel.py runs this program as one of its networks.
 
 Needs python3-pymodbus (Debian package).

@@ -72,6 +72,13 @@ bool DogClutchLogic::Step(const DogClutch& k, bool valve_engage, bool valve_rele
       if (stroke_left_s <= 0) state = ClutchState::kReleased;
       break;
   }
+  const bool ratchets =
+      state == ClutchState::kBlocked && std::abs(slip_rad_s) > k.max_relative_speed_rad_s;
+  if (ratchets && !ratcheting) {
+    ++clashes;
+    clash_slip_rad_s = slip_rad_s;
+  }
+  ratcheting = ratchets;
   return state != before;
 }
 

@@ -20,6 +20,12 @@ const char* ToString(ClutchState state);
 struct DogClutchLogic {
   ClutchState state = ClutchState::kReleased;
   double stroke_left_s = 0;
+  /// Clashes so far: the dogs pushed in (blocked) while the halves turned against each other
+  /// faster than max_relative_speed, so they ratchet over each other's teeth instead of meshing.
+  /// One clash per spell of ratcheting.
+  int clashes = 0;
+  bool ratcheting = false;
+  double clash_slip_rad_s = 0;  ///< load-side relative speed when the last clash began
 
   /// Relative tooth phase error (load side) in (-pitch/2, pitch/2] of load angle vs motor angle.
   static double PhaseError(const DogClutch& k, double q_motor, double q_load);

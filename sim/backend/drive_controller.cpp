@@ -20,6 +20,16 @@ double Wrap(double a) {
   return a;
 }
 
+// A servo's position error: with modulo scaling the shorter way round.
+double PositionError(const DriveParams& p, double command, double position) {
+  const double e = command - position;
+  if (p.modulo <= 0) return e;
+  double w = std::fmod(e, p.modulo);
+  if (w <= -p.modulo / 2) w += p.modulo;
+  if (w > p.modulo / 2) w -= p.modulo;
+  return w;
+}
+
 }  // namespace
 
 control::DriveSetpoint ToSi(const DriveParams& p, const control::DriveSetpoint& sp) {
@@ -82,7 +92,7 @@ double DriveController::VelocityReference(const control::DriveSetpoint& sp, doub
   if (!g.spindle) {
     // Servo: proportional position loop; the master interpolates, the drive only follows.
     // With feed-forward (G06) the loop only corrects what the feed-forward leaves.
-    const double v = g.kv_per_s * (sp.value - position) + sp.velocity_feedforward;
+    const double v = g.kv_per_s * PositionError(*p_, sp.value, position) + sp.velocity_feedforward;
     return std::clamp(v, -g.velocity_limit, g.velocity_limit);
   }
   // Spindle orientation (M19): the command is an angle modulo one turn; the drive picks the
@@ -135,7 +145,10 @@ control::DriveFeedback DriveController::Feedback(double position, double velocit
   // floor(x + 0.5), not round(): the same for an encoder, and no libm call on the hot path.
   const double quantised = std::floor(position * counts_per_unit_ + 0.5) * res;
   control::DriveFeedback fb;
-  fb.position = quantised * unit;
+  // Modulo scaling: the drive reports the position within [0, modulo).
+  const double reported =
+      p_->modulo > 0 ? quantised - p_->modulo * std::floor(quantised / p_->modulo) : quantised;
+  fb.position = reported * unit;
   fb.velocity = velocity * unit;
   fb.torque = torque;
   // A trip of this tick shows at once, though the power stage goes off with the next tick.
@@ -146,9 +159,10 @@ control::DriveFeedback DriveController::Feedback(double position, double velocit
   if (saturated_) fb.status |= kTorqueLimit;
   if (mode == control::DriveMode::kPosition) {
     const double target = g.spindle ? orient_target_ : command_;
-    fb.following_error = (target - quantised) * unit;
-    if (std::abs(target - quantised) < g.in_position_window) fb.status |= kInPosition;
-    if (std::abs(target - quantised) > g.following_error_limit) fb.status |= kFollowingError;
+    const double error = g.spindle ? target - quantised : PositionError(*p_, target, quantised);
+    fb.following_error = error * unit;
+    if (std::abs(error) < g.in_position_window) fb.status |= kInPosition;
+    if (std::abs(error) > g.following_error_limit) fb.status |= kFollowingError;
   }
   if (mode == control::DriveMode::kVelocity) {
     const double target = std::clamp(command_, -g.velocity_limit, g.velocity_limit);

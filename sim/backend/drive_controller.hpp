@@ -22,6 +22,10 @@
 // - kOverspeed: |velocity| (motor side, in load units) above kOverspeedFactor x the active set's
 //   velocity limit, in any mode (a servo dragged through an engaged clutch);
 // - kParameterSetError: the setpoint names a set the drive does not have.
+// Modulo scaling (DriveParams::modulo): the feedback position is reported within one modulo
+// (a rotary axis' 0..360 degrees) and a servo's position loop and following error take the
+// shorter way between command and position, so an NC command need not be wrapped.
+//
 // A trip latches. A setpoint with mode kOff (controller enable removed, as a SERCOS drive's
 // fault reset needs) resets it once the cause is gone: the named set exists and the speed is
 // below the overspeed threshold. The overload count starts again from 0.

@@ -30,6 +30,8 @@ class MachineBackend : public control::DriveBus {
   /// Joint positions (m | rad), one per model joint: what the renderer and PathGuard pose.
   virtual std::vector<double> JointPositions() const = 0;
   virtual ClutchState Clutch(int index) const = 0;
+  /// The clutch's logic: state, stroke and clashes (dogs ratcheting at speed).
+  virtual const DogClutchLogic& ClutchLogic(int index) const = 0;
   /// Stroke of an actuator (machine.yaml order): 0 off end .. 1 on end.
   virtual double ActuatorStroke(int index) const = 0;
   virtual const MachineModel& model() const = 0;

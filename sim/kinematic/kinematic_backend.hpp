@@ -25,6 +25,7 @@ class KinematicBackend : public MachineBackend {
   double time_s() const override { return ticks_ * kDriveTickS; }
   std::vector<double> JointPositions() const override { return q_; }
   ClutchState Clutch(int index) const override { return clutches_[index].state; }
+  const DogClutchLogic& ClutchLogic(int index) const override { return clutches_[index]; }
   double ActuatorStroke(int index) const override { return actuators_[index].stroke; }
   const MachineModel& model() const override { return *model_; }
 

@@ -150,8 +150,8 @@ DriveParams ReadDrive(const MachineModel& m, const YamlNode& d) {
   d.AllowKeys({"name", "kind", "type", "joint", "ratio", "kv", "velocity_kp", "velocity_ti",
                "torque_limit", "velocity_limit", "acceleration_limit", "encoder_resolution",
                "in_position_window", "standstill_window", "following_error_limit",
-               "positioning_speed", "encoder", "load_joint", "overload_time", "parameter_sets",
-               "spec"});
+               "positioning_speed", "encoder", "load_joint", "modulo", "overload_time",
+               "parameter_sets", "spec"});
   DriveParams p;
   p.info.name = d["name"].String();
   const std::string kind = d["kind"].String();
@@ -176,6 +176,11 @@ DriveParams ReadDrive(const MachineModel& m, const YamlNode& d) {
   if (p.encoder_resolution <= 0) d["encoder_resolution"].Fail("must be > 0");
   p.overload_time_s = d.Double("overload_time", 1.0);
   if (p.overload_time_s <= 0) d["overload_time"].Fail("must be > 0");
+  if (d.Has("modulo")) {
+    if (p.info.kind != control::AxisKind::kRotary) d["modulo"].Fail("only a rotary drive has one");
+    p.modulo = d["modulo"].Double() * s;
+    if (!(p.modulo > 0)) d["modulo"].Fail("must be > 0 (degrees)");
+  }
 
   p.parameter_sets.push_back(static_cast<const DriveParameterSet&>(p));
   if (d.Has("parameter_sets")) {

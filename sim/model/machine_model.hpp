@@ -81,6 +81,11 @@ struct DriveParams : DriveParameterSet {
   /// (motor_joint / ratio).
   int load_joint = -1;
   double encoder_resolution = 0;  ///< m | rad, load side
+  /// `modulo:` (rotary drives): the position is modulo this (rad), as a SERCOS drive with
+  /// modulo scaling (S-0-0076, S-0-0103) reports it, and the position loop takes the shorter
+  /// way to its command. 0: absolute. A C axis that reads the spindle's encoder needs it: in
+  /// spindle mode the spindle turns thousands of degrees under it.
+  double modulo = 0;
   /// The amplifier trips (kOverload) after this long at its torque limit, s (net: time below
   /// the limit counts back down).
   double overload_time_s = 1;

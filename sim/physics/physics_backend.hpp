@@ -37,6 +37,7 @@ class PhysicsBackend : public MachineBackend {
   double time_s() const override { return ticks_ * kDriveTickS; }
   std::vector<double> JointPositions() const override;
   ClutchState Clutch(int index) const override { return clutches_[index].state; }
+  const DogClutchLogic& ClutchLogic(int index) const override { return clutches_[index]; }
   double ActuatorStroke(int index) const override { return actuators_[index].stroke; }
   const MachineModel& model() const override { return *model_; }
 

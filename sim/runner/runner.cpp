@@ -150,6 +150,7 @@ struct SceneRun::State {
   std::vector<bool> snapped, checked;
   std::vector<ExpectationResult> checks;
   std::vector<ClutchState> clutches, last_clutches;
+  std::vector<int> last_clashes;  ///< clashes of each clutch reported so far
   std::vector<uint8_t> last_inputs;
   std::vector<uint32_t> last_faults;  ///< per drive: its fault bits at the last tick
   control::MasterTelegram mdt;
@@ -334,6 +335,21 @@ void SceneRun::State::Step() {
                   {"event", "clutch"},
                   {"name", m.clutches[k].name},
                   {"state", ToString(clutches[k])}});
+  // A clash: the dogs pushed in while the halves turn against each other too fast (the clutch
+  // refuses and ratchets), with that relative speed, deg/s on the load side.
+  last_clashes.resize(clutches.size(), 0);
+  for (size_t k = 0; k < clutches.size(); ++k) {
+    const DogClutchLogic& logic = backend->ClutchLogic(static_cast<int>(k));
+    if (logic.clashes == last_clashes[k]) continue;
+    last_clashes[k] = logic.clashes;
+    emit_event({{"t", t},
+                {"event", "clutch"},
+                {"name", m.clutches[k].name},
+                {"state", "clash"},
+                {"relative_speed", std::round(logic.clash_slip_rad_s * kDegPerRad * 1e3) / 1e3},
+                {"max_relative_speed",
+                 std::round(m.clutches[k].max_relative_speed_rad_s * kDegPerRad * 1e3) / 1e3}});
+  }
   for (size_t i = 0; i < at.inputs.size(); ++i)
     if (!m.io[i].is_output && !m.io[i].key &&
         (last_inputs.empty() || at.inputs[i] != last_inputs[i]))

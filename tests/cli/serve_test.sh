@@ -74,6 +74,29 @@ if start_serve "$out/panel_external" lockstep; then
     { fail "panel signal changes differ"; diff "$out/panel_embedded.signals" "$out/panel_external.signals" | head; }
   grep -q '"expectations_failed": 0' "$out/panel_external/summary.json" || fail "external panel expectations failed"
 fi
+# The wrong C-axis changeover PLC in Python (--wrong: ROTMOD_Q before the clutch meshed) gives
+# the embedded wrong variant's run: the same trace, signal changes and NC error (504, C's
+# following error).
+scene=$src/scenes/fault-changeover-wrong-plc.yaml
+"$vmt" run "$scene" --out "$out/wrong_embedded" >"$out/wrong_embedded.log" 2>&1 || fail "embedded wrong-PLC run"
+if start_serve "$out/wrong_external" lockstep "$scene"; then
+  timeout 120 "$python" "$src/examples/plc/c_axis_changeover.py" --wrong --port "$port" \
+    --signals "$out/signals.json" >"$out/wrong_client.log" 2>&1 || { fail "python wrong PLC"; cat "$out/wrong_client.log"; }
+  wait $serve_pid || { fail "vmt serve (wrong PLC) exit $?"; cat "$out/wrong_external/serve.log"; }
+  d1=$(grep -o '"trace_digest": "[0-9a-f]*"' "$out/wrong_embedded/summary.json")
+  d2=$(grep -o '"trace_digest": "[0-9a-f]*"' "$out/wrong_external/summary.json")
+  [ -n "$d1" ] && [ "$d1" = "$d2" ] || fail "wrong PLC trace digest embedded $d1 vs external $d2"
+  for run in wrong_embedded wrong_external; do
+    grep -q '"name":"P00S.ERRNR","value":504.0' "$out/$run/events.jsonl" || fail "$run: no message 504"
+    grep -q '"state":"error","error":"axis C: following error beyond its limit"' \
+      "$out/$run/events.jsonl" || fail "$run: no following error of C"
+  done
+  grep '"signal"' "$out/wrong_embedded/events.jsonl" >"$out/wrong_embedded.signals"
+  grep '"signal"' "$out/wrong_external/events.jsonl" >"$out/wrong_external.signals"
+  cmp -s "$out/wrong_embedded.signals" "$out/wrong_external.signals" ||
+    { fail "wrong PLC signal changes differ"; diff "$out/wrong_embedded.signals" "$out/wrong_external.signals" | head; }
+  grep -q '"expectations_failed": 0' "$out/wrong_external/summary.json" || fail "external wrong-PLC expectations failed"
+fi
 
 # The C-axis changeover (4.4) over Modbus: the Python program takes the place of the one the
 # runner runs for a scene without plc:, writes the AXD idents (DINT registers) and switches the

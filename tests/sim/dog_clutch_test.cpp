@@ -23,6 +23,9 @@ class DogClutchTest : public ::testing::TestWithParam<BackendKind> {
 TEST_P(DogClutchTest, RefusesWhileTheSpindleTurns) {
   auto backend = Make();
   Bench bench(*backend);
+  // Spindle mode: C's enable is off (C-axis manual 4.3), else its position loop, which reads
+  // the spindle's encoder, would chase the spindle.
+  bench.Command("C", DriveMode::kOff, 0);
   bench.Command("S1", DriveMode::kVelocity, 100 * 6);  // 100 rpm against a C servo at rest
   bench.Run(1.0);
   bench.Output("QROTMODE", true);
@@ -37,6 +40,7 @@ TEST_P(DogClutchTest, RefusesWhileTheSpindleTurns) {
 TEST_P(DogClutchTest, StaysBlockedToothOnToothThenMeshesWhileHunting) {
   auto backend = Make();
   Bench bench(*backend);
+  bench.Command("C", DriveMode::kOff, 0);  // spindle mode: C idles
   // Orient the spindle to half a tooth pitch (7.5 deg): the dogs sit on each other.
   bench.Command("S1", DriveMode::kPosition, 7.5);
   ASSERT_GT(bench.RunUntil(
@@ -89,6 +93,35 @@ TEST_P(DogClutchTest, MeshesAtOnceWhenAlignedAndStill) {
   const double t = bench.RunUntil([&] { return bench.Input("IROTMODE"); }, 1);
   ASSERT_GT(t, 0);
   EXPECT_NEAR(t, Lathe().clutches[0].engage_time_s, 2 * kDriveTickS);
+}
+
+// A clash is a spell of ratcheting: pushed in (blocked) while the halves turn against each other
+// faster than max_relative_speed. It is counted once per spell, with the speed it began at.
+TEST(DogClutchLogicTest, CountsEachSpellOfRatchetingAsOneClash) {
+  const DogClutch& k = Lathe().clutches[0];
+  DogClutchLogic logic;
+  const double fast = 10 * k.max_relative_speed_rad_s, slow = 0.5 * k.max_relative_speed_rad_s;
+  const double off_phase = k.phase_tolerance_rad * 3;
+  auto step = [&](double slip) { logic.Step(k, true, false, off_phase, slip, kDriveTickS); };
+  step(fast);
+  double travel_s = 0;
+  while (logic.state == ClutchState::kEngaging && travel_s < 1) {
+    EXPECT_EQ(logic.clashes, 0) << "the dogs are still travelling";
+    step(fast);
+    travel_s += kDriveTickS;
+  }
+  EXPECT_NEAR(travel_s, k.engage_time_s, 1.5 * kDriveTickS);
+  EXPECT_EQ(logic.state, ClutchState::kBlocked);
+  EXPECT_EQ(logic.clashes, 1);
+  EXPECT_DOUBLE_EQ(logic.clash_slip_rad_s, fast);
+  for (int i = 0; i < 100; ++i) step(fast);
+  EXPECT_EQ(logic.clashes, 1) << "one spell, one clash";
+  step(slow);  // tooth on tooth, slowly: no clash
+  EXPECT_FALSE(logic.ratcheting);
+  step(-fast);
+  EXPECT_EQ(logic.clashes, 2);
+  EXPECT_DOUBLE_EQ(logic.clash_slip_rad_s, -fast);
+  EXPECT_EQ(logic.state, ClutchState::kBlocked);
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, DogClutchTest,

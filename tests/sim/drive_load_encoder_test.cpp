@@ -5,11 +5,8 @@
 // the kinematic one moves the motor joint at the velocity reference, and the spindle, in
 // another coupled group, stays.
 //
-// lathe-c1 itself keeps the motor encoder on C for now: its scenes and tests hold C in position
-// control from power-on, and with the spindle encoder such a C drives its motor flat out
-// against the turning spindle's encoder (as the real one would: its enable belongs off in
-// spindle mode, which the changeover sequence of the next issue does). So these tests use
-// lathe-c1 with the two keys added.
+// lathe-c1's C has this encoder (machine.yaml `encoder: load`, `load_joint: spindle`, modulo
+// 360): its enable is off in spindle mode, as the changeover sequence (4.3, 4.4) switches it.
 
 #include <gtest/gtest.h>
 
@@ -24,15 +21,7 @@ using control::DriveMode;
 using namespace control::drive_status;
 using testing::Bench;
 
-const MachineModel& Lathe() {
-  static const MachineModel model = testing::EditedLathe("c_load_encoder", [](std::string s) {
-    return testing::ReplaceOnce(s, "    ratio: 8                # motor turns per spindle turn\n",
-                                "    ratio: 8                # motor turns per spindle turn\n"
-                                "    encoder: load\n"
-                                "    load_joint: spindle\n");
-  });
-  return model;
-}
+using testing::Lathe;
 
 class LoadEncoderTest : public ::testing::TestWithParam<BackendKind> {};
 
@@ -63,16 +52,47 @@ TEST_P(LoadEncoderTest, ClutchOpenTheMotorTurnsTheSpindleDoesNot) {
   EXPECT_GT(q[m.JointIndex("c_motor")] / 8 * kDegPerRad, 90);
 }
 
-// Why lathe-c1 keeps the motor encoder for now: a C left in position control while the spindle
-// turns in spindle mode sees its encoder run away and drives its motor flat out against it.
-TEST_P(LoadEncoderTest, EnabledCRunsAwayWhileTheSpindleTurns) {
+// Why C's enable belongs off in spindle mode: a C left in position control while the spindle
+// turns sees its encoder run away, drives its motor back towards its command (the motor turns,
+// the spindle encoder it reads runs on) and lags into its following error limit.
+TEST_P(LoadEncoderTest, EnabledCLagsWhileTheSpindleTurns) {
   auto backend = MakeBackend(GetParam(), Lathe(), {});
   Bench bench(*backend);
   bench.Command("C", DriveMode::kPosition, 0);
   bench.Command("S1", DriveMode::kVelocity, 300 * 6);
+  const double t = bench.RunUntil([&] { return bench.Feedback("C").status & kFollowingError; }, 1);
+  ASSERT_GT(t, 0) << "C never reported its following error";
+  EXPECT_LT(bench.Feedback("C").velocity, -600) << "C drives back towards its command";
+}
+
+// Modulo 360: the feedback stays within one turn, however far the spindle has turned, and a
+// command a turn away is the same position (the shorter way round).
+TEST_P(LoadEncoderTest, ModuloPositionWithinOneTurn) {
+  const MachineModel& m = Lathe();
+  auto backend = MakeBackend(GetParam(), m, {});
+  Bench bench(*backend);
+  bench.Command("C", DriveMode::kOff, 0);
+  bench.Command("S1", DriveMode::kVelocity, 300 * 6);
   bench.Run(1.0);
-  EXPECT_NEAR(bench.Feedback("C").velocity, -1200, 30);  // back towards 0, at its limit
-  EXPECT_TRUE(bench.Feedback("C").status & kFollowingError);
+  bench.Command("S1", DriveMode::kVelocity, 0);
+  bench.Run(0.5);
+  const double spindle_deg = backend->JointPositions()[m.JointIndex("spindle")] * kDegPerRad;
+  ASSERT_GT(spindle_deg, 720);
+  const double c = bench.Feedback("C").position;
+  EXPECT_GE(c, 0);
+  EXPECT_LT(c, 360);
+  EXPECT_NEAR(c, std::fmod(spindle_deg, 360.0), 0.001);
+  // Engaged, a command 720 deg + 10 deg away moves the spindle by 10 deg, not two turns.
+  bench.Command("S1", DriveMode::kOff, 0);
+  bench.Output("QROTMODE", true);
+  bench.Command("C", DriveMode::kVelocity, 6);  // hunting
+  ASSERT_GT(bench.RunUntil([&] { return bench.Input("IROTMODE"); }, 4), 0);
+  const double before = backend->JointPositions()[m.JointIndex("spindle")] * kDegPerRad;
+  bench.Command("C", DriveMode::kPosition, bench.Feedback("C").position + 730);
+  bench.Run(1.0);
+  const double after = backend->JointPositions()[m.JointIndex("spindle")] * kDegPerRad;
+  EXPECT_NEAR(after - before, 10, 0.05);
+  EXPECT_FALSE(bench.Feedback("C").status & kFollowingError);
 }
 
 TEST_P(LoadEncoderTest, ClutchEngagedCPositionsOnTheSpindleEncoder) {

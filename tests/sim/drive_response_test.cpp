@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "sim_test_support.hpp"
 
@@ -33,8 +34,13 @@ TEST_P(ServoStepTest, SettlesWithinSpec) {
 
   InitialState init;
   init.drive_positions[c.drive] = 100;
+  // C reads the spindle's encoder and moves the spindle only through clutch K: rotary axis
+  // mode, K engaged and the spindle drive idle (C-axis manual 4.4).
+  const bool c_axis = std::string(c.drive) == "C";
+  if (c_axis) init.clutch_engaged["K"] = true;
   PhysicsBackend backend(m, init);
   Bench bench(backend);
+  if (c_axis) bench.Command("S1", DriveMode::kOff, 0);
   bench.Output("QTURRET_UNCLAMP", true);  // the turret moves only unclamped
   bench.Run(0.1);
   const double t0 = backend.time_s();
