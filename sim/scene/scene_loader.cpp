@@ -17,8 +17,12 @@
 namespace vmt::sim {
 namespace {
 
+// An axis by its drive's name, or by the name of an NC axis of the machine: on a main spindle
+// with rotary axis capability (C-axis manual 2.2) C is the rotary axis designation of drive S1.
 int RequireDrive(const MachineModel& m, const YamlNode& n) {
-  const int d = m.DriveIndex(n.String());
+  int d = m.DriveIndex(n.String());
+  for (const control::axes::AxisParameters& a : m.nc.axes)
+    if (d < 0 && a.name == n.String()) d = a.drive;
   if (d < 0) n.Fail("no axis '" + n.String() + "' in the machine model");
   return d;
 }
