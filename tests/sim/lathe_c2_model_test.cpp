@@ -8,6 +8,9 @@
 #include <cmath>
 #include <fstream>
 
+#include "sim/backend/drive_controller.hpp"
+#include "sim/model/gateway_layout.hpp"
+#include "sim/model/model_error.hpp"
 #include "sim_test_support.hpp"
 
 namespace vmt::sim {
@@ -79,6 +82,12 @@ TEST(LatheC2ModelTest, CIsTheRotaryAxisDesignationOfTheSpindle) {
   EXPECT_DOUBLE_EQ(c.in_position_window, 0.005);
   EXPECT_TRUE(c.rotary);
   EXPECT_EQ(c.travel_min, c.travel_max);  // endless (2.2: "unlimited rotary axes")
+  // One axis interface (4.2) for both modes: A03, spindle-capable, with the name C.
+  const control::gateway::GatewayLayout layout = GatewayLayoutOf(m);
+  ASSERT_EQ(layout.axes.size(), 3u);
+  EXPECT_EQ(layout.axes[2].number, 3);
+  EXPECT_EQ(layout.axes[2].name, "C");
+  EXPECT_TRUE(layout.axes[2].spindle_capable);
 }
 
 TEST(LatheC2ModelTest, RotaryAxisOnTheSpindleDriveErrors) {
@@ -111,6 +120,28 @@ TEST(LatheC2ModelTest, RotaryAxisOnTheSpindleDriveErrors) {
                                     s, "      acceleration: 6000    # deg/s^2 (set 1)", "");
                               }),
             "");
+}
+
+// The drive works with the gains of the set the setpoint selects and reports it (S-0-0254):
+// set 1's position loop Kv 30 and velocity loop P 1.5 N m per deg/s in rotary axis mode, set 0's
+// velocity loop P 0.8 N m per deg/s in spindle mode (speed control).
+TEST(LatheC2ModelTest, S1WorksWithTheGainsOfTheSelectedSet) {
+  const MachineModel& m = LatheC2();
+  const DriveParams& p = m.drives[m.DriveIndex("S1")];
+  DriveController drive(p);
+  const double dt = kDriveTickS, one_deg = 1 / kDegPerRad;
+  // Position control, set 1: 1 deg of following error asks for Kv x 1 deg/s.
+  const control::DriveSetpoint rotary{DriveMode::kPosition, 1, 1};
+  const double v_ref = drive.VelocityReference(ToSi(p, rotary), 0, 0, dt);
+  EXPECT_NEAR(v_ref, 30 * one_deg, 1e-9);
+  EXPECT_NEAR(drive.Torque(v_ref, 0, dt), 1.5 * 30 * (1 + dt / 0.02), 1e-6);
+  EXPECT_EQ(drive.Feedback(0, 0, 0).parameter_set, 1);
+  // Speed control, set 0 (at standstill: bumpless), 1 deg/s of speed error.
+  DriveController spindle(p);
+  const control::DriveSetpoint speed{DriveMode::kVelocity, 1, 0};
+  const double s_ref = spindle.VelocityReference(ToSi(p, speed), 0, 0, dt);
+  EXPECT_NEAR(spindle.Torque(s_ref, s_ref - one_deg, dt), 0.8 * (1 + dt / 0.03), 1e-6);
+  EXPECT_EQ(spindle.Feedback(0, 0, 0).parameter_set, 0);
 }
 
 class LatheC2SpindleTest : public ::testing::TestWithParam<BackendKind> {};
