@@ -65,6 +65,9 @@ struct DriveFeedback {
   double torque = 0;           ///< motor torque referred to the load
   double following_error = 0;  ///< position mode: command - actual
   uint32_t status = 0;
+  /// The parameter set the drive works with (SERCOS S-0-0254, current parameter set): the one
+  /// the setpoint last selected (S-0-0217) among the sets it has.
+  uint8_t parameter_set = 0;
 };
 
 /// One drive on the bus, as the machine YAML declares it.

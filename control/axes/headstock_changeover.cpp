@@ -42,6 +42,7 @@ void HeadstockChangeover::TakeModeFromPlc(const HeadstockPlc& plc) {
           : plc.rotmod_q              ? HeadstockMode::kRotary
                                       : HeadstockMode::kSpindle;
   take_over_rotary_ = mode_ == HeadstockMode::kRotary;
+  parameter_set_ = SetOf(mode_);  // 2.3: the related drive parameter record is made active
 }
 
 void HeadstockChangeover::Request(HeadstockMode target) {
@@ -84,13 +85,16 @@ bool HeadstockChangeover::Cycle(const HeadstockPlc& plc, const AmplifierTelegram
       }
       return true;
     case ChangeoverPhase::kInternal:
-      // (2): decelerate in speed control; the parameter set goes with the setpoints.
+      // (2): decelerate in speed control with the set in use, then at standstill activate the
+      // parameter set of the new mode.
       spindle_fn_.setpoint = rotary_fn_.setpoint = {DriveMode::kVelocity, 0, 0};
       // 2.3 Immediate Stop: the internal sequence stops and its commands stay pending, so no
       // ROTMOD / SPMOD goes out to the PLC while the stop is in force.
       if (!plc.stop && Standstill(at, config_.spindle_drive) &&
-          Standstill(at, config_.rotary_drive))
+          Standstill(at, config_.rotary_drive)) {
         phase_ = ChangeoverPhase::kExternal;
+        parameter_set_ = SetOf(target_);
+      }
       return true;
     case ChangeoverPhase::kExternal: {
       RunFunction(spindle_fn_, plc.spindle_axd, at.feedback[config_.spindle_drive], plc.stop,
@@ -163,20 +167,16 @@ void HeadstockChangeover::WriteSetpoints(const DriveSetpoint& spindle,
   (void)at;
   const DriveSetpoint off{DriveMode::kOff, 0, 0};
   const DriveSetpoint still{DriveMode::kVelocity, 0, 0};
-  const uint8_t rotary_set = config_.rotary_parameter_set;
   if (!config_.separate_servo()) {
     // Section 2: one drive, speed control with set 0 or position control with the rotary set.
     DriveSetpoint sp = still;
-    if (busy()) {
+    if (busy())
       sp = spindle_fn_.setpoint;
-      sp.parameter_set = target_ == HeadstockMode::kRotary ? rotary_set : 0;
-    } else if (mode_ == HeadstockMode::kSpindle) {
+    else if (mode_ == HeadstockMode::kSpindle)
       sp = spindle;
-      sp.parameter_set = 0;
-    } else if (mode_ == HeadstockMode::kRotary) {
+    else if (mode_ == HeadstockMode::kRotary)
       sp = rotary;
-      sp.parameter_set = rotary_set;
-    }
+    sp.parameter_set = parameter_set_;
     mdt.setpoints[config_.spindle_drive] = spindle_ready_ ? sp : off;
     return;
   }

@@ -132,6 +132,10 @@ class HeadstockChangeover {
   void RunFunction(Function& f, const std::array<int64_t, 4>& axd, const DriveFeedback& fb,
                    bool stop, double dt_s) const;
   void Enter(HeadstockMode target);
+  /// The drive parameter set of a mode (section 2): the rotary one in rotary axis mode, else 0.
+  uint8_t SetOf(HeadstockMode m) const {
+    return m == HeadstockMode::kRotary ? config_.rotary_parameter_set : 0;
+  }
   bool Preselected(HeadstockMode m) const {
     return (phase_ == ChangeoverPhase::kExternal && target_ == m) ||
            (phase_ == ChangeoverPhase::kNone && mode_ == m);
@@ -145,6 +149,10 @@ class HeadstockChangeover {
   Function spindle_fn_, rotary_fn_;
   bool spindle_ready_ = true, rotary_ready_ = true;
   bool take_over_rotary_ = false;
+  /// Section 2: the parameter set the one drive runs with. It changes only at standstill (the
+  /// end of the internal changeover, 4.2): the rotary set's velocity limit is far below the
+  /// spindle's speed, and a drive switched while turning faster trips (overspeed).
+  uint8_t parameter_set_ = 0;
   std::string error_;
 };
 

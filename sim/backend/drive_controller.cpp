@@ -151,6 +151,7 @@ control::DriveFeedback DriveController::Feedback(double position, double velocit
   fb.position = reported * unit;
   fb.velocity = velocity * unit;
   fb.torque = torque;
+  fb.parameter_set = set_number_;
   // A trip of this tick shows at once, though the power stage goes off with the next tick.
   const control::DriveMode mode = faults_ ? control::DriveMode::kOff : mode_;
   fb.status = faults_ ? faults_ : kReady;

@@ -64,6 +64,36 @@ control::axes::AxisParameters ReadAxis(const MachineModel& m, const YamlNode& n,
   return a;
 }
 
+// C-axis manual 2.2: a main spindle with rotary axis capability is one axis with one axis
+// parameter record and two designations (S1 in main spindle mode, C in rotary axis mode), so
+// the rotary axis has the spindle's axis number. Its speeds and windows are those of the drive
+// parameter set used for rotary mode, not of the spindle's set 0.
+void RotaryAxisOnTheSpindleDrive(const MachineModel& m, const YamlNode& axis, const YamlNode& sp,
+                                 NcMachineData& nc) {
+  control::axes::AxisParameters& a = nc.axes[nc.rotary_axis];
+  if (!sp.Has("number")) nc.spindle_number = a.number;
+  if (a.number != nc.spindle_number)
+    axis["number"].Fail("must be the spindle's number " + std::to_string(nc.spindle_number) +
+                        ": the rotary axis of a spindle with rotary axis capability is the same "
+                        "axis (C-axis manual 2.2)");
+  const DriveParams& d = m.drives[nc.spindle_drive];
+  if (nc.rotary_parameter_set >= static_cast<int>(d.parameter_sets.size()))
+    sp["rotary_parameter_set"].Fail("drive " + d.info.name + " has no parameter set " +
+                                    std::to_string(nc.rotary_parameter_set));
+  const DriveParameterSet& set = d.parameter_sets[nc.rotary_parameter_set];
+  const std::string which =
+      "drive " + d.info.name + "'s parameter set " + std::to_string(nc.rotary_parameter_set);
+  if (!axis.Has("rapid"))
+    a.rapid_per_s = set.velocity_limit * kDegPerRad;
+  else if (a.rapid_per_s > set.velocity_limit * kDegPerRad * (1 + 1e-9))
+    axis["rapid"].Fail("faster than the velocity_limit of " + which);
+  if (!axis.Has("acceleration"))
+    a.acceleration = set.acceleration_limit * kDegPerRad;
+  else if (a.acceleration > set.acceleration_limit * kDegPerRad * (1 + 1e-9))
+    axis["acceleration"].Fail("above the acceleration_limit of " + which);
+  if (!axis.Has("Cxx.023")) a.in_position_window = set.in_position_window * kDegPerRad;
+}
+
 }  // namespace
 
 control::axes::ZeroOffsetTable ReadZeroOffsets(
@@ -164,6 +194,8 @@ NcMachineData ReadNcMachineData(const MachineModel& m, const YamlNode& node) {
       for (const auto& a : nc.axes)
         if (a.number == nc.spindle_number && a.drive != nc.spindle_drive)
           sp["number"].Fail("axis number used twice");
+      if (nc.rotary_axis >= 0 && nc.axes[nc.rotary_axis].drive == nc.spindle_drive)
+        RotaryAxisOnTheSpindleDrive(m, axes[nc.rotary_axis], sp, nc);
     }
   }
   if (node.Has("zero_offsets")) nc.zero_offsets = ReadZeroOffsets(nc.axes, node["zero_offsets"]);

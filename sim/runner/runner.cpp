@@ -50,6 +50,7 @@ std::string TraceHeader(const MachineModel& m, bool nc) {
     const std::string& n = d.info.name;
     h += "," + n + ".cmd," + n + ".pos," + n + ".vel";
     if (d.spindle || d.info.kind == control::AxisKind::kRotary) h += "," + n + ".rpm";
+    if (d.parameter_sets.size() > 1) h += "," + n + ".set";  // S-0-0254, current set
   }
   for (const DogClutch& k : m.clutches) h += "," + k.name + ".state";
   if (nc) h += ",nc.state,nc.line";
@@ -71,6 +72,8 @@ double Measured(const Expectation& e, const control::AmplifierTelegram& at,
       return at.feedback[e.index].velocity / 6.0;
     case Q::kFollowingError:
       return at.feedback[e.index].following_error;
+    case Q::kParameterSet:
+      return at.feedback[e.index].parameter_set;
     case Q::kInput:
       return at.inputs[e.index];
     case Q::kClutch:
@@ -153,6 +156,7 @@ struct SceneRun::State {
   std::vector<int> last_clashes;  ///< clashes of each clutch reported so far
   std::vector<uint8_t> last_inputs;
   std::vector<uint32_t> last_faults;  ///< per drive: its fault bits at the last tick
+  std::vector<uint8_t> last_sets;     ///< per drive: its current parameter set at the last tick
   control::MasterTelegram mdt;
   std::vector<ProgramEvent> events;
   control::AmplifierTelegram faulted_at;  ///< the machine as the control sees it, faults applied
@@ -357,7 +361,16 @@ void SceneRun::State::Step() {
   // A drive's trips (overload, overspeed, missing parameter set) as they come and go.
   using namespace control::drive_status;
   last_faults.resize(at.feedback.size(), 0);
+  last_sets.resize(at.feedback.size(), 0);
   for (size_t d = 0; d < at.feedback.size(); ++d) {
+    // The drive's current parameter set as it changes (S-0-0254).
+    if (at.feedback[d].parameter_set != last_sets[d]) {
+      last_sets[d] = at.feedback[d].parameter_set;
+      emit_event({{"t", t},
+                  {"event", "drive"},
+                  {"name", m.drives[d].info.name},
+                  {"parameter_set", last_sets[d]}});
+    }
     const uint32_t faults = at.feedback[d].status & (kOverload | kOverspeed | kParameterSetError);
     if (faults == last_faults[d]) continue;
     nlohmann::ordered_json e = {{"t", t}, {"event", "drive"}, {"name", m.drives[d].info.name}};
@@ -382,6 +395,7 @@ void SceneRun::State::Step() {
       Append(row, fb.velocity);
       if (m.drives[d].spindle || m.drives[d].info.kind == control::AxisKind::kRotary)
         Append(row, fb.velocity / 6.0);
+      if (m.drives[d].parameter_sets.size() > 1) Append(row, fb.parameter_set);
     }
     for (ClutchState c : clutches) Append(row, static_cast<int>(c));
     if (channel) {

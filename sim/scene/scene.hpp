@@ -128,6 +128,7 @@ struct Expectation {
     kVelocity,
     kRpm,
     kFollowingError,
+    kParameterSet,  ///< the drive's current parameter set (S-0-0254)
     kInput,
     kClutch,
     kNc,

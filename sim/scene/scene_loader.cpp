@@ -17,8 +17,12 @@
 namespace vmt::sim {
 namespace {
 
+// An axis by its drive's name, or by the name of an NC axis of the machine: on a main spindle
+// with rotary axis capability (C-axis manual 2.2) C is the rotary axis designation of drive S1.
 int RequireDrive(const MachineModel& m, const YamlNode& n) {
-  const int d = m.DriveIndex(n.String());
+  int d = m.DriveIndex(n.String());
+  for (const control::axes::AxisParameters& a : m.nc.axes)
+    if (d < 0 && a.name == n.String()) d = a.drive;
   if (d < 0) n.Fail("no axis '" + n.String() + "' in the machine model");
   return d;
 }
@@ -428,8 +432,8 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
 }
 
 Expectation ReadExpectation(const MachineModel& m, const YamlNode& n, size_t i, const NcSetup& nc) {
-  n.AllowKeys({"at", "axis", "position", "velocity", "rpm", "following_error", "input", "value",
-               "clutch", "state", "tol", "nc", "signal"});
+  n.AllowKeys({"at", "axis", "position", "velocity", "rpm", "following_error", "parameter_set",
+               "input", "value", "clutch", "state", "tol", "nc", "signal"});
   Expectation e{};
   e.at_s = n.Double("at", -1);
   std::ostringstream text;
@@ -437,19 +441,30 @@ Expectation ReadExpectation(const MachineModel& m, const YamlNode& n, size_t i, 
   if (n.Has("axis")) {
     e.index = RequireDrive(m, n["axis"]);
     int quantities = 0;
-    for (const char* k : {"position", "velocity", "rpm", "following_error"}) quantities += n.Has(k);
+    for (const char* k : {"position", "velocity", "rpm", "following_error", "parameter_set"})
+      quantities += n.Has(k);
     if (quantities != 1)
-      n.Fail("an axis expectation needs exactly one of position, velocity, rpm, following_error");
-    std::string q;
-    if (n.Has("position")) e.quantity = Expectation::Quantity::kPosition, q = "position";
-    if (n.Has("velocity")) e.quantity = Expectation::Quantity::kVelocity, q = "velocity";
-    if (n.Has("rpm")) e.quantity = Expectation::Quantity::kRpm, q = "rpm";
-    if (n.Has("following_error"))
-      e.quantity = Expectation::Quantity::kFollowingError, q = "following_error";
-    e.value = n[q].Double();
-    e.tolerance = n["tol"].Double();
-    if (e.tolerance < 0) n["tol"].Fail("must be >= 0");
-    text << n["axis"].String() << " " << q << " " << Fmt(e.value) << " +- " << Fmt(e.tolerance);
+      n.Fail(
+          "an axis expectation needs exactly one of position, velocity, rpm, following_error, "
+          "parameter_set");
+    if (n.Has("parameter_set")) {
+      // A set number: exact, no tolerance.
+      e.quantity = Expectation::Quantity::kParameterSet;
+      e.value = n["parameter_set"].Int();
+      if (e.value < 0 || e.value > 7) n["parameter_set"].Fail("must be in 0..7");
+      text << n["axis"].String() << " parameter_set " << Fmt(e.value);
+    } else {
+      std::string q;
+      if (n.Has("position")) e.quantity = Expectation::Quantity::kPosition, q = "position";
+      if (n.Has("velocity")) e.quantity = Expectation::Quantity::kVelocity, q = "velocity";
+      if (n.Has("rpm")) e.quantity = Expectation::Quantity::kRpm, q = "rpm";
+      if (n.Has("following_error"))
+        e.quantity = Expectation::Quantity::kFollowingError, q = "following_error";
+      e.value = n[q].Double();
+      e.tolerance = n["tol"].Double();
+      if (e.tolerance < 0) n["tol"].Fail("must be >= 0");
+      text << n["axis"].String() << " " << q << " " << Fmt(e.value) << " +- " << Fmt(e.tolerance);
+    }
   } else if (n.Has("input")) {
     e.quantity = Expectation::Quantity::kInput;
     e.index = RequireIo(m, n["input"]);

@@ -2,10 +2,15 @@
 // spindle itself: speed control and M19 with parameter set 0, position control as the C axis
 // with set 1.
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 
+#include "sim/backend/drive_controller.hpp"
+#include "sim/model/gateway_layout.hpp"
+#include "sim/model/model_error.hpp"
 #include "sim_test_support.hpp"
 
 namespace vmt::sim {
@@ -41,6 +46,102 @@ TEST(LatheC2ModelTest, Loads) {
   EXPECT_EQ(m.nc.spindle_drive, m.DriveIndex("S1"));
   for (const Link& l : m.links)
     for (const Visual& v : l.visuals) EXPECT_FALSE(v.mesh->indices.empty()) << v.mesh_file;
+}
+
+// lathe-c2 with `edit` applied to its machine.yaml; the message of the ModelError it throws, or
+// "" if it loads.
+std::string LoadEditedLatheC2(const std::string& name,
+                              const std::function<std::string(std::string)>& edit) {
+  std::string yaml = testing::ReadBytes(testing::SourcePath("models/lathe-c2/machine.yaml"));
+  yaml = testing::ReplaceOnce(yaml, "urdf: machine.urdf",
+                              "urdf: " + testing::SourcePath("models/lathe-c2/machine.urdf"));
+  const std::string path = testing::OutputDir("edited_models") + "/" + name + ".yaml";
+  std::ofstream(path) << edit(yaml);
+  try {
+    LoadMachineModel(path);
+  } catch (const ModelError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// C-axis manual 2.2: one axis (number 3) with two designations, S1 and C, on the one drive; C's
+// limits are those of the drive's parameter set 1.
+TEST(LatheC2ModelTest, CIsTheRotaryAxisDesignationOfTheSpindle) {
+  const MachineModel& m = LatheC2();
+  const int s1 = m.DriveIndex("S1");
+  ASSERT_GE(m.nc.rotary_axis, 0);
+  const control::axes::AxisParameters& c = m.nc.axes[m.nc.rotary_axis];
+  EXPECT_EQ(c.name, "C");
+  EXPECT_EQ(c.drive, s1);
+  EXPECT_EQ(c.number, 3);
+  EXPECT_EQ(m.nc.spindle_number, 3);
+  EXPECT_EQ(m.nc.rotary_parameter_set, 1);
+  EXPECT_DOUBLE_EQ(c.rapid_per_s, 1200);
+  EXPECT_DOUBLE_EQ(c.acceleration, 6000);
+  EXPECT_DOUBLE_EQ(c.in_position_window, 0.005);
+  EXPECT_TRUE(c.rotary);
+  EXPECT_EQ(c.travel_min, c.travel_max);  // endless (2.2: "unlimited rotary axes")
+  // One axis interface (4.2) for both modes: A03, spindle-capable, with the name C.
+  const control::gateway::GatewayLayout layout = GatewayLayoutOf(m);
+  ASSERT_EQ(layout.axes.size(), 3u);
+  EXPECT_EQ(layout.axes[2].number, 3);
+  EXPECT_EQ(layout.axes[2].name, "C");
+  EXPECT_TRUE(layout.axes[2].spindle_capable);
+}
+
+TEST(LatheC2ModelTest, RotaryAxisOnTheSpindleDriveErrors) {
+  using ::testing::HasSubstr;
+  // A second axis number for the same axis.
+  EXPECT_THAT(LoadEditedLatheC2("c2_c_number",
+                                [](std::string s) {
+                                  return testing::ReplaceOnce(s, "      number: 3\n      drive: S1",
+                                                              "      number: 4\n      drive: S1");
+                                }),
+              HasSubstr("nc.axes[2].number: must be the spindle's number 3"));
+  // Faster than set 1 allows (set 0's 4000 rpm would pass).
+  EXPECT_THAT(LoadEditedLatheC2("c2_c_rapid",
+                                [](std::string s) {
+                                  return testing::ReplaceOnce(s, "rapid: 72000 ", "rapid: 90000 ");
+                                }),
+              HasSubstr("nc.axes[2].rapid: faster than the velocity_limit of drive S1's "
+                        "parameter set 1"));
+  EXPECT_THAT(LoadEditedLatheC2("c2_c_set",
+                                [](std::string s) {
+                                  return testing::ReplaceOnce(s, "rotary_parameter_set: 1",
+                                                              "rotary_parameter_set: 2");
+                                }),
+              HasSubstr("nc.spindle.rotary_parameter_set: drive S1 has no parameter set 2"));
+  // Without rapid and acceleration the axis takes set 1's.
+  EXPECT_EQ(LoadEditedLatheC2("c2_c_defaults",
+                              [](std::string s) {
+                                s = testing::ReplaceOnce(s, "      rapid: 72000 ", "      # ");
+                                return testing::ReplaceOnce(
+                                    s, "      acceleration: 6000    # deg/s^2 (set 1)", "");
+                              }),
+            "");
+}
+
+// The drive works with the gains of the set the setpoint selects and reports it (S-0-0254):
+// set 1's position loop Kv 30 and velocity loop P 1.5 N m per deg/s in rotary axis mode, set 0's
+// velocity loop P 0.8 N m per deg/s in spindle mode (speed control).
+TEST(LatheC2ModelTest, S1WorksWithTheGainsOfTheSelectedSet) {
+  const MachineModel& m = LatheC2();
+  const DriveParams& p = m.drives[m.DriveIndex("S1")];
+  DriveController drive(p);
+  const double dt = kDriveTickS, one_deg = 1 / kDegPerRad;
+  // Position control, set 1: 1 deg of following error asks for Kv x 1 deg/s.
+  const control::DriveSetpoint rotary{DriveMode::kPosition, 1, 1};
+  const double v_ref = drive.VelocityReference(ToSi(p, rotary), 0, 0, dt);
+  EXPECT_NEAR(v_ref, 30 * one_deg, 1e-9);
+  EXPECT_NEAR(drive.Torque(v_ref, 0, dt), 1.5 * 30 * (1 + dt / 0.02), 1e-6);
+  EXPECT_EQ(drive.Feedback(0, 0, 0).parameter_set, 1);
+  // Speed control, set 0 (at standstill: bumpless), 1 deg/s of speed error.
+  DriveController spindle(p);
+  const control::DriveSetpoint speed{DriveMode::kVelocity, 1, 0};
+  const double s_ref = spindle.VelocityReference(ToSi(p, speed), 0, 0, dt);
+  EXPECT_NEAR(spindle.Torque(s_ref, s_ref - one_deg, dt), 0.8 * (1 + dt / 0.03), 1e-6);
+  EXPECT_EQ(spindle.Feedback(0, 0, 0).parameter_set, 0);
 }
 
 class LatheC2SpindleTest : public ::testing::TestWithParam<BackendKind> {};

@@ -175,8 +175,9 @@ TEST_P(HeadstockChangeoverKinds, SpindleToRotaryAndBack) {
   EXPECT_EQ(r.Spindle().parameter_set, 0);
   EXPECT_TRUE(r.hs.spmod());
 
-  // (1) activate, (2) internal changeover: decelerate to standstill in speed control, with the
-  // parameter set of rotary axis mode; nothing goes to the PLC yet.
+  // (1) activate, (2) internal changeover: decelerate to standstill in speed control, still with
+  // the spindle's parameter set (4.2: decelerate, then activate the set; the rotary set's speed
+  // limit is far below the spindle's); nothing goes to the PLC yet.
   r.hs.Request(HeadstockMode::kRotary);
   EXPECT_TRUE(r.hs.busy());
   EXPECT_EQ(r.hs.target(), HeadstockMode::kRotary);
@@ -187,7 +188,7 @@ TEST_P(HeadstockChangeoverKinds, SpindleToRotaryAndBack) {
   EXPECT_EQ(r.hs.phase(), ChangeoverPhase::kInternal);
   EXPECT_EQ(r.Spindle().mode, DriveMode::kVelocity);
   EXPECT_EQ(r.Spindle().value, 0);
-  EXPECT_EQ(r.Spindle().parameter_set, rotary_set);
+  EXPECT_EQ(r.Spindle().parameter_set, 0);
   if (servo) {
     EXPECT_EQ(r.Rotary().mode, DriveMode::kVelocity);
   }
@@ -197,6 +198,8 @@ TEST_P(HeadstockChangeoverKinds, SpindleToRotaryAndBack) {
   EXPECT_GT(braking, 150);
   EXPECT_LT(braking, 180);
   EXPECT_TRUE(r.SpindleFb().status & drive_status::kStandstill);
+  // At standstill the set of rotary axis mode is activated (section 2; the servo keeps set 0).
+  EXPECT_EQ(r.Spindle().parameter_set, rotary_set);
 
   // (3) external changeover: ROTMOD out until the PLC acknowledges with ROTMOD_Q alone.
   EXPECT_TRUE(r.hs.rotmod());
