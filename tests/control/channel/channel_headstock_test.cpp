@@ -90,6 +90,8 @@ struct Lathe {
       }
       f.status = drive_status::kReady;
       if (std::abs(f.velocity) < 0.01) f.status |= drive_status::kStandstill;
+      // An ideal position loop is on its command: in position (M19's end, C-axis manual 2.3).
+      if (sp.mode == DriveMode::kPosition) f.status |= drive_status::kInPosition;
     }
     if (hs().busy()) changeover_ticks++;
     ++tick;
