@@ -150,8 +150,11 @@ TEST(HeadstockMachinesTest, SameProgramSamePathDifferentChangeover) {
         worst_cmd_c, std::abs((c1.trace["C.cmd"][i] - c1_0) - (c2.trace["S1.cmd"][j] - c2_0)));
     worst_cmd_x = std::max(worst_cmd_x,
                            std::abs((c1.trace["X.cmd"][i] - x1_0) - (c2.trace["X.cmd"][j] - x2_0)));
-    worst_pos_c = std::max(
-        worst_pos_c, std::abs((c1.trace["C.pos"][i] - c1_0) - (c2.trace["S1.pos"][j] - c2_0)));
+    // c1's C reads the spindle's encoder modulo 360 (its position within one turn).
+    worst_pos_c =
+        std::max(worst_pos_c, std::abs(std::remainder(
+                                  (c1.trace["C.pos"][i] - c1_0) - (c2.trace["S1.pos"][j] - c2_0),
+                                  360.0)));
     worst_pos_x = std::max(worst_pos_x,
                            std::abs((c1.trace["X.pos"][i] - x1_0) - (c2.trace["X.pos"][j] - x2_0)));
   }
