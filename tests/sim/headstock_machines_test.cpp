@@ -129,7 +129,8 @@ TEST(HeadstockMachinesTest, SameProgramSamePathDifferentChangeover) {
   // The following error bound: the lag v / Kv of the slower position loop (G06's feed-forward
   // takes most of it away, what stays is within it). C: 22.6 deg/s, Kv 30 (c2's set 1) or the
   // c1 servo's; X: 3.35 mm/s at Kv 40.
-  const MachineModel& m1 = *LoadScene(testing::SourcePath("scenes/c-axis-switching.yaml")).model;
+  const Scene c1_scene = LoadScene(testing::SourcePath("scenes/c-axis-switching.yaml"));
+  const MachineModel& m1 = *c1_scene.model;
   const double kv_c = std::min(30.0, m1.drives[m1.DriveIndex("C")].kv_per_s);
   const double c_bound = 22.6 / kv_c, x_bound = 3.35 / 40;
 
