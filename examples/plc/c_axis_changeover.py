@@ -17,15 +17,11 @@ machine_panel.py runs this program as one of its networks.
 Needs python3-pymodbus (Debian package).
 """
 
-import argparse
-import json
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pymodbus.client import ModbusTcpClient  # noqa: E402
-from pymodbus.exceptions import ModbusException  # noqa: E402
-from vmt_modbus import Gateway  # noqa: E402
+from vmt_modbus import load_signals, plc_arguments, run_lockstep  # noqa: E402
 
 HUNTING_SPINDLE = 0b00000001  # 65012 bit 0
 SPEED_SPEC = 0b00000100       # 65012 bit 2
@@ -158,33 +154,13 @@ class CAxisChangeover:
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--host", default="127.0.0.1")
-    ap.add_argument("--port", type=int, required=True)
-    ap.add_argument("--signals", required=True, help="vmt signals MODEL --format json")
-    ap.add_argument("--period", type=float, default=4.0, help="the scene's PLC period, ms")
+    ap = plc_arguments(__doc__.split("\n")[0])
     ap.add_argument("--wrong", action="store_true", help="the wrong variant (see above)")
     args = ap.parse_args()
-    with open(args.signals, encoding="utf-8") as f:
-        signals = json.load(f)
-    client = ModbusTcpClient(args.host, port=args.port)
-    if not client.connect():
-        print(f"cannot connect to {args.host}:{args.port}", file=sys.stderr)
-        return 2
-    io, program, cycle = Gateway(client, signals), CAxisChangeover(signals, wrong=args.wrong), 0
-    try:
-        while True:
-            io.latch(program.inputs)
-            program.scan(io, cycle * args.period)
-            io.flush(program.outputs)
-            cycle += 1
-            io.run_cycle(cycle)
-    except (ConnectionError, ModbusException, OSError):
-        pass  # vmt has ended the scene and closed the connection
-    finally:
-        client.close()
-    print(f"c_axis_changeover: {cycle} cycles")
-    return 0 if cycle > 0 else 1
+    signals = load_signals(args.signals)
+    program = CAxisChangeover(signals, wrong=args.wrong)
+    return run_lockstep(args, signals, "c_axis_changeover", program.inputs, program.outputs,
+                        program.scan)
 
 
 if __name__ == "__main__":

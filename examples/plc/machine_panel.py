@@ -12,16 +12,12 @@ C-axis changeover (C-axis manual 4.4, c_axis_changeover.py).
 Needs python3-pymodbus (Debian package).
 """
 
-import argparse
-import json
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pymodbus.client import ModbusTcpClient  # noqa: E402
-from pymodbus.exceptions import ModbusException  # noqa: E402
 from c_axis_changeover import CAxisChangeover  # noqa: E402
-from vmt_modbus import Gateway  # noqa: E402
+from vmt_modbus import load_signals, plc_arguments, run_lockstep  # noqa: E402
 
 KEYS = ["mAUTO", "mMANU", "mSTART", "mSTOP", "mRESET", "mSBL", "mCOOLANT", "mDOOR",
         "mTAILSTOCK", "mREPOS", "mRESTA", "mRaR_OFF"]
@@ -99,34 +95,16 @@ class MachinePanel:
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--host", default="127.0.0.1")
-    ap.add_argument("--port", type=int, required=True)
-    ap.add_argument("--signals", required=True, help="vmt signals MODEL --format json")
-    ap.add_argument("--period", type=float, default=4.0, help="the scene's PLC period, ms")
-    args = ap.parse_args()
-    with open(args.signals, encoding="utf-8") as f:
-        signals = json.load(f)
-    client = ModbusTcpClient(args.host, port=args.port)
-    if not client.connect():
-        print(f"cannot connect to {args.host}:{args.port}", file=sys.stderr)
-        return 2
-    io, program, cycle = Gateway(client, signals), MachinePanel(), 0
-    changeover = CAxisChangeover(signals)
-    try:
-        while True:
-            io.latch(INPUTS + changeover.inputs)
-            program.scan(io)
-            changeover.scan(io, cycle * args.period)
-            io.flush(OUTPUTS + changeover.outputs)
-            cycle += 1
-            io.run_cycle(cycle)
-    except (ConnectionError, ModbusException, OSError):
-        pass  # vmt has ended the scene and closed the connection
-    finally:
-        client.close()
-    print(f"machine_panel: {cycle} cycles")
-    return 0 if cycle > 0 else 1
+    args = plc_arguments(__doc__.split("\n")[0]).parse_args()
+    signals = load_signals(args.signals)
+    program, changeover = MachinePanel(), CAxisChangeover(signals)
+
+    def scan(io, now_ms):
+        program.scan(io)
+        changeover.scan(io, now_ms)
+
+    return run_lockstep(args, signals, "machine_panel", INPUTS + changeover.inputs,
+                        OUTPUTS + changeover.outputs, scan)
 
 
 if __name__ == "__main__":

@@ -22,8 +22,6 @@ carry on where the simulation is. --cycles N stops after N scans, a PLC that goe
 Needs python3-pymodbus (Debian package).
 """
 
-import argparse
-import json
 import os
 import sys
 import time
@@ -31,7 +29,7 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from pymodbus.client import ModbusTcpClient  # noqa: E402
 from pymodbus.exceptions import ModbusException  # noqa: E402
-from vmt_modbus import Gateway  # noqa: E402
+from vmt_modbus import Gateway, load_signals, plc_arguments  # noqa: E402
 
 
 def connect(client, retry_s):
@@ -47,19 +45,14 @@ def connect(client, retry_s):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--host", default="127.0.0.1")
-    ap.add_argument("--port", type=int, required=True)
-    ap.add_argument("--signals", required=True, help="vmt signals MODEL --format json")
+    ap = plc_arguments(__doc__.split("\n")[0])
     ap.add_argument("--realtime", action="store_true",
-                    help="scan on its own clock (vmt serve --realtime), no cycle register")
-    ap.add_argument("--period", type=float, default=4.0, help="--realtime: scan time, ms")
+                    help="scan on its own clock every --period (vmt serve --realtime)")
     ap.add_argument("--retry", type=float, default=0.0,
                     help="seconds to keep trying to connect, at the start and after a drop")
     ap.add_argument("--cycles", type=int, default=0, help="stop after this many scans (0: never)")
     args = ap.parse_args()
-    with open(args.signals, encoding="utf-8") as f:
-        signals = json.load(f)
+    signals = load_signals(args.signals)
     client = ModbusTcpClient(args.host, port=args.port)
     print(f"connecting to {args.host}:{args.port}", flush=True)
     if not connect(client, args.retry):

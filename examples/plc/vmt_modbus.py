@@ -5,7 +5,12 @@ area, as a PLC's field bus would) and written where they changed.
 Needs python3-pymodbus (Debian package).
 """
 
+import argparse
+import json
+import sys
+
 from pymodbus.client import ModbusTcpClient
+from pymodbus.exceptions import ModbusException
 
 _READ = {  # area -> (pymodbus reader name, items per request, bit area?)
     "coil": ("read_coils", 2000, True),
@@ -108,3 +113,43 @@ class Gateway:
     def run_cycle(self, number):
         self._check(self.client.write_register(self.cycle_register, number % 65536, slave=1),
                     f"cycle {number}")
+
+
+def plc_arguments(description):
+    """The command line every example PLC shares: where vmt serves and the signal map."""
+    ap = argparse.ArgumentParser(description=description)
+    ap.add_argument("--host", default="127.0.0.1")
+    ap.add_argument("--port", type=int, required=True)
+    ap.add_argument("--signals", required=True, help="vmt signals MODEL --format json")
+    ap.add_argument("--period", type=float, default=4.0, help="the scene's PLC period, ms")
+    return ap
+
+
+def run_lockstep(args, signals, name, inputs, outputs, scan):
+    """Scans as a PLC does against `vmt serve --lockstep` until vmt ends the scene: latch
+    `inputs`, `scan(io, now_ms)`, write the changed `outputs`, then the next cycle number, which
+    vmt answers only after it ran that PLC cycle. Returns the exit status."""
+    client = ModbusTcpClient(args.host, port=args.port)
+    if not client.connect():
+        print(f"cannot connect to {args.host}:{args.port}", file=sys.stderr)
+        return 2
+    io, cycle = Gateway(client, signals), 0
+    try:
+        while True:
+            io.latch(inputs)
+            scan(io, cycle * args.period)
+            io.flush(outputs)
+            cycle += 1
+            io.run_cycle(cycle)
+    except (ConnectionError, ModbusException, OSError):
+        pass  # vmt has ended the scene and closed the connection
+    finally:
+        client.close()
+    print(f"{name}: {cycle} cycles")
+    return 0 if cycle > 0 else 1
+
+
+def load_signals(path):
+    """The map of `vmt signals MODEL --format json`."""
+    with open(path, encoding="utf-8") as f:
+        return json.load(f)

@@ -39,83 +39,51 @@ sys.exit(0 if eval(sys.argv[2]) else 1)' "$1" "$2" || fail "$1: $2"
 
 "$vmt" signals "$src/models/lathe-c1/machine.yaml" --format json >"$out/signals.json" ||
   fail "vmt signals"
-"$vmt" run "$scene" --out "$out/embedded" >"$out/embedded.log" 2>&1 || fail "embedded run"
+# same_as_embedded NAME SCENE PLC [OPTION...]: the scene run embedded, then served in lockstep to
+# the example PLC `PLC` (with OPTIONs): the two runs must be the same (trace digest and every
+# gateway signal change) and the served run's expectations hold. Runs land in $out/NAME_*.
+same_as_embedded() {
+  local name=$1 what=$2 plc=$3
+  shift 3
+  "$vmt" run "$what" --out "$out/${name}_embedded" >"$out/${name}_embedded.log" 2>&1 ||
+    fail "$name: embedded run"
+  start_serve "$out/${name}_external" lockstep "$what" || return 1
+  timeout 120 "$python" "$src/examples/plc/$plc" --port "$port" --signals "$out/signals.json" \
+    "$@" >"$out/${name}_client.log" 2>&1 || { fail "$name: $plc"; cat "$out/${name}_client.log"; }
+  wait $serve_pid || { fail "$name: vmt serve exit $?"; cat "$out/${name}_external/serve.log"; }
+  local d1 d2
+  d1=$(grep -o '"trace_digest": "[0-9a-f]*"' "$out/${name}_embedded/summary.json")
+  d2=$(grep -o '"trace_digest": "[0-9a-f]*"' "$out/${name}_external/summary.json")
+  [ -n "$d1" ] && [ "$d1" = "$d2" ] || fail "$name: trace digest embedded $d1 vs external $d2"
+  for run in embedded external; do
+    grep '"signal"' "$out/${name}_$run/events.jsonl" >"$out/${name}_$run.signals"
+  done
+  cmp -s "$out/${name}_embedded.signals" "$out/${name}_external.signals" ||
+    { fail "$name: signal changes differ"; diff "$out/${name}_embedded.signals" "$out/${name}_external.signals" | head; }
+  grep -q '"expectations_failed": 0' "$out/${name}_external/summary.json" ||
+    fail "$name: external run's expectations failed"
+}
 
-# Lockstep: the external PLC drives the whole scene.
-if start_serve "$out/external" lockstep; then
-  timeout 120 "$python" "$src/examples/plc/repos_machine_keys.py" --port "$port" \
-    --signals "$out/signals.json" >"$out/client.log" 2>&1 || { fail "python PLC"; cat "$out/client.log"; }
-  wait $serve_pid || { fail "vmt serve exit $?"; cat "$out/external/serve.log"; }
-  d1=$(grep -o '"trace_digest": "[0-9a-f]*"' "$out/embedded/summary.json")
-  d2=$(grep -o '"trace_digest": "[0-9a-f]*"' "$out/external/summary.json")
-  [ -n "$d1" ] && [ "$d1" = "$d2" ] || fail "trace digest embedded $d1 vs external $d2"
-  grep '"signal"' "$out/embedded/events.jsonl" >"$out/embedded.signals"
-  grep '"signal"' "$out/external/events.jsonl" >"$out/external.signals"
-  cmp -s "$out/embedded.signals" "$out/external.signals" ||
-    { fail "signal changes differ"; diff "$out/embedded.signals" "$out/external.signals" | head; }
-  grep -q '"passed": true' "$out/external/summary.json" || fail "external run's expectations"
-  grep -q '"expectations_failed": 0' "$out/external/summary.json" || fail "external expectations failed"
-fi
-
-# Lockstep with a PLC that drives valves and acknowledges M functions: the panel program in
-# Python gives the embedded machine_panel's run, byte for byte.
-scene=$src/scenes/machine-panel.yaml
-"$vmt" run "$scene" --out "$out/panel_embedded" >"$out/panel_embedded.log" 2>&1 || fail "embedded panel run"
-if start_serve "$out/panel_external" lockstep; then
-  timeout 120 "$python" "$src/examples/plc/machine_panel.py" --port "$port" \
-    --signals "$out/signals.json" >"$out/panel_client.log" 2>&1 || { fail "python panel PLC"; cat "$out/panel_client.log"; }
-  wait $serve_pid || { fail "vmt serve (panel) exit $?"; cat "$out/panel_external/serve.log"; }
-  d1=$(grep -o '"trace_digest": "[0-9a-f]*"' "$out/panel_embedded/summary.json")
-  d2=$(grep -o '"trace_digest": "[0-9a-f]*"' "$out/panel_external/summary.json")
-  [ -n "$d1" ] && [ "$d1" = "$d2" ] || fail "panel trace digest embedded $d1 vs external $d2"
-  grep '"signal"' "$out/panel_embedded/events.jsonl" >"$out/panel_embedded.signals"
-  grep '"signal"' "$out/panel_external/events.jsonl" >"$out/panel_external.signals"
-  cmp -s "$out/panel_embedded.signals" "$out/panel_external.signals" ||
-    { fail "panel signal changes differ"; diff "$out/panel_embedded.signals" "$out/panel_external.signals" | head; }
-  grep -q '"expectations_failed": 0' "$out/panel_external/summary.json" || fail "external panel expectations failed"
-fi
-# The wrong C-axis changeover PLC in Python (--wrong: ROTMOD_Q before the clutch meshed) gives
-# the embedded wrong variant's run: the same trace, signal changes and NC error (504, C's
-# following error).
-scene=$src/scenes/fault-changeover-wrong-plc.yaml
-"$vmt" run "$scene" --out "$out/wrong_embedded" >"$out/wrong_embedded.log" 2>&1 || fail "embedded wrong-PLC run"
-if start_serve "$out/wrong_external" lockstep "$scene"; then
-  timeout 120 "$python" "$src/examples/plc/c_axis_changeover.py" --wrong --port "$port" \
-    --signals "$out/signals.json" >"$out/wrong_client.log" 2>&1 || { fail "python wrong PLC"; cat "$out/wrong_client.log"; }
-  wait $serve_pid || { fail "vmt serve (wrong PLC) exit $?"; cat "$out/wrong_external/serve.log"; }
-  d1=$(grep -o '"trace_digest": "[0-9a-f]*"' "$out/wrong_embedded/summary.json")
-  d2=$(grep -o '"trace_digest": "[0-9a-f]*"' "$out/wrong_external/summary.json")
-  [ -n "$d1" ] && [ "$d1" = "$d2" ] || fail "wrong PLC trace digest embedded $d1 vs external $d2"
+# The machine-key program (8.2) drives the whole scene.
+same_as_embedded keys "$scene" repos_machine_keys.py &&
+  { grep -q '"passed": true' "$out/keys_external/summary.json" || fail "keys: external run failed"; }
+# A PLC that drives valves and acknowledges M functions: the panel program.
+same_as_embedded panel "$src/scenes/machine-panel.yaml" machine_panel.py
+# The C-axis changeover (4.4) over Modbus: the Python program takes the place of the one the
+# runner runs for a scene without plc:, writes the AXD idents (DINT registers) and switches the
+# clutch.
+same_as_embedded cax "$src/scenes/c-axis-switching.yaml" c_axis_changeover.py
+# The wrong C-axis changeover PLC (--wrong: ROTMOD_Q before the clutch meshed) gives the
+# embedded wrong variant's run, and so its NC error (504, C's following error).
+if same_as_embedded wrong "$src/scenes/fault-changeover-wrong-plc.yaml" c_axis_changeover.py \
+  --wrong; then
   for run in wrong_embedded wrong_external; do
     grep -q '"name":"P00S.ERRNR","value":504.0' "$out/$run/events.jsonl" || fail "$run: no message 504"
     grep -q '"state":"error","error":"axis C: following error beyond its limit"' \
       "$out/$run/events.jsonl" || fail "$run: no following error of C"
   done
-  grep '"signal"' "$out/wrong_embedded/events.jsonl" >"$out/wrong_embedded.signals"
-  grep '"signal"' "$out/wrong_external/events.jsonl" >"$out/wrong_external.signals"
-  cmp -s "$out/wrong_embedded.signals" "$out/wrong_external.signals" ||
-    { fail "wrong PLC signal changes differ"; diff "$out/wrong_embedded.signals" "$out/wrong_external.signals" | head; }
-  grep -q '"expectations_failed": 0' "$out/wrong_external/summary.json" || fail "external wrong-PLC expectations failed"
 fi
 
-# The C-axis changeover (4.4) over Modbus: the Python program takes the place of the one the
-# runner runs for a scene without plc:, writes the AXD idents (DINT registers) and switches the
-# clutch, and the run is the embedded one's, byte for byte.
-scene=$src/scenes/c-axis-switching.yaml
-"$vmt" run "$scene" --out "$out/cax_embedded" >"$out/cax_embedded.log" 2>&1 || fail "embedded c-axis run"
-if start_serve "$out/cax_external" lockstep; then
-  timeout 120 "$python" "$src/examples/plc/c_axis_changeover.py" --port "$port" \
-    --signals "$out/signals.json" >"$out/cax_client.log" 2>&1 || { fail "python changeover PLC"; cat "$out/cax_client.log"; }
-  wait $serve_pid || { fail "vmt serve (c-axis) exit $?"; cat "$out/cax_external/serve.log"; }
-  d1=$(grep -o '"trace_digest": "[0-9a-f]*"' "$out/cax_embedded/summary.json")
-  d2=$(grep -o '"trace_digest": "[0-9a-f]*"' "$out/cax_external/summary.json")
-  [ -n "$d1" ] && [ "$d1" = "$d2" ] || fail "c-axis trace digest embedded $d1 vs external $d2"
-  grep '"signal"' "$out/cax_embedded/events.jsonl" >"$out/cax_embedded.signals"
-  grep '"signal"' "$out/cax_external/events.jsonl" >"$out/cax_external.signals"
-  cmp -s "$out/cax_embedded.signals" "$out/cax_external.signals" ||
-    { fail "c-axis signal changes differ"; diff "$out/cax_embedded.signals" "$out/cax_external.signals" | head; }
-  grep -q '"expectations_failed": 0' "$out/cax_external/summary.json" || fail "external c-axis expectations failed"
-fi
 scene=$src/scenes/repos-machine-keys.yaml
 
 # mbpoll reads the status, and writing an NC status address is refused.
