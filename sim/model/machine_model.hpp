@@ -19,6 +19,7 @@ inline constexpr double kMmPerM = 1000.0;
 inline constexpr double kDegPerRad = 57.295779513082320876798;
 
 struct Visual {
+  std::string name;                          ///< the URDF element's name="" (may be empty)
   std::string mesh_file;                     ///< path as written in the URDF
   std::shared_ptr<const render::Mesh> mesh;  ///< loaded and scaled to metres
   Eigen::Isometry3d X_LinkVisual = Eigen::Isometry3d::Identity();

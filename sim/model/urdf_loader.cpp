@@ -94,12 +94,16 @@ void LoadUrdf(const std::string& urdf_path, MachineModel& model) {
       if (link.mass_kg < 0 || link.inertia_kgm2.minCoeff() < 0)
         throw ModelError(urdf_path, where, "negative mass or inertia");
     }
-    for (const auto& uv : ul->visual_array)
+    for (const auto& uv : ul->visual_array) {
       link.visuals.push_back(
           ToVisual(urdf_path, where + " <visual>", uv->geometry, uv->origin, uv->material, meshes));
-    for (const auto& uc : ul->collision_array)
+      link.visuals.back().name = uv->name;
+    }
+    for (const auto& uc : ul->collision_array) {
       link.collisions.push_back(
           ToVisual(urdf_path, where + " <collision>", uc->geometry, uc->origin, nullptr, meshes));
+      link.collisions.back().name = uc->name;
+    }
 
     const int index = static_cast<int>(model.links.size());
     link_index[ul->name] = index;

@@ -1,0 +1,33 @@
+#pragma once
+// PathGuard (DESIGN.md): the machine geometry's answer to "may the axes move in a straight line
+// from here to there without touching anything?". The control kernel asks it before approach
+// moves start (jogging ahead, G77, the REPOS subroutine's moves, return to the contour, probe
+// approach); the simulation answers from the model's collision geometry at the current poses.
+// Like DriveBus it speaks machine units: positions per drive, mm | deg.
+
+#include <string>
+#include <vector>
+
+namespace vmt::control {
+
+struct PathCheck {
+  bool clear = true;
+  // The first contact on the way (clear == false):
+  std::string part_a, part_b;    ///< the two parts that touch
+  double point[3] = {0, 0, 0};   ///< where, machine frame, mm
+  double distance = 0;           ///< along the path to it, mm (the linear drives' path)
+  std::vector<double> position;  ///< every drive's position there
+  // The smallest clearance on the way (up to the contact, 0 there), and between which parts.
+  double min_clearance = 0;  ///< mm
+  std::string closest_a, closest_b;
+};
+
+class PathGuard {
+ public:
+  virtual ~PathGuard() = default;
+  /// A straight move of every drive from `from` to `to` (one position per drive, as DriveBus
+  /// numbers them).
+  virtual PathCheck CheckMove(const std::vector<double>& from, const std::vector<double>& to) = 0;
+};
+
+}  // namespace vmt::control

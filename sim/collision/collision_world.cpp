@@ -1,0 +1,150 @@
+#include "sim/collision/collision_world.hpp"
+
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+
+#include <algorithm>
+
+#include "sim/model/model_error.hpp"
+
+namespace vmt::sim {
+
+struct CollisionWorld::Fcl {
+  std::vector<std::shared_ptr<fcl::CollisionGeometryd>> geometry;
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;
+};
+
+namespace {
+
+std::shared_ptr<fcl::CollisionGeometryd> MeshGeometry(const render::Mesh& mesh,
+                                                      Eigen::Vector3d& centre, double& radius) {
+  std::vector<fcl::Vector3d> points;
+  points.reserve(mesh.positions.size() / 3);
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e30), hi = -lo;
+  for (size_t i = 0; i + 2 < mesh.positions.size(); i += 3) {
+    points.emplace_back(mesh.positions[i], mesh.positions[i + 1], mesh.positions[i + 2]);
+    lo = lo.cwiseMin(points.back());
+    hi = hi.cwiseMax(points.back());
+  }
+  std::vector<fcl::Triangle> triangles;
+  triangles.reserve(mesh.indices.size() / 3);
+  for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
+    triangles.emplace_back(mesh.indices[i], mesh.indices[i + 1], mesh.indices[i + 2]);
+  auto bvh = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+  bvh->beginModel(static_cast<int>(triangles.size()), static_cast<int>(points.size()));
+  bvh->addSubModel(points, triangles);
+  bvh->endModel();
+  centre = points.empty() ? Eigen::Vector3d::Zero() : Eigen::Vector3d((lo + hi) / 2);
+  radius = 0;
+  for (const fcl::Vector3d& p : points) radius = std::max(radius, (p - centre).norm());
+  return bvh;
+}
+
+}  // namespace
+
+CollisionWorld::CollisionWorld(const MachineModel& model, const std::vector<CylinderPart>& added)
+    : model_(&model), fcl_(std::make_unique<Fcl>()) {
+  for (size_t l = 0; l < model.links.size(); ++l) {
+    const Link& link = model.links[l];
+    for (size_t c = 0; c < link.collisions.size(); ++c) {
+      const Visual& v = link.collisions[c];
+      if (!v.mesh || v.mesh->indices.empty()) continue;
+      CollisionPart p;
+      p.name = v.name.empty() ? link.name + "#" + std::to_string(c) : v.name;
+      p.link = static_cast<int>(l);
+      p.X_LinkPart = v.X_LinkVisual;
+      fcl_->geometry.push_back(MeshGeometry(*v.mesh, p.centre, p.radius));
+      parts_.push_back(p);
+    }
+  }
+  for (const CylinderPart& c : added) {
+    CollisionPart p;
+    p.name = c.name;
+    p.link = model.LinkIndex(c.link);
+    if (p.link < 0) throw ModelError(model.yaml_path, c.name, "no link '" + c.link + "'");
+    // FCL's cylinder is centred on its origin.
+    p.X_LinkPart.translation() = Eigen::Vector3d(0, 0, c.z_m + c.length_m / 2);
+    p.radius = std::hypot(c.radius_m, c.length_m / 2);
+    fcl_->geometry.push_back(std::make_shared<fcl::Cylinderd>(c.radius_m, c.length_m));
+    parts_.push_back(p);
+  }
+  for (auto& g : fcl_->geometry) {
+    g->computeLocalAABB();
+    fcl_->objects.push_back(std::make_unique<fcl::CollisionObjectd>(g));
+  }
+
+  // The machine's own contacts: same link, links joined by a joint, and parts that touch in the
+  // zero pose and only turn against each other (a pinion in its gear). A slide between them
+  // makes a zero-pose contact chance (a tool that stands in the workpiece at X0 Z0).
+  auto slides_between = [&](int la, int lb) {
+    std::vector<int> up_a, up_b;
+    for (int l = la; model.links[l].parent_joint >= 0;
+         l = model.joints[model.links[l].parent_joint].parent_link)
+      up_a.push_back(model.links[l].parent_joint);
+    for (int l = lb; model.links[l].parent_joint >= 0;
+         l = model.joints[model.links[l].parent_joint].parent_link)
+      up_b.push_back(model.links[l].parent_joint);
+    auto prismatic_not_in = [&](const std::vector<int>& mine, const std::vector<int>& other) {
+      for (int j : mine)
+        if (model.joints[j].type == JointType::kPrismatic &&
+            std::find(other.begin(), other.end(), j) == other.end())
+          return true;
+      return false;
+    };
+    return prismatic_not_in(up_a, up_b) || prismatic_not_in(up_b, up_a);
+  };
+  const int n = size();
+  may_touch_.assign(static_cast<size_t>(n) * n, 0);
+  Pose(std::vector<double>(model.joints.size(), 0.0));
+  for (int a = 0; a < n; ++a)
+    for (int b = a; b < n; ++b) {
+      const int la = parts_[a].link, lb = parts_[b].link;
+      bool own = la == lb;
+      for (const Joint& j : model.joints)
+        own = own || (j.parent_link == la && j.child_link == lb) ||
+              (j.parent_link == lb && j.child_link == la);
+      own = own || (!slides_between(la, lb) && Collide(a, b));
+      may_touch_[a * n + b] = may_touch_[b * n + a] = own;
+    }
+  queries_ = 0;
+}
+
+CollisionWorld::~CollisionWorld() = default;
+
+void CollisionWorld::Pose(const std::vector<double>& q) {
+  X_WorldLink_ = LinkPoses(*model_, q);
+  for (int i = 0; i < size(); ++i) {
+    const Eigen::Isometry3d X = X_WorldLink_[parts_[i].link] * parts_[i].X_LinkPart;
+    fcl_->objects[i]->setTransform(X);
+    fcl_->objects[i]->computeAABB();
+  }
+}
+
+double CollisionWorld::Distance(int a, int b, Eigen::Vector3d* point_a,
+                                Eigen::Vector3d* point_b) const {
+  ++queries_;
+  fcl::DistanceRequestd request(point_a != nullptr || point_b != nullptr);
+  fcl::DistanceResultd result;
+  fcl::distance(fcl_->objects[a].get(), fcl_->objects[b].get(), request, result);
+  if (point_a) *point_a = result.nearest_points[0];
+  if (point_b) *point_b = result.nearest_points[1];
+  return std::max(0.0, result.min_distance);
+}
+
+double CollisionWorld::BoxDistance(int a, int b) const {
+  return fcl_->objects[a]->getAABB().distance(fcl_->objects[b]->getAABB());
+}
+
+bool CollisionWorld::Collide(int a, int b, Eigen::Vector3d* point) const {
+  ++queries_;
+  fcl::CollisionRequestd request(1, point != nullptr);
+  fcl::CollisionResultd result;
+  fcl::collide(fcl_->objects[a].get(), fcl_->objects[b].get(), request, result);
+  if (!result.isCollision()) return false;
+  if (point && result.numContacts() > 0) *point = result.getContact(0).pos;
+  return true;
+}
+
+}  // namespace vmt::sim

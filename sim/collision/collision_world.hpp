@@ -1,0 +1,71 @@
+#pragma once
+// The FCL mirror of a machine's collision geometry (DESIGN.md, PathGuard): one FCL object per
+// URDF <collision> mesh, plus the parts a scene adds (the workpiece), posed from joint
+// positions. Internal unit SI (m, rad) like the model; PathGuard converts at its boundary.
+//
+// Which pairs may touch: parts of one link, of links joined by one joint (saddle on its rail,
+// turret in its housing) and parts that touch in the model's zero pose and only turn against
+// each other (a pinion in its gear) are the machine's own contacts, never reported.
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sim/model/machine_model.hpp"
+
+namespace vmt::sim {
+
+/// A cylinder a scene adds to the machine: along its link's z axis from z_m to z_m + length_m.
+struct CylinderPart {
+  std::string name;
+  std::string link;
+  double radius_m = 0, length_m = 0, z_m = 0;
+};
+
+struct CollisionPart {
+  std::string name;  ///< the <collision name=""> (or its link's name and index)
+  int link = -1;
+  Eigen::Isometry3d X_LinkPart = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< bounding sphere, part frame, m
+  double radius = 0;                                 ///< bounding sphere, m
+};
+
+class CollisionWorld {
+ public:
+  /// Throws ModelError if an added part names a link the model lacks.
+  CollisionWorld(const MachineModel& model, const std::vector<CylinderPart>& added = {});
+  ~CollisionWorld();
+  CollisionWorld(const CollisionWorld&) = delete;
+  CollisionWorld& operator=(const CollisionWorld&) = delete;
+
+  const MachineModel& model() const { return *model_; }
+  int size() const { return static_cast<int>(parts_.size()); }
+  const CollisionPart& part(int i) const { return parts_[i]; }
+  /// Whether the pair's contact is the machine's own (see above): never checked.
+  bool MayTouch(int a, int b) const { return may_touch_[a * size() + b]; }
+
+  /// Poses every part for the joint positions (SI, one per model joint).
+  void Pose(const std::vector<double>& q);
+  const Eigen::Isometry3d& X_WorldLink(int link) const { return X_WorldLink_[link]; }
+  /// Clearance between two parts at the current poses, m; 0 when they touch or overlap. The
+  /// nearest points (world, m) when wanted.
+  double Distance(int a, int b, Eigen::Vector3d* point_a = nullptr,
+                  Eigen::Vector3d* point_b = nullptr) const;
+  /// A lower bound of Distance from the parts' world-aligned bounding boxes: cheap.
+  double BoxDistance(int a, int b) const;
+  /// Whether the two parts touch or overlap at the current poses; a contact point (world, m).
+  bool Collide(int a, int b, Eigen::Vector3d* point = nullptr) const;
+  int64_t queries() const { return queries_; }
+
+ private:
+  struct Fcl;
+  const MachineModel* model_;
+  std::vector<CollisionPart> parts_;
+  std::unique_ptr<Fcl> fcl_;
+  std::vector<char> may_touch_;
+  std::vector<Eigen::Isometry3d> X_WorldLink_;
+  mutable int64_t queries_ = 0;
+};
+
+}  // namespace vmt::sim

@@ -1,0 +1,183 @@
+#include "sim/collision/straight_move_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vmt::sim {
+namespace {
+
+/// The joints from the root down to `link` (model joint indices, root first).
+std::vector<int> Chain(const MachineModel& m, int link) {
+  std::vector<int> chain;
+  for (int j = m.links[link].parent_joint; j >= 0;
+       j = m.links[m.joints[j].parent_link].parent_joint)
+    chain.push_back(j);
+  std::reverse(chain.begin(), chain.end());
+  return chain;
+}
+
+/// MotionBound for the joints of `chain` from index `first` on (those below the pair's common
+/// ancestor: the ones above it move both parts alike). World poses of the start are posed.
+double ChainBound(const CollisionWorld& world, int part, const std::vector<int>& chain,
+                  size_t first, const std::vector<double>& dq) {
+  const MachineModel& m = world.model();
+  const CollisionPart& p = world.part(part);
+  const Eigen::Vector3d c = world.X_WorldLink(p.link) * p.X_LinkPart * p.centre;
+  double bound = 0;
+  for (size_t k = first; k < chain.size(); ++k) {
+    const Joint& jk = m.joints[chain[k]];
+    const double step = std::abs(dq[chain[k]]);
+    if (step == 0 || jk.type == JointType::kFixed) continue;
+    if (jk.type == JointType::kPrismatic) {
+      bound += step;
+      continue;
+    }
+    // The farthest a point of the part gets from this joint's axis: from its origin now, plus
+    // what the joints below can add (a slide moves it out, a rotation swings it across).
+    const Eigen::Vector3d o = (world.X_WorldLink(jk.parent_link) * jk.X_ParentJoint).translation();
+    double r = (c - o).norm() + p.radius;
+    for (size_t i = k + 1; i < chain.size(); ++i) {
+      const Joint& ji = m.joints[chain[i]];
+      const double s = std::abs(dq[chain[i]]);
+      if (s == 0 || ji.type == JointType::kFixed) continue;
+      if (ji.type == JointType::kPrismatic) {
+        r += s;
+      } else {
+        const Eigen::Vector3d oi =
+            (world.X_WorldLink(ji.parent_link) * ji.X_ParentJoint).translation();
+        r += 2 * ((c - oi).norm() + p.radius);
+      }
+    }
+    bound += step * r;
+  }
+  return bound;
+}
+
+size_t CommonDepth(const std::vector<int>& a, const std::vector<int>& b) {
+  size_t n = 0;
+  while (n < a.size() && n < b.size() && a[n] == b[n]) ++n;
+  return n;
+}
+
+std::vector<double> Lerp(const std::vector<double>& a, const std::vector<double>& b, double u) {
+  std::vector<double> q(a.size());
+  for (size_t i = 0; i < a.size(); ++i) q[i] = a[i] + (b[i] - a[i]) * u;
+  return q;
+}
+
+}  // namespace
+
+double MotionBound(const CollisionWorld& world, int part, const std::vector<double>& q_from,
+                   const std::vector<double>& q_to) {
+  std::vector<double> dq(q_from.size());
+  for (size_t i = 0; i < dq.size(); ++i) dq[i] = q_to[i] - q_from[i];
+  return ChainBound(world, part, Chain(world.model(), world.part(part).link), 0, dq);
+}
+
+StraightMoveCheck CheckStraightMove(CollisionWorld& world, const std::vector<double>& q_from,
+                                    const std::vector<double>& q_to,
+                                    const StraightMoveOptions& options) {
+  const MachineModel& m = world.model();
+  StraightMoveCheck out;
+  std::vector<double> dq(q_from.size());
+  for (size_t i = 0; i < dq.size(); ++i) dq[i] = q_to[i] - q_from[i];
+  std::vector<std::vector<int>> chains(m.links.size());
+  for (size_t l = 0; l < m.links.size(); ++l) chains[l] = Chain(m, static_cast<int>(l));
+
+  // The pairs that move relative to each other, with the bound of their approach speed.
+  struct Pair {
+    int a, b;
+    double bound;
+  };
+  std::vector<Pair> pairs;
+  world.Pose(q_from);
+  for (int a = 0; a < world.size(); ++a)
+    for (int b = a + 1; b < world.size(); ++b) {
+      if (world.MayTouch(a, b)) continue;
+      const auto& ca = chains[world.part(a).link];
+      const auto& cb = chains[world.part(b).link];
+      const size_t common = CommonDepth(ca, cb);
+      const double bound =
+          ChainBound(world, a, ca, common, dq) + ChainBound(world, b, cb, common, dq);
+      if (bound > 0) pairs.push_back({a, b, bound});
+    }
+
+  auto tolerance = [&](double clearance) {
+    return std::max(options.clearance_absolute_m, options.clearance_relative * clearance);
+  };
+  auto note_clearance = [&](const Pair& p, double d, double u) {
+    if (d < out.min_clearance_m)
+      out.min_clearance_m = d, out.closest_a = p.a, out.closest_b = p.b, out.closest_u = u;
+  };
+  // Bounding boxes give a lower bound of the clearance for next to nothing: exact distances
+  // only where the boxes come close to a contact or to the running minimum. Nearest pairs
+  // first, so that the minimum is small early and the far pairs drop out on their boxes.
+  std::vector<std::pair<Pair, double>> start;
+  for (const Pair& p : pairs) start.push_back({p, world.BoxDistance(p.a, p.b)});
+  std::sort(start.begin(), start.end(), [](const auto& x, const auto& y) {
+    return x.second - x.first.bound < y.second - y.first.bound;
+  });
+
+  double u_end = 1;  // nothing after the first contact found so far matters
+  for (const auto& [p, box0] : start) {
+    if (box0 - p.bound * u_end > out.min_clearance_m) continue;  // never closer than the minimum
+    ++out.pairs_checked;
+    const double du_resolution = options.resolution_m / p.bound;
+    double u = 0;
+    bool contact = false;
+    while (u < u_end) {
+      if (u > 0) world.Pose(Lerp(q_from, q_to, u));
+      // A lower bound of the clearance here: the boxes' while they are far, else the exact one.
+      double d = world.BoxDistance(p.a, p.b);
+      if (d <= out.min_clearance_m + tolerance(out.min_clearance_m)) {
+        d = world.Distance(p.a, p.b);
+        note_clearance(p, d, u);
+        // FCL's distance and collision may disagree within rounding: a distance of 0 without
+        // a collision steps on by the resolution, checking for the contact (below).
+        if (d <= 0 && world.Collide(p.a, p.b)) {
+          contact = true;
+          break;
+        }
+      }
+      // Step so that neither a contact nor a clearance below the running minimum (less its
+      // tolerance) can lie within the step.
+      const double gap = std::min(d, d - out.min_clearance_m + tolerance(out.min_clearance_m));
+      const double u_next = std::min(u_end, u + std::max(gap, options.resolution_m) / p.bound);
+      if (gap < options.resolution_m) {
+        world.Pose(Lerp(q_from, q_to, u_next));
+        if (world.Collide(p.a, p.b)) {
+          // Bisect: u clear, u_next touching.
+          double lo = u, hi = u_next;
+          while (hi - lo > du_resolution) {
+            const double mid = (lo + hi) / 2;
+            world.Pose(Lerp(q_from, q_to, mid));
+            (world.Collide(p.a, p.b) ? hi : lo) = mid;
+          }
+          u = hi;
+          contact = true;
+          break;
+        }
+      }
+      if (u_next >= u_end) break;
+      u = u_next;
+    }
+    if (contact && u <= u_end) {
+      u_end = u;
+      out.clear = false;
+      out.part_a = p.a, out.part_b = p.b, out.u = u;
+    }
+    world.Pose(q_from);
+  }
+  if (!out.clear) {
+    out.q = Lerp(q_from, q_to, out.u);
+    world.Pose(out.q);
+    world.Collide(out.part_a, out.part_b, &out.point);
+    out.min_clearance_m = 0;
+    out.closest_a = out.part_a, out.closest_b = out.part_b, out.closest_u = out.u;
+  } else {
+    world.Pose(q_to);
+  }
+  return out;
+}
+
+}  // namespace vmt::sim
