@@ -305,6 +305,8 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
     const double dt = config_.tick_s * config_.ticks_per_cycle;
     TrackReferences(at, dt);
     if (headstock_) HeadstockCycle(at, dt);
+    drive_positions_.resize(at.feedback.size());
+    for (size_t d = 0; d < at.feedback.size(); ++d) drive_positions_[d] = at.feedback[d].position;
     if (mode_ == ChannelMode::kManual) {
       Jogging(dt);
     } else if (state_ == ChannelState::kRunning || state_ == ChannelState::kHold) {

@@ -12,6 +12,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "control/axes/axis_parameters.hpp"
@@ -25,11 +26,15 @@
 #include "control/channel/tool_radius_compensation.hpp"
 #include "control/drive_bus.hpp"
 #include "control/nc/interpreter.hpp"
+#include "control/path_guard.hpp"
 
 namespace vmt::control::channel {
 
 /// A channel axis is described by its axis parameters (control/axes).
 using ChannelAxis = axes::AxisParameters;
+
+enum class GuardReaction { kStop, kWarn, kOff };
+const char* ToString(GuardReaction r);
 
 struct ChannelConfig {
   std::vector<ChannelAxis> axes;
@@ -52,6 +57,22 @@ struct ChannelConfig {
   /// other mode wait for the changeover. Absent: the spindle is only a spindle.
   std::optional<axes::HeadstockConfig> headstock;
   int rotary_axis = -1;  ///< the channel axis of the headstock's rotary axis mode (C)
+  /// What a contact PathGuard finds ahead of a move does: stop it before it happens with an NC
+  /// error (kMsgCollision), only record it, or no checks at all.
+  GuardReaction path_guard = GuardReaction::kStop;
+  /// Continuous jogs are checked ahead every this many NC cycles, far enough to brake in time.
+  int path_guard_every = 8;
+};
+
+/// One PathGuard check the channel made: which move, from where to where (per drive), and the
+/// answer. A continuous jog is checked many times: its clear checks are summed up in one record
+/// when it ends (`checks`, the smallest clearance of all).
+struct GuardRecord {
+  std::string move;  ///< "jog"
+  std::vector<double> from, to;
+  PathCheck check;
+  int checks = 1;
+  bool stopped = false;  ///< the reaction stopped the move
 };
 
 enum class ChannelState { kIdle, kRunning, kHold, kEnded, kError };
@@ -148,6 +169,12 @@ class Channel {
   void SetEventSource(std::function<bool(int)> source) { events_ = std::move(source); }
   /// SE n / RE n of the program go here (the gateway's Pxx.EVn); the channel also keeps them.
   void SetEventSink(std::function<void(int, bool)> sink) { event_sink_ = std::move(sink); }
+
+  /// The machine geometry's check of approach moves (ChannelConfig::path_guard says what a
+  /// contact does); null: none. It must outlive the channel.
+  void SetPathGuard(PathGuard* guard) { guard_ = guard; }
+  /// The checks made since the last call, oldest first.
+  std::vector<GuardRecord> TakeGuardRecords() { return std::exchange(guard_records_, {}); }
 
   /// One drive tick: reads the feedback, interpolates on the NC cycle, writes setpoints.
   void Tick(const AmplifierTelegram& at, MasterTelegram& mdt);
@@ -272,8 +299,21 @@ class Channel {
     bool stepping = false;
     double handwheel_target = 0;  ///< kHandwheel: where the counts want the axis
     bool handwheel = false;
+    int blocked = 0;  ///< PathGuard stopped the key in this direction: until it is released
   };
   std::vector<JogAxis> jog_;
+  // PathGuard of the jog moves (channel_path_guard.cpp).
+  void GuardJog(double dt);
+  /// An increment of `axis` to `to_position`, checked whole before it starts: false if stopped.
+  bool GuardIncrement(size_t axis, double to_position);
+  std::vector<double> GuardFrom() const;  ///< every drive's position, the channel's commanded
+  bool GuardStops(const std::string& move, const std::vector<double>& from,
+                  const std::vector<double>& to, const PathCheck& check);
+  PathGuard* guard_ = nullptr;
+  std::vector<GuardRecord> guard_records_;
+  std::optional<GuardRecord> guarded_jog_;  ///< the continuous jog being checked, summed up
+  int guard_countdown_ = 0;
+  std::vector<double> drive_positions_;     ///< every drive's actual position, this NC cycle
   std::vector<double> interruption_point_;  ///< commanded position when manual was entered
   DriveSetpoint spindle_;
   // Headstock changeover: the mode a block needs, the one the block in work waits for.

@@ -56,6 +56,7 @@ int Channel::AxisMotion(size_t axis) const {
 }
 
 void Channel::Jogging(double dt) {
+  GuardJog(dt);
   for (size_t a = 0; a < jog_.size(); ++a) {
     if (headstock_ && static_cast<int>(a) == config_.rotary_axis &&
         headstock_->mode() != axes::HeadstockMode::kRotary)
@@ -94,6 +95,11 @@ void Channel::Jogging(double dt) {
         j.stepping = true;
         j.from = commanded_[a];
         j.to = within(commanded_[a] + j.key * increment);
+        if (!GuardIncrement(a, j.to)) {
+          j.stepping = false;
+          j.key = 0;
+          continue;
+        }
         j.increment = PathProfile{};
         const double distance = std::max(std::abs(j.to - j.from), 1e-12);
         j.increment.max_rate = speed / distance;
@@ -109,7 +115,7 @@ void Channel::Jogging(double dt) {
     }
     // Continuous: towards the jog speed while the key is held, braking when it is released or
     // the process enabling signal is removed (C-axis manual 2.3: axes to a standstill).
-    const int key = process_enable_ ? j.key : 0;
+    const int key = process_enable_ && j.key != j.blocked ? j.key : 0;
     double target = key * speed;
     const double step = axis.acceleration * dt;
     if (limited) {

@@ -27,6 +27,8 @@ inline constexpr int kMsgFollowingError = 504;  ///< an axis lags beyond its fol
 inline constexpr int kMsgPlcFault = 505;        ///< the PLC stopped (watchdog)
 /// ROTMOD_Q / SPMOD_Q removed in the mode it acknowledges (C-axis manual 4.1: process error).
 inline constexpr int kMsgChangeoverAck = 506;
+/// PathGuard: the move would bring two parts of the machine into contact; stopped before it.
+inline constexpr int kMsgCollision = 507;
 
 /// The operator text of a message number ("program error", ...).
 inline const char* MessageText(int number) {
@@ -67,6 +69,8 @@ inline const char* MessageText(int number) {
       return "PLC not running";
     case kMsgChangeoverAck:
       return "spindle / rotary axis mode acknowledgement removed";
+    case kMsgCollision:
+      return "collision ahead";
     default:
       return "";
   }

@@ -1,0 +1,140 @@
+// PathGuard in the channel (issue 6, DESIGN.md): jog moves are checked ahead while they run, far
+// enough to brake before a contact; an increment is checked whole before it starts. A contact
+// stops the move before it happens with an NC error naming the parts and the position
+// (GuardReaction::kStop), or is only recorded (kWarn). Every check ends up in a GuardRecord.
+#include <cmath>
+#include <cstdio>
+
+#include "control/channel/channel.hpp"
+
+namespace vmt::control::channel {
+
+const char* ToString(GuardReaction r) {
+  switch (r) {
+    case GuardReaction::kStop:
+      return "stop";
+    case GuardReaction::kWarn:
+      return "warn";
+    case GuardReaction::kOff:
+      return "off";
+  }
+  return "?";
+}
+
+std::vector<double> Channel::GuardFrom() const {
+  std::vector<double> from = drive_positions_;
+  for (size_t a = 0; a < config_.axes.size(); ++a)
+    if (static_cast<size_t>(config_.axes[a].drive) < from.size())
+      from[config_.axes[a].drive] = commanded_[a];
+  return from;
+}
+
+bool Channel::GuardStops(const std::string& move, const std::vector<double>& from,
+                         const std::vector<double>& to, const PathCheck& check) {
+  const bool stop = config_.path_guard == GuardReaction::kStop;
+  guard_records_.push_back({move, from, to, check, 1, stop});
+  if (!stop) return false;
+  std::string where;
+  for (const ChannelAxis& axis : config_.axes) {
+    if (static_cast<size_t>(axis.drive) >= check.position.size()) continue;
+    char text[48];
+    std::snprintf(text, sizeof text, "%s%s%.3f", where.empty() ? "" : " ", axis.name.c_str(),
+                  check.position[axis.drive]);
+    where += text;
+  }
+  char point[96];
+  std::snprintf(point, sizeof point, " (contact at x %.3f y %.3f z %.3f mm)", check.point[0],
+                check.point[1], check.point[2]);
+  const std::string text = "collision ahead (" + move + "): " + check.part_a + " would touch " +
+                           check.part_b + " at " + where + point;
+  if (state_ != ChannelState::kError) Fail(text, kMsgCollision);
+  return true;
+}
+
+bool Channel::GuardIncrement(size_t axis, double to_position) {
+  if (!guard_ || config_.path_guard == GuardReaction::kOff) return true;
+  const std::vector<double> from = GuardFrom();
+  std::vector<double> to = from;
+  to[config_.axes[axis].drive] = to_position;
+  const PathCheck c = guard_->CheckMove(from, to);
+  if (c.clear) {
+    guard_records_.push_back({"jog", from, to, c, 1, false});
+    return true;
+  }
+  return !GuardStops("jog", from, to, c);
+}
+
+void Channel::GuardJog(double dt) {
+  if (!guard_ || config_.path_guard == GuardReaction::kOff) return;
+  // A stopped key stays stopped until it is released (or the other way is pressed).
+  for (JogAxis& j : jog_)
+    if (j.blocked != 0 && j.key != j.blocked) j.blocked = 0;
+  // Where each moving axis would stand if it braked at the next check: it runs at most one
+  // check interval (and this cycle) on, accelerating, then brakes.
+  const std::vector<double> from = GuardFrom();
+  std::vector<double> to = from;
+  const double interval = config_.path_guard_every * dt + dt;
+  bool moving = false;
+  for (size_t a = 0; a < jog_.size(); ++a) {
+    if (headstock_ && static_cast<int>(a) == config_.rotary_axis &&
+        headstock_->mode() != axes::HeadstockMode::kRotary)
+      continue;
+    const JogAxis& j = jog_[a];
+    const ChannelAxis& axis = config_.axes[a];
+    double stop = commanded_[a];
+    if (jog_mode_ == JogMode::kHandwheel) {
+      stop = j.handwheel ? j.handwheel_target : commanded_[a];
+    } else if (!j.stepping) {
+      const int key = process_enable_ && j.key != j.blocked ? j.key : 0;
+      const int dir = key != 0 ? key : j.velocity > 0 ? 1 : j.velocity < 0 ? -1 : 0;
+      if (dir == 0) continue;
+      const double rapid = axis.jog_rapid_per_s > 0 ? axis.jog_rapid_per_s : axis.rapid_per_s / 2;
+      // Braking (key released or stopped) it ends where the brake takes it; driven, it may
+      // run on and speed up for the interval first.
+      const double v = key == 0 ? std::abs(j.velocity)
+                                : std::min(std::abs(j.velocity) + axis.acceleration * interval,
+                                           std::max(rapid * override_, std::abs(j.velocity)));
+      stop += dir * (v * v / (2 * axis.acceleration) + v * (key == 0 ? dt : interval));
+      if (axis.travel_max > axis.travel_min)
+        stop = std::clamp(stop, axis.travel_min, axis.travel_max);
+    }
+    if (std::abs(stop - commanded_[a]) < 1e-9) continue;
+    to[axis.drive] = stop;
+    moving = true;
+  }
+  if (!moving) {
+    if (guarded_jog_) guard_records_.push_back(*guarded_jog_), guarded_jog_.reset();
+    guard_countdown_ = 0;
+    return;
+  }
+  if (guarded_jog_ && --guard_countdown_ > 0) return;  // checked at the start, then every n
+  guard_countdown_ = config_.path_guard_every;
+  const PathCheck c = guard_->CheckMove(from, to);
+  if (c.clear) {
+    if (!guarded_jog_) {
+      guarded_jog_ = GuardRecord{"jog", from, to, c, 1, false};
+    } else {
+      GuardRecord& r = *guarded_jog_;
+      r.to = to;
+      ++r.checks;
+      if (c.min_clearance < r.check.min_clearance) r.check = c;
+    }
+    return;
+  }
+  if (guarded_jog_) guard_records_.push_back(*guarded_jog_), guarded_jog_.reset();
+  if (!GuardStops("jog", from, to, c)) return;
+  // Brake every moving axis: its key is held off, a handwheel's target becomes where the axis
+  // can stop.
+  for (size_t a = 0; a < jog_.size(); ++a) {
+    JogAxis& j = jog_[a];
+    if (to[config_.axes[a].drive] == from[config_.axes[a].drive]) continue;
+    if (jog_mode_ == JogMode::kHandwheel) {
+      j.handwheel_target =
+          commanded_[a] + j.velocity * std::abs(j.velocity) / (2 * config_.axes[a].acceleration);
+    } else {
+      j.blocked = j.key != 0 ? j.key : (j.velocity > 0 ? 1 : -1);
+    }
+  }
+}
+
+}  // namespace vmt::control::channel

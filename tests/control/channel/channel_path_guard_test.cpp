@@ -1,0 +1,116 @@
+// PathGuard in the channel: jogs checked ahead stop before the contact with message 507 naming
+// the parts and the position, the key stays stopped until released, the other way is free;
+// increments are checked whole before they start; warn records and goes on; off asks nothing.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "channel_test_support.hpp"
+#include "control/channel/channel.hpp"
+
+namespace vmt::control::channel {
+namespace {
+
+using namespace testing;  // vmt::control::channel::testing
+
+/// A wall: the tool (drive 0, X) touches it at X = 20; straight moves only, like the real one.
+struct Wall : PathGuard {
+  PathCheck CheckMove(const std::vector<double>& from, const std::vector<double>& to) override {
+    ++checks;
+    PathCheck c;
+    c.min_clearance = std::min(from[0], to[0]) - 20;
+    c.closest_a = "tool", c.closest_b = "wall";
+    if (to[0] > 20 || from[0] < 20) return c;
+    const double u = (from[0] - 20) / (from[0] - to[0]);
+    c.clear = false;
+    c.part_a = "tool", c.part_b = "wall";
+    c.position = from;
+    for (size_t d = 0; d < from.size(); ++d) c.position[d] = from[d] + (to[d] - from[d]) * u;
+    c.point[0] = 20;
+    c.distance = std::abs(from[0] - 20);
+    c.min_clearance = 0;
+    return c;
+  }
+  int checks = 0;
+};
+
+void Hold(Machine& m, double s) {
+  for (int i = 0; i < s / 250e-6; ++i) m.Tick();
+}
+
+TEST(ChannelPathGuard, ContinuousJogStopsBeforeTheWallWithMessage507) {
+  Wall wall;
+  Machine m("N1 RET\n", 60, 0);
+  m.channel->SetPathGuard(&wall);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->SetJogMode(static_cast<int>(JogMode::kRapid));  // 200 mm/s towards the wall
+  m.channel->Jog(0, -1);
+  Hold(m, 1.0);
+  EXPECT_GT(m.X(), 20);  // stopped before it
+  EXPECT_LT(m.X(), 60);
+  EXPECT_EQ(m.channel->state(), ChannelState::kError);
+  EXPECT_EQ(m.channel->error_number(), kMsgCollision);
+  EXPECT_THAT(m.channel->error(), ::testing::HasSubstr("tool would touch wall at X20.000"));
+  // Still held: nothing moves; released and pressed again: stopped again at once.
+  const double x = m.X();
+  Hold(m, 0.2);
+  EXPECT_EQ(m.X(), x);
+  // The other way is free.
+  m.channel->Jog(0, +1);
+  Hold(m, 0.2);
+  EXPECT_GT(m.X(), x + 1);
+  m.channel->Jog(0, 0);
+  Hold(m, 0.2);
+  const std::vector<GuardRecord> records = m.channel->TakeGuardRecords();
+  ASSERT_FALSE(records.empty());
+  int stops = 0;
+  for (const GuardRecord& r : records) stops += r.stopped;
+  EXPECT_EQ(stops, 1);
+  EXPECT_GT(wall.checks, 20);  // checked ahead all along
+}
+
+TEST(ChannelPathGuard, AnIncrementIntoTheWallDoesNotStart) {
+  Wall wall;
+  Machine m("N1 RET\n", 20.5, 0);
+  m.channel->SetPathGuard(&wall);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->SetJogIncrement(1.0);
+  m.channel->Jog(0, -1);
+  Hold(m, 0.5);
+  EXPECT_EQ(m.X(), 20.5);
+  EXPECT_EQ(m.channel->error_number(), kMsgCollision);
+  m.channel->Jog(0, 0);
+  m.channel->Reset();
+  Hold(m, 0.05);
+  m.channel->SetJogIncrement(0.1);  // short of the wall: runs
+  m.channel->Jog(0, -1);
+  Hold(m, 0.5);
+  EXPECT_NEAR(m.X(), 20.4, 1e-9);
+}
+
+TEST(ChannelPathGuard, WarnRecordsAndGoesOnOffAsksNothing) {
+  Wall wall;
+  Machine warn("N1 RET\n", 30, 0, [](ChannelConfig& c) { c.path_guard = GuardReaction::kWarn; });
+  warn.channel->SetPathGuard(&wall);
+  ASSERT_TRUE(warn.channel->SetMode(ChannelMode::kManual));
+  warn.channel->Jog(0, -1);
+  Hold(warn, 0.5);
+  EXPECT_LT(warn.X(), 20);  // through the wall: a warning only
+  EXPECT_NE(warn.channel->state(), ChannelState::kError);
+  bool recorded = false;
+  for (const GuardRecord& r : warn.channel->TakeGuardRecords())
+    recorded = recorded || (!r.check.clear && !r.stopped);
+  EXPECT_TRUE(recorded);
+
+  Wall unused;
+  Machine off("N1 RET\n", 30, 0, [](ChannelConfig& c) { c.path_guard = GuardReaction::kOff; });
+  off.channel->SetPathGuard(&unused);
+  ASSERT_TRUE(off.channel->SetMode(ChannelMode::kManual));
+  off.channel->Jog(0, -1);
+  Hold(off, 0.5);
+  EXPECT_EQ(unused.checks, 0);
+  EXPECT_LT(off.X(), 20);
+}
+
+}  // namespace
+}  // namespace vmt::control::channel
