@@ -30,6 +30,9 @@ struct AxisParameters {
   /// the manual does not print): "Jogging spindle position", where AxxC.M19 positions the
   /// spindle, deg. The spindle's "Jogging speed" (AxxC.M3/M4) is jog_per_s, in deg/s.
   double jog_spindle_position = 0;
+  /// Main spindle mode: Cxx.049 "Max. programmable spindle speed", rpm (C-axis manual 2.2), the
+  /// maximum the status indication shows (2.3). 0: not set.
+  double max_spindle_rpm = 0;
   /// The reference is kept while the position encoder's signal frequency stays within the limit
   /// frequency of its interface (C-axis manual 2.3 and 3.3 Homing):
   ///   n_max [1/s] * impulses or oscillations per revolution <= limit frequency [1/s].

@@ -275,6 +275,7 @@ void Channel::Reset() {
 }
 
 void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
+  if (headstock_ && !headstock_known_) HeadstockPowerOn();
   if (trip_reset_pending_) CollectTrips(at);
   if (take_over_pending_ && !holding_positions_) {
     for (size_t a = 0; a < config_.axes.size(); ++a)

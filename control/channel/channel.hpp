@@ -97,6 +97,22 @@ enum class JogMode : uint8_t {
   kHandwheel = 7,      ///< the handwheel counts move the axis, keys do nothing
 };
 
+/// The main spindle in the status indication (C-axis manual 2.3 / 3.3 Status Indication): in
+/// main spindle operation the programmed, current and maximum speed as for any main spindle;
+/// with its headstock in rotary axis mode lines instead of the three speeds (the manual's "in
+/// main spindle mode" there is a slip: it says the opposite a sentence before). The override
+/// values are always shown.
+struct SpindleStatus {
+  /// False: the display shows lines instead of the speeds, which are then 0. It switches with
+  /// the axis designation, when a changeover has completed (2.3 Position Indication).
+  bool speeds_shown = true;
+  double programmed_rpm = 0;    ///< commanded speed before the override, M4 negative; 0 for M19
+  double actual_rpm = 0;        ///< the spindle's actual speed, signed
+  double max_rpm = 0;           ///< Cxx.049 max. programmable spindle speed
+  double spindle_override = 1;  ///< fraction (AxxC.SOVR / 100), always shown
+  double feed_override = 1;     ///< fraction (PxxC.FOVR / 100), always shown
+};
+
 class Channel {
  public:
   /// `programs`: the main program first, then the subprograms it may call; they must outlive
@@ -199,6 +215,9 @@ class Channel {
   /// The value shown beside it: the rotary axis' position in program coordinates, or the
   /// spindle's actual position (0..360 deg).
   double HeadstockPosition() const;
+  /// Status indication of the main spindle (as of the last NC cycle); a channel without a
+  /// spindle shows its overrides only.
+  SpindleStatus spindle_status() const;
   /// Translation program -> axis position of a channel axis under the current modal state:
   /// zero offset + G92 shift - tool length.
   double Translation(size_t axis) const { return translation_[axis]; }
@@ -321,6 +340,14 @@ class Channel {
   /// The rotary axis as a PlanBlockMotion follow_up bit while the NC does not position it.
   uint64_t FollowUpAxes(const nc::PreparedBlock& b) const;
   void HeadstockCycle(const AmplifierTelegram& at, double dt);
+  /// 2.3 / 3.3 Power-On State: the mode the PLC presents at the first NC cycle.
+  void HeadstockPowerOn();
+  /// 4.2: the one drive of a spindle with rotary axis capability is monitored by its axis'
+  /// AxxC.READY in both modes.
+  void CheckAxisReady();
+  /// AxxC.READY of the drive that positions the rotary axis: the servo's (section 3), or the
+  /// one axis' (section 2, the spindle's signal).
+  bool RotaryReady() const;
   /// A changeover commanded by a manual key (jog of the rotary axis, spindle keys).
   void ManualChangeover(axes::HeadstockMode target);
   /// The rotary axis' zero offsets and G92 shift act (rotary axis mode, 2.3).
@@ -346,6 +373,7 @@ class Channel {
   bool spindle_referencing_ = false;  ///< M19 runs: the reference comes when it is in position
   bool orienting_ = false;            ///< the block waits for M19's spindle positioning to end
   double spindle_position_ = 0;       ///< the spindle's actual position at the last NC cycle
+  double spindle_rpm_ = 0;            ///< and its actual speed
   std::vector<double> encoder_last_;  ///< per drive: position at the last NC cycle
   bool trip_reset_pending_ = false;   ///< Control-Reset: acknowledge the drives' trips
   std::vector<int> trip_reset_drives_;

@@ -2,6 +2,7 @@
 // drive's trip; Control-Reset acknowledges the trips (SERCOS drives reset a latched error when
 // their controller enable is removed).
 #include <algorithm>
+#include <cstdio>
 
 #include "control/channel/channel.hpp"
 
@@ -38,6 +39,8 @@ void Channel::CheckDrives(const AmplifierTelegram& at) {
       commanded_[a] = previous_[a] = fb.position;
   }
   if (state_ == ChannelState::kError) return;
+  CheckAxisReady();
+  if (state_ == ChannelState::kError) return;
   // The drives answer for themselves: one that is not ready (a fault: its power stage is off)
   // or lags beyond its limit stops the channel at once, every other axis holding where it is.
   // Its trips are named in the message (the drive's diagnosis, as a control displays it).
@@ -73,6 +76,33 @@ void Channel::CheckDrives(const AmplifierTelegram& at) {
   if (failed_drive >= 0 && headstock_ && headstock_->busy() &&
       (failed_drive == headstock_->config().spindle_drive ||
        failed_drive == headstock_->config().rotary_drive)) {
+    headstock_->TakeModeFromPlc(headstock_plc_);
+    waiting_for_ = axes::HeadstockMode::kNone;
+  }
+}
+
+void Channel::CheckAxisReady() {
+  // C-axis manual 4.2: "The NC employs the 'axis ready' control signal to monitor the ready
+  // state of a main spindle with rotary axis capability in rotary axis mode and in main spindle
+  // mode": one axis, one AxxC.READY, whichever designation is shown. Without it the drive is
+  // powerless (HeadstockChangeover::WriteSetpoints) and its command values follow the actual
+  // ones (HeadstockCycle), so an NC that still needs the axis -- a program running, the
+  // spindle commanded to turn or to position, the rotary axis jogged, a changeover -- stops
+  // with 503 rather than lose the motion unseen. Section 3's two READY are the PLC's controller
+  // enables (4.3): removing one puts that drive in follow-up, without a message.
+  if (!headstock_ || headstock_->config().separate_servo() || RotaryReady()) return;
+  const size_t r = static_cast<size_t>(config_.rotary_axis);
+  const JogAxis& jog = jog_[r];
+  const bool spindle_commanded = spindle_.mode == DriveMode::kPosition || spindle_.value != 0;
+  const bool jogged = jog.key != 0 || jog.stepping || jog.velocity != 0;
+  const bool changing = headstock_->busy();
+  if (state_ != ChannelState::kRunning && !spindle_commanded && !jogged && !changing) return;
+  char signal[16];
+  std::snprintf(signal, sizeof signal, "A%02dC.READY", config_.axes[r].number);
+  spindle_ = {DriveMode::kVelocity, 0, 0};
+  Fail("axis " + HeadstockAxisName() + ": not ready (" + signal + " removed)", kMsgDriveFault);
+  // 2.3 Errors: during a changeover the NC proceeds as at power-on.
+  if (changing) {
     headstock_->TakeModeFromPlc(headstock_plc_);
     waiting_for_ = axes::HeadstockMode::kNone;
   }

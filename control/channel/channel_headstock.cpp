@@ -7,16 +7,29 @@
 #include "control/channel/channel.hpp"
 
 namespace vmt::control::channel {
+void Channel::HeadstockPowerOn() {
+  // 2.3 / 3.3 Power-On State: at the first NC cycle, whether or not the channel has taken its
+  // axes over yet, the NC assumes the mode the PLC presents by ROTMOD_Q / SPMOD_Q and makes its
+  // drive parameter set the one in force (HeadstockChangeover). Neither (or both) presented:
+  // no mode, and a changeover at the next occasion that needs one.
+  headstock_->TakeModeFromPlc(headstock_plc_);
+  headstock_known_ = true;
+  if (headstock_->mode() != axes::HeadstockMode::kNone) shown_mode_ = headstock_->mode();
+}
+
+bool Channel::RotaryReady() const {
+  return headstock_->config().separate_servo() ? headstock_plc_.rotary_ready
+                                               : headstock_plc_.spindle_ready;
+}
+
 void Channel::HeadstockCycle(const AmplifierTelegram& at, double dt) {
-  if (!headstock_known_) {
-    headstock_->TakeModeFromPlc(headstock_plc_);  // power-on mode (2.3)
-    headstock_known_ = true;
-  }
   // Immediate stop (2.3, 3.3): the PLC's motion functions halt and ROTMOD / SPMOD stay pending
   // while the program is stopped, an error is pending or the process enabling signal is
   // missing. A changeover a manual key commanded after the program was interrupted is manual
   // mode's own and runs.
   axes::HeadstockPlc plc = headstock_plc_;
+  // Section 2: one axis, one AxxC.READY (4.2), whichever signal a caller filled in.
+  plc.rotary_ready = RotaryReady();
   const bool interrupted = state_ == ChannelState::kHold && !manual_changeover_;
   plc.stop = plc.stop || interrupted || state_ == ChannelState::kError || !process_enable_;
   if (!headstock_->Cycle(plc, at, dt) && state_ != ChannelState::kError)
@@ -116,7 +129,9 @@ void Channel::TrackReferences(const AmplifierTelegram& at, double dt) {
     const double position = at.feedback[drive].position;
     encoder_last_[drive] = position;
     if (p.encoder_limit_hz <= 0 || p.encoder_periods_per_rev <= 0 || std::isnan(last)) return false;
-    const double rev_per_s = std::abs(position - last) / 360 / dt;
+    // The shorter way: a modulo encoder (0..360) wraps every turn. A cycle's step stays far
+    // below half a turn (180 deg per 1 ms NC cycle is 30000 rpm).
+    const double rev_per_s = std::abs(std::remainder(position - last, 360.0)) / 360 / dt;
     return rev_per_s * p.encoder_periods_per_rev > p.encoder_limit_hz;
   };
   if (rotary >= 0 && too_fast(rotary, config_.axes[config_.rotary_axis]))
@@ -126,6 +141,7 @@ void Channel::TrackReferences(const AmplifierTelegram& at, double dt) {
     spindle_homed_ = false;
   if (spindle < 0) return;
   spindle_position_ = at.feedback[spindle].position;
+  spindle_rpm_ = at.feedback[spindle].velocity / 6;
   // M19 establishes the reference (2.3: "by crossing the related zero impulse", then it
   // moves to the command position): it is there when the spindle reports itself in position.
   // It needs spindle mode on a headstock: in rotary mode M19 waits for its changeover.
@@ -156,6 +172,24 @@ double Channel::HeadstockPosition() const {
   if (shown_mode_ == axes::HeadstockMode::kRotary) return commanded_[r] - translation_[r];
   const double a = std::fmod(spindle_position_, 360.0);
   return a < 0 ? a + 360 : a;
+}
+
+SpindleStatus Channel::spindle_status() const {
+  SpindleStatus st;
+  st.spindle_override = spindle_override_;
+  st.feed_override = override_;
+  // 2.3 / 3.3 Status Indication: lines instead of the speeds while the display shows the rotary
+  // axis (the same switch as the position indication's designation).
+  st.speeds_shown =
+      config_.spindle_drive >= 0 && !(headstock_ && shown_mode_ == axes::HeadstockMode::kRotary);
+  if (!st.speeds_shown) return st;
+  // Programmed: what M3 / M4 and S (or the manual keys' jogging speed) command, before the
+  // spindle override; a spindle that positions (M19) has no speed programmed. Not in spindle
+  // mode yet (a changeover to it in progress): the command that waits for it.
+  if (spindle_.mode == DriveMode::kVelocity) st.programmed_rpm = spindle_.value / 6;
+  st.actual_rpm = spindle_rpm_;
+  st.max_rpm = config_.spindle.max_spindle_rpm;
+  return st;
 }
 
 }  // namespace vmt::control::channel

@@ -22,9 +22,50 @@ double PerMinute(const YamlNode& n, const char* key, double fallback_per_s) {
   return v / 60;
 }
 
+// C-axis manual 2.3 / 3.3 Homing: the reference holds while
+//   n_max [1/s] * impulses or oscillations per revolution <= limit frequency.
+// Both or neither: one without the other monitors nothing.
+void ReadEncoderLimit(const YamlNode& n, control::axes::AxisParameters& a) {
+  const bool periods = n.Has("encoder_periods_per_rev"), limit = n.Has("encoder_limit_hz");
+  if (periods != limit)
+    n[periods ? "encoder_periods_per_rev" : "encoder_limit_hz"].Fail(
+        "needs encoder_periods_per_rev and encoder_limit_hz together (C-axis manual 2.3: "
+        "speed x periods per revolution <= limit frequency)");
+  if (!periods) return;
+  a.encoder_periods_per_rev = n["encoder_periods_per_rev"].Double();
+  if (a.encoder_periods_per_rev <= 0) n["encoder_periods_per_rev"].Fail("must be > 0");
+  a.encoder_limit_hz = n["encoder_limit_hz"].Double();
+  if (a.encoder_limit_hz <= 0) n["encoder_limit_hz"].Fail("must be > 0");
+}
+
+// The main spindle's own parameters (C-axis manual 2.2 / 3.2: "Jogging speed" and "Jogging
+// spindle position" with new parameter numbers the manual does not print, Cxx.049), for
+// AxxC.M3 / M4 / M19 in manual mode (4.2) and the status indication (2.3).
+void ReadSpindleParameters(const MachineModel& m, const YamlNode& sp, NcMachineData& nc) {
+  control::axes::AxisParameters& s = nc.spindle;
+  const DriveParams& d = m.drives[nc.spindle_drive];
+  const double limit_rpm = d.velocity_limit * kDegPerRad / 6;
+  if (sp.Has("jogging_speed")) {
+    const double rpm = sp["jogging_speed"].Double();
+    if (rpm <= 0) sp["jogging_speed"].Fail("must be > 0 (rpm)");
+    if (rpm > limit_rpm * (1 + 1e-9))
+      sp["jogging_speed"].Fail("faster than drive " + d.info.name + "'s velocity_limit");
+    s.jog_per_s = rpm * 6;
+  }
+  s.jog_spindle_position = sp.Double("jogging_spindle_position", 0);
+  if (s.jog_spindle_position < 0 || s.jog_spindle_position >= 360)
+    sp["jogging_spindle_position"].Fail("must be in [0, 360) deg");
+  s.max_spindle_rpm = sp.Double("Cxx.049", limit_rpm);
+  if (s.max_spindle_rpm <= 0) sp["Cxx.049"].Fail("must be > 0 (rpm)");
+  if (s.max_spindle_rpm > limit_rpm * (1 + 1e-9))
+    sp["Cxx.049"].Fail("faster than drive " + d.info.name + "'s velocity_limit");
+  ReadEncoderLimit(sp, s);
+}
+
 control::axes::AxisParameters ReadAxis(const MachineModel& m, const YamlNode& n, size_t i) {
   n.AllowKeys({"name", "number", "drive", "rapid", "acceleration", "jerk", "Cxx.020", "Cxx.021",
-               "Cxx.022", "Cxx.023", "Cxx.086", "reference", "homing", "needs_homing"});
+               "Cxx.022", "Cxx.023", "Cxx.086", "reference", "homing", "needs_homing",
+               "encoder_periods_per_rev", "encoder_limit_hz"});
   control::axes::AxisParameters a;
   a.name = n["name"].String();
   a.number = n.Int("number", static_cast<int>(i) + 1);
@@ -52,6 +93,7 @@ control::axes::AxisParameters ReadAxis(const MachineModel& m, const YamlNode& n,
   a.reference_position = n.Double("reference", 0);
   a.homing_per_s = PerMinute(n, "homing", 0);
   a.homed_at_start = !n.Bool("needs_homing", false);
+  ReadEncoderLimit(n, a);
   // Software limits: the joint's travel (the axis position is the joint position).
   const Joint& joint = m.joints[d.motor_joint];
   if (joint.type == JointType::kPrismatic || joint.type == JointType::kRevolute) {
@@ -92,6 +134,16 @@ void RotaryAxisOnTheSpindleDrive(const MachineModel& m, const YamlNode& axis, co
   else if (a.acceleration > set.acceleration_limit * kDegPerRad * (1 + 1e-9))
     axis["acceleration"].Fail("above the acceleration_limit of " + which);
   if (!axis.Has("Cxx.023")) a.in_position_window = set.in_position_window * kDegPerRad;
+  // One drive, one encoder, one reference (2.3 Homing): the spindle's encoder data is the
+  // axis'. Given twice it could disagree.
+  if (sp.Has("encoder_periods_per_rev")) {
+    if (axis.Has("encoder_periods_per_rev"))
+      axis["encoder_periods_per_rev"].Fail(
+          "the spindle's encoder is given already: spindle and rotary axis on one drive have one "
+          "encoder (C-axis manual 2.3)");
+    a.encoder_periods_per_rev = nc.spindle.encoder_periods_per_rev;
+    a.encoder_limit_hz = nc.spindle.encoder_limit_hz;
+  }
 }
 
 }  // namespace
@@ -177,8 +229,12 @@ NcMachineData ReadNcMachineData(const MachineModel& m, const YamlNode& node) {
     nc.spindle_drive = m.DriveIndex(s.String());
     if (nc.spindle_drive < 0) s.Fail("no drive '" + s.String() + "'");
     if (!m.drives[nc.spindle_drive].spindle) s.Fail("not a spindle drive");
+    nc.spindle.max_spindle_rpm = m.drives[nc.spindle_drive].velocity_limit * kDegPerRad / 6;
     if (sp.IsMap()) {
-      sp.AllowKeys({"drive", "number", "rotary_axis", "rotary_parameter_set"});
+      sp.AllowKeys({"drive", "number", "rotary_axis", "rotary_parameter_set", "jogging_speed",
+                    "jogging_spindle_position", "Cxx.049", "encoder_periods_per_rev",
+                    "encoder_limit_hz"});
+      ReadSpindleParameters(m, sp, nc);
       nc.spindle_number = sp.Int("number", -1);
       if (sp.Has("number") && (nc.spindle_number < 1 || nc.spindle_number > 99))
         sp["number"].Fail("must be in 1..99 (Axx)");

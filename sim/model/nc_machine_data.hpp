@@ -20,6 +20,10 @@ struct NcMachineData {
   std::vector<control::axes::AxisParameters> axes;  ///< channel axes, in channel order
   int spindle_drive = -1;
   int spindle_number = -1;  ///< Axx of the spindle; -1: one past the highest axis number
+  /// The main spindle's parameters (`spindle:` map): jog_per_s (deg/s) from `jogging_speed`
+  /// (rpm), jog_spindle_position (deg), max_spindle_rpm (Cxx.049, default the drive's limit),
+  /// the encoder's limit frequency. Its name, number and drive are not set here.
+  control::axes::AxisParameters spindle;
   /// The spindle's rotary axis mode (C-axis manual): the channel axis that is its rotary axis
   /// (a separate servo, section 3, or on the spindle's own drive, section 2), -1 if none; and
   /// the drive parameter set of rotary axis mode (section 2, 0: no switch).

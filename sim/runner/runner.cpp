@@ -106,6 +106,24 @@ ExpectationResult Check(const Expectation& e, const control::AmplifierTelegram& 
   return r;
 }
 
+// The main spindle's status indication as a user interface shows it (C-axis manual 2.3 / 3.3):
+// the designation, the speeds or -- in rotary axis mode -- lines (null), the overrides always.
+nlohmann::ordered_json SpindleStatusJson(const control::channel::Channel& ch,
+                                         const std::string& spindle_name) {
+  const control::channel::SpindleStatus st = ch.spindle_status();
+  const std::string axis = ch.headstock() ? ch.HeadstockAxisName() : spindle_name;
+  auto speed = [&](double rpm) {
+    return st.speeds_shown ? nlohmann::ordered_json(rpm) : nlohmann::ordered_json(nullptr);
+  };
+  return {{"axis", axis},
+          {"speeds", st.speeds_shown ? "shown" : "lines"},
+          {"programmed_rpm", speed(st.programmed_rpm)},
+          {"actual_rpm", speed(st.actual_rpm)},
+          {"max_rpm", speed(st.max_rpm)},
+          {"spindle_override_percent", st.spindle_override * 100},
+          {"feed_override_percent", st.feed_override * 100}};
+}
+
 }  // namespace
 
 // Everything a run holds between ticks.
@@ -182,6 +200,7 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     config.axes = scene.nc.data.axes;
     config.process = scene.nc.data.process;
     config.spindle_drive = scene.nc.data.spindle_drive;
+    config.spindle = scene.nc.data.spindle;
     if (config.spindle_drive >= 0) config.spindle.name = m.drives[config.spindle_drive].info.name;
     config.zero_offsets = scene.nc.data.zero_offsets;
     config.tools = scene.nc.data.tools;
@@ -306,10 +325,12 @@ void SceneRun::State::Step() {
     }
     if (const auto* hs = channel->headstock(); hs && hs->mode() != headstock_mode) {
       headstock_mode = hs->mode();
+      // The status indication switches with it: speeds in spindle mode, lines in rotary mode.
       emit_event({{"t", t},
                   {"event", "headstock"},
                   {"mode", ToString(headstock_mode)},
-                  {"axis", channel->HeadstockAxisName()}});
+                  {"axis", channel->HeadstockAxisName()},
+                  {"speeds", channel->spindle_status().speeds_shown ? "shown" : "lines"}});
     }
     if (channel->state() != nc_state) {
       nc_state = channel->state();
@@ -590,6 +611,9 @@ RunResult SceneRun::State::Finish() {
       list.push_back({{"text", c.text}, {"passed", c.passed}, {"detail", c.detail}});
     summary["failures"] = result.failures;
     summary["snapshots"] = result.snapshot_files;
+    if (channel && scene.nc.data.spindle_drive >= 0)
+      summary["spindle_status"] =
+          SpindleStatusJson(*channel, m.drives[scene.nc.data.spindle_drive].info.name);
     std::ofstream(options.out_dir + "/summary.json") << summary.dump(2) << '\n';
   }
   return result;

@@ -658,6 +658,12 @@ Scene LoadScene(const std::string& path) {
     if (nc.Has("spindle")) {
       s.nc.data.spindle_drive = RequireDrive(m, nc["spindle"]);
       if (!m.drives[s.nc.data.spindle_drive].spindle) nc["spindle"].Fail("not a spindle drive");
+      // The model's spindle parameters (jogging speed, Cxx.049, ...) are its spindle's.
+      if (s.nc.data.spindle_drive != m.nc.spindle_drive) {
+        s.nc.data.spindle = {};
+        s.nc.data.spindle.max_spindle_rpm =
+            m.drives[s.nc.data.spindle_drive].velocity_limit * kDegPerRad / 6;
+      }
     }
     for (const auto& a : s.nc.data.axes) s.nc.axis_drives.push_back(a.drive);
     if (nc.Has("zero_offsets"))

@@ -122,6 +122,29 @@ TEST(LatheC2ModelTest, RotaryAxisOnTheSpindleDriveErrors) {
             "");
 }
 
+// 2.3 Homing: one drive, one encoder, one reference: the spindle's encoder (a high-resolution
+// incremental encoder on the 100 kHz main spindle interface) is C's, and given twice is an error.
+TEST(LatheC2ModelTest, SpindleAndCShareTheOneEncoder) {
+  const MachineModel& m = LatheC2();
+  const control::axes::AxisParameters& c = m.nc.axes[m.nc.rotary_axis];
+  EXPECT_DOUBLE_EQ(m.nc.spindle.encoder_periods_per_rev, 1024);
+  EXPECT_DOUBLE_EQ(m.nc.spindle.encoder_limit_hz, 100000);
+  EXPECT_DOUBLE_EQ(c.encoder_periods_per_rev, 1024);
+  EXPECT_DOUBLE_EQ(c.encoder_limit_hz, 100000);
+  EXPECT_GT(c.encoder_limit_hz / c.encoder_periods_per_rev * 60, 4000);  // 5859 rpm > S1's max
+  EXPECT_DOUBLE_EQ(m.nc.spindle.jog_per_s, 600);
+  EXPECT_DOUBLE_EQ(m.nc.spindle.jog_spindle_position, 45);
+  EXPECT_THAT(LoadEditedLatheC2("c2_encoder_twice",
+                                [](std::string s) {
+                                  return testing::ReplaceOnce(
+                                      s, "      drive: S1\n",
+                                      "      drive: S1\n      encoder_periods_per_rev: 2048\n"
+                                      "      encoder_limit_hz: 100000\n");
+                                }),
+              ::testing::HasSubstr("nc.axes[2].encoder_periods_per_rev: the spindle's encoder is "
+                                   "given already"));
+}
+
 // The drive works with the gains of the set the setpoint selects and reports it (S-0-0254):
 // set 1's position loop Kv 30 and velocity loop P 1.5 N m per deg/s in rotary axis mode, set 0's
 // velocity loop P 0.8 N m per deg/s in spindle mode (speed control).

@@ -153,6 +153,64 @@ TEST(ModelInputTest, DriveKeyErrorsNameTheirPath) {
   }
 }
 
+// The main spindle's parameters of manual mode and status indication, and the encoders' limit
+// frequency (C-axis manual 2.2, 2.3, 3.3, 4.2) in `nc: spindle:` and on an axis.
+TEST(ModelInputTest, SpindleAndEncoderParametersAreRead) {
+  const MachineModel& m = testing::Lathe();
+  EXPECT_DOUBLE_EQ(m.nc.spindle.jog_per_s, 600);  // jogging_speed 100 rpm, in deg/s
+  EXPECT_DOUBLE_EQ(m.nc.spindle.jog_spindle_position, 45);
+  EXPECT_DOUBLE_EQ(m.nc.spindle.max_spindle_rpm, 4000);  // Cxx.049
+  EXPECT_DOUBLE_EQ(m.nc.spindle.encoder_periods_per_rev, 375);
+  EXPECT_DOUBLE_EQ(m.nc.spindle.encoder_limit_hz, 150000);
+  // 150 kHz / 375 = 400 rev/s: the gear-type encoder's 24000 rpm (3.3).
+  EXPECT_DOUBLE_EQ(m.nc.spindle.encoder_limit_hz / m.nc.spindle.encoder_periods_per_rev * 60,
+                   24000);
+  const control::axes::AxisParameters& c = m.nc.axes[m.nc.rotary_axis];
+  EXPECT_DOUBLE_EQ(c.encoder_periods_per_rev, 2048);
+  EXPECT_DOUBLE_EQ(c.encoder_limit_hz, 150000);
+  // C's encoder outruns S1 (4000 rpm) as 3.3's note asks: 150 kHz / 2048 = 4394 rpm.
+  EXPECT_GT(c.encoder_limit_hz / c.encoder_periods_per_rev * 60, 4000);
+}
+
+TEST(ModelInputTest, SpindleAndEncoderParameterErrorsNameTheirPath) {
+  struct Case {
+    const char* name;
+    const char* from;
+    const char* to;
+    const char* path;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"jog_speed_negative", "jogging_speed: 100,", "jogging_speed: -5,",
+       "nc.spindle.jogging_speed", "must be > 0 (rpm)"},
+      {"jog_speed_too_fast", "jogging_speed: 100,", "jogging_speed: 5000,",
+       "nc.spindle.jogging_speed", "faster than drive S1's velocity_limit"},
+      {"jog_speed_misspelt", "jogging_speed: 100,", "jog_speed: 100,", "nc.spindle.jog_speed",
+       "unknown key 'jog_speed'"},
+      {"jog_position", "jogging_spindle_position: 45,", "jogging_spindle_position: 360,",
+       "nc.spindle.jogging_spindle_position", "must be in [0, 360) deg"},
+      {"max_speed", "Cxx.049: 4000,", "Cxx.049: 4500,", "nc.spindle.Cxx.049",
+       "faster than drive S1's velocity_limit"},
+      {"encoder_half", "encoder_periods_per_rev: 375, encoder_limit_hz: 150000}",
+       "encoder_periods_per_rev: 375}", "nc.spindle.encoder_periods_per_rev",
+       "needs encoder_periods_per_rev and encoder_limit_hz together"},
+      {"encoder_limit_zero", "encoder_limit_hz: 150000}", "encoder_limit_hz: 0}",
+       "nc.spindle.encoder_limit_hz", "must be > 0"},
+      {"axis_encoder", "      encoder_limit_hz: 150000\n  zero_offsets",
+       "      encoder_limit_hz: -1\n  zero_offsets", "nc.axes[2].encoder_limit_hz", "must be > 0"},
+      {"axis_encoder_half", "      encoder_periods_per_rev: 2048\n", "",
+       "nc.axes[2].encoder_limit_hz", "needs encoder_periods_per_rev and encoder_limit_hz"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::string e =
+        LoadEdited(c.name, [&](std::string s) { return Replace(s, c.from, c.to); });
+    EXPECT_THAT(e, HasSubstr("machine.yaml:"));
+    EXPECT_THAT(e, HasSubstr(c.path));
+    EXPECT_THAT(e, HasSubstr(c.message));
+  }
+}
+
 TEST(ModelInputTest, UnknownKeyIsNotIgnored) {
   const std::string e = LoadEdited("unknown_key", [](std::string s) {
     return Replace(s, "    teeth: 24", "    teeth: 24\n    teath: 25");

@@ -145,5 +145,102 @@ TEST(ChannelGatewayHeadstock, ProcessEnableRemovedStopsAndBlocksTheSpindleKeys) 
   EXPECT_DOUBLE_EQ(r.at.feedback[2].velocity, 600);
 }
 
+// 2.3 / 3.3 Power-On State: the PLC presents rotary axis mode (ROTMOD_Q, the spindle's enable
+// off as the manual's PLC leaves it): the display shows C at once and jogging C needs no
+// changeover.
+TEST(ChannelGatewayHeadstock, RotaryModeAtPowerOnShowsCWithoutAChangeover) {
+  HeadstockRig r;
+  r.Set("A03.SPMOD_Q", false);
+  r.Set("A03.ROTMOD_Q", true);
+  r.Set("A03C.READY", false);
+  r.Cycle();
+  EXPECT_EQ(r.ch->HeadstockAxisName(), "C");
+  EXPECT_TRUE(r.Get("A03.ROTMOD"));
+  EXPECT_FALSE(r.Get("A03.SPMOD"));
+  r.Press("P00C.MANU");
+  r.Set("A04C.JGPOS", true);
+  bool changed_over = false;
+  for (int k = 0; k < 40; ++k) {
+    r.Cycle();
+    changed_over = changed_over || r.ch->headstock()->busy();
+  }
+  r.Set("A04C.JGPOS", false);
+  EXPECT_FALSE(changed_over);
+  EXPECT_GT(r.at.feedback[3].position, 0.5);
+  EXPECT_EQ(r.ch->HeadstockAxisName(), "C");
+}
+
+// lathe-c2's headstock (section 2): S1 with rotary axis capability is one axis, A03, named C in
+// rotary axis mode, on drive 2.
+struct OneDriveRig : HeadstockRig {
+  OneDriveRig() {
+    GatewayLayout layout;
+    layout.processes = {0};
+    layout.axes = {{1, "X", false, false}, {2, "Z", false, false}, {3, "C", true, false}};
+    image = SignalImage(BuildSignalTable(layout));
+    channel::ChannelConfig config;
+    const char* names[3] = {"X", "Z", "C"};
+    for (int a = 0; a < 3; ++a) {
+      channel::ChannelAxis axis;
+      axis.name = names[a];
+      axis.number = a + 1;
+      axis.drive = a;
+      axis.rotary = a == 2;
+      axis.rapid_per_s = 400;
+      axis.acceleration = 4000;
+      config.axes.push_back(axis);
+    }
+    config.spindle_drive = 2;
+    config.spindle.name = "S1";
+    config.spindle.jog_per_s = 600;
+    axes::HeadstockConfig h;
+    h.spindle_drive = h.rotary_drive = 2;
+    h.rotary_parameter_set = 1;
+    config.headstock = h;
+    config.rotary_axis = 2;
+    ch = std::make_unique<channel::Channel>(config,
+                                            std::vector<const nc::Program*>{&parsed.program});
+    gateway = std::make_unique<ChannelGateway>(image, 0, std::vector<int>{1, 2, 3}, 3, 2, 3);
+    Set("A03C.READY", true);
+  }
+  int64_t Errnr() const { return image.Int(image.Require("P00S.ERRNR")); }
+};
+
+// 4.2: "The NC employs the 'axis ready' control signal to monitor the ready state of a main
+// spindle with rotary axis capability in rotary axis mode and in main spindle mode": A03C.READY
+// removed while the axis is in use stops the NC with 503 in either mode.
+TEST(ChannelGatewayHeadstock, OneDriveAxisReadyMonitoredInBothModes) {
+  {
+    OneDriveRig r;  // spindle mode at power-on
+    r.Set("A03.SPMOD_Q", true);
+    r.Press("P00C.MANU");
+    r.Press("A03C.M3");
+    ASSERT_DOUBLE_EQ(r.at.feedback[2].velocity, 600);
+    r.Set("A03C.READY", false);
+    r.Cycle(2);
+    EXPECT_TRUE(r.Get("P00S.ERROR"));
+    EXPECT_EQ(r.Errnr(), 503);
+    EXPECT_EQ(r.mdt.setpoints[2].mode, DriveMode::kOff);
+  }
+  {
+    OneDriveRig r;  // rotary axis mode at power-on
+    r.Set("A03.SPMOD_Q", false);
+    r.Set("A03.ROTMOD_Q", true);
+    r.Cycle();
+    EXPECT_EQ(r.ch->HeadstockAxisName(), "C");
+    r.Press("P00C.MANU");
+    r.Set("A03C.JGPOS", true);
+    r.Cycle(10);
+    ASSERT_FALSE(r.Get("P00S.ERROR"));
+    ASSERT_TRUE(r.Get("A03S.MVPOS"));
+    r.Set("A03C.READY", false);
+    r.Cycle(2);
+    EXPECT_TRUE(r.Get("P00S.ERROR"));
+    EXPECT_EQ(r.Errnr(), 503);
+    EXPECT_EQ(r.mdt.setpoints[2].mode, DriveMode::kOff);
+    EXPECT_EQ(r.ch->headstock()->mode(), axes::HeadstockMode::kRotary);
+  }
+}
+
 }  // namespace
 }  // namespace vmt::control::gateway
