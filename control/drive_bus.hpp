@@ -36,6 +36,10 @@ struct DriveSetpoint {
   /// Position mode: velocity feed-forward added to the position loop's output, mm/s | deg/s
   /// (the control's low-lag interpolation, MTC200 G06: the following error falls to ~0).
   double velocity_feedforward = 0;
+  /// Position mode of a spindle set: follow `value` as the NC's cyclic, interpolated absolute
+  /// position command (not wrapped), like a servo, instead of orienting to it (M19). Rigid
+  /// tapping (G64) interpolates the spindle this way; a servo set ignores the flag.
+  bool interpolated = false;
 };
 
 /// Status bits of DriveFeedback::status.

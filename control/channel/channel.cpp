@@ -303,6 +303,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
   if (++tick_in_cycle_ >= config_.ticks_per_cycle) {
     tick_in_cycle_ = 0;
     previous_ = commanded_;
+    spindle_previous_deg_ = spindle_.value;
     const double dt = config_.tick_s * config_.ticks_per_cycle;
     TrackReferences(at, dt);
     if (headstock_) HeadstockCycle(at, dt);
@@ -337,7 +338,10 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
                    waiting_for_ == axes::HeadstockMode::kNone;
       }
       if (active_) {
-        Interpolate(dt);
+        if (sync_.phase != SyncPhase::kNone)
+          SynchronousCycle(at, dt);
+        else
+          Interpolate(dt);
         finished = !active_;
         if (finished && homing_) finished = !NextHomingStage();
         if (finished && carry_speed_ > 0) {
@@ -352,9 +356,11 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
   }
   // Fine interpolation: the drives get a straight line between the last two NC cycle points.
   const double f = static_cast<double>(tick_in_cycle_ + 1) / config_.ticks_per_cycle;
-  // G06 (low-lag): the drives get the path velocity as feed-forward.
+  // G06 (low-lag): the drives get the path velocity as feed-forward; G33/G63/G64 too, so that
+  // the axes do not lag the spindle by their following error.
   const double cycle_s = config_.tick_s * config_.ticks_per_cycle;
-  const bool low_lag = mode_ != ChannelMode::kManual && block_.modal.low_lag &&
+  const bool low_lag = mode_ != ChannelMode::kManual &&
+                       (block_.modal.low_lag || InSynchronousBlock()) &&
                        (state_ == ChannelState::kRunning || state_ == ChannelState::kHold);
   for (size_t a = 0; a < config_.axes.size(); ++a) {
     DriveSetpoint& sp = mdt.setpoints[config_.axes[a].drive];
@@ -373,8 +379,15 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
 DriveSetpoint Channel::SpindleSetpoint() const {
   // C-axis manual 2.3: under M3/M4 (and M19) only the spindle override acts on the spindle,
   // never the feed override. M19's positioning speed is the drive's own.
+  // G63 holds the spindle override at 100 % (the compensating chuck takes up the rest).
   DriveSetpoint sp = spindle_;
-  if (sp.mode == DriveMode::kVelocity) sp.value *= spindle_override_;
+  const bool tapping = InSynchronousBlock() && block_.motion == nc::Motion::kTapping;
+  if (sp.mode == DriveMode::kVelocity && !tapping) sp.value *= spindle_override_;
+  // G64 interpolates the spindle: fine interpolation to the drive tick as for the axes.
+  if (sp.mode == DriveMode::kPosition && sp.interpolated) {
+    const double f = static_cast<double>(tick_in_cycle_ + 1) / config_.ticks_per_cycle;
+    sp.value = spindle_previous_deg_ + (sp.value - spindle_previous_deg_) * f;
+  }
   return sp;
 }
 
@@ -471,6 +484,8 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
     if (f.letter != 'M' || config_.spindle_drive < 0) continue;
     const int m = static_cast<int>(f.value);
     const double rpm = block_.modal.spindle_speed;
+    // G64 keeps the spindle in position control: M3/M4 give its direction only.
+    if ((m == 3 || m == 4) && block_.motion == nc::Motion::kRigidTapping) continue;
     if (m == 3) spindle_ = {DriveMode::kVelocity, rpm * 6, 0};
     if (m == 4) spindle_ = {DriveMode::kVelocity, -rpm * 6, 0};
     if (m == 5) spindle_ = {DriveMode::kVelocity, 0, 0};
@@ -598,6 +613,8 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
       return false;
     }
 
+  if (nc::SpindleSynchronous(block_.motion)) return StartSynchronous(at);
+  sync_.phase = SyncPhase::kNone;
   if (const auto error = PlanBlockMotion(block_, commanded_, translation_, config_.axes,
                                          SpindleRevPerS(at), motion_, FollowUpAxes(block_))) {
     Fail(program, block_.block, error->text, error->number);

@@ -23,6 +23,7 @@
 #include "control/channel/channel_messages.hpp"
 #include "control/channel/look_ahead.hpp"
 #include "control/channel/path_profile.hpp"
+#include "control/channel/spindle_synchronous_motion.hpp"
 #include "control/channel/tool_radius_compensation.hpp"
 #include "control/drive_bus.hpp"
 #include "control/nc/interpreter.hpp"
@@ -359,6 +360,24 @@ class Channel {
   void CollectTrips(const AmplifierTelegram& at);
   void AcknowledgeDriveTrips(MasterTelegram& mdt);
   DriveSetpoint SpindleSetpoint() const;
+  // Spindle-synchronous block in work (G33/G63/G64, channel_spindle_synchronous.cpp).
+  enum class SyncPhase : uint8_t { kNone, kWaitForSpeed, kStopSpindle, kRunning };
+  struct Synchronous {
+    SyncPhase phase = SyncPhase::kNone;
+    SynchronousPath path;
+    ThreadLaw law;             ///< G33
+    double zero_mark_deg = 0;  ///< G33: phi_sync, unwrapped spindle degrees
+    double spindle_deg = 0;    ///< G33: the spindle's actual position, unwrapped
+    double spindle_last_deg = 0;
+    int direction = 1;             ///< spindle rotation: +1 M3, -1 M4
+    double spindle_start_deg = 0;  ///< G64: phi0, where the spindle's interpolation starts
+    double max_override = 1;       ///< G64: spindle override within the axes' and spindle's limits
+  };
+  Synchronous sync_;
+  double spindle_previous_deg_ = 0;  ///< G64: the spindle's command at the last NC cycle
+  bool StartSynchronous(const AmplifierTelegram& at);
+  void SynchronousCycle(const AmplifierTelegram& at, double dt);
+  bool InSynchronousBlock() const { return active_ && sync_.phase != SyncPhase::kNone; }
   std::optional<axes::HeadstockChangeover> headstock_;
   axes::HeadstockPlc headstock_plc_;
   bool headstock_known_ = false;  ///< the power-on mode has been taken from the PLC

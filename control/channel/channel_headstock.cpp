@@ -61,6 +61,7 @@ axes::HeadstockMode Channel::ModeNeeded(const nc::PreparedBlock& b) const {
   for (const nc::AuxFunction& f : b.aux)
     if (f.letter == 'M' && (f.value == 3 || f.value == 4 || f.value == 5 || f.value == 19))
       return axes::HeadstockMode::kSpindle;
+  if (nc::SpindleSynchronous(b.motion)) return axes::HeadstockMode::kSpindle;
   const bool interpolates = b.motion == nc::Motion::kRapid || b.motion == nc::Motion::kLinear ||
                             b.motion == nc::Motion::kArcCw || b.motion == nc::Motion::kArcCcw;
   // G74 of the rotary axis homes it in position control: rotary axis mode too (the manual

@@ -12,6 +12,8 @@ inline constexpr int kMsgNotAvailable = 102;      ///< a function the channel do
 inline constexpr int kMsgNoFeed = 201;            ///< G01/G02/G03 without F
 inline constexpr int kMsgArcGeometry = 202;       ///< centre/radius do not fit the end point
 inline constexpr int kMsgArcPlane = 203;          ///< the plane's axes are not in the channel
+inline constexpr int kMsgSpindleStill = 204;      ///< G33/G63/G64 without M3/M4 and S
+inline constexpr int kMsgLeadTooFast = 205;       ///< G33/G63/G64: lead x speed beyond a limit
 inline constexpr int kMsgToolNotInList = 301;     ///< G48/G49 with a T/D the tool list lacks
 inline constexpr int kMsgTranslationInArc = 302;  ///< offset or tool change in an arc block
 inline constexpr int kMsgGouge = 303;  ///< tool nose radius compensation: contour violation
@@ -43,6 +45,10 @@ inline const char* MessageText(int number) {
       return "arc end point does not fit";
     case kMsgArcPlane:
       return "arc plane axis missing";
+    case kMsgSpindleStill:
+      return "spindle not turning for G33/G63/G64";
+    case kMsgLeadTooFast:
+      return "lead x spindle speed too fast for the axes";
     case kMsgToolNotInList:
       return "tool correction not in the tool list";
     case kMsgTranslationInArc:

@@ -30,7 +30,16 @@ int ModalGroupValue(const ModalState& m, char letter, int group, bool& known) {
   if (letter == 'G') {
     switch (group) {
       case 1:
-        return static_cast<int>(m.motion) - 1;  // 0..3
+        switch (m.motion) {
+          case Motion::kThread:
+            return 33;
+          case Motion::kTapping:
+            return 63;
+          case Motion::kRigidTapping:
+            return 64;
+          default:
+            return static_cast<int>(m.motion) - 1;  // 0..3
+        }
       case 2:
         return m.plane;
       case 3:
@@ -504,9 +513,51 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
   return true;
 }
 
+bool Interpreter::Lead(Dialect dialect, std::optional<double> f_word, uint32_t f_offset,
+                       uint8_t ijk, const uint32_t ijk_offset[3], uint32_t block_offset,
+                       PreparedBlock& out) {
+  // vmt's reading (the manuals give no syntax): MTC200 programs the lead of G33/G63/G64 as F
+  // in mm per revolution, ISG as K; the feed of G94/G95 stays for later G01 blocks. ISG's F
+  // in such a block is its feed, kept for after the thread.
+  const bool isg = dialect == Dialect::kIsg;
+  const char* name = isg ? "K" : "F";
+  for (int k = 0; k < 3; ++k) {
+    if (!(ijk >> k & 1) || (isg && k == 2)) continue;
+    return Fail(ijk_offset[k], std::string(1, static_cast<char>('I' + k)) +
+                                   " in G33/G63/G64: the lead is " + name + " (mm per revolution)");
+  }
+  std::optional<double> lead;
+  uint32_t lead_offset = 0;
+  if (isg) {
+    if (f_word) modal_.feed = *f_word;
+    if (ijk & 4) lead = out.centre[2], lead_offset = ijk_offset[2];
+    out.centre[2] = 0;
+    out.has_centre = false;
+  } else if (f_word) {
+    lead = f_word, lead_offset = f_offset;
+  }
+  if (lead) {
+    if (!(*lead > 0))
+      return Fail(lead_offset, std::string("lead ") + name + " " + std::to_string(*lead) +
+                                   " of G33/G63/G64 must be > 0 mm per revolution");
+    modal_.lead = *lead;
+  }
+  const bool moves = out.programmed && !out.homing && !out.set_position && !out.repos;
+  if (moves && !(modal_.lead > 0))
+    return Fail(block_offset, std::string("G33/G63/G64 without a lead: program ") + name +
+                                  " (mm per revolution)");
+  return true;
+}
+
 bool Interpreter::Words(const Block& block, PreparedBlock& out) {
   const Program& p = program();
   eval_failed_ = false;
+  // F and I/J/K are read once the block's G codes are known: in G33/G63/G64 F (MTC200) or K
+  // (ISG) is the lead, wherever it stands in the block.
+  std::optional<double> f_word;
+  uint32_t f_offset = 0;
+  uint32_t ijk_offset[3] = {0, 0, 0};
+  uint8_t ijk = 0;
   // Two passes: the G codes and other words of a block act before its coordinates, wherever
   // they stand (X40 G16 is a diameter, X10 G91 an increment).
   for (int pass = 0; pass < 2; ++pass)
@@ -544,6 +595,15 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
             break;
           case 3:
             modal_.motion = Motion::kArcCcw;
+            break;
+          case 33:
+            modal_.motion = Motion::kThread;
+            break;
+          case 63:
+            modal_.motion = Motion::kTapping;
+            break;
+          case 64:
+            modal_.motion = Motion::kRigidTapping;
             break;
           case 4:
             out.dwell_s = -1;
@@ -618,13 +678,15 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
           if (out.dwell_s < 0)
             out.dwell_s = v;
           else
-            modal_.feed = v;
+            f_word = v, f_offset = w.offset;
           continue;
         case 'I':
         case 'J':
         case 'K':
           out.centre[letter - 'I'] = v;
           out.has_centre = true;
+          ijk |= 1 << (letter - 'I');
+          ijk_offset[letter - 'I'] = w.offset;
           continue;
         case 'R':
           if (address == "R") {
@@ -668,6 +730,11 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
       return Fail(w.offset, "axis " + address + " is not in this channel");
     }
   if (out.dwell_s < 0) return Fail(block.pos.offset, "G04 needs its dwell time as F");
+  if (!SpindleSynchronous(modal_.motion)) {
+    if (f_word) modal_.feed = *f_word;
+  } else if (!Lead(p.dialect, f_word, f_offset, ijk, ijk_offset, block.pos.offset, out)) {
+    return false;
+  }
   if (out.programmed && !out.homing && !out.set_position && !out.repos) out.motion = modal_.motion;
   return true;
 }

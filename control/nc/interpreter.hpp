@@ -19,11 +19,31 @@
 
 namespace vmt::control::nc {
 
-enum class Motion : uint8_t { kNone, kRapid, kLinear, kArcCw, kArcCcw };
+/// Modal group 1. G33, G63 and G64 are spindle-synchronous moves (vmt's reading of the
+/// manuals, which name them but give no syntax): a straight move of the programmed linear axes
+/// whose lead, mm per spindle revolution along the axis that travels furthest, is
+/// ModalState::lead. kThread (G33) follows the spindle's actual position; kTapping (G63, with
+/// a compensating chuck) runs at lead x S; kRigidTapping (G64, without) interpolates the
+/// spindle's position with the axes.
+enum class Motion : uint8_t {
+  kNone,
+  kRapid,
+  kLinear,
+  kArcCw,
+  kArcCcw,
+  kThread,
+  kTapping,
+  kRigidTapping
+};
+
+/// G33, G63 or G64.
+inline bool SpindleSynchronous(Motion m) {
+  return m == Motion::kThread || m == Motion::kTapping || m == Motion::kRigidTapping;
+}
 
 /// Modal state as programs set it. Group numbers for G(n) reads are ModalGroup.
 struct ModalState {
-  Motion motion = Motion::kRapid;    ///< G00 G01 G02 G03
+  Motion motion = Motion::kRapid;    ///< G00 G01 G02 G03 G33 G63 G64
   int plane = 18;                    ///< G17 G18 G19 (a lathe starts in G18)
   bool incremental = false;          ///< G91 | G90
   bool feed_per_revolution = false;  ///< G95 | G94
@@ -36,8 +56,11 @@ struct ModalState {
   int spindle = 5;                   ///< M3 M4 M5 M19
   int coolant = 9;                   ///< M7 M8 M9
   double feed = 0;                   ///< F, mm/min or mm/rev
-  double spindle_speed = 0;          ///< S, rpm
-  int tool = 0, correction = 0;      ///< T, D
+  /// Lead of G33/G63/G64, mm per spindle revolution: MTC200 F while one of them is active,
+  /// ISG K. Kept apart from `feed`, so a later G01 finds its feed undisturbed; modal like F.
+  double lead = 0;
+  double spindle_speed = 0;      ///< S, rpm
+  int tool = 0, correction = 0;  ///< T, D
 };
 
 /// G(n) / M(n) group numbers (MTC200 data access to modal state).
@@ -120,6 +143,9 @@ class Interpreter {
   bool Execute(const Block& block, PreparedBlock& out, int32_t& next);
   bool Statement_(const Statement& st, int32_t block, PreparedBlock& out, int32_t& next);
   bool Words(const Block& block, PreparedBlock& out);
+  /// The lead of a G33/G63/G64 block (F in MTC200, K in ISG) into modal_.lead.
+  bool Lead(Dialect dialect, std::optional<double> f_word, uint32_t f_offset, uint8_t ijk,
+            const uint32_t ijk_offset[3], uint32_t block_offset, PreparedBlock& out);
   double Eval(ExprId id);
   double Call(uint32_t name, std::span<const double> args, uint32_t offset, uint32_t rank);
   /// A fault of the expression being evaluated; the first in tree order (lowest rank) counts.

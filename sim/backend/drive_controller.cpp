@@ -89,8 +89,11 @@ double DriveController::VelocityReference(const control::DriveSetpoint& sp, doub
     case DriveMode::kPosition:
       break;
   }
-  if (!g.spindle) {
-    // Servo: proportional position loop; the master interpolates, the drive only follows.
+  interpolated_ = g.spindle && sp.interpolated;
+  if (!g.spindle || interpolated_) {
+    // Servo (and a spindle the NC interpolates, G64): proportional position loop; the master
+    // interpolates, the drive only follows.
+    if (interpolated_) orient_command_ = std::nan("");  // a later M19 plans afresh
     // With feed-forward (G06) the loop only corrects what the feed-forward leaves.
     const double v = g.kv_per_s * PositionError(*p_, sp.value, position) + sp.velocity_feedforward;
     return std::clamp(v, -g.velocity_limit, g.velocity_limit);
@@ -159,8 +162,9 @@ control::DriveFeedback DriveController::Feedback(double position, double velocit
   if (std::abs(velocity) < g.standstill_window) fb.status |= kStandstill;
   if (saturated_) fb.status |= kTorqueLimit;
   if (mode == control::DriveMode::kPosition) {
-    const double target = g.spindle ? orient_target_ : command_;
-    const double error = g.spindle ? target - quantised : PositionError(*p_, target, quantised);
+    const bool orienting = g.spindle && !interpolated_;
+    const double target = orienting ? orient_target_ : command_;
+    const double error = orienting ? target - quantised : PositionError(*p_, target, quantised);
     fb.following_error = error * unit;
     if (std::abs(error) < g.in_position_window) fb.status |= kInPosition;
     if (std::abs(error) > g.following_error_limit) fb.status |= kFollowingError;

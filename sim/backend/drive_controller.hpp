@@ -80,7 +80,8 @@ class DriveController {
   double ramp_velocity_ = 0;  ///< velocity mode: reference after the acceleration ramp
   double orient_target_ = 0;  ///< M19: absolute target chosen when the command arrives
   double orient_command_ = 0;
-  double integral_ = 0;  ///< velocity PI state (torque units)
+  bool interpolated_ = false;  ///< spindle set in position mode following the NC (G64)
+  double integral_ = 0;        ///< velocity PI state (torque units)
   bool saturated_ = false;
   double overload_s_ = 0;  ///< net time at the torque limit
   uint32_t faults_ = 0;

@@ -201,7 +201,13 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     config.process = scene.nc.data.process;
     config.spindle_drive = scene.nc.data.spindle_drive;
     config.spindle = scene.nc.data.spindle;
-    if (config.spindle_drive >= 0) config.spindle.name = m.drives[config.spindle_drive].info.name;
+    if (config.spindle_drive >= 0) {
+      // The spindle's limits bound G64's interpolation of it (its spindle set 0).
+      const DriveParams& d = m.drives[config.spindle_drive];
+      config.spindle.name = d.info.name;
+      config.spindle.rapid_per_s = d.parameter_sets.at(0).velocity_limit * kDegPerRad;
+      config.spindle.acceleration = d.parameter_sets.at(0).acceleration_limit * kDegPerRad;
+    }
     config.zero_offsets = scene.nc.data.zero_offsets;
     config.tools = scene.nc.data.tools;
     config.initial = scene.nc.initial;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -103,6 +104,33 @@ TEST(SpindleTest, OrientsToAnAngle) {
   ASSERT_GT(t, 0);
   const double angle = std::fmod(bench.Feedback("S1").position, 360.0);
   EXPECT_NEAR(angle, 45, 0.05);
+}
+
+// G64: a spindle set in position mode with `interpolated` follows the NC's cyclic position
+// like a servo, over many turns, instead of orienting to it modulo 360 (M19).
+TEST(SpindleTest, FollowsAnInterpolatedPositionOverManyTurns) {
+  const MachineModel& m = Lathe();
+  PhysicsBackend backend(m, {});
+  Bench bench(backend);
+  control::DriveSetpoint& sp = bench.mdt().setpoints[m.DriveIndex("S1")];
+  const double start = bench.Feedback("S1").position;
+  // Three turns on a triangular speed profile at 1800 deg/s^2, as the NC's G64 would send.
+  const double accel = 1800, turns_deg = 3 * 360;
+  double command = start, velocity = 0, worst = 0;
+  bench.Run(3.0, [&] {
+    const double left = turns_deg - (command - start);
+    velocity = left <= velocity * velocity / (2 * accel)
+                   ? std::max(0.0, velocity - accel * kDriveTickS)
+                   : velocity + accel * kDriveTickS;
+    command += std::min(velocity * kDriveTickS, left);
+    sp = {DriveMode::kPosition, command, 0, velocity, true};
+    worst = std::max(worst, std::abs(bench.Feedback("S1").following_error));
+  });
+  bench.Run(0.5);
+  EXPECT_LT(worst, 2.0);                         // degrees, with feed-forward
+  EXPECT_NEAR(command - start, turns_deg, 1.0);  // M19 would have taken the short way to it
+  EXPECT_NEAR(bench.Feedback("S1").position, command, 0.05);
+  EXPECT_TRUE(bench.Feedback("S1").status & control::drive_status::kInPosition);
 }
 
 // The belt is a gear: the motor turns `ratio` times the spindle, and stays in phase.

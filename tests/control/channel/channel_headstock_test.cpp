@@ -195,19 +195,19 @@ TEST_P(ChannelHeadstockKinds, BlocksThatNeedTheCurrentModeRunWithoutAChangeover)
   EXPECT_EQ(none.hs().mode(), HeadstockMode::kNone);
 }
 
-TEST(ChannelHeadstockTest, ThreadCuttingAndTappingCodesAreNotInTheInterpreterYet) {
-  // 4.2: G33, G63 and G64 select spindle mode. The interpreter does not know them yet, so a
-  // block with them stops the program with its error before anything is changed over: the
-  // trigger for them exists nowhere yet (see the report of this branch).
+TEST(ChannelHeadstockTest, ThreadCuttingAndTappingSelectSpindleMode) {
+  // 4.2: G33, G63 and G64 select spindle mode: the block waits for the changeover, and only
+  // then finds that no M3/M4 turns the spindle (channel_thread_test.cpp has the threads).
   for (const char* g : {"G33 Z-10 F1.5", "G63 Z-10 F1.5", "G64 Z-10 F1.5"}) {
     SCOPED_TRACE(g);
     Lathe m(std::string("N1 ") + g + "\nN2 RET\n", Kind::kServo, HeadstockMode::kRotary);
     m.channel->Start();
-    m.Run(400);
+    m.Run(4000);
     EXPECT_EQ(m.channel->state(), ChannelState::kError);
-    EXPECT_THAT(m.channel->error(), ::testing::HasSubstr("is not supported"));
-    EXPECT_EQ(m.changeover_ticks, 0);
-    EXPECT_EQ(m.hs().mode(), HeadstockMode::kRotary);
+    EXPECT_THAT(m.channel->error(), ::testing::HasSubstr("spindle not turning for G"));
+    EXPECT_EQ(m.channel->error_number(), kMsgSpindleStill);
+    EXPECT_GT(m.changeover_ticks, 0);
+    EXPECT_EQ(m.hs().mode(), HeadstockMode::kSpindle);
   }
 }
 

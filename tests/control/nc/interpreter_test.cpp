@@ -149,7 +149,8 @@ TEST(InterpreterTest, RuntimeErrorsPointAtTheSource) {
               HasSubstr("a.isg:2:5: error: subprogram MISSING is not in the program store"));
   EXPECT_THAT(Execute({{"a.mtc", "N1 G01 A5 F1\n"}}).error,
               HasSubstr("a.mtc:1:8: error: axis A is not in this channel"));
-  EXPECT_THAT(Execute({{"a.mtc", "N1 G33 X1\n"}}).error, HasSubstr("G33 is not supported"));
+  EXPECT_THAT(Execute({{"a.mtc", "N1 G34 X1\n"}}).error,
+              HasSubstr("a.mtc:1:4: error: G34 is not supported"));
   EXPECT_THAT(Execute({{"a.mtc", "N1 RTS\n"}}).error, HasSubstr("RTS without JSR"));
   InterpreterConfig tight;
   tight.max_steps_per_block = 1000;
