@@ -130,10 +130,14 @@ TEST_P(HeadstockPositionsTest, IncrementRightAfterAChangeoverCountsFromWhereTheS
   ASSERT_GT(std::abs(std::remainder(stopped, 360.0)), 1)
       << "the spindle stopped near 0: the test would not tell the stale position from the actual";
   EXPECT_NEAR(Mod360(t[pos][t.RowAt(rotary->end_s)]), Mod360(stopped), 0.05);
+  // The drive's setpoint in the last trace row of a block: the fine interpolation between NC
+  // cycle points (a block ends inside a cycle, the next runs on from there), within a cycle's
+  // travel at 60 deg/s of the block's end; the takeover row, within one of the changeover's end.
+  // Counted from where the program last put C (0), N0050 would end about 100 deg away.
   const auto end_of = [&](int line) { return t[cmd][t.RowsOfLine(line).back()]; };
-  EXPECT_NEAR(end_of(5), stopped + 10, 1e-6);
-  EXPECT_NEAR(end_of(6), stopped + 20, 1e-6);
-  EXPECT_NEAR(end_of(7), 45, 1e-6);
+  EXPECT_NEAR(end_of(5), stopped + 10, 0.15);
+  EXPECT_NEAR(end_of(6), stopped + 20, 0.15);
+  EXPECT_NEAR(end_of(7), 45, 0.15);
   const size_t last = t.size() - 1;
   EXPECT_NEAR(t[cmd][last], 25, 1e-6);
   EXPECT_NEAR(Mod360(t[pos][last]), 25, 0.01);
