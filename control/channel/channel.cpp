@@ -411,6 +411,7 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
       waiting_for_ = need;
       return true;
     }
+    if (waiting_for_ == axes::HeadstockMode::kRotary) RebaseRotaryAxis();
     waiting_for_ = axes::HeadstockMode::kNone;
     // C-axis manual 2.3: offsets of the rotary axis are programmed only in rotary axis mode.
     // The manual is silent on G92 C in spindle mode; a control refuses it rather than shift an

@@ -213,8 +213,8 @@ class Channel {
   /// the spindle's (S1) or the rotary axis' (C), switched only when a changeover has completed.
   /// Empty without a headstock.
   std::string HeadstockAxisName() const;
-  /// The value shown beside it: the rotary axis' position in program coordinates, or the
-  /// spindle's actual position (0..360 deg).
+  /// The value shown beside it, 0..360 deg: the rotary axis' position in program coordinates
+  /// (modulo one turn, though the program may run C past it), or the spindle's actual position.
   double HeadstockPosition() const;
   /// Status indication of the main spindle (as of the last NC cycle); a channel without a
   /// spindle shows its overrides only.
@@ -386,6 +386,11 @@ class Channel {
   /// The mode whose designation the user interface shows (the last completed changeover's).
   axes::HeadstockMode shown_mode_ = axes::HeadstockMode::kSpindle;
   double rotary_translation_ = 0;  ///< the rotary axis' translation in rotary axis mode
+  /// The interpreter's rotary axis position before the block last read (ReadNext), and after it.
+  double rotary_start_ = 0, rotary_next_start_ = 0;
+  /// A changeover to rotary axis mode has ended: the block in work and the interpreter take
+  /// the rotary axis' actual position.
+  void RebaseRotaryAxis();
   double spindle_override_ = 1.0;
   bool process_enable_ = true;
   bool spindle_homed_ = true;         ///< a separate spindle's reference (section 3)

@@ -169,9 +169,12 @@ std::string Channel::HeadstockAxisName() const {
 
 double Channel::HeadstockPosition() const {
   if (!headstock_) return 0;
+  // 2.3 Position Indication: the representation usual for a rotary axis, 0..360 deg, though
+  // the program's C runs on past a turn (C-270, the manual's 1.2).
   const size_t r = static_cast<size_t>(config_.rotary_axis);
-  if (shown_mode_ == axes::HeadstockMode::kRotary) return commanded_[r] - translation_[r];
-  const double a = std::fmod(spindle_position_, 360.0);
+  const double shown = shown_mode_ == axes::HeadstockMode::kRotary ? commanded_[r] - translation_[r]
+                                                                   : spindle_position_;
+  const double a = std::fmod(shown, 360.0);
   return a < 0 ? a + 360 : a;
 }
 

@@ -156,15 +156,37 @@ bool Channel::ReadNext(nc::PreparedBlock& b) {
   if (!peeked_.empty()) {
     b = std::move(peeked_.front());
     peeked_.pop_front();
-    return true;
-  }
-  if (unpushed_) {
+  } else if (unpushed_) {
     b = *unpushed_;
     unpushed_.reset();
-    return true;
+  } else {
+    if (source_returned_false_) return false;
+    if (headstock_) rotary_next_start_ = interpreter_->position()[config_.rotary_axis];
+    if (!interpreter_->Next(b)) return false;
   }
-  if (source_returned_false_) return false;
-  return interpreter_->Next(b);
+  // Blocks leave here in the interpreter's order: each starts, for the interpreter, where the
+  // one before ended (an increment of the rotary axis adds to this; see RebaseRotaryAxis).
+  if (headstock_) {
+    rotary_start_ = rotary_next_start_;
+    rotary_next_start_ = b.target[config_.rotary_axis];
+  }
+  return true;
+}
+
+void Channel::RebaseRotaryAxis() {
+  // C-axis manual 1.2: block preparation waits until the changeover ends. The block that asked
+  // for rotary axis mode was prepared before, from where the program last put the rotary axis;
+  // the spindle has turned since. Rotary axis mode starts where it stands (in program
+  // coordinates, with the rotary axis' zero offsets back, 2.3), so an increment counts from
+  // here, and the interpreter prepares the next blocks from the block's corrected end. Under
+  // G41/G42 the blocks ahead are already prepared: they keep the program's values.
+  if (compensating_ || !peeked_.empty() || block_.homing) return;
+  const size_t r = static_cast<size_t>(config_.rotary_axis);
+  const double actual = commanded_[r] - translation_[r];
+  if (block_.modal.incremental && (block_.programmed >> r & 1))
+    block_.target[r] += actual - rotary_start_;
+  interpreter_->SetAxisPosition(r, block_.target[r]);
+  rotary_next_start_ = block_.target[r];
 }
 
 bool Channel::Peek(size_t k) {

@@ -120,6 +120,13 @@ class Interpreter {
   const std::vector<double>& position() const { return position_; }
   /// Where the axes stand before the first block (incremental moves start from here).
   void SetPosition(const std::vector<double>& position) { position_ = position; }
+  /// Where one channel axis stands now, in program coordinates: the next block's increment
+  /// and an unprogrammed target start here. The channel sets the rotary axis when a changeover
+  /// to rotary axis mode ends, as the spindle has turned since the program last positioned it.
+  /// An axis outside the channel is ignored.
+  void SetAxisPosition(size_t axis, double value) {
+    if (axis < position_.size()) position_[axis] = value;
+  }
   /// A variable (@100, P1, V.L.X) by name; 0 if never set.
   double Variable(const std::string& name) const;
   bool ended() const { return ended_; }

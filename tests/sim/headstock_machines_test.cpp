@@ -15,77 +15,26 @@
 #include <string>
 #include <vector>
 
+#include "scene_trace_support.hpp"
 #include "sim/runner/runner.hpp"
 #include "sim_test_support.hpp"
 
 namespace vmt::sim {
 namespace {
 
+using testing::Changeover;
+using testing::Trace;
+
 constexpr const char* kProgram = "tests/control/nc/seed_programs/caxis_spindle_switching.mtc";
+constexpr const char* kSpiralGroove = "scenes/nc/caxis_spiral_groove.mtc";
 
-/// trace.csv as columns by header name.
-struct Trace {
-  std::map<std::string, std::vector<double>> columns;
-  const std::vector<double>& operator[](const std::string& name) const {
-    const auto it = columns.find(name);
-    if (it == columns.end()) throw std::runtime_error("no trace column " + name);
-    return it->second;
-  }
-  size_t size() const { return columns.empty() ? 0 : columns.begin()->second.size(); }
-};
-
-Trace ReadTrace(const std::string& dir) {
-  std::ifstream in(dir + "/trace.csv");
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> names;
-  for (size_t start = 0;;) {
-    const size_t comma = line.find(',', start);
-    names.push_back(line.substr(start, comma - start));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  Trace t;
-  while (std::getline(in, line)) {
-    size_t start = 0;
-    for (const std::string& name : names) {
-      const size_t comma = line.find(',', start);
-      t.columns[name].push_back(std::stod(line.substr(start, comma - start)));
-      start = comma + 1;
-    }
-  }
-  return t;
-}
-
-/// The source line of the block numbered `block` ("N0077") in the seed program.
-int LineOf(const std::string& block) {
-  std::ifstream in(testing::SourcePath(kProgram));
+/// The source line of the block numbered `block` ("N0077") in `program`.
+int LineOf(const std::string& block, const char* program = kProgram) {
+  std::ifstream in(testing::SourcePath(program));
   std::string line;
   for (int n = 1; std::getline(in, line); ++n)
     if (line.rfind(block, 0) == 0) return n;
   return -1;
-}
-
-/// A headstock changeover as events.jsonl records it: from the request to the new mode.
-struct Changeover {
-  std::string target;
-  double start_s = 0, end_s = -1;
-  double duration_s() const { return end_s - start_s; }
-};
-
-std::vector<Changeover> Changeovers(const std::string& dir) {
-  std::ifstream in(dir + "/events.jsonl");
-  std::vector<Changeover> result;
-  for (std::string line; std::getline(in, line);) {
-    const nlohmann::json e = nlohmann::json::parse(line);
-    if (e["event"] != "headstock") continue;
-    if (e.contains("target") && e["mode"] == "none")
-      result.push_back({e["target"].get<std::string>(), e["t"].get<double>()});
-    else if (e.contains("axis") && !result.empty() && result.back().end_s < 0 &&
-             e["mode"] == result.back().target)
-      result.back().end_s = e["t"].get<double>();
-  }
-  return result;
 }
 
 struct SwitchingRun {
@@ -103,17 +52,9 @@ SwitchingRun RunSwitching(const std::string& scene_file, BackendKind backend,
   options.out_dir = testing::OutputDir(out);
   SwitchingRun run;
   run.result = RunScene(scene, options);
-  run.trace = ReadTrace(options.out_dir);
-  run.changeovers = Changeovers(options.out_dir);
+  run.trace = testing::ReadTrace(options.out_dir);
+  run.changeovers = testing::Changeovers(options.out_dir);
   return run;
-}
-
-/// The rows of the trace while N0077 runs.
-std::vector<size_t> RowsOfBlock(const Trace& t, int line) {
-  std::vector<size_t> rows;
-  for (size_t i = 0; i < t.size(); ++i)
-    if (t["nc.line"][i] == line) rows.push_back(i);
-  return rows;
 }
 
 // On the physics backend, the scenes' own: lathe-c1's clutch meshes there with its tooth
@@ -138,7 +79,7 @@ TEST(HeadstockMachinesTest, SameProgramSamePathDifferentChangeover) {
   // C is drive C on c1 and drive S1 (C its rotary axis designation) on c2.
   const int n0077 = LineOf("N0077");
   ASSERT_GT(n0077, 0);
-  const std::vector<size_t> r1 = RowsOfBlock(c1.trace, n0077), r2 = RowsOfBlock(c2.trace, n0077);
+  const std::vector<size_t> r1 = c1.trace.RowsOfLine(n0077), r2 = c2.trace.RowsOfLine(n0077);
   ASSERT_GT(r1.size(), 1000u);
   ASSERT_NEAR(static_cast<double>(r1.size()), static_cast<double>(r2.size()), 2);
   const size_t n = std::min(r1.size(), r2.size());
@@ -152,10 +93,9 @@ TEST(HeadstockMachinesTest, SameProgramSamePathDifferentChangeover) {
     worst_cmd_x = std::max(worst_cmd_x,
                            std::abs((c1.trace["X.cmd"][i] - x1_0) - (c2.trace["X.cmd"][j] - x2_0)));
     // c1's C reads the spindle's encoder modulo 360 (its position within one turn).
-    worst_pos_c =
-        std::max(worst_pos_c, std::abs(std::remainder(
-                                  (c1.trace["C.pos"][i] - c1_0) - (c2.trace["S1.pos"][j] - c2_0),
-                                  360.0)));
+    worst_pos_c = std::max(
+        worst_pos_c, std::abs(std::remainder(
+                         (c1.trace["C.pos"][i] - c1_0) - (c2.trace["S1.pos"][j] - c2_0), 360.0)));
     worst_pos_x = std::max(worst_pos_x,
                            std::abs((c1.trace["X.pos"][i] - x1_0) - (c2.trace["X.pos"][j] - x2_0)));
   }
@@ -192,6 +132,72 @@ TEST(HeadstockMachinesTest, SameProgramSamePathDifferentChangeover) {
       << c1.changeovers[0].duration_s() << " s";
 }
 
+// The manual's spiral groove (1.2, Fig. 1-3) on both headstocks. For the program they are the same
+// machine (1.1): the blocks after the changeover -- lowering the cutter, the groove with RX50,
+// lifting it -- take the same time and follow the same X/Z/C path, and the program ends in the
+// same place; only the changeover in N0144 (c1: clutch K with hunting, c2: the drive's
+// parameter set) differs, and with it when the blocks after it start.
+TEST(HeadstockMachinesTest, SpiralGrooveSamePathsAndBlockTimes) {
+  const SwitchingRun c1 =
+      RunSwitching("scenes/c-axis-spiral-groove.yaml", BackendKind::kPhysics, "spiral_c1");
+  const SwitchingRun c2 =
+      RunSwitching("scenes/c-axis-spiral-groove-c2.yaml", BackendKind::kPhysics, "spiral_c2");
+  ASSERT_TRUE(c1.result.ok()) << ::testing::PrintToString(c1.result.failures);
+  ASSERT_TRUE(c2.result.ok()) << ::testing::PrintToString(c2.result.failures);
+  const Scene c1_scene = LoadScene(testing::SourcePath("scenes/c-axis-spiral-groove.yaml"));
+  const MachineModel& m1 = *c1_scene.model;
+  // Following error bounds v / Kv of the slower loop (G06 takes most of the lag away): C at
+  // 22.7 deg/s, X at 2.53 mm/s and Z at the feed of N0145, 500 mm/min.
+  const double kv_c = std::min(30.0, m1.drives[m1.DriveIndex("C")].kv_per_s);
+  const double bound[3] = {22.8 / kv_c, 2.53 / 40, 8.34 / 40};
+  const char* c1_axes[3] = {"C", "X", "Z"};
+  const char* c2_axes[3] = {"S1", "X", "Z"};
+
+  for (const char* block : {"N0145", "N0146", "N0147"}) {
+    const int line = LineOf(block, kSpiralGroove);
+    ASSERT_GT(line, 0) << block;
+    const std::vector<size_t> r1 = c1.trace.RowsOfLine(line), r2 = c2.trace.RowsOfLine(line);
+    ASSERT_GT(r1.size(), 100u) << block;
+    // The block time: the same within two NC cycles (8 trace rows of 250 us).
+    EXPECT_NEAR(static_cast<double>(r1.size()), static_cast<double>(r2.size()), 8) << block;
+    const size_t n = std::min(r1.size(), r2.size());
+    for (int a = 0; a < 3; ++a) {
+      const std::string cmd1 = std::string(c1_axes[a]) + ".cmd",
+                        cmd2 = std::string(c2_axes[a]) + ".cmd";
+      const std::string pos1 = std::string(c1_axes[a]) + ".pos",
+                        pos2 = std::string(c2_axes[a]) + ".pos";
+      double worst_cmd = 0, worst_pos = 0;
+      for (size_t k = 0; k < n; ++k) {
+        const size_t i = r1[k], j = r2[k];
+        worst_cmd = std::max(worst_cmd, std::abs(c1.trace[cmd1][i] - c2.trace[cmd2][j]));
+        // Both C drives report modulo 360.
+        const double d = c1.trace[pos1][i] - c2.trace[pos2][j];
+        worst_pos = std::max(worst_pos, std::abs(a == 0 ? std::remainder(d, 360.0) : d));
+      }
+      EXPECT_LT(worst_cmd, a == 0 ? 0.01 : 0.001) << block << ": interpolated " << c1_axes[a];
+      EXPECT_LT(worst_pos, bound[a]) << block << ": actual " << c1_axes[a];
+    }
+  }
+  // The groove turns C from 90 to -270 on both.
+  const std::vector<size_t> g1 = c1.trace.RowsOfLine(LineOf("N0146", kSpiralGroove));
+  const std::vector<size_t> g2 = c2.trace.RowsOfLine(LineOf("N0146", kSpiralGroove));
+  EXPECT_NEAR(c1.trace["C.cmd"][g1.back()], -270, 0.5);
+  EXPECT_NEAR(c2.trace["S1.cmd"][g2.back()], -270, 0.5);
+
+  // The program ends in the same place.
+  const size_t e1 = c1.trace.size() - 1, e2 = c2.trace.size() - 1;
+  EXPECT_NEAR(c1.trace["X.pos"][e1], c2.trace["X.pos"][e2], 0.01);
+  EXPECT_NEAR(c1.trace["Z.pos"][e1], c2.trace["Z.pos"][e2], 0.01);
+  EXPECT_NEAR(std::remainder(c1.trace["C.pos"][e1] - c2.trace["S1.pos"][e2], 360.0), 0, 0.01);
+
+  // One changeover each, to rotary axis mode; c2's is the faster.
+  ASSERT_EQ(c1.changeovers.size(), 1u);
+  ASSERT_EQ(c2.changeovers.size(), 1u);
+  EXPECT_EQ(c1.changeovers[0].target, "rotary");
+  EXPECT_EQ(c2.changeovers[0].target, "rotary");
+  EXPECT_LT(c2.changeovers[0].duration_s(), c1.changeovers[0].duration_s());
+}
+
 class LatheC2ParameterSetTest : public ::testing::TestWithParam<BackendKind> {};
 
 // lathe-c2's one drive changes its parameter set with the mode (manual 2.2, "Parameter set in
@@ -202,7 +208,7 @@ TEST_P(LatheC2ParameterSetTest, SwitchesTheDriveParameterSetWithTheMode) {
                                        std::string("set_c2_") + ToString(GetParam()));
   ASSERT_TRUE(c2.result.ok()) << ::testing::PrintToString(c2.result.failures);
   const Trace& t = c2.trace;
-  const std::vector<size_t> n0077 = RowsOfBlock(t, LineOf("N0077"));
+  const std::vector<size_t> n0077 = t.RowsOfLine(LineOf("N0077"));
   ASSERT_FALSE(n0077.empty());
   for (size_t i : n0077) ASSERT_EQ(t["S1.set"][i], 1) << "t " << t["t"][i];
   EXPECT_EQ(t["S1.set"][0], 0);

@@ -272,5 +272,25 @@ TEST(InterpreterTest, SeedCAxisProgramRuns) {
   EXPECT_TRUE(r.blocks[2].modal.low_lag);
 }
 
+// The channel sets one axis where it stands (the rotary axis after a changeover to rotary axis
+// mode): increments and unprogrammed targets start there, the other axes keep theirs.
+TEST(InterpreterTest, SetAxisPositionMovesTheStartOfOneAxis) {
+  const ParseResult parsed = ParseProgram(
+      "N1 G90 G00 X10 C90\nN2 G91 C10\nN3 X5\nN4 G90 C45\nN5 RET\n", "p.mtc", Dialect::kMtc200);
+  ASSERT_TRUE(parsed.ok());
+  Interpreter interpreter({&parsed.program}, {});
+  PreparedBlock b;
+  ASSERT_TRUE(interpreter.Next(b));
+  EXPECT_EQ(b.target, (std::vector<double>{10, 0, 90}));
+  interpreter.SetAxisPosition(2, 200.5);  // the spindle turned C to 200.5
+  interpreter.SetAxisPosition(7, 1);      // not a channel axis: ignored
+  ASSERT_TRUE(interpreter.Next(b));
+  EXPECT_EQ(b.target, (std::vector<double>{10, 0, 210.5}));
+  ASSERT_TRUE(interpreter.Next(b));
+  EXPECT_EQ(b.target, (std::vector<double>{15, 0, 210.5}));
+  ASSERT_TRUE(interpreter.Next(b));
+  EXPECT_EQ(b.target, (std::vector<double>{15, 0, 45}));
+}
+
 }  // namespace
 }  // namespace vmt::control::nc
