@@ -22,6 +22,13 @@ struct PathCheck {
   std::string closest_a, closest_b;
 };
 
+/// What a contact found ahead of a move does (the NC's PathGuard parameter): stop the move
+/// before it happens with an NC error, only record it, or no checks at all.
+enum class GuardReaction { kStop, kWarn, kOff };
+inline const char* ToString(GuardReaction r) {
+  return r == GuardReaction::kStop ? "stop" : r == GuardReaction::kWarn ? "warn" : "off";
+}
+
 class PathGuard {
  public:
   virtual ~PathGuard() = default;

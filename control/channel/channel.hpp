@@ -34,9 +34,6 @@ namespace vmt::control::channel {
 /// A channel axis is described by its axis parameters (control/axes).
 using ChannelAxis = axes::AxisParameters;
 
-enum class GuardReaction { kStop, kWarn, kOff };
-const char* ToString(GuardReaction r);
-
 struct ChannelConfig {
   std::vector<ChannelAxis> axes;
   axes::ProcessParameters process;

@@ -9,18 +9,6 @@
 
 namespace vmt::control::channel {
 
-const char* ToString(GuardReaction r) {
-  switch (r) {
-    case GuardReaction::kStop:
-      return "stop";
-    case GuardReaction::kWarn:
-      return "warn";
-    case GuardReaction::kOff:
-      return "off";
-  }
-  return "?";
-}
-
 std::vector<double> Channel::GuardFrom() const {
   std::vector<double> from = drive_positions_;
   for (size_t a = 0; a < config_.axes.size(); ++a)

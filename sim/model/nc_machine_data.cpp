@@ -201,9 +201,21 @@ control::axes::ToolTable ReadToolTable(const std::vector<control::axes::AxisPara
 }
 
 NcMachineData ReadNcMachineData(const MachineModel& m, const YamlNode& node) {
-  node.AllowKeys({"process", "axes", "spindle", "zero_offsets", "tools"});
+  node.AllowKeys({"process", "axes", "spindle", "zero_offsets", "tools", "path_guard"});
   NcMachineData nc;
   nc.present = true;
+  if (node.Has("path_guard")) {
+    const std::string r = node["path_guard"].String();
+    if (r == "stop") {
+      nc.path_guard = control::GuardReaction::kStop;
+    } else if (r == "warn") {
+      nc.path_guard = control::GuardReaction::kWarn;
+    } else if (r == "off") {
+      nc.path_guard = control::GuardReaction::kOff;
+    } else {
+      node["path_guard"].Fail("expected stop, warn or off");
+    }
+  }
   if (node.Has("process")) {
     const YamlNode p = node["process"];
     p.AllowKeys({"number", "Bxx.032", "Bxx.036", "Bxx.045"});

@@ -8,6 +8,7 @@
 #include "control/axes/axis_parameters.hpp"
 #include "control/axes/tool_table.hpp"
 #include "control/axes/zero_offsets.hpp"
+#include "control/path_guard.hpp"
 
 namespace vmt::sim {
 
@@ -31,6 +32,8 @@ struct NcMachineData {
   int rotary_parameter_set = 0;
   control::axes::ZeroOffsetTable zero_offsets;
   control::axes::ToolTable tools;
+  /// `path_guard: stop | warn | off`: what a contact PathGuard finds ahead of a move does.
+  control::GuardReaction path_guard = control::GuardReaction::kStop;
 };
 
 /// Reads machine.yaml's `nc:`; the drives must be loaded. Throws ModelError (file, YAML path).

@@ -12,6 +12,7 @@
 #include "control/plc/plc_programs.hpp"
 #include "control/plc/plc_runtime.hpp"
 #include "render/image.hpp"
+#include "sim/collision/machine_path_guard.hpp"
 #include "sim/model/gateway_layout.hpp"
 #include "sim/runner/drive_program.hpp"
 #include "sim/runner/scene_renderer.hpp"
@@ -21,6 +22,33 @@ namespace {
 
 // PLC cycles a scan may be overdue before the watchdog stops the PLC.
 constexpr int64_t kPlcWatchdogCycles = 2;
+
+double Micro(double v) { return std::round(v * 1000) / 1000; }  // mm to the µm, no binary noise
+
+// A PathGuard check of the channel as the events record it: the move, the answer (the first
+// contact: parts, point, distance along the path, where the axes would stand; or clear) and the
+// smallest clearance on the way.
+nlohmann::ordered_json GuardEvent(double t, const control::channel::GuardRecord& r,
+                                  const MachineModel& m) {
+  const control::PathCheck& c = r.check;
+  nlohmann::ordered_json e = {{"t", t}, {"event", "path_guard"}, {"move", r.move}};
+  e["clear"] = c.clear;
+  if (r.checks > 1) e["checks"] = r.checks;
+  if (!c.clear) {
+    e["parts"] = {c.part_a, c.part_b};
+    e["point"] = {Micro(c.point[0]), Micro(c.point[1]), Micro(c.point[2])};
+    e["distance"] = Micro(c.distance);
+    nlohmann::ordered_json at = nlohmann::ordered_json::object();
+    for (size_t d = 0; d < c.position.size() && d < m.drives.size(); ++d)
+      if (r.from[d] != r.to[d]) at[m.drives[d].info.name] = Micro(c.position[d]);
+    e["position"] = at;  // of the drives that move
+    e["reaction"] = r.stopped ? "stop" : "warn";
+  } else {
+    e["min_clearance"] = Micro(c.min_clearance);
+    e["closest"] = {c.closest_a, c.closest_b};
+  }
+  return e;
+}
 
 // Fixed formatting: the trace bytes, and so the digest, depend only on the simulation.
 void Append(std::string& row, double v) {
@@ -152,6 +180,7 @@ struct SceneRun::State {
   const MachineModel& m;
   const std::chrono::steady_clock::time_point wall_start = std::chrono::steady_clock::now();
   std::unique_ptr<MachineBackend> backend;
+  std::unique_ptr<MachinePathGuard> path_guard;  ///< before the channel, which asks it
   std::unique_ptr<control::channel::Channel> channel;
   std::unique_ptr<control::gateway::SignalImage> image;
   std::unique_ptr<control::gateway::ChannelGateway> gateway;
@@ -223,8 +252,21 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     }
     std::vector<const control::nc::Program*> programs;
     for (const auto& parsed : scene.nc.programs) programs.push_back(&parsed->program);
+    config.path_guard = scene.nc.data.path_guard;
     channel = std::make_unique<control::channel::Channel>(config, programs);
     channel->SetFeedOverride(scene.nc.override);
+    if (config.path_guard != control::GuardReaction::kOff) {
+      // The machine's collision geometry with the scene's workpiece, posed where the backend
+      // stands; the channel asks it before its approach moves.
+      std::vector<CylinderPart> parts;
+      if (scene.workpiece.present)
+        parts.push_back({"workpiece", scene.workpiece.link, scene.workpiece.diameter_m / 2,
+                         scene.workpiece.length_m, scene.workpiece.z_m});
+      MachineBackend* b = backend.get();
+      path_guard =
+          std::make_unique<MachinePathGuard>(m, parts, [b] { return b->JointPositions(); });
+      channel->SetPathGuard(path_guard.get());
+    }
   }
   // The gateway: the channel reads its control signals and writes its status each NC cycle.
   if (channel && scene.nc.signals) {
@@ -338,6 +380,8 @@ void SceneRun::State::Step() {
                   {"axis", channel->HeadstockAxisName()},
                   {"speeds", channel->spindle_status().speeds_shown ? "shown" : "lines"}});
     }
+    for (const control::channel::GuardRecord& r : channel->TakeGuardRecords())
+      emit_event(GuardEvent(t, r, m));
     if (channel->state() != nc_state) {
       nc_state = channel->state();
       nlohmann::ordered_json e = {{"t", t}, {"event", "nc"}, {"state", ToString(nc_state)}};

@@ -158,6 +158,7 @@ TEST(ModelInputTest, DriveKeyErrorsNameTheirPath) {
 TEST(ModelInputTest, SpindleAndEncoderParametersAreRead) {
   const MachineModel& m = testing::Lathe();
   EXPECT_DOUBLE_EQ(m.nc.spindle.jog_per_s, 600);  // jogging_speed 100 rpm, in deg/s
+  EXPECT_EQ(m.nc.path_guard, control::GuardReaction::kStop);
   EXPECT_DOUBLE_EQ(m.nc.spindle.jog_spindle_position, 45);
   EXPECT_DOUBLE_EQ(m.nc.spindle.max_spindle_rpm, 4000);  // Cxx.049
   EXPECT_DOUBLE_EQ(m.nc.spindle.encoder_periods_per_rev, 375);
@@ -200,6 +201,8 @@ TEST(ModelInputTest, SpindleAndEncoderParameterErrorsNameTheirPath) {
        "      encoder_limit_hz: -1\n  zero_offsets", "nc.axes[2].encoder_limit_hz", "must be > 0"},
       {"axis_encoder_half", "      encoder_periods_per_rev: 2048\n", "",
        "nc.axes[2].encoder_limit_hz", "needs encoder_periods_per_rev and encoder_limit_hz"},
+      {"path_guard", "path_guard: stop", "path_guard: maybe", "nc.path_guard",
+       "expected stop, warn or off"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
