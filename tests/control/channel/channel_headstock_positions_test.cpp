@@ -7,87 +7,21 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
-#include <memory>
-#include <string>
-#include <vector>
-
-#include "control/channel/channel.hpp"
-#include "control/nc/parser.hpp"
+#include "headstock_lathe.hpp"
 
 namespace vmt::control::channel {
 namespace {
 
-using axes::HeadstockMode;
-constexpr double kTick = 250e-6;
+using headstock_test::HeadstockMode;
 
-// Drives: 0 X, 1 Z, 2 S1 with its rotary axis mode C. Channel axes: X, Z, C. G54 shifts C by +30.
-struct Headstock {
-  explicit Headstock(const std::string& program) {
-    parsed = nc::ParseProgram(program, "p.mtc", nc::Dialect::kMtc200);
-    EXPECT_TRUE(parsed.ok()) << nc::Format(parsed.errors[0], parsed.program.files);
-    ChannelConfig config;
-    for (int a = 0; a < 3; ++a) {
-      ChannelAxis axis;
-      axis.name = a == 0 ? "X" : a == 1 ? "Z" : "C";
-      axis.number = a + 1;
-      axis.drive = a;
-      axis.rotary = a == 2;
-      axis.rapid_per_s = a == 2 ? 3600 : 400;
-      axis.acceleration = a == 2 ? 36000 : 4000;
-      config.axes.push_back(axis);
-    }
-    config.spindle_drive = 2;
-    config.spindle.name = "S1";
-    axes::HeadstockConfig h;
-    h.spindle_drive = h.rotary_drive = 2;
-    config.headstock = h;
-    config.rotary_axis = 2;
-    config.zero_offsets.g54_to_g59[0] = {0, 0, 30};
-    channel = std::make_unique<Channel>(config, std::vector<const nc::Program*>{&parsed.program});
-    at.feedback.resize(3);
-    for (DriveFeedback& f : at.feedback)
-      f.status = drive_status::kReady | drive_status::kStandstill;
-    mdt.setpoints.resize(3);
-    plc.spmod_q = true;
-  }
-
-  void Tick() {
-    const axes::HeadstockChangeover& hs = *channel->headstock();
-    if (hs.busy() || hs.mode() != HeadstockMode::kNone) {
-      plc.rotmod_q = hs.rotmod();
-      plc.spmod_q = hs.spmod();
-    }
-    channel->SetHeadstockPlc(plc);
-    channel->Tick(at, mdt);
-    for (size_t d = 0; d < 3; ++d) {
-      DriveFeedback& f = at.feedback[d];
-      const DriveSetpoint& sp = mdt.setpoints[d];
-      f.velocity = 0;
-      if (sp.mode == DriveMode::kPosition) {
-        f.velocity = (sp.value - f.position) / kTick;
-        f.position = sp.value;
-      } else if (sp.mode == DriveMode::kVelocity) {
-        f.velocity = sp.value;
-        f.position += sp.value * kTick;
-      }
-      f.status = drive_status::kReady;
-      if (std::abs(f.velocity) < 1e-9) f.status |= drive_status::kStandstill;
-      if (sp.mode == DriveMode::kPosition) f.status |= drive_status::kInPosition;
-    }
-  }
+// The section 2 lathe of the operating-state tests (C on S1's drive 2), G54 shifting C by +30.
+struct Headstock : headstock_test::Lathe {
+  explicit Headstock(const std::string& program)
+      : Lathe(program, false, [](ChannelConfig& c) {
+          c.zero_offsets.g54_to_g59[0] = {0, 0, 30};
+        }) {}
   // Single block: starts the next block and runs it to its end (the channel holds after it).
-  void Step() {
-    channel->Start();
-    for (int i = 0; i < 80000 && channel->state() == ChannelState::kRunning; ++i) Tick();
-    for (int i = 0; i < 8; ++i) Tick();  // the drive reaches the last fine interpolation point
-  }
-
-  nc::ParseResult parsed;
-  std::unique_ptr<Channel> channel;
-  AmplifierTelegram at;
-  MasterTelegram mdt;
-  axes::HeadstockPlc plc;
+  void Step() { Block(20); }
 };
 
 // C-axis manual 1.2 and 2.3: after M3 / M5 the spindle stands somewhere the program does not

@@ -9,6 +9,7 @@
 
 #include "control/gateway/channel_gateway.hpp"
 #include "control/nc/parser.hpp"
+#include "tests/control/gateway/lathe_channel.hpp"
 #include "tests/control/gateway/lathe_layout.hpp"
 
 namespace vmt::control::gateway {
@@ -18,25 +19,7 @@ struct Rig {
   explicit Rig(const std::string& program) : image(BuildSignalTable(testing::LatheLayout())) {
     parsed = nc::ParseProgram(program, "p.mtc", nc::Dialect::kMtc200);
     EXPECT_TRUE(parsed.ok());
-    channel::ChannelConfig config;
-    const char* names[] = {"X", "Z", "C"};
-    const int numbers[] = {1, 2, 4}, drives[] = {0, 1, 3};
-    for (int a = 0; a < 3; ++a) {
-      channel::ChannelAxis axis;
-      axis.name = names[a];
-      axis.number = numbers[a];
-      axis.drive = drives[a];
-      axis.rotary = a == 2;
-      axis.rapid_per_s = 400;
-      axis.acceleration = 4000;
-      config.axes.push_back(axis);
-    }
-    config.spindle_drive = 2;
-    axes::HeadstockConfig h;
-    h.spindle_drive = 2;
-    h.rotary_drive = 3;
-    config.headstock = h;
-    config.rotary_axis = 2;
+    const channel::ChannelConfig config = testing::LatheChannel();
     ch = std::make_unique<channel::Channel>(config,
                                             std::vector<const nc::Program*>{&parsed.program});
     gateway = std::make_unique<ChannelGateway>(image, 0, std::vector<int>{1, 2, 4}, 3, 2, 4);
