@@ -120,6 +120,9 @@ bool Channel::Mdi(const std::string& text) {
 bool Channel::Reverse() {
   if (mode_ != ChannelMode::kAutomatic || programs_.empty()) return false;
   if (state_ != ChannelState::kHold && state_ != ChannelState::kError) return false;
+  if (repos_run_) SwapProgramInWork();  // the REPOS subroutine is given up (4.1)
+  parked_ = ProgramInWork{};
+  ClearRepos();
   if (!interpreter_) interpreter_ = MakeInterpreter();
   if (!interpreter_->JumpTo("HOME")) {
     Fail(programs_[0]->files[0] + ": error: the program has no reverse program .HOME",
@@ -138,7 +141,6 @@ bool Channel::Reverse() {
   aux_output_.clear();
   error_.clear();
   error_number_ = 0;
-  interruption_point_.clear();
   std::vector<double> position(commanded_.size());
   for (size_t a = 0; a < position.size(); ++a) position[a] = commanded_[a] - translation_[a];
   interpreter_->SetPosition(position);
@@ -178,16 +180,10 @@ bool Channel::SetMode(ChannelMode mode) {
   if (mode == ChannelMode::kMdi && state_ == ChannelState::kHold) return false;
   if (mode != mode_) {
     for (JogAxis& j : jog_) j = JogAxis{};
-    // Where the program was interrupted: the contour the axes must come back to.
-    if (mode == ChannelMode::kManual && interruption_point_.empty() &&
-        state_ == ChannelState::kHold) {
-      interruption_point_ = commanded_;
-      // Outside rotary axis mode (a changeover included) the NC does not position the rotary
-      // axis: its command follows the actual position, which the spindle or the PLC's motion
-      // functions move (C-axis manual 4.2, 4.3). It has no point on the contour to return to.
-      if (headstock_ && headstock_->mode() != axes::HeadstockMode::kRotary)
-        interruption_point_[config_.rotary_axis] = std::nan("");
-    }
+    // Where the program was interrupted: the contour the axes must come back to (REPOS 2.1).
+    if (mode == ChannelMode::kManual && !interruption_ && state_ == ChannelState::kHold &&
+        !repos_run_)
+      CaptureInterruption();
     if (mode == ChannelMode::kMdi || mode_ == ChannelMode::kMdi) {
       if (interpreter_) last_modal_ = interpreter_->modal();
       interpreter_.reset();
@@ -205,22 +201,32 @@ void Channel::Start() {
   if (mode_ == ChannelMode::kManual || !process_enable_) return;
   if (mode_ == ChannelMode::kMdi && !mdi_) return;
   if (state_ == ChannelState::kHold) {
+    if (repos_run_) {  // the REPOS subroutine was held: it goes on
+      state_ = ChannelState::kRunning;
+      return;
+    }
+    // Repositioning or NC-block restart called: the REPOS subroutine returns the axes (4.1).
+    if (interruption_ && repos_function_ != ReposFunction::kNone) {
+      StartReposRun();
+      return;
+    }
     // Continuing from off the contour would jump back to the path: the axes must first be
-    // repositioned to the interruption point (REPOS manual; the REPOS function is issue 6's).
-    for (size_t a = 0; a < commanded_.size() && !interruption_point_.empty(); ++a) {
+    // repositioned to the interruption point.
+    for (size_t a = 0; a < commanded_.size() && interruption_; ++a) {
       // The rotary axis outside rotary axis mode follows the spindle: no contour to leave.
       if (headstock_ && static_cast<int>(a) == config_.rotary_axis &&
           headstock_->mode() != axes::HeadstockMode::kRotary)
         continue;
-      if (std::isnan(interruption_point_[a])) continue;  // not on the contour (SetMode)
-      if (std::abs(commanded_[a] - interruption_point_[a]) > 1e-6) {
+      const double point = interruption_->point[a];
+      if (std::isnan(point)) continue;  // not on the contour (CaptureInterruption)
+      if (std::abs(commanded_[a] - point) > 1e-6) {
         Fail("axis " + config_.axes[a].name +
                  " has left the contour at the interruption point: reposition it first",
              kMsgLeftContour);
         return;
       }
     }
-    interruption_point_.clear();
+    ClearRepos();
     state_ = ChannelState::kRunning;
     return;
   }
@@ -229,6 +235,8 @@ void Channel::Start() {
     // Start after the end runs the program again from its first block.
     if (interpreter_) last_modal_ = interpreter_->modal();
     interpreter_.reset();
+    parked_ = ProgramInWork{};
+    ClearRepos();
   }
   state_ = ChannelState::kRunning;
   start_pending_ = true;  // positions are taken from the feedback at the next tick
@@ -251,7 +259,9 @@ void Channel::Reset() {
   dwell_left_s_ = 0;
   orienting_ = false;
   aux_output_.clear();
-  interruption_point_.clear();
+  if (repos_run_) SwapProgramInWork();
+  parked_ = ProgramInWork{};
+  ClearRepos();
   if (interpreter_) last_modal_ = interpreter_->modal();
   interpreter_.reset();
   DropLookahead();
@@ -329,9 +339,11 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
         if (state_ == ChannelState::kRunning) dwell_left_s_ -= dt;
         finished = dwell_left_s_ <= 0;
       } else if (orienting_) {
-        // M19 ends when the spindle reports itself in position.
-        orienting_ = spindle_.mode == DriveMode::kPosition &&
-                     !(at.feedback[config_.spindle_drive].status & drive_status::kInPosition);
+        // M19 ends when the spindle reports itself in position, G77 S1=0 when it is at speed.
+        const uint32_t status = at.feedback[config_.spindle_drive].status;
+        orienting_ = spindle_.mode == DriveMode::kPosition
+                         ? !(status & drive_status::kInPosition)
+                         : spindle_.value != 0 && !(status & drive_status::kAtSpeed);
         finished = !orienting_;
       } else if (!active_ && state_ == ChannelState::kRunning) {
         finished = NextBlock(at) && !active_ && dwell_left_s_ <= 0 && !orienting_ &&
@@ -353,6 +365,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
       if (finished && single_block_ && state_ == ChannelState::kRunning)
         state_ = ChannelState::kHold;
     }
+    ReposCycle(at);
   }
   // Fine interpolation: the drives get a straight line between the last two NC cycle points.
   const double f = static_cast<double>(tick_in_cycle_ + 1) / config_.ticks_per_cycle;
@@ -403,6 +416,9 @@ uint64_t Channel::FollowUpAxes(const nc::PreparedBlock& b) const {
 
 bool Channel::RunBlock(const AmplifierTelegram& at) {
   const nc::Program& program = *ProgramOf(block_.program);
+  // G77 (REPOS manual 4.2) is refused at the start of its block, before any changeover.
+  if (block_.repos && waiting_for_ == axes::HeadstockMode::kNone && !CheckReposBlock())
+    return false;
   if (headstock_) {
     const axes::HeadstockMode need = ModeNeeded(block_);
     if (need != axes::HeadstockMode::kNone && headstock_->mode() != need) {
@@ -430,7 +446,6 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
     Fail(program, block_.block, what + " is not available in the channel yet", kMsgNotAvailable);
     return false;
   };
-  if (block_.repos) return unsupported("G77 (REPOS)");
   if (block_.measuring) return unsupported("G100 measuring");
   if (block_.has_centre && block_.motion != nc::Motion::kArcCw &&
       block_.motion != nc::Motion::kArcCcw)
@@ -446,6 +461,15 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
     for (const char* steering :
          {"#DISTANCE PROG START", "#BLOCKSEARCH", "#CAX TRACK", "#VECTOR OFFSET"})
       if (name.rfind(steering, 0) == 0) name.clear();
+    // REPOS manual 4.2 Tool Storage Axis: in the REPOS subroutine MTP returns the tool storage
+    // axis to where it was; the PLC controls the turret, so the NC outputs the T word of the
+    // interruption again. MRY waits for the tool storage axis, which the acknowledgement of
+    // that T word already does.
+    if (repos_run_ && interruption_ && (name == "MTP" || name == "MRY")) {
+      if (name == "MTP")
+        block_.aux.push_back({'T', 0, static_cast<double>(interruption_->modal.tool)});
+      name.clear();
+    }
     if (!name.empty()) {
       Fail(nc::Format({st.pos, "instruction " + name.substr(0, name.find(' ')) +
                                    " is not available in the channel yet"},
@@ -506,7 +530,7 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
 
   dwell_left_s_ = block_.dwell_s;
   if (block_.end) state_ = ChannelState::kEnded, reversing_ = false;
-  if (block_.motion == nc::Motion::kNone && !block_.homing) return true;
+  if (block_.motion == nc::Motion::kNone && !block_.homing && !block_.repos) return true;
   if (!aux_output_.empty()) {
     pending_motion_ = true;
     return true;
@@ -588,6 +612,7 @@ bool Channel::NextHomingStage() {
 
 bool Channel::StartMotion(const AmplifierTelegram& at) {
   const nc::Program& program = *ProgramOf(block_.program);
+  if (block_.repos) return StartReposMotion(at);
   if (block_.homing) {
     homing_stages_.clear();
     for (size_t a = 0; a < commanded_.size(); ++a) {

@@ -23,6 +23,7 @@
 #include "control/channel/channel_messages.hpp"
 #include "control/channel/look_ahead.hpp"
 #include "control/channel/path_profile.hpp"
+#include "control/channel/repositioning.hpp"
 #include "control/channel/spindle_synchronous_motion.hpp"
 #include "control/channel/tool_radius_compensation.hpp"
 #include "control/drive_bus.hpp"
@@ -66,7 +67,7 @@ struct ChannelConfig {
 /// answer. A continuous jog is checked many times: its clear checks are summed up in one record
 /// when it ends (`checks`, the smallest clearance of all).
 struct GuardRecord {
-  std::string move;  ///< "jog"
+  std::string move;  ///< "jog", "G77", "repositioning" (the closing move)
   std::vector<double> from, to;
   PathCheck check;
   int checks = 1;
@@ -189,6 +190,27 @@ class Channel {
   void SetPathGuard(PathGuard* guard) { guard_ = guard; }
   /// The checks made since the last call, oldest first.
   std::vector<GuardRecord> TakeGuardRecords() { return std::exchange(guard_records_, {}); }
+
+  /// Repositioning and NC-block restart (REPOS manual): the PLC's PxxC.REPOS and PxxC.RESTA,
+  /// levels given every NC cycle. They count only while the program is interrupted and an axis
+  /// has been jogged off the contour (2.1, 7.1); both at once ask for neither.
+  void SetReposition(bool repositioning, bool restart) {
+    repos_request_ = repositioning && !restart   ? ReposFunction::kRepositioning
+                     : restart && !repositioning ? ReposFunction::kRestart
+                                                 : ReposFunction::kNone;
+  }
+  /// PxxS.REPOS (7.2): the program is interrupted, until it resumes or Control-Reset.
+  bool repos_allowed() const { return state_ == ChannelState::kHold || repos_run_; }
+  /// PxxS.CREST (7.3), as of the last NC cycle.
+  bool conditions_restored() const { return crest_; }
+  ReposFunction repos_function() const { return repos_function_; }
+  /// The REPOS screen's data (2.2); empty axes when nothing is interrupted.
+  ReposStatus repos_status(const AmplifierTelegram* at = nullptr) const;
+  /// Operator edits during an interruption (2.5): a zero offset G54..G59 of a channel axis, and
+  /// a tool edge's length along a channel axis. They move the interruption point and the block
+  /// start with the contour. False if there is no such table entry.
+  bool SetZeroOffset(int g, size_t axis, double value);
+  bool SetToolLength(int tool, int edge, size_t axis, double value);
 
   /// One drive tick: reads the feedback, interpolates on the NC cycle, writes setpoints.
   void Tick(const AmplifierTelegram& at, MasterTelegram& mdt);
@@ -323,6 +345,8 @@ class Channel {
   void GuardJog(double dt);
   /// An increment of `axis` to `to_position`, checked whole before it starts: false if stopped.
   bool GuardIncrement(size_t axis, double to_position);
+  /// The block motion about to start (motion_), checked whole: false if stopped.
+  bool GuardBlockMove(const std::string& move);
   std::vector<double> GuardFrom() const;  ///< every drive's position, the channel's commanded
   bool GuardStops(const std::string& move, const std::vector<double>& from,
                   const std::vector<double>& to, const PathCheck& check);
@@ -330,8 +354,52 @@ class Channel {
   std::vector<GuardRecord> guard_records_;
   std::optional<GuardRecord> guarded_jog_;  ///< the continuous jog being checked, summed up
   int guard_countdown_ = 0;
-  std::vector<double> drive_positions_;     ///< every drive's actual position, this NC cycle
-  std::vector<double> interruption_point_;  ///< commanded position when manual was entered
+  std::vector<double> drive_positions_;  ///< every drive's actual position, this NC cycle
+  // Repositioning and NC-block restart (channel_repositioning.cpp).
+  std::optional<Interruption> interruption_;
+  ReposFunction repos_request_ = ReposFunction::kNone;   ///< what the PLC asks for
+  ReposFunction repos_function_ = ReposFunction::kNone;  ///< what the NC does (7.1)
+  std::vector<double> repos_start_;  ///< where each axis stood when the function was called
+  bool crest_ = false;
+  bool repos_run_ = false;      ///< the REPOS subroutine or the closing move runs (4.1)
+  bool repos_closing_ = false;  ///< the closing move to the exact target runs
+  bool repos_finish_ = false;   ///< no subroutine: close and continue
+  /// The interrupted program while the REPOS subroutine runs in its place.
+  struct ProgramInWork {
+    std::unique_ptr<nc::Interpreter> interpreter;
+    nc::PreparedBlock block;
+    BlockMotion motion;
+    PathProfile profile;
+    bool active = false, pending_motion = false, homing = false;
+    double dwell_left_s = 0;
+    std::vector<std::pair<int, uint64_t>> homing_stages;
+    std::deque<nc::PreparedBlock> peeked;
+    std::vector<SpeedTarget> targets;
+    bool continuation_ready = false, source_returned_false = false;
+    std::optional<nc::PreparedBlock> unpushed;
+    ToolRadiusCompensation trc;
+    bool compensating = false, source_done = false;
+    std::deque<nc::PreparedBlock> ahead;
+    std::deque<ContourElement> ready;
+    int64_t first_tag = 0, next_tag = 0, last_run_tag = -1;
+    Vec2 contour_point;
+    double rotary_start = 0, rotary_next_start = 0;
+  };
+  ProgramInWork parked_;
+  void SwapProgramInWork();
+  void CaptureInterruption();
+  /// Program -> axis translation of `modal` with the tables as they are now (no G92 check).
+  std::vector<double> TranslationOf(const nc::ModalState& modal) const;
+  /// Per axis the function's target (machine coordinates); NaN: no target.
+  std::vector<double> ReposTarget() const;
+  bool SpindleRestored(const AmplifierTelegram& at) const;
+  bool SpindleRelevant() const;
+  void ReposCycle(const AmplifierTelegram& at);
+  void StartReposRun();
+  bool CheckReposBlock();
+  bool StartReposMotion(const AmplifierTelegram& at);
+  bool FinishReposRun(const AmplifierTelegram& at);
+  void ClearRepos();
   DriveSetpoint spindle_;
   // Headstock changeover: the mode a block needs, the one the block in work waits for.
   axes::HeadstockMode ModeNeeded(const nc::PreparedBlock& b) const;
@@ -392,7 +460,8 @@ class Channel {
   bool process_enable_ = true;
   bool spindle_homed_ = true;         ///< a separate spindle's reference (section 3)
   bool spindle_referencing_ = false;  ///< M19 runs: the reference comes when it is in position
-  bool orienting_ = false;            ///< the block waits for M19's spindle positioning to end
+  /// The block waits for the spindle: M19's positioning to end, G77 S1=0's speed to be reached.
+  bool orienting_ = false;
   double spindle_position_ = 0;       ///< the spindle's actual position at the last NC cycle
   double spindle_rpm_ = 0;            ///< and its actual speed
   std::vector<double> encoder_last_;  ///< per drive: position at the last NC cycle

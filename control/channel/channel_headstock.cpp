@@ -62,11 +62,16 @@ axes::HeadstockMode Channel::ModeNeeded(const nc::PreparedBlock& b) const {
     if (f.letter == 'M' && (f.value == 3 || f.value == 4 || f.value == 5 || f.value == 19))
       return axes::HeadstockMode::kSpindle;
   if (nc::SpindleSynchronous(b.motion)) return axes::HeadstockMode::kSpindle;
+  // G77 S1=0 restores the spindle in spindle mode, G77 C0 the rotary axis in rotary axis mode
+  // (REPOS manual 4.2).
+  if (b.repos)
+    for (const nc::AuxFunction& f : b.aux)
+      if (f.letter == 'S' && f.index <= 1) return axes::HeadstockMode::kSpindle;
   const bool interpolates = b.motion == nc::Motion::kRapid || b.motion == nc::Motion::kLinear ||
                             b.motion == nc::Motion::kArcCw || b.motion == nc::Motion::kArcCcw;
   // G74 of the rotary axis homes it in position control: rotary axis mode too (the manual
   // names G74 as a way to home, 2.3, but not its mode; only rotary mode positions C).
-  if ((interpolates || b.homing) && (b.programmed >> config_.rotary_axis & 1))
+  if ((interpolates || b.homing || b.repos) && (b.programmed >> config_.rotary_axis & 1))
     return axes::HeadstockMode::kRotary;
   return axes::HeadstockMode::kNone;
 }
@@ -88,6 +93,15 @@ void Channel::ManualSpindle(int m) {
   // 4.2: "The NC automatically switches over to main spindle mode if rotary axis mode is active
   // when one of these commands is started"; the command acts once spindle mode is there.
   if (headstock_) ManualChangeover(axes::HeadstockMode::kSpindle);
+  // REPOS manual 3.3: during repositioning or NC-block restart the key of the table restores
+  // the spindle's state before the interruption (M03 / M04 at the programmed speed, M05, M19).
+  if (repos_function_ != ReposFunction::kNone && SpindleRelevant() &&
+      KeyRestoresSpindle(interruption_->spindle_m, m)) {
+    spindle_ = interruption_->spindle;
+    spindle_referencing_ = m == 19;
+    take_over_pending_ = true;
+    return;
+  }
   const double speed = config_.spindle.jog_per_s;  // main spindle "Jogging speed"
   if (m == 3) spindle_ = {DriveMode::kVelocity, speed, 0};
   if (m == 4) spindle_ = {DriveMode::kVelocity, -speed, 0};

@@ -42,6 +42,10 @@ void Channel::Handwheel(size_t axis, int counts) {
 
 void Channel::Jog(size_t axis, int direction) {
   if (mode_ != ChannelMode::kManual || axis >= jog_.size()) return;
+  // Bxx.036 'Manual Axis Jogging causes Reset': jogging an interrupted program away ends it
+  // (REPOS manual 6.1: no repositioning then).
+  if (direction != 0 && config_.process.jogging_causes_reset && state_ == ChannelState::kHold)
+    Reset();
   // C-axis manual 4.2: jogging the rotary axis selects rotary axis mode; it moves once there.
   if (headstock_ && static_cast<int>(axis) == config_.rotary_axis && direction != 0 &&
       process_enable_)
@@ -57,6 +61,12 @@ int Channel::AxisMotion(size_t axis) const {
 
 void Channel::Jogging(double dt) {
   GuardJog(dt);
+  // REPOS manual 3.2: while repositioning or NC-block restart is called, a feed axis moves
+  // between its target and where it stood when the function was called, never past the target
+  // (an endless rotary axis excepted). An axis outside that zone (a zero offset edit moved its
+  // target) may only come back towards it.
+  const std::vector<double> repos_target =
+      repos_function_ != ReposFunction::kNone ? ReposTarget() : std::vector<double>{};
   for (size_t a = 0; a < jog_.size(); ++a) {
     if (headstock_ && static_cast<int>(a) == config_.rotary_axis &&
         headstock_->mode() != axes::HeadstockMode::kRotary)
@@ -66,11 +76,20 @@ void Channel::Jogging(double dt) {
     const double normal = axis.jog_per_s > 0 ? axis.jog_per_s : axis.rapid_per_s / 10;
     const double rapid = axis.jog_rapid_per_s > 0 ? axis.jog_rapid_per_s : axis.rapid_per_s / 2;
     const double speed = (jog_mode_ == JogMode::kRapid ? rapid : normal) * override_;
-    // Jogging stops at the software limits, braking in time.
-    const bool limited = axis.travel_max > axis.travel_min;
-    auto within = [&](double x) {
-      return limited ? std::clamp(x, axis.travel_min, axis.travel_max) : x;
-    };
+    // Jogging stops at the software limits and the repositioning zone, braking in time.
+    bool limited = axis.travel_max > axis.travel_min;
+    double low = axis.travel_min, high = axis.travel_max;
+    if (!repos_target.empty()) {
+      const ReposZone zone = ZoneOf(axis, repos_target[a], repos_start_[a]);
+      if (zone.limited) {
+        const double zone_low = std::min(zone.low, commanded_[a]);
+        const double zone_high = std::max(zone.high, commanded_[a]);
+        low = limited ? std::max(low, zone_low) : zone_low;
+        high = limited ? std::min(high, zone_high) : zone_high;
+        limited = true;
+      }
+    }
+    auto within = [&](double x) { return limited ? std::clamp(x, low, high) : x; };
     if (jog_mode_ == JogMode::kHandwheel) {
       // Follow the counts at most at the jogging rapid, braking so as not to pass the target.
       if (!j.handwheel) j.handwheel = true, j.handwheel_target = commanded_[a];
@@ -119,8 +138,7 @@ void Channel::Jogging(double dt) {
     double target = key * speed;
     const double step = axis.acceleration * dt;
     if (limited) {
-      const double room =
-          j.key > 0 ? axis.travel_max - commanded_[a] : commanded_[a] - axis.travel_min;
+      const double room = j.key > 0 ? high - commanded_[a] : commanded_[a] - low;
       target = key * std::min(speed, std::sqrt(2 * axis.acceleration * std::max(0.0, room)));
     }
     j.velocity = std::clamp(target, j.velocity - step, j.velocity + step);

@@ -19,9 +19,18 @@ inline constexpr int kMsgTranslationInArc = 302;  ///< offset or tool change in 
 inline constexpr int kMsgGouge = 303;  ///< tool nose radius compensation: contour violation
 /// G92 of the rotary axis outside rotary axis mode (C-axis manual 2.3 Zero Point Shifts).
 inline constexpr int kMsgOffsetInSpindleMode = 304;
-inline constexpr int kMsgLeftContour = 401;     ///< continue after jogging off the contour
-inline constexpr int kMsgNoHomeLabel = 402;     ///< reverse without a .HOME label
-inline constexpr int kMsgMdiSyntax = 403;       ///< the MDI text does not parse
+inline constexpr int kMsgLeftContour = 401;  ///< continue after jogging off the contour
+inline constexpr int kMsgNoHomeLabel = 402;  ///< reverse without a .HOME label
+inline constexpr int kMsgMdiSyntax = 403;    ///< the MDI text does not parse
+/// G77 while neither repositioning nor NC-block restart is active (REPOS manual 7.1).
+inline constexpr int kMsgReposNotActive = 404;
+inline constexpr int kMsgReposNoFeed = 405;  ///< G77 of a feed axis without F (4.2)
+/// G77 S1=0 after rotary axis mode, G77 C0 after spindle mode (4.2).
+inline constexpr int kMsgReposMode = 406;
+/// Start of repositioning with the state not restored and no REPOS subroutine (4.1).
+inline constexpr int kMsgReposNoSubroutine = 407;
+/// The REPOS subroutine returned with the spindle not restored (4.1).
+inline constexpr int kMsgReposNotRestored = 408;
 inline constexpr int kMsgNotHomed = 501;        ///< a move of an axis that has no reference
 inline constexpr int kMsgSoftwareLimit = 502;   ///< a target beyond the axis' travel
 inline constexpr int kMsgDriveFault = 503;      ///< a drive of the channel is not ready
@@ -59,6 +68,16 @@ inline const char* MessageText(int number) {
       return "no reverse program .HOME";
     case kMsgMdiSyntax:
       return "MDI block error";
+    case kMsgReposNotActive:
+      return "G77 without repositioning";
+    case kMsgReposNoFeed:
+      return "G77 without F";
+    case kMsgReposMode:
+      return "G77: spindle / rotary axis mode";
+    case kMsgReposNoSubroutine:
+      return "no REPOS subroutine";
+    case kMsgReposNotRestored:
+      return "state before interruption not restored";
     case kMsgNotHomed:
       return "axis not homed";
     case kMsgSoftwareLimit:

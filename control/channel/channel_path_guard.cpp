@@ -1,7 +1,9 @@
 // PathGuard in the channel (issue 6, DESIGN.md): jog moves are checked ahead while they run, far
 // enough to brake before a contact; an increment is checked whole before it starts. A contact
 // stops the move before it happens with an NC error naming the parts and the position
-// (GuardReaction::kStop), or is only recorded (kWarn). Every check ends up in a GuardRecord.
+// (GuardReaction::kStop), or is only recorded (kWarn). The approach moves of repositioning (G77
+// and the closing move, REPOS manual 4.2) are straight: they are checked whole before they
+// start. Every check ends up in a GuardRecord.
 #include <cmath>
 #include <cstdio>
 
@@ -50,6 +52,21 @@ bool Channel::GuardIncrement(size_t axis, double to_position) {
     return true;
   }
   return !GuardStops("jog", from, to, c);
+}
+
+bool Channel::GuardBlockMove(const std::string& move) {
+  if (!guard_ || config_.path_guard == GuardReaction::kOff) return true;
+  const std::vector<double> from = GuardFrom();
+  std::vector<double> to = from;
+  for (size_t a = 0; a < config_.axes.size(); ++a)
+    if (static_cast<size_t>(config_.axes[a].drive) < to.size())
+      to[config_.axes[a].drive] = motion_.end[a];
+  const PathCheck c = guard_->CheckMove(from, to);
+  if (c.clear) {
+    guard_records_.push_back({move, from, to, c, 1, false});
+    return true;
+  }
+  return !GuardStops(move, from, to, c);
 }
 
 void Channel::GuardJog(double dt) {

@@ -9,6 +9,8 @@
 namespace vmt::control::channel {
 
 bool Channel::NextBlock(const AmplifierTelegram& at) {
+  // The REPOS subroutine has returned (or there is none): close in and continue the program.
+  if (repos_run_ && (repos_finish_ || repos_closing_ || block_.returned)) return FinishReposRun(at);
   if (compensating_) return NextCompensated(at);
   const bool read = ReadNext(block_);
   if (!read) {
@@ -296,7 +298,7 @@ void Channel::LookAhead(const AmplifierTelegram& at) {
     const nc::ModalState &m0 = block_.modal, &m1 = n.modal;
     if (!feed_move(n.motion) || !n.aux.empty() || !n.events.empty() || !n.instructions.empty() ||
         n.dwell_s != 0 || n.homing || n.set_position || n.repos || n.measuring || n.end ||
-        m1.compensation != 40 || m1.zero_offset != m0.zero_offset ||
+        n.returned || m1.compensation != 40 || m1.zero_offset != m0.zero_offset ||
         m1.tool_length != m0.tool_length || m1.tool != m0.tool || m1.correction != m0.correction)
       break;
     // A block that needs a spindle / rotary axis changeover is reached at rest.

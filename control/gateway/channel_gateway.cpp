@@ -41,12 +41,15 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
   enabl_ = Id(c + "ENABL");
   if (enabl_ >= 0) last_enabl_ = image.Bool(enabl_);
   for (int k = 0; k < 3; ++k) jogm_[k] = Id(c + "JOGM" + std::to_string(k));
+  repos_ = Id(c + "REPOS");
+  resta_ = Id(c + "RESTA");
   s_auto_ = Id(s + "AUTO");
   s_manu_ = Id(s + "MANU");
   s_mdi_ = Id(s + "MDI");
   s_run_ = Id(s + "RUN");
   s_stop_ = Id(s + "STOP");
   s_repos_ = Id(s + "REPOS");
+  s_crest_ = Id(s + "CREST");
   s_rev_ = Id(s + "REV");
   s_error_ = Id(s + "ERROR");
   s_errnr_ = Id(s + "ERRNR");
@@ -131,6 +134,8 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
   if (stop) ch.Stop();
   if (start_.Rising(im) && !stop) ch.Start();
   if (rev_.Rising(im)) ch.Reverse();
+  // Repositioning manual 7.1: levels; the NC evaluates them only in the situation of 2.1.
+  ch.SetReposition(repos_ >= 0 && im.Bool(repos_), resta_ >= 0 && im.Bool(resta_));
   // Levels act when they change, so that the operator's other ways in (a scene's nc: steps)
   // are not overwritten every cycle.
   if (sbl_ >= 0 && im.Bool(sbl_) != last_sbl_) ch.SetSingleBlock(last_sbl_ = im.Bool(sbl_));
@@ -203,9 +208,10 @@ void ChannelGateway::WriteStatus(const channel::Channel& ch, const AmplifierTele
   set(s_mdi_, ch.mode() == channel::ChannelMode::kMdi);
   set(s_run_, ch.state() == channel::ChannelState::kRunning);
   set(s_stop_, ch.state() == channel::ChannelState::kHold);
-  // Repositioning manual 2.x: set each time the program is interrupted, reset when it resumes
-  // or on Control-Reset.
-  set(s_repos_, ch.state() == channel::ChannelState::kHold);
+  // Repositioning manual 7.2: set each time the program is interrupted, reset when it resumes
+  // or on Control-Reset; 7.3: the state before the interruption restored.
+  set(s_repos_, ch.repos_allowed());
+  set(s_crest_, ch.conditions_restored());
   set(s_rev_, ch.reversing());
   set(s_error_, ch.state() == channel::ChannelState::kError);
   set_int(s_errnr_, ch.error_number());

@@ -47,6 +47,7 @@ class ChannelGateway {
   SignalImage* image_;
   Edge auto_, manu_, mdi_, start_, reset_, rev_, auxack_;
   int stop_ = -1, sbl_ = -1, fovr_ = -1, jogm_[3] = {-1, -1, -1};
+  int repos_ = -1, resta_ = -1;  ///< PxxC.REPOS, PxxC.RESTA
   int64_t last_fovr_ = -1;
   /// PxxC.ENABL, the process enabling signal: acts when it changes (C-axis manual 2.3).
   int enabl_ = -1;
@@ -64,7 +65,7 @@ class ChannelGateway {
   };
   std::vector<AxisSignals> axes_;
   int s_auto_ = -1, s_manu_ = -1, s_mdi_ = -1, s_run_ = -1, s_stop_ = -1, s_rev_ = -1;
-  int s_repos_ = -1;
+  int s_repos_ = -1, s_crest_ = -1;
   int s_error_ = -1, s_errnr_ = -1, s_auxstb_ = -1, s_mfunc_ = -1, s_hfunc_ = -1, s_tfunc_ = -1;
   int spindle_drive_ = -1, n_ncmd_ = -1, n_nmin_ = -1, inpos_ = -1;
   /// The headstock changeover (C-axis manual 4.1-4.3): ROTMOD/SPMOD out, their

@@ -20,7 +20,8 @@ std::string Stem(const std::string& name) { return Upper(name.substr(0, name.fin
 
 bool HasEffect(const PreparedBlock& b) {
   return b.motion != Motion::kNone || !b.aux.empty() || !b.events.empty() || b.dwell_s > 0 ||
-         b.homing || b.set_position || b.repos || b.measuring || !b.instructions.empty() || b.end;
+         b.homing || b.set_position || b.repos || b.measuring || !b.instructions.empty() || b.end ||
+         b.returned;
 }
 
 }  // namespace
@@ -82,21 +83,53 @@ Interpreter::Interpreter(std::vector<const Program*> programs, InterpreterConfig
   stack_.assign(stack, 0.0);
 }
 
-bool Interpreter::JumpTo(const std::string& label) {
-  const Program& main = *programs_[0];
+namespace {
+
+int32_t LabelBlock(const Program& p, const std::string& label) {
   const std::string bare = label.starts_with('.') ? label.substr(1) : label;
   for (const std::string& name : {bare, "." + bare}) {
-    const uint32_t id = main.symbols.Find(name);
-    if (auto it = main.labels.find(id); id != 0 && it != main.labels.end()) {
-      current_ = 0;
-      pc_ = it->second;
-      calls_.clear();
-      loops_.clear();
-      ended_ = false;
-      return true;
-    }
+    const uint32_t id = p.symbols.Find(name);
+    if (auto it = p.labels.find(id); id != 0 && it != p.labels.end()) return it->second;
   }
-  return false;
+  return -1;
+}
+
+}  // namespace
+
+bool Interpreter::JumpTo(const std::string& label) {
+  const int32_t block = LabelBlock(*programs_[0], label);
+  if (block < 0) return false;
+  current_ = 0;
+  pc_ = block;
+  calls_.clear();
+  loops_.clear();
+  ended_ = false;
+  subroutine_ = false;
+  return true;
+}
+
+int Interpreter::FindSubroutine(const std::string& label) const {
+  if (programs_.empty()) return -1;
+  if (LabelBlock(*programs_[0], label) >= 0) return 0;
+  if (auto it = by_name_.find("99");
+      it != by_name_.end() && LabelBlock(*programs_[it->second], label) >= 0)
+    return static_cast<int>(it->second);
+  for (size_t i = 1; i < programs_.size(); ++i)
+    if (LabelBlock(*programs_[i], label) >= 0) return static_cast<int>(i);
+  return -1;
+}
+
+bool Interpreter::RunSubroutine(uint32_t program, const std::string& label) {
+  if (program >= programs_.size()) return false;
+  const int32_t block = LabelBlock(*programs_[program], label);
+  if (block < 0) return false;
+  current_ = program;
+  pc_ = block;
+  calls_.clear();
+  loops_.clear();
+  ended_ = false;
+  subroutine_ = true;
+  return true;
 }
 
 const std::string& Interpreter::ErrorFile() const { return programs_[error_program_]->files[0]; }
@@ -328,6 +361,7 @@ bool Interpreter::Next(PreparedBlock& out) {
     out.events.clear();
     out.dwell_s = 0;
     out.homing = out.set_position = out.repos = out.measuring = out.end = false;
+    out.feed_programmed = out.returned = false;
     if (!Execute(p.blocks[here], out, next)) return false;
     ++executed_;
     pc_ = next;
@@ -420,6 +454,12 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
     }
     case Kind::kReturn:
       if (calls_.empty()) {
+        if (subroutine_) {
+          out.returned = true;  // the subroutine run on its own is over (RunSubroutine)
+          ended_ = true;
+          next = block;
+          return true;
+        }
         if (p.symbols.Name(st.name) == "RTS") return Fail(st.pos.offset, "RTS without JSR");
         out.end = true;  // RET: end of the main program
         return true;
@@ -678,7 +718,7 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
           if (out.dwell_s < 0)
             out.dwell_s = v;
           else
-            f_word = v, f_offset = w.offset;
+            f_word = v, f_offset = w.offset, out.feed_programmed = true;
           continue;
         case 'I':
         case 'J':

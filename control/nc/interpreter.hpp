@@ -84,11 +84,14 @@ struct PreparedBlock {
   double effective_distance[3] = {0, 0, 0};  ///< RX RY RZ: C-axis path velocity (C-axis manual 1.2)
   uint8_t has_effective_distance = 0;        ///< bit 0 RX, 1 RY, 2 RZ
   std::vector<AuxFunction> aux;
-  double dwell_s = 0;         ///< G04
-  bool homing = false;        ///< G74: the programmed axes home
-  bool set_position = false;  ///< G92: the programmed values become the current position
-  bool repos = false;         ///< G77: return the programmed axes to the interruption point
-  bool measuring = false;     ///< G100: measuring move (ISG)
+  double dwell_s = 0;            ///< G04
+  bool homing = false;           ///< G74: the programmed axes home
+  bool set_position = false;     ///< G92: the programmed values become the current position
+  bool repos = false;            ///< G77: return the programmed axes to the interruption point
+  bool measuring = false;        ///< G100: measuring move (ISG)
+  bool feed_programmed = false;  ///< an F word in this block (G77 needs one, REPOS manual 4.2)
+  /// RTS at the top of a subroutine run on its own (RunSubroutine): the run is over.
+  bool returned = false;
   std::vector<uint32_t> instructions;  ///< MTP, MRY, SETTING(...), #-commands: Program::statements
   std::vector<std::pair<int, bool>> events;  ///< SE n (true) / RE n (false), in block order
   bool end = false;                          ///< M30 / M02 / RET of the main program
@@ -134,6 +137,14 @@ class Interpreter {
   /// progress are dropped. False if the main program has no such label.
   bool JumpTo(const std::string& label);
   int64_t executed_blocks() const { return executed_; }
+  /// The program holding `label` as a subroutine for the REPOS function (REPOS manual 4.1): the
+  /// main program, else program 99, else the other programs of the store (vmt's NC-cycle
+  /// memory), in their order. -1 if none has it.
+  int FindSubroutine(const std::string& label) const;
+  /// Runs from `label` in program `program` as a subroutine of its own: its RTS ends the run
+  /// (a block with `returned`) instead of failing as an RTS without JSR. Calls and loops in
+  /// progress are dropped. False if the program has no such label.
+  bool RunSubroutine(uint32_t program, const std::string& label);
 
  private:
   struct Frame {
@@ -177,6 +188,7 @@ class Interpreter {
   int32_t pc_ = 0;
   double last_result_ = 0;  ///< MTC200: BEQ/BNE/... test the last computed @ value
   bool ended_ = false;
+  bool subroutine_ = false;  ///< RunSubroutine: a top-level RTS returns
   int64_t executed_ = 0;
   std::optional<Diagnostic> error_;
   uint32_t error_program_ = 0;

@@ -188,6 +188,19 @@ bool DriveProgram::Execute(const TimelineStep& step, double t_s,
         events.push_back({t_s, "refused", step.text});
       }
       return true;
+    case Kind::kNcZeroOffset:
+    case Kind::kNcToolLength: {
+      const bool done =
+          !channel_ ||
+          (step.kind == Kind::kNcZeroOffset
+               ? channel_->SetZeroOffset(step.code, step.axis, step.target)
+               : channel_->SetToolLength(step.code, step.edge, step.axis, step.target));
+      if (!done) {
+        failures_.push_back(step.text + ": the tool list has no such edge");
+        events.push_back({t_s, "refused", step.text});
+      }
+      return true;
+    }
     case Kind::kHandwheel:
       if (channel_) channel_->Handwheel(step.axis, step.code);
       return true;

@@ -14,6 +14,7 @@
 #include "render/image.hpp"
 #include "sim/collision/machine_path_guard.hpp"
 #include "sim/model/gateway_layout.hpp"
+#include "sim/runner/channel_events.hpp"
 #include "sim/runner/drive_program.hpp"
 #include "sim/runner/scene_renderer.hpp"
 
@@ -22,33 +23,6 @@ namespace {
 
 // PLC cycles a scan may be overdue before the watchdog stops the PLC.
 constexpr int64_t kPlcWatchdogCycles = 2;
-
-double Micro(double v) { return std::round(v * 1000) / 1000; }  // mm to the µm, no binary noise
-
-// A PathGuard check of the channel as the events record it: the move, the answer (the first
-// contact: parts, point, distance along the path, where the axes would stand; or clear) and the
-// smallest clearance on the way.
-nlohmann::ordered_json GuardEvent(double t, const control::channel::GuardRecord& r,
-                                  const MachineModel& m) {
-  const control::PathCheck& c = r.check;
-  nlohmann::ordered_json e = {{"t", t}, {"event", "path_guard"}, {"move", r.move}};
-  e["clear"] = c.clear;
-  if (r.checks > 1) e["checks"] = r.checks;
-  if (!c.clear) {
-    e["parts"] = {c.part_a, c.part_b};
-    e["point"] = {Micro(c.point[0]), Micro(c.point[1]), Micro(c.point[2])};
-    e["distance"] = Micro(c.distance);
-    nlohmann::ordered_json at = nlohmann::ordered_json::object();
-    for (size_t d = 0; d < c.position.size() && d < m.drives.size(); ++d)
-      if (r.from[d] != r.to[d]) at[m.drives[d].info.name] = Micro(c.position[d]);
-    e["position"] = at;  // of the drives that move
-    e["reaction"] = r.stopped ? "stop" : "warn";
-  } else {
-    e["min_clearance"] = Micro(c.min_clearance);
-    e["closest"] = {c.closest_a, c.closest_b};
-  }
-  return e;
-}
 
 // Fixed formatting: the trace bytes, and so the digest, depend only on the simulation.
 void Append(std::string& row, double v) {
@@ -217,6 +191,7 @@ struct SceneRun::State {
   void StartHeadstockPlc();
   control::axes::HeadstockMode headstock_mode = control::axes::HeadstockMode::kNone;
   control::axes::HeadstockMode headstock_target = control::axes::HeadstockMode::kNone;
+  std::string repos_key;         ///< the REPOS screen last emitted (ReposEventKey)
   int plc_client_gone_told = 0;  ///< client_gone steps passed to the callback
 };
 
@@ -382,6 +357,16 @@ void SceneRun::State::Step() {
     }
     for (const control::channel::GuardRecord& r : channel->TakeGuardRecords())
       emit_event(GuardEvent(t, r, m));
+    if (nc_cycle) {
+      // The REPOS screen (repositioning manual 2.2) when its function, status or an adjust
+      // symbol changes.
+      const control::channel::ReposStatus rs = channel->repos_status(&at);
+      std::string key = ReposEventKey(rs);
+      if (key != repos_key) {
+        if (!repos_key.empty() || rs.allowed) emit_event(ReposEvent(t, rs));
+        repos_key = std::move(key);
+      }
+    }
     if (channel->state() != nc_state) {
       nc_state = channel->state();
       nlohmann::ordered_json e = {{"t", t}, {"event", "nc"}, {"state", ToString(nc_state)}};

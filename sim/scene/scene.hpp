@@ -87,6 +87,8 @@ struct TimelineStep {
     kNcJogMode,
     kNcMdi,
     kNcReverse,
+    kNcZeroOffset,  ///< operator edit: zero offset G`code` of `axis` := target (REPOS 2.5)
+    kNcToolLength,  ///< operator edit: length of tool `code` edge `edge` along `axis` := target
     kJog,
     kHandwheel,
     kSignal,
@@ -101,7 +103,8 @@ struct TimelineStep {
   bool level = false;     ///< output value
   int code = 0;           ///< kNcMode: ChannelMode; kNcJogMode: JOGM code; kHandwheel: counts
   int signal = -1;        ///< kSignal: gateway signal the (default) PLC writes; value in `target`
-  int axis = -1;          ///< kJog: channel axis index
+  int axis = -1;          ///< kJog, kNcZeroOffset, kNcToolLength: channel axis index
+  int edge = 0;           ///< kNcToolLength: D
   int direction = 0;      ///< kJog: +1 | -1
   double wait_s = 0;
   Condition until;

@@ -331,6 +331,31 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
       s.target = a["jog_increment"].Double();
       if (s.target < 0) a["jog_increment"].Fail("must be >= 0 (0: continuous)");
       text << "jog increment " << Fmt(s.target);
+    } else if (a.IsMap() && (a.Has("zero_offset") || a.Has("tool_length"))) {
+      // The operator's edits while a program is interrupted (repositioning manual 2.5).
+      const bool offset = a.Has("zero_offset");
+      a.AllowKeys({offset ? "zero_offset" : "tool_length"});
+      const YamlNode e = a[offset ? "zero_offset" : "tool_length"];
+      if (offset)
+        e.AllowKeys({"G", "axis", "value"});
+      else
+        e.AllowKeys({"T", "D", "axis", "value"});
+      s.kind = offset ? TimelineStep::Kind::kNcZeroOffset : TimelineStep::Kind::kNcToolLength;
+      const int drive = RequireDrive(m, e["axis"]);
+      for (size_t k = 0; k < nc.axis_drives.size(); ++k)
+        if (nc.axis_drives[k] == drive) s.axis = static_cast<int>(k);
+      if (s.axis < 0) e["axis"].Fail("not an axis of the NC channel");
+      s.target = e["value"].Double();
+      if (offset) {
+        s.code = e["G"].Int();
+        if (s.code < 54 || s.code > 59) e["G"].Fail("expected 54..59");
+        text << "zero offset G" << s.code << " " << e["axis"].String() << " = " << Fmt(s.target);
+      } else {
+        s.code = e["T"].Int();
+        s.edge = e.Has("D") ? e["D"].Int() : 1;
+        text << "tool T" << s.code << " D" << s.edge << " length " << e["axis"].String() << " = "
+             << Fmt(s.target);
+      }
     } else if (a.IsMap() && a.Has("single_block")) {
       a.AllowKeys({"single_block"});
       s.kind = TimelineStep::Kind::kNcSingleBlock;

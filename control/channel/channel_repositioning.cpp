@@ -1,0 +1,432 @@
+// Repositioning and NC-block restart in the channel (REPOS manual). The program interrupted and
+// left by jogging keeps its place (Interruption); the PLC calls a function with PxxC.REPOS or
+// PxxC.RESTA; in manual mode the operator jogs the axes back without passing their targets and
+// restores the spindle with its keys; in automatic mode Start runs the REPOS subroutine in the
+// interrupted program's place, whose G77 blocks return the axes and spindle, and at its RTS the
+// program continues at the interruption point or at the start of the interrupted block.
+#include <cmath>
+
+#include "control/channel/channel.hpp"
+
+namespace vmt::control::channel {
+namespace {
+
+int SpindleM(const DriveSetpoint& sp) {
+  if (sp.mode == DriveMode::kPosition) return 19;
+  return sp.value > 0 ? 3 : sp.value < 0 ? 4 : 5;
+}
+
+}  // namespace
+
+std::vector<double> Channel::TranslationOf(const nc::ModalState& modal) const {
+  std::optional<axes::ToolEdge> edge;
+  if (modal.tool_length != 47 && modal.correction != 0)
+    edge = config_.tools.Find(modal.tool, modal.correction);
+  const double sign = modal.tool_length == 49 ? -1 : 1;
+  std::vector<double> t(config_.axes.size());
+  for (size_t a = 0; a < t.size(); ++a) {
+    const double length = edge && a < edge->length.size() ? edge->length[a] : 0;
+    t[a] = config_.zero_offsets.Offset(modal.zero_offset, a) + shift_[a] - sign * length;
+  }
+  return t;
+}
+
+void Channel::CaptureInterruption() {
+  Interruption i;
+  i.point = commanded_;
+  i.block_start = active_ ? motion_.start : commanded_;
+  i.modal = block_.block >= 0 ? block_.modal : modal();
+  i.translation = TranslationOf(i.modal);
+  i.program = block_.program;
+  i.line = line();
+  i.spindle = spindle_;
+  i.spindle_m = SpindleM(spindle_);
+  if (headstock_) {
+    i.headstock_mode = headstock_->mode();
+    // Outside rotary axis mode (a changeover included) the NC does not position the rotary
+    // axis: its command follows the actual position, which the spindle or the PLC's motion
+    // functions move (C-axis manual 4.2, 4.3). It has no point on the contour to return to.
+    if (i.headstock_mode != axes::HeadstockMode::kRotary) {
+      i.point[config_.rotary_axis] = std::nan("");
+      i.block_start[config_.rotary_axis] = std::nan("");
+    }
+  }
+  interruption_ = std::move(i);
+  repos_start_ = commanded_;
+}
+
+std::vector<double> Channel::ReposTarget() const {
+  std::vector<double> target(config_.axes.size(), std::nan(""));
+  if (!interruption_) return target;
+  const Interruption& i = *interruption_;
+  const std::vector<double>& base =
+      repos_function_ == ReposFunction::kRestart ? i.block_start : i.point;
+  // 2.5: zero offset and tool edits during the interruption move the interruption point and
+  // the block start with the contour.
+  const std::vector<double> now = TranslationOf(i.modal);
+  for (size_t a = 0; a < target.size(); ++a) target[a] = base[a] + (now[a] - i.translation[a]);
+  return target;
+}
+
+bool Channel::SpindleRelevant() const {
+  // 7.3: all spindles; a spindle with rotary axis capability if it was in spindle mode.
+  if (config_.spindle_drive < 0 || !interruption_) return false;
+  return !headstock_ || interruption_->headstock_mode != axes::HeadstockMode::kRotary;
+}
+
+bool Channel::SpindleRestored(const AmplifierTelegram& at) const {
+  const DriveSetpoint& before = interruption_->spindle;
+  if (headstock_ && headstock_->mode() != axes::HeadstockMode::kSpindle) return false;
+  if (spindle_.mode != before.mode || std::abs(spindle_.value - before.value) > 1e-9) return false;
+  const uint32_t status = static_cast<size_t>(config_.spindle_drive) < at.feedback.size()
+                              ? at.feedback[config_.spindle_drive].status
+                              : 0;
+  if (before.mode == DriveMode::kPosition) return status & drive_status::kInPosition;
+  return before.value == 0 || (status & drive_status::kAtSpeed);
+}
+
+void Channel::ReposCycle(const AmplifierTelegram& at) {
+  if (!interruption_) {
+    repos_function_ = ReposFunction::kNone;
+    crest_ = false;
+    return;
+  }
+  Interruption& i = *interruption_;
+  for (size_t a = 0; a < commanded_.size() && !i.left_contour; ++a)
+    if (!std::isnan(i.point[a]) && std::abs(commanded_[a] - i.point[a]) > 1e-6)
+      i.left_contour = true;
+  // 7.1: the signals count only in the situation of 2.1 (interrupted, left by jogging, no
+  // Control-Reset), and only if the program may be continued other than by the reverse
+  // program (Bxx.032, 6.1).
+  const bool evaluated = (state_ == ChannelState::kHold || repos_run_) && i.left_contour &&
+                         !config_.process.reverse_program_required;
+  const ReposFunction function = evaluated ? repos_request_ : ReposFunction::kNone;
+  if (function != repos_function_ && function != ReposFunction::kNone) repos_start_ = commanded_;
+  repos_function_ = function;
+  // 7.3: updated only while a function is called; the relevant axes within their windows, the
+  // spindle in its former state.
+  crest_ = false;
+  if (repos_function_ == ReposFunction::kNone) return;
+  const std::vector<double> target = ReposTarget();
+  bool restored = true;
+  for (size_t a = 0; a < target.size() && restored; ++a) {
+    const ChannelAxis& axis = config_.axes[a];
+    if (std::isnan(target[a]) || axis.repos_window <= 0) continue;
+    restored = WithinReposWindow(axis, target[a], commanded_[a]);
+  }
+  if (restored && SpindleRelevant()) restored = SpindleRestored(at);
+  crest_ = restored;
+}
+
+ReposStatus Channel::repos_status(const AmplifierTelegram* at) const {
+  ReposStatus s;
+  s.allowed = repos_allowed();
+  s.function = repos_function_;
+  s.conditions_restored = crest_;
+  s.subroutine_running = repos_run_;
+  s.feed_override = override_;
+  if (!interruption_) return s;
+  const Interruption& i = *interruption_;
+  s.left_contour = i.left_contour;
+  const std::vector<double> target = ReposTarget();
+  for (size_t a = 0; a < config_.axes.size(); ++a) {
+    const ChannelAxis& axis = config_.axes[a];
+    ReposAxisStatus x;
+    x.name = axis.name;
+    x.command_value = commanded_[a];
+    x.relevant = !std::isnan(target[a]) && axis.repos_window > 0;
+    if (!std::isnan(target[a])) {
+      x.final_value = target[a];
+      x.distance_to_go = ReposDistanceToGo(axis, target[a], commanded_[a]);
+      x.adjust = x.relevant && !WithinReposWindow(axis, target[a], commanded_[a]);
+    }
+    s.axes.push_back(x);
+  }
+  ReposSpindleStatus& sp = s.spindle;
+  sp.relevant = SpindleRelevant();
+  sp.override = spindle_override_;
+  sp.actual_m = SpindleM(spindle_);
+  sp.command_m = i.spindle_m;
+  sp.command_rpm = i.spindle.mode == DriveMode::kVelocity ? i.spindle.value / 6 : 0;
+  if (at && static_cast<size_t>(config_.spindle_drive) < at->feedback.size())
+    sp.actual_rpm = at->feedback[config_.spindle_drive].velocity / 6;
+  else
+    sp.actual_rpm = spindle_rpm_;
+  sp.adjust = sp.relevant && !(at ? SpindleRestored(*at)
+                                  : spindle_.mode == i.spindle.mode &&
+                                        std::abs(spindle_.value - i.spindle.value) < 1e-9);
+  s.programmed_feed = i.modal.feed;
+  s.program = i.program < programs_.size() || running_mdi_ ? ProgramOf(i.program)->files[0] : "";
+  s.line = i.line;
+  s.tool = i.modal.tool;
+  s.correction = i.modal.correction;
+  s.spindle_m = i.modal.spindle;
+  s.coolant = i.modal.coolant;
+  const nc::ModalState& m = i.modal;
+  const int motion = m.motion == nc::Motion::kRapid          ? 0
+                     : m.motion == nc::Motion::kLinear       ? 1
+                     : m.motion == nc::Motion::kArcCw        ? 2
+                     : m.motion == nc::Motion::kArcCcw       ? 3
+                     : m.motion == nc::Motion::kThread       ? 33
+                     : m.motion == nc::Motion::kTapping      ? 63
+                     : m.motion == nc::Motion::kRigidTapping ? 64
+                                                             : -1;
+  if (motion >= 0) s.g_codes.push_back(motion);
+  s.g_codes.push_back(m.plane);
+  s.g_codes.push_back(m.compensation);
+  s.g_codes.push_back(m.tool_length);
+  s.g_codes.push_back(m.zero_offset);
+  s.g_codes.push_back(m.incremental ? 91 : 90);
+  s.g_codes.push_back(m.feed_per_revolution ? 95 : 94);
+  return s;
+}
+
+bool Channel::SetZeroOffset(int g, size_t axis, double value) {
+  if (g < 54 || g > 59 || axis >= config_.axes.size()) return false;
+  std::vector<double>& table = config_.zero_offsets.g54_to_g59[g - 54];
+  if (table.size() <= axis) table.resize(config_.axes.size(), 0.0);
+  table[axis] = value;
+  return true;
+}
+
+bool Channel::SetToolLength(int tool, int edge, size_t axis, double value) {
+  if (axis >= config_.axes.size()) return false;
+  for (axes::ToolEdge& e : config_.tools.edges)
+    if (e.tool == tool && e.edge == edge) {
+      if (e.length.size() <= axis) e.length.resize(config_.axes.size(), 0.0);
+      e.length[axis] = value;
+      return true;
+    }
+  return false;
+}
+
+void Channel::SwapProgramInWork() {
+  ProgramInWork& p = parked_;
+  std::swap(interpreter_, p.interpreter);
+  std::swap(block_, p.block);
+  std::swap(motion_, p.motion);
+  std::swap(profile_, p.profile);
+  std::swap(active_, p.active);
+  std::swap(pending_motion_, p.pending_motion);
+  std::swap(homing_, p.homing);
+  std::swap(dwell_left_s_, p.dwell_left_s);
+  std::swap(homing_stages_, p.homing_stages);
+  std::swap(peeked_, p.peeked);
+  std::swap(targets_, p.targets);
+  std::swap(continuation_ready_, p.continuation_ready);
+  std::swap(source_returned_false_, p.source_returned_false);
+  std::swap(unpushed_, p.unpushed);
+  std::swap(trc_, p.trc);
+  std::swap(compensating_, p.compensating);
+  std::swap(source_done_, p.source_done);
+  std::swap(ahead_, p.ahead);
+  std::swap(ready_, p.ready);
+  std::swap(first_tag_, p.first_tag);
+  std::swap(next_tag_, p.next_tag);
+  std::swap(last_run_tag_, p.last_run_tag);
+  std::swap(contour_point_, p.contour_point);
+  std::swap(rotary_start_, p.rotary_start);
+  std::swap(rotary_next_start_, p.rotary_next_start);
+}
+
+void Channel::StartReposRun() {
+  // 4.1: the REPOS subroutine in the current program, in program 99 or in the cycle memory.
+  const int program = interpreter_ ? interpreter_->FindSubroutine("REPOS") : -1;
+  if (program < 0 && !crest_) {
+    Fail(programs_[0]->files[0] +
+             ": error: the state before the interruption is not restored and no program has a "
+             "REPOS subroutine (.REPOS)",
+         kMsgReposNoSubroutine);
+    return;
+  }
+  // The interrupted program waits, its block in work and what was read ahead, while the
+  // subroutine runs in its place with its modal state (G(2), M(5) read the interrupted state).
+  SwapProgramInWork();
+  active_ = pending_motion_ = homing_ = false;
+  dwell_left_s_ = 0;
+  DropLookahead();
+  block_ = nc::PreparedBlock{};
+  block_.program = parked_.block.program;
+  block_.modal = interruption_->modal;
+  repos_run_ = true;
+  repos_closing_ = false;
+  repos_finish_ = program < 0;
+  if (program >= 0) {
+    nc::InterpreterConfig ic;
+    ic.axes.clear();
+    for (const ChannelAxis& a : config_.axes) ic.axes.push_back(a.name);
+    ic.initial = interruption_->modal;
+    std::vector<const nc::Program*> programs = programs_;
+    if (running_mdi_) programs.insert(programs.begin(), &mdi_->program);
+    interpreter_ = std::make_unique<nc::Interpreter>(std::move(programs), ic);
+    std::vector<double> position(commanded_.size());
+    for (size_t a = 0; a < position.size(); ++a) position[a] = commanded_[a] - translation_[a];
+    interpreter_->SetPosition(position);
+    interpreter_->SetEventSource([this](int n) {
+      if (events_) return events_(n);
+      auto it = own_events_.find(n);
+      return it != own_events_.end() && it->second;
+    });
+    interpreter_->RunSubroutine(static_cast<uint32_t>(program), "REPOS");
+  }
+  state_ = ChannelState::kRunning;
+}
+
+bool Channel::CheckReposBlock() {
+  const nc::Program& program = *ProgramOf(block_.program);
+  // 7.1: G77 while the PLC has withdrawn the function interrupts the program.
+  if (repos_function_ == ReposFunction::kNone || !interruption_) {
+    Fail(program, block_.block,
+         "G77 without repositioning or NC-block restart (PxxC.REPOS / PxxC.RESTA is 0)",
+         kMsgReposNotActive);
+    return false;
+  }
+  const uint64_t feed_axes = block_.programmed;
+  if (feed_axes && !block_.feed_programmed) {
+    Fail(program, block_.block, "G77 of a feed axis needs an F value in its block",
+         kMsgReposNoFeed);
+    return false;
+  }
+  // 4.2: the mode before the interruption decides between G77 S1=0 and G77 C0 (the manual's
+  // sentence names the modes the other way round; its own example, 8.3, tests rotary axis
+  // mode to choose G77 C0).
+  if (headstock_) {
+    const bool rotary_before = interruption_->headstock_mode == axes::HeadstockMode::kRotary;
+    const size_t r = static_cast<size_t>(config_.rotary_axis);
+    if ((feed_axes >> r & 1) && !rotary_before) {
+      Fail(program, block_.block,
+           "G77 " + config_.axes[r].name +
+               ": the spindle was in spindle mode before the "
+               "interruption: restore it with G77 S1=0",
+           kMsgReposMode);
+      return false;
+    }
+    for (const nc::AuxFunction& f : block_.aux)
+      if (f.letter == 'S' && f.index <= 1 && rotary_before) {
+        Fail(program, block_.block,
+             "G77 S1=0: the spindle was in rotary axis mode before the interruption: restore " +
+                 config_.axes[r].name + " with G77 " + config_.axes[r].name + "0",
+             kMsgReposMode);
+        return false;
+      }
+  }
+  return true;
+}
+
+bool Channel::StartReposMotion(const AmplifierTelegram& /*at*/) {
+  const nc::Program& program = *ProgramOf(block_.program);
+  // 4.2 Spindles: G77 S1=0 restores the main spindle's speed or position; the block waits until
+  // it has reached it. Spindles the channel does not command have nothing to restore.
+  for (const nc::AuxFunction& f : block_.aux)
+    if (f.letter == 'S' && f.index <= 1 && config_.spindle_drive >= 0) {
+      spindle_ = interruption_->spindle;
+      spindle_referencing_ = spindle_.mode == DriveMode::kPosition;
+      orienting_ = true;
+    }
+  // 4.2 Feed axes: the distance to go between target and actual position, G00-like (all axes
+  // reach the target together) at F, without the G functions of interpolation and without tool
+  // radius compensation.
+  const std::vector<double> target = ReposTarget();
+  nc::PreparedBlock b = block_;
+  b.motion = repos_closing_ ? nc::Motion::kRapid : nc::Motion::kLinear;
+  b.modal.feed_per_revolution = false;
+  b.modal.compensation = 40;
+  b.has_centre = false;
+  b.radius = 0;
+  b.has_effective_distance = 0;
+  for (size_t a = 0; a < commanded_.size(); ++a) {
+    const bool to_target = (block_.programmed >> a & 1) && !std::isnan(target[a]);
+    b.target[a] = (to_target ? target[a] : commanded_[a]) - translation_[a];
+  }
+  if (const auto error =
+          PlanBlockMotion(b, commanded_, translation_, config_.axes, 0, motion_, FollowUpAxes(b))) {
+    Fail(program, block_.block, error->text, error->number);
+    return false;
+  }
+  // The subroutine's next blocks count from the targets.
+  for (size_t a = 0; a < commanded_.size(); ++a)
+    if ((block_.programmed >> a & 1) && interpreter_) interpreter_->SetAxisPosition(a, b.target[a]);
+  profile_ = PathProfile{};
+  if (!motion_.moves) return true;
+  if (!GuardBlockMove(repos_closing_ ? "repositioning" : "G77")) return false;
+  profile_.max_rate = motion_.max_rate;
+  profile_.max_accel = motion_.max_accel;
+  profile_.max_jerk = motion_.max_jerk;
+  active_ = true;
+  return true;
+}
+
+bool Channel::FinishReposRun(const AmplifierTelegram& at) {
+  const std::vector<double> target = ReposTarget();
+  if (!repos_closing_) {
+    // The subroutine (or the operator) has left the axes within their windows, or has not
+    // returned some at all (Cxx.086 = 0): a closing move takes every axis to its exact target,
+    // so that the program goes on from the point it left, checked like every approach move.
+    uint64_t bits = 0;
+    for (size_t a = 0; a < target.size(); ++a)
+      if (!std::isnan(target[a]) && std::abs(commanded_[a] - target[a]) > 1e-9)
+        bits |= uint64_t{1} << a;
+    if (SpindleRelevant() && !SpindleRestored(at)) {
+      Fail(ProgramOf(block_.program)->files[0] +
+               ": error: the REPOS subroutine has returned with the spindle not in its state "
+               "before the interruption (G77 S1=0)",
+           kMsgReposNotRestored);
+      return false;
+    }
+    repos_closing_ = true;
+    if (bits) {
+      nc::PreparedBlock closing = block_;
+      closing.repos = true;
+      closing.returned = false;
+      closing.programmed = bits;
+      closing.aux.clear();
+      closing.instructions.clear();
+      closing.events.clear();
+      closing.target.assign(commanded_.size(), 0);
+      block_ = closing;
+      if (!StartReposMotion(at)) return false;
+      if (active_) return true;
+    }
+  }
+  // Back to the interrupted program: it continues at the interruption point, or its block
+  // starts again (restart), shifted with the contour by any offset or tool edit (2.5).
+  const ReposFunction function = repos_function_;
+  const std::vector<double> shift = [&] {
+    std::vector<double> d(target.size(), 0.0);
+    const std::vector<double> now = TranslationOf(interruption_->modal);
+    for (size_t a = 0; a < d.size(); ++a) d[a] = now[a] - interruption_->translation[a];
+    return d;
+  }();
+  SwapProgramInWork();
+  parked_ = ProgramInWork{};
+  ClearRepos();
+  if (active_) {
+    for (size_t a = 0; a < shift.size(); ++a) {
+      motion_.start[a] += shift[a];
+      motion_.end[a] += shift[a];
+    }
+    for (int k = 0; k < 2; ++k)
+      if (motion_.arc_axes[k] >= 0) motion_.arc_centre[k] += shift[motion_.arc_axes[k]];
+    if (function == ReposFunction::kRestart) {
+      PathProfile fresh;
+      fresh.max_rate = profile_.max_rate;
+      fresh.max_accel = profile_.max_accel;
+      fresh.max_jerk = profile_.max_jerk;
+      profile_ = fresh;
+    }
+  }
+  if (block_.block >= 0 &&
+      !UpdateTranslation(block_.modal, *ProgramOf(block_.program), block_.block))
+    return false;
+  state_ = ChannelState::kRunning;
+  return true;
+}
+
+void Channel::ClearRepos() {
+  interruption_.reset();
+  repos_function_ = ReposFunction::kNone;
+  crest_ = false;
+  repos_run_ = repos_closing_ = repos_finish_ = false;
+}
+
+}  // namespace vmt::control::channel

@@ -1,0 +1,85 @@
+#include "sim/runner/channel_events.hpp"
+
+#include <cmath>
+
+namespace vmt::sim {
+namespace {
+
+double Micro(double v) { return std::round(v * 1000) / 1000; }  // mm to the µm, no binary noise
+
+}  // namespace
+
+nlohmann::ordered_json GuardEvent(double t, const control::channel::GuardRecord& r,
+                                  const MachineModel& m) {
+  const control::PathCheck& c = r.check;
+  nlohmann::ordered_json e = {{"t", t}, {"event", "path_guard"}, {"move", r.move}};
+  e["clear"] = c.clear;
+  if (r.checks > 1) e["checks"] = r.checks;
+  if (!c.clear) {
+    e["parts"] = {c.part_a, c.part_b};
+    e["point"] = {Micro(c.point[0]), Micro(c.point[1]), Micro(c.point[2])};
+    e["distance"] = Micro(c.distance);
+    nlohmann::ordered_json at = nlohmann::ordered_json::object();
+    for (size_t d = 0; d < c.position.size() && d < m.drives.size(); ++d)
+      if (r.from[d] != r.to[d]) at[m.drives[d].info.name] = Micro(c.position[d]);
+    e["position"] = at;  // of the drives that move
+    e["reaction"] = r.stopped ? "stop" : "warn";
+  } else {
+    e["min_clearance"] = Micro(c.min_clearance);
+    e["closest"] = {c.closest_a, c.closest_b};
+  }
+  return e;
+}
+
+nlohmann::ordered_json ReposEvent(double t, const control::channel::ReposStatus& s) {
+  nlohmann::ordered_json e = {{"t", t}, {"event", "repos"}};
+  e["function"] = ToString(s.function);
+  e["allowed"] = s.allowed;                          // PxxS.REPOS
+  e["conditions_restored"] = s.conditions_restored;  // PxxS.CREST
+  e["left_contour"] = s.left_contour;
+  e["subroutine"] = s.subroutine_running;
+  if (s.axes.empty()) return e;
+  nlohmann::ordered_json axes = nlohmann::ordered_json::object();
+  for (const control::channel::ReposAxisStatus& a : s.axes) {
+    if (!a.relevant && a.final_value == 0 && a.distance_to_go == 0) {
+      axes[a.name] = {{"command", Micro(a.command_value)}, {"relevant", false}};
+      continue;
+    }
+    axes[a.name] = {{"final", Micro(a.final_value)},
+                    {"command", Micro(a.command_value)},
+                    {"to_go", Micro(a.distance_to_go)},
+                    {"relevant", a.relevant},
+                    {"adjust", a.adjust}};
+  }
+  e["axes"] = axes;
+  const control::channel::ReposSpindleStatus& sp = s.spindle;
+  e["spindle"] = {{"relevant", sp.relevant},
+                  {"actual_rpm", Micro(sp.actual_rpm)},
+                  {"command_rpm", Micro(sp.command_rpm)},
+                  {"override", sp.override},
+                  {"actual_m", sp.actual_m},
+                  {"command_m", sp.command_m},
+                  {"adjust", sp.adjust}};
+  e["F"] = s.programmed_feed;
+  e["feed_override"] = s.feed_override;
+  e["program"] = s.program;
+  e["line"] = s.line;
+  e["T"] = s.tool;
+  e["D"] = s.correction;
+  e["M"] = {s.spindle_m, s.coolant};
+  e["G"] = s.g_codes;
+  return e;
+}
+
+std::string ReposEventKey(const control::channel::ReposStatus& s) {
+  std::string key = ToString(s.function);
+  key += s.allowed ? "A" : "a";
+  key += s.conditions_restored ? "C" : "c";
+  key += s.left_contour ? "L" : "l";
+  key += s.subroutine_running ? "S" : "s";
+  for (const control::channel::ReposAxisStatus& a : s.axes) key += a.adjust ? "1" : "0";
+  key += s.spindle.adjust ? "1" : "0";
+  return key;
+}
+
+}  // namespace vmt::sim

@@ -1,0 +1,25 @@
+#pragma once
+// The NC channel's events in a scene's trace (events.jsonl): PathGuard checks and the REPOS
+// screen (repositioning manual 2.2), as the operator and the PLC engineer read them.
+
+#include <nlohmann/json.hpp>
+
+#include "control/channel/channel.hpp"
+#include "sim/model/machine_model.hpp"
+
+namespace vmt::sim {
+
+/// A PathGuard check: the move, the answer (the first contact: parts, point, distance along the
+/// path, where the moving drives would stand; or clear) and the smallest clearance on the way.
+nlohmann::ordered_json GuardEvent(double t, const control::channel::GuardRecord& r,
+                                  const MachineModel& m);
+
+/// The REPOS screen: the function and its status signals, per feed axis final value, command
+/// value and distance to go with its adjust symbol, the spindle, F, T, M and G state.
+nlohmann::ordered_json ReposEvent(double t, const control::channel::ReposStatus& s);
+
+/// What of the REPOS screen is worth an event when it changes: the function, the status
+/// signals and the adjust symbols (not every cycle's command values).
+std::string ReposEventKey(const control::channel::ReposStatus& s);
+
+}  // namespace vmt::sim
