@@ -349,7 +349,11 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
         finished = NextBlock(at) && !active_ && dwell_left_s_ <= 0 && !orienting_ &&
                    waiting_for_ == axes::HeadstockMode::kNone;
       }
-      if (active_) {
+      // A block interrupted and jogged away from stays where the program left it until the
+      // axes are repositioned (REPOS manual 2.1): interpolating it would take them back.
+      const bool frozen = state_ == ChannelState::kHold && interruption_ &&
+                          interruption_->left_contour && !repos_run_;
+      if (active_ && !frozen) {
         if (sync_.phase != SyncPhase::kNone)
           SynchronousCycle(at, dt);
         else

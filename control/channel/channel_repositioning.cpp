@@ -82,6 +82,10 @@ bool Channel::SpindleRestored(const AmplifierTelegram& at) const {
                               ? at.feedback[config_.spindle_drive].status
                               : 0;
   if (before.mode == DriveMode::kPosition) return status & drive_status::kInPosition;
+  // The status bit of the last tick may still answer the command before this cycle's.
+  const double actual = at.feedback[config_.spindle_drive].velocity;
+  const double command = before.value * spindle_override_;
+  if (std::abs(actual - command) > std::max(6.0, 0.02 * std::abs(command))) return false;
   return before.value == 0 || (status & drive_status::kAtSpeed);
 }
 
