@@ -61,6 +61,9 @@ struct ChannelConfig {
   GuardReaction path_guard = GuardReaction::kStop;
   /// Continuous jogs are checked ahead every this many NC cycles, far enough to brake in time.
   int path_guard_every = 8;
+  /// The drive of the tool storage axis (a turret the PLC indexes), -1 if none: with Bxx.045 its
+  /// position at the interruption is part of the state to restore (REPOS manual 6.2, 7.3).
+  int tool_storage_drive = -1;
 };
 
 /// One PathGuard check the channel made: which move, from where to where (per drive), and the
@@ -394,6 +397,8 @@ class Channel {
   std::vector<double> ReposTarget() const;
   bool SpindleRestored(const AmplifierTelegram& at) const;
   bool SpindleRelevant() const;
+  bool ToolStorageKnown() const;
+  bool ToolStorageRestored() const;
   void ReposCycle(const AmplifierTelegram& at);
   void StartReposRun();
   bool CheckReposBlock();

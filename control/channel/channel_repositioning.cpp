@@ -51,6 +51,7 @@ void Channel::CaptureInterruption() {
       i.block_start[config_.rotary_axis] = std::nan("");
     }
   }
+  if (ToolStorageKnown()) i.tool_storage = drive_positions_[config_.tool_storage_drive];
   interruption_ = std::move(i);
   repos_start_ = commanded_;
 }
@@ -66,6 +67,19 @@ std::vector<double> Channel::ReposTarget() const {
   const std::vector<double> now = TranslationOf(i.modal);
   for (size_t a = 0; a < target.size(); ++a) target[a] = base[a] + (now[a] - i.translation[a]);
   return target;
+}
+
+bool Channel::ToolStorageKnown() const {
+  return config_.tool_storage_drive >= 0 &&
+         static_cast<size_t>(config_.tool_storage_drive) < drive_positions_.size();
+}
+
+bool Channel::ToolStorageRestored() const {
+  // 6.2 / 7.3: only with Bxx.045 'Reposition Tool Storage Axis' = yes.
+  if (!config_.process.reposition_tool_storage || !ToolStorageKnown() || !interruption_)
+    return true;
+  return std::abs(drive_positions_[config_.tool_storage_drive] - interruption_->tool_storage) <=
+         kToolStorageWindow;
 }
 
 bool Channel::SpindleRelevant() const {
@@ -119,7 +133,7 @@ void Channel::ReposCycle(const AmplifierTelegram& at) {
     restored = WithinReposWindow(axis, target[a], commanded_[a]);
   }
   if (restored && SpindleRelevant()) restored = SpindleRestored(at);
-  crest_ = restored;
+  crest_ = restored && ToolStorageRestored();
 }
 
 ReposStatus Channel::repos_status(const AmplifierTelegram* at) const {
@@ -159,6 +173,8 @@ ReposStatus Channel::repos_status(const AmplifierTelegram* at) const {
   sp.adjust = sp.relevant && !(at ? SpindleRestored(*at)
                                   : spindle_.mode == i.spindle.mode &&
                                         std::abs(spindle_.value - i.spindle.value) < 1e-9);
+  s.tool_storage_relevant = config_.process.reposition_tool_storage && ToolStorageKnown();
+  s.tool_storage_adjust = !ToolStorageRestored();
   s.programmed_feed = i.modal.feed;
   s.program = i.program < programs_.size() || running_mdi_ ? ProgramOf(i.program)->files[0] : "";
   s.line = i.line;

@@ -37,7 +37,12 @@ struct Interruption {
   int spindle_m = 5;                ///< its M function: 3, 4, 5 or 19
   axes::HeadstockMode headstock_mode = axes::HeadstockMode::kNone;  ///< kNone: no headstock
   bool left_contour = false;  ///< an axis has been jogged away from `point` (2.1)
+  double tool_storage = 0;    ///< the tool storage axis' position (deg), if there is one
 };
+
+/// 6.2: the tool storage axis counts as returned within this much of its former position (deg
+/// or mm; the manual gives no window, a turret station is indexed far more exactly).
+inline constexpr double kToolStorageWindow = 0.05;
 
 /// 6.1: the axis is adjusted when its distance to go is within Cxx.086; a modulo rotary axis
 /// (endless, 3.2) measures the distance the short way round.
@@ -87,6 +92,8 @@ struct ReposStatus {
   bool subroutine_running = false;  ///< the REPOS subroutine runs (4.1)
   std::vector<ReposAxisStatus> axes;
   ReposSpindleStatus spindle;
+  /// 2.2: the tool storage axis' adjust symbol after the T word (only with Bxx.045 = yes).
+  bool tool_storage_relevant = false, tool_storage_adjust = false;
   double programmed_feed = 0;  ///< F of the interrupted block, mm/min | mm/rev
   double feed_override = 1;
   std::string program;  ///< the interrupted program's file

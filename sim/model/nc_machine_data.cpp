@@ -201,7 +201,8 @@ control::axes::ToolTable ReadToolTable(const std::vector<control::axes::AxisPara
 }
 
 NcMachineData ReadNcMachineData(const MachineModel& m, const YamlNode& node) {
-  node.AllowKeys({"process", "axes", "spindle", "zero_offsets", "tools", "path_guard"});
+  node.AllowKeys(
+      {"process", "axes", "spindle", "zero_offsets", "tools", "path_guard", "tool_storage"});
   NcMachineData nc;
   nc.present = true;
   if (node.Has("path_guard")) {
@@ -224,6 +225,13 @@ NcMachineData ReadNcMachineData(const MachineModel& m, const YamlNode& node) {
     nc.process.reverse_program_required = p.Bool("Bxx.032", false);
     nc.process.jogging_causes_reset = p.Bool("Bxx.036", false);
     nc.process.reposition_tool_storage = p.Bool("Bxx.045", false);
+  }
+  if (node.Has("tool_storage")) {
+    // The drive of the tool storage axis (turret), indexed by the PLC: repositioning compares
+    // its position with the one at the interruption when Bxx.045 is yes (REPOS manual 6.2).
+    const YamlNode t = node["tool_storage"];
+    nc.tool_storage_drive = m.DriveIndex(t.String());
+    if (nc.tool_storage_drive < 0) t.Fail("no drive '" + t.String() + "'");
   }
   const YamlNode axes = node["axes"];
   for (size_t i = 0; i < axes.size(); ++i) {

@@ -34,6 +34,7 @@ struct NcMachineData {
   control::axes::ToolTable tools;
   /// `path_guard: stop | warn | off`: what a contact PathGuard finds ahead of a move does.
   control::GuardReaction path_guard = control::GuardReaction::kStop;
+  int tool_storage_drive = -1;  ///< the turret's drive (`tool_storage: T`), -1 if none
 };
 
 /// Reads machine.yaml's `nc:`; the drives must be loaded. Throws ModelError (file, YAML path).

@@ -60,6 +60,7 @@ nlohmann::ordered_json ReposEvent(double t, const control::channel::ReposStatus&
                   {"actual_m", sp.actual_m},
                   {"command_m", sp.command_m},
                   {"adjust", sp.adjust}};
+  if (s.tool_storage_relevant) e["tool_storage"] = {{"adjust", s.tool_storage_adjust}};
   e["F"] = s.programmed_feed;
   e["feed_override"] = s.feed_override;
   e["program"] = s.program;
@@ -79,6 +80,7 @@ std::string ReposEventKey(const control::channel::ReposStatus& s) {
   key += s.subroutine_running ? "S" : "s";
   for (const control::channel::ReposAxisStatus& a : s.axes) key += a.adjust ? "1" : "0";
   key += s.spindle.adjust ? "1" : "0";
+  key += s.tool_storage_adjust ? "1" : "0";
   return key;
 }
 

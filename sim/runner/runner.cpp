@@ -228,6 +228,7 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     std::vector<const control::nc::Program*> programs;
     for (const auto& parsed : scene.nc.programs) programs.push_back(&parsed->program);
     config.path_guard = scene.nc.data.path_guard;
+    config.tool_storage_drive = scene.nc.data.tool_storage_drive;
     channel = std::make_unique<control::channel::Channel>(config, programs);
     channel->SetFeedOverride(scene.nc.override);
     if (config.path_guard != control::GuardReaction::kOff) {
