@@ -14,7 +14,10 @@ if(NOT result EQUAL 0)
   message(FATAL_ERROR "${TEST_EXECUTABLE} --gtest_list_tests failed (${result}):\n${listing}")
 endif()
 
+# A parameter printed with an unmatched "[" would stop CMake splitting the list there.
 string(REPLACE ";" "\\;" listing "${listing}")
+string(REPLACE "[" "<" listing "${listing}")
+string(REPLACE "]" ">" listing "${listing}")
 string(REPLACE "\n" ";" lines "${listing}")
 set(content "")
 foreach(line IN LISTS lines)
