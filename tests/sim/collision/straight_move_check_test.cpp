@@ -145,6 +145,18 @@ BruteForce Sample(CollisionWorld& w, const std::vector<double>& from, const std:
   return r;
 }
 
+// Brute force is 96 % of this test's time; under AddressSanitizer (about 90 s for all 60 trials)
+// it was the longest test of the sanitizer run. The Release build checks all 60 trials. The
+// sanitizer build, there to check memory, checks trials 20-39 of the same random sequence: they
+// have every kind of move (turret turns, tailstock moves) and both outcomes (19 moves, 4
+// contacts), at a tenth of the brute force's time (a few clear moves near a slide take most of
+// it, and they lie outside). The counts asked for scale with the trials checked.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr int kFirstTrial = 20, kEndTrial = 40;
+#else
+constexpr int kFirstTrial = 0, kEndTrial = 60;
+#endif
+
 TEST(StraightMoveCheck, AgreesWithBruteForceOnRandomMoves) {
   Lathe l;
   std::mt19937_64 rng(20261123);
@@ -158,6 +170,7 @@ TEST(StraightMoveCheck, AgreesWithBruteForceOnRandomMoves) {
     from[l.J("tailstock")] = to[l.J("tailstock")] = w(rng);
     if (trial % 3 == 0) to[l.J("turret")] = from[l.J("turret")] + (unit(rng) - 0.5) * 2;
     if (trial % 4 == 0) to[l.J("tailstock")] = w(rng);
+    if (trial < kFirstTrial || trial >= kEndTrial) continue;  // drawn all the same: same moves
     l.world.Pose(from);
     if (AnyContact(l.world)) continue;  // starts inside: not a move to check
     ++moves;
@@ -204,10 +217,11 @@ TEST(StraightMoveCheck, AgreesWithBruteForceOnRandomMoves) {
       EXPECT_NEAR(l.world.Distance(c.closest_a, c.closest_b), c.min_clearance_m, 1e-9);
     }
   }
-  // The random moves exercise both outcomes.
-  EXPECT_GE(moves, 30);
-  EXPECT_GE(contacts, 10);
-  EXPECT_GE(clear, 5);
+  // The random moves exercise both outcomes (of 60 trials: 30 moves, 10 contacts, 5 clear).
+  const int trials = kEndTrial - kFirstTrial;
+  EXPECT_GE(moves, trials / 2);
+  EXPECT_GE(contacts, trials / 6);
+  EXPECT_GE(clear, trials / 12);
 }
 
 }  // namespace
