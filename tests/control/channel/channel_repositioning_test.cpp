@@ -492,5 +492,28 @@ TEST(ChannelRepositioning, SubroutineFromProgram99AndReverseDuringIt) {
   EXPECT_FALSE(m.channel->repos_allowed());
 }
 
+TEST(ChannelRepositioning, ToolStorageAxisCountsWithBxx045) {
+  for (const bool bxx045 : {false, true}) {
+    Machine m(kProgram, 0, 0, [&](ChannelConfig& c) {
+      c.tool_storage_drive = 3;
+      c.process.reposition_tool_storage = bxx045;
+    });
+    m.at.feedback.resize(4);
+    m.at.feedback[3].status = drive_status::kReady;
+    m.at.feedback[3].position = 60;  // the PLC's turret at station 3
+    m.mdt.setpoints.resize(4);
+    InterruptAndJogAway(m);
+    m.at.feedback[3].position = 90;  // the operator indexed the turret on (PxxC.MGPOS)
+    Call(m, true, false);
+    JogFor(m, 1, -1, 1.0);  // Z back: the feed axes and the spindle are restored
+    EXPECT_EQ(m.channel->conditions_restored(), !bxx045) << "Bxx.045 " << bxx045;
+    EXPECT_EQ(m.channel->repos_status().tool_storage_adjust, bxx045);
+    m.at.feedback[3].position = 60.01;  // back at its station
+    RunFor(m, 0.01);
+    EXPECT_TRUE(m.channel->conditions_restored());
+    EXPECT_FALSE(m.channel->repos_status().tool_storage_adjust);
+  }
+}
+
 }  // namespace
 }  // namespace vmt::control::channel
