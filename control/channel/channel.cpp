@@ -349,7 +349,11 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
         finished = NextBlock(at) && !active_ && dwell_left_s_ <= 0 && !orienting_ &&
                    waiting_for_ == axes::HeadstockMode::kNone;
       }
-      if (active_) {
+      // REPOS manual 2.1: once the operator has taken the interrupted program's axes over in
+      // manual mode they stay where he left them; the held block must not pull them back onto
+      // its path (a jump) when an automatic mode is selected again.
+      const bool taken_over = state_ == ChannelState::kHold && interruption_ && !repos_run_;
+      if (active_ && !taken_over) {
         if (sync_.phase != SyncPhase::kNone)
           SynchronousCycle(at, dt);
         else
