@@ -386,6 +386,15 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
            kMsgReposNotRestored);
       return false;
     }
+    // The closing move and the interrupted block position the rotary axis: not in spindle mode.
+    const int r = config_.rotary_axis;
+    if (r >= 0 && !std::isnan(target[r]) && OutOfItsMode(headstock(), r, r)) {
+      Fail(ProgramOf(block_.program)->files[0] +
+               ": error: the REPOS subroutine has returned with " + config_.axes[r].name +
+               " not in rotary axis mode (G77 " + config_.axes[r].name + "0)",
+           kMsgReposNotRestored);
+      return false;
+    }
     repos_closing_ = true;
     if (bits) {
       nc::PreparedBlock closing = block_;

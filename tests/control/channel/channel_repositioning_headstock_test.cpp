@@ -281,6 +281,42 @@ TEST(ChannelReposHeadstock, ManualExampleSubroutineReturnsCWithG77C0) {
   EXPECT_NEAR(m.at.feedback[kX].position, 10, 1e-9);
 }
 
+TEST(ChannelReposHeadstock, SubroutineLeavingCInSpindleModeIsRefusedAtItsReturn) {
+  Lathe m(kRotary +
+          ".REPOS\n"
+          "N10 G77 Z0 F3000\n"
+          "N11 G77 X0 F3000 RTS\n");
+  Interrupt(m, 3.0);
+  ASSERT_EQ(m.hs().mode(), HeadstockMode::kRotary);
+  JogFor(m, kZ, +1, 0.2);
+  m.channel->ManualSpindle(5);  // spindle mode: C is no positioned axis any more
+  RunFor(m, 0.05);
+  ASSERT_EQ(m.hs().mode(), HeadstockMode::kSpindle);
+  Call(m, true, false);
+  StartRepos(m);
+  m.RunUntilEnd();
+  EXPECT_EQ(m.channel->state(), ChannelState::kError);
+  EXPECT_EQ(m.channel->error_number(), kMsgReposNotRestored);
+  EXPECT_THAT(m.channel->error(), ::testing::HasSubstr("C not in rotary axis mode"));
+  EXPECT_NEAR(m.at.feedback[kZ].position, 0, 1e-9);  // the subroutine's own moves ran
+}
+
+TEST(ChannelReposHeadstock, StartWithCInSpindleModeAndNoSubroutineIsRefused) {
+  Lathe m(kRotary);
+  Interrupt(m, 3.0);
+  JogFor(m, kZ, +1, 0.2);
+  Call(m, true, false);
+  JogFor(m, kZ, -1, 1.0);
+  ASSERT_TRUE(m.channel->conditions_restored());
+  m.channel->ManualSpindle(5);
+  RunFor(m, 0.05);
+  EXPECT_FALSE(m.channel->conditions_restored());
+  StartRepos(m);
+  RunFor(m, 0.1);
+  EXPECT_EQ(m.channel->state(), ChannelState::kError);
+  EXPECT_EQ(m.channel->error_number(), kMsgReposNoSubroutine);
+}
+
 // ---- The spindle keys (3.3) ----
 
 TEST(ChannelReposHeadstock, SpindleKeysRestoreM3OnlyByM3OrM4) {
