@@ -16,6 +16,14 @@ int SpindleM(const DriveSetpoint& sp) {
   return sp.value > 0 ? 3 : sp.value < 0 ? 4 : 5;
 }
 
+/// 7.3: a rotary axis positioned in rotary axis mode before the interruption has its state back
+/// only in that mode: in spindle mode (a spindle key selected it, C-axis manual 4.2) it is no
+/// positioned axis, whatever angle the spindle stands at.
+bool OutOfItsMode(const axes::HeadstockChangeover* headstock, int rotary_axis, size_t a) {
+  return headstock && static_cast<int>(a) == rotary_axis &&
+         headstock->mode() != axes::HeadstockMode::kRotary;
+}
+
 }  // namespace
 
 std::vector<double> Channel::TranslationOf(const nc::ModalState& modal) const {
@@ -130,7 +138,8 @@ void Channel::ReposCycle(const AmplifierTelegram& at) {
   for (size_t a = 0; a < target.size() && restored; ++a) {
     const ChannelAxis& axis = config_.axes[a];
     if (std::isnan(target[a]) || axis.repos_window <= 0) continue;
-    restored = WithinReposWindow(axis, target[a], commanded_[a]);
+    restored = WithinReposWindow(axis, target[a], commanded_[a]) &&
+               !OutOfItsMode(headstock(), config_.rotary_axis, a);
   }
   if (restored && SpindleRelevant()) restored = SpindleRestored(at);
   crest_ = restored && ToolStorageRestored();
@@ -156,7 +165,8 @@ ReposStatus Channel::repos_status(const AmplifierTelegram* at) const {
     if (!std::isnan(target[a])) {
       x.final_value = target[a];
       x.distance_to_go = ReposDistanceToGo(axis, target[a], commanded_[a]);
-      x.adjust = x.relevant && !WithinReposWindow(axis, target[a], commanded_[a]);
+      x.adjust = x.relevant && (!WithinReposWindow(axis, target[a], commanded_[a]) ||
+                                OutOfItsMode(headstock(), config_.rotary_axis, a));
     }
     s.axes.push_back(x);
   }
@@ -170,9 +180,12 @@ ReposStatus Channel::repos_status(const AmplifierTelegram* at) const {
     sp.actual_rpm = at->feedback[config_.spindle_drive].velocity / 6;
   else
     sp.actual_rpm = spindle_rpm_;
-  sp.adjust = sp.relevant && !(at ? SpindleRestored(*at)
-                                  : spindle_.mode == i.spindle.mode &&
-                                        std::abs(spindle_.value - i.spindle.value) < 1e-9);
+  // Without the drives' feedback: the command restored, in spindle mode.
+  sp.adjust =
+      sp.relevant && !(at ? SpindleRestored(*at)
+                          : (!headstock_ || headstock_->mode() == axes::HeadstockMode::kSpindle) &&
+                                spindle_.mode == i.spindle.mode &&
+                                std::abs(spindle_.value - i.spindle.value) < 1e-9);
   s.tool_storage_relevant = config_.process.reposition_tool_storage && ToolStorageKnown();
   s.tool_storage_adjust = !ToolStorageRestored();
   s.programmed_feed = i.modal.feed;
@@ -390,6 +403,15 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
       Fail(ProgramOf(block_.program)->files[0] +
                ": error: the REPOS subroutine has returned with the spindle not in its state "
                "before the interruption (G77 S1=0)",
+           kMsgReposNotRestored);
+      return false;
+    }
+    // The closing move and the interrupted block position the rotary axis: not in spindle mode.
+    const int r = config_.rotary_axis;
+    if (r >= 0 && !std::isnan(target[r]) && OutOfItsMode(headstock(), r, r)) {
+      Fail(ProgramOf(block_.program)->files[0] +
+               ": error: the REPOS subroutine has returned with " + config_.axes[r].name +
+               " not in rotary axis mode (G77 " + config_.axes[r].name + "0)",
            kMsgReposNotRestored);
       return false;
     }

@@ -101,6 +101,7 @@ struct Lathe {
     f.status = drive_status::kReady;
     if (std::abs(f.velocity) < 1e-9) f.status |= drive_status::kStandstill;
     if (sp.mode == DriveMode::kPosition) f.status |= drive_status::kInPosition;
+    if (sp.mode == DriveMode::kVelocity) f.status |= drive_status::kAtSpeed;  // at once
   }
   void Trip(int d, uint32_t bits, bool persist = false) {
     at.feedback[d].status = bits;  // kReady and kEnabled clear
