@@ -12,7 +12,7 @@
 #include "control/channel/channel_messages.hpp"
 #include "control/gateway/channel_gateway.hpp"
 #include "control/nc/parser.hpp"
-#include "tests/control/gateway/lathe_layout.hpp"
+#include "tests/control/gateway/gateway_rig.hpp"
 
 namespace vmt::control::gateway {
 namespace {
@@ -29,53 +29,9 @@ const char* kProgram =
     "N12 G77 Z0 F3000\n"
     "N13 G77 X0 F3000 RTS\n";
 
-struct ReposRig {
+struct ReposRig : testing::GatewayRig {
   explicit ReposRig(const std::string& program = kProgram)
-      : image(BuildSignalTable(testing::LatheLayout())) {
-    parsed = nc::ParseProgram(program, "p.mtc", nc::Dialect::kMtc200);
-    EXPECT_TRUE(parsed.ok());
-    channel::ChannelConfig config;
-    for (int d = 0; d < 2; ++d) {
-      channel::ChannelAxis a;
-      a.name = d == 0 ? "X" : "Z";
-      a.number = d + 1;
-      a.drive = d;
-      a.rapid_per_s = 400;
-      a.acceleration = 4000;
-      config.axes.push_back(a);
-    }
-    config.spindle_drive = 2;
-    ch = std::make_unique<channel::Channel>(config,
-                                            std::vector<const nc::Program*>{&parsed.program});
-    gateway = std::make_unique<ChannelGateway>(image, 0, std::vector<int>{1, 2}, 3, 2);
-    at.feedback.resize(3);
-    for (DriveFeedback& f : at.feedback) f.status = drive_status::kReady;
-    mdt.setpoints.resize(3);
-  }
-  // One NC cycle on ideal drives: positions follow at once, the spindle is at its speed.
-  void Cycle(int n = 1) {
-    for (int k = 0; k < n; ++k) {
-      gateway->ReadControls(*ch);
-      for (int i = 0; i < 4; ++i) {
-        ch->Tick(at, mdt);
-        for (int d = 0; d < 2; ++d) at.feedback[d].position = mdt.setpoints[d].value;
-        DriveFeedback& s = at.feedback[2];
-        s.velocity = mdt.setpoints[2].mode == DriveMode::kVelocity ? mdt.setpoints[2].value : 0;
-        s.status = drive_status::kReady |
-                   (s.velocity != 0 ? drive_status::kAtSpeed : drive_status::kStandstill);
-      }
-      gateway->WriteStatus(*ch, at);
-    }
-  }
-  void Set(const char* name, bool v) { image.SetBool(image.Require(name), v); }
-  bool Get(const char* name) const { return image.Bool(image.Require(name)); }
-  int64_t GetInt(const char* name) const { return image.Int(image.Require(name)); }
-  void Press(const char* name) {
-    Set(name, true);
-    Cycle();
-    Set(name, false);
-    Cycle();
-  }
+      : GatewayRig(program, /*handshake=*/false, /*spindle_at_speed=*/true) {}
   // Fixed increments of 1 mm: JOGM code 6 (JOGM1, JOGM2).
   void IncrementJog() {
     Set("P00C.JOGM0", false);
@@ -103,13 +59,6 @@ struct ReposRig {
   }
   double X() const { return at.feedback[0].position; }
   double Z() const { return at.feedback[1].position; }
-
-  nc::ParseResult parsed;
-  SignalImage image;
-  std::unique_ptr<channel::Channel> ch;
-  std::unique_ptr<ChannelGateway> gateway;
-  AmplifierTelegram at;
-  MasterTelegram mdt;
 };
 
 // 7.2 / 7.4: set each time the program is interrupted, reset when it resumes.

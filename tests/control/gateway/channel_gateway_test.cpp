@@ -6,66 +6,12 @@
 #include <gtest/gtest.h>
 
 #include "control/nc/parser.hpp"
-#include "tests/control/gateway/lathe_layout.hpp"
+#include "tests/control/gateway/gateway_rig.hpp"
 
 namespace vmt::control::gateway {
 namespace {
 
-struct Rig {
-  explicit Rig(const std::string& program, bool handshake = false)
-      : image(BuildSignalTable(testing::LatheLayout())) {
-    parsed = nc::ParseProgram(program, "p.mtc", nc::Dialect::kMtc200);
-    EXPECT_TRUE(parsed.ok());
-    channel::ChannelConfig config;
-    for (int d = 0; d < 2; ++d) {
-      channel::ChannelAxis a;
-      a.name = d == 0 ? "X" : "Z";
-      a.number = d + 1;
-      a.drive = d;
-      a.rapid_per_s = 400;
-      a.acceleration = 4000;
-      config.axes.push_back(a);
-    }
-    config.spindle_drive = 2;
-    config.aux_handshake = handshake;
-    ch = std::make_unique<channel::Channel>(config,
-                                            std::vector<const nc::Program*>{&parsed.program});
-    gateway = std::make_unique<ChannelGateway>(image, 0, std::vector<int>{1, 2}, 3, 2);
-    ChannelGateway* gw = gateway.get();
-    ch->SetEventSource([gw](int n) { return gw->Event(n); });
-    ch->SetEventSink([gw](int n, bool v) { gw->SetEvent(n, v); });
-    at.feedback.resize(3);
-    for (DriveFeedback& f : at.feedback) f.status = drive_status::kReady;  // drives ready
-    mdt.setpoints.resize(3);
-  }
-  // One NC cycle (4 drive ticks).
-  void Cycle(int n = 1) {
-    for (int k = 0; k < n; ++k) {
-      gateway->ReadControls(*ch);
-      for (int i = 0; i < 4; ++i) {
-        ch->Tick(at, mdt);
-        for (int d = 0; d < 2; ++d) at.feedback[d].position = mdt.setpoints[d].value;
-      }
-      gateway->WriteStatus(*ch, at);
-    }
-  }
-  void Set(const char* name, bool v) { image.SetBool(image.Require(name), v); }
-  bool Get(const char* name) const { return image.Bool(image.Require(name)); }
-  int64_t GetInt(const char* name) const { return image.Int(image.Require(name)); }
-  void Press(const char* name) {
-    Set(name, true);
-    Cycle();
-    Set(name, false);
-    Cycle();
-  }
-
-  nc::ParseResult parsed;
-  SignalImage image;
-  std::unique_ptr<channel::Channel> ch;
-  std::unique_ptr<ChannelGateway> gateway;
-  AmplifierTelegram at;
-  MasterTelegram mdt;
-};
+using Rig = testing::GatewayRig;
 
 TEST(ChannelGateway, StartStopAndStatus) {
   Rig r("N1 G01 X100 F3000\nN2 RET\n");

@@ -1,0 +1,85 @@
+#pragma once
+// Shared by the gateway tests of the lathe's X/Z channel: the channel through the gateway on an
+// ideal machine (actual = setpoint), NC cycle by NC cycle, its signals by name.
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "control/channel/channel.hpp"
+#include "control/gateway/channel_gateway.hpp"
+#include "control/nc/parser.hpp"
+#include "tests/control/gateway/lathe_layout.hpp"
+
+namespace vmt::control::gateway::testing {
+
+struct GatewayRig {
+  /// X A01 (drive 0), Z A02 (drive 1), main spindle A03 (drive 2). `spindle_at_speed`: the
+  /// spindle reaches its commanded speed at once and says so (at speed / standstill).
+  explicit GatewayRig(const std::string& program, bool handshake = false,
+                      bool spindle_at_speed = false)
+      : image(BuildSignalTable(LatheLayout())), spindle_at_speed_(spindle_at_speed) {
+    parsed = nc::ParseProgram(program, "p.mtc", nc::Dialect::kMtc200);
+    EXPECT_TRUE(parsed.ok());
+    channel::ChannelConfig config;
+    for (int d = 0; d < 2; ++d) {
+      channel::ChannelAxis a;
+      a.name = d == 0 ? "X" : "Z";
+      a.number = d + 1;
+      a.drive = d;
+      a.rapid_per_s = 400;
+      a.acceleration = 4000;
+      config.axes.push_back(a);
+    }
+    config.spindle_drive = 2;
+    config.aux_handshake = handshake;
+    ch = std::make_unique<channel::Channel>(config,
+                                            std::vector<const nc::Program*>{&parsed.program});
+    gateway = std::make_unique<ChannelGateway>(image, 0, std::vector<int>{1, 2}, 3, 2);
+    ChannelGateway* gw = gateway.get();
+    ch->SetEventSource([gw](int n) { return gw->Event(n); });
+    ch->SetEventSink([gw](int n, bool v) { gw->SetEvent(n, v); });
+    at.feedback.resize(3);
+    for (DriveFeedback& f : at.feedback) f.status = drive_status::kReady;  // drives ready
+    mdt.setpoints.resize(3);
+  }
+  // One NC cycle (4 drive ticks).
+  void Cycle(int n = 1) {
+    for (int k = 0; k < n; ++k) {
+      gateway->ReadControls(*ch);
+      for (int i = 0; i < 4; ++i) {
+        ch->Tick(at, mdt);
+        for (int d = 0; d < 2; ++d) at.feedback[d].position = mdt.setpoints[d].value;
+        if (!spindle_at_speed_) continue;
+        DriveFeedback& s = at.feedback[2];
+        s.velocity = mdt.setpoints[2].mode == DriveMode::kVelocity ? mdt.setpoints[2].value : 0;
+        s.status = drive_status::kReady |
+                   (s.velocity != 0 ? drive_status::kAtSpeed : drive_status::kStandstill);
+      }
+      gateway->WriteStatus(*ch, at);
+    }
+  }
+  void Set(const char* name, bool v) { image.SetBool(image.Require(name), v); }
+  bool Get(const char* name) const { return image.Bool(image.Require(name)); }
+  int64_t GetInt(const char* name) const { return image.Int(image.Require(name)); }
+  void Press(const char* name) {
+    Set(name, true);
+    Cycle();
+    Set(name, false);
+    Cycle();
+  }
+
+  nc::ParseResult parsed;
+  SignalImage image;
+  std::unique_ptr<channel::Channel> ch;
+  std::unique_ptr<ChannelGateway> gateway;
+  AmplifierTelegram at;
+  MasterTelegram mdt;
+
+ private:
+  bool spindle_at_speed_;
+};
+
+}  // namespace vmt::control::gateway::testing
