@@ -227,13 +227,7 @@ TEST(ChannelRepositioning, ZeroOffsetEditMovesTheInterruptionPointAndTheContour)
       "N0 G54 G00 X0 Z0\nN1 G01 X100 F600\nN2 G01 Z-50\nN3 RET\n"
       ".REPOS\nN11 G77 Z0 F3000\nN12 G77 X0 F3000 RTS\n",
       5, 100, WithOffsetsAndTools);
-  m.channel->Start();
-  RunFor(m, 3.0);
-  m.channel->Stop();
-  RunFor(m, 0.2);
-  const double x = m.X();
-  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
-  JogFor(m, 1, +1, 0.2);
+  const double x = InterruptAndJogAway(m);
   // 2.5: the operator shifts G54 by 1 mm in Z and -0.5 in X.
   ASSERT_TRUE(m.channel->SetZeroOffset(54, 1, 101));
   ASSERT_TRUE(m.channel->SetZeroOffset(54, 0, 4.5));
@@ -254,13 +248,7 @@ TEST(ChannelRepositioning, ToolWearEditShiftsTheTargets) {
       "N0 T2 D1 G48 G00 X1.5 Z-4\nN1 G01 X100 F600\nN2 RET\n"
       ".REPOS\nN11 G77 Z0 F3000\nN12 G77 X0 F3000 RTS\n",
       0, 0, WithOffsetsAndTools);
-  m.channel->Start();
-  RunFor(m, 3.0);
-  m.channel->Stop();
-  RunFor(m, 0.2);
-  const double x = m.X();
-  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
-  JogFor(m, 1, +1, 0.2);
+  const double x = InterruptAndJogAway(m);
   // The measured part is 0.1 mm too large in X: the tool's X length grows by 0.05.
   ASSERT_TRUE(m.channel->SetToolLength(2, 1, 0, 1.55));
   Call(m, true, false);
@@ -404,11 +392,7 @@ TEST(ChannelRepositioning, MtpOutputsTheToolOfTheInterruption) {
   RunFor(m, 0.01);
   ASSERT_EQ(m.channel->aux_output().size(), 1u);
   m.channel->AcknowledgeAux();
-  RunFor(m, 3.0);
-  m.channel->Stop();
-  RunFor(m, 0.2);
-  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
-  JogFor(m, 1, +1, 0.2);
+  InterruptAndJogAway(m);  // Start again: the program already runs
   Call(m, true, false);
   ASSERT_TRUE(m.channel->SetMode(ChannelMode::kAutomatic));
   m.channel->Start();
