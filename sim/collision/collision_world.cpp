@@ -59,6 +59,19 @@ CollisionWorld::CollisionWorld(const MachineModel& model, const std::vector<Cyli
       parts_.push_back(p);
     }
   }
+  machine_parts_ = size();
+  SetAdded(added);
+  queries_ = 0;
+}
+
+CollisionWorld::~CollisionWorld() = default;
+
+void CollisionWorld::SetAdded(const std::vector<CylinderPart>& added) {
+  const MachineModel& model = *model_;
+  const int old_size = size();
+  parts_.resize(machine_parts_);
+  fcl_->geometry.resize(machine_parts_);
+  fcl_->objects.clear();
   for (const CylinderPart& c : added) {
     CollisionPart p;
     p.name = c.name;
@@ -95,11 +108,16 @@ CollisionWorld::CollisionWorld(const MachineModel& model, const std::vector<Cyli
     };
     return prismatic_not_in(up_a, up_b) || prismatic_not_in(up_b, up_a);
   };
+  // The machine's pairs keep what they were; the added parts' are worked out anew.
   const int n = size();
+  std::vector<char> before = std::move(may_touch_);
   may_touch_.assign(static_cast<size_t>(n) * n, 0);
+  for (int a = 0; a < std::min(n, machine_parts_); ++a)
+    for (int b = 0; b < machine_parts_ && !before.empty(); ++b)
+      may_touch_[a * n + b] = before[a * old_size + b];
   Pose(std::vector<double>(model.joints.size(), 0.0));
   for (int a = 0; a < n; ++a)
-    for (int b = a; b < n; ++b) {
+    for (int b = std::max(a, before.empty() ? 0 : machine_parts_); b < n; ++b) {
       const int la = parts_[a].link, lb = parts_[b].link;
       bool own = la == lb;
       for (const Joint& j : model.joints)
@@ -108,10 +126,7 @@ CollisionWorld::CollisionWorld(const MachineModel& model, const std::vector<Cyli
       own = own || (!slides_between(la, lb) && Collide(a, b));
       may_touch_[a * n + b] = may_touch_[b * n + a] = own;
     }
-  queries_ = 0;
 }
-
-CollisionWorld::~CollisionWorld() = default;
 
 void CollisionWorld::Pose(const std::vector<double>& q) {
   X_WorldLink_ = LinkPoses(*model_, q);

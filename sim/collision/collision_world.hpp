@@ -45,6 +45,11 @@ class CollisionWorld {
   /// Whether the pair's contact is the machine's own (see above): never checked.
   bool MayTouch(int a, int b) const { return may_touch_[a * size() + b]; }
 
+  /// Replaces the parts the scene added (the workpiece, as it is turned): the machine's parts
+  /// stay, the added ones are rebuilt with their own-contact rule. The world must be posed
+  /// again afterwards.
+  void SetAdded(const std::vector<CylinderPart>& added);
+
   /// Poses every part for the joint positions (SI, one per model joint).
   void Pose(const std::vector<double>& q);
   const Eigen::Isometry3d& X_WorldLink(int link) const { return X_WorldLink_[link]; }
@@ -64,6 +69,7 @@ class CollisionWorld {
   std::vector<CollisionPart> parts_;
   std::unique_ptr<Fcl> fcl_;
   std::vector<char> may_touch_;
+  int machine_parts_ = 0;  ///< the model's parts come first, the added ones after them
   std::vector<Eigen::Isometry3d> X_WorldLink_;
   mutable int64_t queries_ = 0;
 };

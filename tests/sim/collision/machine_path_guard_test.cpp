@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "sim/collision/turned_stock.hpp"
+
 namespace vmt::sim {
 namespace {
 
@@ -45,6 +47,31 @@ TEST(MachinePathGuard, AMoveInTheOpenIsClearWithItsSmallestClearance) {
   EXPECT_GT(c.min_clearance, 0);
   EXPECT_FALSE(c.closest_a.empty());
   EXPECT_FALSE(c.closest_b.empty());
+}
+
+TEST(MachinePathGuard, ThePartAsTurnedReplacesTheStock) {
+  Guarded g;
+  // The same plunge as above finds the stock's surface at radius 30 ...
+  const control::PathCheck before =
+      g.guard.CheckMove(g.Drives(130, 250, 450), g.Drives(130, 0, 450));
+  ASSERT_FALSE(before.clear);
+  // ... and, once the part is turned down to radius 25 over its whole length, that surface.
+  TurnedStock stock =
+      TurnedStock::FromCylinder({"workpiece", "spindle", 0.030, 0.160, 0.060}, 0.0005);
+  for (double& r : stock.radius_m) r = 0.025;
+  g.guard.world().SetAdded(stock.Cylinders(1e-6));
+  const control::PathCheck after =
+      g.guard.CheckMove(g.Drives(130, 250, 450), g.Drives(130, 0, 450));
+  ASSERT_FALSE(after.clear);
+  EXPECT_TRUE(after.part_a == "workpiece" || after.part_b == "workpiece");
+  EXPECT_NEAR(std::hypot(after.point[0], after.point[1]), 25, 0.01);
+  EXPECT_NEAR(after.distance - before.distance, 5, 0.01);
+  // A tool standing 10 µm above what is left is clear of it.
+  const int x = g.model.DriveIndex("X");
+  const double standing = after.position[x] + 0.01;
+  const control::PathCheck away =
+      g.guard.CheckMove(g.Drives(130, standing, 450), g.Drives(130, 250, 450));
+  EXPECT_TRUE(away.clear);
 }
 
 }  // namespace
