@@ -142,6 +142,13 @@ struct PositionSwitch {
   double pitch = 0, window = 0;
 };
 
+/// A tool's cutting part (machine.yaml `cutting_parts:`, a URDF <collision> name): where it
+/// passes through the workpiece while the spindle turns, it cuts (sim/collision/turned_stock).
+struct CuttingPart {
+  int link = -1;
+  int collision = -1;  ///< index into links[link].collisions
+};
+
 struct MachineModel {
   std::string name;
   std::string yaml_path, urdf_path;
@@ -153,6 +160,7 @@ struct MachineModel {
   std::vector<DogClutch> clutches;
   std::vector<Actuator> actuators;
   std::vector<PositionSwitch> position_switches;
+  std::vector<CuttingPart> cutting_parts;
   std::vector<NamedCamera> cameras;
   NcMachineData nc;  ///< machine.yaml `nc:`; not present for a machine without NC
 
