@@ -458,6 +458,23 @@ int MeasuringPages::NumberOf(Page page) const {
   return config.result_page;
 }
 
+std::string RecordTestPoint(MeasuringPages& pages, int process, double point_number,
+                            char measuring_axis, double command_mm, double actual_mm) {
+  const std::optional<int> n = WholeNumber(point_number);
+  PointPage* point = n ? pages.Point(process, *n) : nullptr;
+  if (!point)
+    return "point number " + NcNumber(point_number) + " outside POINTPAGE's 1.." +
+           std::to_string(pages.config.points) + " of process " + std::to_string(process);
+  // 4.1: only the linear main axes X, Y and Z measure.
+  if (measuring_axis != 'X' && measuring_axis != 'Y' && measuring_axis != 'Z')
+    return "measuring axis " + std::string(1, measuring_axis) + " is not X, Y or Z";
+  if (!std::isfinite(command_mm) || !std::isfinite(actual_mm))
+    return "test point " + std::to_string(*n) + ": a value that is not a number";
+  point->value = {command_mm, actual_mm, actual_mm - command_mm};
+  point->measuring_axis = measuring_axis;
+  return "";
+}
+
 MtdRead ReadMtd(const MeasuringPages& pages, const MtdAddress& address, int current_process) {
   const Location at = Locate(pages, address, current_process);
   if (!at.error.empty()) return {0, at.error};

@@ -183,6 +183,13 @@ struct MeasuringPages {
   int NumberOf(Page page) const;
 };
 
+/// What PROBE( ) leaves in POINTPAGE for test point A (2.1: 1..20, at most 50) of `process`:
+/// command and actual value along `measuring_axis` ('X', 'Y', 'Z'; 4.1), radius values in mm
+/// (4.6 Actual values), deviation = actual - command. "" when recorded, else why not; nothing
+/// is written then.
+std::string RecordTestPoint(MeasuringPages& pages, int process, double point_number,
+                            char measuring_axis, double command_mm, double actual_mm);
+
 /// MTD(page, LV1, LV2, element) read in `current_process` (used where LV1 of a PROCESS page is
 /// omitted).
 MtdRead ReadMtd(const MeasuringPages& pages, const MtdAddress& address, int current_process);

@@ -106,6 +106,35 @@ TEST(MeasuringPages, FiftyPointsAtMost) {
   EXPECT_THAT(Validate(c), HasSubstr("ERGEBNISPAGE LV2 0 outside 1..50"));
 }
 
+// PROBE's record: the 21st point of the default installation and the 51st of the largest are
+// refused; nothing is written then.
+TEST(MeasuringPages, RecordTestPoint) {
+  MeasuringPages pages;
+  // PROBE(2,1,125,-10,,X,-2,...) under G16: the diameter 125 is the radius 62.5.
+  ASSERT_EQ(RecordTestPoint(pages, 0, 2, 'X', 62.5, 62.52), "");
+  const PointPage& p = *pages.Point(0, 2);
+  EXPECT_EQ(p.value.command, 62.5);
+  EXPECT_EQ(p.value.actual, 62.52);
+  EXPECT_NEAR(p.value.deviation, 0.02, 1e-12);  // 62.52 - 62.5
+  EXPECT_EQ(p.measuring_axis, 'X');
+  EXPECT_THAT(RecordTestPoint(pages, 0, 21, 'X', 1, 1),
+              HasSubstr("point number 21 outside POINTPAGE's 1..20 of process 0"));
+  EXPECT_THAT(RecordTestPoint(pages, 0, 0, 'X', 1, 1), HasSubstr("point number 0 outside"));
+  EXPECT_THAT(RecordTestPoint(pages, 1, 1, 'X', 1, 1), HasSubstr("of process 1"));
+  EXPECT_THAT(RecordTestPoint(pages, 0, 1, 'U', 1, 1),
+              HasSubstr("measuring axis U is not X, Y or Z"));
+  EXPECT_THAT(RecordTestPoint(pages, 0, 1, 'Z', 1, std::numeric_limits<double>::quiet_NaN()),
+              HasSubstr("not a number"));
+  EXPECT_EQ(pages.Point(0, 1)->measuring_axis, 0);
+
+  MeasuringPagesConfig c;
+  c.points = 50;
+  MeasuringPages fifty(c);
+  EXPECT_EQ(RecordTestPoint(fifty, 0, 50, 'Z', -10, -10.001), "");
+  EXPECT_THAT(RecordTestPoint(fifty, 0, 51, 'Z', -10, -10.001),
+              HasSubstr("point number 51 outside POINTPAGE's 1..50"));
+}
+
 TEST(MeasuringPages, ConfigurationErrors) {
   MeasuringPagesConfig c;
   EXPECT_EQ(Validate(c), "");
