@@ -27,7 +27,7 @@ void ExpectValue(const MeasuredValue& v, double command, double actual, double d
 
 // The manual's summary program (5.6): P1 a face at Z-100, P2 the diameter 125 (X, G16: radius
 // 62.5 in the point page), P3 the face at Z0; then COMPARE(1,0,3,), (2,4,2,), (3,1,1,3).
-class Summary : public ::testing::Test {
+class CompareSummary : public ::testing::Test {
  protected:
   void SetUp() override {
     Probe(pages, 1, 'Z', -100, -100.01);
@@ -38,7 +38,7 @@ class Summary : public ::testing::Test {
 };
 
 // Strategy 0, Point: the point itself.
-TEST_F(Summary, Compare1PointOnP3) {
+TEST_F(CompareSummary, Compare1PointOnP3) {
   ASSERT_EQ(Compare(pages, 0, {1, 0, 3, {}}), "");
   const ErgebnisPage& r = *pages.Result(0, 1);
   EXPECT_EQ(r.comparison_strategy, 0);
@@ -49,7 +49,7 @@ TEST_F(Summary, Compare1PointOnP3) {
 }
 
 // Strategy 4, Diameter with one point: 2 x radius (4.6: the Diam strategy's exception).
-TEST_F(Summary, Compare2DiameterOnP2) {
+TEST_F(CompareSummary, Compare2DiameterOnP2) {
   ASSERT_EQ(Compare(pages, 0, {2, 4, 2, {}}), "");
   const ErgebnisPage& r = *pages.Result(0, 2);
   EXPECT_EQ(r.comparison_strategy, 4);
@@ -61,7 +61,7 @@ TEST_F(Summary, Compare2DiameterOnP2) {
 }
 
 // Strategy 1, Stair between P1 (Z-100) and P3 (Z0).
-TEST_F(Summary, Compare3StairP1P3) {
+TEST_F(CompareSummary, Compare3StairP1P3) {
   ASSERT_EQ(Compare(pages, 0, {3, 1, 1, 3}), "");
   const ErgebnisPage& r = *pages.Result(0, 3);
   EXPECT_EQ(r.comparison_strategy, 1);
