@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "../sim_test_support.hpp"
+#include "control/plc/programs/probe_drive_parameters.hpp"
 #include "sim/model/model_error.hpp"
 
 namespace vmt::sim {
@@ -148,6 +149,35 @@ TEST(ProbeWiringTest, PinFiveIsProbeTwo) {
   EXPECT_FALSE(bench.Feedback("Z").probe.probe1.level);
   EXPECT_TRUE(bench.Feedback("Z").probe.probe2.level);
   EXPECT_TRUE(bench.Feedback("Z").probe.probe2.positive.latched);
+}
+
+TEST(ProbeWiringTest, TheProbeBlocksParametersArmWithQddsAndShowTheContactInIdds) {
+  // lathe-c1's page stand-in (ProbeBlockProgram::basis_page): pin 4, normally open contact.
+  const control::plc::ProbeDriveParameters p = control::plc::AxdWrProbeParameters(
+      control::plc::BasisMessPage{false, false, true, true, false});
+  KinematicBackend backend(Lathe(), {{{"X", kX0Mm}}, {}});
+  Bench bench(backend);
+  const int x = bench.Drive("X");
+  bench.Command("X", control::DriveMode::kVelocity, -kFeedMmPerS);
+  bench.mdt().setpoints[x].probe = control::plc::ProbeControlOf(p, false);
+  bench.Run(0.01);
+  bench.mdt().setpoints[x].probe = control::plc::ProbeControlOf(p, true);  // QDDS_1 on
+  bench.Run(0.01);
+  EXPECT_FALSE(control::plc::RealTimeStatusBit2(p, bench.Feedback("X").probe));
+  backend.SetProbeSwitch(bench.Io("IPROBE_CONTACT"), true, 0.25);
+  bench.Run(kDriveTickS);
+  EXPECT_TRUE(control::plc::RealTimeStatusBit2(p, bench.Feedback("X").probe));  // IDDS_1
+  // The stylus returns: the 1-0 edge is not selected, the measured value stays.
+  const double measured = bench.Feedback("X").probe.probe1.positive.measured_value;
+  backend.SetProbeSwitch(bench.Io("IPROBE_CONTACT"), false, 0.5);
+  bench.Run(0.01);
+  EXPECT_TRUE(control::plc::RealTimeStatusBit2(p, bench.Feedback("X").probe));
+  EXPECT_FALSE(bench.Feedback("X").probe.probe1.negative.latched);
+  EXPECT_EQ(bench.Feedback("X").probe.probe1.positive.measured_value, measured);
+  // QDDS off at the end of the measuring path: IDDS clears.
+  bench.mdt().setpoints[x].probe = control::plc::ProbeControlOf(p, false);
+  bench.Run(kDriveTickS);
+  EXPECT_FALSE(control::plc::RealTimeStatusBit2(p, bench.Feedback("X").probe));
 }
 
 TEST(ProbeWiringTest, OnlyAFreeMachineInputIsAProbeSwitch) {
