@@ -94,7 +94,7 @@ struct ProbeEdgeLatch {
   double measured_value = 0;
   /// Not a SERCOS parameter but vmt's truth: where the axis was (unquantised, same scaling as
   /// the measured value) at the instant the input changed. measured_value - exact_position is
-  /// the drive's sampling error, up to the feed x 250 us (plus one encoder increment).
+  /// the drive's sampling error, up to the feed x 250 us plus half an encoder increment.
   double exact_position = 0;
 };
 
