@@ -147,29 +147,29 @@ void ReadEncoder(const MachineModel& m, const YamlNode& d, DriveParams& p) {
     j.Fail("joint type does not match the drive's kind");
 }
 
+// The drive's probe inputs E4/E5 (fast-measurement manual 7.3), named PIN4/PIN5 as in
+// TASTWERKZEUGPAGE; each is wired to a switch of the machine's I/O map.
+void ReadProbeInputs(const MachineModel& m, const YamlNode& n, DriveParams& p) {
+  if (!n.IsMap()) n.Fail("expected a map {PIN4: <input>, PIN5: <input>}");
+  n.AllowKeys({"PIN4", "PIN5"});
+  const char* pins[2] = {"PIN4", "PIN5"};
+  for (int k = 0; k < 2; ++k) {
+    if (!n.Has(pins[k])) continue;
+    const YamlNode pin = n[pins[k]];
+    p.probe_inputs[k] = RequireIo(m, pin, false);
+    if (m.io[p.probe_inputs[k]].key)
+      pin.Fail("'" + pin.String() + "' is an operator's key, not a switch of the machine");
+  }
+}
+
 DriveParams ReadDrive(const MachineModel& m, const YamlNode& d) {
-  d.AllowKeys({"name",
-               "kind",
-               "type",
-               "joint",
-               "ratio",
-               "kv",
-               "velocity_kp",
-               "velocity_ti",
-               "torque_limit",
-               "velocity_limit",
-               "acceleration_limit",
-               "encoder_resolution",
-               "in_position_window",
-               "standstill_window",
-               "following_error_limit",
-               "positioning_speed",
-               "encoder",
-               "load_joint",
-               "modulo",
-               "overload_time",
-               "parameter_sets",
-               "spec"});
+  // clang-format off
+  d.AllowKeys({"name", "kind", "type", "joint", "ratio", "kv", "velocity_kp", "velocity_ti",
+               "torque_limit", "velocity_limit", "acceleration_limit", "encoder_resolution",
+               "in_position_window", "standstill_window", "following_error_limit",
+               "positioning_speed", "encoder", "load_joint", "modulo", "overload_time",
+               "parameter_sets", "probe_inputs", "spec"});
+  // clang-format on
   DriveParams p;
   p.info.name = d["name"].String();
   const std::string kind = d["kind"].String();
@@ -214,6 +214,7 @@ DriveParams ReadDrive(const MachineModel& m, const YamlNode& d) {
       p.parameter_sets.push_back(ReadParameterSet(set, p.info.kind, &p.parameter_sets[0]));
     }
   }
+  if (d.Has("probe_inputs")) ReadProbeInputs(m, d["probe_inputs"], p);
   if (d.Has("spec")) {
     const YamlNode spec = d["spec"];
     spec.AllowKeys({"settle_time", "overshoot"});

@@ -4,6 +4,7 @@
 // control kernel speaks machine units (mm, degrees), converted at the boundary.
 
 #include <Eigen/Geometry>
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -90,6 +91,10 @@ struct DriveParams : DriveParameterSet {
   /// The amplifier trips (kOverload) after this long at its torque limit, s (net: time below
   /// the limit counts back down).
   double overload_time_s = 1;
+  /// `probe_inputs: {PIN4: .., PIN5: ..}`: the I/O inputs wired to the drive's probe inputs E4
+  /// (probe 1) and E5 (probe 2) (fast-measurement manual 7.3; TASTWERKZEUGPAGE element 3 picks
+  /// the pin). -1: not wired, the input reads 0.
+  std::array<int, 2> probe_inputs = {-1, -1};
   /// Every set the drive has: [0] is the drive's own keys, [n] = YAML parameter_sets[n - 1]
   /// (set 0 with that entry's overrides).
   std::vector<DriveParameterSet> parameter_sets;
