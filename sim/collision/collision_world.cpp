@@ -63,6 +63,7 @@ CollisionWorld::CollisionWorld(const MachineModel& model, const std::vector<Cyli
     }
   }
   machine_parts_ = size();
+  aside_.assign(machine_parts_, 0);
   SetAdded(added);
   queries_ = 0;
 }

@@ -44,8 +44,15 @@ class CollisionWorld {
   const MachineModel& model() const { return *model_; }
   int size() const { return static_cast<int>(parts_.size()); }
   const CollisionPart& part(int i) const { return parts_[i]; }
-  /// Whether the pair's contact is the machine's own (see above): never checked.
-  bool MayTouch(int a, int b) const { return may_touch_[a * size() + b]; }
+  /// Whether the pair's contact is the machine's own (see above), or one of them is set aside:
+  /// never checked.
+  bool MayTouch(int a, int b) const {
+    return may_touch_[a * size() + b] || (a < machine_parts_ && aside_[a]) ||
+           (b < machine_parts_ && aside_[b]);
+  }
+  /// Sets a machine part aside (a chuck jaw while the spindle turns: an added part stands for
+  /// the ring it sweeps) or back.
+  void SetAside(int part, bool aside) { aside_[part] = aside; }
 
   /// Replaces the parts the scene added (the workpiece, as it is turned): the machine's parts
   /// stay, the added ones are rebuilt with their own-contact rule. The world must be posed
@@ -71,7 +78,8 @@ class CollisionWorld {
   std::vector<CollisionPart> parts_;
   std::unique_ptr<Fcl> fcl_;
   std::vector<char> may_touch_;
-  int machine_parts_ = 0;  ///< the model's parts come first, the added ones after them
+  int machine_parts_ = 0;    ///< the model's parts come first, the added ones after them
+  std::vector<char> aside_;  ///< per machine part
   std::vector<Eigen::Isometry3d> X_WorldLink_;
   mutable int64_t queries_ = 0;
 };

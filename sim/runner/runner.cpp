@@ -13,6 +13,7 @@
 #include "control/plc/plc_runtime.hpp"
 #include "render/image.hpp"
 #include "sim/collision/machine_path_guard.hpp"
+#include "sim/collision/spindle_sweep.hpp"
 #include "sim/collision/stock_cutter.hpp"
 #include "sim/model/gateway_layout.hpp"
 #include "sim/runner/channel_events.hpp"
@@ -159,9 +160,14 @@ struct SceneRun::State {
   const std::chrono::steady_clock::time_point wall_start = std::chrono::steady_clock::now();
   std::unique_ptr<MachineBackend> backend;
   std::unique_ptr<MachinePathGuard> path_guard;  ///< before the channel, which asks it
-  /// The workpiece as turned, for PathGuard; its parts are rebuilt before a check after a cut.
+  /// The workpiece as turned and the chuck as it sweeps while the spindle turns, for
+  /// PathGuard; its added parts are rebuilt before a check after either changed.
   std::unique_ptr<StockCutter> cutter;
-  bool stock_cut = false;
+  SpindleSweep sweep;
+  bool spindle_turning = false;
+  double spindle_angle = 0;
+  bool guard_parts_stale = false;
+  void FollowSpindle(double t);
   std::unique_ptr<control::channel::Channel> channel;
   std::unique_ptr<control::gateway::SignalImage> image;
   std::unique_ptr<control::gateway::ChannelGateway> gateway;
@@ -249,12 +255,17 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
       MachineBackend* b = backend.get();
       path_guard =
           std::make_unique<MachinePathGuard>(m, parts, [b] { return b->JointPositions(); });
-      if (cutter)
-        path_guard->before_check = [this](CollisionWorld& world) {
-          if (!stock_cut) return;
-          world.SetAdded(cutter->stock().Cylinders(kStockTolerance));
-          stock_cut = false;
-        };
+      sweep = SweepOf(path_guard->world(),
+                      scene.workpiece.present ? scene.workpiece.part.link : std::string("spindle"));
+      path_guard->before_check = [this](CollisionWorld& world) {
+        if (!guard_parts_stale) return;
+        std::vector<CylinderPart> added;
+        if (cutter) added = cutter->stock().Cylinders(kStockTolerance);
+        if (spindle_turning) added.insert(added.end(), sweep.swept.begin(), sweep.swept.end());
+        world.SetAdded(added);
+        for (const int part : sweep.parts) world.SetAside(part, spindle_turning);
+        guard_parts_stale = false;
+      };
       channel->SetPathGuard(path_guard.get());
     }
   }
@@ -350,7 +361,7 @@ void SceneRun::State::Step() {
     const bool nc_cycle = tick % channel->ticks_per_cycle() == 0;
     if (gateway && nc_cycle && default_headstock_plc) AcknowledgeHeadstock();
     if (gateway && nc_cycle) gateway->ReadControls(*channel);
-    if (cutter && nc_cycle && cutter->Cut(backend->JointPositions(), t)) stock_cut = true;
+    if (path_guard && nc_cycle) FollowSpindle(t);
     channel->Tick(at, mdt);
     if (gateway && nc_cycle) gateway->WriteStatus(*channel, at);
     if (const auto* hs = channel->headstock(); hs && hs->target() != headstock_target) {
@@ -585,6 +596,19 @@ void SceneRun::State::ApplyOutputFaults() {
 
 // The PLC scans unless an overrun makes it miss its cycles or its link is gone; after two missed
 // cycles its watchdog stops it (its outputs drop) and the NC stops with "PLC not running".
+// Each NC cycle, before the channel may ask PathGuard: cut the stock where the tools stand and
+// note whether the spindle turns (the chuck is then checked as it sweeps).
+void SceneRun::State::FollowSpindle(double t) {
+  const std::vector<double> q = backend->JointPositions();
+  if (cutter && cutter->Cut(q, t)) guard_parts_stale = true;
+  if (sweep.joint < 0) return;
+  const double cycle_s = channel->ticks_per_cycle() * kDriveTickS;
+  const bool turning = std::abs(q[sweep.joint] - spindle_angle) >= kTurningSpeedRadS * cycle_s;
+  spindle_angle = q[sweep.joint];
+  if (turning != spindle_turning) guard_parts_stale = true;
+  spindle_turning = turning;
+}
+
 void SceneRun::State::ScanPlc(double t) {
   InjectedFaults& f = program->faults();
   if (plc->stopped()) return;
