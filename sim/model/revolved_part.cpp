@@ -1,0 +1,121 @@
+#include "sim/model/revolved_part.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace vmt::sim {
+namespace {
+
+// Two sections meet when one ends where the other begins; their z values come from the same
+// numbers in a scene, so anything closer than this is the same plane.
+constexpr double kSamePlaneM = 1e-12;
+
+// A piece of the meridian outline, (r, z), with the outward normal of the material beside it.
+struct Edge {
+  Eigen::Vector2d a, b, normal;
+};
+
+void AddEdge(std::vector<Edge>& edges, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+             const Eigen::Vector2d& normal) {
+  if ((b - a).norm() > 0) edges.push_back({a, b, normal});
+}
+
+// The part of the face [r_inner, r_outer] at z that the neighbouring ring [n_inner, n_outer]
+// does not cover: up to two intervals.
+void AddFace(std::vector<Edge>& edges, double z, double r_inner, double r_outer,
+             const RevolvedSection* neighbour, double normal_z) {
+  const Eigen::Vector2d n(0, normal_z);
+  if (!neighbour || neighbour->r_outer_m <= r_inner || neighbour->r_inner_m >= r_outer) {
+    AddEdge(edges, {r_inner, z}, {r_outer, z}, n);
+    return;
+  }
+  if (neighbour->r_inner_m > r_inner) AddEdge(edges, {r_inner, z}, {neighbour->r_inner_m, z}, n);
+  if (neighbour->r_outer_m < r_outer) AddEdge(edges, {neighbour->r_outer_m, z}, {r_outer, z}, n);
+}
+
+const RevolvedSection* SectionStartingAt(const RevolvedPart& part, double z) {
+  for (const RevolvedSection& s : part.sections)
+    if (std::abs(s.z0_m - z) <= kSamePlaneM) return &s;
+  return nullptr;
+}
+
+const RevolvedSection* SectionEndingAt(const RevolvedPart& part, double z) {
+  for (const RevolvedSection& s : part.sections)
+    if (std::abs(s.z1_m - z) <= kSamePlaneM) return &s;
+  return nullptr;
+}
+
+// The outline of the part in the meridian half-plane r >= 0.
+std::vector<Edge> Outline(const RevolvedPart& part) {
+  std::vector<Edge> edges;
+  for (const RevolvedSection& s : part.sections) {
+    AddEdge(edges, {s.r_outer_m, s.z0_m}, {s.r_outer_m, s.z1_m}, {1, 0});
+    if (s.r_inner_m > 0) AddEdge(edges, {s.r_inner_m, s.z0_m}, {s.r_inner_m, s.z1_m}, {-1, 0});
+    AddFace(edges, s.z1_m, s.r_inner_m, s.r_outer_m, SectionStartingAt(part, s.z1_m), 1);
+    AddFace(edges, s.z0_m, s.r_inner_m, s.r_outer_m, SectionEndingAt(part, s.z0_m), -1);
+  }
+  return edges;
+}
+
+bool Inside(const RevolvedPart& part, const Eigen::Vector2d& p) {
+  for (const RevolvedSection& s : part.sections)
+    if (p.x() >= s.r_inner_m && p.x() <= s.r_outer_m && p.y() >= s.z0_m && p.y() <= s.z1_m)
+      return true;
+  return false;
+}
+
+}  // namespace
+
+RevolvedDistance SignedDistance(const RevolvedPart& part, const Eigen::Vector3d& p_Link_m) {
+  RevolvedDistance out;
+  out.distance_m = std::numeric_limits<double>::infinity();
+  const double r = std::hypot(p_Link_m.x(), p_Link_m.y());
+  const Eigen::Vector3d e_r =
+      r > 0 ? Eigen::Vector3d(p_Link_m.x() / r, p_Link_m.y() / r, 0) : Eigen::Vector3d::UnitX();
+  const Eigen::Vector2d p(r, p_Link_m.z());
+
+  double nearest = std::numeric_limits<double>::infinity();
+  Eigen::Vector2d q = p, edge_normal = Eigen::Vector2d::Zero();
+  for (const Edge& e : Outline(part)) {
+    const Eigen::Vector2d ab = e.b - e.a;
+    const double u = std::clamp((p - e.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+    const Eigen::Vector2d on = e.a + u * ab;
+    const double d = (p - on).norm();
+    if (d < nearest) nearest = d, q = on, edge_normal = e.normal;
+  }
+  if (!std::isfinite(nearest)) return out;
+
+  const bool inside = Inside(part, p);
+  out.distance_m = inside ? -nearest : nearest;
+  // Off the surface the direction to (or from) the nearest point is the gradient, also round a
+  // corner; on it, the edge's own normal.
+  Eigen::Vector2d n = edge_normal;
+  if (nearest > 0)
+    n = inside ? Eigen::Vector2d((q - p) / nearest) : Eigen::Vector2d((p - q) / nearest);
+  out.normal = n.x() * e_r + n.y() * Eigen::Vector3d::UnitZ();
+  out.point_m = q.x() * e_r + q.y() * Eigen::Vector3d::UnitZ();
+  return out;
+}
+
+std::string RevolvedPartError(const RevolvedPart& part) {
+  for (size_t i = 0; i < part.sections.size(); ++i) {
+    const RevolvedSection& s = part.sections[i];
+    const std::string name = "sections[" + std::to_string(i) + "]";
+    if (!std::isfinite(s.z0_m) || !std::isfinite(s.z1_m) || !std::isfinite(s.r_inner_m) ||
+        !std::isfinite(s.r_outer_m))
+      return name + ": a number that is not finite";
+    if (!(s.z1_m > s.z0_m)) return name + ": z1 must be greater than z0";
+    if (s.r_inner_m < 0) return name + ": r_inner must be >= 0";
+    if (!(s.r_outer_m > s.r_inner_m)) return name + ": r_outer must be greater than r_inner";
+    for (size_t j = 0; j < i; ++j) {
+      const RevolvedSection& o = part.sections[j];
+      if (std::min(s.z1_m, o.z1_m) - std::max(s.z0_m, o.z0_m) > kSamePlaneM)
+        return name + ": overlaps sections[" + std::to_string(j) + "] in z";
+    }
+  }
+  return "";
+}
+
+}  // namespace vmt::sim
