@@ -17,24 +17,6 @@ struct Edge {
   Eigen::Vector2d a, b, normal;
 };
 
-void AddEdge(std::vector<Edge>& edges, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-             const Eigen::Vector2d& normal) {
-  if ((b - a).norm() > 0) edges.push_back({a, b, normal});
-}
-
-// The part of the face [r_inner, r_outer] at z that the neighbouring ring [n_inner, n_outer]
-// does not cover: up to two intervals.
-void AddFace(std::vector<Edge>& edges, double z, double r_inner, double r_outer,
-             const RevolvedSection* neighbour, double normal_z) {
-  const Eigen::Vector2d n(0, normal_z);
-  if (!neighbour || neighbour->r_outer_m <= r_inner || neighbour->r_inner_m >= r_outer) {
-    AddEdge(edges, {r_inner, z}, {r_outer, z}, n);
-    return;
-  }
-  if (neighbour->r_inner_m > r_inner) AddEdge(edges, {r_inner, z}, {neighbour->r_inner_m, z}, n);
-  if (neighbour->r_outer_m < r_outer) AddEdge(edges, {neighbour->r_outer_m, z}, {r_outer, z}, n);
-}
-
 const RevolvedSection* SectionStartingAt(const RevolvedPart& part, double z) {
   for (const RevolvedSection& s : part.sections)
     if (std::abs(s.z0_m - z) <= kSamePlaneM) return &s;
@@ -47,16 +29,31 @@ const RevolvedSection* SectionEndingAt(const RevolvedPart& part, double z) {
   return nullptr;
 }
 
-// The outline of the part in the meridian half-plane r >= 0.
-std::vector<Edge> Outline(const RevolvedPart& part) {
-  std::vector<Edge> edges;
+// Calls visit(edge) for each piece of the part's outline in the meridian half-plane r >= 0
+// (no container: the stylus asks this every drive tick).
+template <class Visit>
+void ForEachOutlineEdge(const RevolvedPart& part, Visit&& visit) {
+  auto edge = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& n) {
+    if ((b - a).norm() > 0) visit(Edge{a, b, n});
+  };
+  // The part of the face [r_inner, r_outer] at z that the neighbouring ring does not cover: up
+  // to two pieces.
+  auto face = [&](double z, double r_inner, double r_outer, const RevolvedSection* neighbour,
+                  double normal_z) {
+    const Eigen::Vector2d n(0, normal_z);
+    if (!neighbour || neighbour->r_outer_m <= r_inner || neighbour->r_inner_m >= r_outer) {
+      edge({r_inner, z}, {r_outer, z}, n);
+      return;
+    }
+    if (neighbour->r_inner_m > r_inner) edge({r_inner, z}, {neighbour->r_inner_m, z}, n);
+    if (neighbour->r_outer_m < r_outer) edge({neighbour->r_outer_m, z}, {r_outer, z}, n);
+  };
   for (const RevolvedSection& s : part.sections) {
-    AddEdge(edges, {s.r_outer_m, s.z0_m}, {s.r_outer_m, s.z1_m}, {1, 0});
-    if (s.r_inner_m > 0) AddEdge(edges, {s.r_inner_m, s.z0_m}, {s.r_inner_m, s.z1_m}, {-1, 0});
-    AddFace(edges, s.z1_m, s.r_inner_m, s.r_outer_m, SectionStartingAt(part, s.z1_m), 1);
-    AddFace(edges, s.z0_m, s.r_inner_m, s.r_outer_m, SectionEndingAt(part, s.z0_m), -1);
+    edge({s.r_outer_m, s.z0_m}, {s.r_outer_m, s.z1_m}, {1, 0});
+    if (s.r_inner_m > 0) edge({s.r_inner_m, s.z0_m}, {s.r_inner_m, s.z1_m}, {-1, 0});
+    face(s.z1_m, s.r_inner_m, s.r_outer_m, SectionStartingAt(part, s.z1_m), 1);
+    face(s.z0_m, s.r_inner_m, s.r_outer_m, SectionEndingAt(part, s.z0_m), -1);
   }
-  return edges;
 }
 
 bool Inside(const RevolvedPart& part, const Eigen::Vector2d& p) {
@@ -78,13 +75,13 @@ RevolvedDistance SignedDistance(const RevolvedPart& part, const Eigen::Vector3d&
 
   double nearest = std::numeric_limits<double>::infinity();
   Eigen::Vector2d q = p, edge_normal = Eigen::Vector2d::Zero();
-  for (const Edge& e : Outline(part)) {
+  ForEachOutlineEdge(part, [&](const Edge& e) {
     const Eigen::Vector2d ab = e.b - e.a;
     const double u = std::clamp((p - e.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
     const Eigen::Vector2d on = e.a + u * ab;
     const double d = (p - on).norm();
     if (d < nearest) nearest = d, q = on, edge_normal = e.normal;
-  }
+  });
   if (!std::isfinite(nearest)) return out;
 
   const bool inside = Inside(part, p);
