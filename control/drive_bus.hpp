@@ -24,6 +24,31 @@ enum class DriveMode : uint8_t {
 /// Linear axes move in mm, rotary axes and spindles in degrees.
 enum class AxisKind : uint8_t { kLinear, kRotary };
 
+/// The drive's probe function (fast-measurement manual 7.3), as the master sets it. QMFB1Axx
+/// writes S-0-0169 and S-0-0170 over the service channel (AXD_WR, 7.2) and switches the enable
+/// through the real-time control bit it allocates (S-0-0303: AxxC.QDDS). The defaults leave the
+/// function off.
+struct ProbeControl {
+  /// S-0-0170 Probe cycle command: 3 activates the function (7.3: "must be set to 3"); from
+  /// then on the inputs' levels show in S-0-0401/0402. Any other value switches it off.
+  uint8_t probe_cycle_command = 0;
+  /// S-0-0169 Probe control parameter: which edges latch, bits probe_control::k* (the SERCOS
+  /// layout of IDN 169; the manual's figure 7-30 is missing).
+  uint16_t probe_control_parameter = 0;
+  bool probe1_enable = false;  ///< S-0-0405 Probe-1 enable: its 0-1 transition arms probe 1
+  bool probe2_enable = false;  ///< S-0-0406 Probe-2 enable
+};
+
+/// Bits of ProbeControl::probe_control_parameter (S-0-0169), as SERCOS lays out IDN 169.
+namespace probe_control {
+inline constexpr uint16_t kProbe1Positive = 1u << 0;  ///< probe 1: latch the 0-1 edge
+inline constexpr uint16_t kProbe1Negative = 1u << 1;  ///< probe 1: latch the 1-0 edge
+inline constexpr uint16_t kProbe2Positive = 1u << 2;  ///< probe 2: latch the 0-1 edge
+inline constexpr uint16_t kProbe2Negative = 1u << 3;  ///< probe 2: latch the 1-0 edge
+/// S-0-0170's value that activates the probe function.
+inline constexpr uint8_t kProbeCycleActive = 3;
+}  // namespace probe_control
+
 struct DriveSetpoint {
   DriveMode mode = DriveMode::kOff;
   double value = 0;
@@ -40,6 +65,8 @@ struct DriveSetpoint {
   /// position command (not wrapped), like a servo, instead of orienting to it (M19). Rigid
   /// tapping (G64) interpolates the spindle this way; a servo set ignores the flag.
   bool interpolated = false;
+  /// The probe function's parameters and enables (7.3); default off.
+  ProbeControl probe{};
 };
 
 /// Status bits of DriveFeedback::status.
@@ -59,6 +86,31 @@ inline constexpr uint32_t kOverspeed = 1u << 8;  ///< |velocity| > 1.2 x the vel
 inline constexpr uint32_t kParameterSetError = 1u << 9;  ///< setpoint names a set it does not have
 }  // namespace drive_status
 
+/// One edge's latch of a probe input: S-0-0409..0412 and S-0-0130..0133.
+struct ProbeEdgeLatch {
+  bool latched = false;  ///< 'Probe-n positive/negative latched'
+  /// 'Measured value n positive/negative', mm | deg: the drive's actual position value (as
+  /// DriveFeedback::position) of the 250 us tick whose sample saw the edge.
+  double measured_value = 0;
+  /// Not a SERCOS parameter but vmt's truth: where the axis was (unquantised, same scaling as
+  /// the measured value) at the instant the input changed. measured_value - exact_position is
+  /// the drive's sampling error, up to the feed x 250 us plus half an encoder increment.
+  double exact_position = 0;
+};
+
+/// One probe input of the drive (PIN4 = probe 1, PIN5 = probe 2).
+struct ProbeInputStatus {
+  bool level = false;         ///< S-0-0401 'Probe-1' / S-0-0402 'Probe-2', while S-0-0170 = 3
+  ProbeEdgeLatch positive{};  ///< 0-1 edge: S-0-0409 / S-0-0130 (probe 1), S-0-0411 / S-0-0132
+  ProbeEdgeLatch negative{};  ///< 1-0 edge: S-0-0410 / S-0-0131 (probe 1), S-0-0412 / S-0-0133
+};
+
+/// The drive's probe function as the master reads it (7.3); all clear while it is off.
+struct ProbeStatus {
+  ProbeInputStatus probe1{};  ///< input E4 (PIN4)
+  ProbeInputStatus probe2{};  ///< input E5 (PIN5)
+};
+
 struct DriveFeedback {
   /// Encoder-quantised actual position (rotary: not wrapped): the position loop's encoder,
   /// which is a load-side (external) one on a drive that has it.
@@ -72,6 +124,8 @@ struct DriveFeedback {
   /// The parameter set the drive works with (SERCOS S-0-0254, current parameter set): the one
   /// the setpoint last selected (S-0-0217) among the sets it has.
   uint8_t parameter_set = 0;
+  /// The probe function's states, latched flags and measured values (7.3).
+  ProbeStatus probe{};
 };
 
 /// One drive on the bus, as the machine YAML declares it.

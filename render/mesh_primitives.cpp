@@ -70,6 +70,66 @@ Mesh MakeCylinder(double radius_m, double length_m, int segments) {
   return mesh;
 }
 
+Mesh MakeTube(double inner_radius_m, double outer_radius_m, double length_m, int segments) {
+  if (!(inner_radius_m > 0) || !(outer_radius_m > inner_radius_m) || !(length_m > 0) ||
+      segments < 3) {
+    throw std::runtime_error(
+        "MakeTube: need 0 < inner radius < outer radius, length > 0 and segments >= 3, got " +
+        std::to_string(inner_radius_m) + ", " + std::to_string(outer_radius_m) + ", " +
+        std::to_string(length_m) + ", " + std::to_string(segments));
+  }
+  Mesh mesh;
+  const auto n = uint32_t(segments);
+  auto ring = [&](uint32_t i) {
+    const double angle = 2 * std::numbers::pi * double(i) / double(n);
+    return Eigen::Vector3d(std::cos(angle), std::sin(angle), 0);
+  };
+  const Eigen::Vector3d top(0, 0, length_m);
+  // Walls: the outer one faces away from the axis, the bore's towards it.
+  for (const bool outer : {true, false}) {
+    const double r = outer ? outer_radius_m : inner_radius_m;
+    const uint32_t first = uint32_t(mesh.positions.size() / 3);
+    for (uint32_t i = 0; i < n; ++i) {
+      const Eigen::Vector3d dir = ring(i);
+      AddVertex(mesh, r * dir, outer ? dir : Eigen::Vector3d(-dir));
+      AddVertex(mesh, r * dir + top, outer ? dir : Eigen::Vector3d(-dir));
+    }
+    for (uint32_t i = 0; i < n; ++i) {
+      const uint32_t j = (i + 1) % n;
+      const uint32_t b0 = first + 2 * i, t0 = b0 + 1, b1 = first + 2 * j, t1 = b1 + 1;
+      if (outer) {
+        AddTriangle(mesh, b0, b1, t1);
+        AddTriangle(mesh, b0, t1, t0);
+      } else {
+        AddTriangle(mesh, b0, t1, b1);
+        AddTriangle(mesh, b0, t0, t1);
+      }
+    }
+  }
+  // Annular faces: own vertices so their normals stay flat.
+  for (const bool is_top : {false, true}) {
+    const Eigen::Vector3d normal(0, 0, is_top ? 1 : -1);
+    const Eigen::Vector3d offset = is_top ? top : Eigen::Vector3d::Zero();
+    const uint32_t first = uint32_t(mesh.positions.size() / 3);
+    for (uint32_t i = 0; i < n; ++i) {
+      AddVertex(mesh, inner_radius_m * ring(i) + offset, normal);
+      AddVertex(mesh, outer_radius_m * ring(i) + offset, normal);
+    }
+    for (uint32_t i = 0; i < n; ++i) {
+      const uint32_t j = (i + 1) % n;
+      const uint32_t in0 = first + 2 * i, out0 = in0 + 1, in1 = first + 2 * j, out1 = in1 + 1;
+      if (is_top) {
+        AddTriangle(mesh, in0, out0, out1);
+        AddTriangle(mesh, in0, out1, in1);
+      } else {
+        AddTriangle(mesh, in0, out1, out0);
+        AddTriangle(mesh, in0, in1, out1);
+      }
+    }
+  }
+  return mesh;
+}
+
 Mesh MakeBox(const Eigen::Vector3d& min, const Eigen::Vector3d& max) {
   if (!(min.array() <= max.array()).all()) {
     throw std::runtime_error("MakeBox: max must not be below min in any coordinate");

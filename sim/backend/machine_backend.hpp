@@ -35,6 +35,13 @@ class MachineBackend : public control::DriveBus {
   /// Stroke of an actuator (machine.yaml order): 0 off end .. 1 on end.
   virtual double ActuatorStroke(int index) const = 0;
   virtual const MachineModel& model() const = 0;
+  /// A probe switch (the stylus' contact) on I/O input `io_input` changes to `level` at
+  /// `tick_fraction` (0..1) of the tick being stepped: the PLC reads the input from that tick on,
+  /// and each drive whose probe input (machine.yaml `probe_inputs:`) is wired to it knows where
+  /// its axis was at that instant (DriveFeedback::probe, ProbeEdgeLatch::exact_position). Call
+  /// it between Step()s for the next tick, or from within Step before the drives sample. Throws
+  /// std::invalid_argument for an input a device drives, an output or a key (ProbeWiring).
+  virtual void SetProbeSwitch(int io_input, bool level, double tick_fraction) = 0;
 };
 
 /// Joint positions for an initial state: drive positions on their motor joints through their

@@ -6,7 +6,10 @@
 #include <fcl/narrowphase/distance.h>
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 
+#include "render/mesh_primitives.hpp"
 #include "sim/model/model_error.hpp"
 
 namespace vmt::sim {
@@ -81,10 +84,20 @@ void CollisionWorld::SetAdded(const std::vector<CylinderPart>& added) {
     p.name = c.name;
     p.link = model.LinkIndex(c.link);
     if (p.link < 0) throw ModelError(model.yaml_path, c.name, "no link '" + c.link + "'");
-    // FCL's cylinder is centred on its origin.
-    p.X_LinkPart.translation() = Eigen::Vector3d(0, 0, c.z_m + c.length_m / 2);
-    p.radius = std::hypot(c.radius_m, c.length_m / 2);
-    fcl_->geometry.push_back(std::make_shared<fcl::Cylinderd>(c.radius_m, c.length_m));
+    if (c.inner_radius_m > 0) {
+      // FCL has no tube: a mesh whose outer wall circumscribes the circle and whose bore's
+      // corners lie on it, so the polygon never misses material.
+      constexpr int kSegments = 64;
+      const double outer = c.radius_m / std::cos(std::numbers::pi / kSegments);
+      p.X_LinkPart.translation() = Eigen::Vector3d(0, 0, c.z_m);
+      fcl_->geometry.push_back(MeshGeometry(
+          render::MakeTube(c.inner_radius_m, outer, c.length_m, kSegments), p.centre, p.radius));
+    } else {
+      // FCL's cylinder is centred on its origin.
+      p.X_LinkPart.translation() = Eigen::Vector3d(0, 0, c.z_m + c.length_m / 2);
+      p.radius = std::hypot(c.radius_m, c.length_m / 2);
+      fcl_->geometry.push_back(std::make_shared<fcl::Cylinderd>(c.radius_m, c.length_m));
+    }
     parts_.push_back(p);
   }
   for (auto& g : fcl_->geometry) {

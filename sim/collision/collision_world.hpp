@@ -18,11 +18,13 @@
 
 namespace vmt::sim {
 
-/// A cylinder a scene adds to the machine: along its link's z axis from z_m to z_m + length_m.
+/// A cylinder a scene adds to the machine: along its link's z axis from z_m to z_m + length_m;
+/// with inner_radius_m > 0 a tube (a bored section, the ring outside a face groove).
 struct CylinderPart {
   std::string name;
   std::string link;
   double radius_m = 0, length_m = 0, z_m = 0;
+  double inner_radius_m = 0;
 };
 
 struct CollisionPart {

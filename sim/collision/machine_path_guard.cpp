@@ -37,6 +37,7 @@ std::vector<double> MachinePathGuard::JointPositions(const std::vector<double>& 
 
 control::PathCheck MachinePathGuard::CheckMove(const std::vector<double>& from,
                                                const std::vector<double>& to) {
+  if (before_check) before_check(world_);
   std::vector<char> moving(from.size(), 0);
   double path = 0;
   for (size_t d = 0; d < from.size() && d < to.size(); ++d) {

@@ -27,6 +27,8 @@ class MachinePathGuard : public control::PathGuard {
                                      const std::vector<char>& moving) const;
   CollisionWorld& world() { return world_; }
   StraightMoveOptions options;
+  /// Called before every check: the runner brings the workpiece up to date here (as turned).
+  std::function<void(CollisionWorld&)> before_check;
 
  private:
   const MachineModel* model_;

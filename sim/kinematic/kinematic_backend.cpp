@@ -3,7 +3,7 @@
 namespace vmt::sim {
 
 KinematicBackend::KinematicBackend(const MachineModel& model, const InitialState& init)
-    : model_(&model), drive_infos_(model.DriveInfos()) {
+    : model_(&model), drive_infos_(model.DriveInfos()), probes_(model) {
   for (const DriveParams& p : model.drives) controllers_.emplace_back(p);
   clutches_.resize(model.clutches.size());
   clutch_offsets_.assign(model.clutches.size(), 0.0);
@@ -21,6 +21,9 @@ KinematicBackend::KinematicBackend(const MachineModel& model, const InitialState
   at_.inputs.assign(model.io.size(), 0);
   RebuildPlan();
   UpdateFeedback();
+  const auto joint = [this](int j) { return q_[j]; };
+  ActualPositions(model, joint, probe_positions_);
+  probes_.Start(probe_positions_);
 }
 
 void KinematicBackend::Write(const control::MasterTelegram& mdt) {
@@ -126,6 +129,11 @@ void KinematicBackend::Step() {
   }
   ++ticks_;
   UpdateFeedback();
+  if (probes_.any()) {
+    const auto joint = [this](int j) { return q_[j]; };
+    ActualPositions(*model_, joint, probe_positions_);
+    probes_.Step(mdt_.setpoints, at_.inputs, probe_positions_, at_.feedback);
+  }
 }
 
 void KinematicBackend::UpdateFeedback() {
@@ -135,6 +143,7 @@ void KinematicBackend::UpdateFeedback() {
                                                qd_[p.motor_joint] / p.ratio, 0);
   }
   ReadInputs(*model_, mdt_.outputs, clutches_, actuators_, at_.feedback, at_.inputs);
+  probes_.ShowInputs(at_.inputs);
 }
 
 }  // namespace vmt::sim

@@ -9,6 +9,7 @@
 #include "sim/backend/coupling_graph.hpp"
 #include "sim/backend/drive_controller.hpp"
 #include "sim/backend/machine_backend.hpp"
+#include "sim/backend/probe_wiring.hpp"
 
 namespace vmt::sim {
 
@@ -28,6 +29,9 @@ class KinematicBackend : public MachineBackend {
   const DogClutchLogic& ClutchLogic(int index) const override { return clutches_[index]; }
   double ActuatorStroke(int index) const override { return actuators_[index].stroke; }
   const MachineModel& model() const override { return *model_; }
+  void SetProbeSwitch(int io_input, bool level, double tick_fraction) override {
+    probes_.SetSwitch(io_input, level, tick_fraction);
+  }
 
  private:
   void UpdateFeedback();
@@ -53,6 +57,8 @@ class KinematicBackend : public MachineBackend {
   std::vector<int64_t> group_led_;  ///< per group: the tick in which an enabled drive led it
   control::MasterTelegram mdt_;
   control::AmplifierTelegram at_;
+  ProbeWiring probes_;
+  std::vector<double> probe_positions_;  ///< per drive, unquantised (ActualPositions)
   int64_t ticks_ = 0;
 };
 

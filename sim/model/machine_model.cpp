@@ -89,7 +89,8 @@ void CheckSwitchesDrivenOnce(const MachineModel& m, const YamlNode& root) {
   for (const PositionSwitch& p : m.position_switches) ++driven[p.input];
   for (const ProbeStylus& p : m.probes) ++driven[p.contact_input];
   for (size_t i = 0; i < driven.size(); ++i)
-    if (driven[i] > 1) root["io"].Fail("input '" + m.io[i].name + "' is the switch of more than one device");
+    if (driven[i] > 1)
+      root["io"].Fail("input '" + m.io[i].name + "' is the switch of more than one device");
 }
 
 // The gains and limits of a parameter set. Set 0 (`base` null) is the drive's own keys and needs
@@ -147,12 +148,29 @@ void ReadEncoder(const MachineModel& m, const YamlNode& d, DriveParams& p) {
     j.Fail("joint type does not match the drive's kind");
 }
 
+// The drive's probe inputs E4/E5 (fast-measurement manual 7.3), named PIN4/PIN5 as in
+// TASTWERKZEUGPAGE; each is wired to a switch of the machine's I/O map.
+void ReadProbeInputs(const MachineModel& m, const YamlNode& n, DriveParams& p) {
+  if (!n.IsMap()) n.Fail("expected a map {PIN4: <input>, PIN5: <input>}");
+  n.AllowKeys({"PIN4", "PIN5"});
+  const char* pins[2] = {"PIN4", "PIN5"};
+  for (int k = 0; k < 2; ++k) {
+    if (!n.Has(pins[k])) continue;
+    const YamlNode pin = n[pins[k]];
+    p.probe_inputs[k] = RequireIo(m, pin, false);
+    if (m.io[p.probe_inputs[k]].key)
+      pin.Fail("'" + pin.String() + "' is an operator's key, not a switch of the machine");
+  }
+}
+
 DriveParams ReadDrive(const MachineModel& m, const YamlNode& d) {
+  // clang-format off
   d.AllowKeys({"name", "kind", "type", "joint", "ratio", "kv", "velocity_kp", "velocity_ti",
                "torque_limit", "velocity_limit", "acceleration_limit", "encoder_resolution",
                "in_position_window", "standstill_window", "following_error_limit",
                "positioning_speed", "encoder", "load_joint", "modulo", "overload_time",
-               "parameter_sets", "spec"});
+               "parameter_sets", "probe_inputs", "spec"});
+  // clang-format on
   DriveParams p;
   p.info.name = d["name"].String();
   const std::string kind = d["kind"].String();
@@ -197,6 +215,7 @@ DriveParams ReadDrive(const MachineModel& m, const YamlNode& d) {
       p.parameter_sets.push_back(ReadParameterSet(set, p.info.kind, &p.parameter_sets[0]));
     }
   }
+  if (d.Has("probe_inputs")) ReadProbeInputs(m, d["probe_inputs"], p);
   if (d.Has("spec")) {
     const YamlNode spec = d["spec"];
     spec.AllowKeys({"settle_time", "overshoot"});
@@ -232,8 +251,8 @@ int MachineModel::DriveIndex(const std::string& n) const {
 
 MachineModel LoadMachineModel(const std::string& machine_yaml_path) {
   const YamlNode root = YamlNode::LoadFile(machine_yaml_path);
-  root.AllowKeys({"machine", "urdf", "io", "drives", "couplings", "actuators",
-                  "position_switches", "cameras", "nc", "probe"});
+  root.AllowKeys({"machine", "urdf", "io", "drives", "couplings", "actuators", "position_switches",
+                  "cutting_parts", "cameras", "nc", "probe"});
   MachineModel m;
   m.yaml_path = machine_yaml_path;
   m.name = root["machine"].String();
@@ -247,10 +266,24 @@ MachineModel LoadMachineModel(const std::string& machine_yaml_path) {
     for (size_t i = 0; i < io.size(); ++i) {
       io[i].AllowKeys({"name", "dir"});
       const std::string dir = io[i]["dir"].String();
-      if (dir != "in" && dir != "out" && dir != "key")
-        io[i]["dir"].Fail("expected in, out or key");
+      if (dir != "in" && dir != "out" && dir != "key") io[i]["dir"].Fail("expected in, out or key");
       if (control::IndexOf(m.io, io[i]["name"].String()) >= 0) io[i]["name"].Fail("duplicate");
       m.io.push_back({io[i]["name"].String(), dir == "out", dir == "key"});
+    }
+  }
+
+  if (root.Has("cutting_parts")) {
+    const YamlNode cs = root["cutting_parts"];
+    if (!cs.IsSequence()) cs.Fail("expected a list of <collision> names");
+    for (size_t i = 0; i < cs.size(); ++i) {
+      const std::string name = cs[i].String();
+      CuttingPart found;
+      for (size_t l = 0; l < m.links.size() && found.link < 0; ++l)
+        for (size_t c = 0; c < m.links[l].collisions.size(); ++c)
+          if (m.links[l].collisions[c].name == name)
+            found = {static_cast<int>(l), static_cast<int>(c)};
+      if (found.link < 0) cs[i].Fail("no <collision name=\"" + name + "\"> in the URDF");
+      m.cutting_parts.push_back(found);
     }
   }
 

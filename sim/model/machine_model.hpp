@@ -4,6 +4,7 @@
 // control kernel speaks machine units (mm, degrees), converted at the boundary.
 
 #include <Eigen/Geometry>
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -91,6 +92,10 @@ struct DriveParams : DriveParameterSet {
   /// The amplifier trips (kOverload) after this long at its torque limit, s (net: time below
   /// the limit counts back down).
   double overload_time_s = 1;
+  /// `probe_inputs: {PIN4: .., PIN5: ..}`: the I/O inputs wired to the drive's probe inputs E4
+  /// (probe 1) and E5 (probe 2) (fast-measurement manual 7.3; TASTWERKZEUGPAGE element 3 picks
+  /// the pin). -1: not wired, the input reads 0.
+  std::array<int, 2> probe_inputs = {-1, -1};
   /// Every set the drive has: [0] is the drive's own keys, [n] = YAML parameter_sets[n - 1]
   /// (set 0 with that entry's overrides).
   std::vector<DriveParameterSet> parameter_sets;
@@ -143,6 +148,13 @@ struct PositionSwitch {
   double pitch = 0, window = 0;
 };
 
+/// A tool's cutting part (machine.yaml `cutting_parts:`, a URDF <collision> name): where it
+/// passes through the workpiece while the spindle turns, it cuts (sim/collision/turned_stock).
+struct CuttingPart {
+  int link = -1;
+  int collision = -1;  ///< index into links[link].collisions
+};
+
 struct MachineModel {
   std::string name;
   std::string yaml_path, urdf_path;
@@ -154,6 +166,7 @@ struct MachineModel {
   std::vector<DogClutch> clutches;
   std::vector<Actuator> actuators;
   std::vector<PositionSwitch> position_switches;
+  std::vector<CuttingPart> cutting_parts;
   std::vector<NamedCamera> cameras;
   NcMachineData nc;  ///< machine.yaml `nc:`; not present for a machine without NC
   /// machine.yaml `probe:`: the measuring styluses (TASTWERKZEUGPAGE), up to four.

@@ -17,42 +17,42 @@ struct Edge {
   Eigen::Vector2d a, b, normal;
 };
 
-const RevolvedSection* SectionStartingAt(const RevolvedPart& part, double z) {
-  for (const RevolvedSection& s : part.sections)
-    if (std::abs(s.z0_m - z) <= kSamePlaneM) return &s;
-  return nullptr;
-}
-
-const RevolvedSection* SectionEndingAt(const RevolvedPart& part, double z) {
-  for (const RevolvedSection& s : part.sections)
-    if (std::abs(s.z1_m - z) <= kSamePlaneM) return &s;
-  return nullptr;
-}
-
-// Calls visit(edge) for each piece of the part's outline in the meridian half-plane r >= 0
-// (no container: the stylus asks this every drive tick).
+// Calls visit(edge) for each piece of the part's outline in the meridian half-plane r >= 0:
+// every side of every section's rectangle, less what a section on its other side covers (two
+// sections share no material, so only a neighbour whose own side lies on the same line can).
+// No container: the stylus asks this every drive tick.
 template <class Visit>
 void ForEachOutlineEdge(const RevolvedPart& part, Visit&& visit) {
-  auto edge = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& n) {
-    if ((b - a).norm() > 0) visit(Edge{a, b, n});
-  };
-  // The part of the face [r_inner, r_outer] at z that the neighbouring ring does not cover: up
-  // to two pieces.
-  auto face = [&](double z, double r_inner, double r_outer, const RevolvedSection* neighbour,
-                  double normal_z) {
-    const Eigen::Vector2d n(0, normal_z);
-    if (!neighbour || neighbour->r_outer_m <= r_inner || neighbour->r_inner_m >= r_outer) {
-      edge({r_inner, z}, {r_outer, z}, n);
+  const std::vector<RevolvedSection>& all = part.sections;
+  // The side on line `at` along [lo, hi] (of the other coordinate), less the sides of sections
+  // from index `from` on that lie on the same line from the other side; `radial` sides run
+  // along z at r = at.
+  auto side = [&](auto&& self, bool radial, double at, double lo, double hi, double normal,
+                  size_t from) -> void {
+    for (size_t j = from; j < all.size(); ++j) {
+      const RevolvedSection& n = all[j];
+      // The neighbour's side facing this one: its inner (outer) radius beside an outer (inner)
+      // side, its start (end) beside an end (start) face.
+      const double its =
+          radial ? (normal > 0 ? n.r_inner_m : n.r_outer_m) : (normal > 0 ? n.z0_m : n.z1_m);
+      if (std::abs(its - at) > kSamePlaneM) continue;
+      const double n_lo = radial ? n.z0_m : n.r_inner_m, n_hi = radial ? n.z1_m : n.r_outer_m;
+      if (n_hi <= lo || n_lo >= hi) continue;
+      if (n_lo > lo) self(self, radial, at, lo, n_lo, normal, j + 1);
+      if (n_hi < hi) self(self, radial, at, n_hi, hi, normal, j + 1);
       return;
     }
-    if (neighbour->r_inner_m > r_inner) edge({r_inner, z}, {neighbour->r_inner_m, z}, n);
-    if (neighbour->r_outer_m < r_outer) edge({neighbour->r_outer_m, z}, {r_outer, z}, n);
+    if (hi <= lo) return;
+    if (radial)
+      visit(Edge{{at, lo}, {at, hi}, {normal, 0}});
+    else
+      visit(Edge{{lo, at}, {hi, at}, {0, normal}});
   };
-  for (const RevolvedSection& s : part.sections) {
-    edge({s.r_outer_m, s.z0_m}, {s.r_outer_m, s.z1_m}, {1, 0});
-    if (s.r_inner_m > 0) edge({s.r_inner_m, s.z0_m}, {s.r_inner_m, s.z1_m}, {-1, 0});
-    face(s.z1_m, s.r_inner_m, s.r_outer_m, SectionStartingAt(part, s.z1_m), 1);
-    face(s.z0_m, s.r_inner_m, s.r_outer_m, SectionEndingAt(part, s.z0_m), -1);
+  for (const RevolvedSection& s : all) {
+    side(side, true, s.r_outer_m, s.z0_m, s.z1_m, 1, 0);
+    if (s.r_inner_m > 0) side(side, true, s.r_inner_m, s.z0_m, s.z1_m, -1, 0);
+    side(side, false, s.z1_m, s.r_inner_m, s.r_outer_m, 1, 0);
+    side(side, false, s.z0_m, s.r_inner_m, s.r_outer_m, -1, 0);
   }
 }
 
@@ -108,8 +108,9 @@ std::string RevolvedPartError(const RevolvedPart& part) {
     if (!(s.r_outer_m > s.r_inner_m)) return name + ": r_outer must be greater than r_inner";
     for (size_t j = 0; j < i; ++j) {
       const RevolvedSection& o = part.sections[j];
-      if (std::min(s.z1_m, o.z1_m) - std::max(s.z0_m, o.z0_m) > kSamePlaneM)
-        return name + ": overlaps sections[" + std::to_string(j) + "] in z";
+      if (std::min(s.z1_m, o.z1_m) - std::max(s.z0_m, o.z0_m) > kSamePlaneM &&
+          std::min(s.r_outer_m, o.r_outer_m) - std::max(s.r_inner_m, o.r_inner_m) > kSamePlaneM)
+        return name + ": shares material with sections[" + std::to_string(j) + "]";
     }
   }
   return "";

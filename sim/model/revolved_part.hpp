@@ -1,8 +1,9 @@
 #pragma once
 // A part of a lathe as its true dimensions: a solid of revolution about its link's z axis (the
-// spindle axis), given as annular sections along z. A stepped shaft is sections with r_inner 0;
-// a face groove is a section whose ring stops short of the axis next to one that does not. The
-// probe measures against this shape exactly, so the scene knows every dimension the NC measures.
+// spindle axis), given as annular sections along z; the part is their union. A stepped shaft is
+// sections with r_inner 0 one after another; a face groove is two sections over the groove's
+// depth, the core inside the groove and the ring outside it. The probe measures against this
+// shape exactly, so the scene knows every dimension the NC measures.
 //
 // Plain data in the link frame, SI (m).
 
@@ -13,7 +14,7 @@
 namespace vmt::sim {
 
 /// The ring between r_inner_m and r_outer_m from z0_m to z1_m (z0_m < z1_m, 0 <= r_inner_m <
-/// r_outer_m). Sections of one part do not overlap in z.
+/// r_outer_m). Sections may share a stretch of z (a groove between two rings), not material.
 struct RevolvedSection {
   double z0_m = 0, z1_m = 0;
   double r_inner_m = 0, r_outer_m = 0;
@@ -38,12 +39,13 @@ struct RevolvedDistance {
 
 /// Exact signed distance from p_Link_m to the part: the nearest point of a solid of revolution
 /// lies in the point's own meridian half-plane, so this is the 2D distance from (r, z) to the
-/// union of the sections' rectangles. Faces where two sections meet count only where one ring
-/// stands beyond the other (the step of a shaft); the axis is no surface.
+/// union of the sections' rectangles. Where two sections meet, their sides count only where
+/// one stands beyond the other (the shoulder of a step, the floor of a face groove); the axis
+/// is no surface.
 RevolvedDistance SignedDistance(const RevolvedPart& part, const Eigen::Vector3d& p_Link_m);
 
 /// What is wrong with the part's sections ("" when nothing): a section with z1 <= z0, r_inner
-/// < 0, r_outer <= r_inner or a number that is not finite, or two sections that overlap in z.
+/// < 0, r_outer <= r_inner or a number that is not finite, or two sections that share material.
 /// The message names the section by its index.
 std::string RevolvedPartError(const RevolvedPart& part);
 

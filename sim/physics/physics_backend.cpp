@@ -55,7 +55,10 @@ struct PhysicsBackend::World {
 };
 
 PhysicsBackend::PhysicsBackend(const MachineModel& model, const InitialState& init)
-    : model_(&model), drive_infos_(model.DriveInfos()), world_(std::make_unique<World>()) {
+    : model_(&model),
+      drive_infos_(model.DriveInfos()),
+      world_(std::make_unique<World>()),
+      probes_(model) {
   for (const DriveParams& p : model.drives) controllers_.emplace_back(p);
   clutches_.resize(model.clutches.size());
   world_->clutch_gears.resize(model.clutches.size());
@@ -144,6 +147,9 @@ PhysicsBackend::PhysicsBackend(const MachineModel& model, const InitialState& in
   at_.inputs.assign(model.io.size(), 0);
   torques_.assign(model.drives.size(), 0.0);
   UpdateFeedback(torques_);
+  const auto joint = [&mb](int j) { return mb.getJointPos(j); };
+  ActualPositions(model, joint, probe_positions_);
+  probes_.Start(probe_positions_);
 }
 
 PhysicsBackend::~PhysicsBackend() {
@@ -255,6 +261,11 @@ void PhysicsBackend::Step() {
   }
   ++ticks_;
   UpdateFeedback(torques);
+  if (probes_.any()) {
+    const auto joint = [&mb](int j) { return mb.getJointPos(j); };
+    ActualPositions(*model_, joint, probe_positions_);
+    probes_.Step(mdt_.setpoints, at_.inputs, probe_positions_, at_.feedback);
+  }
 }
 
 void PhysicsBackend::UpdateFeedback(const std::vector<double>& torques) {
@@ -266,6 +277,7 @@ void PhysicsBackend::UpdateFeedback(const std::vector<double>& torques) {
                                  mb.getJointVel(p.motor_joint) / p.ratio, torques[d]);
   }
   ReadInputs(*model_, mdt_.outputs, clutches_, actuators_, at_.feedback, at_.inputs);
+  probes_.ShowInputs(at_.inputs);
 }
 
 }  // namespace vmt::sim

@@ -16,6 +16,7 @@
 
 #include "sim/backend/drive_controller.hpp"
 #include "sim/backend/machine_backend.hpp"
+#include "sim/backend/probe_wiring.hpp"
 
 class btMultiBody;
 class btMultiBodyDynamicsWorld;
@@ -40,6 +41,9 @@ class PhysicsBackend : public MachineBackend {
   const DogClutchLogic& ClutchLogic(int index) const override { return clutches_[index]; }
   double ActuatorStroke(int index) const override { return actuators_[index].stroke; }
   const MachineModel& model() const override { return *model_; }
+  void SetProbeSwitch(int io_input, bool level, double tick_fraction) override {
+    probes_.SetSwitch(io_input, level, tick_fraction);
+  }
 
   /// Joint velocities (m/s | rad/s).
   std::vector<double> JointVelocities() const;
@@ -59,6 +63,8 @@ class PhysicsBackend : public MachineBackend {
   std::unique_ptr<World> world_;
   control::MasterTelegram mdt_;
   control::AmplifierTelegram at_;
+  ProbeWiring probes_;
+  std::vector<double> probe_positions_;  ///< per drive, unquantised (ActualPositions)
   std::vector<double> torques_;  ///< load side, per drive, of the last tick
   int64_t ticks_ = 0;
 };

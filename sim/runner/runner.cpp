@@ -13,6 +13,7 @@
 #include "control/plc/plc_runtime.hpp"
 #include "render/image.hpp"
 #include "sim/collision/machine_path_guard.hpp"
+#include "sim/collision/stock_cutter.hpp"
 #include "sim/model/gateway_layout.hpp"
 #include "sim/runner/channel_events.hpp"
 #include "sim/runner/drive_program.hpp"
@@ -23,6 +24,9 @@ namespace {
 
 // PLC cycles a scan may be overdue before the watchdog stops the PLC.
 constexpr int64_t kPlcWatchdogCycles = 2;
+/// Turned stock slices whose radii differ by less make one cylinder for PathGuard: well below
+/// the cut's allowance, so a merged run never stands above a tool in its cut.
+constexpr double kStockTolerance = 2e-6;
 
 // Fixed formatting: the trace bytes, and so the digest, depend only on the simulation.
 void Append(std::string& row, double v) {
@@ -155,6 +159,9 @@ struct SceneRun::State {
   const std::chrono::steady_clock::time_point wall_start = std::chrono::steady_clock::now();
   std::unique_ptr<MachineBackend> backend;
   std::unique_ptr<MachinePathGuard> path_guard;  ///< before the channel, which asks it
+  /// The workpiece as turned, for PathGuard; its parts are rebuilt before a check after a cut.
+  std::unique_ptr<StockCutter> cutter;
+  bool stock_cut = false;
   std::unique_ptr<control::channel::Channel> channel;
   std::unique_ptr<control::gateway::SignalImage> image;
   std::unique_ptr<control::gateway::ChannelGateway> gateway;
@@ -235,12 +242,19 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
       // The machine's collision geometry with the scene's workpiece, posed where the backend
       // stands; the channel asks it before its approach moves.
       std::vector<CylinderPart> parts;
-      if (scene.workpiece.present)
-        parts.push_back({"workpiece", scene.workpiece.link, scene.workpiece.diameter_m / 2,
-                         scene.workpiece.length_m, scene.workpiece.z_m});
+      if (scene.workpiece.present) {
+        cutter = std::make_unique<StockCutter>(m, scene.workpiece.part);
+        parts = cutter->stock().Cylinders(kStockTolerance);
+      }
       MachineBackend* b = backend.get();
       path_guard =
           std::make_unique<MachinePathGuard>(m, parts, [b] { return b->JointPositions(); });
+      if (cutter)
+        path_guard->before_check = [this](CollisionWorld& world) {
+          if (!stock_cut) return;
+          world.SetAdded(cutter->stock().Cylinders(kStockTolerance));
+          stock_cut = false;
+        };
       channel->SetPathGuard(path_guard.get());
     }
   }
@@ -336,6 +350,7 @@ void SceneRun::State::Step() {
     const bool nc_cycle = tick % channel->ticks_per_cycle() == 0;
     if (gateway && nc_cycle && default_headstock_plc) AcknowledgeHeadstock();
     if (gateway && nc_cycle) gateway->ReadControls(*channel);
+    if (cutter && nc_cycle && cutter->Cut(backend->JointPositions(), t)) stock_cut = true;
     channel->Tick(at, mdt);
     if (gateway && nc_cycle) gateway->WriteStatus(*channel, at);
     if (const auto* hs = channel->headstock(); hs && hs->target() != headstock_target) {

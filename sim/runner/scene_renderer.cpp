@@ -6,9 +6,16 @@ namespace vmt::sim {
 
 SceneRenderer::SceneRenderer(const MachineModel& model, const Workpiece& workpiece)
     : model_(&model), workpiece_(workpiece) {
-  if (workpiece.present)
-    workpiece_mesh_ = std::make_unique<render::Mesh>(
-        render::MakeCylinder(workpiece.diameter_m / 2, workpiece.length_m, 96));
+  for (const RevolvedSection& section : workpiece.part.sections) {
+    if (!workpiece.present) break;
+    const double length = section.z1_m - section.z0_m;
+    workpiece_meshes_.emplace_back(
+        std::make_unique<render::Mesh>(
+            section.r_inner_m > 0
+                ? render::MakeTube(section.r_inner_m, section.r_outer_m, length, 96)
+                : render::MakeCylinder(section.r_outer_m, length, 96)),
+        section.z0_m);
+  }
 }
 
 SceneRenderer::~SceneRenderer() = default;
@@ -23,11 +30,11 @@ render::Image SceneRenderer::Render(const std::vector<double>& q, const NamedCam
   for (size_t l = 0; l < model_->links.size(); ++l)
     for (const Visual& v : model_->links[l].visuals)
       items.push_back({v.mesh.get(), X_WLink[l] * v.X_LinkVisual, v.colour});
-  if (workpiece_mesh_) {
+  for (const auto& [mesh, z_m] : workpiece_meshes_) {
     Eigen::Isometry3d X_LinkPart = Eigen::Isometry3d::Identity();
-    X_LinkPart.translation().z() = workpiece_.z_m;
-    items.push_back({workpiece_mesh_.get(),
-                     X_WLink[model_->LinkIndex(workpiece_.link)] * X_LinkPart, workpiece_.colour});
+    X_LinkPart.translation().z() = z_m;
+    items.push_back({mesh.get(), X_WLink[model_->LinkIndex(workpiece_.part.link)] * X_LinkPart,
+                     workpiece_.colour});
   }
   render::Camera cam;
   cam.eye = camera.eye_m;

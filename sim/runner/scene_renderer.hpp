@@ -5,6 +5,7 @@
 #include <map>
 #include <memory>
 #include <utility>
+#include <vector>
 
 #include "render/image.hpp"
 #include "render/mesh.hpp"
@@ -23,7 +24,8 @@ class SceneRenderer {
  private:
   const MachineModel* model_;
   Workpiece workpiece_;
-  std::unique_ptr<render::Mesh> workpiece_mesh_;
+  /// One mesh per section of the workpiece, with where it starts along the link's z.
+  std::vector<std::pair<std::unique_ptr<render::Mesh>, double>> workpiece_meshes_;
   std::map<std::pair<int, int>, std::unique_ptr<render::OffscreenRenderer>> renderers_;
 };
 

@@ -12,6 +12,7 @@
 #include "control/nc/program.hpp"
 #include "sim/backend/machine_backend.hpp"
 #include "sim/model/machine_model.hpp"
+#include "sim/model/revolved_part.hpp"
 
 namespace vmt::sim {
 
@@ -20,12 +21,13 @@ inline const char* ToString(BackendKind k) {
   return k == BackendKind::kPhysics ? "physics" : "kinematic";
 }
 
+/// The part in the chuck with its true dimensions (a stock cylinder, a stepped shaft, a face
+/// groove), in its link's frame: what PathGuard checks against, the probe touches and the
+/// pictures show.
 struct Workpiece {
   bool present = false;
-  double diameter_m = 0, length_m = 0;
-  double z_m = 0;  ///< where its left face sits on the spindle axis (spindle link frame)
+  RevolvedPart part{"workpiece", "spindle", {}};
   render::Rgba colour{0.78f, 0.79f, 0.80f, 1.0f};
-  std::string link = "spindle";
 };
 
 /// The NC channel of a scene: its programs (main first) and the drives it commands.

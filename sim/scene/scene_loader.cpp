@@ -16,6 +16,7 @@
 #include "sim/physics/physics_backend.hpp"
 #include "sim/scene/scene.hpp"
 #include "sim/scene/scene_steps.hpp"
+#include "sim/scene/workpiece_loader.hpp"
 
 namespace vmt::sim {
 
@@ -52,22 +53,7 @@ Scene LoadScene(const std::string& path) {
   s.trace_period_s = root.Double("trace_period", 0.001);
   if (s.trace_period_s < kDriveTickS) root["trace_period"].Fail("must be >= 0.00025 s");
 
-  if (root.Has("workpiece")) {
-    const YamlNode w = root["workpiece"];
-    w.AllowKeys({"diameter", "length", "z", "colour", "link"});
-    s.workpiece.present = true;
-    s.workpiece.diameter_m = w["diameter"].Double() / kMmPerM;
-    s.workpiece.length_m = w["length"].Double() / kMmPerM;
-    s.workpiece.z_m = w["z"].Double() / kMmPerM;
-    if (s.workpiece.diameter_m <= 0) w["diameter"].Fail("must be > 0");
-    if (s.workpiece.length_m <= 0) w["length"].Fail("must be > 0");
-    s.workpiece.link = w.String("link", "spindle");
-    if (m.LinkIndex(s.workpiece.link) < 0) w["link"].Fail("no link '" + s.workpiece.link + "'");
-    if (w.Has("colour")) {
-      const auto c = w["colour"].Doubles(4);
-      s.workpiece.colour = {float(c[0]), float(c[1]), float(c[2]), float(c[3])};
-    }
-  }
+  if (root.Has("workpiece")) s.workpiece = LoadWorkpiece(root["workpiece"], m);
 
   if (root.Has("initial")) {
     const YamlNode init = root["initial"];

@@ -49,6 +49,19 @@ TEST(MeshPrimitivesTest, CylinderShapeAndWinding) {
   }
 }
 
+TEST(MeshPrimitivesTest, TubeShapeAndWinding) {
+  const Mesh mesh = MakeTube(0.015, 0.05, 0.01, 32);
+  EXPECT_EQ(mesh.indices.size(), 8u * 32 * 3);
+  ExpectConsistent(mesh);
+  for (uint32_t i = 0; i < mesh.positions.size() / 3; ++i) {
+    const Eigen::Vector3d p = Position(mesh, i);
+    EXPECT_GE(p.head<2>().norm(), 0.015 - 1e-6);
+    EXPECT_LE(p.head<2>().norm(), 0.05 + 1e-6);
+    EXPECT_GE(p.z(), 0.0);
+    EXPECT_LE(p.z(), 0.01 + 1e-6);
+  }
+}
+
 TEST(MeshPrimitivesTest, BoxShapeAndWinding) {
   const Mesh mesh = MakeBox({-1, 0, 2}, {1, 0.5, 3});
   EXPECT_EQ(mesh.indices.size(), 12u * 3);
@@ -66,6 +79,8 @@ TEST(MeshPrimitivesTest, BadArgumentsThrow) {
   EXPECT_THROW(MakeCylinder(0, 1, 8), std::runtime_error);
   EXPECT_THROW(MakeCylinder(1, -1, 8), std::runtime_error);
   EXPECT_THROW(MakeCylinder(1, 1, 2), std::runtime_error);
+  EXPECT_THROW(MakeTube(0, 1, 1, 8), std::runtime_error);
+  EXPECT_THROW(MakeTube(1, 1, 1, 8), std::runtime_error);
   EXPECT_THROW(MakeBox({0, 0, 0}, {1, -1, 1}), std::runtime_error);
 }
 

@@ -263,6 +263,30 @@ int AxisId(const std::array<int, 33>& ids, int axis) {
   return axis >= gateway::kMinAxisNumber && axis <= gateway::kMaxAxisNumber ? ids[axis] : -1;
 }
 
+// MTD_RD of BASISMESSPAGE elements 6..10 (3.1) through the NC's MTD access: the first element
+// that cannot be read is the failed one; a page number that is not BASISMESSPAGE's fails at 6.
+MtdRdResult ReadBasisMessPage(const measure::MeasuringPages& pages, int page, int process) {
+  MtdRdResult r;
+  if (pages.PageOf(page) != measure::Page::kBasisMessPage) {
+    r.failed_element = 6;
+    return r;
+  }
+  bool* const element[] = {&r.page.PIN_DDS, &r.page.Pushbutton_contact, &r.page.Measuring_axis_1,
+                           &r.page.Measuring_axis_2, &r.page.Measuring_axis_3};
+  for (int e = 6; e <= 10; ++e) {
+    const measure::MtdRead read = measure::ReadMtd(
+        pages,
+        {static_cast<double>(page), static_cast<double>(process), {}, static_cast<double>(e)},
+        process);
+    if (!read.error.empty()) {
+      r.failed_element = e;
+      return r;
+    }
+    *element[e - 6] = read.value != 0;
+  }
+  return r;
+}
+
 }  // namespace
 
 ProbeBlockProgram::ProbeBlockProgram(const gateway::SignalImage& image)
@@ -374,9 +398,10 @@ void ProbeBlockProgram::operator()(PlcScan& s) {
   m.EV_Mess = mess >= 0 && s.Bool(mess);
   m.EV_Touch = touch >= 0 && s.Bool(touch);
   const bool koll_in = m.EV_Koll, touch_in = m.EV_Touch;
-  // vmt's NC keeps no data pages yet and its drives take any parameter: MTD_RD answers with
-  // basis_page, AXD_WR fails only for an axis the machine does not have.
-  m.MTD_RD = {basis_page, 0, false};
+  // MTD_RD answers from the NC's pages where they are connected, else with basis_page; vmt's
+  // drives take any parameter: AXD_WR fails only for an axis the machine does not have.
+  m.MTD_RD = measuring_pages ? ReadBasisMessPage(*measuring_pages, m.BasisPage, m.MessProc)
+                             : MtdRdResult{basis_page, 0, false};
   for (int n = 0; n < 3; ++n) m.AXD_WR[n] = {AxisId(axis_qdds_, axes[n]) >= 0, 0};
 
   m(s.now());

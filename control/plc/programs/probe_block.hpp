@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "control/gateway/signal_image.hpp"
+#include "control/measure/measuring_pages.hpp"
 #include "control/plc/plc_runtime.hpp"
 
 namespace vmt::control::plc {
@@ -141,8 +142,12 @@ struct ProbeBlockProgram {
   void operator()(PlcScan& scan);
 
   QMFB1Axx Measuring;  ///< the instance (the manual's name for QMFB1A00)
-  /// Stands in for BASISMESSPAGE until the NC writes it: the lathe's SETTING(X, Z, , ...) with
-  /// the stylus at pin 4 (probe 1) and a normally open contact.
+  /// The NC's machine data pages (control/measure): MTD_RD reads BASISMESSPAGE elements 6..10
+  /// from page BasisPage of process MessProc there; a page or process the NC does not have
+  /// fails the read of element 6 (FEHLER_NR 23). Not owned; null: basis_page below answers.
+  const measure::MeasuringPages* measuring_pages = nullptr;
+  /// Stands in for BASISMESSPAGE while no pages are connected: the lathe's SETTING(X, Z, , ...)
+  /// with the stylus at pin 4 (probe 1) and a normally open contact.
   BasisMessPage basis_page{false, false, true, true, false};
 
  private:

@@ -225,6 +225,34 @@ TEST(ProbeBlockProgramTest, ThePageStandInDecidesTheMeasuringAxes) {
   EXPECT_TRUE(p.Bool("P00.Q9992_Q"));
 }
 
+// With the NC's pages connected, MTD_RD reads BASISMESSPAGE (page 90) of process MessProc.
+TEST(ProbeBlockProgramTest, ReadsBasisMessPageFromTheMeasuringPages) {
+  Plant p(ThreeAxes());
+  WireLathe(p);
+  measure::MeasuringPages pages;
+  p.program->measuring_pages = &pages;
+  p.program->basis_page = {};  // the stand-in is no longer asked
+  // SETTING(X, Z, , ...): measuring axes 1 and 2, as the block's ACHS_NR_1/2 are wired.
+  ASSERT_EQ(measure::WriteMtd(pages, {90, 0, {}, 8}, 0, 1), "");
+  ASSERT_EQ(measure::WriteMtd(pages, {90, 0, {}, 9}, 0, 1), "");
+  p.Set("P00.Q9992", true);
+  p.Scan(5);
+  EXPECT_FALSE(p.fb().FEHLER) << p.fb().FEHLER_NR;
+  EXPECT_TRUE(p.fb().Init_OK_1);
+  EXPECT_TRUE(p.fb().Init_OK_2);
+  EXPECT_TRUE(p.Bool("P00.Q9992_Q"));
+  p.Set("P00.Q9992", false);
+  p.Scan();
+
+  // A BasisPage pin that names no BASISMESSPAGE: reading element 6 fails, FEHLER_NR 23.
+  p.SetInt("QMFB1A00.BasisPage", 105);
+  p.Set("P00.Q9992", true);
+  p.Scan(3);
+  EXPECT_TRUE(p.fb().FEHLER);
+  EXPECT_EQ(p.fb().FEHLER_NR, 23);
+  EXPECT_FALSE(p.Bool("P00.Q9992_Q"));
+}
+
 TEST(ProbeBlockProgramTest, DisablingReleasesTheLatchEnableAndTouchesNoEvent) {
   Plant p(ThreeAxes());
   WireLathe(p);

@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <numbers>
+
 #include "sim/collision/turned_stock.hpp"
 
 namespace vmt::sim {
@@ -72,6 +75,27 @@ TEST(MachinePathGuard, ThePartAsTurnedReplacesTheStock) {
   const control::PathCheck away =
       g.guard.CheckMove(g.Drives(130, standing, 450), g.Drives(130, 250, 450));
   EXPECT_TRUE(away.clear);
+}
+
+TEST(MachinePathGuard, ARingIsMaterialOnlyBetweenItsRadii) {
+  Guarded g;
+  const control::PathCheck solid =
+      g.guard.CheckMove(g.Drives(130, 250, 450), g.Drives(130, 0, 450));
+  ASSERT_FALSE(solid.clear);
+  // The stock replaced by a tube, bore 15, outer 30 mm: a plunge meets its outer wall where it
+  // met the solid stock's, or a little before (the polygon circumscribes the circle: never
+  // after).
+  g.guard.world().SetAdded({{"workpiece", "spindle", 0.030, 0.160, 0.060, 0.015}});
+  const control::PathCheck c = g.guard.CheckMove(g.Drives(130, 250, 450), g.Drives(130, 0, 450));
+  ASSERT_FALSE(c.clear);
+  EXPECT_TRUE(c.part_a == "workpiece" || c.part_b == "workpiece");
+  EXPECT_LE(c.distance, solid.distance + 0.01);
+  EXPECT_GE(c.distance, solid.distance - 30 * (1 / std::cos(std::numbers::pi / 64) - 1) - 0.01);
+  // A ring of the bore's size (radius 15) is missed by the same plunge down to X 16.
+  g.guard.world().SetAdded({{"workpiece", "spindle", 0.015, 0.160, 0.060, 0.010}});
+  const control::PathCheck above =
+      g.guard.CheckMove(g.Drives(130, 250, 450), g.Drives(130, 16, 450));
+  EXPECT_TRUE(above.clear);
 }
 
 }  // namespace

@@ -59,5 +59,33 @@ TEST(TurnedStock, CylindersMergeRunsAndKeepTheLargestRadius) {
   }
 }
 
+TEST(TurnedStock, FromAPartTheCoreIsSlicedAndTheRingsStay) {
+  // A stepped shaft, d 60 over 0..50 mm and d 40 over 50..80 mm, with a face groove in its
+  // right face: core d 20 and ring d 40 / bore 30 over 70..80 mm (the d 40 step ends at 70).
+  RevolvedPart p{"workpiece", "spindle", {}};
+  p.sections = {{0.0, 0.05, 0, 0.03},
+                {0.05, 0.07, 0, 0.02},
+                {0.07, 0.08, 0, 0.01},
+                {0.07, 0.08, 0.015, 0.02}};
+  const TurnedStock t = TurnedStock::FromPart(p, 0.001);
+  ASSERT_EQ(t.radius_m.size(), 80u);
+  EXPECT_EQ(t.radius_m[49], 0.03);
+  EXPECT_EQ(t.radius_m[50], 0.02);
+  EXPECT_EQ(t.radius_m[69], 0.02);
+  EXPECT_EQ(t.radius_m[70], 0.01);
+  ASSERT_EQ(t.rings.size(), 1u);
+  const auto parts = t.Cylinders(1e-6);
+  ASSERT_EQ(parts.size(), 4u);  // three steps of the core, then the ring as it was
+  EXPECT_DOUBLE_EQ(parts[3].inner_radius_m, 0.015);
+  EXPECT_DOUBLE_EQ(parts[3].radius_m, 0.02);
+  EXPECT_NEAR(parts[3].z_m, 0.07, 1e-15);
+  EXPECT_NEAR(parts[3].length_m, 0.01, 1e-15);
+  // A step off the slice grid: the slice it falls in keeps the larger radius.
+  p.sections = {{0.0, 0.0505, 0, 0.03}, {0.0505, 0.06, 0, 0.02}};
+  const TurnedStock u = TurnedStock::FromPart(p, 0.001);
+  EXPECT_EQ(u.radius_m[50], 0.03);
+  EXPECT_EQ(u.radius_m[51], 0.02);
+}
+
 }  // namespace
 }  // namespace vmt::sim

@@ -26,8 +26,8 @@ RevolvedPart SteppedShaft() {
 }
 
 // A full disc r 40 from z 0 to 30, then a ring r 25..40 to z 40: a recess r 25 deep 10 in the
-// face.
-RevolvedPart FaceGroove() {
+// face (a ring beside a full section).
+RevolvedPart FaceRecess() {
   return {"workpiece",
           "spindle",
           {{0, 30 * kMm, 0, 40 * kMm}, {30 * kMm, 40 * kMm, 25 * kMm, 40 * kMm}}};
@@ -108,30 +108,30 @@ TEST(RevolvedPart, OnTheSurfaceTheDistanceIsZeroWithTheFacesNormal) {
   ExpectNear(d.normal, {0, 1, 0}, kTol);
 }
 
-TEST(RevolvedPart, InTheGrooveTheFloorOrTheWallIsNearest) {
+TEST(RevolvedPart, InAFaceRecessTheFloorOrTheWallIsNearest) {
   // The recess's floor is the disc's face z 30 from the axis to r 25.
-  const RevolvedDistance floor = SignedDistance(FaceGroove(), Mm(10, 0, 35));
+  const RevolvedDistance floor = SignedDistance(FaceRecess(), Mm(10, 0, 35));
   EXPECT_NEAR(floor.distance_m, 5 * kMm, kTol);
   ExpectNear(floor.normal, {0, 0, 1}, kTol);
   ExpectNear(floor.point_m, Mm(10, 0, 30), kTol);
   // Its wall is the ring's bore r 25, facing the axis.
-  const RevolvedDistance wall = SignedDistance(FaceGroove(), Mm(22, 0, 38));
+  const RevolvedDistance wall = SignedDistance(FaceRecess(), Mm(22, 0, 38));
   EXPECT_NEAR(wall.distance_m, 3 * kMm, kTol);
   ExpectNear(wall.normal, {-1, 0, 0}, kTol);
   ExpectNear(wall.point_m, Mm(25, 0, 38), kTol);
   // Near the floor's corner: 1.5 above the floor, 2 off the wall.
-  const RevolvedDistance corner = SignedDistance(FaceGroove(), Mm(23, 0, 31.5));
+  const RevolvedDistance corner = SignedDistance(FaceRecess(), Mm(23, 0, 31.5));
   EXPECT_NEAR(corner.distance_m, 1.5 * kMm, kTol);
   ExpectNear(corner.normal, {0, 0, 1}, kTol);
   // On the axis in the recess.
-  const RevolvedDistance axis = SignedDistance(FaceGroove(), Mm(0, 0, 35));
+  const RevolvedDistance axis = SignedDistance(FaceRecess(), Mm(0, 0, 35));
   EXPECT_NEAR(axis.distance_m, 5 * kMm, kTol);
   ExpectNear(axis.point_m, Mm(0, 0, 30), kTol);
 }
 
-TEST(RevolvedPart, AtTheGroovesEdgeTheRingsCornerIsNearest) {
+TEST(RevolvedPart, AtTheRecessEdgeTheRingsCornerIsNearest) {
   // Above the ring's inner corner (25, 40), 3 inside and 3 above it.
-  const RevolvedDistance d = SignedDistance(FaceGroove(), Mm(22, 0, 43));
+  const RevolvedDistance d = SignedDistance(FaceRecess(), Mm(22, 0, 43));
   EXPECT_NEAR(d.distance_m, std::sqrt(18.0) * kMm, kTol);
   ExpectNear(d.normal, Eigen::Vector3d(-1, 0, 1) / std::sqrt(2.0), kTol);
   ExpectNear(d.point_m, Mm(25, 0, 40), kTol);
@@ -140,14 +140,60 @@ TEST(RevolvedPart, AtTheGroovesEdgeTheRingsCornerIsNearest) {
 TEST(RevolvedPart, InsideUnderTheRingTheRecessCornerIsTheWayOut) {
   // In the disc, 1 below the plane z 30, 5 outside r 25: the ring covers the face there, so
   // the way out is the recess's corner (25, 30).
-  const RevolvedDistance d = SignedDistance(FaceGroove(), Mm(30, 0, 29));
+  const RevolvedDistance d = SignedDistance(FaceRecess(), Mm(30, 0, 29));
   EXPECT_NEAR(d.distance_m, -std::sqrt(26.0) * kMm, kTol);
   ExpectNear(d.point_m, Mm(25, 0, 30), kTol);
   ExpectNear(d.normal, Eigen::Vector3d(-5, 0, 1) / std::sqrt(26.0), kTol);
   // Inside the ring, 1 under its face.
-  const RevolvedDistance ring = SignedDistance(FaceGroove(), Mm(30, 0, 39));
+  const RevolvedDistance ring = SignedDistance(FaceRecess(), Mm(30, 0, 39));
   EXPECT_NEAR(ring.distance_m, -1 * kMm, kTol);
   ExpectNear(ring.normal, {0, 0, 1}, kTol);
+}
+
+// A face groove r 15..25, 10 deep, in the face z 30 of a disc r 40: over the groove's depth
+// the core r 15 and the ring r 25..40 share the stretch of z.
+RevolvedPart FaceGroove() {
+  return {"workpiece",
+          "spindle",
+          {{0, 30 * kMm, 0, 40 * kMm},
+           {30 * kMm, 40 * kMm, 0, 15 * kMm},
+           {30 * kMm, 40 * kMm, 25 * kMm, 40 * kMm}}};
+}
+
+TEST(RevolvedPart, InAFaceGrooveTheCoreTheRingOrTheFloorIsNearest) {
+  // 3 off the core, 7 off the floor and the ring.
+  const RevolvedDistance core = SignedDistance(FaceGroove(), Mm(18, 0, 37));
+  EXPECT_NEAR(core.distance_m, 3 * kMm, kTol);
+  ExpectNear(core.normal, {1, 0, 0}, kTol);
+  ExpectNear(core.point_m, Mm(15, 0, 37), kTol);
+  // 1 above the floor (the disc's face between core and ring).
+  const RevolvedDistance floor = SignedDistance(FaceGroove(), Mm(22, 0, 31));
+  EXPECT_NEAR(floor.distance_m, 1 * kMm, kTol);
+  ExpectNear(floor.normal, {0, 0, 1}, kTol);
+  // 2 off the ring's bore, facing the axis.
+  const RevolvedDistance ring = SignedDistance(FaceGroove(), Mm(23, 0, 36));
+  EXPECT_NEAR(ring.distance_m, 2 * kMm, kTol);
+  ExpectNear(ring.normal, {-1, 0, 0}, kTol);
+  // Above the core's face.
+  const RevolvedDistance top = SignedDistance(FaceGroove(), Mm(5, 0, 41));
+  EXPECT_NEAR(top.distance_m, 1 * kMm, kTol);
+  ExpectNear(top.normal, {0, 0, 1}, kTol);
+}
+
+TEST(RevolvedPart, UnderAFaceGrooveOnlyItsFloorIsSurface) {
+  // 1 under the floor.
+  const RevolvedDistance floor = SignedDistance(FaceGroove(), Mm(20, 0, 29));
+  EXPECT_NEAR(floor.distance_m, -1 * kMm, kTol);
+  ExpectNear(floor.normal, {0, 0, 1}, kTol);
+  // Under the core the disc goes on into it: the way out is the groove's corner (15, 30).
+  const RevolvedDistance core = SignedDistance(FaceGroove(), Mm(10, 0, 29));
+  EXPECT_NEAR(core.distance_m, -std::sqrt(26.0) * kMm, kTol);
+  ExpectNear(core.point_m, Mm(15, 0, 30), kTol);
+  ExpectNear(core.normal, Eigen::Vector3d(5, 0, 1) / std::sqrt(26.0), kTol);
+  // Under the ring likewise: the corner (25, 30).
+  const RevolvedDistance ring = SignedDistance(FaceGroove(), Mm(30, 0, 29));
+  EXPECT_NEAR(ring.distance_m, -std::sqrt(26.0) * kMm, kTol);
+  ExpectNear(ring.point_m, Mm(25, 0, 30), kTol);
 }
 
 TEST(RevolvedPart, InABoreOnTheAxisTheBoreIsNearest) {
@@ -164,10 +210,14 @@ TEST(RevolvedPart, APartWithoutSectionsIsInfinitelyFar) {
 
 TEST(RevolvedPart, BadSectionsAreNamed) {
   EXPECT_EQ(RevolvedPartError(SteppedShaft()), "");
-  EXPECT_EQ(RevolvedPartError(FaceGroove()), "");
+  EXPECT_EQ(RevolvedPartError(FaceRecess()), "");
   RevolvedPart p = SteppedShaft();
   p.sections[1].z0_m = 40 * kMm;
-  EXPECT_EQ(RevolvedPartError(p), "sections[1]: overlaps sections[0] in z");
+  EXPECT_EQ(RevolvedPartError(p), "sections[1]: shares material with sections[0]");
+  EXPECT_EQ(RevolvedPartError(FaceGroove()), "");
+  p = FaceGroove();
+  p.sections[2].r_inner_m = 10 * kMm;  // the ring into the core
+  EXPECT_EQ(RevolvedPartError(p), "sections[2]: shares material with sections[1]");
   p = SteppedShaft();
   p.sections[0].r_outer_m = 0;
   EXPECT_EQ(RevolvedPartError(p), "sections[0]: r_outer must be greater than r_inner");

@@ -1,0 +1,88 @@
+#pragma once
+// The probe switches of a machine and the drives' probe inputs they are wired to (machine.yaml
+// drive key `probe_inputs:`), shared by both backends: one ProbeLatch per drive, stepped every
+// drive tick, and the sub-tick instant of each switch change so that every latch wired to the
+// switch knows where its axis really was at the contact.
+//
+// The switch is one contact for the PLC and the drives (fast-measurement manual 7.2: "The probe
+// contact is connected to the controller and to the SPS input"): SetSwitch sets the I/O input
+// the PLC reads as well. Whoever models the switch (the stylus) calls it with the instant of the
+// change within the tick being stepped; a change of any other input wired to a drive (a cam
+// switch, a clutch switch) has no sub-tick instant and counts at the tick's end.
+
+#include <vector>
+
+#include "control/drive_bus.hpp"
+#include "sim/backend/drive_controller.hpp"
+#include "sim/backend/probe_latch.hpp"
+#include "sim/model/machine_model.hpp"
+
+namespace vmt::sim {
+
+class ProbeWiring {
+ public:
+  explicit ProbeWiring(const MachineModel& model);
+
+  /// Every drive's unquantised actual position at t = 0 (ActualPositions): where the first
+  /// tick's interpolation starts.
+  void Start(const std::vector<double>& positions) { positions_before_ = positions; }
+
+  /// Whether any drive has a probe input wired: without, Step has nothing to do.
+  bool any() const { return any_; }
+
+  /// The switch on I/O input `io_input` changes to `level` at `tick_fraction` (0..1, clamped)
+  /// of the tick being stepped, i.e. at time_s() + tick_fraction x 250 us when called between
+  /// ticks, or within a backend's Step before the drives sample. A level equal to the present
+  /// one changes nothing; of several changes within one tick the last one's instant counts.
+  /// Throws std::invalid_argument for an index that is not a machine input a device leaves
+  /// alone (an output, an operator's key, a clutch, actuator or cam switch).
+  void SetSwitch(int io_input, bool level, double tick_fraction);
+
+  /// The switches' levels into the inputs the machine shows (after ReadInputs).
+  void ShowInputs(std::vector<uint8_t>& inputs) const;
+
+  /// One drive tick, after the feedback of the tick is computed: each wired drive's latch
+  /// samples its inputs (`inputs`: the machine's inputs of this tick) with the setpoints' probe
+  /// control and writes DriveFeedback::probe. `positions`: every drive's unquantised actual
+  /// position of this tick (ActualPositions), for the exact position at a change.
+  void Step(const std::vector<control::DriveSetpoint>& setpoints,
+            const std::vector<uint8_t>& inputs, const std::vector<double>& positions,
+            std::vector<control::DriveFeedback>& feedback);
+
+ private:
+  struct Switch {
+    bool level = false;
+    bool changed = false;  ///< changed in the tick being stepped
+    double fraction = 1;   ///< of the last change in that tick
+  };
+
+  const MachineModel* model_;
+  bool any_ = false;
+  std::vector<uint8_t> settable_;  ///< per I/O point: SetSwitch may set it
+  std::vector<uint8_t> set_;       ///< per I/O point: SetSwitch has set it
+  std::vector<Switch> switches_;   ///< per I/O point
+  std::vector<ProbeLatch> latches_;
+  std::vector<double> positions_before_;
+};
+
+/// Every drive's actual position, unquantised, in machine units (mm | deg) and the drive's own
+/// scaling (within [0, modulo) for a modulo drive): what its encoder would read with infinite
+/// resolution. `joint_position(j)` gives joint j's position in SI.
+template <typename JointPosition>
+void ActualPositions(const MachineModel& model, const JointPosition& joint_position,
+                     std::vector<double>& positions);
+
+/// One drive's (see ActualPositions).
+double ActualPosition(const DriveParams& p, double encoder_position_si);
+
+template <typename JointPosition>
+void ActualPositions(const MachineModel& model, const JointPosition& joint_position,
+                     std::vector<double>& positions) {
+  positions.resize(model.drives.size());
+  for (size_t d = 0; d < model.drives.size(); ++d) {
+    const DriveParams& p = model.drives[d];
+    positions[d] = ActualPosition(p, EncoderPosition(p, joint_position));
+  }
+}
+
+}  // namespace vmt::sim

@@ -1,0 +1,61 @@
+#include "sim/collision/stock_cutter.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sim/model/model_error.hpp"
+
+namespace vmt::sim {
+
+StockCutter::StockCutter(const MachineModel& model, const RevolvedPart& part)
+    : model_(&model), stock_(TurnedStock::FromPart(part, kStockSliceM)) {
+  link_ = model.LinkIndex(part.link);
+  if (link_ < 0) throw ModelError(model.yaml_path, part.name, "no link '" + part.link + "'");
+  spindle_joint_ = model.links[link_].parent_joint;
+  for (const CuttingPart& c : model.cutting_parts) {
+    const Visual& v = model.links[c.link].collisions[c.collision];
+    if (!v.mesh) continue;
+    Cutter cut;
+    cut.link = c.link;
+    const auto& pos = v.mesh->positions;
+    for (const uint32_t i : v.mesh->indices)
+      cut.corners.push_back(v.X_LinkVisual *
+                            Eigen::Vector3d(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]));
+    if (cut.corners.empty()) continue;
+    Eigen::Vector3d lo = cut.corners[0], hi = lo;
+    for (const Eigen::Vector3d& p : cut.corners) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    cut.centre = (lo + hi) / 2;
+    for (const Eigen::Vector3d& p : cut.corners)
+      cut.radius = std::max(cut.radius, (p - cut.centre).norm());
+    cutters_.push_back(std::move(cut));
+  }
+}
+
+bool StockCutter::Cut(const std::vector<double>& q, double t_s) {
+  if (spindle_joint_ < 0 || cutters_.empty() || stock_.radius_m.empty()) return false;
+  const double angle = q[spindle_joint_];
+  const bool turning = last_t_ >= 0 && t_s > last_t_ &&
+                       std::abs(angle - last_angle_) / (t_s - last_t_) >= kTurningSpeedRadS;
+  last_angle_ = angle, last_t_ = t_s;
+  if (!turning) return false;
+  const std::vector<Eigen::Isometry3d> X_W = LinkPoses(*model_, q);
+  const Eigen::Isometry3d X_PartWorld = X_W[link_].inverse();
+  const double r_max = *std::max_element(stock_.radius_m.begin(), stock_.radius_m.end());
+  const double z_lo = stock_.z0_m,
+               z_hi = stock_.z0_m + static_cast<double>(stock_.radius_m.size()) * stock_.slice_m;
+  bool changed = false;
+  for (const Cutter& c : cutters_) {
+    const Eigen::Isometry3d X = X_PartWorld * X_W[c.link];
+    const Eigen::Vector3d centre = X * c.centre;
+    if (centre.head<2>().norm() - c.radius > r_max || centre.z() + c.radius < z_lo ||
+        centre.z() - c.radius > z_hi)
+      continue;
+    for (size_t i = 0; i + 2 < c.corners.size(); i += 3)
+      changed = stock_.CutTriangle(X * c.corners[i], X * c.corners[i + 1], X * c.corners[i + 2],
+                                   kCutAllowanceM) ||
+                changed;
+  }
+  return changed;
+}
+
+}  // namespace vmt::sim

@@ -1,0 +1,50 @@
+#pragma once
+// Turning, as far as PathGuard needs it: while the spindle turns, every triangle of a tool's
+// cutting part (machine.yaml `cutting_parts:`) inside the workpiece cuts the turned stock down
+// to where it passes, exactly per slice (a flank lies lowest between its edges). No cutting
+// forces, chips or tool wear: the part's shape is what PathGuard needs so that a tool standing
+// in its own cut is clear and an approach into the cut meets only what is left.
+
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "sim/collision/turned_stock.hpp"
+#include "sim/model/machine_model.hpp"
+#include "sim/model/revolved_part.hpp"
+
+namespace vmt::sim {
+
+/// Below this the spindle is positioning (C axis, M19), not turning: a cutting part in the
+/// stock then is a collision for PathGuard to see, not a cut.
+inline constexpr double kTurningSpeedRadS = 1.0;  // ~10 rpm
+/// Slices of the turned stock along the spindle axis.
+inline constexpr double kStockSliceM = 1e-4;
+/// What a cut leaves standing below the edge, so that the tool in its cut is clear of it.
+inline constexpr double kCutAllowanceM = 2e-5;
+
+class StockCutter {
+ public:
+  /// Throws ModelError if the part's link is not the model's.
+  StockCutter(const MachineModel& model, const RevolvedPart& part);
+
+  /// The machine at joint positions `q` (SI) at time `t_s`: cuts if the spindle turned fast
+  /// enough since the last call. True if the stock changed.
+  bool Cut(const std::vector<double>& q, double t_s);
+
+  const TurnedStock& stock() const { return stock_; }
+
+ private:
+  struct Cutter {
+    int link = -1;
+    std::vector<Eigen::Vector3d> corners;  ///< the triangles' corners, link frame, m
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    double radius = 0;  ///< bounding sphere of the corners, link frame
+  };
+  const MachineModel* model_;
+  TurnedStock stock_;
+  int link_ = -1, spindle_joint_ = -1;
+  std::vector<Cutter> cutters_;
+  double last_angle_ = 0, last_t_ = -1;
+};
+
+}  // namespace vmt::sim
