@@ -58,6 +58,10 @@ CollisionWorld::CollisionWorld(const MachineModel& model, const std::vector<Cyli
       p.name = v.name.empty() ? link.name + "#" + std::to_string(c) : v.name;
       p.link = static_cast<int>(l);
       p.X_LinkPart = v.X_LinkVisual;
+      for (const ProbeStylus& s : model.probes)
+        if (s.link == static_cast<int>(l))
+          for (const std::string& sphere : s.sphere_parts)
+            p.measures = p.measures || sphere == v.name;
       fcl_->geometry.push_back(MeshGeometry(*v.mesh, p.centre, p.radius));
       parts_.push_back(p);
     }
@@ -138,6 +142,8 @@ void CollisionWorld::SetAdded(const std::vector<CylinderPart>& added) {
         own = own || (j.parent_link == la && j.child_link == lb) ||
               (j.parent_link == lb && j.child_link == la);
       own = own || (!slides_between(la, lb) && Collide(a, b));
+      // A measuring sphere on the workpiece measures (a machine part comes before an added).
+      own = own || (b >= machine_parts_ && parts_[a].measures);
       may_touch_[a * n + b] = may_touch_[b * n + a] = own;
     }
 }

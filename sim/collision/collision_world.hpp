@@ -5,7 +5,9 @@
 //
 // Which pairs may touch: parts of one link, of links joined by one joint (saddle on its rail,
 // turret in its housing) and parts that touch in the model's zero pose and only turn against
-// each other (a pinion in its gear) are the machine's own contacts, never reported.
+// each other (a pinion in its gear) are the machine's own contacts, never reported. A probe's
+// measuring sphere (machine.yaml probe: sphere_parts) touching a part the scene adds is the
+// measurement, not a collision: the stylus (sim/backend/stylus) reports its over-travel.
 
 #include <Eigen/Geometry>
 #include <memory>
@@ -31,6 +33,7 @@ struct CollisionPart {
   Eigen::Isometry3d X_LinkPart = Eigen::Isometry3d::Identity();
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< bounding sphere, part frame, m
   double radius = 0;                                 ///< bounding sphere, m
+  bool measures = false;  ///< a probe's measuring sphere: may touch the parts the scene adds
 };
 
 class CollisionWorld {

@@ -87,6 +87,7 @@ void CheckSwitchesDrivenOnce(const MachineModel& m, const YamlNode& root) {
     if (a.off_switch >= 0) ++driven[a.off_switch];
   }
   for (const PositionSwitch& p : m.position_switches) ++driven[p.input];
+  for (const ProbeStylus& p : m.probes) ++driven[p.contact_input];
   for (size_t i = 0; i < driven.size(); ++i)
     if (driven[i] > 1)
       root["io"].Fail("input '" + m.io[i].name + "' is the switch of more than one device");
@@ -251,7 +252,7 @@ int MachineModel::DriveIndex(const std::string& n) const {
 MachineModel LoadMachineModel(const std::string& machine_yaml_path) {
   const YamlNode root = YamlNode::LoadFile(machine_yaml_path);
   root.AllowKeys({"machine", "urdf", "io", "drives", "couplings", "actuators", "position_switches",
-                  "cutting_parts", "cameras", "nc"});
+                  "cutting_parts", "cameras", "nc", "probe"});
   MachineModel m;
   m.yaml_path = machine_yaml_path;
   m.name = root["machine"].String();
@@ -343,6 +344,10 @@ MachineModel LoadMachineModel(const std::string& machine_yaml_path) {
     }
   }
   if (root.Has("nc")) m.nc = ReadNcMachineData(m, root["nc"]);
+  if (root.Has("probe")) {
+    m.probes = ReadProbeStyluses(m, root["probe"]);
+    CheckSwitchesDrivenOnce(m, root);
+  }
   return m;
 }
 

@@ -13,6 +13,7 @@
 #include "render/mesh.hpp"
 #include "sim/model/named_camera.hpp"
 #include "sim/model/nc_machine_data.hpp"
+#include "sim/model/probe_stylus.hpp"
 
 namespace vmt::sim {
 
@@ -168,6 +169,8 @@ struct MachineModel {
   std::vector<CuttingPart> cutting_parts;
   std::vector<NamedCamera> cameras;
   NcMachineData nc;  ///< machine.yaml `nc:`; not present for a machine without NC
+  /// machine.yaml `probe:`: the measuring styluses (TASTWERKZEUGPAGE), up to four.
+  std::vector<ProbeStylus> probes;
 
   std::vector<control::DriveInfo> DriveInfos() const;
   int LinkIndex(const std::string& name) const;

@@ -7,6 +7,7 @@
 //
 // Plain data in the link frame, SI (m).
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
 
@@ -24,5 +25,28 @@ struct RevolvedPart {
   std::string link;  ///< the link it turns with (the spindle)
   std::vector<RevolvedSection> sections;
 };
+
+/// The nearest point of a part's surface to a point, link frame, SI.
+struct RevolvedDistance {
+  /// Signed distance: > 0 outside, < 0 inside (minus the depth), 0 on the surface; +infinity
+  /// for a part without sections.
+  double distance_m = 0;
+  Eigen::Vector3d point_m = Eigen::Vector3d::Zero();  ///< nearest surface point
+  /// Outward unit normal there: the direction in which the distance grows fastest. On the axis
+  /// every meridian is nearest; the one towards +x is taken.
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+};
+
+/// Exact signed distance from p_Link_m to the part: the nearest point of a solid of revolution
+/// lies in the point's own meridian half-plane, so this is the 2D distance from (r, z) to the
+/// union of the sections' rectangles. Where two sections meet, their sides count only where
+/// one stands beyond the other (the shoulder of a step, the floor of a face groove); the axis
+/// is no surface.
+RevolvedDistance SignedDistance(const RevolvedPart& part, const Eigen::Vector3d& p_Link_m);
+
+/// What is wrong with the part's sections ("" when nothing): a section with z1 <= z0, r_inner
+/// < 0, r_outer <= r_inner or a number that is not finite, or two sections that share material.
+/// The message names the section by its index.
+std::string RevolvedPartError(const RevolvedPart& part);
 
 }  // namespace vmt::sim

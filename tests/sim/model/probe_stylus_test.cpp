@@ -1,0 +1,136 @@
+// machine.yaml `probe:` (TASTWERKZEUGPAGE): lathe-c1/-c2's stylus as loaded, and every bad key
+// named by its YAML path.
+
+#include "sim/model/probe_stylus.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "sim/model/model_error.hpp"
+#include "tests/sim/sim_test_support.hpp"
+
+namespace vmt::sim {
+namespace {
+
+using ::testing::HasSubstr;
+
+void ExpectLatheStylus(const MachineModel& m) {
+  ASSERT_EQ(m.probes.size(), 1u);
+  const ProbeStylus& s = m.probes[0];
+  EXPECT_EQ(s.t_number, 3);
+  EXPECT_FALSE(s.normally_closed);
+  EXPECT_FALSE(s.pin5);
+  EXPECT_EQ(s.link, m.LinkIndex("probe"));
+  ASSERT_EQ(s.spheres.size(), 1u);
+  EXPECT_NEAR((s.spheres[0].centre_m - Eigen::Vector3d(0.047, 0, 0)).norm(), 0, 1e-15);
+  EXPECT_DOUBLE_EQ(s.spheres[0].radius_m, 0.003);
+  EXPECT_EQ(s.sphere_parts, std::vector<std::string>{"probe_ruby"});
+  EXPECT_DOUBLE_EQ(s.pre_travel_m, 5e-6);
+  EXPECT_DOUBLE_EQ(s.over_travel_m, 1e-3);
+  EXPECT_EQ(s.contact_input, control::IndexOf(m.io, "IPROBE_CONTACT"));
+  EXPECT_EQ(s.ready_input, control::IndexOf(m.io, "IPROBE_READY"));
+}
+
+// The sphere the YAML gives is the ruby the URDF draws: every vertex of its collision mesh lies
+// at the radius from the centre (to the OBJ's 7 decimals), the bounding box is centred on it.
+void ExpectSphereIsTheRubyMesh(const MachineModel& m) {
+  const ProbeStylus& s = m.probes.at(0);
+  const Link& link = m.links[s.link];
+  const Visual* ruby = nullptr;
+  for (const Visual& c : link.collisions)
+    if (c.name == "probe_ruby") ruby = &c;
+  ASSERT_NE(ruby, nullptr);
+  ASSERT_TRUE(ruby->mesh);
+  const std::vector<float>& v = ruby->mesh->positions;
+  ASSERT_GT(v.size(), 300u);
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e9), hi = -lo;
+  for (size_t i = 0; i + 2 < v.size(); i += 3) {
+    const Eigen::Vector3d p = ruby->X_LinkVisual * Eigen::Vector3d(v[i], v[i + 1], v[i + 2]);
+    lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    EXPECT_NEAR((p - s.spheres[0].centre_m).norm(), s.spheres[0].radius_m, 1e-6);
+  }
+  EXPECT_NEAR(((lo + hi) / 2 - s.spheres[0].centre_m).norm(), 0, 1e-6);
+}
+
+TEST(ProbeStylusModel, LatheC1HasItsStylusAtTheRuby) {
+  ExpectLatheStylus(testing::Lathe());
+  ExpectSphereIsTheRubyMesh(testing::Lathe());
+}
+
+TEST(ProbeStylusModel, LatheC2HasTheSameStylus) {
+  const MachineModel m = LoadMachineModel(testing::SourcePath("models/lathe-c2/machine.yaml"));
+  ExpectLatheStylus(m);
+  ExpectSphereIsTheRubyMesh(m);
+}
+
+TEST(ProbeStylusModel, NcAndPin5AndSeveralSpheresAreRead) {
+  const MachineModel m = testing::EditedLathe("probe_nc_pin5", [](std::string y) {
+    y = testing::ReplaceOnce(y, "contact: NO", "contact: NC");
+    y = testing::ReplaceOnce(y, "pin: PIN4", "pin: PIN5");
+    return testing::ReplaceOnce(y, "- {centre: [47, 0, 0], radius: 3}",
+                                "- {centre: [47, 0, 0], radius: 3}\n"
+                                "      - {centre: [40, 5, -2], radius: 1.5}");
+  });
+  ASSERT_EQ(m.probes.size(), 1u);
+  EXPECT_TRUE(m.probes[0].normally_closed);
+  EXPECT_TRUE(m.probes[0].pin5);
+  ASSERT_EQ(m.probes[0].spheres.size(), 2u);
+  EXPECT_NEAR((m.probes[0].spheres[1].centre_m - Eigen::Vector3d(0.040, 0.005, -0.002)).norm(), 0,
+              1e-15);
+  EXPECT_DOUBLE_EQ(m.probes[0].spheres[1].radius_m, 0.0015);
+}
+
+std::string ErrorOf(const std::string& name, const std::string& from, const std::string& to) {
+  try {
+    testing::EditedLathe(name, [&](std::string y) { return testing::ReplaceOnce(y, from, to); });
+  } catch (const ModelError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ProbeStylusModel, BadKeysNameTheirYamlPath) {
+  EXPECT_THAT(ErrorOf("probe_t", "- T: 3", "- T: 9"),
+              HasSubstr("probe[0].T: no tool T9 D1 in nc: tools:"));
+  EXPECT_THAT(ErrorOf("probe_t0", "- T: 3", "- T: 0"), HasSubstr("probe[0].T: must be >= 1"));
+  EXPECT_THAT(ErrorOf("probe_link", "link: probe\n", "link: probes\n"),
+              HasSubstr("probe[0].link: no link 'probes'"));
+  EXPECT_THAT(ErrorOf("probe_contact", "contact: NO", "contact: 1"),
+              HasSubstr("probe[0].contact: expected NO or NC"));
+  EXPECT_THAT(ErrorOf("probe_pin", "pin: PIN4", "pin: 4"),
+              HasSubstr("probe[0].pin: expected PIN4 or PIN5"));
+  EXPECT_THAT(ErrorOf("probe_radius", "radius: 3}", "radius: 0}"),
+              HasSubstr("probe[0].spheres[0].radius: must be > 0"));
+  EXPECT_THAT(ErrorOf("probe_centre", "centre: [47, 0, 0]", "centre: [47, 0]"),
+              HasSubstr("probe[0].spheres[0].centre"));
+  const std::string six = "- {centre: [47, 0, 0], radius: 3}";
+  EXPECT_THAT(
+      ErrorOf("probe_six", six,
+              "[" + std::string("{centre: [47, 0, 0], radius: 3}, ") +
+                  "{centre: [47, 0, 0], radius: 3}, " + "{centre: [47, 0, 0], radius: 3}, " +
+                  "{centre: [47, 0, 0], radius: 3}, " + "{centre: [47, 0, 0], radius: 3}, " +
+                  "{centre: [47, 0, 0], radius: 3}]"),
+      HasSubstr("probe[0].spheres: expected a list of 1 to 5 measuring spheres"));
+  EXPECT_THAT(ErrorOf("probe_part", "sphere_parts: [probe_ruby]", "sphere_parts: [ruby]"),
+              HasSubstr("probe[0].sphere_parts[0]: no <collision name=\"ruby\"> in link 'probe'"));
+  EXPECT_THAT(ErrorOf("probe_pre", "pre_travel: 0.005", "pre_travel: -1"),
+              HasSubstr("probe[0].pre_travel: must be > 0"));
+  EXPECT_THAT(ErrorOf("probe_over", "over_travel: 1.0", "over_travel: 0.001"),
+              HasSubstr("probe[0].over_travel: must be greater than pre_travel"));
+  EXPECT_THAT(ErrorOf("probe_input", "input: IPROBE_CONTACT", "input: QPROBE_ON"),
+              HasSubstr("probe[0].input: 'QPROBE_ON' must be an input"));
+  EXPECT_THAT(ErrorOf("probe_input2", "input: IPROBE_CONTACT", "input: IPROBE_NONE"),
+              HasSubstr("probe[0].input: no I/O point 'IPROBE_NONE'"));
+  EXPECT_THAT(ErrorOf("probe_ready", "ready: IPROBE_READY", "ready: IPROBE_CONTACT"),
+              HasSubstr("probe[0].ready: is the switch's own input"));
+  EXPECT_THAT(ErrorOf("probe_key", "    over_travel: 1.0", "    overtravel: 1.0"),
+              HasSubstr("probe[0].overtravel: unknown key"));
+  // The contact input is a switch of its own: not the actuator's ready switch as well.
+  EXPECT_THAT(ErrorOf("probe_driven", "input: IPROBE_CONTACT", "input: ITURRET_INPOS"),
+              HasSubstr("input 'ITURRET_INPOS' is the switch of more than one device"));
+  EXPECT_THAT(ErrorOf("probe_map", "probe:\n  - T: 3", "probe:\n  x:\n    T: 3"),
+              HasSubstr("probe: expected a list of up to four styluses"));
+}
+
+}  // namespace
+}  // namespace vmt::sim
