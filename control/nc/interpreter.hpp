@@ -72,6 +72,25 @@ struct AuxFunction {
   double value;
 };
 
+/// One argument of a call as the program wrote it: omitted (SETTING (X, Z, , 18 ...), an
+/// omitted control variable of MTD(105,,1,13)), a bare name (an axis designation: SETTING's
+/// A..C, PROBE's F), or a value.
+struct InstructionArg {
+  enum class Kind : uint8_t { kOmitted, kName, kValue };
+  Kind kind = Kind::kOmitted;
+  double value = 0;
+  std::string name;
+};
+
+/// An instruction of the fast-measurement manual with its arguments evaluated where the program
+/// stands when the interpreter executes the block (section 2: SETTING, SAVE, MOVE, PROBE,
+/// COMPARE, CORRECTION, RESTORE).
+struct InstructionCall {
+  std::string name;
+  std::vector<InstructionArg> args;
+  uint32_t statement = 0;  ///< Program::statements index: the source position
+};
+
 struct PreparedBlock {
   uint32_t program = 0;  ///< index into the interpreter's program list
   int32_t block = -1;    ///< Program::blocks index: the source position
@@ -93,6 +112,7 @@ struct PreparedBlock {
   /// RTS at the top of a subroutine run on its own (RunSubroutine): the run is over.
   bool returned = false;
   std::vector<uint32_t> instructions;  ///< MTP, MRY, SETTING(...), #-commands: Program::statements
+  std::vector<InstructionCall> calls;  ///< the measuring instructions among them, evaluated
   std::vector<std::pair<int, bool>> events;  ///< SE n (true) / RE n (false), in block order
   bool end = false;                          ///< M30 / M02 / RET of the main program
   ModalState modal;                          ///< after the block
