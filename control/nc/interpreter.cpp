@@ -1,6 +1,7 @@
 #include "control/nc/interpreter.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <numbers>
 
@@ -159,6 +160,120 @@ double& Interpreter::Var(uint32_t name) {
   return *cache[name];
 }
 
+bool IsMeasuringCall(const std::string& name) {
+  return name == "SETTING" || name == "SAVE" || name == "MOVE" || name == "PROBE" ||
+         name == "COMPARE" || name == "CORRECTION" || name == "RESTORE";
+}
+
+bool IsDataAccess(const std::string& name) {
+  return name == "TLD" || name == "OTD" || name == "MTD";
+}
+
+void Interpreter::SetVariable(const std::string& name, double value) {
+  variables_[Upper(name)] = value;
+}
+
+std::vector<InstructionArg> Interpreter::ArgumentForms(ExprId id, size_t call) const {
+  // A walk of the postfix code that keeps, instead of values, what each stack entry is: an
+  // omitted argument, a bare name (kVariable alone), or a computed value. Jumps of AND/OR only
+  // skip their right operand, which pushes and pops back to the same depth.
+  using Op = ExprOp;
+  using Kind = InstructionArg::Kind;
+  const Program& p = program();
+  std::vector<InstructionArg> stack;
+  auto value = [] { return InstructionArg{Kind::kValue, 0, {}}; };
+  auto pop_to_value = [&](size_t n) {
+    stack.resize(stack.size() >= n ? stack.size() - n : 0);
+    stack.push_back(value());
+  };
+  for (size_t pc = static_cast<size_t>(id); pc <= call && pc < p.code.size();) {
+    const uint32_t unit = p.code[pc++];
+    const bool wide = (unit >> 8) == kWideImmediate;
+    switch (OpOf(unit)) {
+      case Op::kEnd:
+        return {};
+      case Op::kInt:
+        stack.push_back(value());
+        break;
+      case Op::kNumber:
+        if (wide) ++pc;
+        stack.push_back(value());
+        break;
+      case Op::kVariable: {
+        const uint32_t name = wide ? p.code[pc++] : unit >> 8;
+        const std::string& text = p.symbols.Name(name);
+        // X, Z, XYZ: an axis designation; @100, P1, V.L.X are variables whose value counts.
+        const bool bare = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
+          return std::isalpha(static_cast<unsigned char>(c));
+        });
+        stack.push_back(bare ? InstructionArg{Kind::kName, 0, text} : value());
+        break;
+      }
+      case Op::kOmitted:
+        stack.push_back({Kind::kOmitted, 0, {}});
+        break;
+      case Op::kNeg:
+      case Op::kNot:
+      case Op::kAnd:
+      case Op::kOr:
+        pop_to_value(1);
+        break;
+      case Op::kDiv:
+      case Op::kMod:
+        pc += 2;
+        pop_to_value(2);
+        break;
+      case Op::kAndSkip:
+      case Op::kOrSkip:
+        ++pc;
+        if (!stack.empty()) stack.pop_back();
+        break;
+      case Op::kCall:
+      case Op::kArgs: {
+        if (wide) ++pc;
+        const uint32_t count = p.code[pc];
+        if (pc - 1 - (wide ? 1 : 0) == call) {
+          const size_t n = std::min<size_t>(count, stack.size());
+          return {stack.end() - static_cast<std::ptrdiff_t>(n), stack.end()};
+        }
+        pc += 3;
+        pop_to_value(count);
+        break;
+      }
+      default:  // the binary operators
+        pop_to_value(2);
+        break;
+    }
+  }
+  return {};
+}
+
+bool Interpreter::EvalArguments(ExprId id, std::vector<InstructionArg>& args) {
+  args.clear();
+  capture_ = &args;
+  Eval(id);
+  capture_ = nullptr;
+  return !eval_failed_;
+}
+
+double Interpreter::ReadData(uint32_t name, std::vector<InstructionArg> args,
+                             std::span<const double> values, uint32_t offset, uint32_t rank) {
+  for (size_t i = 0; i < args.size() && i < values.size(); ++i)
+    if (args[i].kind != InstructionArg::Kind::kOmitted) {
+      args[i].kind = InstructionArg::Kind::kValue;  // a bare name in data access is a variable
+      args[i].value = values[i];
+    }
+  const std::string& text = program().symbols.Name(name);
+  if (!data_.read) {
+    Fault(rank, offset, text + "(...) data access is not available here");
+    return 0;
+  }
+  double v = 0;
+  std::string error = data_.read(text, args, v);
+  if (!error.empty()) Fault(rank, offset, std::move(error));
+  return v;
+}
+
 bool Interpreter::Fail(uint32_t offset, std::string message) {
   if (!error_) {
     error_ = Diagnostic{program().PosAt(offset), std::move(message)};
@@ -274,11 +389,25 @@ double Interpreter::Eval(ExprId id) {
         break;
       case Op::kCall:
       case Op::kArgs: {
+        const size_t at = static_cast<size_t>(pc - 1 - p.code.data());
         const uint32_t name = immediate(unit);
         const uint32_t count = pc[0], offset = pc[1], rank = pc[2];
         pc += 3;
         sp -= count;
-        *sp = OpOf(unit) == Op::kCall ? Call(name, {sp, count}, offset, rank) : 0.0;
+        const std::span<const double> values{sp, count};
+        if (capture_ && OpOf(*pc) == Op::kEnd) {
+          // EvalArguments: the call that ends the expression is not made, its arguments are.
+          *capture_ = ArgumentForms(id, at);
+          for (size_t i = 0; i < capture_->size() && i < count; ++i)
+            if ((*capture_)[i].kind == InstructionArg::Kind::kValue) (*capture_)[i].value = values[i];
+          *sp = 0;
+        } else if (OpOf(unit) == Op::kArgs) {
+          *sp = 0;
+        } else if (IsDataAccess(p.symbols.Name(name))) {
+          *sp = ReadData(name, ArgumentForms(id, at), values, offset, rank);
+        } else {
+          *sp = Call(name, values, offset, rank);
+        }
         ++sp;
         break;
       }
@@ -358,6 +487,7 @@ bool Interpreter::Next(PreparedBlock& out) {
     out.has_effective_distance = 0;
     out.aux.clear();
     out.instructions.clear();
+    out.calls.clear();
     out.events.clear();
     out.dwell_s = 0;
     out.homing = out.set_position = out.repos = out.measuring = out.end = false;
@@ -411,9 +541,17 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
     case Kind::kAssign: {
       const double v = eval(st.value);
       if (!check()) return false;
-      if (st.data != kNoExpr)
-        return Fail(st.pos.offset,
-                    "writing " + p.symbols.Name(st.name) + "(...) data is not available yet");
+      if (st.data != kNoExpr) {
+        std::vector<InstructionArg> args;
+        if (!EvalArguments(st.data, args)) return check();
+        const std::string& name = p.symbols.Name(st.name);
+        if (!data_.write)
+          return Fail(st.pos.offset, "writing " + name + "(...) data is not available here");
+        std::string error = data_.write(name, args, v);
+        if (!error.empty()) return Fail(st.pos.offset, std::move(error));
+        last_result_ = v;
+        return true;
+      }
       Var(st.name) = v;
       last_result_ = v;
       return true;
@@ -480,7 +618,15 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
         out.events.emplace_back(static_cast<int>(n), name == "SE");
         return true;
       }
-      out.instructions.push_back(static_cast<uint32_t>(&st - p.statements.data()));
+      const auto index = static_cast<uint32_t>(&st - p.statements.data());
+      out.instructions.push_back(index);
+      if (IsMeasuringCall(name)) {
+        // Evaluated here, where the program's variables have the values the call sees.
+        InstructionCall call{name, {}, index};
+        if (st.value != kNoExpr && !EvalArguments(st.value, call.args))
+          return Fail(eval_fail_offset_, eval_fail_message_);
+        out.calls.push_back(std::move(call));
+      }
       return true;
     }
     case Kind::kHashCommand:

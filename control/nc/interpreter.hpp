@@ -118,6 +118,23 @@ struct PreparedBlock {
   ModalState modal;                          ///< after the block
 };
 
+/// MTC200 data access (TLD(...) tool data, OTD(...) zero offsets, MTD(...) machine data pages):
+/// read in expressions, written by assignments `TLD(...) = value`. The channel provides it. Each
+/// returns "" or an error text, which stops the program at the call.
+struct DataAccess {
+  std::function<std::string(const std::string& name, const std::vector<InstructionArg>& args,
+                            double& value)>
+      read;
+  std::function<std::string(const std::string& name, const std::vector<InstructionArg>& args,
+                            double value)>
+      write;
+};
+
+/// TLD, OTD, MTD.
+bool IsDataAccess(const std::string& name);
+/// The fast-measurement instructions of InstructionCall.
+bool IsMeasuringCall(const std::string& name);
+
 struct InterpreterConfig {
   std::vector<std::string> axes = {"X", "Z", "C"};  ///< the channel's axis names
   ModalState initial;
@@ -133,6 +150,8 @@ class Interpreter {
   /// Events (BES/BEC, E in the manuals) come from the machine and the PLC; SE/RE of the
   /// program travel in PreparedBlock::events to the channel, which sets them.
   void SetEventSource(std::function<bool(int)> source) { event_ = std::move(source); }
+  /// TLD/OTD/MTD go here; without it they are an error at run time.
+  void SetDataAccess(DataAccess access) { data_ = std::move(access); }
 
   /// Executes up to the next block with an effect. False at the end or after an error.
   bool Next(PreparedBlock& out);
@@ -152,6 +171,11 @@ class Interpreter {
   }
   /// A variable (@100, P1, V.L.X) by name; 0 if never set.
   double Variable(const std::string& name) const;
+  /// Sets a variable (RESTORE of fast measurement writes @100..@112 back).
+  void SetVariable(const std::string& name, double value);
+  /// The modal state from here on (SETTING of fast measurement makes its G codes modal, as the
+  /// blocks the real control generates for it do).
+  void SetModal(const ModalState& modal) { modal_ = modal; }
   bool ended() const { return ended_; }
   /// Continues the main program at `label` (the reverse program `.HOME`): calls and loops in
   /// progress are dropped. False if the main program has no such label.
@@ -185,6 +209,15 @@ class Interpreter {
   bool Lead(Dialect dialect, std::optional<double> f_word, uint32_t f_offset, uint8_t ijk,
             const uint32_t ijk_offset[3], uint32_t block_offset, PreparedBlock& out);
   double Eval(ExprId id);
+  /// The arguments of the call that ends expression `id` (an instruction's list, or the data
+  /// location TLD(...) of an assignment), evaluated but not called; false after a fault.
+  bool EvalArguments(ExprId id, std::vector<InstructionArg>& args);
+  /// Kinds and names of the arguments of the call at code unit `call` of the expression that
+  /// starts at `id`; values are filled in by the caller.
+  std::vector<InstructionArg> ArgumentForms(ExprId id, size_t call) const;
+  /// TLD/OTD/MTD(...) in an expression, through data_.
+  double ReadData(uint32_t name, std::vector<InstructionArg> args, std::span<const double> values,
+                  uint32_t offset, uint32_t rank);
   double Call(uint32_t name, std::span<const double> args, uint32_t offset, uint32_t rank);
   /// A fault of the expression being evaluated; the first in tree order (lowest rank) counts.
   [[gnu::cold]] void Fault(uint32_t rank, uint32_t offset, std::string message);
@@ -204,6 +237,8 @@ class Interpreter {
   std::vector<Frame> calls_;
   std::vector<Loop> loops_;
   std::function<bool(int)> event_;
+  DataAccess data_;
+  std::vector<InstructionArg>* capture_ = nullptr;  ///< EvalArguments: the call to capture
   uint32_t current_ = 0;
   int32_t pc_ = 0;
   double last_result_ = 0;  ///< MTC200: BEQ/BNE/... test the last computed @ value
