@@ -27,8 +27,12 @@ std::string Written(const InstructionArg& a) {
 // The call as the program wrote it, the prefix of every error text.
 std::string Written(const InstructionCall& call) {
   std::string text = call.name + "(";
-  for (size_t i = 0; i < call.args.size(); ++i) text += (i ? "," : "") + Written(call.args[i]);
-  return text + ")";
+  for (size_t i = 0; i < call.args.size(); ++i) {
+    if (i) text.push_back(',');
+    text.append(Written(call.args[i]));
+  }
+  text.push_back(')');
+  return text;
 }
 
 // Reads a call's arguments by the manual's letters; the first complaint sticks, later reads
@@ -48,9 +52,8 @@ struct Arguments {
     const InstructionArg* a = At(i);
     return !a || a->kind == InstructionArg::Kind::kOmitted;
   }
-  // A number in [lo, hi]; nullopt when omitted (and an error if `required`) or wrong.
-  std::optional<double> Number(int i, const char* what, double lo, double hi, bool required,
-                               const char* section) {
+  // The number written at i; nullopt when omitted (and an error if `required`) or a name.
+  std::optional<double> Raw(int i, const char* what, bool required, const char* section) {
     if (!error.empty()) return std::nullopt;
     const InstructionArg* a = At(i);
     if (!a || a->kind == InstructionArg::Kind::kOmitted) {
@@ -62,19 +65,24 @@ struct Arguments {
            section);
       return std::nullopt;
     }
-    if (!std::isfinite(a->value) || a->value < lo || a->value > hi) {
-      Fail(std::string(1, Letter(i)) + " (" + what + ") " + NcNumber(a->value) + " is not " +
+    return a->value;
+  }
+  // A number in [lo, hi].
+  std::optional<double> Number(int i, const char* what, double lo, double hi, bool required,
+                               const char* section) {
+    const std::optional<double> v = Raw(i, what, required, section);
+    if (v && (!std::isfinite(*v) || *v < lo || *v > hi)) {
+      Fail(std::string(1, Letter(i)) + " (" + what + ") " + NcNumber(*v) + " is not " +
                NcNumber(lo) + ".." + NcNumber(hi),
            section);
       return std::nullopt;
     }
-    return a->value;
+    return v;
   }
   // A whole number in [lo, hi].
   std::optional<int> Whole(int i, const char* what, int lo, int hi, bool required,
                            const char* section) {
-    const std::optional<double> v = Number(i, what, -kMaxPosition * 1e4, kMaxPosition * 1e4,
-                                           required, section);
+    const std::optional<double> v = Raw(i, what, required, section);
     if (!v) return std::nullopt;
     const std::optional<int> n = WholeNumber(*v);
     if (!n || *n < lo || *n > hi) {
@@ -602,7 +610,8 @@ MeasuringPlan PlanInstruction(const InstructionCall& call, const MeasuringContex
 const MeasuringMessage* FinishProbe(const InstructionCall& call, const MeasuringPlan& plan,
                                     const MeasuringContext& context, MeasuringPages& pages,
                                     std::optional<double> contact) {
-  if (plan.measuring_axis < 0 || !context.setting) return nullptr;  // hidden calibration
+  // A hidden calibration (no steps) or a plan that failed: nothing was measured.
+  if (plan.measuring_axis < 0 || !context.setting || call.args.size() < 9) return nullptr;
   if (!contact) return &kTestPointNotFound;  // 6.1: no switch on the whole measuring path
   const MeasuringSetting& s = *context.setting;
   const int axis = plan.measuring_axis;

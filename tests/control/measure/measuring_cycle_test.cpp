@@ -68,7 +68,9 @@ void ExpectRapid(const MeasuringStep& s, uint8_t axes, double x, double z, int s
   EXPECT_EQ(s.axes, axes);
   EXPECT_EQ(s.sphere, sphere);
   for (int n = 0; n < 3; ++n)
-    if (axes & (1u << n)) EXPECT_NEAR(s.target[n], n == 0 ? x : z, kTol) << "axis " << n;
+    if (axes & (1u << n)) {
+      EXPECT_NEAR(s.target[n], n == 0 ? x : z, kTol) << "axis " << n;
+    }
 }
 
 void ExpectMeasure(const MeasuringStep& s, uint8_t axis, double x, double z, double feed,
@@ -251,6 +253,12 @@ TEST_F(Lathe, ParameterRanges) {
   Setting();
   EXPECT_THAT(Plan("PROBE(21,1,64,35,,X,-2,100,1,3,0)").error,
               HasSubstr("A (point number) 21 is not 1..20 (2.1 PROBE)"));
+  EXPECT_THAT(Plan("PROBE(,1,64,35,,X,-2,100,1,3,0)").error,
+              HasSubstr("A (point number) is missing (2.1 PROBE)"));
+  EXPECT_THAT(Plan("PROBE(1.5,1,64,35,,X,-2,100,1,3,0)").error,
+              HasSubstr("A (point number) 1.5 is not 1..20"));
+  EXPECT_THAT(Plan("PROBE(1,1,64,35,,X,-2,F,1,3,0)").error,
+              HasSubstr("H (measuring feed) F is not a number"));
   EXPECT_THAT(Plan("PROBE(1,2,64,35,,X,-2,100,1,3,0)").error,
               HasSubstr("B (calibration/measurement) 2 is not 0..1"));
   EXPECT_THAT(Plan("PROBE(1,1,64,35,,X,0,100,1,3,0)").error, HasSubstr("G (measuring path) 0"));
