@@ -184,13 +184,16 @@ void SaveGGroups(const MeasuringContext& context, MeasuringPages& pages) {
   pages.buffer[context.process].g_group = context.g_groups;
 }
 
-// 4.4: the points of variant `variant` from here on; returns whether this instruction is the
-// first of its linear path sequence. A sequence ends when an instruction of another variant
-// follows it; single point keeps only the instruction in progress.
+// 4.4: whether an instruction of reverse variant `variant` opens its record: single point keeps
+// only the instruction in progress; a linear path sequence is opened by its first instruction
+// and ends when an instruction of another variant follows it.
 bool StartsSequence(const ReverseVectors& reverse, int variant) {
   return variant == 0 || reverse.active != variant || reverse.sequence[variant - 1].empty();
 }
 
+// The instruction's points go into the record when it is planned, not as the stylus reaches
+// them: the record holds where the stylus starts and each point it is to pass on its way in
+// (not the escape, which retraces them), so the reversal takes it back out the way it came.
 void Record(ReverseVectors& reverse, int variant, const std::array<double, 3>& start,
             const std::vector<std::array<double, 3>>& points) {
   if (reverse.active != variant) {
@@ -612,7 +615,8 @@ const MeasuringMessage* FinishProbe(const InstructionCall& call, const Measuring
                                     std::optional<double> contact) {
   // A hidden calibration (no steps) or a plan that failed: nothing was measured.
   if (plan.measuring_axis < 0 || !context.setting || call.args.size() < 9) return nullptr;
-  if (!contact) return &kTestPointNotFound;  // 6.1: no switch on the whole measuring path
+  // 6.1: no switch on the whole measuring path (a latch that is not a number is none either).
+  if (!contact || !std::isfinite(*contact)) return &kTestPointNotFound;
   const MeasuringSetting& s = *context.setting;
   const int axis = plan.measuring_axis;
   const int sphere = static_cast<int>(call.args[8].value);

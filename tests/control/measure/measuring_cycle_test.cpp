@@ -5,6 +5,7 @@
 
 #include <cctype>
 #include <cstdlib>
+#include <limits>
 
 namespace vmt::control::measure {
 namespace {
@@ -209,6 +210,49 @@ TEST_F(Lathe, SettingSecondaryAndOtherAxesAreErrors) {
   EXPECT_THAT(Plan("SETTING(X,X,,18,48,16,25)").error, HasSubstr("axis X given twice"));
   EXPECT_THAT(Plan("SETTING(,,,18,48,16,25)").error, HasSubstr("no measuring axis"));
   EXPECT_THAT(Plan("SETTING(X,Z,,18,48,17,25)").error, HasSubstr("17 is not 15, 16"));
+}
+
+// Whatever a program writes, planning answers with a plan or an error that quotes the call.
+TEST_F(Lathe, OddArgumentsGiveErrorsNotCrashes) {
+  Setting();
+  const std::vector<InstructionArg> odd = {
+      {InstructionArg::Kind::kOmitted, 0, ""},
+      {InstructionArg::Kind::kName, 0, "Q"},
+      {InstructionArg::Kind::kValue, std::numeric_limits<double>::quiet_NaN(), ""},
+      {InstructionArg::Kind::kValue, std::numeric_limits<double>::infinity(), ""},
+      {InstructionArg::Kind::kValue, -1e300, ""},
+      {InstructionArg::Kind::kValue, 2.5, ""}};
+  const std::vector<std::string> good = {
+      "SETTING(X,Z,,18,48,16,25)", "SAVE(1,1,1)", "MOVE(50,20,,1,0)",
+      "PROBE(1,1,64,35,,X,-2,100,1,3,0)", "COMPARE(1,0,1,)",
+      "CORRECTION(1,0.01,-0.01,0.12,0.1,0.001,0,1.1,0.005,0.002)"};
+  int errors = 0;
+  for (const std::string& text : good) {
+    const InstructionCall base = Call(text);
+    for (size_t i = 0; i < base.args.size(); ++i)
+      for (const InstructionArg& a : odd) {
+        InstructionCall call = base;
+        call.args[i] = a;
+        MeasuringContext c = context;
+        const MeasuringPlan plan = PlanInstruction(call, c, pages, reverse);
+        if (!plan.error.empty()) {
+          ++errors;
+          EXPECT_THAT(plan.error, StartsWith(call.name + "(")) << text << " arg " << i;
+          EXPECT_TRUE(plan.steps.empty()) << plan.error;
+        }
+      }
+  }
+  EXPECT_GT(errors, 150);
+}
+
+// A latch value that is not a number is no contact.
+TEST_F(Lathe, ContactThatIsNotANumberIsNotFound) {
+  Setting();
+  const MeasuringPlan plan = Plan("PROBE(,0,30,55,,X,-2,100,1,1,0)");
+  EXPECT_EQ(FinishProbe(Call("PROBE(,0,30,55,,X,-2,100,1,1,0)"), plan, context, pages,
+                        std::numeric_limits<double>::quiet_NaN()),
+            &kTestPointNotFound);
+  EXPECT_EQ(pages.calibration[0][0].measuring_direction[1], 0);
 }
 
 // 2.1 "Position in the NC program": every instruction after SETTING, RESTORE after SAVE.
