@@ -120,9 +120,13 @@ struct Arguments {
            "4.1 Programmable NC Axes");
     return std::nullopt;
   }
+  // Places beyond `count` must be empty: RESTORE() may reach us as one omitted argument.
   bool AtMost(int count) {
-    if (error.empty() && static_cast<int>(call.args.size()) > count)
-      Fail("more than " + std::to_string(count) + " arguments", "2.1");
+    for (int i = count; i < static_cast<int>(call.args.size()); ++i)
+      if (!Omitted(i)) {
+        Fail("more than " + std::to_string(count) + " arguments", "2.1");
+        break;
+      }
     return error.empty();
   }
 };

@@ -354,6 +354,9 @@ TEST_F(Lathe, SaveAndRestore) {
   EXPECT_EQ(b.F_value, 2000);
   context.variables.fill(0);
   context.feed = 1;
+  InstructionCall one_omitted = Call("RESTORE()");
+  one_omitted.args.resize(1);  // however the parser hands over the empty parentheses
+  EXPECT_EQ(PlanInstruction(one_omitted, context, pages, reverse).error, "");
   const MeasuringPlan restore = Plan("RESTORE()");
   ASSERT_EQ(restore.error, "");
   EXPECT_TRUE(restore.steps.empty());
