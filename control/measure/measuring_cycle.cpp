@@ -589,12 +589,6 @@ MeasuringPlan PlanCorrection(Arguments& args, const MeasuringContext& context,
 
 }  // namespace
 
-bool IsMeasuringInstruction(const std::string& name) {
-  for (const char* known : {"SETTING", "SAVE", "MOVE", "PROBE", "COMPARE", "CORRECTION", "RESTORE"})
-    if (name == known) return true;
-  return false;
-}
-
 std::vector<std::array<double, 3>> ReverseVectors::Reversal() const {
   const std::vector<std::array<double, 3>>& list =
       active == 0 ? single_point : sequence[std::clamp(active, 1, 10) - 1];
