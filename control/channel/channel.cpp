@@ -147,7 +147,6 @@ bool Channel::Reverse() {
   reversing_ = true;
   state_ = ChannelState::kRunning;
   // Fast measurement 4.4: the stylus first travels its reverse vectors back.
-  measuring_.reset();
   StartReversal();
   return true;
 }

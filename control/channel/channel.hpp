@@ -428,6 +428,9 @@ class Channel {
     bool measuring_move = false;     ///< ... and it is the measuring path
     std::optional<double> contact;   ///< the sphere centre when the probe switched
     bool reversal = false;           ///< the reverse vectors, before `.HOME` runs
+    /// The recorded reverse vectors this instruction's stylus has reached: the plan records its
+    /// way in before it moves (measure::ReverseVectors), the reversal may only retrace it.
+    size_t reached = 0;
     const measure::MeasuringMessage* message = nullptr;  ///< issued when the steps are done
   };
   std::optional<MeasuringRun> measuring_;
@@ -441,6 +444,9 @@ class Channel {
   /// While a measuring move runs: the probe's contact stops it.
   void WatchMeasuringMove(const AmplifierTelegram& at);
   bool StartMeasuringMove(const measure::MeasuringStep& step);
+  /// After a move of the instruction: the reverse vectors reached, and a way back to a point
+  /// already recorded (the escape) ends the record there.
+  void TrackReverseVectors(int sphere);
   /// Ends the instruction: translation and the interpreter's position back to the program's.
   void EndMeasuring();
   /// Program -> axis translation with the stylus' sphere `sphere` as the tool edge.

@@ -114,8 +114,16 @@ bool Channel::StartMeasuring(const AmplifierTelegram& at) {
   measuring_.emplace(std::move(run));
   measuring_->context = MeasuringContextNow();
   measuring_->context.compensation = block_.modal.compensation;
+  const measure::ReverseVectors before = reverse_vectors_;
   measuring_->plan = measure::PlanInstruction(measuring_->call, measuring_->context,
                                               *measuring_pages_, reverse_vectors_);
+  // Which of the recorded points the stylus already stands at or has passed: the start of a
+  // new record, or the whole record a linear path sequence continues.
+  const int variant = reverse_vectors_.active;
+  const auto& list_before =
+      variant == 0 ? before.single_point : before.sequence[static_cast<size_t>(variant - 1)];
+  const bool continued = variant != 0 && before.active == variant && !list_before.empty();
+  measuring_->reached = continued ? list_before.size() : 1;
   if (!measuring_->plan.error.empty()) {
     const std::string error = measuring_->plan.error;
     measuring_.reset();
@@ -250,6 +258,7 @@ bool Channel::MeasuringCycle(const AmplifierTelegram& at) {
   const nc::Program& program = *ProgramOf(run.block.program);
   if (run.moving) {
     run.moving = false;
+    if (!run.reversal) TrackReverseVectors(run.plan.steps[run.step - 1].sphere);
     if (run.measuring_move) {
       run.measuring_move = false;
       const measure::MeasuringMessage* message = measure::FinishProbe(
@@ -297,6 +306,7 @@ bool Channel::MeasuringCycle(const AmplifierTelegram& at) {
         if (!StartMeasuringMove(s)) return false;
         if (active_) return false;
         run.moving = false, run.measuring_move = false;
+        if (!run.reversal) TrackReverseVectors(s.sphere);
         break;
     }
   }
@@ -323,6 +333,31 @@ bool Channel::MeasuringCycle(const AmplifierTelegram& at) {
   return true;
 }
 
+void Channel::TrackReverseVectors(int sphere) {
+  if (!measuring_ || !measuring_setting_) return;
+  measure::ReverseVectors& r = reverse_vectors_;
+  auto& list = r.active == 0 ? r.single_point : r.sequence[static_cast<size_t>(r.active - 1)];
+  const std::vector<double> t = StylusTranslation(sphere);
+  auto at = [&](const std::array<double, 3>& p) {
+    for (int n = 0; n < 3; ++n) {
+      const int a = SettingAxis(n);
+      if (a >= 0 && std::abs(commanded_[static_cast<size_t>(a)] - t[static_cast<size_t>(a)] -
+                             p[static_cast<size_t>(n)]) > 1e-6)
+        return false;
+    }
+    return true;
+  };
+  size_t& reached = measuring_->reached;
+  // Back at a point passed before (the escape): the way out beyond it is not needed any more.
+  for (size_t j = 0; j < reached && j < list.size(); ++j)
+    if (at(list[j])) {
+      list.resize(j + 1);
+      reached = j + 1;
+      return;
+    }
+  if (reached < list.size() && at(list[reached])) ++reached;
+}
+
 void Channel::EndMeasuring() {
   if (!measuring_) return;
   const nc::PreparedBlock block = measuring_->block;
@@ -338,6 +373,13 @@ void Channel::EndMeasuring() {
 }
 
 void Channel::StartReversal() {
+  if (measuring_ && !measuring_->reversal) {
+    // Interrupted on its way: the points it has not reached are not part of the way back.
+    measure::ReverseVectors& r = reverse_vectors_;
+    auto& list = r.active == 0 ? r.single_point : r.sequence[static_cast<size_t>(r.active - 1)];
+    if (measuring_->reached < list.size()) list.resize(measuring_->reached);
+  }
+  measuring_.reset();
   const auto points = reverse_vectors_.Reversal();
   if (points.empty() || !measuring_setting_ || !measuring_pages_) {
     measuring_.reset();

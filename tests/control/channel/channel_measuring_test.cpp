@@ -214,5 +214,41 @@ TEST(ChannelMeasuring, SaveAndRestoreGiveTheVariablesBack) {
   EXPECT_NEAR(l.m.X(), 50, 1e-9);  // @100 was 7 again: no G00 X99
 }
 
+TEST(ChannelMeasuring, ReverseTakesTheStylusBackTheWayItCameBeforeHome) {
+  // Indirect approach (variant 2, 4.2): X to the plane of the setup position first, then Z to
+  // the measurement start point. Stopped on the second leg, the reverse program first takes the
+  // stylus back along the legs it travelled (4.4, single point), never on towards the part.
+  MeasuringLathe l(
+      "N1 SETTING(X,Z,,18,48,15,1)\n"
+      "N2 PROBE(1,1,30,5,,X,-2,100,1,2,0)\n"
+      "N3 RET\n"
+      ".HOME\n"
+      "N10 G00 X80\n"
+      "N11 RET\n",
+      30.0, 50, 20);
+  l.m.channel->Start();
+  while (l.m.Z() > 12 && l.m.t < 10) l.Tick();
+  ASSERT_NEAR(l.m.X(), 35, 1e-9);  // on the second leg
+  l.m.channel->Stop();
+  for (int i = 0; i < 4000; ++i) l.Tick();
+  ASSERT_EQ(l.m.channel->state(), ChannelState::kHold);
+  const double z_stop = l.m.Z();
+  ASSERT_TRUE(l.m.channel->Reverse());
+  double z_min = z_stop, x_min = l.m.X();
+  bool at_setup_plane_corner = false;
+  while (l.m.channel->state() == ChannelState::kRunning && l.m.t < 30) {
+    l.Tick();
+    z_min = std::min(z_min, l.m.Z());
+    x_min = std::min(x_min, l.m.X());
+    at_setup_plane_corner |= std::abs(l.m.X() - 35) < 1e-9 && std::abs(l.m.Z() - 20) < 1e-9;
+  }
+  EXPECT_EQ(l.m.channel->state(), ChannelState::kEnded) << l.m.channel->error();
+  EXPECT_GE(z_min, z_stop - 1e-9);  // not on to the measurement start point
+  EXPECT_GE(x_min, 35 - 1e-9);
+  EXPECT_TRUE(at_setup_plane_corner);  // back along the second leg first
+  EXPECT_NEAR(l.m.Z(), 20, 1e-9);      // then the first: the start
+  EXPECT_NEAR(l.m.X(), 80, 1e-9);      // and .HOME's G00 X80
+}
+
 }  // namespace
 }  // namespace vmt::control::channel::testing
