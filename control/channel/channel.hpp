@@ -30,6 +30,10 @@
 #include "control/nc/interpreter.hpp"
 #include "control/path_guard.hpp"
 
+namespace vmt::control::measure {
+struct MeasuringPages;
+}
+
 namespace vmt::control::channel {
 
 /// A channel axis is described by its axis parameters (control/axes).
@@ -248,6 +252,15 @@ class Channel {
   double position(size_t axis) const { return commanded_[axis]; }
   /// Source line of the block in work, 0 when none.
   uint32_t line() const;
+
+  // Data access of running programs (channel_data_access.cpp): TLD(...) the tool list, OTD(...)
+  // the zero offsets, MTD(...) the machine data pages of fast measurement given here (null:
+  // MTD is an error). The pages must outlive the channel.
+  void SetMeasuringPages(measure::MeasuringPages* pages) { measuring_pages_ = pages; }
+
+ private:
+  nc::DataAccess MakeDataAccess();
+  measure::MeasuringPages* measuring_pages_ = nullptr;
 
  private:
   bool NextBlock(const AmplifierTelegram& at);
