@@ -34,6 +34,7 @@
 // as the operator's edit (REPOS manual 2.5, SetZeroOffset): the return to the contour compares
 // TranslationOf the interrupted state with the tables as they are.
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -61,9 +62,9 @@ std::string AddressText(const std::string& name, const std::vector<Arg>& args) {
       s += args[i].name;
       continue;
     }
-    const double v = args[i].value;
-    s += v == std::floor(v) && std::abs(v) < 1e9 ? std::to_string(static_cast<long long>(v))
-                                                 : std::to_string(v);
+    char number[32];
+    std::snprintf(number, sizeof number, "%.12g", args[i].value);
+    s += number;
   }
   return s + ")";
 }

@@ -136,7 +136,7 @@ TEST(ChannelDataAccessTest, BadAddressesStopTheProgram) {
               HasSubstr("argument 4 (channel axis) must be a whole number in 1..2"));
   EXPECT_THAT(ErrorOf("N1 @1 = OTD(,1,4,1)\nN2 RET\n"),
               HasSubstr("argument 2 (process) must be a whole number in 0..0"));
-  EXPECT_THAT(ErrorOf("N1 @1 = OTD(,,4.5,1)\nN2 RET\n"), HasSubstr("argument 3"));
+  EXPECT_THAT(ErrorOf("N1 @1 = OTD(,,4.5,1)\nN2 RET\n"), HasSubstr("OTD(,,4.5,1): argument 3"));
   EXPECT_THAT(ErrorOf("N1 @1 = MTD(105,,1,13)\nN2 RET\n"),
               HasSubstr("p.mtc:1:9: error: MTD(105,,1,13): no machine data pages"));
   measure::MeasuringPages pages;
@@ -145,6 +145,35 @@ TEST(ChannelDataAccessTest, BadAddressesStopTheProgram) {
               HasSubstr("is set at installation, not by the NC program"));
   EXPECT_THAT(ErrorOf("N1 @1 = MTD(,,1,13)\nN2 RET\n", &pages),
               HasSubstr("the page (argument 1) and the element (argument 4) must be given"));
+}
+
+TEST(ChannelDataAccessTest, WearWrittenByTheReposSubroutineMovesTheContourAsAnOperatorEdit) {
+  // REPOS manual 2.5: the wear written while the program is interrupted shifts the return to
+  // the contour and the rest of the program, as SetToolLength does (channel_repositioning_test).
+  Machine m(
+      "N0 T2 D1 G48 G00 X1.5 Z-4\nN1 G01 X100 F600\nN2 RET\n"
+      ".REPOS\nN10 TLD(1,2,,1,12,) = 0.05\nN11 G77 Z0 F3000\nN12 G77 X0 F3000 RTS\n",
+      0, 0, WithOffsetsAndTools);
+  auto run_for = [&](double s) {
+    for (int i = 0; i < s / 250e-6; ++i) m.Tick();
+  };
+  m.channel->Start();
+  run_for(3.0);
+  m.channel->Stop();
+  run_for(0.2);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->Jog(1, +1);
+  run_for(0.2);
+  m.channel->Jog(1, 0);
+  run_for(0.1);
+  m.channel->SetReposition(true, false);
+  run_for(0.01);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kAutomatic));
+  m.channel->Start();
+  m.RunUntilEnd();
+  ASSERT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  EXPECT_NEAR(m.X(), 100 - 1.55, 1e-9);
+  EXPECT_NEAR(m.Z(), 0, 1e-9);
 }
 
 TEST(ChannelDataAccessTest, MdiBlocksReachTheData) {

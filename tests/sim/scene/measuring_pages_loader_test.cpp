@@ -20,12 +20,13 @@ using ::testing::HasSubstr;
 using testing::OutputDir;
 using testing::SourcePath;
 
-std::string WriteScene(const std::string& name, const std::string& body) {
+std::string WriteScene(const std::string& name, const std::string& body,
+                       const std::string& duration = "0.05") {
   const std::string dir = OutputDir("measuring_pages");
   const std::string path = dir + "/" + name + ".yaml";
   std::ofstream(path) << "scene: " << name
                       << "\nmodel: " << SourcePath("models/lathe-c1/machine.yaml")
-                      << "\nduration: 0.05\n"
+                      << "\nduration: " << duration << "\n"
                       << body;
   return path;
 }
@@ -88,7 +89,7 @@ TEST(MeasuringPagesLoaderTest, BadValuesNameTheFileAndYamlPath) {
       {"measuring_pages:\n  stylus:\n    - {tool_number: 9, sphere_radius: [3]}\n",
        "measuring_pages.stylus[0].tool_number", "T9 D1 is not in the tool list"},
       {"measuring_pages:\n  stylus:\n    - {tool_number: 3, sphere_radius: [3], pin: 5}\n",
-       "measuring_pages.stylus[0]", "unknown key 'pin'"},
+       "measuring_pages.stylus[0].pin", "unknown key 'pin'"},
       {"measuring_pages:\n  calibration:\n    - {stylus: 5, sphere: 1}\n",
        "measuring_pages.calibration[0].stylus", "must be in 1..4"},
       {"measuring_pages:\n  calibration:\n    - {stylus: 1, sphere: 1, measuring_feed: [1, 2]}\n",
@@ -107,12 +108,13 @@ TEST(MeasuringPagesLoaderTest, BadValuesNameTheFileAndYamlPath) {
 
 TEST(MeasuringPagesLoaderTest, TheRunnersChannelReadsThePages) {
   // The program moves X to the stylus' sphere radius read with MTD (page 102 = TASTWERKZEUGPAGE).
-  const Scene s = LoadScene(WriteScene(
-      "run",
-      NcSection("run", "@100 = MTD(102,1,,4) * 10\nG15 G53 G47 G01 X@100 F6000\nRET\n") +
-          "backend: kinematic\nduration: 2\ninitial: {Z: 300, X: 100}\nexpect:\n  - {nc: ended}\n"
-          "  - {axis: X, position: 30, tol: 0.01}\n"
-          "timeline:\n  - nc: start\n  - wait_until: {nc: ended, timeout: 1.9}\n"));
+  const Scene s = LoadScene(
+      WriteScene("run",
+                 NcSection("run", "@100 = MTD(102,1,,4) * 10\nG15 G53 G47 G01 X@100 F6000\nRET\n") +
+                     "backend: kinematic\ninitial: {Z: 300, X: 100}\nexpect:\n  - {nc: ended}\n"
+                     "  - {axis: X, position: 30, tol: 0.01}\n"
+                     "timeline:\n  - nc: start\n  - wait_until: {nc: ended, timeout: 1.9}\n",
+                 "2"));
   RunOptions options;
   options.snapshots = false;
   const RunResult r = RunScene(s, options);
