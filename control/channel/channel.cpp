@@ -147,6 +147,9 @@ bool Channel::Reverse() {
   interpreter_->SetPosition(position);
   reversing_ = true;
   state_ = ChannelState::kRunning;
+  // Fast measurement 4.4: the stylus first travels its reverse vectors back.
+  measuring_.reset();
+  StartReversal();
   return true;
 }
 
@@ -202,6 +205,8 @@ void Channel::Start() {
   if (mode_ == ChannelMode::kManual || !process_enable_) return;
   if (mode_ == ChannelMode::kMdi && !mdi_) return;
   if (state_ == ChannelState::kHold) {
+    // Fast measurement 6.1, Q9998: the new start acknowledges OVERSIZE / UNDERSIZE.
+    if (error_number_ == kMsgMeasuringContinuable) error_.clear(), error_number_ = 0;
     if (repos_run_) {  // the REPOS subroutine was held: it goes on
       state_ = ChannelState::kRunning;
       return;
@@ -238,6 +243,8 @@ void Channel::Start() {
     interpreter_.reset();
     parked_ = ProgramInWork{};
     ClearRepos();
+    measuring_setting_.reset();  // SETTING holds for one run of the program
+    reverse_vectors_ = {};
   }
   state_ = ChannelState::kRunning;
   start_pending_ = true;  // positions are taken from the feedback at the next tick
@@ -263,6 +270,9 @@ void Channel::Reset() {
   if (repos_run_) SwapProgramInWork();
   parked_ = ProgramInWork{};
   ClearRepos();
+  measuring_.reset();
+  measuring_setting_.reset();
+  reverse_vectors_ = {};
   if (interpreter_) last_modal_ = interpreter_->modal();
   interpreter_.reset();
   DropLookahead();
@@ -346,9 +356,12 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
                          ? !(status & drive_status::kInPosition)
                          : spindle_.value != 0 && !(status & drive_status::kAtSpeed);
         finished = !orienting_;
+      } else if (measuring_ && !active_) {
+        finished = MeasuringCycle(at);
       } else if (!active_ && state_ == ChannelState::kRunning) {
         finished = NextBlock(at) && !active_ && dwell_left_s_ <= 0 && !orienting_ &&
                    waiting_for_ == axes::HeadstockMode::kNone;
+        if (finished && measuring_) finished = MeasuringCycle(at);
       }
       // A block interrupted and jogged away from stays where the program left it until the
       // axes are repositioned (REPOS manual 2.1): interpolating it would take them back.
@@ -359,7 +372,10 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
           SynchronousCycle(at, dt);
         else
           Interpolate(dt);
+        WatchMeasuringMove(at);
         finished = !active_;
+        // A measuring instruction's move has ended: its next step follows at once.
+        if (finished && measuring_) finished = MeasuringCycle(at);
         if (finished && homing_) finished = !NextHomingStage();
         if (finished && carry_speed_ > 0) {
           // Blended: the next block runs on from here in the same cycle.
@@ -475,6 +491,7 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
         block_.aux.push_back({'T', 0, static_cast<double>(interruption_->modal.tool)});
       name.clear();
     }
+    if (nc::IsMeasuringCall(name)) name.clear();  // StartMeasuring below
     if (!name.empty()) {
       Fail(nc::Format({st.pos, "instruction " + name.substr(0, name.find(' ')) +
                                    " is not available in the channel yet"},
@@ -483,6 +500,7 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
       return false;
     }
   }
+  if (!block_.calls.empty()) return StartMeasuring(at);
   for (const auto& [n, set] : block_.events) {
     own_events_[n] = set;
     if (event_sink_) event_sink_(n, set);

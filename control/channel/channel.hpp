@@ -27,12 +27,10 @@
 #include "control/channel/spindle_synchronous_motion.hpp"
 #include "control/channel/tool_radius_compensation.hpp"
 #include "control/drive_bus.hpp"
+#include "control/measure/measuring_cycle.hpp"
+#include "control/measure/measuring_pages.hpp"
 #include "control/nc/interpreter.hpp"
 #include "control/path_guard.hpp"
-
-namespace vmt::control::measure {
-struct MeasuringPages;
-}
 
 namespace vmt::control::channel {
 
@@ -192,6 +190,16 @@ class Channel {
   /// SE n / RE n of the program go here (the gateway's Pxx.EVn); the channel also keeps them.
   void SetEventSink(std::function<void(int, bool)> sink) { event_sink_ = std::move(sink); }
 
+  /// The machine data pages of fast measurement (MTD, the measuring instructions); null: none.
+  /// They must outlive the channel.
+  void SetMeasuringPages(measure::MeasuringPages* pages) { measuring_pages_ = pages; }
+  /// The measuring setting of SETTING( ), until the program ends or Control-Reset.
+  const std::optional<measure::MeasuringSetting>& measuring_setting() const {
+    return measuring_setting_;
+  }
+  /// The stylus' way back for the reverse program (fast-measurement manual 4.4).
+  const measure::ReverseVectors& reverse_vectors() const { return reverse_vectors_; }
+
   /// The machine geometry's check of approach moves (ChannelConfig::path_guard says what a
   /// contact does); null: none. It must outlive the channel.
   void SetPathGuard(PathGuard* guard) { guard_ = guard; }
@@ -253,16 +261,10 @@ class Channel {
   /// Source line of the block in work, 0 when none.
   uint32_t line() const;
 
-  // Data access of running programs (channel_data_access.cpp): TLD(...) the tool list, OTD(...)
-  // the zero offsets, MTD(...) the machine data pages of fast measurement given here (null:
-  // MTD is an error). The pages must outlive the channel.
-  void SetMeasuringPages(measure::MeasuringPages* pages) { measuring_pages_ = pages; }
-
  private:
+  /// TLD(...) the tool list, OTD(...) the zero offsets, MTD(...) the machine data pages
+  /// (SetMeasuringPages; null: MTD is an error), for the interpreters (channel_data_access.cpp).
   nc::DataAccess MakeDataAccess();
-  measure::MeasuringPages* measuring_pages_ = nullptr;
-
- private:
   bool NextBlock(const AmplifierTelegram& at);
   bool RunBlock(const AmplifierTelegram& at);
   bool NextCompensated(const AmplifierTelegram& at);
@@ -418,6 +420,39 @@ class Channel {
   bool StartReposMotion(const AmplifierTelegram& at);
   bool FinishReposRun(const AmplifierTelegram& at);
   void ClearRepos();
+  // Fast measurement (channel_measuring.cpp): a measuring instruction's block runs its plan.
+  struct MeasuringRun {
+    nc::PreparedBlock block;  ///< the instruction's block (block_ holds the generated moves)
+    measure::InstructionCall call;
+    measure::MeasuringContext context;
+    measure::MeasuringPlan plan;
+    size_t step = 0;
+    bool moving = false;             ///< the move of step `step - 1` is in work
+    bool measuring_move = false;     ///< ... and it is the measuring path
+    std::optional<double> contact;   ///< the sphere centre when the probe switched
+    bool reversal = false;           ///< the reverse vectors, before `.HOME` runs
+    const measure::MeasuringMessage* message = nullptr;  ///< issued when the steps are done
+  };
+  std::optional<MeasuringRun> measuring_;
+  std::optional<measure::MeasuringSetting> measuring_setting_;
+  measure::ReverseVectors reverse_vectors_;
+  measure::MeasuringPages* measuring_pages_ = nullptr;
+  /// The block's measuring instruction: check it, plan it, start its steps. False on an error.
+  bool StartMeasuring(const AmplifierTelegram& at);
+  /// Advances the steps while no move is in work; true when the instruction is done.
+  bool MeasuringCycle(const AmplifierTelegram& at);
+  /// While a measuring move runs: the probe's contact stops it.
+  void WatchMeasuringMove(const AmplifierTelegram& at);
+  bool StartMeasuringMove(const measure::MeasuringStep& step);
+  /// Ends the instruction: translation and the interpreter's position back to the program's.
+  void EndMeasuring();
+  /// Program -> axis translation with the stylus' sphere `sphere` as the tool edge.
+  std::vector<double> StylusTranslation(int sphere) const;
+  int SettingAxis(int n) const;  ///< channel axis of SETTING axis n (0..2), -1 if none
+  bool EventSet(int n) const;
+  measure::MeasuringContext MeasuringContextNow() const;
+  /// Reverse: the stylus travels its reverse vectors back before `.HOME` runs (4.4).
+  void StartReversal();
   DriveSetpoint spindle_;
   // Headstock changeover: the mode a block needs, the one the block in work waits for.
   axes::HeadstockMode ModeNeeded(const nc::PreparedBlock& b) const;

@@ -41,6 +41,15 @@ inline constexpr int kMsgChangeoverAck = 506;
 /// PathGuard: the move would bring two parts of the machine into contact; stopped before it.
 inline constexpr int kMsgCollision = 507;
 
+/// Fast measurement: a measuring instruction cannot run (its parameters, its place, 4.1).
+inline constexpr int kMsgMeasuringInstruction = 601;
+/// Fast measurement, Q9998 (fault category 2): OVERSIZE / UNDERSIZE; the program holds and a
+/// new start continues it.
+inline constexpr int kMsgMeasuringContinuable = 602;
+/// Fast measurement, Q9999 (fault category 1): TEST POINT NOT FOUND, ILLEGALLY HIGH DIMENSIONAL
+/// DEVIATION, CHECK TOOL; only the reverse program (or Control-Reset) goes on.
+inline constexpr int kMsgMeasuringReverseOnly = 603;
+
 /// The operator text of a message number ("program error", ...).
 inline const char* MessageText(int number) {
   switch (number) {
@@ -96,6 +105,12 @@ inline const char* MessageText(int number) {
       return "spindle / rotary axis mode acknowledgement removed";
     case kMsgCollision:
       return "collision ahead";
+    case kMsgMeasuringInstruction:
+      return "measuring instruction error";
+    case kMsgMeasuringContinuable:
+      return "measuring: dimension out of tolerance (Q9998)";
+    case kMsgMeasuringReverseOnly:
+      return "measuring: reverse program only (Q9999)";
     default:
       return "";
   }

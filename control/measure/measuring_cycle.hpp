@@ -26,8 +26,8 @@ namespace vmt::control::measure {
 using InstructionArg = nc::InstructionArg;
 using InstructionCall = nc::InstructionCall;
 
-/// True for the seven names above.
-bool IsMeasuringInstruction(const std::string& name);
+/// True for the seven names above (the interpreter's nc::IsMeasuringCall).
+inline bool IsMeasuringInstruction(const std::string& name) { return nc::IsMeasuringCall(name); }
 
 /// What SETTING (A..G) established; kept by the channel from SETTING to the end of the program
 /// (Control-Reset clears it).
@@ -37,6 +37,9 @@ struct MeasuringSetting {
   int tool_length = 48;        ///< E: 47, 48
   bool diameter = false;       ///< F: G16
   int stylus = 1;              ///< G: 1..4, TASTWERKZEUGPAGE LV1
+  /// What the last SAVE(A, B, C) kept: variables, axis positions, F (RESTORE writes back only
+  /// these, 2.1 RESTORE); none before the first SAVE. A later SETTING keeps it.
+  std::optional<std::array<bool, 3>> saved;
 };
 
 /// The reverse vectors of 4.4: the points the stylus passed through, per reverse variant, so that
@@ -96,14 +99,17 @@ struct MeasuringPlan {
   std::string error;  ///< "" or the program error (4.1, parameter ranges, placement)
   std::vector<MeasuringStep> steps;
   /// SETTING: the new setting; the channel also makes its G codes (plane, G47/G48, G15/G16)
-  /// modal in the program, as the generated blocks of the real control do.
+  /// modal in the program, as the generated blocks of the real control do. SAVE: the setting
+  /// with what it saved (MeasuringSetting::saved); the channel keeps whichever plan sets it.
   std::optional<MeasuringSetting> setting;
   /// RESTORE: what SAVE kept and is written back (variables @100..@112, F); axis positions are
   /// not moved (2.1 RESTORE).
   std::optional<std::array<double, 13>> restore_variables;
   std::optional<double> restore_feed;
   /// PROBE: the measuring move's axis (0..2 = SETTING axis 1..3) and direction (+1 / -1), the
-  /// command value of the surface (radius value along the axis), for FinishProbe.
+  /// command value of the surface (radius value along the axis), for FinishProbe. A calibration
+  /// PROBE hidden by ZWISCHENSPEICHERPAGE element 1 (3.1) plans no steps and leaves
+  /// measuring_axis -1: FinishProbe then does nothing.
   int measuring_axis = -1;
   int direction = 0;
   double command = 0;

@@ -294,3 +294,113 @@ TEST(InterpreterTest, SetAxisPositionMovesTheStartOfOneAxis) {
 
 }  // namespace
 }  // namespace vmt::control::nc
+
+namespace vmt::control::nc {
+namespace {
+
+TEST(InterpreterTest, MeasuringInstructionsCarryTheirArgumentsAsWritten) {
+  // Axis designations stay names, omitted places stay omitted, values are evaluated where the
+  // program stands (@100 before the call changes it again).
+  const ProgramRun r = Execute({{"a.mtc",
+                                 "N1 @100 = 4\n"
+                                 "N2 SETTING (X, Z, , 18, 48, 16, 3)\n"
+                                 "N3 PROBE(5, 1, @100 * 5, -10, , Z, -(1), 100, 1, 3, 0)\n"
+                                 "N4 @100 = 5\n"
+                                 "N5 RESTORE()\n"
+                                 "N6 RET\n"}});
+  ASSERT_EQ(r.error, "");
+  ASSERT_EQ(r.blocks.size(), 4u);
+  using Kind = InstructionArg::Kind;
+  ASSERT_EQ(r.blocks[0].calls.size(), 1u);
+  const InstructionCall& setting = r.blocks[0].calls[0];
+  EXPECT_EQ(setting.name, "SETTING");
+  ASSERT_EQ(setting.args.size(), 7u);
+  EXPECT_EQ(setting.args[0].kind, Kind::kName);
+  EXPECT_EQ(setting.args[0].name, "X");
+  EXPECT_EQ(setting.args[1].name, "Z");
+  EXPECT_EQ(setting.args[2].kind, Kind::kOmitted);
+  EXPECT_EQ(setting.args[3].kind, Kind::kValue);
+  EXPECT_EQ(setting.args[3].value, 18);
+  EXPECT_EQ(setting.args[6].value, 3);
+  const InstructionCall& probe = r.blocks[1].calls[0];
+  ASSERT_EQ(probe.args.size(), 11u);
+  EXPECT_EQ(probe.args[2].kind, Kind::kValue);
+  EXPECT_EQ(probe.args[2].value, 20);
+  EXPECT_EQ(probe.args[3].value, -10);
+  EXPECT_EQ(probe.args[4].kind, Kind::kOmitted);
+  EXPECT_EQ(probe.args[5].kind, Kind::kName);
+  EXPECT_EQ(probe.args[5].name, "Z");
+  EXPECT_EQ(probe.args[6].value, -1);
+  EXPECT_EQ(r.blocks[2].calls[0].name, "RESTORE");
+  EXPECT_TRUE(r.blocks[2].calls[0].args.empty());
+}
+
+TEST(InterpreterTest, DataAccessReachesTheChannelWithOmittedPlacesKept) {
+  std::vector<std::pair<std::string, std::vector<InstructionArg>>> reads, writes;
+  std::vector<double> written;
+  ProgramRun run;
+  run.parsed.push_back(ParseProgram("N1 TLD(1,3,,1,11,) = TLD(1,3,,1,11,) + MTD(105,,1,13)\n"
+                                    "N2 @100 = MTD(105,,3,11) - 2\n"
+                                    "N3 BEQ .OK\n"
+                                    "N4 G00 X99\n"
+                                    ".OK\n"
+                                    "N5 OTD(,,4,1) = 7 / 0\n"
+                                    "N6 RET\n",
+                                    "a.mtc", Dialect::kMtc200));
+  ASSERT_TRUE(run.parsed[0].ok());
+  Interpreter in({&run.parsed[0].program}, {});
+  in.SetDataAccess({[&](const std::string& name, const std::vector<InstructionArg>& args,
+                        double& value) {
+                      reads.emplace_back(name, args);
+                      value = name == "TLD" ? 0.5 : args[2].value == 3 ? 2 : 0.25;
+                      return std::string();
+                    },
+                    [&](const std::string& name, const std::vector<InstructionArg>& args,
+                        double value) {
+                      writes.emplace_back(name, args);
+                      written.push_back(value);
+                      return std::string();
+                    }});
+  PreparedBlock b;
+  std::vector<PreparedBlock> blocks;
+  while (in.Next(b)) blocks.push_back(b);
+  ASSERT_TRUE(in.error());
+  // N5's value fails before anything is written; N4 was branched over.
+  EXPECT_EQ(in.error()->pos.line, 6u);
+  EXPECT_THAT(in.error()->message, HasSubstr("division by zero"));
+  EXPECT_TRUE(blocks.empty());
+  ASSERT_EQ(writes.size(), 1u);
+  EXPECT_EQ(writes[0].first, "TLD");
+  ASSERT_EQ(writes[0].second.size(), 6u);
+  EXPECT_EQ(writes[0].second[0].value, 1);
+  EXPECT_EQ(writes[0].second[2].kind, InstructionArg::Kind::kOmitted);
+  EXPECT_EQ(writes[0].second[4].value, 11);
+  EXPECT_EQ(writes[0].second[5].kind, InstructionArg::Kind::kOmitted);
+  EXPECT_EQ(written[0], 0.75);
+  ASSERT_EQ(reads.size(), 3u);
+  EXPECT_EQ(reads[1].first, "MTD");
+  EXPECT_EQ(reads[1].second[1].kind, InstructionArg::Kind::kOmitted);
+  EXPECT_EQ(reads[1].second[3].value, 13);
+}
+
+TEST(InterpreterTest, DataAccessErrorsStopAtTheCall) {
+  ProgramRun run;
+  run.parsed.push_back(
+      ParseProgram("N1 @100 = 1\nN2 @101 = 2 + MTD(999,,1,13)\nN3 RET\n", "a.mtc",
+                   Dialect::kMtc200));
+  Interpreter in({&run.parsed[0].program}, {});
+  in.SetDataAccess({[](const std::string&, const std::vector<InstructionArg>&, double&) {
+                      return std::string("MTD: no page 999");
+                    },
+                    {}});
+  PreparedBlock b;
+  while (in.Next(b)) {
+  }
+  ASSERT_TRUE(in.error());
+  EXPECT_EQ(in.error()->pos.line, 2u);
+  EXPECT_EQ(in.error()->pos.column, 15u);
+  EXPECT_THAT(in.error()->message, HasSubstr("no page 999"));
+}
+
+}  // namespace
+}  // namespace vmt::control::nc

@@ -1,0 +1,363 @@
+// Fast measurement in the channel (mtc200-fast-measurement.md): a block with a measuring
+// instruction runs the plan measure::PlanInstruction makes of it, step by step, as the real
+// control runs the NC blocks it generates for the instruction: events to and from the PLC's
+// measuring block (6.2), Q functions with their acknowledgement (6.1), G00 and G94 G01 moves of
+// the stylus' sphere centre, and on the measuring path the drive's latch (7.3) stops the move
+// and gives the measured value.
+#include <cmath>
+
+#include "control/channel/channel.hpp"
+
+namespace vmt::control::channel {
+
+namespace {
+
+/// 6.2 Event 7: the PLC's measuring block sets it when the probe is displaced.
+constexpr int kTouchEvent = 7;
+
+/// The latch of `input` that the stylus' switching edge fills, or the other one, or none.
+const ProbeEdgeLatch* Latched(const ProbeInputStatus& input, bool normally_closed) {
+  const ProbeEdgeLatch& closing = normally_closed ? input.negative : input.positive;
+  const ProbeEdgeLatch& other = normally_closed ? input.positive : input.negative;
+  if (closing.latched) return &closing;
+  if (other.latched) return &other;
+  return nullptr;
+}
+
+}  // namespace
+
+int Channel::SettingAxis(int n) const {
+  if (!measuring_setting_ || n < 0 || n > 2 || measuring_setting_->axis[n] == 0) return -1;
+  const std::string name(1, measuring_setting_->axis[n]);
+  for (size_t a = 0; a < config_.axes.size(); ++a)
+    if (config_.axes[a].name == name) return static_cast<int>(a);
+  return -1;
+}
+
+bool Channel::EventSet(int n) const {
+  if (events_) return events_(n);
+  auto it = own_events_.find(n);
+  return it != own_events_.end() && it->second;
+}
+
+std::vector<double> Channel::StylusTranslation(int sphere) const {
+  nc::ModalState m = block_.modal;
+  if (measuring_setting_ && measuring_pages_) {
+    const int stylus = measuring_setting_->stylus;
+    m.tool = measuring_pages_->stylus[static_cast<size_t>(stylus - 1)].tool_number;
+    m.correction = sphere;
+    m.tool_length = measuring_setting_->tool_length;
+  }
+  return TranslationOf(m);
+}
+
+measure::MeasuringContext Channel::MeasuringContextNow() const {
+  measure::MeasuringContext c;
+  c.setting = measuring_setting_;
+  bool x = false, y = false, z = false;
+  for (const ChannelAxis& a : config_.axes) {
+    x |= a.name == "X";
+    y |= a.name == "Y";
+    z |= a.name == "Z";
+  }
+  c.turning = x && z && !y;
+  c.tool_list = !config_.tools.edges.empty();
+  const nc::ModalState& m = measuring_ ? measuring_->block.modal : block_.modal;
+  c.compensation = m.compensation;
+  // The sphere the instruction names (MOVE D, PROBE I): the position is its centre's.
+  int sphere = 1;
+  if (!block_.calls.empty()) {
+    const nc::InstructionCall& call = block_.calls.front();
+    const size_t at = call.name == "MOVE" ? 3 : call.name == "PROBE" ? 8 : call.args.size();
+    if (at < call.args.size() && call.args[at].kind == nc::InstructionArg::Kind::kValue &&
+        call.args[at].value >= 1 && call.args[at].value <= measure::kSpheres)
+      sphere = static_cast<int>(call.args[at].value);
+  }
+  const std::vector<double> t = StylusTranslation(sphere);
+  for (int n = 0; n < 3; ++n) {
+    const int a = SettingAxis(n);
+    if (a >= 0) c.position[n] = commanded_[a] - t[a];
+  }
+  for (size_t i = 0; i < measure::kSavedGGroups.size(); ++i) {
+    bool known = false;
+    c.g_groups[i] =
+        static_cast<int16_t>(nc::ModalGroupValue(m, 'G', measure::kSavedGGroups[i], known));
+  }
+  for (size_t i = 0; i < c.variables.size(); ++i)
+    c.variables[i] = interpreter_ ? interpreter_->Variable("@" + std::to_string(100 + i)) : 0;
+  c.feed = m.feed;
+  return c;
+}
+
+bool Channel::StartMeasuring(const AmplifierTelegram& at) {
+  (void)at;
+  const nc::Program& program = *ProgramOf(block_.program);
+  auto fail = [&](const std::string& text) {
+    Fail(program, block_.block, text, kMsgMeasuringInstruction);
+    return false;
+  };
+  // 4.1 Entering the NC Instructions: one instruction per block, nothing else in it, and not a
+  // skippable block: the instruction becomes several blocks of its own.
+  if (block_.calls.size() > 1)
+    return fail("only one measuring instruction may be programmed in a block (4.1)");
+  if (block_.instructions.size() > 1 || block_.programmed != 0 || !block_.aux.empty() ||
+      !block_.events.empty() || block_.dwell_s > 0 || block_.homing || block_.repos ||
+      block_.set_position)
+    return fail("a block with a measuring instruction may hold no other NC syntax (4.1)");
+  if (program.blocks[static_cast<size_t>(block_.block)].skippable)
+    return fail("a block with a measuring instruction may not be a skipped block (4.1)");
+  if (!measuring_pages_) return fail("fast measurement needs its machine data pages (7.1)");
+
+  MeasuringRun run;
+  run.block = block_;
+  run.call = block_.calls.front();
+  measuring_.emplace(std::move(run));
+  measuring_->context = MeasuringContextNow();
+  measuring_->context.compensation = block_.modal.compensation;
+  measuring_->plan = measure::PlanInstruction(measuring_->call, measuring_->context,
+                                              *measuring_pages_, reverse_vectors_);
+  if (!measuring_->plan.error.empty()) {
+    const std::string error = measuring_->plan.error;
+    measuring_.reset();
+    return fail(error);
+  }
+  const measure::MeasuringPlan& plan = measuring_->plan;
+  if (plan.setting) {
+    // SETTING: its G codes are modal in the program from here (2.1: "Activating the G
+    // functions"), as in the blocks the real control generates.
+    measuring_setting_ = plan.setting;
+    nc::ModalState m = interpreter_->modal();
+    m.plane = plan.setting->plane;
+    m.tool_length = plan.setting->tool_length;
+    m.diameter = plan.setting->diameter;
+    interpreter_->SetModal(m);
+    measuring_->block.modal = m;
+  }
+  if (plan.restore_variables)
+    for (size_t i = 0; i < plan.restore_variables->size(); ++i)
+      interpreter_->SetVariable("@" + std::to_string(100 + i), (*plan.restore_variables)[i]);
+  if (plan.restore_feed) {
+    nc::ModalState m = interpreter_->modal();
+    m.feed = *plan.restore_feed;
+    interpreter_->SetModal(m);
+  }
+  if (plan.message) {
+    // CORRECTION: the Q function goes to the PLC first, the program stops when it has
+    // acknowledged it (6.1).
+    measuring_->plan.steps.push_back(
+        {measure::MeasuringStep::Kind::kAux, 0, false, plan.message->q_function});
+    measuring_->message = plan.message;
+  }
+  return true;
+}
+
+bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
+  // A generated block: G90 G94 G40, G00 or G01 at the measuring feed, the stylus' sphere as the
+  // tool edge, the targets the sphere centre's (radius values: the plan halved diameters).
+  nc::PreparedBlock b = measuring_->block;
+  b.calls.clear();
+  b.instructions.clear();
+  b.motion = step.kind == measure::MeasuringStep::Kind::kRapid ? nc::Motion::kRapid
+                                                                : nc::Motion::kLinear;
+  b.modal.incremental = false;
+  b.modal.feed_per_revolution = false;
+  b.modal.compensation = 40;
+  b.modal.diameter = false;
+  b.modal.feed = step.feed;
+  b.modal.motion = b.motion;
+  if (measuring_setting_ && measuring_pages_) {
+    b.modal.tool =
+        measuring_pages_->stylus[static_cast<size_t>(measuring_setting_->stylus - 1)].tool_number;
+    b.modal.correction = step.sphere;
+    b.modal.tool_length = measuring_setting_->tool_length;
+  }
+  const nc::Program& program = *ProgramOf(b.program);
+  if (!UpdateTranslation(b.modal, program, b.block)) return false;
+  b.target.resize(commanded_.size());
+  b.programmed = 0;
+  for (size_t a = 0; a < commanded_.size(); ++a) b.target[a] = commanded_[a] - translation_[a];
+  for (int n = 0; n < 3; ++n) {
+    const int a = SettingAxis(n);
+    if (a < 0 || !(step.axes >> n & 1)) continue;
+    b.target[static_cast<size_t>(a)] = step.target[static_cast<size_t>(n)];
+    b.programmed |= uint64_t{1} << a;
+  }
+  block_ = b;
+  for (size_t a = 0; a < commanded_.size(); ++a)
+    if (!homed_[a] && (b.programmed >> a & 1)) {
+      Fail(program, b.block,
+           "axis " + config_.axes[a].name + " has no reference: home it first (G74)", kMsgNotHomed);
+      return false;
+    }
+  sync_.phase = SyncPhase::kNone;
+  if (const auto error = PlanBlockMotion(block_, commanded_, translation_, config_.axes, 0, motion_,
+                                         FollowUpAxes(block_))) {
+    Fail(program, b.block, error->text, error->number);
+    return false;
+  }
+  profile_ = PathProfile{};
+  continuation_ready_ = false;
+  carry_speed_ = carry_accel_ = carry_leftover_ = 0;
+  if (!motion_.moves) return true;
+  // The approach moves are checked before they start, as G77's (issue 6); the measuring path
+  // is meant to touch the part with the sphere, which PathGuard allows the ruby.
+  if (!GuardBlockMove(step.kind == measure::MeasuringStep::Kind::kRapid ? "probe approach"
+                                                                          : "measuring path"))
+    return false;
+  profile_.max_rate = motion_.max_rate;
+  profile_.max_accel = motion_.max_accel;
+  profile_.max_jerk = motion_.max_jerk;
+  active_ = true;
+  measuring_->moving = true;
+  measuring_->measuring_move = step.kind == measure::MeasuringStep::Kind::kMeasure;
+  return true;
+}
+
+void Channel::WatchMeasuringMove(const AmplifierTelegram& at) {
+  if (!measuring_ || !measuring_->moving || !active_) return;
+  if (!measuring_->measuring_move) {
+    // 6.1: the probe displaced outside the measuring path (event 29 set, the PLC reports the
+    // contact by event 7) is as good as a collision: stop, Q9999.
+    if (!measuring_->reversal && EventSet(kTouchEvent)) {
+      active_ = false;
+      measuring_->moving = false;
+      measuring_->plan.steps.resize(measuring_->step);
+      measuring_->plan.steps.push_back(
+          {measure::MeasuringStep::Kind::kAux, 0, false, measure::kQ9999});
+      measuring_->message = &measure::kTestPointNotFound;
+    }
+    return;
+  }
+  // The measuring path: the drive of the measuring axis latched its position at the probe's
+  // switching edge (7.3); that ends the move (distance to go deleted) and is the measured value.
+  const int axis = SettingAxis(measuring_->plan.measuring_axis);
+  if (axis < 0 || !measuring_setting_ || !measuring_pages_) return;
+  const measure::TastwerkzeugPage& stylus =
+      measuring_pages_->stylus[static_cast<size_t>(measuring_setting_->stylus - 1)];
+  const int drive = config_.axes[static_cast<size_t>(axis)].drive;
+  if (drive < 0 || static_cast<size_t>(drive) >= at.feedback.size()) return;
+  const ProbeStatus& probe = at.feedback[static_cast<size_t>(drive)].probe;
+  const ProbeEdgeLatch* latch =
+      Latched(stylus.pin5 ? probe.probe2 : probe.probe1, stylus.normally_closed);
+  if (!latch) return;
+  measuring_->contact = latch->measured_value - translation_[static_cast<size_t>(axis)];
+  active_ = false;  // the axes stop where they are this cycle
+}
+
+bool Channel::MeasuringCycle(const AmplifierTelegram& at) {
+  (void)at;
+  MeasuringRun& run = *measuring_;
+  const nc::Program& program = *ProgramOf(run.block.program);
+  if (run.moving) {
+    run.moving = false;
+    if (run.measuring_move) {
+      run.measuring_move = false;
+      const measure::MeasuringMessage* message = measure::FinishProbe(
+          run.call, run.plan, run.context, *measuring_pages_, run.contact);
+      if (message) {
+        // 6.1: TEST POINT NOT FOUND: the PLC gets Q9999; the measuring path monitoring ends
+        // (the event resets still go out), no further move.
+        std::vector<measure::MeasuringStep> rest;
+        for (size_t i = run.step; i < run.plan.steps.size(); ++i)
+          if (run.plan.steps[i].kind == measure::MeasuringStep::Kind::kEvent &&
+              !run.plan.steps[i].value)
+            rest.push_back(run.plan.steps[i]);
+        rest.push_back({measure::MeasuringStep::Kind::kAux, 0, false, message->q_function});
+        run.plan.steps.resize(run.step);
+        run.plan.steps.insert(run.plan.steps.end(), rest.begin(), rest.end());
+        run.message = message;
+      }
+    }
+  }
+  while (run.step < run.plan.steps.size()) {
+    if (state_ != ChannelState::kRunning) return false;
+    const measure::MeasuringStep& s = run.plan.steps[run.step];
+    switch (s.kind) {
+      case measure::MeasuringStep::Kind::kEvent:
+        own_events_[s.event] = s.value;
+        if (event_sink_) event_sink_(s.event, s.value);
+        ++run.step;
+        break;
+      case measure::MeasuringStep::Kind::kWaitEvent:
+        if (EventSet(s.event) != s.value) return false;
+        ++run.step;
+        break;
+      case measure::MeasuringStep::Kind::kAux:
+        ++run.step;
+        if (config_.aux_handshake) {
+          aux_output_.push_back({'Q', 0, static_cast<double>(s.q)});
+          ++aux_strobe_;
+          return false;  // the cycle waits for the acknowledgement first
+        }
+        break;
+      case measure::MeasuringStep::Kind::kRapid:
+      case measure::MeasuringStep::Kind::kMeasure:
+        ++run.step;
+        run.contact.reset();
+        if (!StartMeasuringMove(s)) return false;
+        if (active_) return false;
+        run.moving = false, run.measuring_move = false;
+        break;
+    }
+  }
+  // The steps are done.
+  const measure::MeasuringMessage* message = run.message;
+  const bool reversal = run.reversal;
+  const nc::PreparedBlock block = run.block;
+  EndMeasuring();
+  if (reversal) return true;
+  if (message) {
+    const std::string text = nc::Format(
+        {program.blocks[static_cast<size_t>(block.block)].pos, message->text}, program.files);
+    if (message->advance_continuable()) {
+      // Q9998, fault category 2: the program holds with the message; a new start continues.
+      state_ = ChannelState::kHold;
+      error_ = text;
+      error_number_ = kMsgMeasuringContinuable;
+    } else {
+      // Q9999, fault category 1: the advance program stays inhibited; the reverse program runs.
+      Fail(text, kMsgMeasuringReverseOnly);
+      return false;
+    }
+  }
+  return true;
+}
+
+void Channel::EndMeasuring() {
+  if (!measuring_) return;
+  const nc::PreparedBlock block = measuring_->block;
+  measuring_.reset();
+  block_ = block;
+  const nc::ModalState m = interpreter_ ? interpreter_->modal() : block.modal;
+  UpdateTranslation(m, *ProgramOf(block.program), block.block);
+  if (!interpreter_) return;
+  // The program goes on from where the stylus stands (its next block's unprogrammed axes stay).
+  std::vector<double> position(commanded_.size());
+  for (size_t a = 0; a < position.size(); ++a) position[a] = commanded_[a] - translation_[a];
+  interpreter_->SetPosition(position);
+}
+
+void Channel::StartReversal() {
+  const auto points = reverse_vectors_.Reversal();
+  if (points.empty() || !measuring_setting_ || !measuring_pages_) {
+    measuring_.reset();
+    return;
+  }
+  MeasuringRun run;
+  run.block = block_;
+  run.reversal = true;
+  uint8_t axes = 0;
+  for (int n = 0; n < 3; ++n)
+    if (SettingAxis(n) >= 0) axes |= static_cast<uint8_t>(1u << n);
+  for (const auto& p : points) {
+    measure::MeasuringStep s;
+    s.kind = measure::MeasuringStep::Kind::kRapid;
+    s.target = p;
+    s.axes = axes;
+    run.plan.steps.push_back(s);
+  }
+  measuring_.emplace(std::move(run));
+  reverse_vectors_ = {};
+}
+
+}  // namespace vmt::control::channel

@@ -1,0 +1,218 @@
+// The channel running the measuring instructions of the fast-measurement manual on an ideal
+// lathe whose X drive latches the stylus' contact (7.3), with a stand-in for the PLC's measuring
+// block QMFB1Axx on the events (6.2): it acknowledges event 30 by resetting event 29.
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "control/measure/measuring_pages.hpp"
+#include "tests/control/channel/channel_test_support.hpp"
+
+namespace vmt::control::channel::testing {
+namespace {
+
+constexpr double kSphereRadius = 3;
+
+/// The lathe with the stylus T3 (sphere 1: r 3, tool lengths 0) and a part whose surface is at
+/// radius `surface` in X: the X drive latches where the sphere meets it.
+struct MeasuringLathe {
+  MeasuringLathe(const std::string& program, double surface, double x = 50, double z = 5,
+                 const std::function<void(ChannelConfig&)>& configure = {})
+      : m(program, x, z,
+          [&](ChannelConfig& c) {
+            c.tools.edges = {{1, 1, {0, 0}, 0.8, 3}, {3, 1, {0, 0}, kSphereRadius, 0}};
+            c.aux_handshake = true;
+            if (configure) configure(c);
+          }),
+        surface(surface) {
+    pages.stylus[0].tool_number = 3;
+    pages.stylus[0].sphere_radius[0] = kSphereRadius;
+    m.channel->SetMeasuringPages(&pages);
+    m.channel->SetEventSource([this](int n) { return events[n]; });
+    m.channel->SetEventSink([this](int n, bool set) {
+      events[n] = set;
+      if (set) raised.push_back(n);
+    });
+  }
+
+  /// One drive tick, with the PLC's part: acknowledge Q functions, event 30 -> reset event 29,
+  /// and the X drive's latch armed while event 30 is set.
+  void Tick() {
+    if (!m.channel->aux_output().empty()) {
+      for (const nc::AuxFunction& f : m.channel->aux_output()) q_functions.push_back(f.value);
+      m.channel->AcknowledgeAux();
+    }
+    if (events[30] && events[29]) events[29] = false;
+    if (!events[30]) m.at.feedback[0].probe = {};
+    const double x_before = m.X();
+    m.Tick();
+    ProbeEdgeLatch& latch = m.at.feedback[0].probe.probe1.positive;
+    const double touch = surface + kSphereRadius;
+    if (events[30] && !latch.latched && x_before > touch && m.X() <= touch) {
+      latch.latched = true;
+      latch.measured_value = touch;  // an exact latch: the sampling error is the drive's test
+      latch.exact_position = touch;
+    }
+  }
+  void RunUntilStopped(double limit = 30) {
+    while (m.channel->state() == ChannelState::kRunning && m.t < limit) Tick();
+  }
+
+  Machine m;
+  double surface;
+  measure::MeasuringPages pages;
+  std::map<int, bool> events;
+  std::vector<int> raised;
+  std::vector<double> q_functions;
+};
+
+TEST(ChannelMeasuring, ProbeMeasuresADiameterAndEscapesToTheStart) {
+  // 5.2 example 1, P1 as radius programming: the surface at X30 measured along -X from 2 mm
+  // away, approached directly, with escape (variant 1).
+  MeasuringLathe l(
+      "N1 SETTING(X,Z,,18,48,15,1)\n"
+      "N2 PROBE(1,1,30,5,,X,-2,100,1,1,0)\n"
+      "N3 RET\n",
+      30.0);
+  l.m.channel->Start();
+  l.RunUntilStopped();
+  ASSERT_EQ(l.m.channel->state(), ChannelState::kEnded) << l.m.channel->error();
+  const measure::PointPage* p = l.pages.Point(0, 1);
+  ASSERT_NE(p, nullptr);
+  EXPECT_EQ(p->measuring_axis, 'X');
+  EXPECT_NEAR(p->value.command, 30, 1e-9);
+  EXPECT_NEAR(p->value.actual, 30, 1e-9);
+  EXPECT_NEAR(p->value.deviation, 0, 1e-9);
+  // SETTING issued Q9992 to the PLC (6.1); PROBE set 29 and 30 (6.2).
+  ASSERT_FALSE(l.q_functions.empty());
+  EXPECT_EQ(l.q_functions.front(), 9992);
+  EXPECT_NE(std::find(l.raised.begin(), l.raised.end(), 29), l.raised.end());
+  EXPECT_NE(std::find(l.raised.begin(), l.raised.end(), 30), l.raised.end());
+  EXPECT_FALSE(l.events[30]);  // the measuring path monitoring is off again
+  // With escape the stylus is back where it started.
+  EXPECT_NEAR(l.m.X(), 50, 1e-9);
+  EXPECT_NEAR(l.m.Z(), 5, 1e-9);
+  ASSERT_TRUE(l.m.channel->measuring_setting());
+  EXPECT_EQ(l.m.channel->measuring_setting()->axis[0], 'X');
+}
+
+TEST(ChannelMeasuring, AnOversizePartIsMeasuredAsSuch) {
+  MeasuringLathe l(
+      "N1 SETTING(X,Z,,18,48,15,1)\n"
+      "N2 PROBE(1,1,30,5,,X,-2,100,1,3,0)\n"
+      "N3 RET\n",
+      30.25);
+  l.m.channel->Start();
+  l.RunUntilStopped();
+  ASSERT_EQ(l.m.channel->state(), ChannelState::kEnded) << l.m.channel->error();
+  const measure::PointPage* p = l.pages.Point(0, 1);
+  EXPECT_NEAR(p->value.actual, 30.25, 1e-9);
+  EXPECT_NEAR(p->value.deviation, 0.25, 1e-9);
+  // Without escape (variant 3) the stylus stays at the setup position: 2 mm from the nominal
+  // surface, the sphere radius taken into account (4.2, 4.5).
+  EXPECT_NEAR(l.m.X(), 30 + 2 + kSphereRadius, 1e-9);
+}
+
+TEST(ChannelMeasuring, NoContactOnTheMeasuringPathIsTestPointNotFound) {
+  // The part is 3 mm smaller than the program thinks: the doubled path (4 mm) ends short.
+  MeasuringLathe l(
+      "N1 SETTING(X,Z,,18,48,15,1)\n"
+      "N2 PROBE(1,1,30,5,,X,-2,100,1,1,0)\n"
+      "N3 RET\n"
+      ".HOME\n"
+      "N10 G00 X80\n"
+      "N11 RET\n",
+      25.0);
+  l.m.channel->Start();
+  l.RunUntilStopped();
+  ASSERT_EQ(l.m.channel->state(), ChannelState::kError);
+  EXPECT_EQ(l.m.channel->error_number(), kMsgMeasuringReverseOnly);
+  EXPECT_NE(l.m.channel->error().find("TEST POINT NOT FOUND"), std::string::npos)
+      << l.m.channel->error();
+  EXPECT_NE(l.m.channel->error().find("p.mtc:2:"), std::string::npos) << l.m.channel->error();
+  EXPECT_EQ(l.q_functions.back(), 9999);
+  EXPECT_FALSE(l.events[30]);
+  // Fault category 1: no advance start, only the reverse program.
+  l.m.channel->Start();
+  EXPECT_EQ(l.m.channel->state(), ChannelState::kError);
+  ASSERT_TRUE(l.m.channel->Reverse());
+  l.RunUntilStopped();
+  EXPECT_EQ(l.m.channel->state(), ChannelState::kEnded) << l.m.channel->error();
+  EXPECT_NEAR(l.m.X(), 80, 1e-9);
+}
+
+TEST(ChannelMeasuring, OneInstructionPerBlockAndNothingElse) {
+  MeasuringLathe l(
+      "N1 SETTING(X,Z,,18,48,15,1)\n"
+      "N2 G00 X60 PROBE(1,1,30,5,,X,-2,100,1,1,0)\n"
+      "N3 RET\n",
+      30.0);
+  l.m.channel->Start();
+  l.RunUntilStopped();
+  ASSERT_EQ(l.m.channel->state(), ChannelState::kError);
+  EXPECT_EQ(l.m.channel->error_number(), kMsgMeasuringInstruction);
+  EXPECT_NE(l.m.channel->error().find("p.mtc:2:"), std::string::npos) << l.m.channel->error();
+}
+
+TEST(ChannelMeasuring, ToolNoseRadiusCompensationMustBeOffBeforeProbe) {
+  MeasuringLathe l(
+      "N1 SETTING(X,Z,,18,48,15,1)\n"
+      "N2 G41\n"
+      "N3 PROBE(1,1,30,5,,X,-2,100,1,1,0)\n"
+      "N4 RET\n",
+      30.0);
+  l.m.channel->Start();
+  l.RunUntilStopped();
+  ASSERT_EQ(l.m.channel->state(), ChannelState::kError);
+  EXPECT_EQ(l.m.channel->error_number(), kMsgMeasuringInstruction) << l.m.channel->error();
+  EXPECT_NE(l.m.channel->error().find("p.mtc:3:"), std::string::npos) << l.m.channel->error();
+}
+
+TEST(ChannelMeasuring, OversizeHoldsTheProgramAndStartContinuesIt) {
+  // A point comparison of a part 0.05 mm oversize against a tolerance of +-0.01: OVERSIZE
+  // (Q9998, 4.6 dimensional accuracy 1); the new start continues (6.1 fault category 2).
+  MeasuringLathe l(
+      "N1 SETTING(X,Z,,18,48,15,1)\n"
+      "N2 PROBE(1,1,30,5,,X,-2,100,1,1,0)\n"
+      "N3 COMPARE(1,0,1,)\n"
+      "N4 CORRECTION(1,0.01,-0.01,0.4,0.3,0,1,100,0.005,0.001)\n"
+      "N5 RET\n",
+      30.05);
+  l.m.channel->Start();
+  l.RunUntilStopped();
+  ASSERT_EQ(l.m.channel->state(), ChannelState::kHold) << l.m.channel->error();
+  EXPECT_EQ(l.m.channel->error_number(), kMsgMeasuringContinuable);
+  EXPECT_NE(l.m.channel->error().find("OVERSIZE"), std::string::npos) << l.m.channel->error();
+  EXPECT_EQ(l.q_functions.back(), 9998);
+  const measure::ErgebnisPage* r = l.pages.Result(0, 1);
+  ASSERT_NE(r, nullptr);
+  EXPECT_EQ(r->dimensional_accuracy, 1);
+  EXPECT_NEAR(r->correction_value, 0.05, 1e-9);
+  l.m.channel->Start();
+  l.RunUntilStopped();
+  EXPECT_EQ(l.m.channel->state(), ChannelState::kEnded) << l.m.channel->error();
+}
+
+TEST(ChannelMeasuring, SaveAndRestoreGiveTheVariablesBack) {
+  MeasuringLathe l(
+      "N1 @100 = 7\n"
+      "N2 SETTING(X,Z,,18,48,15,1)\n"
+      "N3 SAVE(1,0,0)\n"
+      "N4 @100 = 9\n"
+      "N5 RESTORE()\n"
+      "N6 BRA .CHECK\n"
+      ".CHECK\n"
+      "N7 @101 = @100 - 7\n"
+      "N8 BEQ .OK\n"
+      "N9 G00 X99\n"
+      ".OK\n"
+      "N10 RET\n",
+      30.0);
+  l.m.channel->Start();
+  l.RunUntilStopped();
+  ASSERT_EQ(l.m.channel->state(), ChannelState::kEnded) << l.m.channel->error();
+  EXPECT_NEAR(l.m.X(), 50, 1e-9);  // @100 was 7 again: no G00 X99
+}
+
+}  // namespace
+}  // namespace vmt::control::channel::testing
