@@ -103,6 +103,7 @@ std::unique_ptr<nc::Interpreter> Channel::MakeInterpreter() {
     auto it = own_events_.find(n);
     return it != own_events_.end() && it->second;
   });
+  interpreter->SetDataAccess(MakeDataAccess());
   return interpreter;
 }
 
@@ -577,7 +578,7 @@ bool Channel::UpdateTranslation(const nc::ModalState& modal, const nc::Program& 
   }
   const double sign = modal.tool_length == 49 ? -1 : 1;
   for (size_t a = 0; a < translation_.size(); ++a) {
-    const double length = edge && a < edge->length.size() ? edge->length[a] : 0;
+    const double length = edge ? edge->Length(a, config_.axes[a].name) : 0;
     translation_[a] = config_.zero_offsets.Offset(modal.zero_offset, a) + shift_[a] - sign * length;
   }
   if (headstock_) {

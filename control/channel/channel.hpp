@@ -262,6 +262,9 @@ class Channel {
   uint32_t line() const;
 
  private:
+  /// TLD(...) the tool list, OTD(...) the zero offsets, MTD(...) the machine data pages
+  /// (SetMeasuringPages; null: MTD is an error), for the interpreters (channel_data_access.cpp).
+  nc::DataAccess MakeDataAccess();
   bool NextBlock(const AmplifierTelegram& at);
   bool RunBlock(const AmplifierTelegram& at);
   bool NextCompensated(const AmplifierTelegram& at);

@@ -33,7 +33,7 @@ std::vector<double> Channel::TranslationOf(const nc::ModalState& modal) const {
   const double sign = modal.tool_length == 49 ? -1 : 1;
   std::vector<double> t(config_.axes.size());
   for (size_t a = 0; a < t.size(); ++a) {
-    const double length = edge && a < edge->length.size() ? edge->length[a] : 0;
+    const double length = edge ? edge->Length(a, config_.axes[a].name) : 0;
     t[a] = config_.zero_offsets.Offset(modal.zero_offset, a) + shift_[a] - sign * length;
   }
   return t;
@@ -300,6 +300,7 @@ void Channel::StartReposRun() {
       auto it = own_events_.find(n);
       return it != own_events_.end() && it->second;
     });
+    interpreter_->SetDataAccess(MakeDataAccess());
     interpreter_->RunSubroutine(static_cast<uint32_t>(program), "REPOS");
   }
   state_ = ChannelState::kRunning;

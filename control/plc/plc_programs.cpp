@@ -12,17 +12,24 @@ namespace {
 
 struct Entry {
   std::string_view name;
-  PlcProgram (*make)(const gateway::SignalImage&);
+  PlcProgram (*make)(const gateway::SignalImage&, const measure::MeasuringPages*);
 };
 
 template <typename Program>
-PlcProgram Make(const gateway::SignalImage& image) {
+PlcProgram Make(const gateway::SignalImage& image, const measure::MeasuringPages*) {
   // std::function needs a copyable target; the program's state lives on the heap once.
   auto program = std::make_shared<Program>(image);
   return [program](PlcScan& scan) { (*program)(scan); };
 }
 
-PlcProgram MakeWrongChangeover(const gateway::SignalImage& image) {
+PlcProgram MakeProbeBlock(const gateway::SignalImage& image,
+                          const measure::MeasuringPages* measuring_pages) {
+  auto program = std::make_shared<ProbeBlockProgram>(image);
+  program->measuring_pages = measuring_pages;
+  return [program](PlcScan& scan) { (*program)(scan); };
+}
+
+PlcProgram MakeWrongChangeover(const gateway::SignalImage& image, const measure::MeasuringPages*) {
   CAxisChangeoverConfig config;
   config.acknowledge_before_clutch = true;
   auto program = std::make_shared<CAxisChangeover>(image, config);
@@ -33,7 +40,7 @@ constexpr Entry kPrograms[] = {
     {"repos_machine_keys", &Make<ReposMachineKeys>},
     {"c_axis_changeover", &Make<CAxisChangeover>},
     {"c_axis_changeover_wrong", &MakeWrongChangeover},
-    {"probe_block", &Make<ProbeBlockProgram>},
+    {"probe_block", &MakeProbeBlock},
     {"machine_panel", &Make<MachinePanel>},
 };
 
@@ -45,9 +52,10 @@ std::vector<std::string> PlcProgramNames() {
   return names;
 }
 
-std::optional<PlcProgram> MakePlcProgram(std::string_view name, const gateway::SignalImage& image) {
+std::optional<PlcProgram> MakePlcProgram(std::string_view name, const gateway::SignalImage& image,
+                                         const measure::MeasuringPages* measuring_pages) {
   for (const Entry& e : kPrograms)
-    if (name == e.name) return e.make(image);
+    if (name == e.name) return e.make(image, measuring_pages);
   return std::nullopt;
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "control/gateway/signal_image.hpp"
+#include "control/measure/measuring_pages.hpp"
 #include "control/plc/plc_runtime.hpp"
 
 namespace vmt::control::plc {
@@ -18,7 +19,9 @@ std::vector<std::string> PlcProgramNames();
 
 /// The program called `name`, wired to the signals of `image`'s table. nullopt if no program
 /// has that name; throws std::invalid_argument naming the signal if the machine lacks one the
-/// program needs.
-std::optional<PlcProgram> MakePlcProgram(std::string_view name, const gateway::SignalImage& image);
+/// program needs. `measuring_pages`: the NC's machine data pages, which probe_block reads
+/// (MTD_RD); not owned, null: none.
+std::optional<PlcProgram> MakePlcProgram(std::string_view name, const gateway::SignalImage& image,
+                                         const measure::MeasuringPages* measuring_pages = nullptr);
 
 }  // namespace vmt::control::plc

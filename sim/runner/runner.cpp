@@ -168,6 +168,9 @@ struct SceneRun::State {
   double spindle_angle = 0;
   bool guard_parts_stale = false;
   void FollowSpindle(double t);
+  /// The machine data pages of fast measurement: the channel's MTD(...) and the probe block's
+  /// MTD_RD read and write the same ones.
+  control::measure::MeasuringPages measuring_pages;
   std::unique_ptr<control::channel::Channel> channel;
   std::unique_ptr<control::gateway::SignalImage> image;
   std::unique_ptr<control::gateway::ChannelGateway> gateway;
@@ -244,6 +247,8 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     config.tool_storage_drive = scene.nc.data.tool_storage_drive;
     channel = std::make_unique<control::channel::Channel>(config, programs);
     channel->SetFeedOverride(scene.nc.override);
+    measuring_pages = scene.nc.measuring_pages;
+    channel->SetMeasuringPages(&measuring_pages);
     if (config.path_guard != control::GuardReaction::kOff) {
       // The machine's collision geometry with the scene's workpiece, posed where the backend
       // stands; the channel asks it before its approach moves.
@@ -293,7 +298,7 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
   // An external PLC (vmt serve) takes the embedded program's place.
   plc_every = std::llround(scene.plc.period_s / kDriveTickS);
   if (image && scene.plc.present && !options.external_plc) {
-    auto made = control::plc::MakePlcProgram(scene.plc.program, *image);
+    auto made = control::plc::MakePlcProgram(scene.plc.program, *image, &measuring_pages);
     if (!made) throw std::runtime_error("no PLC program '" + scene.plc.program + "'");
     plc = std::make_unique<control::plc::PlcRuntime>(*image, std::move(*made),
                                                      control::plc::PlcTime(plc_every * 250));

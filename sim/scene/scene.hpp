@@ -9,6 +9,7 @@
 
 #include "control/channel/channel.hpp"
 #include "control/gateway/signal_table.hpp"
+#include "control/measure/measuring_pages.hpp"
 #include "control/nc/program.hpp"
 #include "sim/backend/machine_backend.hpp"
 #include "sim/model/machine_model.hpp"
@@ -43,6 +44,9 @@ struct NcSetup {
   bool aux_handshake = false;       ///< M/H/Q/T wait for the PLC's acknowledgement
   /// The gateway's signals for this machine (vmt signals MODEL); the runner's signal image.
   std::shared_ptr<const std::vector<control::gateway::Signal>> signals;
+  /// The machine data pages of fast measurement as the run starts with them: `measuring_pages:`
+  /// presets, else the stylus pages of the model's `probe:`.
+  control::measure::MeasuringPages measuring_pages;
 };
 
 /// The embedded PLC program (plc_programs.hpp) and its scan time.

@@ -14,6 +14,7 @@
 #include "sim/model/nc_machine_data.hpp"
 #include "sim/model/yaml_reader.hpp"
 #include "sim/physics/physics_backend.hpp"
+#include "sim/scene/measuring_pages_loader.hpp"
 #include "sim/scene/scene.hpp"
 #include "sim/scene/scene_steps.hpp"
 #include "sim/scene/workpiece_loader.hpp"
@@ -30,7 +31,7 @@ Scene LoadScene(const std::string& path) {
   const YamlNode root = YamlNode::LoadFile(path);
   if (!root.IsMap()) root.Fail("a scene file is a map");
   root.AllowKeys({"scene", "model", "backend", "duration", "trace_period", "workpiece", "initial",
-                  "plc", "nc", "timeline", "expect", "snapshots", "cameras"});
+                  "plc", "nc", "timeline", "expect", "snapshots", "cameras", "measuring_pages"});
   Scene s;
   s.file = path;
   s.name = root["scene"].String();
@@ -206,6 +207,12 @@ Scene LoadScene(const std::string& path) {
     s.nc.signals = std::make_shared<const std::vector<control::gateway::Signal>>(
         control::gateway::BuildSignalTable(GatewayLayoutOf(m)));
     s.nc.override = nc.Double("override", 100) / 100;
+    PresetStylusPages(m, s.nc.measuring_pages);
+  }
+  if (root.Has("measuring_pages")) {
+    if (!s.nc.present)
+      root["measuring_pages"].Fail("the machine data pages are the NC's: the scene needs nc:");
+    LoadMeasuringPages(root["measuring_pages"], s.nc.data.tools, s.nc.measuring_pages);
   }
   if (root.Has("plc")) {
     // The embedded PLC: a program of the manuals, scanned against the gateway signals.
