@@ -6,7 +6,8 @@ packages=(
   libbullet-dev libfcl-dev libccd-dev libassimp-dev libeigen3-dev
   libosmesa6-dev libpng-dev libyaml-cpp-dev liburdfdom-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev libmodbus-dev
-  python3 python3-pymodbus mbpoll
+  # pymodbus 3.0 imports serial_asyncio even for TCP; Debian only recommends it.
+  python3 python3-pymodbus python3-serial-asyncio mbpoll
   clang libclang-rt-14-dev
 )
 missing=()
