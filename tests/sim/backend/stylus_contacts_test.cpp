@@ -9,7 +9,7 @@
 
 #include <cmath>
 
-#include "sim/sim_test_support.hpp"
+#include "../sim_test_support.hpp"
 
 namespace vmt::sim {
 namespace {
@@ -52,7 +52,9 @@ struct StylusRig {
         [&] {
           if (each) each();
           command = std::max(to_mm, command - v * kDriveTickS);
-          bench.Command("X", DriveMode::kPosition, command);
+          // Mode and value only: Bench::Command writes the whole setpoint, probe control too.
+          bench.mdt().setpoints[x].mode = DriveMode::kPosition;
+          bench.mdt().setpoints[x].value = command;
           return bench.Feedback("X").position <= to_mm + 1e-4;
         },
         10.0);

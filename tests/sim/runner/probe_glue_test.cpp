@@ -17,7 +17,7 @@
 #include "control/plc/plc_programs.hpp"
 #include "control/plc/plc_runtime.hpp"
 #include "sim/model/gateway_layout.hpp"
-#include "sim/sim_test_support.hpp"
+#include "../sim_test_support.hpp"
 
 namespace vmt::sim {
 namespace {
