@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "control/drive_bus.hpp"
 #include "control/gateway/signal_table.hpp"
 #include "control/plc/plc_runtime.hpp"
 #include "control/plc/programs/probe_block.hpp"
@@ -225,8 +226,8 @@ TEST(ProbeBlockProgramTest, AxdWrWritesTheProbeParametersIntoTheDrives) {
   for (int i = 0; i < 10 && !p.Bool("P00.Q9992_Q"); ++i) p.Scan();
   ASSERT_TRUE(p.Bool("P00.Q9992_Q"));
   const std::vector<std::array<int64_t, 3>> expected = {
-      {1, 303, 405}, {1, 307, 409}, {1, 169, probe_control::kProbe1Positive}, {1, 170, 3},
-      {2, 303, 405}, {2, 307, 409}, {2, 169, probe_control::kProbe1Positive}, {2, 170, 3}};
+      {1, 303, 405}, {1, 307, 409}, {1, 169, control::probe_control::kProbe1Positive}, {1, 170, 3},
+      {2, 303, 405}, {2, 307, 409}, {2, 169, control::probe_control::kProbe1Positive}, {2, 170, 3}};
   EXPECT_EQ(writes, expected);
 }
 
