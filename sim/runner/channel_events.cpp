@@ -37,7 +37,8 @@ nlohmann::ordered_json StylusOverTravelEvent(const StylusOverTravel& o) {
   e["sphere"] = o.sphere + 1;
   e["parts"] = {o.sphere_part, o.part};
   const Eigen::Vector3d p = o.point_m * kMmPerM;
-  e["point"] = {Micro(p.x()), Micro(p.y()), Micro(p.z())};
+  const auto mm = [](double v) { return Micro(v) + 0.0; };  // + 0.0: no "-0.0" on the axis
+  e["point"] = {mm(p.x()), mm(p.y()), mm(p.z())};
   return e;
 }
 

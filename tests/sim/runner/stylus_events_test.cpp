@@ -37,7 +37,8 @@ TEST(StylusEventsTest, TheRubyDrivenIntoThePartIsAStylusEvent) {
             std::string::npos)
       << events;
   const size_t at = events.find("\"event\":\"stylus\",\"state\":\"over_travel\",\"T\":3,"
-                                "\"sphere\":1,\"parts\":[\"probe_ruby\",\"workpiece\"],\"point\":[");
+                                "\"sphere\":1,\"parts\":[\"probe_ruby\",\"workpiece\"],"
+                                "\"point\":[30.0,0.0,160.0]}");
   ASSERT_NE(at, std::string::npos) << events;
   EXPECT_EQ(events.find("\"event\":\"stylus\"", at + 1), std::string::npos);  // once
 }
