@@ -43,7 +43,7 @@ PlcRuntime::PlcRuntime(gateway::SignalImage& image, PlcProgram program, PlcTime 
 void PlcRuntime::Scan() {
   if (stopped_) return;
   latched_.CopyValuesFrom(image_);
-  PlcScan scan(latched_, writable_, now_, cycles_);
+  PlcScan scan(latched_, writable_, now_, cycles_, axd_wr_ ? &axd_wr_ : nullptr);
   program_(scan);
   for (int id : outputs_) image_.CopyValue(id, latched_);
   now_ += period_;

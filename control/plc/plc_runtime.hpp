@@ -8,9 +8,11 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "control/gateway/signal_image.hpp"
+#include "control/plc/axd_wr.hpp"
 
 namespace vmt::control::plc {
 
@@ -22,8 +24,8 @@ using PlcTime = std::chrono::microseconds;
 class PlcScan {
  public:
   PlcScan(gateway::SignalImage& latched, const std::vector<bool>& writable, PlcTime now,
-          uint64_t cycle)
-      : latched_(latched), writable_(writable), now_(now), cycle_(cycle) {}
+          uint64_t cycle, const AxdWriter* axd_wr = nullptr)
+      : latched_(latched), writable_(writable), now_(now), cycle_(cycle), axd_wr_(axd_wr) {}
 
   PlcTime now() const { return now_; }       ///< PLC time at the start of this scan
   uint64_t cycle() const { return cycle_; }  ///< scans before this one
@@ -36,6 +38,10 @@ class PlcScan {
   void SetInt(int id, int64_t v) { Writable(id), latched_.SetInt(id, v); }
   void SetReal(int id, double v) { Writable(id), latched_.SetReal(id, v); }
 
+  /// The AXD_WR system function, null where nothing connects the PLC to the drives (a program
+  /// then has no drive to write to, and says so as it sees fit).
+  const AxdWriter* axd_wr() const { return axd_wr_; }
+
  private:
   void Writable(int id) const;
 
@@ -43,6 +49,7 @@ class PlcScan {
   const std::vector<bool>& writable_;
   PlcTime now_;
   uint64_t cycle_;
+  const AxdWriter* axd_wr_;
 };
 
 /// A PLC program: called once per scan. Programs resolve their signal ids when they are made
@@ -69,6 +76,8 @@ class PlcRuntime {
   /// scan runs.
   void Stop();
   bool stopped() const { return stopped_; }
+  /// Connects AXD_WR (PlcScan::axd_wr) to the drives.
+  void SetAxdWriter(AxdWriter writer) { axd_wr_ = std::move(writer); }
 
   PlcTime now() const { return now_; }
   PlcTime period() const { return period_; }
@@ -84,6 +93,7 @@ class PlcRuntime {
   bool stopped_ = false;
   std::vector<bool> writable_;  ///< by id
   std::vector<int> outputs_;    ///< ids written back at the end of a scan
+  AxdWriter axd_wr_;
 };
 
 }  // namespace vmt::control::plc

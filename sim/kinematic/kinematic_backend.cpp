@@ -3,7 +3,7 @@
 namespace vmt::sim {
 
 KinematicBackend::KinematicBackend(const MachineModel& model, const InitialState& init)
-    : model_(&model), drive_infos_(model.DriveInfos()), probes_(model) {
+    : model_(&model), drive_infos_(model.DriveInfos()), probes_(model), styluses_(model) {
   for (const DriveParams& p : model.drives) controllers_.emplace_back(p);
   clutches_.resize(model.clutches.size());
   clutch_offsets_.assign(model.clutches.size(), 0.0);
@@ -127,6 +127,8 @@ void KinematicBackend::Step() {
       clutch_offsets_[k] = q_[c.load_joint] - q_[c.motor_joint] / c.ratio;
     if (engaged != was_engaged) RebuildPlan();
   }
+  // The styluses before the drives sample: a contact within this tick latches where it was.
+  if (styluses_.any()) styluses_.Step(q_before, q_, at_.inputs, time_s(), probes_);
   ++ticks_;
   UpdateFeedback();
   if (probes_.any()) {

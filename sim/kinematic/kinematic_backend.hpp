@@ -32,6 +32,10 @@ class KinematicBackend : public MachineBackend {
   void SetProbeSwitch(int io_input, bool level, double tick_fraction) override {
     probes_.SetSwitch(io_input, level, tick_fraction);
   }
+  void SetWorkpiece(const RevolvedPart& part) override { styluses_.SetPart(part); }
+  std::vector<StylusOverTravel> TakeStylusOverTravels() override {
+    return styluses_.TakeOverTravels();
+  }
 
  private:
   void UpdateFeedback();
@@ -58,6 +62,7 @@ class KinematicBackend : public MachineBackend {
   control::MasterTelegram mdt_;
   control::AmplifierTelegram at_;
   ProbeWiring probes_;
+  StylusContacts styluses_;
   std::vector<double> probe_positions_;  ///< per drive, unquantised (ActualPositions)
   int64_t ticks_ = 0;
 };

@@ -58,7 +58,8 @@ PhysicsBackend::PhysicsBackend(const MachineModel& model, const InitialState& in
     : model_(&model),
       drive_infos_(model.DriveInfos()),
       world_(std::make_unique<World>()),
-      probes_(model) {
+      probes_(model),
+      styluses_(model) {
   for (const DriveParams& p : model.drives) controllers_.emplace_back(p);
   clutches_.resize(model.clutches.size());
   world_->clutch_gears.resize(model.clutches.size());
@@ -246,6 +247,8 @@ void PhysicsBackend::Step() {
     if (a.holds_drive >= 0) Clamp(static_cast<int>(k), actuators_[k].Holds(a));
   }
 
+  // The styluses step between the links' poses before and after the physics moved them.
+  if (styluses_.any()) q_before_ = JointPositions();
   world_->world.stepSimulation(dt, 0, dt);
 
   for (size_t k = 0; k < clutches_.size(); ++k) {
@@ -259,6 +262,8 @@ void PhysicsBackend::Step() {
     if (engaged && !was_engaged) Couple(static_cast<int>(k));
     if (!engaged && was_engaged) Uncouple(static_cast<int>(k));
   }
+  // Before the drives sample: a contact within this tick latches where it was.
+  if (styluses_.any()) styluses_.Step(q_before_, JointPositions(), at_.inputs, time_s(), probes_);
   ++ticks_;
   UpdateFeedback(torques);
   if (probes_.any()) {

@@ -44,6 +44,10 @@ class PhysicsBackend : public MachineBackend {
   void SetProbeSwitch(int io_input, bool level, double tick_fraction) override {
     probes_.SetSwitch(io_input, level, tick_fraction);
   }
+  void SetWorkpiece(const RevolvedPart& part) override { styluses_.SetPart(part); }
+  std::vector<StylusOverTravel> TakeStylusOverTravels() override {
+    return styluses_.TakeOverTravels();
+  }
 
   /// Joint velocities (m/s | rad/s).
   std::vector<double> JointVelocities() const;
@@ -64,7 +68,9 @@ class PhysicsBackend : public MachineBackend {
   control::MasterTelegram mdt_;
   control::AmplifierTelegram at_;
   ProbeWiring probes_;
+  StylusContacts styluses_;
   std::vector<double> probe_positions_;  ///< per drive, unquantised (ActualPositions)
+  std::vector<double> q_before_;  ///< joint positions before the tick's motion (styluses)
   std::vector<double> torques_;  ///< load side, per drive, of the last tick
   int64_t ticks_ = 0;
 };

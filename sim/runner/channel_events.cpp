@@ -31,6 +31,17 @@ nlohmann::ordered_json GuardEvent(double t, const control::channel::GuardRecord&
   return e;
 }
 
+nlohmann::ordered_json StylusOverTravelEvent(const StylusOverTravel& o) {
+  nlohmann::ordered_json e = {{"t", o.t_s}, {"event", "stylus"}, {"state", "over_travel"}};
+  e["T"] = o.t_number;
+  e["sphere"] = o.sphere + 1;
+  e["parts"] = {o.sphere_part, o.part};
+  const Eigen::Vector3d p = o.point_m * kMmPerM;
+  const auto mm = [](double v) { return Micro(v) + 0.0; };  // + 0.0: no "-0.0" on the axis
+  e["point"] = {mm(p.x()), mm(p.y()), mm(p.z())};
+  return e;
+}
+
 nlohmann::ordered_json ReposEvent(double t, const control::channel::ReposStatus& s) {
   nlohmann::ordered_json e = {{"t", t}, {"event", "repos"}};
   e["function"] = ToString(s.function);

@@ -1,10 +1,12 @@
 #pragma once
 // The NC channel's events in a scene's trace (events.jsonl): PathGuard checks and the REPOS
-// screen (repositioning manual 2.2), as the operator and the PLC engineer read them.
+// screen (repositioning manual 2.2), as the operator and the PLC engineer read them; and the
+// stylus crashing into the part, the run-time counterpart of a PathGuard contact.
 
 #include <nlohmann/json.hpp>
 
 #include "control/channel/channel.hpp"
+#include "sim/backend/stylus_contacts.hpp"
 #include "sim/model/machine_model.hpp"
 
 namespace vmt::sim {
@@ -13,6 +15,11 @@ namespace vmt::sim {
 /// path, where the moving drives would stand; or clear) and the smallest clearance on the way.
 nlohmann::ordered_json GuardEvent(double t, const control::channel::GuardRecord& r,
                                   const MachineModel& m);
+
+/// A stylus deflected beyond its over-travel: a crash of the stylus into the part, with the
+/// sphere (1..5, as TASTWERKZEUGPAGE numbers them), the two parts and the point on the part
+/// (world, mm).
+nlohmann::ordered_json StylusOverTravelEvent(const StylusOverTravel& o);
 
 /// The REPOS screen: the function and its status signals, per feed axis final value, command
 /// value and distance to go with its adjust symbol, the spindle, F, T, M and G state.

@@ -18,6 +18,7 @@
 #include "sim/model/gateway_layout.hpp"
 #include "sim/runner/channel_events.hpp"
 #include "sim/runner/drive_program.hpp"
+#include "sim/runner/probe_glue.hpp"
 #include "sim/runner/scene_renderer.hpp"
 
 namespace vmt::sim {
@@ -178,6 +179,7 @@ struct SceneRun::State {
   bool field_bus = false;  ///< the machine's I/O goes through the image (a PLC is there)
   int64_t plc_every = 16;  ///< drive ticks per PLC cycle
   std::vector<std::pair<int, int>> plc_inputs, plc_outputs;  // I/O point, signal id
+  std::unique_ptr<ProbeGlue> probe_glue;  ///< the SERCOS side of the PLC's probe block
   std::unique_ptr<DriveProgram> program;
   std::vector<double> last_signals;
   control::channel::ChannelState nc_state = control::channel::ChannelState::kIdle;
@@ -214,6 +216,7 @@ struct SceneRun::State {
 SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     : scene(scene_), options(options_), m(*scene_.model) {
   backend = MakeBackend(options.backend.value_or(scene.backend), m, scene.initial);
+  if (scene.workpiece.present) backend->SetWorkpiece(scene.workpiece.part);
   // The NC channel, if the scene has one: its axes move at the drives' rapid and acceleration.
   if (scene.nc.present) {
     control::channel::ChannelConfig config;
@@ -303,6 +306,14 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     plc = std::make_unique<control::plc::PlcRuntime>(*image, std::move(*made),
                                                      control::plc::PlcTime(plc_every * 250));
   }
+  if (image) {
+    probe_glue = std::make_unique<ProbeGlue>(m, *image);
+    ProbeGlue* glue = probe_glue.get();
+    if (plc)
+      plc->SetAxdWriter([glue](int axis, int ident, int64_t value) {
+        return glue->Write(axis, ident, value);
+      });
+  }
   field_bus = image && (plc || options.external_plc);
   if (field_bus) {
     for (size_t i = 0; i < m.io.size(); ++i) {
@@ -351,6 +362,7 @@ void SceneRun::State::Step() {
   // The PLC scans at the start of its cycle, on the machine's inputs as they stand then (the
   // field bus copied them at the end of the last tick); an external PLC has scanned just before
   // this tick, on the same inputs, so both see and act alike.
+  if (probe_glue) probe_glue->ReadStatus(at);
   if (plc && tick % plc_every == 0) ScanPlc(t);
   events.clear();
   program->Tick(t, at, clutches, mdt, events);
@@ -368,6 +380,7 @@ void SceneRun::State::Step() {
     if (gateway && nc_cycle) gateway->ReadControls(*channel);
     if (path_guard && nc_cycle) FollowSpindle(t);
     channel->Tick(at, mdt);
+    if (probe_glue) probe_glue->WriteSetpoints(mdt);
     if (gateway && nc_cycle) gateway->WriteStatus(*channel, at);
     if (const auto* hs = channel->headstock(); hs && hs->target() != headstock_target) {
       // The operator's display: the axis designation of the mode (S1 <-> C, 2.3 position
@@ -528,6 +541,8 @@ void SceneRun::State::Step() {
   ApplyOutputFaults();
   backend->Write(mdt);
   backend->Step();
+  for (const StylusOverTravel& o : backend->TakeStylusOverTravels())
+    emit_event(StylusOverTravelEvent(o));
   ++tick;
   if (field_bus && tick % plc_every == 0) ReadFieldBus();
 }

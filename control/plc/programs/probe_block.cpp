@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "control/gateway/signal_table.hpp"
+#include "control/plc/programs/probe_drive_parameters.hpp"
 #include "control/plc/programs/require_signal.hpp"
 
 namespace vmt::control::plc {
@@ -134,6 +135,7 @@ void QMFB1Axx::Initialise() {
     if (MTD_RD.failed_element >= 6 && MTD_RD.failed_element <= 10)
       return Fehler(23 + MTD_RD.failed_element - 6);
     const BasisMessPage& page = MTD_RD.page;
+    page_ = page;
     // Pin 4 / pin 5 of the drive are its probe inputs 1 / 2 (7.3), so PIN DDS selects which of
     // the block's probes (I_MT_OK1/I_MTast1 or I_MT_OK2/I_MTast2) the program measures with.
     probe2_ = page.PIN_DDS;
@@ -398,13 +400,20 @@ void ProbeBlockProgram::operator()(PlcScan& s) {
   m.EV_Mess = mess >= 0 && s.Bool(mess);
   m.EV_Touch = touch >= 0 && s.Bool(touch);
   const bool koll_in = m.EV_Koll, touch_in = m.EV_Touch;
-  // MTD_RD answers from the NC's pages where they are connected, else with basis_page; vmt's
-  // drives take any parameter: AXD_WR fails only for an axis the machine does not have.
+  // MTD_RD answers from the NC's pages where they are connected, else with basis_page. AXD_WR
+  // answers what the drives said to last scan's writes where the runtime reaches them; without,
+  // it stands in for drives that take any parameter of an axis the machine has.
   m.MTD_RD = measuring_pages ? ReadBasisMessPage(*measuring_pages, m.BasisPage, m.MessProc)
                              : MtdRdResult{basis_page, 0, false};
-  for (int n = 0; n < 3; ++n) m.AXD_WR[n] = {AxisId(axis_qdds_, axes[n]) >= 0, 0};
+  const AxdWriter* axd_wr = s.axd_wr();
+  for (int n = 0; n < 3; ++n)
+    m.AXD_WR[n] = axd_wr ? axd_answers_[n] : AxdWrResult{AxisId(axis_qdds_, axes[n]) >= 0, 0};
 
   m(s.now());
+
+  if (axd_wr && m.AXDaktiv)
+    axd_answers_[m.axd_axis()] =
+        WriteProbeParameters(*axd_wr, axes[m.axd_axis()], AxdWrProbeParameters(m.page()));
 
   // Events are shared with the NC program (SE/RE): written only where the block changed them.
   if (koll >= 0 && m.EV_Koll != koll_in) s.SetBool(koll, m.EV_Koll);

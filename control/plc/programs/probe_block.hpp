@@ -106,6 +106,11 @@ struct QMFB1Axx {
 
   void operator()(PlcTime now);
 
+  /// What an AXD_WR issued in this call (AXDaktiv) writes: into the drive of measuring axis
+  /// axd_axis() (0..2), the probe parameters of the page read at Q9992 (AxdWrProbeParameters).
+  int axd_axis() const { return axis_; }
+  const BasisMessPage& page() const { return page_; }
+
  private:
   enum class Init : uint8_t { kNone, kReadPage, kWriteDrive };
 
@@ -124,6 +129,7 @@ struct QMFB1Axx {
   bool issued_ = false;       ///< the current MTD_RD / AXD_WR call has been made (answer next scan)
   int axis_ = 0;              ///< measuring axis (0..2) AXD_WR is initialising
   bool initialised_ = false;  ///< Q9992 completed since ENABLE / the last failed attempt
+  BasisMessPage page_;        ///< as MTD_RD read it at the last Q9992
   bool probe2_ = false;       ///< PIN_DDS: pin 5 -> probe 2
   bool nc_contact_ = false;   ///< Pushbutton_contact: the contact opens when displaced
   std::array<bool, 3> requested_{};                 ///< Measuring_axis_1..3
@@ -168,6 +174,9 @@ struct ProbeBlockProgram {
   // I_MT_OK1 / I_MTast1, Q_MTst1 switching the probe on with QPROBE_ON); -1: not wired.
   int probe_ready_ = -1, probe_contact_ = -1, probe_on_ = -1;
   std::vector<int> qdds_axes_;  ///< axes whose AxxC.QDDS the program wrote last scan
+  /// AXD_WR's answers to the writes issued last scan, per measuring axis, where the runtime
+  /// connects AXD_WR to the drives (PlcScan::axd_wr).
+  std::array<AxdWrResult, 3> axd_answers_{};
   int q_ack_ = -1;              ///< the Pxx.Qnnnn_Q written last scan
 };
 

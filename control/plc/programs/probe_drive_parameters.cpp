@@ -1,5 +1,7 @@
 #include "control/plc/programs/probe_drive_parameters.hpp"
 
+#include <utility>
+
 namespace vmt::control::plc {
 
 ProbeDriveParameters AxdWrProbeParameters(const BasisMessPage& page) {
@@ -16,6 +18,23 @@ ProbeDriveParameters AxdWrProbeParameters(const BasisMessPage& page) {
     p.S_0_0307 = opens ? 412 : 411;
   }
   return p;
+}
+
+AxdWrResult WriteProbeParameters(const AxdWriter& axd_wr, int axis,
+                                 const ProbeDriveParameters& p) {
+  const std::pair<int, int64_t> writes[] = {
+      {303, p.S_0_0303}, {307, p.S_0_0307}, {169, p.S_0_0169}, {170, p.S_0_0170}};
+  for (const auto& [ident, value] : writes) {
+    switch (axd_wr(axis, ident, value)) {
+      case AxdWrStatus::kDone:
+        continue;
+      case AxdWrStatus::kNoAxis:
+        return {false, 0};
+      case AxdWrStatus::kRefused:
+        return {true, ident};
+    }
+  }
+  return {true, 0};
 }
 
 ProbeControl ProbeControlOf(const ProbeDriveParameters& p, bool qdds) {

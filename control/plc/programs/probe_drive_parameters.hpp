@@ -20,6 +20,7 @@
 #include <cstdint>
 
 #include "control/drive_bus.hpp"
+#include "control/plc/axd_wr.hpp"
 #include "control/plc/programs/probe_block.hpp"
 
 namespace vmt::control::plc {
@@ -35,6 +36,10 @@ struct ProbeDriveParameters {
 
 /// The parameters AXD_WR writes for this page (see above).
 ProbeDriveParameters AxdWrProbeParameters(const BasisMessPage& page);
+
+/// AXD_WR of `p` into the drive of axis number `axis`, in the order of FEHLER_NR 28..39
+/// (S-0-0303, S-0-0307, S-0-0169, S-0-0170); the first refusal ends it and is the answer.
+AxdWrResult WriteProbeParameters(const AxdWriter& axd_wr, int axis, const ProbeDriveParameters& p);
 
 /// The drive's probe control with real-time control bit 2 (AxxC.QDDS) at `qdds`: the enable
 /// S-0-0303 names follows it, the other stays 0.

@@ -3,8 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <memory>
+#include <vector>
 
+#include "control/drive_bus.hpp"
 #include "control/gateway/signal_table.hpp"
 #include "control/plc/plc_runtime.hpp"
 #include "control/plc/programs/probe_block.hpp"
@@ -207,6 +210,48 @@ TEST(ProbeBlockProgramTest, AnAxisTheMachineDoesNotHaveIsError40) {
   EXPECT_EQ(p.fb().FEHLER_NR, 40);
   EXPECT_TRUE(p.fb().Init_OK_1);
   EXPECT_FALSE(p.Bool("P00.Q9992_Q"));
+}
+
+// Where the runtime connects AXD_WR to the drives, the block writes each requested axis's drive
+// in the order of FEHLER_NR 28..39, and what a drive refuses is the block's error.
+TEST(ProbeBlockProgramTest, AxdWrWritesTheProbeParametersIntoTheDrives) {
+  Plant p(ThreeAxes());
+  WireLathe(p);
+  std::vector<std::array<int64_t, 3>> writes;
+  p.plc.SetAxdWriter([&writes](int axis, int ident, int64_t value) {
+    writes.push_back({axis, ident, value});
+    return AxdWrStatus::kDone;
+  });
+  p.Set("P00.Q9992", true);
+  for (int i = 0; i < 10 && !p.Bool("P00.Q9992_Q"); ++i) p.Scan();
+  ASSERT_TRUE(p.Bool("P00.Q9992_Q"));
+  const std::vector<std::array<int64_t, 3>> expected = {
+      {1, 303, 405}, {1, 307, 409}, {1, 169, control::probe_control::kProbe1Positive}, {1, 170, 3},
+      {2, 303, 405}, {2, 307, 409}, {2, 169, control::probe_control::kProbe1Positive}, {2, 170, 3}};
+  EXPECT_EQ(writes, expected);
+}
+
+TEST(ProbeBlockProgramTest, AParameterTheDriveRefusesIsTheBlocksError) {
+  Plant p(ThreeAxes());
+  WireLathe(p);
+  p.plc.SetAxdWriter([](int axis, int ident, int64_t) {
+    return axis == 2 && ident == 169 ? AxdWrStatus::kRefused : AxdWrStatus::kDone;
+  });
+  p.Set("P00.Q9992", true);
+  p.Scan(6);
+  EXPECT_EQ(p.fb().FEHLER_NR, 35);  // S_0_169, axis 2
+  EXPECT_TRUE(p.fb().Init_OK_1);
+  EXPECT_FALSE(p.fb().Init_OK_2);
+  EXPECT_FALSE(p.Bool("P00.Q9992_Q"));
+
+  Plant q(ThreeAxes());
+  WireLathe(q);
+  q.plc.SetAxdWriter([](int axis, int, int64_t) {
+    return axis == 2 ? AxdWrStatus::kNoAxis : AxdWrStatus::kDone;
+  });
+  q.Set("P00.Q9992", true);
+  q.Scan(6);
+  EXPECT_EQ(q.fb().FEHLER_NR, 40);
 }
 
 TEST(ProbeBlockProgramTest, ThePageStandInDecidesTheMeasuringAxes) {
