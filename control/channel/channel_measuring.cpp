@@ -4,6 +4,7 @@
 // measuring block (6.2), Q functions with their acknowledgement (6.1), G00 and G94 G01 moves of
 // the stylus' sphere centre, and on the measuring path the drive's latch (7.3) stops the move
 // and gives the measured value.
+#include <algorithm>
 #include <cmath>
 
 #include "control/channel/channel.hpp"
@@ -207,11 +208,30 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
   continuation_ready_ = false;
   carry_speed_ = carry_accel_ = carry_leftover_ = 0;
   if (!motion_.moves) return true;
-  // The approach moves are checked before they start, as G77's (issue 6); the measuring path
-  // is meant to touch the part with the sphere, which PathGuard allows the ruby.
-  if (!GuardBlockMove(step.kind == measure::MeasuringStep::Kind::kRapid ? "probe approach"
-                                                                          : "measuring path"))
-    return false;
+  // The approach moves are checked before they start, as G77's (issue 6). The measuring path
+  // is checked up to where the sphere meets the nominal surface (PathGuard lets the ruby touch
+  // the part): beyond it, on the doubled path, the probe's switch ends the move long before the
+  // over-travel lets the shank reach the part.
+  if (step.kind == measure::MeasuringStep::Kind::kRapid) {
+    if (!GuardBlockMove("probe approach")) return false;
+  } else {
+    std::vector<double> end = motion_.end;
+    const int axis = SettingAxis(measuring_->plan.measuring_axis);
+    if (axis >= 0 && measuring_setting_) {
+      const auto a = static_cast<size_t>(axis);
+      const double r =
+          measuring_pages_->stylus[static_cast<size_t>(measuring_setting_->stylus - 1)]
+              .sphere_radius[static_cast<size_t>(std::clamp(step.sphere, 1, measure::kSpheres) - 1)];
+      const double touch =
+          measuring_->plan.command - measuring_->plan.direction * r + translation_[a];
+      const double dir = measuring_->plan.direction;
+      // Not beyond the move's end, nor back behind its start.
+      end[a] = dir * (touch - motion_.start[a]) <= 0 ? motion_.start[a]
+               : dir * (touch - motion_.end[a]) >= 0 ? motion_.end[a]
+                                                     : touch;
+    }
+    if (!GuardBlockMove("measuring path", &end)) return false;
+  }
   profile_.max_rate = motion_.max_rate;
   profile_.max_accel = motion_.max_accel;
   profile_.max_jerk = motion_.max_jerk;
@@ -291,14 +311,20 @@ bool Channel::MeasuringCycle(const AmplifierTelegram& at) {
         if (EventSet(s.event) != s.value) return false;
         ++run.step;
         break;
-      case measure::MeasuringStep::Kind::kAux:
+      case measure::MeasuringStep::Kind::kAux: {
         ++run.step;
+        // Q9999 (fault category 1) stops the advance program at once: the PLC acknowledges it
+        // only when the reverse program has become active (7.2 typical application, network 9).
+        const bool fatal = run.message && s.q == run.message->q_function &&
+                           !run.message->advance_continuable();
         if (config_.aux_handshake) {
           aux_output_.push_back({'Q', 0, static_cast<double>(s.q)});
           ++aux_strobe_;
-          return false;  // the cycle waits for the acknowledgement first
+          if (!fatal) return false;  // the cycle waits for the acknowledgement first
         }
+        if (fatal) run.step = run.plan.steps.size();
         break;
+      }
       case measure::MeasuringStep::Kind::kRapid:
       case measure::MeasuringStep::Kind::kMeasure:
         ++run.step;

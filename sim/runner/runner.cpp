@@ -305,6 +305,7 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     if (!made) throw std::runtime_error("no PLC program '" + scene.plc.program + "'");
     plc = std::make_unique<control::plc::PlcRuntime>(*image, std::move(*made),
                                                      control::plc::PlcTime(plc_every * 250));
+    for (const auto& [id, value] : scene.plc.constants) SetSignalNumber(*image, id, value);
   }
   if (image) {
     probe_glue = std::make_unique<ProbeGlue>(m, *image);

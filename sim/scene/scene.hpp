@@ -53,6 +53,9 @@ struct NcSetup {
 struct PlcSetup {
   bool present = false;
   std::string program;
+  /// The program's constant wiring of block inputs (fast-measurement 7.2 typical application:
+  /// TRUE --- ENABLE, 1 --- ACHS_NR_1): gateway signals the PLC writes, set once at t = 0.
+  std::vector<std::pair<int, double>> constants;
   double period_s = 0.004;  ///< DESIGN.md: 4 ms, 16 drive ticks
 };
 

@@ -217,7 +217,7 @@ Scene LoadScene(const std::string& path) {
   if (root.Has("plc")) {
     // The embedded PLC: a program of the manuals, scanned against the gateway signals.
     const YamlNode plc = root["plc"];
-    plc.AllowKeys({"program", "period_ms"});
+    plc.AllowKeys({"program", "period_ms", "constants"});
     if (!s.nc.present) plc.Fail("a PLC program needs the nc: section (the gateway signals)");
     s.plc.present = true;
     s.plc.program = plc["program"].String();
@@ -226,6 +226,18 @@ Scene LoadScene(const std::string& path) {
       std::string list;
       for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
       plc["program"].Fail("no PLC program '" + s.plc.program + "' (there are: " + list + ")");
+    }
+    if (plc.Has("constants")) {
+      const YamlNode constants = plc["constants"];
+      for (const std::string& name : constants.Keys()) {
+        int id = -1;
+        for (size_t i = 0; i < s.nc.signals->size(); ++i)
+          if ((*s.nc.signals)[i].name == name) id = static_cast<int>(i);
+        if (id < 0) constants[name].Fail("no gateway signal '" + name + "' (vmt signals MODEL)");
+        if ((*s.nc.signals)[id].direction != control::gateway::Direction::kPlcToNc)
+          constants[name].Fail("'" + name + "' is not written by the PLC: no constant of it");
+        s.plc.constants.emplace_back(id, SignalValue(s.nc, id, constants[name]));
+      }
     }
     const double period_ms = plc.Double("period_ms", 4);
     const double ticks = period_ms * 1e-3 / kDriveTickS;

@@ -40,6 +40,22 @@ void RequireWithinTravel(const MachineModel& m, int drive, double value, const Y
                Fmt(hi) + ")");
 }
 
+int RequireSignal(const NcSetup& nc, const YamlNode& n) {
+  if (!nc.present || !nc.signals) n.Fail("the scene has no nc: section (no gateway signals)");
+  const std::string name = n.String();
+  for (size_t i = 0; i < nc.signals->size(); ++i)
+    if ((*nc.signals)[i].name == name) return static_cast<int>(i);
+  n.Fail("no gateway signal '" + name + "' (vmt signals MODEL lists them)");
+}
+
+// A signal value as written in a scene: true/false for BOOL, a number otherwise.
+double SignalValue(const NcSetup& nc, int id, const YamlNode& n) {
+  if ((*nc.signals)[id].type == control::gateway::SignalType::kBool) return n.Bool() ? 1 : 0;
+  if ((*nc.signals)[id].type == control::gateway::SignalType::kString)
+    n.Fail("STRING signals cannot be set from a scene");
+  return n.Double();
+}
+
 namespace {
 
 int RequireIo(const MachineModel& m, const YamlNode& n) {
@@ -76,22 +92,6 @@ control::channel::ChannelState ParseNcState(const YamlNode& n) {
                          ChannelState::kEnded, ChannelState::kError})
     if (s == control::channel::ToString(c)) return c;
   n.Fail("expected idle, running, hold, ended or error");
-}
-
-int RequireSignal(const NcSetup& nc, const YamlNode& n) {
-  if (!nc.present || !nc.signals) n.Fail("the scene has no nc: section (no gateway signals)");
-  const std::string name = n.String();
-  for (size_t i = 0; i < nc.signals->size(); ++i)
-    if ((*nc.signals)[i].name == name) return static_cast<int>(i);
-  n.Fail("no gateway signal '" + name + "' (vmt signals MODEL lists them)");
-}
-
-// A signal value as written in a scene: true/false for BOOL, a number otherwise.
-double SignalValue(const NcSetup& nc, int id, const YamlNode& n) {
-  if ((*nc.signals)[id].type == control::gateway::SignalType::kBool) return n.Bool() ? 1 : 0;
-  if ((*nc.signals)[id].type == control::gateway::SignalType::kString)
-    n.Fail("STRING signals cannot be set from a scene");
-  return n.Double();
 }
 
 Condition ReadCondition(const MachineModel& m, const YamlNode& n, const NcSetup& nc) {

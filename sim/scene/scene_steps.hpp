@@ -19,6 +19,11 @@ void RequireWithinTravel(const MachineModel& m, int drive, double value, const Y
 /// A number as a message shows it (shortest form).
 std::string Fmt(double v);
 
+/// A gateway signal by its name (`vmt signals MODEL`). Fails at `n` if there is none.
+int RequireSignal(const NcSetup& nc, const YamlNode& n);
+/// A signal value as written in a scene: true/false for BOOL, a number otherwise.
+double SignalValue(const NcSetup& nc, int id, const YamlNode& n);
+
 /// Timeline step `i`; with `plc` the timeline may only press keys.
 TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const NcSetup& nc,
                       bool plc);

@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "control/gateway/signal_table.hpp"
+#include "control/measure/measuring_messages.hpp"
 #include "control/plc/programs/probe_drive_parameters.hpp"
 #include "control/plc/programs/require_signal.hpp"
 
@@ -339,6 +340,8 @@ ProbeBlockProgram::ProbeBlockProgram(const gateway::SignalImage& image)
     if (s.scope == gateway::Scope::kProcess) {
       if (const auto n = NumberAfter(p, "Pxx.EV")) {
         events_[{s.instance, *n}] = id;
+      } else if (p == "PxxS.REV") {
+        reverse_running_[s.instance] = id;
       } else if (p.ends_with("_Q")) {
         if (const auto q = NumberAfter(p.substr(0, p.size() - 2), "Pxx.Q"))
           q_acks_[{s.instance, *q}] = id;
@@ -439,6 +442,18 @@ void ProbeBlockProgram::operator()(PlcScan& s) {
     s.SetBool(axis_qdds_[axis], on);
   }
   qdds_axes_ = std::move(named);
+
+  // Typical application, networks 9 and 11 (6.1): Q9999 is acknowledged when the reverse
+  // program has become active; Q9998 at once, vmt's program having no error-clear key to wait
+  // for (the NC holds with OVERSIZE / UNDERSIZE and a new start continues).
+  for (const int number : {measure::kQ9998, measure::kQ9999}) {
+    const int qf = Lookup(q_functions_, m.MessProc, number);
+    const int qa = Lookup(q_acks_, m.MessProc, number);
+    if (qf < 0 || qa < 0) continue;
+    const auto rev = reverse_running_.find(m.MessProc);
+    const bool reverse = rev != reverse_running_.end() && s.Bool(rev->second);
+    s.SetBool(qa, s.Bool(qf) && (number == measure::kQ9998 || reverse));
+  }
 
   const auto out = [&s](int pin, bool v) { s.SetBool(pin, v); };
   const std::array<bool, 3> init_ok = {m.Init_OK_1, m.Init_OK_2, m.Init_OK_3};

@@ -178,6 +178,7 @@ struct ProbeBlockProgram {
   /// connects AXD_WR to the drives (PlcScan::axd_wr).
   std::array<AxdWrResult, 3> axd_answers_{};
   int q_ack_ = -1;              ///< the Pxx.Qnnnn_Q written last scan
+  std::map<int, int> reverse_running_;  ///< PxxS.REV by process
 };
 
 }  // namespace vmt::control::plc
