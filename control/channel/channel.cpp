@@ -139,7 +139,11 @@ bool Channel::Reverse() {
   homing_ = false;
   dwell_left_s_ = 0;
   orienting_ = false;
-  aux_output_.clear();
+  // Fast measurement 6.1 / 7.2 network 9: the PLC acknowledges Q9999 once the reverse program
+  // is active; the reverse program waits for that before its first block.
+  std::erase_if(aux_output_, [](const nc::AuxFunction& f) {
+    return !(f.letter == 'Q' && f.value == measure::kQ9999);
+  });
   error_.clear();
   error_number_ = 0;
   std::vector<double> position(commanded_.size());

@@ -130,14 +130,19 @@ TEST(ChannelMeasuring, NoContactOnTheMeasuringPathIsTestPointNotFound) {
   EXPECT_NE(l.m.channel->error().find("TEST POINT NOT FOUND"), std::string::npos)
       << l.m.channel->error();
   EXPECT_NE(l.m.channel->error().find("p.mtc:2:"), std::string::npos) << l.m.channel->error();
-  EXPECT_EQ(l.q_functions.back(), 9999);
+  // Q9999 is out; the PLC acknowledges it only when the reverse program runs (7.2 network 9).
+  ASSERT_EQ(l.m.channel->aux_output().size(), 1u);
+  EXPECT_EQ(l.m.channel->aux_output()[0].value, 9999);
   EXPECT_FALSE(l.events[30]);
   // Fault category 1: no advance start, only the reverse program.
   l.m.channel->Start();
   EXPECT_EQ(l.m.channel->state(), ChannelState::kError);
   ASSERT_TRUE(l.m.channel->Reverse());
+  EXPECT_TRUE(l.m.channel->reversing());
+  ASSERT_EQ(l.m.channel->aux_output().size(), 1u);  // still waiting for its acknowledgement
   l.RunUntilStopped();
   EXPECT_EQ(l.m.channel->state(), ChannelState::kEnded) << l.m.channel->error();
+  EXPECT_EQ(l.q_functions.back(), 9999);
   EXPECT_NEAR(l.m.X(), 80, 1e-9);
 }
 
