@@ -42,6 +42,18 @@ nlohmann::ordered_json StylusOverTravelEvent(const StylusOverTravel& o) {
   return e;
 }
 
+nlohmann::ordered_json ProbeLatchEvent(double t, const std::string& drive, int pin, bool positive,
+                                       const control::ProbeEdgeLatch& latch) {
+  const auto nano = [](double v) { return std::round(v * 1e6) / 1e6 + 0.0; };
+  nlohmann::ordered_json e = {{"t", t}, {"event", "probe_latch"}, {"drive", drive}};
+  e["input"] = pin == 5 ? "PIN5" : "PIN4";
+  e["edge"] = positive ? "positive" : "negative";
+  e["measured_value"] = nano(latch.measured_value);
+  e["exact_position"] = nano(latch.exact_position);
+  e["sampling_error"] = nano(latch.measured_value - latch.exact_position);
+  return e;
+}
+
 nlohmann::ordered_json ReposEvent(double t, const control::channel::ReposStatus& s) {
   nlohmann::ordered_json e = {{"t", t}, {"event", "repos"}};
   e["function"] = ToString(s.function);

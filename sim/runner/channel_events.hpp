@@ -21,6 +21,13 @@ nlohmann::ordered_json GuardEvent(double t, const control::channel::GuardRecord&
 /// (world, mm).
 nlohmann::ordered_json StylusOverTravelEvent(const StylusOverTravel& o);
 
+/// A drive latched a probe input's edge (fast-measurement 7.3): the drive and the axis' name,
+/// PIN4 / PIN5, the edge, the measured value (S-0-0130..0133: the position of the sampling tick)
+/// beside the exact position at the switch's change and their difference, the sampling error
+/// (up to feed x 250 µs), in mm to the nanometre.
+nlohmann::ordered_json ProbeLatchEvent(double t, const std::string& drive, int pin, bool positive,
+                                       const control::ProbeEdgeLatch& latch);
+
 /// The REPOS screen: the function and its status signals, per feed axis final value, command
 /// value and distance to go with its adjust symbol, the spindle, F, T, M and G state.
 nlohmann::ordered_json ReposEvent(double t, const control::channel::ReposStatus& s);

@@ -196,6 +196,7 @@ struct SceneRun::State {
   std::vector<uint8_t> last_inputs;
   std::vector<uint32_t> last_faults;  ///< per drive: its fault bits at the last tick
   std::vector<uint8_t> last_sets;     ///< per drive: its current parameter set at the last tick
+  std::vector<uint8_t> last_latches;  ///< per drive: its probe latched flags at the last tick
   control::MasterTelegram mdt;
   std::vector<ProgramEvent> events;
   control::AmplifierTelegram faulted_at;  ///< the machine as the control sees it, faults applied
@@ -481,6 +482,21 @@ void SceneRun::State::Step() {
     e["parameter_set_error"] = (faults & kParameterSetError) != 0;
     emit_event(e);
     last_faults[d] = faults;
+  }
+  // Probe latches as the drives fill them (7.3): latched value beside the exact contact.
+  last_latches.resize(at.feedback.size(), 0);
+  for (size_t d = 0; d < at.feedback.size(); ++d) {
+    const control::ProbeStatus& p = at.feedback[d].probe;
+    const control::ProbeEdgeLatch* latches[4] = {&p.probe1.positive, &p.probe1.negative,
+                                                 &p.probe2.positive, &p.probe2.negative};
+    uint8_t now = 0;
+    for (int k = 0; k < 4; ++k)
+      if (latches[k]->latched) now |= static_cast<uint8_t>(1u << k);
+    for (int k = 0; k < 4; ++k)
+      if ((now >> k & 1) && !(last_latches[d] >> k & 1))
+        emit_event(ProbeLatchEvent(t, m.drives[d].info.name, k < 2 ? 4 : 5, k % 2 == 0,
+                                   *latches[k]));
+    last_latches[d] = now;
   }
   last_clutches = clutches;
   last_inputs = at.inputs;

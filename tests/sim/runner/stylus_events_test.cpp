@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "../sim_test_support.hpp"
@@ -41,6 +43,51 @@ TEST(StylusEventsTest, TheRubyDrivenIntoThePartIsAStylusEvent) {
                                 "\"point\":[30.0,0.0,160.0]}");
   ASSERT_NE(at, std::string::npos) << events;
   EXPECT_EQ(events.find("\"event\":\"stylus\"", at + 1), std::string::npos);  // once
+}
+
+}  // namespace
+}  // namespace vmt::sim
+
+namespace vmt::sim {
+namespace {
+
+// The measuring scene: each latch event gives the drive's measured value beside the exact
+// contact; the exact contact is the analytic surface less the pre-travel (5 µm), the measured
+// value within the feed's travel in one 250 µs sample (200 mm/min: 0.83 µm) of it.
+TEST(StylusEventsTest, ProbeLatchEventsShowTheSamplingError) {
+  const std::string dir = testing::OutputDir("probe_latch_events");
+  RunOptions options;
+  options.out_dir = dir;
+  options.snapshots = false;
+  const RunResult r = RunScene(LoadScene(testing::SourcePath("scenes/measure-shaft.yaml")),
+                               options);
+  EXPECT_TRUE(r.ok());
+  std::ifstream events(dir + "/events.jsonl");
+  std::string line;
+  int x_latches = 0, z_latches = 0;
+  const double feed_mm_s = 200.0 / 60, sample_s = 250e-6;
+  while (std::getline(events, line)) {
+    const auto e = nlohmann::json::parse(line);
+    if (e["event"] != "probe_latch") continue;
+    const double exact = e["exact_position"], measured = e["measured_value"];
+    EXPECT_LE(std::abs(measured - exact), feed_mm_s * sample_s + 1e-6) << line;
+    EXPECT_NEAR(e["sampling_error"].get<double>(), measured - exact, 2e-6) << line;
+    // The axis that measured stands where the ruby met the surface, less the pre-travel: X
+    // reads the ruby's lowest point (radius 30 and 20.05), Z its centre (faces at 160, 130).
+    // (Both drives latch each contact; the other axis stands still elsewhere.)
+    if (e["drive"] == "X" && (std::abs(exact - 30) < 1 || std::abs(exact - 20.5) < 0.5)) {
+      const bool d60 = exact > 25;
+      EXPECT_NEAR(exact, (d60 ? 30.0 : 20.05) - 0.005, 1e-7) << line;
+      ++x_latches;
+    }
+    if (e["drive"] == "Z" && (std::abs(exact - 163) < 1 || std::abs(exact - 133) < 1)) {
+      const bool end_face = exact > 150;
+      EXPECT_NEAR(exact, (end_face ? 163.0 : 133.0) - 0.005, 1e-7) << line;
+      ++z_latches;
+    }
+  }
+  EXPECT_EQ(x_latches, 3);  // the d60 calibration, P1 (d60), P2 (d40.1)
+  EXPECT_EQ(z_latches, 3);  // the end face calibration, P3, P4 (shoulder)
 }
 
 }  // namespace
