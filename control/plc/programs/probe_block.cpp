@@ -342,6 +342,12 @@ ProbeBlockProgram::ProbeBlockProgram(const gateway::SignalImage& image)
         events_[{s.instance, *n}] = id;
       } else if (p == "PxxS.REV") {
         reverse_running_[s.instance] = id;
+      } else if (p == "PxxC.ENABL") {
+        process_enable_[s.instance] = id;
+      } else if (p == "Pxx.MSG_WR") {
+        message_[s.instance] = id;
+      } else if (p == "Pxx.MSG_WR_N") {
+        message_n_[s.instance] = id;
       } else if (p.ends_with("_Q")) {
         if (const auto q = NumberAfter(p.substr(0, p.size() - 2), "Pxx.Q"))
           q_acks_[{s.instance, *q}] = id;
@@ -453,6 +459,28 @@ void ProbeBlockProgram::operator()(PlcScan& s) {
     const auto rev = reverse_running_.find(m.MessProc);
     const bool reverse = rev != reverse_running_.end() && s.Bool(rev->second);
     s.SetBool(qa, s.Bool(qf) && (number == measure::kQ9998 || reverse));
+  }
+
+  // Typical application, networks 7, 8, 13, 14, 20 and 24 (what reaches the NC): a probe
+  // collision or an error of the block locks the process (no process enable: the NC stops at
+  // once) with message 203 / 202 (probe monitoring 1 / 2), or 206 (errors 1..13) / 207 (14..)
+  // with the error number; both are suppressed while the reverse program runs (network 7), so
+  // that it can take the stylus away. They last until RESET clears the block.
+  {
+    const auto rev = reverse_running_.find(m.MessProc);
+    const bool reversing = rev != reverse_running_.end() && s.Bool(rev->second);
+    const bool collision = m.Q_MTstKol && !reversing;
+    const bool fault = m.FEHLER && !reversing;
+    const auto at = [&](const std::map<int, int>& ids) {
+      const auto it = ids.find(m.MessProc);
+      return it == ids.end() ? -1 : it->second;
+    };
+    if (const int id = at(process_enable_); id >= 0) s.SetBool(id, !collision && !fault);
+    const int message = collision ? (m.page().PIN_DDS ? 202 : 203)
+                        : fault   ? (m.FEHLER_NR <= 13 ? 206 : 207)
+                                  : 0;
+    if (const int id = at(message_); id >= 0) s.SetInt(id, message);
+    if (const int id = at(message_n_); id >= 0) s.SetInt(id, collision || !fault ? 0 : m.FEHLER_NR);
   }
 
   const auto out = [&s](int pin, bool v) { s.SetBool(pin, v); };

@@ -179,6 +179,9 @@ struct ProbeBlockProgram {
   std::array<AxdWrResult, 3> axd_answers_{};
   int q_ack_ = -1;              ///< the Pxx.Qnnnn_Q written last scan
   std::map<int, int> reverse_running_;  ///< PxxS.REV by process
+  /// PxxC.ENABL, Pxx.MSG_WR, Pxx.MSG_WR_N by process: the typical application's reaction to a
+  /// probe collision or an error of the block.
+  std::map<int, int> process_enable_, message_, message_n_;
 };
 
 }  // namespace vmt::control::plc
