@@ -243,19 +243,9 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
 
 void Channel::WatchMeasuringMove(const AmplifierTelegram& at) {
   if (!measuring_ || !measuring_->moving || !active_) return;
-  if (!measuring_->measuring_move) {
-    // 6.1: the probe displaced outside the measuring path (event 29 set, the PLC reports the
-    // contact by event 7) is as good as a collision: stop, Q9999.
-    if (!measuring_->reversal && EventSet(kTouchEvent)) {
-      active_ = false;
-      measuring_->moving = false;
-      measuring_->plan.steps.resize(measuring_->step);
-      measuring_->plan.steps.push_back(
-          {measure::MeasuringStep::Kind::kAux, 0, false, measure::kQ9999});
-      measuring_->message = &measure::kTestPointNotFound;
-    }
-    return;
-  }
+  // Outside the measuring path a displaced probe is the PLC's to catch (6.3: its measuring
+  // block reports the collision, the typical application locks the process).
+  if (!measuring_->measuring_move) return;
   // The measuring path: the drive of the measuring axis latched its position at the probe's
   // switching edge (7.3); that ends the move (distance to go deleted) and is the measured value.
   const int axis = SettingAxis(measuring_->plan.measuring_axis);
@@ -283,6 +273,16 @@ bool Channel::MeasuringCycle(const AmplifierTelegram& at) {
       run.measuring_move = false;
       const measure::MeasuringMessage* message = measure::FinishProbe(
           run.call, run.plan, run.context, *measuring_pages_, run.contact);
+      if (!message && run.contact) {
+        // 6.2 event 7: the measuring path ends with the PLC's report of the contact, so its
+        // block sees the latch while event 30 is still set (else it would take the path for
+        // one without a contact).
+        measure::MeasuringStep wait;
+        wait.kind = measure::MeasuringStep::Kind::kWaitEvent;
+        wait.event = kTouchEvent;
+        wait.value = true;
+        run.plan.steps.insert(run.plan.steps.begin() + static_cast<std::ptrdiff_t>(run.step), wait);
+      }
       if (message) {
         // 6.1: TEST POINT NOT FOUND: the PLC gets Q9999; the measuring path monitoring ends
         // (the event resets still go out), no further move.

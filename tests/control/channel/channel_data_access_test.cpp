@@ -203,8 +203,9 @@ TEST(ChannelDataAccessTest, CorrectionValueOfAMeasurementGoesIntoTheWear) {
   m.channel->SetEventSink([&](int n, bool set) { events[n] = set; });
   m.channel->Start();
   // The PLC's part (channel_measuring_test): event 30 resets event 29; the X drive latches
-  // where the sphere meets the surface while event 30 is set.
+  // where the sphere meets the surface while event 30 is set, and event 7 reports it.
   while (m.channel->state() == ChannelState::kRunning && m.t < 30) {
+    if (events[30] && m.at.feedback[0].probe.probe1.positive.latched) events[7] = true;
     if (events[30] && events[29]) events[29] = false;
     if (!events[30]) m.at.feedback[0].probe = {};
     const double x_before = m.X();

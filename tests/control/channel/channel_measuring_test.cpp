@@ -53,6 +53,11 @@ struct MeasuringLathe {
       latch.measured_value = touch;  // an exact latch: the sampling error is the drive's test
       latch.exact_position = touch;
     }
+    // Event 7: the contact on the measuring path, reported while event 30 is set; cleared
+    // with the next measurement's event 30.
+    if (events[30] && latch.latched) events[7] = true;
+    if (events[30] && !events_30_before) events[7] = false;
+    events_30_before = events[30];
   }
   void RunUntilStopped(double limit = 30) {
     while (m.channel->state() == ChannelState::kRunning && m.t < limit) Tick();
@@ -64,6 +69,7 @@ struct MeasuringLathe {
   std::map<int, bool> events;
   std::vector<int> raised;
   std::vector<double> q_functions;
+  bool events_30_before = false;
 };
 
 TEST(ChannelMeasuring, ProbeMeasuresADiameterAndEscapesToTheStart) {
