@@ -79,7 +79,9 @@ std::unique_ptr<Run> Execute(std::vector<std::pair<std::string, std::string>> fi
   for (const ParseResult& r : run->parsed) programs.push_back(&r.program);
   run->interpreter = std::make_unique<Interpreter>(programs, config);
   run->interpreter->SetEveryBlock(every_block);
-  if (start_at) EXPECT_TRUE(run->interpreter->StartAt(*start_at));
+  if (start_at) {
+    EXPECT_TRUE(run->interpreter->StartAt(*start_at));
+  }
   PreparedBlock b;
   while (run->interpreter->Next(b)) {
     run->blocks.push_back(b);
