@@ -543,7 +543,7 @@ void Channel::UpdateBlockSearchStatus() {
   st.block_count = block_.block_count;
   st.path_deviation = 0;
   st.continue_position.clear();
-  if (search_ && !search_->restart.empty() &&
+  if (search_ && !search_->restart.empty() && !breakpoint_hold_ &&
       (bs_state_ == BlockSearchState::kWaitForPlcOff ||
        bs_state_ == BlockSearchState::kWaitReturnToContour ||
        bs_state_ == BlockSearchState::kReturningToContour ||
@@ -553,9 +553,7 @@ void Channel::UpdateBlockSearchStatus() {
       if (MainAxis(config_.axes[a].name)) d2 += std::pow(commanded_[a] - search_->restart[a], 2);
     st.path_deviation = std::sqrt(d2);
     st.continue_position = search_->restart;
-    if (!active_ || bs_state_ != BlockSearchState::kReturningToContour)
-      st.dist_prog_start =
-          search_->restart_distance + search_->restart_u * search_->restart_length;
+    st.dist_prog_start = search_->restart_distance + search_->restart_u * search_->restart_length;
   }
   uint32_t sc = 0;
   using namespace stop_condition;
