@@ -149,8 +149,16 @@ TEST(ProbeStylusModel, BadKeysNameTheirYamlPath) {
   // The contact input is a switch of its own: not the actuator's ready switch as well.
   EXPECT_THAT(ErrorOf("probe_driven", "input: IPROBE_CONTACT", "input: ITURRET_INPOS"),
               HasSubstr("input 'ITURRET_INPOS' is the switch of more than one device"));
-  EXPECT_THAT(ErrorOf("probe_map", "probe:\n  - T: 3", "probe:\n  x:\n    T: 3"),
-              HasSubstr("probe: expected a list of up to four styluses"));
+  std::string map_error;  // both styluses as entries of a map instead of a list
+  try {
+    testing::EditedLathe("probe_map", [](std::string y) {
+      y = testing::ReplaceOnce(y, "probe:\n  - T: 3", "probe:\n  x:\n    T: 3");
+      return testing::ReplaceOnce(y, "\n  - T: 7\n", "\n  y:\n    T: 7\n");
+    });
+  } catch (const ModelError& e) {
+    map_error = e.what();
+  }
+  EXPECT_THAT(map_error, HasSubstr("probe: expected a list of up to four styluses"));
   // Two styluses: each its own T number and its own switch (TASTWERKZEUGPAGE 00001).
   EXPECT_THAT(ErrorOf("probe_same_t", "  - T: 7\n", "  - T: 3\n"),
               HasSubstr("probe[1].T: a second stylus with this T number"));
