@@ -153,14 +153,14 @@ TEST(ProbeStylusModel, BadKeysNameTheirYamlPath) {
   try {
     testing::EditedLathe("probe_map", [](std::string y) {
       y = testing::ReplaceOnce(y, "probe:\n  - T: 3", "probe:\n  x:\n    T: 3");
-      return testing::ReplaceOnce(y, "\n  - T: 7\n", "\n  y:\n    T: 7\n");
+      return testing::ReplaceOnce(y, "\n  - T: 7 ", "\n  y:\n    T: 7 ");
     });
   } catch (const ModelError& e) {
     map_error = e.what();
   }
   EXPECT_THAT(map_error, HasSubstr("probe: expected a list of up to four styluses"));
   // Two styluses: each its own T number and its own switch (TASTWERKZEUGPAGE 00001).
-  EXPECT_THAT(ErrorOf("probe_same_t", "  - T: 7\n", "  - T: 3\n"),
+  EXPECT_THAT(ErrorOf("probe_same_t", "  - T: 7 ", "  - T: 3 "),
               HasSubstr("probe[1].T: a second stylus with this T number"));
   EXPECT_THAT(ErrorOf("probe_same_input", "input: IPROBE2_CONTACT", "input: IPROBE_CONTACT"),
               HasSubstr("probe[1].input: the switch input of another stylus"));
