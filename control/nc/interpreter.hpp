@@ -231,8 +231,10 @@ class Interpreter {
 
   /// Clears `out` for block `block` of the current program.
   void Begin(PreparedBlock& out, uint32_t program, int32_t block) const;
+  void BeginCold(PreparedBlock& out, uint32_t program, int32_t block) const;
   /// One more block without an effect; false (an error) after max_steps_per_block in a row.
   bool Idle(uint32_t program, int32_t block);
+  [[gnu::cold]] bool EndlessLoop(uint32_t program, int32_t block);
   /// JumpTo / RunSubroutine: the flow goes elsewhere, the counter counts a jump.
   void Jumped();
   bool Execute(const Block& block, PreparedBlock& out, int32_t& next);
@@ -280,19 +282,21 @@ class Interpreter {
   int64_t executed_ = 0;
   std::optional<Diagnostic> error_;
   uint32_t error_program_ = 0;
-  // Block counter (manual 3.2). A block counts the lines from the one the counter stood at:
+  // Block counter (manual 3.2). A block counts the lines from the one the counter stands at:
   // in sequence its line minus count_line_; after a jump (branch, call target, return,
-  // $-structure) one, for the target line; the first block of a file entered by a call or
-  // at program start all lines of that file up to its own (count_line_ = 0).
+  // $-structure) one, for the target line (count_line_ = kJumped); the first block of a file
+  // entered by a call or at program start all lines of that file up to its own
+  // (count_line_ = 0).
+  static constexpr uint32_t kJumped = UINT32_MAX;
   uint32_t count_ = 0;
-  uint32_t count_line_ = 0;    ///< line of the current file the counter stands at
-  bool count_jump_ = false;    ///< the next block is a jump target
-  bool entered_file_ = false;  ///< an ISG call went to the first block of another file
-  /// How a loop statement of the block changes the count (manual 9.2.1, figure 3): a $ENDFOR
-  /// that loops back is not counted but re-reads its $FOR line; a $WHILE that fails after a
-  /// loop-back is not counted, and counting goes on from its $ENDWHILE.
-  enum class LoopCount : uint8_t { kNone, kForBack, kWhileExit };
-  LoopCount loop_count_ = LoopCount::kNone;
+  uint32_t count_line_ = 0;  ///< line of the current file the counter stands at, or kJumped
+  /// What the block just executed did to the count beyond the flow of control (bits, checked
+  /// once per block): an ISG call entered another file at its first block, or a loop statement
+  /// changed the count (manual 9.2.1, figure 3): a $ENDFOR that loops back is not counted but
+  /// re-reads its $FOR line; a $WHILE that fails after a loop-back is not counted, and counting
+  /// goes on from its $ENDWHILE.
+  enum CountEvent : uint8_t { kEnteredFile = 1, kForBack = 2, kWhileExit = 4 };
+  uint8_t count_events_ = 0;
   int32_t loop_line_block_ = -1;  ///< kForBack: the $FOR; kWhileExit: the $ENDWHILE
   bool while_back_ = false;       ///< the $ENDWHILE jumped back to its $WHILE
   int32_t reread_for_ = -1;       ///< SetEveryBlock: a re-read $FOR line still to hand out
