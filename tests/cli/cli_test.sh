@@ -51,7 +51,7 @@ check run_until 1 "0.500 s simulated" -- "$vmt" run "$src/scenes/default.yaml" -
 # Block search from the command line (issue 8): --set writes the CNC objects at t = 0. The
 # refused scene's search moved to N0020 (the plunge at Z158): its return from X26 Z180 is clear
 # of the part, so the scene's expectation of error 507 now fails (exit 1) with the run intact.
-check run_set_block_search 1 "FAILED: expect\[0\]: nc error" -- "$vmt" run "$src/scenes/block-search-refused.yaml" \
+check run_set_block_search 1 "FAILED: expect\[0\]: NC error at the end \(got hold\)" -- "$vmt" run "$src/scenes/block-search-refused.yaml" \
   --set P00.mc_cmd_bs_block_number_w=20 --set P00.mc_cmd_bs_covered_distance_w=0 --out "$out/set"
 check run_set_block_search_event 0 '"continue_position":\{"X":40(\.0)?,"Z":158(\.0)?\}' -- cat "$out/set/events.jsonl"
 check run_set_unknown_signal 2 "no gateway signal 'P00.nope'" -- "$vmt" run "$src/scenes/block-search-refused.yaml" --set P00.nope=1
