@@ -263,7 +263,8 @@ TEST(ChannelMeasuring, ReverseTakesTheStylusBackTheWayItCameBeforeHome) {
 
 TEST(ChannelMeasuring, ReverseRetracesALinearPathSequenceWithEachLegsSphere) {
   // 4.4 linear path sequence 2 over three MOVEs that change the sphere (figure 4-9 blocks 54, 55
-  // do): sphere 2 sits 4 mm lower in X and 6 mm further in Z than sphere 1. Stopped on the third
+  // do): sphere 2's centre is 4 mm lower in X and 6 mm further in Z than sphere 1's (tool
+  // lengths -4, 6: the axes stand at the centre minus them). Stopped on the third
   // leg, the reverse program takes the axes back through the very axis positions the legs
   // started from, each point with the sphere it was reached with, then runs .HOME.
   MeasuringLathe l(
@@ -278,8 +279,8 @@ TEST(ChannelMeasuring, ReverseRetracesALinearPathSequenceWithEachLegsSphere) {
       0.0, 80, 30, [](ChannelConfig& c) { c.tools.edges.push_back({3, 2, {-4, 6}, 2, 0}); });
   l.pages.stylus[0].sphere_radius[1] = 2;
   l.m.channel->Start();
-  while (l.m.X() > 50 && l.m.t < 10) l.Tick();  // on N4's leg: axes X 56 -> 36 at Z16
-  ASSERT_NEAR(l.m.Z(), 16, 1e-9);
+  while (l.m.X() > 50 && l.m.t < 10) l.Tick();  // on N4's leg: axes X 64 -> 44 at Z4
+  ASSERT_NEAR(l.m.Z(), 4, 1e-9);
   l.m.channel->Stop();
   for (int i = 0; i < 4000; ++i) l.Tick();
   ASSERT_EQ(l.m.channel->state(), ChannelState::kHold);
@@ -288,9 +289,9 @@ TEST(ChannelMeasuring, ReverseRetracesALinearPathSequenceWithEachLegsSphere) {
   ASSERT_EQ(r.active, 2);
   ASSERT_EQ(r.sequence[1].size(), 4u);  // the start and the three MOVEs' points, recorded
   ASSERT_TRUE(l.m.channel->Reverse());
-  // The corners the axes must pass: N4's start (sphere 2 at X60 Z10), N3's start (sphere 1 at
-  // X60 Z20), then the sequence's start X80 Z30.
-  const std::array<std::array<double, 2>, 3> corners = {{{56, 16}, {60, 20}, {80, 30}}};
+  // The corners the axes must pass: N4's start (sphere 2 at X60 Z10: axes X64 Z4, not X60 Z10
+  // as sphere 1 would put them), N3's start (sphere 1 at X60 Z20), the sequence's start X80 Z30.
+  const std::array<std::array<double, 2>, 3> corners = {{{64, 4}, {60, 20}, {80, 30}}};
   size_t next = 0;
   double x_min = l.m.X();
   while (l.m.channel->state() == ChannelState::kRunning && l.m.t < 40) {
@@ -310,7 +311,8 @@ TEST(ChannelMeasuring, ReverseRetracesALinearPathSequenceWithEachLegsSphere) {
 // Feed hold during a PROBE (the manual says nothing of it): the axes brake on the path and
 // stand; the instruction keeps its place in the plan and the measuring path stays armed (event
 // 30 set, nothing re-armed), so a start continues it to the same measured value.
-void HoldAndContinue(MeasuringLathe& l, const std::function<bool()>& where, bool on_measuring_path) {
+void HoldAndContinue(MeasuringLathe& l, const std::function<bool()>& where, bool on_measuring_path,
+                     bool measured_before = false) {
   l.m.channel->Start();
   while (!where() && l.m.t < 10) l.Tick();
   ASSERT_LT(l.m.t, 10);
@@ -324,7 +326,8 @@ void HoldAndContinue(MeasuringLathe& l, const std::function<bool()>& where, bool
   EXPECT_EQ(l.m.Z(), z);
   EXPECT_EQ(l.events[30], on_measuring_path);  // measuring path monitoring as it was
   ASSERT_NE(l.pages.Point(0, 1), nullptr);
-  EXPECT_EQ(l.pages.Point(0, 1)->measuring_axis, 0);  // nothing measured yet
+  // Before the contact nothing is measured yet; after it the latch has given the value.
+  EXPECT_EQ(l.pages.Point(0, 1)->measuring_axis, measured_before ? 'X' : 0);
   l.m.channel->Start();
   l.RunUntilStopped(40);
   ASSERT_EQ(l.m.channel->state(), ChannelState::kEnded) << l.m.channel->error();
@@ -360,14 +363,15 @@ TEST(ChannelMeasuring, FeedHoldOnTheMeasuringPathThenStartMeasures) {
 }
 
 TEST(ChannelMeasuring, FeedHoldAfterTheContactKeepsTheMeasuredValue) {
-  // The hold while the axes brake from the contact: the latch already holds the value.
+  // The hold in the cycle of the contact: the latch has ended the measuring path and given the
+  // value; the hold stops the way back, a start takes the stylus on to the start.
   MeasuringLathe l(
       "N1 SETTING(X,Z,,18,48,15,1)\n"
       "N2 PROBE(1,1,30,5,,X,-2,100,1,1,0)\n"
       "N3 RET\n",
       30.1);
   HoldAndContinue(
-      l, [&] { return l.m.at.feedback[0].probe.probe1.positive.latched; }, true);
+      l, [&] { return l.m.at.feedback[0].probe.probe1.positive.latched; }, true, true);
   EXPECT_NEAR(l.pages.Point(0, 1)->value.actual, 30.1, 1e-9);
   EXPECT_NEAR(l.m.X(), 50, 1e-9);
 }
