@@ -276,7 +276,9 @@ TEST(ChannelMeasuring, ReverseRetracesALinearPathSequenceWithEachLegsSphere) {
       ".HOME\n"
       "N10 G00 X90\n"
       "N11 RET\n",
-      0.0, 80, 30, [](ChannelConfig& c) { c.tools.edges.push_back({3, 2, {-4, 6}, 2, 0}); });
+      0.0, 80, 30, [](ChannelConfig& c) {
+        c.tools.edges.push_back({3, 2, {-4, 6}, 2, 0});
+      });
   l.pages.stylus[0].sphere_radius[1] = 2;
   l.m.channel->Start();
   while (l.m.X() > 50 && l.m.t < 10) l.Tick();  // on N4's leg: axes X 64 -> 44 at Z4
@@ -339,7 +341,8 @@ TEST(ChannelMeasuring, FeedHoldDuringTheApproachThenStartMeasures) {
       "N2 PROBE(1,1,30,5,,X,-2,100,1,1,0)\n"
       "N3 RET\n",
       30.1);
-  HoldAndContinue(l, [&] { return l.m.X() < 42; }, false);
+  HoldAndContinue(
+      l, [&] { return l.m.X() < 42; }, false);
   const measure::PointPage* p = l.pages.Point(0, 1);
   EXPECT_NEAR(p->value.actual, 30.1, 1e-9);
   EXPECT_NEAR(l.m.X(), 50, 1e-9);  // escaped to the start
@@ -354,7 +357,8 @@ TEST(ChannelMeasuring, FeedHoldOnTheMeasuringPathThenStartMeasures) {
       "N2 PROBE(1,1,30,5,,X,-2,100,1,1,0)\n"
       "N3 RET\n",
       30.1);
-  HoldAndContinue(l, [&] { return l.events[30] && l.m.X() < 34.5; }, true);
+  HoldAndContinue(
+      l, [&] { return l.events[30] && l.m.X() < 34.5; }, true);
   const measure::PointPage* p = l.pages.Point(0, 1);
   EXPECT_NEAR(p->value.actual, 30.1, 1e-9);
   EXPECT_NEAR(l.m.X(), 50, 1e-9);
