@@ -9,10 +9,12 @@
 
 #include "control/nc/interpreter.hpp"
 #include "control/nc/parser.hpp"
+#include "generated_programs.hpp"
 
 namespace {
 
 using namespace vmt::control::nc;
+using namespace vmt::bench;
 
 // As the vmt command does (sim/cli/main.cpp): keep freed memory in the process. First touches
 // of fresh pages cost ~20 us each on the project's VMs and would otherwise dominate.
@@ -21,51 +23,6 @@ const bool kKeepFreedMemory = [] {
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
   return true;
 }();
-
-constexpr int kBlocks = 1000000;
-
-std::string StraightMtc200() {
-  std::string s;
-  s.reserve(kBlocks * 32);
-  char line[96];
-  for (int i = 0; i < kBlocks; ++i) {
-    std::snprintf(line, sizeof line, "N%04d G01 X%.3f Z%.3f F%d\n", i % 10000,
-                  10 + (i % 977) * 0.125, -(i % 613) * 0.25, 500 + i % 7 * 100);
-    s += line;
-  }
-  return s;
-}
-
-std::string ExpressionsIsg() {
-  std::string s = "%expr\n";
-  s.reserve(kBlocks * 48);
-  char line[128];
-  for (int i = 0; i < kBlocks; ++i) {
-    std::snprintf(line, sizeof line, "N%d P%d = [P%d + %d.5] * 2 / [1 + P%d] X[P%d * 0.5 - %d]\n",
-                  i, i % 50 + 1, (i + 7) % 50 + 1, i % 13, (i + 3) % 50 + 1, i % 50 + 1, i % 31);
-    s += line;
-  }
-  return s;
-}
-
-std::string LoopsIsg() {
-  // Loop and subprogram structure repeated: $FOR, $IF, $WHILE and L calls between moves.
-  std::string s = "%loops\n";
-  s.reserve(kBlocks * 24);
-  for (int i = 0; i < kBlocks / 10; ++i) {
-    s += "$FOR P1 = 1, 10, 1\n";
-    s += "$IF P1 == 5\n";
-    s += "L sub_a\n";
-    s += "$ELSE\n";
-    s += "G01 X[P1] Y[P1 * 2] F1000\n";
-    s += "$ENDIF\n";
-    s += "$WHILE P2 < 3\n";
-    s += "P2 = P2 + 1\n";
-    s += "$ENDWHILE\n";
-    s += "$ENDFOR\n";
-  }
-  return s;
-}
 
 void Decode(benchmark::State& state, const std::string& text, Dialect dialect) {
   size_t blocks = 0;

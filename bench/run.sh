@@ -4,7 +4,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 export GALLIUM_DRIVER=llvmpipe
 mkdir -p out/bench
-for b in backend_bench snapshot_bench render_bench axis_chain_eval nc_decode_bench modbus_bench \
+for b in backend_bench snapshot_bench render_bench axis_chain_eval nc_decode_bench block_search_bench \
+  modbus_bench \
   path_guard_bench; do
   [ -x "build/bench/$b" ] || continue
   echo "== $b"

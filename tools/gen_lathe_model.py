@@ -30,6 +30,11 @@ from lathe_geometry import (SEG_SMALL, Frame, Mesh, axis_frame, composite, cross
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 TOOL_R = 0.18    # tool tips: radius from the turret axis, at z = 0 of the turret frame
+# lathe-c1's second stylus points along -z (toward the headstock): it reaches what the radial
+# one in station 3 cannot, the floor and the walls of a face groove. Station 7 has empty
+# neighbours, so nothing beside it reaches toward the part.
+AXIAL_PROBE_STATION = 7
+AXIAL_PROBE_REACH = 0.05   # ruby centre ahead of the tool-tip plane, along -z
 DISC_R = 0.13    # turret disc circumradius (12-sided)
 
 
@@ -204,7 +209,7 @@ def build(variant):
         phi = station_angle(k)
         fr = rotz(phi)                           # local x = station ray, y = tangential, z = z
         hname = "turret_st%02d_holder" % k
-        if k == 3:      # probe adapter plate
+        if k == 3 or (k == AXIAL_PROBE_STATION and variant == "c1"):  # probe adapter plate
             part(hname).box(0.12, 0.13, -0.025, 0.025, -0.028, 0.028, fr)
         elif k == 4:    # driven tool housing
             hname = "turret_st04_housing"
@@ -238,6 +243,8 @@ def build(variant):
             P.append(("turret_st02_tip", "turret_st02_tip", "insert_gold", True))
         elif k == 3:
             tool = "touch probe (link probe, fixed joint probe_mount)"
+        elif k == AXIAL_PROBE_STATION and variant == "c1":
+            tool = "axial touch probe (link probe_axial, fixed joint probe_axial_mount)"
         elif k == 4:
             tool = "driven tool S2 (link s2_spindle, end mill d10)"
         elif k == 5:
@@ -274,6 +281,27 @@ def build(variant):
     P.append(("probe_ruby", "probe_ruby", "ruby", True))
     link("probe", composite(0.3, [("cylx", 0.0, 0.0, 0.02, 0.0, 0.03),
                                   ("cylx", 0.0, 0.0, 0.002, 0.03, 0.047)]), P)
+
+    # -------------------------------------------------------------------------- probe_axial
+    if variant == "c1":
+        # The same head as station 3's on an arm that ends where the ray reaches the tool-tip
+        # radius, the stylus bent down along -z from there: the ruby is the part nearest the
+        # spindle axis, so it enters a face groove with only the stylus above it.
+        P = []
+        part("probe_axial_body").cylinder(0.02, 0.0, 0.024, ax)
+        P.append(("probe_axial_body", "probe_axial_body", "probe_white", True))
+        part("probe_axial_band").cylinder(0.02, 0.024, 0.03, ax)
+        P.append(("probe_axial_band", "probe_axial_band", "probe_red", True))
+        part("probe_axial_arm").cylinder(0.004, 0.03, 0.05, ax)
+        P.append(("probe_axial_arm", "probe_axial_arm", "stylus_steel", True))
+        part("probe_axial_stylus").cylinder(0.002, -AXIAL_PROBE_REACH + 0.003, 0.0,
+                                            Frame((0.047, 0.0, 0.0)))
+        P.append(("probe_axial_stylus", "probe_axial_stylus", "stylus_steel", True))
+        part("probe_axial_ruby").sphere((0.047, 0.0, -AXIAL_PROBE_REACH), 0.003)
+        P.append(("probe_axial_ruby", "probe_axial_ruby", "ruby", True))
+        link("probe_axial", composite(0.3, [("cylx", 0.0, 0.0, 0.02, 0.0, 0.03),
+                                            ("cylx", 0.0, 0.0, 0.004, 0.03, 0.05),
+                                            ("cylz", 0.047, 0.0, 0.002, -0.047, 0.0)]), P)
 
     # --------------------------------------------------------------------------- s2_spindle
     P = []
@@ -313,6 +341,7 @@ def build(variant):
     # s2_spindle: rpy (-90 deg, 0, phi4 - 90 deg) turns the child's +z onto station 4's ray
     # (avoids the pitch = 90 deg gimbal-lock form of the same rotation).
     phi3, phi4 = station_angle(3), station_angle(4)
+    phi_axial = station_angle(AXIAL_PROBE_STATION)
     joints = [
         ("spindle", "continuous", "bed", "spindle", (0, 0, 0), (0, 0, 0), (0, 0, 1),
          {"effort": 500, "velocity": 630}, 0.01, 0.5),
@@ -329,6 +358,9 @@ def build(variant):
         ("probe_mount", "fixed", "turret", "probe",
          (0.13 * math.cos(phi3), 0.13 * math.sin(phi3), 0.0), (0, 0, phi3), None, None,
          0.0, 0.0),
+        ("probe_axial_mount", "fixed", "turret", "probe_axial",
+         (0.13 * math.cos(phi_axial), 0.13 * math.sin(phi_axial), 0.0), (0, 0, phi_axial), None,
+         None, 0.0, 0.0),
         ("s2_spindle", "continuous", "turret", "s2_spindle",
          (0.14 * math.cos(phi4), 0.14 * math.sin(phi4), 0.0),
          (-math.pi / 2, 0, phi4 - math.pi / 2),
@@ -337,7 +369,8 @@ def build(variant):
          {"lower": 0.0, "upper": 0.70, "effort": 4000, "velocity": 0.2}, 50.0, 20.0),
     ]
     if variant != "c1":
-        joints = [j for j in joints if j[0] not in ("s1_motor", "c_motor")]
+        joints = [j for j in joints
+                  if j[0] not in ("s1_motor", "c_motor", "probe_axial_mount")]
     return links, joints, meshes, stations
 
 
@@ -481,7 +514,13 @@ def readme_text(links, joints, meshes, stations, variant):
           "station 1's insert cutting corner (80 deg rhombus in the ray-z plane, 5 mm thick",
           "tangentially) is exactly at the tip; station 2's gold tip is 3 mm wide in z; station 3",
           "is the `probe` link (ruby sphere r 3 mm, centre at radius 0.177); station 4 is the",
-          "`s2_spindle` link; station 5 carries a radial drill with a 118 deg point.",
+          "`s2_spindle` link; station 5 carries a radial drill with a 118 deg point."] + (
+          ["Station %d is the `probe_axial` link: the same head on an arm to radius 0.18, the"
+           % AXIAL_PROBE_STATION,
+           "stylus bent along -z, ruby r 3 mm centred at radius 0.177 and %g mm ahead of the"
+           % (AXIAL_PROBE_REACH * 1000),
+           "tool-tip plane (toward the headstock): the floor and walls of a face groove."]
+          if variant == "c1" else []) + [
           "",
           "## Meshes",
           "%d files in `meshes/`, %d triangles in total." % (

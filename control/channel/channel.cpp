@@ -208,6 +208,7 @@ void Channel::Start() {
   if (mode_ == ChannelMode::kManual || !process_enable_) return;
   if (mode_ == ChannelMode::kMdi && !mdi_) return;
   if (state_ == ChannelState::kHold) {
+    if (StartBlockSearchHold()) return;
     // Fast measurement 6.1, Q9998: the new start acknowledges OVERSIZE / UNDERSIZE.
     if (error_number_ == kMsgMeasuringContinuable) error_.clear(), error_number_ = 0;
     if (repos_run_) {  // the REPOS subroutine was held: it goes on
@@ -276,6 +277,13 @@ void Channel::Reset() {
   measuring_.reset();
   measuring_setting_.reset();
   reverse_vectors_ = {};
+  // Block search 7: a reset leaves block search without the handshake.
+  search_.reset();
+  bs_state_ = BlockSearchState::kInactive;
+  bs_command_ = false;
+  breakpoint_rest_.reset();
+  breakpoint_hold_ = breakpoint_pending_ = false;
+  search_offset_.clear();  // the G92 shift goes below
   if (interpreter_) last_modal_ = interpreter_->modal();
   interpreter_.reset();
   DropLookahead();
@@ -316,7 +324,10 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
       previous_ = commanded_;
       holding_positions_ = true;
     }
-    if (!interpreter_) interpreter_ = MakeInterpreter();
+    if (!interpreter_) {
+      interpreter_ = MakeInterpreter();
+      BeginBlockSearch();
+    }
   }
   if (!holding_positions_) {
     AcknowledgeDriveTrips(mdt);
@@ -337,7 +348,10 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
       Jogging(dt);
     } else if (state_ == ChannelState::kRunning || state_ == ChannelState::kHold) {
       bool finished = false;
-      if (!aux_output_.empty()) {
+      if (SearchCycle(at)) {
+        // Block search owns the cycle: decoding without motion, its handshakes and holds (a
+        // return move interpolates below).
+      } else if (!aux_output_.empty()) {
         // The block waits for the PLC's acknowledgement of its auxiliary functions.
       } else if (waiting_for_ != axes::HeadstockMode::kNone) {
         // Block preparation and execution wait until the changeover ends (C-axis manual 1.2).
@@ -377,6 +391,10 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
           Interpolate(dt);
         WatchMeasuringMove(at);
         finished = !active_;
+        if (finished && breakpoint_pending_) {
+          HoldAtBreakpoint();
+          finished = false;
+        }
         // A measuring instruction's move has ended: its next step follows at once.
         if (finished && measuring_) finished = MeasuringCycle(at);
         if (finished && homing_) finished = !NextHomingStage();
@@ -390,6 +408,8 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
         state_ = ChannelState::kHold;
     }
     ReposCycle(at);
+    if (state_ == ChannelState::kEnded && !search_offset_.empty()) RemoveSearchOffset();
+    UpdateBlockSearchStatus();
   }
   // Fine interpolation: the drives get a straight line between the last two NC cycle points.
   const double f = static_cast<double>(tick_in_cycle_ + 1) / config_.ticks_per_cycle;
@@ -503,6 +523,7 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
       return false;
     }
   }
+  DistanceCommand(block_);
   if (!block_.calls.empty()) return StartMeasuring(at);
   for (const auto& [n, set] : block_.events) {
     own_events_[n] = set;
@@ -531,20 +552,7 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
   }
 
   // Spindle: M3/M4 with S (rpm), M5, M19 (orient to 0 deg).
-  for (const nc::AuxFunction& f : block_.aux) {
-    if (f.letter != 'M' || config_.spindle_drive < 0) continue;
-    const int m = static_cast<int>(f.value);
-    const double rpm = block_.modal.spindle_speed;
-    // G64 keeps the spindle in position control: M3/M4 give its direction only.
-    if ((m == 3 || m == 4) && block_.motion == nc::Motion::kRigidTapping) continue;
-    if (m == 3) spindle_ = {DriveMode::kVelocity, rpm * 6, 0};
-    if (m == 4) spindle_ = {DriveMode::kVelocity, -rpm * 6, 0};
-    if (m == 5) spindle_ = {DriveMode::kVelocity, 0, 0};
-    if (m == 19) spindle_ = {DriveMode::kPosition, 0, 0}, spindle_referencing_ = orienting_ = true;
-  }
-  // An S word alone changes the speed of a running spindle.
-  if (spindle_.mode == DriveMode::kVelocity && spindle_.value != 0)
-    spindle_.value = std::copysign(block_.modal.spindle_speed * 6, spindle_.value);
+  if (SpindleFunctions(block_, spindle_)) spindle_referencing_ = orienting_ = true;
 
   // M, H, Q and T go to the PLC; the block goes on when it has acknowledged them.
   if (config_.aux_handshake) {
@@ -672,8 +680,12 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
     Fail(program, block_.block, error->text, error->number);
     return false;
   }
+  CountDistance();
   profile_ = PathProfile{};
-  if (!motion_.moves) return true;
+  if (!motion_.moves) {
+    if (breakpoint_pending_) HoldAtBreakpoint();  // at the very start of the block
+    return true;
+  }
   profile_.max_rate = motion_.max_rate;
   profile_.max_accel = motion_.max_accel;
   profile_.max_jerk = motion_.max_jerk;
@@ -688,6 +700,7 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
     motion_.PointAt(profile_.u, commanded_);
   }
   LookAhead(at);
+  if (breakpoint_pending_) continuation_ready_ = false;  // stop at the breakpoint
   return true;
 }
 

@@ -20,6 +20,7 @@
 #include "control/axes/tool_table.hpp"
 #include "control/axes/zero_offsets.hpp"
 #include "control/channel/block_motion.hpp"
+#include "control/channel/block_search.hpp"
 #include "control/channel/channel_messages.hpp"
 #include "control/channel/look_ahead.hpp"
 #include "control/channel/path_profile.hpp"
@@ -227,6 +228,21 @@ class Channel {
   bool SetZeroOffset(int g, size_t axis, double value);
   bool SetToolLength(int tool, int edge, size_t axis, double value);
 
+  /// Block search (twincat-cnc-block-search-de.md): the CNC objects mc_cmd_bs_*_w as they
+  /// stand; the next program start takes them (5: later changes do not touch the running
+  /// program). False, with the error in `text`, if they are out of range.
+  bool SetBlockSearch(const BlockSearchParameters& p, std::string* text = nullptr);
+  /// The parameters the running program was started with (the _r read-backs).
+  const BlockSearchParameters& block_search_parameters() const { return bs_started_; }
+  /// The PLC's side of the on/off handshake (7): enable_w (it wants to be told) and its
+  /// acknowledgement, the PLC's signal of bahn_lc_control.block_search.
+  void SetBlockSearchPlc(bool enable, bool acknowledged) {
+    bs_plc_enable_ = enable;
+    bs_plc_state_ = acknowledged;
+  }
+  /// State and status data of block search and path (5.5, 5.6), as of the last NC cycle.
+  const BlockSearchStatus& block_search() const { return bs_status_; }
+
   /// One drive tick: reads the feedback, interpolates on the NC cycle, writes setpoints.
   void Tick(const AmplifierTelegram& at, MasterTelegram& mdt);
 
@@ -256,6 +272,8 @@ class Channel {
   /// Translation program -> axis position of a channel axis under the current modal state:
   /// zero offset + G92 shift - tool length.
   double Translation(size_t axis) const { return translation_[axis]; }
+  /// The program address of channel axis `axis` (X, Z, C).
+  const std::string& AxisName(size_t axis) const { return config_.axes[axis].name; }
   /// Commanded position of a channel axis (program coordinates, mm | deg).
   double position(size_t axis) const { return commanded_[axis]; }
   /// Source line of the block in work, 0 when none.
@@ -460,6 +478,67 @@ class Channel {
   measure::MeasuringContext MeasuringContextNow() const;
   /// Reverse: the stylus travels its reverse vectors back before `.HOME` runs (4.4).
   void StartReversal();
+  // Block search (channel_block_search.cpp).
+  struct BlockSearchRun {
+    explicit BlockSearchRun(const BlockSearchParameters& p) : matcher(p) {}
+    ContinueMatcher matcher;
+    std::vector<double> position;  ///< where the program has the axes, machine coordinates
+    DriveSetpoint spindle{DriveMode::kVelocity, 0, 0};  ///< the spindle as the program left it
+    bool found = false;       ///< the block boundary of the continue position (phase 1)
+    bool by_distance = false;  ///< phase 2: searching on for the distance from program start
+    bool ends_program = false;  ///< the search ends the program (type 5, position not found)
+    bool start_requested = false;  ///< a start while the search holds
+    std::vector<double> restart;   ///< the continue position, machine coordinates
+    /// The continue block's motion from its start, and where in it machining goes on; no
+    /// motion: the program goes on with the next block.
+    BlockMotion restart_motion;
+    double restart_u = 0;
+    double restart_distance = 0;  ///< distance from program start at the block's start
+    double restart_length = 0;    ///< the block's length for that distance
+    int64_t blocks = 0;           ///< blocks decoded in search mode
+  };
+  std::optional<BlockSearchRun> search_;
+  BlockSearchParameters bs_next_, bs_started_;
+  BlockSearchState bs_state_ = BlockSearchState::kInactive;
+  bool bs_plc_enable_ = false, bs_plc_state_ = false, bs_command_ = false;
+  BlockSearchStatus bs_status_;
+  std::vector<std::string> bs_warnings_;
+  /// Distance from program start (4.1.2): counted while #DISTANCE PROG START is ON, up to the
+  /// end of the block in work; the block in work's own start and length.
+  bool distance_on_ = true;
+  double distance_ = 0, block_distance_start_ = 0, block_distance_ = 0;
+  /// The breakpoint (3.5): the rest of the block it cut, held until the start.
+  double breakpoint_ = 0;  ///< mm from program start; 0: none or passed
+  std::optional<BlockMotion> breakpoint_rest_;
+  double breakpoint_u_ = 0;
+  bool breakpoint_hold_ = false;
+  bool breakpoint_pending_ = false;  ///< the block in work ends at the breakpoint
+  /// Manual return (4.2): actual minus continue position, kept until the program ends.
+  std::vector<double> search_offset_;
+  /// A program start: block search, breakpoint and entry point as the parameters say.
+  void BeginBlockSearch();
+  /// The search's part of an NC cycle; true while it owns the cycle (no normal block flow).
+  bool SearchCycle(const AmplifierTelegram& at);
+  bool SimulateBlocks();
+  bool SimulateBlock(nc::PreparedBlock& b);
+  /// The continue position is found at `b`, at u in its motion (planned from its start).
+  void FoundContinuePosition(const nc::PreparedBlock& b, const BlockMotion& motion, double u);
+  void EndSearchMode();
+  bool SpindleReady(const AmplifierTelegram& at) const;
+  bool StartReturnToContour();
+  bool ApplySearchOffset();
+  void ContinueAfterSearch();
+  /// A start while the search or the breakpoint holds; true if it was theirs.
+  bool StartBlockSearchHold();
+  /// Distance bookkeeping and the breakpoint cut, when a block's motion starts (StartMotion).
+  void CountDistance();
+  void DistanceCommand(const nc::PreparedBlock& b);
+  void RemoveSearchOffset();
+  /// Block search 3.5: the breakpoint stops the path like an M0 until the next start.
+  void HoldAtBreakpoint();
+  void UpdateBlockSearchStatus();
+  /// M3/M4/M5/M19 and S of `b` on the spindle setpoint `sp`; true if M19 (orientation) came.
+  bool SpindleFunctions(const nc::PreparedBlock& b, DriveSetpoint& sp) const;
   DriveSetpoint spindle_;
   // Headstock changeover: the mode a block needs, the one the block in work waits for.
   axes::HeadstockMode ModeNeeded(const nc::PreparedBlock& b) const;

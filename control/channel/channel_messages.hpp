@@ -31,6 +31,15 @@ inline constexpr int kMsgReposMode = 406;
 inline constexpr int kMsgReposNoSubroutine = 407;
 /// The REPOS subroutine returned with the spindle not restored (4.1).
 inline constexpr int kMsgReposNotRestored = 408;
+/// Block search cannot run as parameterised: its CNC objects out of range, an entry point
+/// beyond the program, G74/G100 where they cannot be simulated (twincat block search 4.1.2).
+inline constexpr int kMsgBlockSearch = 409;
+/// Block search with manual return: the axes stand further from the continue position than
+/// mc_cmd_bs_deviation_max_w allows (4.2).
+inline constexpr int kMsgBlockSearchDeviation = 410;
+/// P-ERR-21399: the continue position lies in a region #BLOCKSEARCH LOCKED (block search 6).
+/// The manual's own number.
+inline constexpr int kMsgBlockSearchLocked = 21399;
 inline constexpr int kMsgNotHomed = 501;        ///< a move of an axis that has no reference
 inline constexpr int kMsgSoftwareLimit = 502;   ///< a target beyond the axis' travel
 inline constexpr int kMsgDriveFault = 503;      ///< a drive of the channel is not ready
@@ -77,6 +86,12 @@ inline const char* MessageText(int number) {
       return "no reverse program .HOME";
     case kMsgMdiSyntax:
       return "MDI block error";
+    case kMsgBlockSearch:
+      return "block search not possible";
+    case kMsgBlockSearchDeviation:
+      return "block search: axes too far from the continue position";
+    case kMsgBlockSearchLocked:
+      return "continue position locked for block search";
     case kMsgReposNotActive:
       return "G77 without repositioning";
     case kMsgReposNoFeed:

@@ -20,6 +20,12 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
       state_ = ChannelState::kEnded, reversing_ = false;
     return false;
   }
+  // Block search type 1 (3.1): the end position ends the program at once.
+  if (search_ && bs_state_ == BlockSearchState::kInactive && !running_mdi_ &&
+      search_->matcher.EndMatches(block_, *ProgramOf(block_.program), block_.program)) {
+    state_ = ChannelState::kEnded, reversing_ = false;
+    return false;
+  }
   if (block_.modal.compensation != 40 && block_.motion != nc::Motion::kNone) {
     // G41/G42: from here the channel reads ahead, so that each block's path can be offset
     // with its successor in view.

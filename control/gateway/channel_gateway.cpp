@@ -1,5 +1,7 @@
 #include "control/gateway/channel_gateway.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace vmt::control::gateway {
@@ -93,6 +95,65 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
       h.rotary_axd[k] = Id(rot + ".AXD." + std::to_string(65012 + k));
     }
   }
+  {
+    const std::string o = prefix_ + ".mc_cmd_bs_";
+    BlockSearch& b = bs_;
+    const std::pair<int*, const char*> objects[] = {
+        {&b.type_w, "type_w"},
+        {&b.auto_return_w, "auto_return_w"},
+        {&b.no_hold_w, "no_hold_at_restart_w"},
+        {&b.deviation_max_w, "deviation_max_w"},
+        {&b.breakpoint_w, "breakpoint_position_w"},
+        {&b.distance_w, "distance_prog_start_w"},
+        {&b.covered_w, "covered_distance_w"},
+        {&b.start_offset_w, "pos_start_offset_w"},
+        {&b.start_name_w, "pos_start_name_w"},
+        {&b.start_type_w, "pos_start_type_w"},
+        {&b.start_count_w, "pos_start_count_w"},
+        {&b.end_offset_w, "pos_end_offset_w"},
+        {&b.end_name_w, "pos_end_name_w"},
+        {&b.end_type_w, "pos_end_type_w"},
+        {&b.end_count_w, "pos_end_count_w"},
+        {&b.block_count_w, "intern_block_count_w"},
+        {&b.block_number_w, "block_number_w"},
+        {&b.pass_w, "block_number_pass_w"},
+        {&b.prog_name_w, "block_nbr_prog_name_w"},
+        {&b.type_r, "type_r"},
+        {&b.auto_return_r, "auto_return_r"},
+        {&b.no_hold_r, "no_hold_at_restart_r"},
+        {&b.deviation_max_r, "deviation_max_r"},
+        {&b.breakpoint_r, "breakpoint_position_r"},
+        {&b.distance_r, "distance_prog_start_r"},
+        {&b.covered_r, "covered_distance_r"},
+        {&b.start_offset_r, "pos_start_offset_r"},
+        {&b.start_name_r, "pos_start_name_r"},
+        {&b.start_type_r, "pos_start_type_r"},
+        {&b.start_count_r, "pos_start_count_r"},
+        {&b.end_offset_r, "pos_end_offset_r"},
+        {&b.end_name_r, "pos_end_name_r"},
+        {&b.end_type_r, "pos_end_type_r"},
+        {&b.end_count_r, "pos_end_count_r"},
+        {&b.block_count_r, "intern_block_count_r"},
+        {&b.block_number_r, "block_number_r"},
+        {&b.pass_r, "block_number_pass_r"},
+        {&b.prog_name_r, "block_nbr_prog_name_r"},
+    };
+    for (const auto& [id, name] : objects) *id = Id(o + name);
+    b.file_offset_w = Id(prefix_ + ".mc_command_file_offset_w");
+    const std::string st = prefix_ + ".bahn_state.";
+    b.active = Id(st + "block_search_active_r");
+    b.state = Id(st + "block_search_state_r");
+    b.covered_distance = Id(st + "covered_distance_r");
+    b.dist_prog_start = Id(st + "dist_prog_start");
+    b.line_count = Id(st + "block_count_r");
+    b.path_deviation = Id(st + "block_search_path_deviation_r");
+    b.stop_conditions = Id(st + "stop_conditions_r");
+    b.distance_object = Id(prefix_ + ".distance_from_program_start");
+    const std::string lc = prefix_ + ".bahn_lc_control.block_search.";
+    b.command = Id(lc + "command_r");
+    b.plc_state = Id(lc + "state_r");
+    b.enable = Id(lc + "enable_w");
+  }
   // Q functions the table knows: Pxx.Qnnnn out, Pxx.Qnnnn_Q acknowledgement.
   const std::string q = prefix_ + ".Q";
   for (int id = 0; id < image.size(); ++id) {
@@ -125,7 +186,13 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
   if (auto_.Rising(im)) ch.SetMode(channel::ChannelMode::kAutomatic);
   if (manu_.Rising(im)) ch.SetMode(channel::ChannelMode::kManual);
   if (mdi_.Rising(im)) ch.SetMode(channel::ChannelMode::kMdi);
-  if (reset_.Rising(im)) ch.Reset();
+  if (reset_.Rising(im)) {
+    ch.Reset();
+    // Block search 7: a CNC reset clears the signal of the CNC and the PLC's.
+    if (bs_.plc_state >= 0) im.SetBool(bs_.plc_state, false);
+    if (bs_.command >= 0) im.SetBool(bs_.command, false);
+  }
+  ReadBlockSearch(ch);
   // The process enabling signal, before START and the keys: without it nothing starts.
   if (enabl_ >= 0 && im.Bool(enabl_) != last_enabl_)
     ch.SetProcessEnable(last_enabl_ = im.Bool(enabl_));
@@ -254,6 +321,7 @@ void ChannelGateway::WriteStatus(const channel::Channel& ch, const AmplifierTele
     answer(h.spindle_axd[0], hs->SpindleFunctionWord());
     if (hs->config().separate_servo()) answer(h.rotary_axd[0], hs->RotaryFunctionWord());
   }
+  WriteBlockSearch(ch);
   // A spindle that is also a channel axis (C-axis manual section 2) has one reference.
   set(spindle_homed_, ch.spindle_homed());
   if (spindle_drive_ >= 0 && spindle_drive_ < static_cast<int>(at.feedback.size())) {
@@ -262,6 +330,109 @@ void ChannelGateway::WriteStatus(const channel::Channel& ch, const AmplifierTele
     set(n_nmin_, st & drive_status::kStandstill);
     set(inpos_, st & drive_status::kInPosition);
   }
+}
+
+double ChannelGateway::Number(int id) const {
+  if (id < 0) return 0;
+  switch (image_->table()[id].type) {
+    case SignalType::kBool:
+      return image_->Bool(id) ? 1 : 0;
+    case SignalType::kReal:
+    case SignalType::kLreal:
+      return image_->Real(id);
+    case SignalType::kString:
+      return 0;
+    default:
+      return static_cast<double>(image_->Int(id));
+  }
+}
+
+void ChannelGateway::SetNumber(int id, double value) {
+  if (id < 0) return;
+  switch (image_->table()[id].type) {
+    case SignalType::kBool:
+      image_->SetBool(id, value != 0);
+      return;
+    case SignalType::kReal:
+    case SignalType::kLreal:
+      image_->SetReal(id, value);
+      return;
+    case SignalType::kString:
+      return;
+    default:
+      image_->SetInt(id, static_cast<int64_t>(std::llround(value)));
+  }
+}
+
+void ChannelGateway::ReadBlockSearch(channel::Channel& ch) {
+  const BlockSearch& b = bs_;
+  if (b.type_w < 0) return;  // a machine without the block search objects
+  auto text = [&](int id) { return id >= 0 ? image_->String(id) : std::string(); };
+  auto integer = [&](int id, int64_t missing) {
+    return id >= 0 ? static_cast<int64_t>(std::llround(Number(id))) : missing;
+  };
+  channel::BlockSearchParameters p;
+  p.type = static_cast<channel::BlockSearchType>(integer(b.type_w, 0));
+  p.auto_return = Number(b.auto_return_w) != 0;
+  p.no_hold_at_restart = Number(b.no_hold_w) != 0;
+  p.deviation_max = integer(b.deviation_max_w, 0);
+  p.file_offset = integer(b.file_offset_w, 0);
+  p.breakpoint_position = Number(b.breakpoint_w);
+  p.distance_prog_start = Number(b.distance_w);
+  p.covered_distance = Number(b.covered_w);
+  // 5.2: the start offset 0 is the file's first line like any other; the end position is
+  // optional, and an end at offset 0 without a file name is taken as none given (it would end
+  // the program before it began).
+  p.start = {integer(b.start_offset_w, -1), text(b.start_name_w),
+             static_cast<int>(integer(b.start_type_w, 0)),
+             static_cast<int>(std::max<int64_t>(1, integer(b.start_count_w, 1)))};
+  p.end = {integer(b.end_offset_w, -1), text(b.end_name_w),
+           static_cast<int>(integer(b.end_type_w, 0)),
+           static_cast<int>(std::max<int64_t>(1, integer(b.end_count_w, 1)))};
+  if (p.end.offset == 0 && p.end.name.empty()) p.end.offset = -1;
+  p.intern_block_count = static_cast<uint32_t>(integer(b.block_count_w, 0));
+  p.block_number = static_cast<uint32_t>(integer(b.block_number_w, 0));
+  p.block_number_pass = static_cast<uint32_t>(integer(b.pass_w, 1));
+  p.block_nbr_prog_name = text(b.prog_name_w);
+  ch.SetBlockSearch(p);
+  ch.SetBlockSearchPlc(Number(b.enable) != 0, Number(b.plc_state) != 0);
+}
+
+void ChannelGateway::WriteBlockSearch(const channel::Channel& ch) {
+  const BlockSearch& b = bs_;
+  if (b.state < 0 && b.type_r < 0) return;
+  // The read-backs: what the running program was started with (5).
+  const channel::BlockSearchParameters& p = ch.block_search_parameters();
+  SetNumber(b.type_r, static_cast<double>(p.type));
+  SetNumber(b.auto_return_r, p.auto_return);
+  SetNumber(b.no_hold_r, p.no_hold_at_restart);
+  SetNumber(b.deviation_max_r, static_cast<double>(p.deviation_max));
+  SetNumber(b.breakpoint_r, p.breakpoint_position);
+  SetNumber(b.distance_r, p.distance_prog_start);
+  SetNumber(b.covered_r, p.covered_distance);
+  SetNumber(b.start_offset_r, static_cast<double>(p.start.offset));
+  SetNumber(b.start_type_r, p.start.path);
+  SetNumber(b.start_count_r, p.start.count);
+  SetNumber(b.end_offset_r, static_cast<double>(p.end.offset));
+  SetNumber(b.end_type_r, p.end.path);
+  SetNumber(b.end_count_r, p.end.count);
+  SetNumber(b.block_count_r, p.intern_block_count);
+  SetNumber(b.block_number_r, p.block_number);
+  SetNumber(b.pass_r, p.block_number_pass);
+  if (b.start_name_r >= 0) image_->SetString(b.start_name_r, p.start.name);
+  if (b.end_name_r >= 0) image_->SetString(b.end_name_r, p.end.name);
+  if (b.prog_name_r >= 0) image_->SetString(b.prog_name_r, p.block_nbr_prog_name);
+  // 5.5, 5.6: the status, distances in 0.1 um (increments).
+  const channel::BlockSearchStatus& st = ch.block_search();
+  SetNumber(b.active, st.active());
+  SetNumber(b.state, static_cast<double>(st.state));
+  SetNumber(b.covered_distance, std::floor(st.covered_distance));
+  SetNumber(b.dist_prog_start, st.dist_prog_start * 1e4);
+  SetNumber(b.distance_object, st.dist_prog_start * 1e4);
+  SetNumber(b.line_count, st.block_count);
+  SetNumber(b.path_deviation, std::min(std::round(st.path_deviation * 1e4), 2147483647.0));
+  SetNumber(b.stop_conditions, static_cast<int32_t>(st.stop_conditions));
+  SetNumber(b.command, st.command);
 }
 
 }  // namespace vmt::control::gateway

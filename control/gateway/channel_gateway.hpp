@@ -75,6 +75,28 @@ class ChannelGateway {
     int spindle_ready = -1, rotary_ready = -1;
     int spindle_axd[4] = {-1, -1, -1, -1}, rotary_axd[4] = {-1, -1, -1, -1};
   } headstock_;
+  /// Block search of the ISG kernel (twincat-cnc-block-search-de.md 5, 7): the CNC objects
+  /// mc_cmd_bs_*_w / _r, the HLI status and the on/off handshake. -1 where the image lacks one.
+  struct BlockSearch {
+    int type_w = -1, auto_return_w = -1, no_hold_w = -1, deviation_max_w = -1, file_offset_w = -1,
+        breakpoint_w = -1, distance_w = -1, covered_w = -1, start_offset_w = -1,
+        start_name_w = -1, start_type_w = -1, start_count_w = -1, end_offset_w = -1,
+        end_name_w = -1, end_type_w = -1, end_count_w = -1, block_count_w = -1,
+        block_number_w = -1, pass_w = -1, prog_name_w = -1;
+    int type_r = -1, auto_return_r = -1, no_hold_r = -1, deviation_max_r = -1, breakpoint_r = -1,
+        distance_r = -1, covered_r = -1, start_offset_r = -1, start_name_r = -1,
+        start_type_r = -1, start_count_r = -1, end_offset_r = -1, end_name_r = -1,
+        end_type_r = -1, end_count_r = -1, block_count_r = -1, block_number_r = -1, pass_r = -1,
+        prog_name_r = -1;
+    int active = -1, state = -1, covered_distance = -1, dist_prog_start = -1, line_count = -1,
+        path_deviation = -1, stop_conditions = -1, distance_object = -1;
+    int command = -1, plc_state = -1, enable = -1;
+  } bs_;
+  /// Any signal as a number (BOOL 0/1, integers, REAL/LREAL); 0 for a missing one.
+  double Number(int id) const;
+  void SetNumber(int id, double value);
+  void ReadBlockSearch(channel::Channel& ch);
+  void WriteBlockSearch(const channel::Channel& ch);
   /// Q functions with their own signal and acknowledgement (Pxx.Qnnnn / Pxx.Qnnnn_Q).
   struct QSignal {
     int number, out, ack;

@@ -116,6 +116,14 @@ struct PreparedBlock {
   std::vector<std::pair<int, bool>> events;  ///< SE n (true) / RE n (false), in block order
   bool end = false;                          ///< M30 / M02 / RET of the main program
   ModalState modal;                          ///< after the block
+  /// Block counter of the block's line (TwinCAT block search manual 3.2 "Satzzähler", 5.6
+  /// block_count_r): every line the decoder reads since program start, comment and blank
+  /// lines, loop passes and called subprograms' lines included. See Interpreter::block_count.
+  uint32_t block_count = 0;
+  /// The block lies in a region #BLOCKSEARCH LOCKED ... RELEASED (manual 6): block search must
+  /// not continue here. Subprograms called inside the region are locked too.
+  bool search_locked = false;
+  DistanceCommand distance_command = DistanceCommand::kNone;  ///< #DISTANCE PROG START (4.1.2)
 };
 
 /// MTC200 data access (TLD(...) tool data, OTD(...) zero offsets, MTD(...) machine data pages):
@@ -153,8 +161,27 @@ class Interpreter {
   /// TLD/OTD/MTD go here; without it they are an error at run time.
   void SetDataAccess(DataAccess access) { data_ = std::move(access); }
 
-  /// Executes up to the next block with an effect. False at the end or after an error.
+  /// Executes up to the next block with an effect (with SetEveryBlock(true): the next block).
+  /// False at the end or after an error.
   bool Next(PreparedBlock& out);
+  /// While on, Next() hands out every line the block counter counts, also blocks without an
+  /// effect (P1 = 0, $FOR, a block with only an N number, #BLOCKSEARCH ...): block search
+  /// may continue at any of them (manual 10: N100 P100 = 1). A $ENDFOR that loops back is not
+  /// counted: the $FOR line it re-reads is handed out instead (a block of that line, nothing
+  /// executed); a $WHILE whose condition fails after a loop-back is not counted nor handed
+  /// out. Blocks with an effect are handed out either way. max_steps_per_block still counts
+  /// the blocks without an effect in a row, so an endless loop is still an error.
+  void SetEveryBlock(bool on) { every_block_ = on; }
+  /// The block counter now: the count of the last line counted (PreparedBlock::block_count).
+  uint32_t block_count() const { return count_; }
+  /// The entry point of manual 3.6 (mc_command_file_offset_w): call before the first Next().
+  /// The main program starts at the first block whose line starts at or after `file_offset`
+  /// in its file, as if the program were shortened by that offset ("Die Auswertung beginnt wie
+  /// bei einem um den Dateioffset verkürzten Programm"): nothing before it runs, and the
+  /// block counter counts lines from the line that starts at or after the offset as line 1
+  /// (an entry at a block's line gives that block the count 1). False, and nothing changes,
+  /// if no block starts at or after the offset or the program has already run.
+  bool StartAt(uint32_t file_offset);
 
   const std::optional<Diagnostic>& error() const { return error_; }
   const std::string& ErrorFile() const;
@@ -202,6 +229,14 @@ class Interpreter {
     double limit, step;
   };
 
+  /// Clears `out` for block `block` of the current program.
+  void Begin(PreparedBlock& out, uint32_t program, int32_t block) const;
+  void BeginCold(PreparedBlock& out, uint32_t program, int32_t block) const;
+  /// One more block without an effect; false (an error) after max_steps_per_block in a row.
+  bool Idle(uint32_t program, int32_t block);
+  [[gnu::cold]] bool EndlessLoop(uint32_t program, int32_t block);
+  /// JumpTo / RunSubroutine: the flow goes elsewhere, the counter counts a jump.
+  void Jumped();
   bool Execute(const Block& block, PreparedBlock& out, int32_t& next);
   bool Statement_(const Statement& st, int32_t block, PreparedBlock& out, int32_t& next);
   bool Words(const Block& block, PreparedBlock& out);
@@ -247,6 +282,29 @@ class Interpreter {
   int64_t executed_ = 0;
   std::optional<Diagnostic> error_;
   uint32_t error_program_ = 0;
+  // Block counter (manual 3.2). A block counts the lines from the one the counter stands at:
+  // in sequence its line minus count_line_; after a jump (branch, call target, return,
+  // $-structure) one, for the target line (count_line_ = kJumped); the first block of a file
+  // entered by a call or at program start all lines of that file up to its own
+  // (count_line_ = 0).
+  static constexpr uint32_t kJumped = UINT32_MAX;
+  uint32_t count_ = 0;
+  uint32_t count_line_ = 0;  ///< line of the current file the counter stands at, or kJumped
+  /// What the block just executed did to the count beyond the flow of control (bits, checked
+  /// once per block): an ISG call entered another file at its first block, or a loop statement
+  /// changed the count (manual 9.2.1, figure 3): a $ENDFOR that loops back is not counted but
+  /// re-reads its $FOR line; a $WHILE that fails after a loop-back is not counted, and counting
+  /// goes on from its $ENDWHILE.
+  enum CountEvent : uint8_t { kEnteredFile = 1, kForBack = 2, kWhileExit = 4 };
+  uint8_t count_events_ = 0;
+  int32_t loop_line_block_ = -1;  ///< kForBack: the $FOR; kWhileExit: the $ENDWHILE
+  bool while_back_ = false;       ///< the $ENDWHILE jumped back to its $WHILE
+  int32_t reread_for_ = -1;       ///< SetEveryBlock: a re-read $FOR line still to hand out
+  uint32_t reread_program_ = 0, reread_count_ = 0;
+  bool every_block_ = false;
+  bool search_lock_ = false;   ///< #BLOCKSEARCH LOCKED .. RELEASED (manual 6)
+  int64_t idle_steps_ = 0;     ///< blocks without an effect in a row (max_steps_per_block)
+  bool started_ = false;       ///< Next() has run: StartAt is too late
   bool entering_ = false;      ///< a failed $IF/$ELSEIF condition jumped to the next branch
   std::vector<double> stack_;  ///< Eval's value stack
   bool fault_ = false;

@@ -3,8 +3,10 @@
 // $WHILE/$ENDWHILE, L name subprogram calls, #-commands (#DISTANCE PROG START, #BLOCKSEARCH,
 // #CAX TRACK, #VECTOR OFFSET, #CALL AX, #PUT AX, ...), and address words.
 
+#include <algorithm>
 #include <array>
 #include <string>
+#include <vector>
 
 #include "control/nc/front_end.hpp"
 
@@ -36,24 +38,91 @@ bool SkipSpaceAndComments(LineScanner& s, ExpressionParser& expr) {
 }
 
 // "#DISTANCE   PROG START ON ; x" -> "DISTANCE PROG START ON": upper case, single spaces.
-std::string HashCommandText(LineScanner& s) {
+// `source` gets the scanner index of each character of the text and, last, of its end: a wrong
+// word is reported where it stands in the line, not where it stands in the text.
+std::string HashCommandText(LineScanner& s, std::vector<size_t>& source) {
   std::string text;
   bool space = false;
+  size_t end = s.index();
   while (!s.AtEnd() && s.Peek() != ';') {
     const char c = s.Peek();
+    const size_t at = s.index();
     s.Advance();
     if (c == ' ' || c == '\t' || c == '\r') {
       space = !text.empty();
       continue;
     }
-    if (space) text.push_back(' ');
+    if (space) text.push_back(' '), source.push_back(at);
     space = false;
     text.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(c))));
+    source.push_back(at);
+    end = at + 1;
   }
+  source.push_back(end);
   return text;
 }
 
+// The words of a #-command text and where each starts in it.
+struct TextWord {
+  std::string_view word;
+  size_t at;
+};
+std::vector<TextWord> SplitWords(std::string_view text) {
+  std::vector<TextWord> words;
+  for (size_t i = 0; i < text.size();) {
+    const size_t end = std::min(text.find(' ', i), text.size());
+    words.push_back({text.substr(i, end - i), i});
+    i = end + 1;
+  }
+  return words;
+}
+
 }  // namespace
+
+SearchCommand ReadSearchCommand(std::string_view text) {
+  using Kind = SearchCommand::Kind;
+  // Most #-commands are others: they are let go before anything is allocated for them.
+  if (!text.starts_with("BLOCKSEARCH") && !text.starts_with("DISTANCE PROG START")) return {};
+  const std::vector<TextWord> words = SplitWords(text);
+  size_t first = 0;  // the word after the command's name
+  std::string command;
+  if (!words.empty() && words[0].word == "BLOCKSEARCH") {
+    first = 1, command = "BLOCKSEARCH";
+  } else if (words.size() >= 3 && words[0].word == "DISTANCE" && words[1].word == "PROG" &&
+             words[2].word == "START") {
+    first = 3, command = "DISTANCE PROG START";
+  } else {
+    return {};
+  }
+  const char* choices = first == 1 ? "LOCKED or RELEASED" : "ON, OFF or CLEAR";
+  SearchCommand c;
+  auto invalid = [&](size_t word, std::string message) {
+    c.kind = Kind::kInvalid;
+    c.at = word < words.size() ? words[word].at : text.size();
+    c.message = std::move(message);
+    return c;
+  };
+  if (first >= words.size())
+    return invalid(first, "expected " + std::string(choices) + " after #" + command);
+  const std::string_view k = words[first].word;
+  if (first == 1 && k == "LOCKED") {
+    c.kind = Kind::kLock;
+  } else if (first == 1 && k == "RELEASED") {
+    c.kind = Kind::kRelease;
+  } else if (first == 3 && (k == "ON" || k == "OFF" || k == "CLEAR")) {
+    c.kind = Kind::kDistance;
+    c.distance = k == "ON"    ? DistanceCommand::kOn
+                 : k == "OFF" ? DistanceCommand::kOff
+                              : DistanceCommand::kClear;
+  } else {
+    return invalid(
+        first, "unknown #" + command + " keyword '" + std::string(k) + "': expected " + choices);
+  }
+  if (first + 1 < words.size())
+    return invalid(first + 1, "unexpected '" + std::string(words[first + 1].word) + "' after #" +
+                                  command + " " + std::string(k));
+  return c;
+}
 
 bool ParseIsgLine(std::string_view line, SourcePos start, ExpressionParser& expr, Block& block) {
   LineScanner s(line, start);
@@ -86,10 +155,20 @@ bool ParseIsgLine(std::string_view line, SourcePos start, ExpressionParser& expr
     Statement st;
     st.pos = pos;
 
+    const size_t hash = s.index();
     if (s.Accept('#')) {
       st.kind = Statement::Kind::kHashCommand;
-      std::string text = HashCommandText(s);
+      std::vector<size_t> source;
+      std::string text = HashCommandText(s, source);
       if (text.empty()) return expr.Error(pos, "empty #-command"), true;
+      if (const SearchCommand c = ReadSearchCommand(text);
+          c.kind == SearchCommand::Kind::kInvalid) {
+        SourcePos at = pos;
+        const auto shift = static_cast<uint32_t>(source[c.at] - hash);
+        at.column += shift;
+        at.offset += shift;
+        return expr.Error(at, c.message), true;
+      }
       st.text = static_cast<uint32_t>(p.texts.size());
       p.texts.push_back(std::move(text));
       p.statements.push_back(st);

@@ -215,6 +215,25 @@ struct Program {
   }
 };
 
+/// #DISTANCE PROG START ON | OFF | CLEAR (TwinCAT block search manual 4.1.2): whether the
+/// distance from program start counts the following moves (ON, OFF: modal), or restarts at 0
+/// (CLEAR). kNone: the block holds no such command.
+enum class DistanceCommand : uint8_t { kNone, kOn, kOff, kClear };
+
+/// What a #-command text (Program::texts: upper case, single spaces) says to block search:
+/// #BLOCKSEARCH LOCKED | RELEASED (manual 6) or #DISTANCE PROG START ON | OFF | CLEAR (4.1.2).
+/// The front end uses it to point at a wrong word, the interpreter to act on a right one, so
+/// that both read the commands the same way.
+struct SearchCommand {
+  enum class Kind : uint8_t { kOther, kLock, kRelease, kDistance, kInvalid };
+  Kind kind = Kind::kOther;  ///< kOther: a #-command that is none of these
+  DistanceCommand distance = DistanceCommand::kNone;
+  /// kInvalid: index in the text of the wrong word, or the text's size if a word is missing.
+  size_t at = 0;
+  std::string message;  ///< kInvalid
+};
+SearchCommand ReadSearchCommand(std::string_view text);
+
 struct ParseResult {
   Program program;
   std::vector<Diagnostic> errors;

@@ -23,8 +23,19 @@ namespace {
 using namespace vmt;
 
 int Run(const std::string& scene_path, const std::string& backend, double until,
-        const std::string& out) {
+        const std::string& out, const std::vector<std::string>& sets) {
   sim::Scene scene = sim::LoadScene(scene_path);
+  for (const std::string& set : sets) {
+    const size_t eq = set.find('=');
+    const std::string error =
+        eq == std::string::npos
+            ? "expected NAME=VALUE"
+            : sim::AddSignalPreset(scene.nc, set.substr(0, eq), set.substr(eq + 1));
+    if (!error.empty()) {
+      std::fprintf(stderr, "vmt: error: --set %s: %s\n", set.c_str(), error.c_str());
+      return 2;
+    }
+  }
   sim::RunOptions options;
   if (backend == "physics") options.backend = sim::BackendKind::kPhysics;
   if (backend == "kinematic") options.backend = sim::BackendKind::kKinematic;
@@ -107,6 +118,10 @@ int main(int argc, char** argv) {
   run->add_option("--until", until, "Stop at this simulated time, seconds")
       ->check(CLI::PositiveNumber);
   run->add_option("--out", out, "Output folder")->capture_default_str();
+  std::vector<std::string> sets;
+  run->add_option("--set", sets,
+                  "NAME=VALUE: a gateway signal the PLC writes, set at t = 0 (repeatable), e.g. "
+                  "P00.mc_cmd_bs_type_w=4 P00.mc_cmd_bs_block_number_w=100");
 
   CLI::App* snap = app.add_subcommand("snapshot", "Render the scene's machine at a time to a PNG");
   snap->add_option("scene", scene, "Scene file (YAML)")->required();
@@ -187,7 +202,7 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (*run) return Run(scene, backend, until, out);
+    if (*run) return Run(scene, backend, until, out, sets);
     if (*snap) return Snapshot(scene, at, camera, out, width, height);
     if (*check) return Check(scene, dialect);
     if (*serve) {

@@ -118,11 +118,17 @@ StraightMoveCheck CheckStraightMove(CollisionWorld& world, const std::vector<dou
     return x.second - x.first.bound < y.second - y.first.bound;
   });
 
+  // The contact is found to the resolution of the fastest pair's travel, not of its own pair's:
+  // the first contact of a slow pair (a turret tool swinging past its slide) must not come out
+  // later on the path than the resolution says of the machine's fastest point.
+  double fastest = 0;
+  for (const Pair& p : pairs) fastest = std::max(fastest, p.bound);
+  const double du_resolution = fastest > 0 ? options.resolution_m / fastest : 1;
+
   double u_end = 1;  // nothing after the first contact found so far matters
   for (const auto& [p, box0] : start) {
     if (box0 - p.bound * u_end > out.min_clearance_m) continue;  // never closer than the minimum
     ++out.pairs_checked;
-    const double du_resolution = options.resolution_m / p.bound;
     double u = 0;
     bool contact = false;
     while (u < u_end) {

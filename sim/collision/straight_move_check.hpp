@@ -18,7 +18,9 @@
 namespace vmt::sim {
 
 struct StraightMoveOptions {
-  double resolution_m = 1e-6;  ///< contact position along the path (the pair's fastest point)
+  /// Contact position along the path, as travel of the fastest point of any pair that moves
+  /// relative to each other (not only of the pair that touches).
+  double resolution_m = 1e-6;
   /// The smallest clearance is exact to max(absolute, relative x clearance) (it may be that
   /// much smaller than reported, never larger).
   double clearance_absolute_m = 10e-6;

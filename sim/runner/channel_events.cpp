@@ -107,4 +107,26 @@ std::string ReposEventKey(const control::channel::ReposStatus& s) {
   return key;
 }
 
+nlohmann::ordered_json BlockSearchEvent(double t, const control::channel::Channel& channel,
+                                        const std::string& warning) {
+  const control::channel::BlockSearchStatus& st = channel.block_search();
+  nlohmann::ordered_json e = {{"t", t}, {"event", "block_search"}};
+  if (!warning.empty()) {
+    e["warning"] = warning;
+    return e;
+  }
+  e["state"] = ToString(st.state);
+  e["active"] = st.active();
+  e["block_count"] = st.block_count;
+  e["dist_prog_start_mm"] = Micro(st.dist_prog_start);
+  if (!st.continue_position.empty()) {
+    nlohmann::ordered_json at = nlohmann::ordered_json::object();
+    for (size_t a = 0; a < st.continue_position.size(); ++a)
+      at[channel.AxisName(a)] = Micro(st.continue_position[a]);
+    e["continue_position"] = at;
+    e["path_deviation_mm"] = Micro(st.path_deviation);
+  }
+  return e;
+}
+
 }  // namespace vmt::sim

@@ -36,4 +36,10 @@ nlohmann::ordered_json ReposEvent(double t, const control::channel::ReposStatus&
 /// signals and the adjust symbols (not every cycle's command values).
 std::string ReposEventKey(const control::channel::ReposStatus& s);
 
+/// Block search (twincat-cnc-block-search-de.md 5.6): a change of its state HLI_BS_*, with the
+/// status the PLC reads then (line count, distance from program start, the continue position
+/// per channel axis and the actual's deviation from it); `warning` for a warning of the search.
+nlohmann::ordered_json BlockSearchEvent(double t, const control::channel::Channel& channel,
+                                        const std::string& warning = {});
+
 }  // namespace vmt::sim

@@ -211,6 +211,9 @@ struct SceneRun::State {
   control::axes::HeadstockMode headstock_mode = control::axes::HeadstockMode::kNone;
   control::axes::HeadstockMode headstock_target = control::axes::HeadstockMode::kNone;
   std::string repos_key;         ///< the REPOS screen last emitted (ReposEventKey)
+  control::channel::BlockSearchState block_search_state =
+      control::channel::BlockSearchState::kInactive;
+  size_t block_search_warnings = 0;  ///< warnings of the block search already emitted
   int plc_client_gone_told = 0;  ///< client_gone steps passed to the callback
 };
 
@@ -308,6 +311,13 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
                                                      control::plc::PlcTime(plc_every * 250));
     for (const auto& [id, value] : scene.plc.constants) SetSignalNumber(*image, id, value);
   }
+  if (image)
+    for (const NcSetup::SignalPreset& p : scene.nc.presets) {
+      if (image->table()[p.id].type == control::gateway::SignalType::kString)
+        image->SetString(p.id, p.text);
+      else
+        SetSignalNumber(*image, p.id, p.number);
+    }
   if (image) {
     probe_glue = std::make_unique<ProbeGlue>(m, *image);
     ProbeGlue* glue = probe_glue.get();
@@ -413,6 +423,17 @@ void SceneRun::State::Step() {
         if (!repos_key.empty() || rs.allowed) emit_event(ReposEvent(t, rs));
         repos_key = std::move(key);
       }
+    }
+    if (nc_cycle) {
+      // Block search: its state as the PLC sees it change, and each warning once.
+      const control::channel::BlockSearchStatus& bs = channel->block_search();
+      if (bs.state != block_search_state) {
+        block_search_state = bs.state;
+        emit_event(BlockSearchEvent(t, *channel));
+      }
+      if (bs.warnings.size() < block_search_warnings) block_search_warnings = 0;  // a new run
+      for (; block_search_warnings < bs.warnings.size(); ++block_search_warnings)
+        emit_event(BlockSearchEvent(t, *channel, bs.warnings[block_search_warnings]));
     }
     if (channel->state() != nc_state) {
       nc_state = channel->state();

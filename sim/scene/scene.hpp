@@ -47,7 +47,20 @@ struct NcSetup {
   /// The machine data pages of fast measurement as the run starts with them: `measuring_pages:`
   /// presets, else the stylus pages of the model's `probe:`.
   control::measure::MeasuringPages measuring_pages;
+  /// Gateway signals the PLC or the operator writes, set once at t = 0 before anything runs:
+  /// the block search CNC objects of `block_search:` (twincat-cnc-block-search-de.md 5, e.g.
+  /// mc_cmd_bs_type_w) and `vmt run --set NAME=VALUE`. STRING signals keep `text`.
+  struct SignalPreset {
+    int id = -1;
+    double number = 0;
+    std::string text;
+  };
+  std::vector<SignalPreset> presets;
 };
+
+/// Adds the preset NAME=VALUE (a full gateway signal name; true/false for BOOL, a number, or the
+/// text of a STRING) to `nc`: "" or what is wrong with it.
+std::string AddSignalPreset(NcSetup& nc, const std::string& name, const std::string& value);
 
 /// The embedded PLC program (plc_programs.hpp) and its scan time.
 struct PlcSetup {

@@ -2,6 +2,8 @@
 // PLC, cameras and snapshots; timeline steps and expectations are scene_steps.cpp's.
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -93,7 +95,7 @@ Scene LoadScene(const std::string& path) {
   if (root.Has("nc")) {
     const YamlNode nc = root["nc"];
     nc.AllowKeys({"program", "subprograms", "dialect", "axes", "spindle", "override",
-                  "zero_offsets", "tools", "initial", "aux_handshake"});
+                  "zero_offsets", "tools", "initial", "aux_handshake", "block_search"});
     s.nc.present = true;
     std::vector<YamlNode> files{nc["program"]};
     if (nc.Has("subprograms"))
@@ -208,6 +210,22 @@ Scene LoadScene(const std::string& path) {
         control::gateway::BuildSignalTable(GatewayLayoutOf(m)));
     s.nc.override = nc.Double("override", 100) / 100;
     PresetStylusPages(m, s.nc.measuring_pages);
+    if (nc.Has("block_search")) {
+      // The CNC objects of block search as the PLC or the HMI writes them before the start,
+      // named without the channel's prefix: mc_cmd_bs_type_w: 4.
+      const YamlNode bs = nc["block_search"];
+      const std::string prefix = "P" + std::string(s.nc.data.process.number < 10 ? "0" : "") +
+                                 std::to_string(s.nc.data.process.number) + ".";
+      for (const std::string& key : bs.Keys()) {
+        const bool object = key.rfind("mc_cmd_bs_", 0) == 0 || key == "mc_command_file_offset_w" ||
+                            key.rfind("bahn_lc_control.block_search.", 0) == 0;
+        if (!object)
+          bs[key].Fail("not a block search object (mc_cmd_bs_*_w, mc_command_file_offset_w, "
+                       "bahn_lc_control.block_search.enable_w)");
+        const std::string error = AddSignalPreset(s.nc, prefix + key, bs[key].String());
+        if (!error.empty()) bs[key].Fail(error);
+      }
+    }
   }
   if (root.Has("measuring_pages")) {
     if (!s.nc.present)
@@ -288,6 +306,54 @@ std::unique_ptr<MachineBackend> MakeBackend(BackendKind kind, const MachineModel
                                             const InitialState& init) {
   if (kind == BackendKind::kPhysics) return std::make_unique<PhysicsBackend>(model, init);
   return std::make_unique<KinematicBackend>(model, init);
+}
+
+std::string AddSignalPreset(NcSetup& nc, const std::string& name, const std::string& value) {
+  using control::gateway::Direction;
+  using control::gateway::SignalType;
+  if (!nc.present || !nc.signals) return "the scene has no nc: section (no gateway signals)";
+  int id = -1;
+  for (size_t i = 0; i < nc.signals->size(); ++i)
+    if ((*nc.signals)[i].name == name) id = static_cast<int>(i);
+  if (id < 0) return "no gateway signal '" + name + "' (vmt signals MODEL lists them)";
+  const control::gateway::Signal& sig = (*nc.signals)[id];
+  if (sig.direction != Direction::kPlcToNc)
+    return "'" + name + "' is not written by the PLC: it cannot be preset";
+  NcSetup::SignalPreset preset{id, 0, ""};
+  if (sig.type == SignalType::kString) {
+    if (value.size() > 83) return "'" + name + "' holds at most 83 characters";
+    preset.text = value;
+  } else if (sig.type == SignalType::kBool) {
+    if (value == "true" || value == "TRUE" || value == "1")
+      preset.number = 1;
+    else if (value != "false" && value != "FALSE" && value != "0")
+      return "'" + name + "' is BOOL: expected true or false, not '" + value + "'";
+  } else {
+    char* end = nullptr;
+    preset.number = std::strtod(value.c_str(), &end);
+    if (value.empty() || *end != '\0' || !std::isfinite(preset.number))
+      return "'" + name + "' expects a number, not '" + value + "'";
+    const bool integer = sig.type != SignalType::kReal && sig.type != SignalType::kLreal;
+    if (integer && preset.number != std::floor(preset.number))
+      return "'" + name + "' is an integer signal: '" + value + "' is not an integer";
+    const std::pair<double, double> range =
+        sig.type == SignalType::kInt     ? std::pair{-32768.0, 32767.0}
+        : sig.type == SignalType::kUint  ? std::pair{0.0, 65535.0}
+        : sig.type == SignalType::kWord  ? std::pair{0.0, 65535.0}
+        : sig.type == SignalType::kDint  ? std::pair{-2147483648.0, 2147483647.0}
+        : sig.type == SignalType::kUdint ? std::pair{0.0, 4294967295.0}
+        : sig.type == SignalType::kDword ? std::pair{0.0, 4294967295.0}
+                                         : std::pair{-1e308, 1e308};
+    if (preset.number < range.first || preset.number > range.second)
+      return "'" + name + "': " + value + " is outside its type's range";
+  }
+  for (NcSetup::SignalPreset& p : nc.presets)
+    if (p.id == id) {
+      p = preset;
+      return "";
+    }
+  nc.presets.push_back(preset);
+  return "";
 }
 
 }  // namespace vmt::sim

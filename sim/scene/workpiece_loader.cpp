@@ -1,6 +1,7 @@
 #include "sim/scene/workpiece_loader.hpp"
 
 #include <algorithm>
+#include <vector>
 
 #include "sim/model/yaml_reader.hpp"
 #include "sim/scene/scene_steps.hpp"
@@ -13,12 +14,43 @@ bool ShareMaterial(const RevolvedSection& a, const RevolvedSection& b) {
          b.r_inner_m < a.r_outer_m;
 }
 
+// The machined sections' diameters carry the oversize, the others are what the part was
+// clamped or calibrated on and keep their true size: a measuring program calibrates on a master
+// of known size, and an oversize that grew the master with the part would hide itself. It is a
+// diameter allowance, as a lathe part is dimensioned and measured (G16): an outer diameter
+// grows by it, a bore shrinks by it. The faces stay where the sections put them.
+void ApplyOversize(const YamlNode& w, const std::vector<bool>& machined,
+                   std::vector<RevolvedSection>& sections) {
+  const YamlNode o = w["oversize"];
+  if (machined.empty()) o.Fail("needs sections, some of them machined: true");
+  if (std::find(machined.begin(), machined.end(), true) == machined.end())
+    o.Fail("no section is machined: true");
+  const double radius_m = o.Double() / 2 / kMmPerM;
+  for (size_t i = 0; i < sections.size(); ++i) {
+    if (!machined[i]) continue;
+    RevolvedSection& s = sections[i];
+    s.r_outer_m += radius_m;
+    if (s.r_inner_m > 0) {
+      s.r_inner_m -= radius_m;
+      if (!(s.r_inner_m > 0)) o.Fail("closes the bore of section " + std::to_string(i));
+    }
+    if (!(s.r_outer_m > s.r_inner_m))
+      o.Fail("leaves section " + std::to_string(i) + " without material");
+  }
+  for (size_t i = 0; i < sections.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if ((machined[i] || machined[j]) && ShareMaterial(sections[i], sections[j]))
+        o.Fail("closes the gap between sections " + std::to_string(j) + " and " +
+               std::to_string(i));
+}
+
 }  // namespace
 
 Workpiece LoadWorkpiece(const YamlNode& w, const MachineModel& m) {
   w.AllowKeys({"diameter", "length", "sections", "oversize", "z", "colour", "link"});
   Workpiece p;
   p.present = true;
+  std::vector<bool> machined;  // per section: the oversize applies to it
   p.part.link = w.String("link", "spindle");
   if (m.LinkIndex(p.part.link) < 0) w["link"].Fail("no link '" + p.part.link + "'");
   const double z_m = w["z"].Double() / kMmPerM;
@@ -34,7 +66,7 @@ Workpiece LoadWorkpiece(const YamlNode& w, const MachineModel& m) {
     if (!list.IsSequence() || list.size() == 0) list.Fail("must be a non-empty list");
     for (size_t i = 0; i < list.size(); ++i) {
       const YamlNode n = list[i];
-      n.AllowKeys({"from", "to", "diameter", "bore"});
+      n.AllowKeys({"from", "to", "diameter", "bore", "machined"});
       const double from = n["from"].Double(), to = n["to"].Double();
       const double d = n["diameter"].Double(), bore = n.Double("bore", 0);
       if (!(to > from)) n["to"].Fail("must be beyond from (" + Fmt(from) + " mm)");
@@ -46,21 +78,10 @@ Workpiece LoadWorkpiece(const YamlNode& w, const MachineModel& m) {
         if (ShareMaterial(s, p.part.sections[j]))
           n.Fail("shares material with section " + std::to_string(j));
       p.part.sections.push_back(s);
+      machined.push_back(n.Bool("machined", false));
     }
   }
-  // Oversize is on the diameters, the dimensions a lathe part is measured by: every outer
-  // radius grows by it and every bore shrinks; the faces stay where the sections put them.
-  const double oversize_m = w.Double("oversize", 0) / kMmPerM;
-  for (RevolvedSection& s : p.part.sections) {
-    s.r_outer_m += oversize_m;
-    if (s.r_inner_m > 0) s.r_inner_m = std::max(0.0, s.r_inner_m - oversize_m);
-    if (!(s.r_outer_m > s.r_inner_m)) w["oversize"].Fail("leaves a section without material");
-  }
-  for (size_t i = 0; i < p.part.sections.size() && oversize_m > 0; ++i)
-    for (size_t j = 0; j < i; ++j)
-      if (ShareMaterial(p.part.sections[i], p.part.sections[j]))
-        w["oversize"].Fail("closes the gap between sections " + std::to_string(j) + " and " +
-                           std::to_string(i));
+  if (w.Has("oversize")) ApplyOversize(w, machined, p.part.sections);
   if (w.Has("colour")) {
     const auto c = w["colour"].Doubles(4);
     p.colour = {float(c[0]), float(c[1]), float(c[2]), float(c[3])};

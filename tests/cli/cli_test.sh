@@ -48,6 +48,20 @@ check run_missing_scene 2 "cannot open file" -- "$vmt" run "$out/nope.yaml"
 # --until cuts the run short: expectations it does not reach count as failed.
 check run_until 1 "0.500 s simulated" -- "$vmt" run "$src/scenes/default.yaml" --backend kinematic --until 0.5 --out "$out/until"
 
+# Block search from the command line (issue 8): --set writes the CNC objects at t = 0. The
+# refused scene's search moved to N0020 (the plunge at Z158): its return from X26 Z180 is clear
+# of the part, so the scene's expectation of error 507 now fails (exit 1) with the run intact.
+check run_set_block_search 1 "FAILED: expect\[0\]: nc error" -- "$vmt" run "$src/scenes/block-search-refused.yaml" \
+  --set P00.mc_cmd_bs_block_number_w=20 --set P00.mc_cmd_bs_covered_distance_w=0 --out "$out/set"
+check run_set_block_search_event 0 '"continue_position":\{"X":40(\.0)?,"Z":158(\.0)?\}' -- cat "$out/set/events.jsonl"
+check run_set_unknown_signal 2 "no gateway signal 'P00.nope'" -- "$vmt" run "$src/scenes/block-search-refused.yaml" --set P00.nope=1
+check run_set_read_only 2 "not written by the PLC" -- "$vmt" run "$src/scenes/block-search-refused.yaml" --set P00.bahn_state.block_count_r=3
+check run_set_not_a_number 2 "expects a number" -- "$vmt" run "$src/scenes/block-search-refused.yaml" --set P00.mc_cmd_bs_block_number_w=ten
+check run_set_no_value 2 "expected NAME=VALUE" -- "$vmt" run "$src/scenes/block-search-refused.yaml" --set P00.mc_cmd_bs_type_w
+sed 's/mc_cmd_bs_type_w: 4/mc_cmd_bs_type_w: many/' "$src/scenes/block-search-refused.yaml" \
+  | sed "s#\.\./models#$src/models#; s#nc/stepped_shaft#$src/scenes/nc/stepped_shaft#" >"$out/bad_search.yaml"
+check run_bad_block_search 2 "bad_search.yaml:[0-9]+:[0-9]+: nc\.block_search\.mc_cmd_bs_type_w: 'P00.mc_cmd_bs_type_w' expects a number" -- "$vmt" run "$out/bad_search.yaml"
+
 check snapshot_a 0 "" -- "$vmt" snapshot "$src/scenes/default.yaml" --at 0.5 --camera iso --out "$out/a.png" --width 320 --height 240
 check snapshot_b 0 "" -- "$vmt" snapshot "$src/scenes/default.yaml" --at 0.5 --camera iso --out "$out/b.png" --width 320 --height 240
 check snapshot_same_bytes 0 "" -- cmp "$out/a.png" "$out/b.png"

@@ -329,6 +329,9 @@ ProbeBlockProgram::ProbeBlockProgram(const gateway::SignalImage& image)
   probe_ready_ = image.Find("IPROBE_READY");
   probe_contact_ = image.Find("IPROBE_CONTACT");
   probe_on_ = image.Find("QPROBE_ON");
+  probe2_ready_ = image.Find("IPROBE2_READY");
+  probe2_contact_ = image.Find("IPROBE2_CONTACT");
+  probe2_on_ = image.Find("QPROBE2_ON");
 
   // Events, Q functions and axes are chosen by the pins (Koll_EV, Q_Nummer, MessProc, ACHS_NR_n)
   // each scan, so every one the machine has is indexed here.
@@ -376,9 +379,12 @@ void ProbeBlockProgram::operator()(PlcScan& s) {
   m.ACHS_NR_1 = int16(ACHS_NR[0]);
   m.ACHS_NR_2 = int16(ACHS_NR[1]);
   m.ACHS_NR_3 = int16(ACHS_NR[2]);
-  // Typical application, network 2: the probe's ready and contact inputs on probe 1's pins.
+  // Typical application, network 2: the probe's ready and contact inputs on probe 1's pins (a
+  // second probe, where the machine has one, on probe 2's).
   if (probe_ready_ >= 0) s.SetBool(I_MT_OK1, s.Bool(probe_ready_));
   if (probe_contact_ >= 0) s.SetBool(I_MTast1, s.Bool(probe_contact_));
+  if (probe2_ready_ >= 0) s.SetBool(I_MT_OK2, s.Bool(probe2_ready_));
+  if (probe2_contact_ >= 0) s.SetBool(I_MTast2, s.Bool(probe2_contact_));
   m.I_MT_OK1 = s.Bool(I_MT_OK1);
   m.I_MTast1 = s.Bool(I_MTast1);
   m.I_MT_OK2 = s.Bool(I_MT_OK2);
@@ -492,6 +498,7 @@ void ProbeBlockProgram::operator()(PlcScan& s) {
   out(Q_MTst1, m.Q_MTst1);
   if (probe_on_ >= 0) s.SetBool(probe_on_, m.Q_MTst1);
   out(Q_MTst2, m.Q_MTst2);
+  if (probe2_on_ >= 0) s.SetBool(probe2_on_, m.Q_MTst2);
   out(Q_MTstOK, m.Q_MTstOK);
   out(Q_MTstKol, m.Q_MTstKol);
   out(Q_MTstKmp, m.Q_MTstKmp);

@@ -170,9 +170,12 @@ struct ProbeBlockProgram {
   // The NC's signals, by process and number / by axis number (-1: not on this machine).
   std::map<std::pair<int, int>, int> events_, q_functions_, q_acks_;
   std::array<int, 33> axis_qdds_, axis_idds_;
-  // The probe's wiring where the machine has it (lathe-c1: IPROBE_READY / IPROBE_CONTACT to
-  // I_MT_OK1 / I_MTast1, Q_MTst1 switching the probe on with QPROBE_ON); -1: not wired.
+  // The probes' wiring where the machine has it (lathe-c1: IPROBE_READY / IPROBE_CONTACT to
+  // I_MT_OK1 / I_MTast1, Q_MTst1 switching the probe on with QPROBE_ON; its axial probe
+  // IPROBE2_READY / IPROBE2_CONTACT to I_MT_OK2 / I_MTast2, Q_MTst2 to QPROBE2_ON); -1: not
+  // wired.
   int probe_ready_ = -1, probe_contact_ = -1, probe_on_ = -1;
+  int probe2_ready_ = -1, probe2_contact_ = -1, probe2_on_ = -1;
   std::vector<int> qdds_axes_;  ///< axes whose AxxC.QDDS the program wrote last scan
   /// AXD_WR's answers to the writes issued last scan, per measuring axis, where the runtime
   /// connects AXD_WR to the drives (PlcScan::axd_wr).

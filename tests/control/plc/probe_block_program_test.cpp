@@ -156,6 +156,43 @@ TEST(ProbeBlockProgramTest, TheMachinesProbeIsWiredToProbeOne) {
   EXPECT_TRUE(p.fb().Q_MTstKol);
 }
 
+// A second probe (lathe-c1's axial stylus) is wired to probe 2's pins; the page's PIN DDS (the
+// stylus at the drives' pin 5) selects it, so only it is switched on and watched.
+TEST(ProbeBlockProgramTest, ASecondProbeIsWiredToProbeTwo) {
+  gateway::GatewayLayout layout = ThreeAxes();
+  layout.io = {{"QPROBE_ON", true, "probe activation"},
+               {"IPROBE_READY", false, "probe ready"},
+               {"IPROBE_CONTACT", false, "stylus deflected"},
+               {"QPROBE2_ON", true, "axial probe activation"},
+               {"IPROBE2_READY", false, "axial probe ready"},
+               {"IPROBE2_CONTACT", false, "axial stylus deflected"}};
+  Plant p(layout);
+  WireLathe(p);
+  p.program->basis_page.PIN_DDS = true;
+  p.Set("P00.Q9992", true);
+  for (int i = 0; i < 10 && !p.Bool("P00.Q9992_Q"); ++i) p.Scan();
+  p.Set("P00.Q9992", false);
+  p.Scan();
+  p.Set("P00.EV29", true);
+  p.Scan();
+  EXPECT_TRUE(p.Bool("QPROBE2_ON"));  // the measuring program requests probe 2
+  EXPECT_FALSE(p.Bool("QPROBE_ON"));
+  p.Set("IPROBE_READY", true);  // probe 1 says nothing about probe 2
+  p.Scan();
+  EXPECT_FALSE(p.fb().Q_MTstOK);
+  p.Set("IPROBE2_READY", true);
+  p.Scan();
+  EXPECT_TRUE(p.Bool("QMFB1A00.I_MT_OK2"));
+  EXPECT_TRUE(p.fb().Q_MTstOK);
+  p.Set("IPROBE_CONTACT", true);
+  p.Scan();
+  EXPECT_FALSE(p.fb().Q_MTstKol);
+  p.Set("IPROBE2_CONTACT", true);  // displaced during the approach: a collision
+  p.Scan();
+  EXPECT_TRUE(p.Bool("QMFB1A00.I_MTast2"));
+  EXPECT_TRUE(p.fb().Q_MTstKol);
+}
+
 TEST(ProbeBlockProgramTest, PinsChooseTheEventsTheQFunctionAndTheAxes) {
   gateway::GatewayLayout layout = ThreeAxes();
   layout.events = {31, 32};

@@ -34,15 +34,20 @@ void ArmAndRun(Bench& bench) {
         pc::kProbeCycleActive, pc::kProbe1Positive | pc::kProbe1Negative, true, false};
 }
 
+// PIN4 (probe 1) is the radial stylus' contact on both lathes; lathe-c1's PIN5 (probe 2) its
+// axial stylus'.
 TEST(ProbeWiringTest, LatheWiresXAndZToTheStylusContact) {
   for (const char* path : {"models/lathe-c1/machine.yaml", "models/lathe-c2/machine.yaml"}) {
     const MachineModel m = LoadMachineModel(testing::SourcePath(path));
     const int contact = control::IndexOf(m.io, std::string("IPROBE_CONTACT"));
     ASSERT_GE(contact, 0) << path;
+    const bool c1 = std::string(path).find("lathe-c1") != std::string::npos;
+    const int contact2 = control::IndexOf(m.io, std::string("IPROBE2_CONTACT"));
+    ASSERT_EQ(contact2 >= 0, c1) << path;
     for (const DriveParams& d : m.drives) {
       const bool wired = d.info.name == "X" || d.info.name == "Z";
       EXPECT_EQ(d.probe_inputs[0], wired ? contact : -1) << path << " " << d.info.name;
-      EXPECT_EQ(d.probe_inputs[1], -1) << path << " " << d.info.name;
+      EXPECT_EQ(d.probe_inputs[1], wired && c1 ? contact2 : -1) << path << " " << d.info.name;
     }
   }
 }
@@ -136,7 +141,7 @@ TEST(ProbeWiringTest, WithoutTheProbeFunctionTheFeedbackIsUnchanged) {
 
 TEST(ProbeWiringTest, PinFiveIsProbeTwo) {
   const MachineModel m = testing::EditedLathe("probe_pin5", [](std::string y) {
-    return testing::ReplaceOnce(y, "probe_inputs: {PIN4: IPROBE_CONTACT}",
+    return testing::ReplaceOnce(y, "probe_inputs: {PIN4: IPROBE_CONTACT, PIN5: IPROBE2_CONTACT}",
                                 "probe_inputs: {PIN5: IPROBE_CONTACT}");
   });
   KinematicBackend backend(m, {{{"Z", kZ0Mm}}, {}});
@@ -217,7 +222,8 @@ TEST(ProbeWiringTest, BadProbeInputsNameTheirPath) {
     std::string message;
     try {
       testing::EditedLathe("bad_probe_inputs", [&c](std::string y) {
-        return testing::ReplaceOnce(y, "probe_inputs: {PIN4: IPROBE_CONTACT}", c.replacement);
+        return testing::ReplaceOnce(
+            y, "probe_inputs: {PIN4: IPROBE_CONTACT, PIN5: IPROBE2_CONTACT}", c.replacement);
       });
     } catch (const ModelError& e) {
       message = e.what();

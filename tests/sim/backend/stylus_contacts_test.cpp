@@ -70,7 +70,7 @@ TEST(StylusContactsTest, XReadsTheRadiusOfTheRubysLowestPoint) {
   const MachineModel& m = Lathe();
   KinematicBackend backend(m, {{{"X", 45.0}, {"Z", kZMm}, {"T", kStation3}}, {}});
   const std::vector<Eigen::Isometry3d> poses = LinkPoses(m, backend.JointPositions());
-  ASSERT_EQ(m.probes.size(), 1u);
+  ASSERT_EQ(m.probes.size(), 2u);  // the radial T3, then the axial T7
   const ProbeStylus& s = m.probes[0];
   const Eigen::Vector3d c =
       poses[m.LinkIndex("spindle")].inverse() * poses[s.link] * s.spheres[0].centre_m;

@@ -14,8 +14,9 @@ namespace {
 
 using ::testing::HasSubstr;
 
+// Stylus 1 of lathe-c1 and -c2: the radial touch probe T3.
 void ExpectLatheStylus(const MachineModel& m) {
-  ASSERT_EQ(m.probes.size(), 1u);
+  ASSERT_GE(m.probes.size(), 1u);
   const ProbeStylus& s = m.probes[0];
   EXPECT_EQ(s.t_number, 3);
   EXPECT_FALSE(s.normally_closed);
@@ -33,12 +34,12 @@ void ExpectLatheStylus(const MachineModel& m) {
 
 // The sphere the YAML gives is the ruby the URDF draws: every vertex of its collision mesh lies
 // at the radius from the centre (to the OBJ's 7 decimals), the bounding box is centred on it.
-void ExpectSphereIsTheRubyMesh(const MachineModel& m) {
-  const ProbeStylus& s = m.probes.at(0);
+void ExpectSphereIsTheRubyMesh(const MachineModel& m, size_t stylus = 0) {
+  const ProbeStylus& s = m.probes.at(stylus);
   const Link& link = m.links[s.link];
   const Visual* ruby = nullptr;
   for (const Visual& c : link.collisions)
-    if (c.name == "probe_ruby") ruby = &c;
+    if (c.name == s.sphere_parts.at(0)) ruby = &c;
   ASSERT_NE(ruby, nullptr);
   ASSERT_TRUE(ruby->mesh);
   const std::vector<float>& v = ruby->mesh->positions;
@@ -57,9 +58,29 @@ TEST(ProbeStylusModel, LatheC1HasItsStylusAtTheRuby) {
   ExpectSphereIsTheRubyMesh(testing::Lathe());
 }
 
+// lathe-c1's stylus 2: the axial probe T7 in station 7, a probe of its own on the drives' PIN5,
+// its ruby 50 mm ahead of the tool-tip plane along -z.
+TEST(ProbeStylusModel, LatheC1HasAnAxialStylusAtItsRuby) {
+  const MachineModel& m = testing::Lathe();
+  ASSERT_EQ(m.probes.size(), 2u);
+  const ProbeStylus& s = m.probes[1];
+  EXPECT_EQ(s.t_number, 7);
+  EXPECT_FALSE(s.normally_closed);
+  EXPECT_TRUE(s.pin5);
+  EXPECT_EQ(s.link, m.LinkIndex("probe_axial"));
+  ASSERT_EQ(s.spheres.size(), 1u);
+  EXPECT_NEAR((s.spheres[0].centre_m - Eigen::Vector3d(0.047, 0, -0.050)).norm(), 0, 1e-15);
+  EXPECT_DOUBLE_EQ(s.spheres[0].radius_m, 0.003);
+  EXPECT_EQ(s.sphere_parts, std::vector<std::string>{"probe_axial_ruby"});
+  EXPECT_EQ(s.contact_input, control::IndexOf(m.io, "IPROBE2_CONTACT"));
+  EXPECT_EQ(s.ready_input, control::IndexOf(m.io, "IPROBE2_READY"));
+  ExpectSphereIsTheRubyMesh(m, 1);
+}
+
 TEST(ProbeStylusModel, LatheC2HasTheSameStylus) {
   const MachineModel m = LoadMachineModel(testing::SourcePath("models/lathe-c2/machine.yaml"));
   ExpectLatheStylus(m);
+  EXPECT_EQ(m.probes.size(), 1u);
   ExpectSphereIsTheRubyMesh(m);
 }
 
@@ -71,7 +92,7 @@ TEST(ProbeStylusModel, NcAndPin5AndSeveralSpheresAreRead) {
                                 "- {centre: [47, 0, 0], radius: 3}\n"
                                 "      - {centre: [40, 5, -2], radius: 1.5}");
   });
-  ASSERT_EQ(m.probes.size(), 1u);
+  ASSERT_EQ(m.probes.size(), 2u);
   EXPECT_TRUE(m.probes[0].normally_closed);
   EXPECT_TRUE(m.probes[0].pin5);
   ASSERT_EQ(m.probes[0].spheres.size(), 2u);
@@ -128,8 +149,21 @@ TEST(ProbeStylusModel, BadKeysNameTheirYamlPath) {
   // The contact input is a switch of its own: not the actuator's ready switch as well.
   EXPECT_THAT(ErrorOf("probe_driven", "input: IPROBE_CONTACT", "input: ITURRET_INPOS"),
               HasSubstr("input 'ITURRET_INPOS' is the switch of more than one device"));
-  EXPECT_THAT(ErrorOf("probe_map", "probe:\n  - T: 3", "probe:\n  x:\n    T: 3"),
-              HasSubstr("probe: expected a list of up to four styluses"));
+  std::string map_error;  // both styluses as entries of a map instead of a list
+  try {
+    testing::EditedLathe("probe_map", [](std::string y) {
+      y = testing::ReplaceOnce(y, "probe:\n  - T: 3", "probe:\n  x:\n    T: 3");
+      return testing::ReplaceOnce(y, "\n  - T: 7 ", "\n  y:\n    T: 7 ");
+    });
+  } catch (const ModelError& e) {
+    map_error = e.what();
+  }
+  EXPECT_THAT(map_error, HasSubstr("probe: expected a list of up to four styluses"));
+  // Two styluses: each its own T number and its own switch (TASTWERKZEUGPAGE 00001).
+  EXPECT_THAT(ErrorOf("probe_same_t", "  - T: 7 ", "  - T: 3 "),
+              HasSubstr("probe[1].T: a second stylus with this T number"));
+  EXPECT_THAT(ErrorOf("probe_same_input", "input: IPROBE2_CONTACT", "input: IPROBE_CONTACT"),
+              HasSubstr("probe[1].input: the switch input of another stylus"));
 }
 
 }  // namespace

@@ -55,7 +55,13 @@ TEST(MeasuringPagesLoaderTest, StylusPageDefaultsToTheModelsProbe) {
   EXPECT_FALSE(page.pin5);
   EXPECT_DOUBLE_EQ(page.sphere_radius[0], 3);
   EXPECT_EQ(page.sphere_radius[1], 0);
-  EXPECT_EQ(s.nc.measuring_pages.stylus[1].tool_number, 0);
+  // Stylus 2: the axial probe T7 on the drives' pin 5; there are no styluses 3 and 4.
+  const auto& axial = s.nc.measuring_pages.stylus[1];
+  EXPECT_EQ(axial.tool_number, 7);
+  EXPECT_FALSE(axial.normally_closed);
+  EXPECT_TRUE(axial.pin5);
+  EXPECT_DOUBLE_EQ(axial.sphere_radius[0], 3);
+  EXPECT_EQ(s.nc.measuring_pages.stylus[2].tool_number, 0);
 }
 
 TEST(MeasuringPagesLoaderTest, PresetsReplaceTheStylusPagesAndFillCalibration) {
