@@ -468,7 +468,7 @@ class Channel {
   bool StartMeasuringMove(const measure::MeasuringStep& step);
   /// After a move of the instruction: the reverse vectors reached, and a way back to a point
   /// already recorded (the escape) ends the record there.
-  void TrackReverseVectors(int sphere);
+  void TrackReverseVectors();
   /// Ends the instruction: translation and the interpreter's position back to the program's.
   void EndMeasuring();
   /// Program -> axis translation with the stylus' sphere `sphere` as the tool edge.

@@ -268,7 +268,7 @@ bool Channel::MeasuringCycle(const AmplifierTelegram& at) {
   const nc::Program& program = *ProgramOf(run.block.program);
   if (run.moving) {
     run.moving = false;
-    if (!run.reversal) TrackReverseVectors(run.plan.steps[run.step - 1].sphere);
+    if (!run.reversal) TrackReverseVectors();
     if (run.measuring_move) {
       run.measuring_move = false;
       const measure::MeasuringMessage* message = measure::FinishProbe(
@@ -332,7 +332,7 @@ bool Channel::MeasuringCycle(const AmplifierTelegram& at) {
         if (!StartMeasuringMove(s)) return false;
         if (active_) return false;
         run.moving = false, run.measuring_move = false;
-        if (!run.reversal) TrackReverseVectors(s.sphere);
+        if (!run.reversal) TrackReverseVectors();
         break;
     }
   }
@@ -359,16 +359,17 @@ bool Channel::MeasuringCycle(const AmplifierTelegram& at) {
   return true;
 }
 
-void Channel::TrackReverseVectors(int sphere) {
+void Channel::TrackReverseVectors() {
   if (!measuring_ || !measuring_setting_) return;
-  measure::ReverseVectors& r = reverse_vectors_;
-  auto& list = r.active == 0 ? r.single_point : r.sequence[static_cast<size_t>(r.active - 1)];
-  const std::vector<double> t = StylusTranslation(sphere);
-  auto at = [&](const std::array<double, 3>& p) {
+  std::vector<measure::ReversePoint>& list = reverse_vectors_.Active();
+  // A point is where the axes stood with its own sphere as the tool edge: compare axis positions,
+  // not sphere centres, since the record may change spheres.
+  auto at = [&](const measure::ReversePoint& p) {
+    const std::vector<double> t = StylusTranslation(p.sphere);
     for (int n = 0; n < 3; ++n) {
       const int a = SettingAxis(n);
       if (a >= 0 && std::abs(commanded_[static_cast<size_t>(a)] - t[static_cast<size_t>(a)] -
-                             p[static_cast<size_t>(n)]) > 1e-6)
+                             p.centre[static_cast<size_t>(n)]) > 1e-6)
         return false;
     }
     return true;
@@ -401,8 +402,7 @@ void Channel::EndMeasuring() {
 void Channel::StartReversal() {
   if (measuring_ && !measuring_->reversal) {
     // Interrupted on its way: the points it has not reached are not part of the way back.
-    measure::ReverseVectors& r = reverse_vectors_;
-    auto& list = r.active == 0 ? r.single_point : r.sequence[static_cast<size_t>(r.active - 1)];
+    std::vector<measure::ReversePoint>& list = reverse_vectors_.Active();
     if (measuring_->reached < list.size()) list.resize(measuring_->reached);
   }
   measuring_.reset();
@@ -417,11 +417,12 @@ void Channel::StartReversal() {
   uint8_t axes = 0;
   for (int n = 0; n < 3; ++n)
     if (SettingAxis(n) >= 0) axes |= static_cast<uint8_t>(1u << n);
-  for (const auto& p : points) {
+  for (const measure::ReversePoint& p : points) {
     measure::MeasuringStep s;
     s.kind = measure::MeasuringStep::Kind::kRapid;
-    s.target = p;
+    s.target = p.centre;
     s.axes = axes;
+    s.sphere = p.sphere;
     run.plan.steps.push_back(s);
   }
   measuring_.emplace(std::move(run));

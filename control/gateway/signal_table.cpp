@@ -236,4 +236,6 @@ int LockstepCycleRegister(const std::vector<Signal>& table) {
   return end;
 }
 
+int AxdWrRegister(const std::vector<Signal>& table) { return LockstepCycleRegister(table) + 1; }
+
 }  // namespace vmt::control::gateway

@@ -101,5 +101,8 @@ std::vector<Signal> BuildSignalTable(const GatewayLayout& layout);
 /// The holding register an external PLC writes to step the simulation in lockstep (vmt serve
 /// --lockstep, control/plc/modbus_server.hpp): one past the table's last holding register.
 int LockstepCycleRegister(const std::vector<Signal>& table);
+/// First of the six holding registers of the Modbus AXD_WR block (modbus_server.hpp) that vmt
+/// serve offers an external PLC: right after the lockstep cycle register, in real time too.
+int AxdWrRegister(const std::vector<Signal>& table);
 
 }  // namespace vmt::control::gateway

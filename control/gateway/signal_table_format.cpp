@@ -42,6 +42,7 @@ std::string FormatJson(const std::vector<Signal>& table) {
       {"holding_register", "numeric or STRING the PLC writes"},
       {"input_register", "numeric or STRING the PLC reads"},
       {"lockstep_cycle_register", LockstepCycleRegister(table)},
+      {"axd_wr_register", AxdWrRegister(table)},
       {"encoding",
        "16-bit registers, most significant word first; INT two's complement; DINT/UDINT/DWORD 2 "
        "registers; REAL IEEE-754 binary32 in 2 registers; LREAL binary64 in 4; STRING(83) 42 "

@@ -198,7 +198,7 @@ bool StartsSequence(const ReverseVectors& reverse, int variant) {
 // The instruction's points go into the record when it is planned, not as the stylus reaches
 // them: the record holds where the stylus starts and each point it is to pass on its way in
 // (not the escape, which retraces them), so the reversal takes it back out the way it came.
-void Record(ReverseVectors& reverse, int variant, const std::array<double, 3>& start,
+void Record(ReverseVectors& reverse, int variant, int sphere, const std::array<double, 3>& start,
             const std::vector<std::array<double, 3>>& points) {
   if (reverse.active != variant) {
     if (reverse.active == 0)
@@ -206,13 +206,13 @@ void Record(ReverseVectors& reverse, int variant, const std::array<double, 3>& s
     else
       reverse.sequence[reverse.active - 1].clear();
   }
-  std::vector<std::array<double, 3>>& list =
+  std::vector<ReversePoint>& list =
       variant == 0 ? reverse.single_point : reverse.sequence[variant - 1];
   if (StartsSequence(reverse, variant)) {
     list.clear();
-    list.push_back(start);
+    list.push_back({start, sphere});
   }
-  list.insert(list.end(), points.begin(), points.end());
+  for (const std::array<double, 3>& p : points) list.push_back({p, sphere});
   reverse.active = variant;
 }
 
@@ -398,7 +398,7 @@ MeasuringPlan PlanMove(Arguments& args, const MeasuringContext& context, Measuri
   plan.steps.push_back(Event(29, true));
   if (axes) plan.steps.push_back(Rapid(target, axes, *sphere));
   plan.reverse_variant = *variant;
-  Record(reverse, *variant, context.position, {target});
+  Record(reverse, *variant, *sphere, context.position, {target});
   return plan;
 }
 
@@ -528,7 +528,7 @@ MeasuringPlan PlanProbe(Arguments& args, const MeasuringContext& context, Measur
   plan.direction = direction;
   plan.command = surface[axis];
   plan.reverse_variant = *variant;
-  Record(reverse, *variant, start, passed);
+  Record(reverse, *variant, *sphere, start, passed);
   return plan;
 }
 
@@ -589,9 +589,16 @@ MeasuringPlan PlanCorrection(Arguments& args, const MeasuringContext& context,
 
 }  // namespace
 
-std::vector<std::array<double, 3>> ReverseVectors::Reversal() const {
-  const std::vector<std::array<double, 3>>& list =
-      active == 0 ? single_point : sequence[std::clamp(active, 1, 10) - 1];
+std::vector<ReversePoint>& ReverseVectors::Active() {
+  return active == 0 ? single_point : sequence[static_cast<size_t>(std::clamp(active, 1, 10) - 1)];
+}
+
+const std::vector<ReversePoint>& ReverseVectors::Active() const {
+  return active == 0 ? single_point : sequence[static_cast<size_t>(std::clamp(active, 1, 10) - 1)];
+}
+
+std::vector<ReversePoint> ReverseVectors::Reversal() const {
+  const std::vector<ReversePoint>& list = Active();
   return {list.rbegin(), list.rend()};
 }
 

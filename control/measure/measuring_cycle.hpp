@@ -42,20 +42,32 @@ struct MeasuringSetting {
   std::optional<std::array<bool, 3>> saved;
 };
 
+/// One point of the reverse vectors: the sphere centre and the sphere it is the centre of. The
+/// instructions of a record may name different spheres (figure 4-9: blocks 54, 55 change from
+/// sphere 1 to 4); the axes stood at the centre plus that sphere's offsets, so the way back must
+/// use the same sphere to reach the same axis positions.
+struct ReversePoint {
+  std::array<double, 3> centre{};
+  int sphere = 1;
+};
+
 /// The reverse vectors of 4.4: the points the stylus passed through, per reverse variant, so that
 /// the reverse program can first take the stylus back the way it came.
 struct ReverseVectors {
   /// Single point (variant 0): the moves of the MOVE / PROBE in progress or last completed;
   /// replaced by each instruction of variant 0.
-  std::vector<std::array<double, 3>> single_point;
+  std::vector<ReversePoint> single_point;
   /// Linear path sequences 1..10: the points since the sequence's first instruction. A sequence
   /// ends (is cleared) when an instruction of another variant follows it.
-  std::array<std::vector<std::array<double, 3>>, 10> sequence;
+  std::array<std::vector<ReversePoint>, 10> sequence;
   int active = 0;  ///< the variant of the last MOVE / PROBE (0 = single point)
 
+  /// The record of the active variant.
+  std::vector<ReversePoint>& Active();
+  const std::vector<ReversePoint>& Active() const;
   /// The points to travel, in order, before the reverse program `.HOME` runs: the recorded points
   /// of the active variant back to its first one. Empty if nothing is recorded.
-  std::vector<std::array<double, 3>> Reversal() const;
+  std::vector<ReversePoint> Reversal() const;
 };
 
 /// The state an instruction starts from, as the channel knows it.

@@ -40,6 +40,24 @@ void CheckProgram(Program& p, std::vector<Diagnostic>& errors) {
     }
   }
 
+  // Fast measurement 4.4 CAUTION: the jump labels the control generates for the reverse vectors
+  // begin with "rev"; in a program whose MOVE / PROBE make them, the user may not use such a
+  // label (the reverse program would branch into the user's block).
+  if (p.dialect == Dialect::kMtc200) {
+    bool reverse_vectors = false;
+    for (const Statement& st : p.statements)
+      if (st.kind == Kind::kInstruction &&
+          (p.symbols.Name(st.name) == "MOVE" || p.symbols.Name(st.name) == "PROBE"))
+        reverse_vectors = true;
+    for (size_t b = 0; b < p.blocks.size() && reverse_vectors; ++b) {
+      const Block& block = p.blocks[b];
+      if (block.label != 0 && p.symbols.Name(block.label).starts_with("REV"))
+        errors.push_back({block.pos, "label ." + p.symbols.Name(block.label) +
+                                         ": labels beginning with REV are the reverse vectors' "
+                                         "(fast measurement 4.4)"});
+    }
+  }
+
   std::vector<Open> open;
   for (size_t b = 0; b < p.blocks.size(); ++b) {
     const Block& block = p.blocks[b];

@@ -42,6 +42,11 @@ constexpr int kMaxWriteBits = 1968;
 constexpr int kMaxWriteRegisters = 123;
 constexpr int kMaxWriteReadWrite = 121;
 
+// The AXD_WR block (header): B+0 axis, B+1 ident, B+2..3 value written together; B+4, B+5 read.
+constexpr int kAxdRegisters = 6;
+constexpr int kAxdWritten = 4;
+constexpr int kMaxAxisNumber = 32;
+
 int Word(const uint8_t* p) { return p[0] << 8 | p[1]; }
 
 std::string HostPort(const std::string& host, int port) {
@@ -72,7 +77,9 @@ struct ModbusServer::State {
   std::array<std::vector<int>, 4> owner;
   int cycle_register = -1;
   uint32_t cycle = 0;
-  std::vector<Client> clients;  // closed ones until the end of Poll
+  int axd_register = -1;                      // B, -1: no AXD_WR block
+  std::array<uint16_t, kAxdRegisters> axd{};  // what B..B+5 read
+  std::vector<Client> clients;                // closed ones until the end of Poll
   int open_clients = 0;
   std::vector<pollfd> fds;
   Stats stats;
@@ -94,10 +101,20 @@ struct ModbusServer::State {
     return address >= 0 && address < static_cast<int>(o.size()) ? o[address] : -1;
   }
 
+  bool InAxd(int a) const {
+    return axd_register >= 0 && a >= axd_register && a < axd_register + kAxdRegisters;
+  }
+  // Whether [address, address + quantity) touches the AXD_WR block.
+  bool TouchesAxd(int address, int quantity) const {
+    return axd_register >= 0 && address < axd_register + kAxdRegisters &&
+           address + quantity > axd_register;
+  }
+
   bool Readable(ModbusAddress::Area area, int address, int quantity) const {
     for (int a = address; a < address + quantity; ++a) {
-      const bool cycle_reg = area == ModbusAddress::kHoldingRegister && a == cycle_register;
-      if (!cycle_reg && Owner(area, a) < 0) return false;
+      const bool special =
+          area == ModbusAddress::kHoldingRegister && (a == cycle_register || InAxd(a));
+      if (!special && Owner(area, a) < 0) return false;
     }
     return true;
   }
@@ -126,6 +143,11 @@ struct ModbusServer::State {
     for (int a = address; a < end;) {
       if (area == ModbusAddress::kHoldingRegister && a == cycle_register) {
         tab[a++] = static_cast<uint16_t>(cycle);
+        continue;
+      }
+      if (area == ModbusAddress::kHoldingRegister && InAxd(a)) {
+        tab[a] = axd[static_cast<size_t>(a - axd_register)];
+        ++a;
         continue;
       }
       const int id = Owner(area, a);
@@ -191,6 +213,28 @@ struct ModbusServer::State {
     return Send(fd, adu, length);
   }
 
+  // The AXD_WR block's four written registers, `data` their eight bytes; the request is known to
+  // write exactly B..B+3. Returns an exception code, or 0 when the drive has answered.
+  int Axd(const uint8_t* data) {
+    const int axis = Word(data);
+    const int ident = Word(data + 2);
+    const auto value = static_cast<int32_t>(static_cast<uint32_t>(Word(data + 4)) << 16 |
+                                            static_cast<uint32_t>(Word(data + 6)));
+    if (axis < 1 || axis > kMaxAxisNumber || ident < 1) return MODBUS_EXCEPTION_ILLEGAL_DATA_VALUE;
+    AxdWrStatus status;
+    try {
+      status = options.axd_wr(axis, ident, value);
+    } catch (...) {
+      return MODBUS_EXCEPTION_SLAVE_OR_SERVER_FAILURE;
+    }
+    for (int k = 0; k < kAxdWritten; ++k)
+      axd[static_cast<size_t>(k)] = static_cast<uint16_t>(Word(data + 2 * k));
+    axd[4] = static_cast<uint16_t>(static_cast<int>(status) + 1);
+    axd[5] = static_cast<uint16_t>(axd[5] + 1);
+    ++stats.axd_writes;
+    return 0;
+  }
+
   // One complete frame: the header is checked, `length` is 7 + the PDU's length (>= 1).
   Reply Serve(int fd, uint8_t* adu, int length) {
     const uint8_t* pdu = adu + kMbapBytes;
@@ -237,6 +281,7 @@ struct ModbusServer::State {
       case MODBUS_FC_WRITE_SINGLE_REGISTER: {
         if (pdu_length != 5) return exception(kValue);
         if (address == cycle_register) return Cycle(fd, adu, length, quantity);
+        // The AXD_WR block is written whole (FC16 / FC23), never a register of it alone.
         if (!WholeSignals(address, 1)) return exception(kAddress);
         ApplyRegisters(address, 1, pdu + 3);
         return Send(fd, adu, length);
@@ -262,6 +307,10 @@ struct ModbusServer::State {
         if (quantity == 1 && address == cycle_register) {
           return Cycle(fd, adu, length, Word(pdu + 6));
         }
+        if (address == axd_register && quantity == kAxdWritten) {
+          const int code = Axd(pdu + 6);
+          return code != 0 ? exception(code) : Send(fd, adu, length);
+        }
         if (!WholeSignals(address, quantity)) return exception(kAddress);
         ApplyRegisters(address, quantity, pdu + 6);
         return Send(fd, adu, length);
@@ -274,9 +323,17 @@ struct ModbusServer::State {
             pdu_length != 10 + pdu[9]) {
           return exception(kValue);
         }
-        if (!WholeSignals(write_address, write_quantity) ||
+        const bool axd_write = write_address == axd_register && write_quantity == kAxdWritten;
+        if ((!axd_write && !WholeSignals(write_address, write_quantity)) ||
             !Readable(ModbusAddress::kHoldingRegister, address, quantity)) {
           return exception(kAddress);
+        }
+        if (axd_write) {
+          if (const int code = Axd(pdu + 10); code != 0) return exception(code);
+          // B..B+3 now hold the request's words, which libmodbus also copies in before the
+          // read: the read back shows them, the result and the count.
+          FillRegisters(ModbusAddress::kHoldingRegister, address, quantity, mapping->tab_registers);
+          return Send(fd, adu, length);
         }
         ApplyRegisters(write_address, write_quantity, pdu + 10);
         // libmodbus copies the written words into the mapping before it reads the range back, so
@@ -425,6 +482,30 @@ ModbusServer::ModbusServer(SignalImage& image, Options options)
     }
     s.cycle_register = r;
     holding = std::max(holding, r + 1);
+  }
+  if (o.axd_wr_register.has_value() != static_cast<bool>(o.axd_wr)) {
+    throw std::invalid_argument(
+        "ModbusServer: an AXD_WR block needs both its register and its writer");
+  }
+  if (o.axd_wr_register) {
+    const int b = *o.axd_wr_register;
+    if (b < 0 || b + kAxdRegisters > 65536) {
+      throw std::invalid_argument("ModbusServer: AXD_WR block " + std::to_string(b) + ".." +
+                                  std::to_string(b + kAxdRegisters - 1) + " outside 0..65535");
+    }
+    for (int a = b; a < b + kAxdRegisters; ++a) {
+      if (s.Owner(ModbusAddress::kHoldingRegister, a) >= 0) {
+        throw std::invalid_argument("ModbusServer: AXD_WR block register " + std::to_string(a) +
+                                    " belongs to signal " +
+                                    s.Sig(s.Owner(ModbusAddress::kHoldingRegister, a)).name);
+      }
+      if (a == s.cycle_register) {
+        throw std::invalid_argument("ModbusServer: AXD_WR block register " + std::to_string(a) +
+                                    " is the cycle register");
+      }
+    }
+    s.axd_register = b;
+    holding = std::max(holding, b + kAxdRegisters);
   }
 
   s.ctx = modbus_new_tcp("127.0.0.1", MODBUS_TCP_DEFAULT_PORT);

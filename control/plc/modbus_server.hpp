@@ -34,6 +34,21 @@
 // image shows its result. Any other value is answered with 03 and runs nothing (a repeated write
 // after a lost reply is therefore refused, not run twice; reading the register tells whether it
 // ran). The client writes its outputs before the cycle write and reads its inputs after it.
+//
+// AXD_WR block (Options::axd_wr_register + axd_wr): the SPS's system function AXD_WR
+// (axd_wr.hpp; fast-measurement 7.2), which writes a drive parameter over the SERCOS service
+// channel, for a PLC that is not embedded. Six holding registers from the block's address B:
+//   B+0 axis number 1..32       B+1 ident number 1..65535 (S-0-ident)
+//   B+2..B+3 value, DINT (most significant word first, as the table's DINTs)
+//   B+4 result (read only): 0 none yet, 1 done, 2 no axis, 3 refused (AxdWrStatus + 1)
+//   B+5 count of AXD_WRs run, modulo 65536 (read only)
+// Writing B..B+3 in one request (FC16 of exactly those four registers, or FC23 whose write part
+// is exactly those four) runs AXD_WR; the reply is sent after the drive has answered, so the
+// result is in B+4 when the write completes (FC23 can read it back in the same transaction).
+// B+5 tells after a lost reply whether the write ran. Exceptions, nothing run: 02 for any other
+// write touching the block (part of it, FC6, B+4 / B+5); 03 for axis 0 or above 32, ident 0;
+// 04 if the writer throws. A refusal by the drive is a result (3), not an exception: the PLC's
+// block turns it into its own error number (QMFB1Axx FEHLER_NR 28..40).
 
 #include <cstdint>
 #include <functional>
@@ -42,6 +57,7 @@
 #include <string>
 
 #include "control/gateway/signal_image.hpp"
+#include "control/plc/axd_wr.hpp"
 
 namespace vmt::control::plc {
 
@@ -54,6 +70,11 @@ struct ModbusServerOptions {
   std::optional<int> cycle_register;
   /// Runs one simulation cycle; called from Poll. Must not call Poll.
   std::function<void(uint32_t cycle)> on_cycle;
+  /// Holding register address of the AXD_WR block (six registers, none a signal's nor the cycle
+  /// register; vmt serve puts it right after the cycle register). Both or neither of these two.
+  std::optional<int> axd_wr_register;
+  /// Writes the drive parameter; called from Poll. Must not call Poll.
+  AxdWriter axd_wr;
 };
 
 struct ModbusServerStats {
@@ -65,6 +86,7 @@ struct ModbusServerStats {
   uint64_t clients_dropped = 0;
   uint64_t clients_refused = 0;  ///< closed at once because max_clients were connected
   uint64_t cycles = 0;           ///< cycle register writes that ran a cycle
+  uint64_t axd_writes = 0;       ///< AXD_WR block writes that reached the drive
   /// Every request answered, normally or with an exception: each one shows a PLC at the other
   /// end (vmt serve's link watchdog looks at whether this has moved).
   uint64_t requests() const { return requests_served + exceptions_sent; }
@@ -78,7 +100,8 @@ class ModbusServer {
   /// Binds and listens. `image` must outlive the server. Throws std::runtime_error naming
   /// host:port and the system's reason if it cannot listen, std::invalid_argument for options
   /// that make no sense (port or cycle register outside 0..65535, a cycle register a signal
-  /// owns, max_clients < 1).
+  /// owns, max_clients < 1, an AXD_WR block without its writer or overlapping a signal or the
+  /// cycle register).
   ModbusServer(gateway::SignalImage& image, Options options);
   ~ModbusServer();
   ModbusServer(ModbusServer&&) noexcept;

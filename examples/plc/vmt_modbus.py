@@ -29,6 +29,7 @@ class Gateway:
         self.where = {s["name"]: s["modbus"] for s in signals["signals"]}
         self.types = {s["name"]: s["type"] for s in signals["signals"]}
         self.cycle_register = signals["modbus"]["lockstep_cycle_register"]
+        self.axd_wr_register = signals["modbus"].get("axd_wr_register")
         self.values = {}
         self.written = {}
 
@@ -109,6 +110,22 @@ class Gateway:
         r = self._check(self.client.read_holding_registers(self.cycle_register, 1, slave=1),
                         "reading the cycle register")
         return cycle - 1 + (r.registers[0] - (cycle - 1)) % 65536
+
+    AXD_WR_RESULTS = {1: "done", 2: "no axis", 3: "refused"}
+
+    def axd_wr(self, axis, ident, value):
+        """AXD_WR (fast-measurement 7.2): S-0-`ident` := `value` in the drive of axis number
+        `axis`, through vmt serve's AXD_WR block; one FC23 writes the request and reads the
+        result back. Returns "done", "no axis" or "refused"."""
+        u = int(value) % (1 << 32)
+        r = self._check(
+            self.client.readwrite_registers(
+                read_address=self.axd_wr_register + 4, read_count=1,
+                write_address=self.axd_wr_register,
+                write_registers=[axis, ident, u >> 16, u & 0xFFFF],
+                slave=1),
+            f"AXD_WR axis {axis} S-0-{ident}")
+        return self.AXD_WR_RESULTS[r.registers[0]]
 
     def run_cycle(self, number):
         self._check(self.client.write_register(self.cycle_register, number % 65536, slave=1),

@@ -92,12 +92,19 @@ int Serve(const ServeOptions& o) {
     mb.cycle_register = control::gateway::LockstepCycleRegister(image->table());
     mb.on_cycle = [&](uint32_t) { cycle(); };
   }
+  // AXD_WR (fast-measurement 7.2): the external PLC writes drive parameters the way the embedded
+  // one does, through the Modbus AXD_WR block (modbus_server.hpp), in lockstep and real time.
+  mb.axd_wr_register = control::gateway::AxdWrRegister(image->table());
+  mb.axd_wr = [&run](int axis, int ident, int64_t value) {
+    return run.AxdWrite(axis, ident, value);
+  };
   control::plc::ModbusServer server(*image, mb);
   std::printf("vmt serve: %s, Modbus TCP on %s:%d, %s", scene.name.c_str(), mb.host.c_str(),
               server.port(), o.lockstep ? "lockstep" : "real time");
   if (o.lockstep)
     std::printf(" (write cycle n+1 to holding register %d to run a PLC cycle of %.1f ms)",
                 *mb.cycle_register, ticks * 0.25);
+  std::printf("; AXD_WR block at holding register %d", *mb.axd_wr_register);
   std::printf("\n");
   std::fflush(stdout);
 

@@ -760,6 +760,10 @@ void SceneRun::Step() { state_->Step(); }
 RunResult SceneRun::Finish() { return state_->Finish(); }
 control::gateway::SignalImage* SceneRun::image() { return state_->image.get(); }
 int64_t SceneRun::ticks_per_plc_cycle() const { return state_->plc_every; }
+control::plc::AxdWrStatus SceneRun::AxdWrite(int axis, int ident, int64_t value) {
+  if (!state_->probe_glue) return control::plc::AxdWrStatus::kNoAxis;
+  return state_->probe_glue->Write(axis, ident, value);
+}
 double SceneRun::time_s() const { return state_->tick * kDriveTickS; }
 void SceneRun::PlcLost(const std::string& reason) { state_->StopPlc(time_s(), reason, reason); }
 void SceneRun::PlcRunning() {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "control/gateway/signal_image.hpp"
+#include "control/plc/axd_wr.hpp"
 #include "sim/scene/scene.hpp"
 
 namespace vmt::sim {
@@ -58,6 +59,10 @@ class SceneRun {
   /// The gateway signals, null without an nc: section.
   control::gateway::SignalImage* image();
   int64_t ticks_per_plc_cycle() const;
+  /// AXD_WR for an external PLC (vmt serve's Modbus AXD_WR block): the same path as the embedded
+  /// PLC's (PlcScan::axd_wr), S-0-`ident` := `value` in the drive of axis number `axis`.
+  /// kNoAxis without an nc: section.
+  control::plc::AxdWrStatus AxdWrite(int axis, int ident, int64_t value);
   /// The PLC is lost (vmt serve: its Modbus link timed out). As when the embedded PLC's
   /// watchdog stops it: every signal only the PLC writes falls back to its preset (its valves
   /// drop), the NC stops at once with message 505 and `reason` as its text, and the event

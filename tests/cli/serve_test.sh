@@ -2,7 +2,7 @@
 # vmt serve with an external PLC: the Python example PLC steps the scene in lockstep over Modbus
 # TCP and must give the same run as the same program embedded (trace digest and every gateway
 # signal change); mbpoll reads the status as any Modbus tool would; a bad write gets an
-# exception. A PLC that goes away: in real time the link watchdog stops the NC (and stays quiet
+# exception; AXD_WR writes a drive parameter through the AXD_WR block. A PLC that goes away: in real time the link watchdog stops the NC (and stays quiet
 # while a client polls), in lockstep the idle timeout ends serve, and the client_gone fault
 # drops the clients. Timeouts are generous: no assert depends on the machine being fast.
 # Usage: serve_test.sh VMT SRC OUT
@@ -93,14 +93,47 @@ if start_serve "$out/mbpoll" lockstep; then
   mbpoll -m tcp -a 1 -p "$port" -0 -t 1 -r "$addr" -c 1 -1 127.0.0.1 >"$out/mbpoll.log" 2>&1 ||
     fail "mbpoll read"
   grep -qE "^\[$addr\]:[[:space:]]+0" "$out/mbpoll.log" || { fail "mbpoll output"; cat "$out/mbpoll.log"; }
-  # A holding register no signal owns (past the cycle register): exception 02.
+  # A holding register no signal owns (past the cycle register and the AXD_WR block): 02.
   cyc=$("$python" -c "import json,sys; print(json.load(open(sys.argv[1]))['modbus']['lockstep_cycle_register'])" "$out/signals.json")
-  mbpoll -m tcp -a 1 -p "$port" -0 -t 4 -r $((cyc + 1)) -1 127.0.0.1 7 >"$out/mbpoll_write.log" 2>&1 &&
+  mbpoll -m tcp -a 1 -p "$port" -0 -t 4 -r $((cyc + 7)) -1 127.0.0.1 7 >"$out/mbpoll_write.log" 2>&1 &&
     fail "mbpoll write past the map succeeded"
   grep -qi "illegal data address" "$out/mbpoll_write.log" || { fail "no exception 02"; cat "$out/mbpoll_write.log"; }
   kill $serve_pid; wait $serve_pid; rc=$?
   [ $rc = 3 ] || fail "serve after SIGTERM: exit $rc, not 3"
   json "$out/mbpoll/serve.json" 'd["stopped_early"] and d["stop_reason"] == "signal"'
+fi
+
+# AXD_WR over Modbus (fast-measurement 7.2): an external PLC writes a measuring drive's probe
+# parameters through serve's AXD_WR block, the path the embedded probe block's AXD_WR takes; the
+# drive's answer reads back (done, refused, no axis) and a bad request is exception 03.
+if start_serve "$out/axd" lockstep "$src/scenes/measure-shaft.yaml"; then
+  PYTHONPATH="$src/examples/plc" "$python" - "$port" "$out/signals.json" >"$out/axd.log" 2>&1 <<'PY' ||
+import json, sys
+from pymodbus.client import ModbusTcpClient
+from vmt_modbus import Gateway
+client = ModbusTcpClient("127.0.0.1", port=int(sys.argv[1]))
+assert client.connect()
+signals = json.load(open(sys.argv[2]))
+io = Gateway(client, signals)
+b = io.axd_wr_register
+assert b == signals["modbus"]["lockstep_cycle_register"] + 1, b
+assert io.axd_wr(1, 303, 405) == "done"      # S-0-0303: real-time control bit 2 = probe 1 enable
+assert io.axd_wr(1, 170, 1) == "done"        # S-0-0170: probe 1, positive edge
+assert io.axd_wr(1, 170, 9) == "refused"     # not a probe control word
+assert io.axd_wr(1, 999, 1) == "refused"     # a parameter the drive does not have
+assert io.axd_wr(32, 170, 1) == "no axis"
+r = client.read_holding_registers(b, 6, slave=1)
+assert list(r.registers) == [32, 170, 0, 1, 2, 5], r.registers
+r = client.write_registers(b, [0, 170, 0, 1], slave=1)          # axis 0
+assert r.isError() and r.exception_code == 3, r
+r = client.write_register(b, 1, slave=1)                         # part of the block
+assert r.isError() and r.exception_code == 2, r
+assert list(client.read_holding_registers(b + 4, 2, slave=1).registers) == [2, 5]
+print("AXD_WR over Modbus: ok")
+PY
+    { fail "AXD_WR over Modbus"; cat "$out/axd.log"; }
+  grep -q "AXD_WR block at holding register" "$out/axd/serve.log" || fail "serve names no AXD_WR block"
+  kill $serve_pid; wait $serve_pid
 fi
 
 # The example PLC, started before serve on a free port and connecting as soon as serve listens

@@ -261,5 +261,124 @@ TEST(ChannelMeasuring, ReverseTakesTheStylusBackTheWayItCameBeforeHome) {
   EXPECT_NEAR(l.m.X(), 80, 1e-9);      // and .HOME's G00 X80
 }
 
+TEST(ChannelMeasuring, ReverseRetracesALinearPathSequenceWithEachLegsSphere) {
+  // 4.4 linear path sequence 2 over three MOVEs that change the sphere (figure 4-9 blocks 54, 55
+  // do): sphere 2's centre is 4 mm lower in X and 6 mm further in Z than sphere 1's (tool
+  // lengths -4, 6: the axes stand at the centre minus them). Stopped on the third
+  // leg, the reverse program takes the axes back through the very axis positions the legs
+  // started from, each point with the sphere it was reached with, then runs .HOME.
+  MeasuringLathe l(
+      "N1 SETTING(X,Z,,18,48,15,1)\n"
+      "N2 MOVE(60,20,,1,2)\n"
+      "N3 MOVE(60,10,,2,2)\n"
+      "N4 MOVE(40,10,,2,2)\n"
+      "N5 RET\n"
+      ".HOME\n"
+      "N10 G00 X90\n"
+      "N11 RET\n",
+      0.0, 80, 30, [](ChannelConfig& c) {
+        c.tools.edges.push_back({3, 2, {-4, 6}, 2, 0});
+      });
+  l.pages.stylus[0].sphere_radius[1] = 2;
+  l.m.channel->Start();
+  while (l.m.X() > 50 && l.m.t < 10) l.Tick();  // on N4's leg: axes X 64 -> 44 at Z4
+  ASSERT_NEAR(l.m.Z(), 4, 1e-9);
+  l.m.channel->Stop();
+  for (int i = 0; i < 4000; ++i) l.Tick();
+  ASSERT_EQ(l.m.channel->state(), ChannelState::kHold);
+  const double x_stop = l.m.X();
+  const measure::ReverseVectors& r = l.m.channel->reverse_vectors();
+  ASSERT_EQ(r.active, 2);
+  ASSERT_EQ(r.sequence[1].size(), 4u);  // the start and the three MOVEs' points, recorded
+  ASSERT_TRUE(l.m.channel->Reverse());
+  // The corners the axes must pass: N4's start (sphere 2 at X60 Z10: axes X64 Z4, not X60 Z10
+  // as sphere 1 would put them), N3's start (sphere 1 at X60 Z20), the sequence's start X80 Z30.
+  const std::array<std::array<double, 2>, 3> corners = {{{64, 4}, {60, 20}, {80, 30}}};
+  size_t next = 0;
+  double x_min = l.m.X();
+  while (l.m.channel->state() == ChannelState::kRunning && l.m.t < 40) {
+    l.Tick();
+    x_min = std::min(x_min, l.m.X());
+    if (next < corners.size() && std::abs(l.m.X() - corners[next][0]) < 1e-9 &&
+        std::abs(l.m.Z() - corners[next][1]) < 1e-9)
+      ++next;
+  }
+  EXPECT_EQ(l.m.channel->state(), ChannelState::kEnded) << l.m.channel->error();
+  EXPECT_EQ(next, corners.size()) << "corner " << next << " not passed";
+  EXPECT_GE(x_min, x_stop - 1e-9);  // never on along N4's leg
+  EXPECT_NEAR(l.m.X(), 90, 1e-9);
+  EXPECT_NEAR(l.m.Z(), 30, 1e-9);
+}
+
+// Feed hold during a PROBE (the manual says nothing of it): the axes brake on the path and
+// stand; the instruction keeps its place in the plan and the measuring path stays armed (event
+// 30 set, nothing re-armed), so a start continues it to the same measured value.
+void HoldAndContinue(MeasuringLathe& l, const std::function<bool()>& where, bool on_measuring_path,
+                     bool measured_before = false) {
+  l.m.channel->Start();
+  while (!where() && l.m.t < 10) l.Tick();
+  ASSERT_LT(l.m.t, 10);
+  EXPECT_EQ(l.events[30], on_measuring_path);
+  l.m.channel->Stop();
+  for (int i = 0; i < 2000; ++i) l.Tick();  // braked
+  ASSERT_EQ(l.m.channel->state(), ChannelState::kHold);
+  const double x = l.m.X(), z = l.m.Z();
+  for (int i = 0; i < 8000; ++i) l.Tick();  // two seconds held
+  EXPECT_EQ(l.m.X(), x);
+  EXPECT_EQ(l.m.Z(), z);
+  EXPECT_EQ(l.events[30], on_measuring_path);  // measuring path monitoring as it was
+  ASSERT_NE(l.pages.Point(0, 1), nullptr);
+  // Before the contact nothing is measured yet; after it the latch has given the value.
+  EXPECT_EQ(l.pages.Point(0, 1)->measuring_axis, measured_before ? 'X' : 0);
+  l.m.channel->Start();
+  l.RunUntilStopped(40);
+  ASSERT_EQ(l.m.channel->state(), ChannelState::kEnded) << l.m.channel->error();
+}
+
+TEST(ChannelMeasuring, FeedHoldDuringTheApproachThenStartMeasures) {
+  MeasuringLathe l(
+      "N1 SETTING(X,Z,,18,48,15,1)\n"
+      "N2 PROBE(1,1,30,5,,X,-2,100,1,1,0)\n"
+      "N3 RET\n",
+      30.1);
+  HoldAndContinue(
+      l, [&] { return l.m.X() < 42; }, false);
+  const measure::PointPage* p = l.pages.Point(0, 1);
+  EXPECT_NEAR(p->value.actual, 30.1, 1e-9);
+  EXPECT_NEAR(l.m.X(), 50, 1e-9);  // escaped to the start
+  EXPECT_FALSE(l.events[30]);
+}
+
+TEST(ChannelMeasuring, FeedHoldOnTheMeasuringPathThenStartMeasures) {
+  // The measuring path runs from the setup position X35 towards X31 at 100 mm/min; the hold
+  // comes half a millimetre along it, before the sphere (surface 30.1: contact at X33.1).
+  MeasuringLathe l(
+      "N1 SETTING(X,Z,,18,48,15,1)\n"
+      "N2 PROBE(1,1,30,5,,X,-2,100,1,1,0)\n"
+      "N3 RET\n",
+      30.1);
+  HoldAndContinue(
+      l, [&] { return l.events[30] && l.m.X() < 34.5; }, true);
+  const measure::PointPage* p = l.pages.Point(0, 1);
+  EXPECT_NEAR(p->value.actual, 30.1, 1e-9);
+  EXPECT_NEAR(l.m.X(), 50, 1e-9);
+  EXPECT_FALSE(l.events[30]);
+  EXPECT_TRUE(l.events[7]);  // the contact was reported on the continued path
+}
+
+TEST(ChannelMeasuring, FeedHoldAfterTheContactKeepsTheMeasuredValue) {
+  // The hold in the cycle of the contact: the latch has ended the measuring path and given the
+  // value; the hold stops the way back, a start takes the stylus on to the start.
+  MeasuringLathe l(
+      "N1 SETTING(X,Z,,18,48,15,1)\n"
+      "N2 PROBE(1,1,30,5,,X,-2,100,1,1,0)\n"
+      "N3 RET\n",
+      30.1);
+  HoldAndContinue(
+      l, [&] { return l.m.at.feedback[0].probe.probe1.positive.latched; }, true, true);
+  EXPECT_NEAR(l.pages.Point(0, 1)->value.actual, 30.1, 1e-9);
+  EXPECT_NEAR(l.m.X(), 50, 1e-9);
+}
+
 }  // namespace
 }  // namespace vmt::control::channel::testing

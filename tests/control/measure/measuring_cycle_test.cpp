@@ -52,6 +52,11 @@ void ExpectPoint(const Point& p, double x, double z) {
   EXPECT_NEAR(p[2], 0, kTol);
 }
 
+void ExpectPoint(const ReversePoint& p, double x, double z, int sphere) {
+  ExpectPoint(p.centre, x, z);
+  EXPECT_EQ(p.sphere, sphere);
+}
+
 void ExpectEvent(const MeasuringStep& s, int event, bool value) {
   EXPECT_EQ(s.kind, Kind::kEvent);
   EXPECT_EQ(s.event, event);
@@ -530,14 +535,14 @@ TEST_F(Lathe, MeasuringExample1) {
   const MeasuringPlan p6 = Run("PROBE(6,1,12,30,,Z,-1,100,1,3,10)", 32.5);
   ExpectRapid(p6.steps[1], kXZ, 6, 33.5);
   // Sequence 10 from P4's start back: P6, P5, P4's setup and plane points, P4's start.
-  const std::vector<Point> back = reverse.Reversal();
+  const std::vector<ReversePoint> back = reverse.Reversal();
   ASSERT_EQ(back.size(), 6u);
-  ExpectPoint(back[0], 6, 33.5);
-  ExpectPoint(back[1], 8.5, 50);
-  ExpectPoint(back[2], 8.5, 58.5);
-  ExpectPoint(back[3], 16, 58.5);
-  ExpectPoint(back[4], 23.5, 58.5);
-  ExpectPoint(back[5], 23.5, 50);
+  ExpectPoint(back[0], 6, 33.5, 1);
+  ExpectPoint(back[1], 8.5, 50, 1);
+  ExpectPoint(back[2], 8.5, 58.5, 1);
+  ExpectPoint(back[3], 16, 58.5, 1);
+  ExpectPoint(back[4], 23.5, 58.5, 1);
+  ExpectPoint(back[5], 23.5, 50, 1);
   EXPECT_TRUE(Plan("RESTORE()").restore_variables);
 }
 
@@ -578,25 +583,25 @@ TEST_F(Lathe, ReverseVectorsOfFigure4_9) {
   Setting();
   context.position = {60, 100, 0};
   Run("MOVE(,44,,2,0)");  // 50
-  std::vector<Point> back = reverse.Reversal();
+  std::vector<ReversePoint> back = reverse.Reversal();
   ASSERT_EQ(back.size(), 2u);
-  ExpectPoint(back[0], 60, 44);
-  ExpectPoint(back[1], 60, 100);
+  ExpectPoint(back[0], 60, 44, 2);
+  ExpectPoint(back[1], 60, 100, 2);
   // 51: face Z-44 measured in +Z with sphere 2: Z first to -48, then X to 35.
   Run("PROBE(1,1,70,-44,,Z,1,100,2,4,0)", -47);
   back = reverse.Reversal();
   ASSERT_EQ(back.size(), 3u);  // only this instruction's movements
-  ExpectPoint(back[0], 35, -48);
-  ExpectPoint(back[1], 60, -48);
-  ExpectPoint(back[2], 60, 44);
+  ExpectPoint(back[0], 35, -48, 2);
+  ExpectPoint(back[1], 60, -48, 2);
+  ExpectPoint(back[2], 60, 44, 2);
   Run("PROBE(2,1,80,-35,,X,-2,100,2,4,0)", 40);     // 52
   Run("PROBE(3,1,95,-23,,X,-2,100,2,4,0)", 47.5);   // 53
   Run("MOVE(100,30,,1,0)");                         // 54
   Run("MOVE(24,30,,4,0)");                          // 55
   back = reverse.Reversal();
   ASSERT_EQ(back.size(), 2u);
-  ExpectPoint(back[0], 12, 30);
-  ExpectPoint(back[1], 50, 30);
+  ExpectPoint(back[0], 12, 30, 4);
+  ExpectPoint(back[1], 50, 30, 4);
 
   // 56: P4, bore X30 in +X, sphere 4 (1.5): setup X 15 - 1 - 1.5 = 12.5 at Z-3, directly.
   const MeasuringPlan p4 = Run("PROBE(4,1,30,-3,,X,2,100,4,3,5)", 13.5);
@@ -605,21 +610,21 @@ TEST_F(Lathe, ReverseVectorsOfFigure4_9) {
   EXPECT_TRUE(reverse.single_point.empty());
   back = reverse.Reversal();
   ASSERT_EQ(back.size(), 2u);
-  ExpectPoint(back[0], 12.5, -3);
-  ExpectPoint(back[1], 12, 30);
+  ExpectPoint(back[0], 12.5, -3, 4);
+  ExpectPoint(back[1], 12, 30, 4);
   Run("MOVE(,12,,4,5)");                            // 57
   Run("PROBE(5,1,40,-12,,X,2,100,4,3,5)", 18.5);    // 58: setup X 17.5 at Z-12
   Run("PROBE(6,1,30,-23,,X,2,100,4,4,5)", 13.5);    // 59: X to 12.5, then Z to -23
   Run("MOVE(24,30,,4,5)");                          // 60
   back = reverse.Reversal();
   ASSERT_EQ(back.size(), 7u);
-  ExpectPoint(back[0], 12, 30);
-  ExpectPoint(back[1], 12.5, -23);
-  ExpectPoint(back[2], 12.5, -12);
-  ExpectPoint(back[3], 17.5, -12);
-  ExpectPoint(back[4], 12.5, 12);
-  ExpectPoint(back[5], 12.5, -3);
-  ExpectPoint(back[6], 12, 30);  // where the sequence began, outside the workpiece
+  ExpectPoint(back[0], 12, 30, 4);
+  ExpectPoint(back[1], 12.5, -23, 4);
+  ExpectPoint(back[2], 12.5, -12, 4);
+  ExpectPoint(back[3], 17.5, -12, 4);
+  ExpectPoint(back[4], 12.5, 12, 4);
+  ExpectPoint(back[5], 12.5, -3, 4);
+  ExpectPoint(back[6], 12, 30, 4);  // where the sequence began, outside the workpiece
   Run("MOVE(100,30,,1,0)");
   EXPECT_TRUE(reverse.sequence[4].empty());
   EXPECT_EQ(reverse.Reversal().size(), 2u);

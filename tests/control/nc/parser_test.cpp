@@ -133,6 +133,13 @@ TEST(Mtc200Test, VariablesBranchesAndCalls) {
   EXPECT_EQ(last[3].kind, Statement::Kind::kReturn);
 }
 
+// Fast measurement 4.4: REV labels are the reverse vectors' only where MOVE / PROBE make them.
+TEST(Mtc200Test, RevLabelsAreFreeWithoutMoveOrProbe) {
+  EXPECT_TRUE(Mtc("N0001 SETTING(X,Z,,18,48,16,1)\n.REVERSE\nN0002 RET\n").ok());
+  EXPECT_TRUE(Mtc("N0001 MOVE(1,2,,1,0)\n.BACK\nN0002 RET\n.HOME\nN0003 RET\n").ok());
+  EXPECT_FALSE(Mtc("N0001 PROBE(1,1,30,5,,X,-2,100,1,1,0)\n.REV1\nN0002 RET\n").ok());
+}
+
 TEST(Mtc200Test, MeasuringInstructionsWithOmittedArguments) {
   const ParseResult r =
       Mtc("N0010 SETTING (X, Z, , 18, 48, 16, 3)\nN0020 COMPARE (10, 1, 2, 8)\nN0030 SAVE ()\n");
@@ -297,6 +304,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{Dialect::kMtc200, "N0001 .A\nN0002 .A\n", "2:1",
                 "label .A is already defined on line 1"},
         BadCase{Dialect::kMtc200, "N0001 FOO\n", "1:7", "unknown word 'FOO'"},
+        BadCase{Dialect::kMtc200, "N0001 MOVE(1,2,,1,0)\n.REVERSE\nN0002 RET\n", "2:1",
+                "label .REVERSE: labels beginning with REV are the reverse vectors' (fast "
+                "measurement 4.4)"},
         BadCase{Dialect::kMtc200, "N0001 @100=(1+2\n", "1:16", "expected ')'"},
         BadCase{Dialect::kMtc200, "N0001 @=3\n", "1:8", "expected a variable number"},
         BadCase{Dialect::kMtc200, "N0001 BEQ REPOS\n", "1:11",
