@@ -42,6 +42,19 @@ BlockMotion Truncated(const BlockMotion& motion, double u) {
   return m;
 }
 
+constexpr const char* kNotFound =
+    "P-ERR-20704: the continue position was not found; the program ended in block search mode";
+
+/// The profile of `motion` standing at u: a block taken up again from a point inside it.
+PathProfile ProfileFrom(const BlockMotion& motion, double u) {
+  PathProfile p;
+  p.max_rate = motion.max_rate;
+  p.max_accel = motion.max_accel;
+  p.max_jerk = motion.max_jerk;
+  p.u = u;
+  return p;
+}
+
 std::string Mm(double v) {
   char text[32];
   std::snprintf(text, sizeof text, "%.4f", v);
@@ -173,9 +186,7 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
   BlockSearchRun& s = *search_;
   if (b.block < 0) {  // the end of the text
     if (bs_started_.type != BlockSearchType::kProgramEnd)
-      bs_warnings_.push_back(
-          "P-ERR-20704: the continue position was not found; the program ended in block search "
-          "mode");
+      bs_warnings_.push_back(kNotFound);
     s.ends_program = true;
     bs_state_ = BlockSearchState::kWaitForPlcOff;
     return true;
@@ -299,9 +310,7 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
   distance_ += length;
   if (b.end) {
     if (bs_started_.type != BlockSearchType::kProgramEnd)
-      bs_warnings_.push_back(
-          "P-ERR-20704: the continue position was not found; the program ended in block search "
-          "mode");
+      bs_warnings_.push_back(kNotFound);
     s.ends_program = true;
     bs_state_ = BlockSearchState::kWaitForPlcOff;
   }
@@ -421,11 +430,7 @@ void Channel::ContinueAfterSearch() {
   block_distance_ = s.restart_length;
   distance_ = s.restart_distance + block_distance_;
   if (s.restart_u >= 1) return;
-  profile_ = PathProfile{};
-  profile_.max_rate = motion_.max_rate;
-  profile_.max_accel = motion_.max_accel;
-  profile_.max_jerk = motion_.max_jerk;
-  profile_.u = s.restart_u;
+  profile_ = ProfileFrom(motion_, s.restart_u);
   continuation_ready_ = false;
   carry_speed_ = carry_accel_ = carry_leftover_ = 0;
   active_ = true;
@@ -441,11 +446,7 @@ bool Channel::StartBlockSearchHold() {
     if (breakpoint_rest_) {
       motion_ = *breakpoint_rest_;
       breakpoint_rest_.reset();
-      profile_ = PathProfile{};
-      profile_.max_rate = motion_.max_rate;
-      profile_.max_accel = motion_.max_accel;
-      profile_.max_jerk = motion_.max_jerk;
-      profile_.u = breakpoint_u_;
+      profile_ = ProfileFrom(motion_, breakpoint_u_);
       active_ = true;
     }
     breakpoint_u_ = 0;
