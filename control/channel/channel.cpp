@@ -107,6 +107,28 @@ std::unique_ptr<nc::Interpreter> Channel::MakeInterpreter() {
   return interpreter;
 }
 
+void Channel::ForgetEndedProgram() {
+  if (interpreter_) last_modal_ = interpreter_->modal();
+  interpreter_.reset();
+  parked_ = ProgramInWork{};
+  ClearRepos();
+  measuring_setting_.reset();  // SETTING holds for one run of the program
+  reverse_vectors_ = {};
+}
+
+bool Channel::SelectProgram(size_t index) {
+  // Ended or reset only: an interrupted program (hold, or an error the reverse program may
+  // leave) would lose its interruption point.
+  if (index >= programs_.size()) return false;
+  if (state_ == ChannelState::kEnded)
+    ForgetEndedProgram();
+  else if (state_ != ChannelState::kIdle || interpreter_)
+    return false;
+  std::rotate(programs_.begin(), programs_.begin() + static_cast<std::ptrdiff_t>(index),
+              programs_.begin() + static_cast<std::ptrdiff_t>(index) + 1);
+  return true;
+}
+
 bool Channel::Mdi(const std::string& text) {
   const nc::Dialect dialect = programs_.empty() ? nc::Dialect::kMtc200 : programs_[0]->dialect;
   auto parsed = std::make_shared<nc::ParseResult>(nc::ParseProgram(text, "MDI", dialect));
@@ -241,15 +263,8 @@ void Channel::Start() {
     return;
   }
   if (state_ == ChannelState::kRunning || state_ == ChannelState::kError) return;
-  if (state_ == ChannelState::kEnded) {
-    // Start after the end runs the program again from its first block.
-    if (interpreter_) last_modal_ = interpreter_->modal();
-    interpreter_.reset();
-    parked_ = ProgramInWork{};
-    ClearRepos();
-    measuring_setting_.reset();  // SETTING holds for one run of the program
-    reverse_vectors_ = {};
-  }
+  // Start after the end runs the program again from its first block.
+  if (state_ == ChannelState::kEnded) ForgetEndedProgram();
   state_ = ChannelState::kRunning;
   start_pending_ = true;  // positions are taken from the feedback at the next tick
 }

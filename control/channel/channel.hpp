@@ -159,6 +159,11 @@ class Channel {
   /// Handwheel counts for a channel axis (JogMode::kHandwheel): the axis follows at most at
   /// its jogging rapid speed.
   void Handwheel(size_t axis, int counts);
+  /// Program selection: `index` of the channel's programs becomes the main program of the next
+  /// start; the others stay callable. Refused (false) while a program is active or interrupted
+  /// (selecting another would drop the interruption point); the measuring pages, tool list and
+  /// zero offsets stay as they are, so a calibration program's results serve the next program.
+  bool SelectProgram(size_t index);
   /// MDI: the block(s) to run at the next start in MDI mode, in the main program's dialect.
   /// False, with the channel in its error state, if the text does not parse.
   bool Mdi(const std::string& text);
@@ -302,6 +307,9 @@ class Channel {
   void Fail(const std::string& message, int number = kMsgProgramError);
   void Fail(const nc::Program& program, int32_t block, const std::string& text, int number);
   std::unique_ptr<nc::Interpreter> MakeInterpreter();
+  /// After the program end: its interpreter, interruption and measuring setting are dropped, so
+  /// that the next start (of it or of another selected program) begins at the first block.
+  void ForgetEndedProgram();
   const nc::Program* ProgramOf(uint32_t index) const;
 
   ChannelConfig config_;
@@ -446,10 +454,10 @@ class Channel {
     measure::MeasuringContext context;
     measure::MeasuringPlan plan;
     size_t step = 0;
-    bool moving = false;             ///< the move of step `step - 1` is in work
-    bool measuring_move = false;     ///< ... and it is the measuring path
-    std::optional<double> contact;   ///< the sphere centre when the probe switched
-    bool reversal = false;           ///< the reverse vectors, before `.HOME` runs
+    bool moving = false;            ///< the move of step `step - 1` is in work
+    bool measuring_move = false;    ///< ... and it is the measuring path
+    std::optional<double> contact;  ///< the sphere centre when the probe switched
+    bool reversal = false;          ///< the reverse vectors, before `.HOME` runs
     /// The recorded reverse vectors this instruction's stylus has reached: the plan records its
     /// way in before it moves (measure::ReverseVectors), the reversal may only retrace it.
     size_t reached = 0;
@@ -484,9 +492,9 @@ class Channel {
     ContinueMatcher matcher;
     std::vector<double> position;  ///< where the program has the axes, machine coordinates
     DriveSetpoint spindle{DriveMode::kVelocity, 0, 0};  ///< the spindle as the program left it
-    bool found = false;       ///< the block boundary of the continue position (phase 1)
-    bool by_distance = false;  ///< phase 2: searching on for the distance from program start
-    bool ends_program = false;  ///< the search ends the program (type 5, position not found)
+    bool found = false;            ///< the block boundary of the continue position (phase 1)
+    bool by_distance = false;      ///< phase 2: searching on for the distance from program start
+    bool ends_program = false;     ///< the search ends the program (type 5, position not found)
     bool start_requested = false;  ///< a start while the search holds
     std::vector<double> restart;   ///< the continue position, machine coordinates
     /// The continue block's motion from its start, and where in it machining goes on; no

@@ -2,6 +2,7 @@
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 
@@ -45,6 +46,18 @@ std::shared_ptr<fcl::CollisionGeometryd> MeshGeometry(const render::Mesh& mesh,
   return bvh;
 }
 
+// The measuring sphere whose ball the sphere part `p` (bounding sphere from its mesh) is: the
+// stylus' sphere nearest the mesh's centre, if that centre lies inside it.
+const MeasuringSphere* BallOf(const ProbeStylus& stylus, const CollisionPart& p) {
+  const Eigen::Vector3d centre = p.X_LinkPart * p.centre;
+  const MeasuringSphere* best = nullptr;
+  for (const MeasuringSphere& ball : stylus.spheres)
+    if ((ball.centre_m - centre).norm() < ball.radius_m &&
+        (!best || (ball.centre_m - centre).norm() < (best->centre_m - centre).norm()))
+      best = &ball;
+  return best;
+}
+
 }  // namespace
 
 CollisionWorld::CollisionWorld(const MachineModel& model, const std::vector<CylinderPart>& added)
@@ -58,11 +71,24 @@ CollisionWorld::CollisionWorld(const MachineModel& model, const std::vector<Cyli
       p.name = v.name.empty() ? link.name + "#" + std::to_string(c) : v.name;
       p.link = static_cast<int>(l);
       p.X_LinkPart = v.X_LinkVisual;
+      const ProbeStylus* stylus = nullptr;
       for (const ProbeStylus& s : model.probes)
         if (s.link == static_cast<int>(l))
           for (const std::string& sphere : s.sphere_parts)
-            p.measures = p.measures || sphere == v.name;
-      fcl_->geometry.push_back(MeshGeometry(*v.mesh, p.centre, p.radius));
+            if (sphere == v.name) stylus = &s;
+      p.measures = stylus != nullptr;
+      std::shared_ptr<fcl::CollisionGeometryd> geometry = MeshGeometry(*v.mesh, p.centre, p.radius);
+      if (const MeasuringSphere* ball = stylus ? BallOf(*stylus, p) : nullptr) {
+        // A ruby's mesh has its vertices on the sphere and its faces inside it: a sharp edge
+        // (a bore's rim) would come up to the sagitta (tens of um) closer than PathGuard saw,
+        // and the stylus switch trips on 5 um. The ball itself, as FCL's sphere, is exact.
+        p.X_LinkPart = Eigen::Isometry3d::Identity();
+        p.X_LinkPart.translation() = ball->centre_m;
+        p.centre = Eigen::Vector3d::Zero();
+        p.radius = ball->radius_m;
+        geometry = std::make_shared<fcl::Sphered>(ball->radius_m);
+      }
+      fcl_->geometry.push_back(geometry);
       parts_.push_back(p);
     }
   }

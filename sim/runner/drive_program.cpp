@@ -180,6 +180,12 @@ bool DriveProgram::Execute(const TimelineStep& step, double t_s,
     case Kind::kNcMdi:
       if (channel_ && !channel_->Mdi(step.mdi)) events.push_back({t_s, "refused", step.text});
       return true;
+    case Kind::kNcSelect:
+      if (channel_ && !channel_->SelectProgram(static_cast<size_t>(step.code))) {
+        failures_.push_back(step.text + ": refused while a program is active");
+        events.push_back({t_s, "refused", step.text});
+      }
+      return true;
     case Kind::kNcReverse:
       if (channel_ && !channel_->Reverse()) {
         failures_.push_back(step.text + ": refused (" +

@@ -108,6 +108,7 @@ struct TimelineStep {
     kNcJogIncrement,
     kNcJogMode,
     kNcMdi,
+    kNcSelect,  ///< program selection: `code` indexes NcSetup::programs
     kNcReverse,
     kNcZeroOffset,  ///< operator edit: zero offset G`code` of `axis` := target (REPOS 2.5)
     kNcToolLength,  ///< operator edit: length of tool `code` edge `edge` along `axis` := target
@@ -123,7 +124,8 @@ struct TimelineStep {
   double feed = 0;        ///< move: mm/s | deg/s
   int parameter_set = 0;  ///< move, speed, orient: the drive parameter set the setpoint names
   bool level = false;     ///< output value
-  int code = 0;           ///< kNcMode: ChannelMode; kNcJogMode: JOGM code; kHandwheel: counts
+  int code = 0;           ///< kNcMode: ChannelMode; kNcJogMode: JOGM code; kHandwheel: counts;
+                          ///< kNcSelect: program index
   int signal = -1;        ///< kSignal: gateway signal the (default) PLC writes; value in `target`
   int axis = -1;          ///< kJog, kNcZeroOffset, kNcToolLength: channel axis index
   int edge = 0;           ///< kNcToolLength: D

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <sstream>
 
 #include "sim/model/model_error.hpp"
@@ -325,6 +326,22 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
       s.kind = TimelineStep::Kind::kNcMdi;
       s.mdi = a["mdi"].String();
       text << "MDI " << s.mdi;
+    } else if (a.IsMap() && a.Has("select")) {
+      // Program selection by name, as the operator picks a program from the NC's store: the
+      // file name, with or without its extension, of the scene's program or subprograms.
+      a.AllowKeys({"select"});
+      s.kind = TimelineStep::Kind::kNcSelect;
+      const std::string name = a["select"].String();
+      s.code = -1;
+      for (size_t k = 0; k < nc.programs.size(); ++k) {
+        const std::filesystem::path file(nc.programs[k]->program.files.at(0));
+        if (file.filename() != name && file.stem() != name) continue;
+        if (s.code >= 0) a["select"].Fail("names more than one of the scene's NC programs");
+        s.code = static_cast<int>(k);
+      }
+      if (s.code < 0)
+        a["select"].Fail("is none of the scene's NC programs (nc: program, subprograms)");
+      text << "select " << name;
     } else if (a.IsMap() && a.Has("jog_increment")) {
       a.AllowKeys({"jog_increment"});
       s.kind = TimelineStep::Kind::kNcJogIncrement;

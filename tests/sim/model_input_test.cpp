@@ -355,6 +355,13 @@ TEST(SceneInputTest, Errors) {
                          "duration: 1\nnc: {program: " + SourcePath("scenes/nc/stepped_shaft.mtc") +
                              "}\nplc: {program: repos_machine_keys, period_ms: 0.3}\n"),
               HasSubstr("plc.period_ms: must be a multiple of the 0.25 ms drive tick"));
+  const std::string two_programs =
+      "duration: 1\nnc: {program: " + SourcePath("scenes/nc/stepped_shaft.mtc") +
+      ", subprograms: [" + SourcePath("scenes/nc/99.mtc") + "]}\n";
+  EXPECT_EQ(SceneError("select", two_programs + "timeline:\n  - nc: {select: 99}\n"), "");
+  EXPECT_EQ(SceneError("select_file", two_programs + "timeline:\n  - nc: {select: 99.mtc}\n"), "");
+  EXPECT_THAT(SceneError("select_none", two_programs + "timeline:\n  - nc: {select: 98}\n"),
+              HasSubstr("timeline[0].nc.select: is none of the scene's NC programs"));
 }
 
 TEST(SceneInputTest, GarbageNeverCrashes) {

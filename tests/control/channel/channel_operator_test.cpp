@@ -1,5 +1,5 @@
 // The operator's control of a program on the channel: feed hold, single block, feed override,
-// mode change, MDI and the reverse program.
+// mode change, program selection, MDI and the reverse program.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -71,6 +71,45 @@ TEST(ChannelTest, OverrideScalesTheFeed) {
   full.channel->Start();
   half.channel->Start();
   EXPECT_NEAR(half.RunUntilEnd() / full.RunUntilEnd(), 2, 0.02);
+}
+
+TEST(ChannelTest, SelectedProgramRunsAtTheNextStartAndTheOthersStayCallable) {
+  Machine m(std::vector<std::string>{"N1 G01 X10 F6000\nN2 RET\n",
+                                     "N1 G01 X20 F6000\nN2 JSR .SUB\nN3 RET\n.SUB\nN4 Z5\nN5 RTS\n",
+                                     "N1 G01 X30 F6000\nN2 RET\n"});
+  m.channel->Start();
+  m.RunUntilEnd();
+  EXPECT_DOUBLE_EQ(m.X(), 10);
+  ASSERT_TRUE(m.channel->SelectProgram(1));
+  m.channel->Start();
+  m.RunUntilEnd();
+  EXPECT_EQ(m.channel->state(), ChannelState::kEnded);
+  EXPECT_DOUBLE_EQ(m.X(), 20);
+  EXPECT_DOUBLE_EQ(m.Z(), 5);
+  // The first program is still in the store: index 1 now that the second is in front.
+  ASSERT_TRUE(m.channel->SelectProgram(1));
+  m.channel->Start();
+  m.RunUntilEnd();
+  EXPECT_DOUBLE_EQ(m.X(), 10);
+  EXPECT_FALSE(m.channel->SelectProgram(3));  // no such program
+}
+
+TEST(ChannelTest, ProgramSelectionIsRefusedWhileAProgramIsActiveOrInterrupted) {
+  Machine m(std::vector<std::string>{"N1 G01 X100 F600\nN2 RET\n", "N1 G01 X5 F600\nN2 RET\n"});
+  m.channel->Start();
+  for (int i = 0; i < 400; ++i) m.Tick();
+  EXPECT_FALSE(m.channel->SelectProgram(1));  // running
+  m.channel->Stop();
+  for (int i = 0; i < 400; ++i) m.Tick();
+  ASSERT_EQ(m.channel->state(), ChannelState::kHold);
+  EXPECT_FALSE(m.channel->SelectProgram(1));  // interrupted: the interruption point would be lost
+  m.channel->Reset();
+  for (int i = 0; i < 8; ++i) m.Tick();
+  ASSERT_TRUE(m.channel->SelectProgram(1));  // Control-Reset ended it
+  m.channel->Start();
+  m.RunUntilEnd();
+  EXPECT_EQ(m.channel->state(), ChannelState::kEnded);
+  EXPECT_DOUBLE_EQ(m.X(), 5);
 }
 
 TEST(ChannelTest, MdiRunsTypedBlocksInTheModalStateOfTheLastProgram) {

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <deque>
 #include <functional>
 #include <memory>
 #include <string>
@@ -35,11 +36,23 @@ struct Machine {
     config.spindle_drive = 2;
     if (configure) configure(config);
     channel = std::make_unique<Channel>(config, std::vector<const nc::Program*>{&parsed.program});
+    channel_config = config;
     at.feedback.resize(3);
     for (DriveFeedback& f : at.feedback) f.status = drive_status::kReady;  // drives ready
     at.feedback[0].position = x;
     at.feedback[1].position = z;
     mdt.setpoints.resize(3);
+  }
+  /// A channel whose program store holds `programs` (MTC200), the first the main program.
+  explicit Machine(const std::vector<std::string>& programs) : Machine(programs.at(0)) {
+    std::vector<const nc::Program*> store{&parsed.program};
+    for (size_t i = 1; i < programs.size(); ++i) {
+      more.push_back(
+          nc::ParseProgram(programs[i], "p" + std::to_string(i) + ".mtc", nc::Dialect::kMtc200));
+      EXPECT_TRUE(more.back().ok());
+      store.push_back(&more.back().program);
+    }
+    channel = std::make_unique<Channel>(channel_config, store);
   }
   // One drive tick of an ideal machine: the actual position is the setpoint.
   void Tick() {
@@ -59,6 +72,8 @@ struct Machine {
   double Z() const { return at.feedback[1].position; }
 
   nc::ParseResult parsed;
+  std::deque<nc::ParseResult> more;  ///< the store's other programs (stable addresses)
+  ChannelConfig channel_config;
   std::unique_ptr<Channel> channel;
   AmplifierTelegram at;
   MasterTelegram mdt;

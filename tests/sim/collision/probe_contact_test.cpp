@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "sim/collision/machine_path_guard.hpp"
 #include "sim/collision/turned_stock.hpp"
 
@@ -70,6 +72,17 @@ TEST(ProbeContact, TheRubyInTheWorkpieceIsAMeasurementNotACollision) {
   ASSERT_FALSE(p.clear);
   EXPECT_TRUE(Names(p, "probe_ruby", "workpiece")) << p.part_a << " / " << p.part_b;
   EXPECT_NEAR(p.position[g.model.DriveIndex("X")], 30, 0.01);
+}
+
+TEST(ProbeContact, TheRubyIsAnExactSphereAtASharpEdge) {
+  // The ruby's centre 3 mm out and 3 mm beyond the stock's end-face rim (r 30, z 220): the
+  // clearance is the sphere's, sqrt(18) - 3, not the faceted mesh's (its faces lie inside the
+  // sphere by up to tens of um, more than the 5 um the switch trips on).
+  Guarded g;
+  const control::PathCheck c = g.guard.CheckMove(g.Drives(163, 30), g.Drives(163, 30.0001));
+  ASSERT_TRUE(c.clear);
+  EXPECT_NEAR(c.min_clearance, std::sqrt(18.0) - 3, 0.002) << c.closest_a << " / " << c.closest_b;
+  EXPECT_TRUE(c.closest_a == "probe_ruby" || c.closest_b == "probe_ruby");
 }
 
 TEST(ProbeContact, TheShankInTheWorkpieceIsACollision) {
