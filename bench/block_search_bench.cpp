@@ -26,7 +26,8 @@ const bool kKeepFreedMemory = [] {
   return true;
 }();
 
-void Search(benchmark::State& state, const std::vector<std::pair<std::string, nc::Dialect>>& files) {
+void Search(benchmark::State& state,
+            const std::vector<std::pair<std::string, nc::Dialect>>& files) {
   std::vector<nc::ParseResult> parsed;
   for (const auto& [text, dialect] : files)
     parsed.push_back(nc::ParseProgram(text, "bench.nc", dialect));

@@ -6,7 +6,10 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
+#include <map>
 #include <string>
+#include <utility>
 
 #include "generated_programs.hpp"
 
@@ -40,19 +43,15 @@ int main(int argc, char** argv) {
       return Usage();
     }
   }
-  std::string text;
-  if (dialect == "vmt") {
-    if (program == "straight") text = StraightMtc200(blocks);
-    else if (program == "loops") text = LoopsIsg(blocks);
-    else if (program == "loops-sub") text = LoopsIsgSubprogram();
-    else if (program == "expressions") text = ExpressionsIsg(blocks);
-    else return Usage();
-  } else if (dialect == "rs274ngc") {
-    if (program == "straight") text = StraightRs274ngc(blocks);
-    else if (program == "loops") text = LoopsRs274ngc(blocks);
-    else return Usage();
-  } else {
-    return Usage();
-  }
+  const std::map<std::pair<std::string, std::string>, std::function<std::string()>> generators = {
+      {{"vmt", "straight"}, [&] { return StraightMtc200(blocks); }},
+      {{"vmt", "loops"}, [&] { return LoopsIsg(blocks); }},
+      {{"vmt", "loops-sub"}, [] { return LoopsIsgSubprogram(); }},
+      {{"vmt", "expressions"}, [&] { return ExpressionsIsg(blocks); }},
+      {{"rs274ngc", "straight"}, [&] { return StraightRs274ngc(blocks); }},
+      {{"rs274ngc", "loops"}, [&] { return LoopsRs274ngc(blocks); }}};
+  const auto generator = generators.find({dialect, program});
+  if (generator == generators.end()) return Usage();
+  const std::string text = generator->second();
   return std::fwrite(text.data(), 1, text.size(), stdout) == text.size() ? 0 : 1;
 }

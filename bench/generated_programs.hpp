@@ -30,7 +30,9 @@ inline std::string StraightMtc200(int blocks = kBlocks) {
 }
 
 /// The straight program for rs274: the same lines, and M2 because RS274NGC ends a program there.
-inline std::string StraightRs274ngc(int blocks = kBlocks) { return StraightMtc200(blocks) + "M2\n"; }
+inline std::string StraightRs274ngc(int blocks = kBlocks) {
+  return StraightMtc200(blocks) + "M2\n";
+}
 
 inline std::string ExpressionsIsg(int blocks = kBlocks) {
   std::string s = "%expr\n";

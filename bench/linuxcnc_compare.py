@@ -9,7 +9,8 @@ files twice, in vmt's dialect (MTC200 / ISG) and in RS274NGC, and times whole pr
 FILE` (parse) and `search_program FILE` (parse and block search type 5 to the program end). Each
 side's speed is its file's source lines per second of CPU time (user + system of the process,
 best of R runs): the machine is shared with builds, and CPU time moves least under their load.
-The ratios are vmt's lines/s over rs274's. Writes DIR/linuxcnc.json (default out/bench).
+The ratios are rs274's CPU time over vmt's on the same moves. Writes DIR/linuxcnc.json (default
+out/bench).
 
 Without rs274 it says so, writes linuxcnc.json with the reason, and exits 0: CI does not install
 LinuxCNC. Exit 2 when vmt's own tools are not built, 1 when a tool fails on a program.
@@ -97,9 +98,11 @@ def compare(program, args, tools, work):
     wall, cpu, out = best_of(args.repeat, [search] + vmt_files, subprocess.PIPE)
     result["type5_search"] = speed(lines_vmt, wall, cpu)
     result["type5_search"]["phases"] = json.loads(out)
+    # Same moves, so the ratio is of times: RS274NGC needs more lines for the same loops (no
+    # $FOR), and a ratio of lines/s would count that against vmt.
     for key, tool in (("ratio_check", "vmt_check"), ("ratio_type5", "type5_search")):
-        mine, theirs = result[tool]["lines_per_s"], result["rs274"]["lines_per_s"]
-        result[key] = round(mine / theirs, 2) if mine and theirs else None
+        mine, theirs = result[tool]["cpu_s"], result["rs274"]["cpu_s"]
+        result[key] = round(theirs / mine, 2) if mine > 0 else None
     return result
 
 
@@ -133,8 +136,9 @@ def main():
     os.makedirs(work, exist_ok=True)
     report = {"measured": True, "rs274": rs274, "linuxcnc_version": linuxcnc_version(),
               "blocks": args.blocks, "repeat": args.repeat,
-              "basis": "source lines of each tool's file per CPU second (user + system) of the "
-                       "whole process, best of repeat; ratio = vmt lines/s / rs274 lines/s",
+              "basis": "lines/s: source lines of each tool's own file per CPU second (user + "
+                       "system) of the whole process, best of repeat; ratio: rs274 CPU s / "
+                       "vmt CPU s on the same moves",
               "cores": os.cpu_count(), "load_average_1min_at_start": os.getloadavg()[0],
               "programs": {}}
     try:

@@ -12,8 +12,8 @@
 namespace vmt::bench {
 
 struct Type5Result {
-  std::string error;            ///< empty when the search reached the program end
-  uint64_t decoder_lines = 0;   ///< block_count_r at the end: loop and subprogram lines each pass
+  std::string error;           ///< empty when the search reached the program end
+  uint64_t decoder_lines = 0;  ///< block_count_r at the end: loop and subprogram lines each pass
 };
 
 inline control::channel::ChannelAxis Type5Axis(const std::string& name, int drive) {
@@ -41,8 +41,7 @@ inline Type5Result RunType5Search(const std::vector<const control::nc::Program*>
   mdt.setpoints.resize(3);
   ch.SetBlockSearch(p);
   ch.Start();
-  while (ch.state() != channel::ChannelState::kEnded &&
-         ch.state() != channel::ChannelState::kError)
+  while (ch.state() != channel::ChannelState::kEnded && ch.state() != channel::ChannelState::kError)
     ch.Tick(at, mdt);
   Type5Result r;
   if (ch.state() == channel::ChannelState::kError) r.error = ch.error();

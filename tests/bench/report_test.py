@@ -67,7 +67,8 @@ class ReportTest(unittest.TestCase):
         # One Markdown table: a header, a rule, a row per metric.
         rows = md.strip().splitlines()
         self.assertEqual(rows[0], "| metric | value | unit | target | meets |")
-        self.assertEqual(len(rows), 2 + len(m))
+        self.assertEqual(len(rows), 2 + len(m) + 2)  # and the load averages below it
+        self.assertIn("Load average (1 min) at the start of each: backend_bench 1.50 (cores", md)
         self.assertIn("| not measured (vmt study not built) | cases/min | >= 1000 |", md)
         self.assertIn("| 41 | x real time | >= 20x | yes |", md)
         self.assertIn("| 1500 | x real time | >= 2000x | **no** |", md)
@@ -78,6 +79,7 @@ class ReportTest(unittest.TestCase):
         m, md = self.report(empty)
         self.assertTrue(all(v["value"] is None for v in m.values()))
         self.assertEqual(md.count("not measured"), len(m))
+        self.assertNotIn("Load average", md)
 
     def test_study_from_cases_and_wall_time(self):
         folder = os.path.join(self.tmp, "study")
