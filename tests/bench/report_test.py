@@ -44,6 +44,9 @@ class ReportTest(unittest.TestCase):
         self.assertEqual(m["realtime_factor_physics"]["unit"], "x real time")
         self.assertIn("backend_bench.json", m["realtime_factor_physics"]["source"])
         self.assertFalse(m["realtime_factor_kinematic"]["meets_target"])  # 1500 < 2000
+        # The rate per second of the benchmark thread's CPU time: 41 x 24.4 ms / 24.3 ms.
+        self.assertAlmostEqual(m["realtime_factor_physics"]["value_per_cpu_s"], 41 * 24.4 / 24.3)
+        self.assertIsNone(m["realtime_lateness_p99"]["value_per_cpu_s"])
         # Repetitions: the median of the iteration runs; the aggregate rows are not runs.
         self.assertEqual(m["decode_straight_mtc200"]["value"], 6.0e6)
         # Google Benchmark's time unit is converted: 11.3e6 ns is 11.3 ms.
@@ -66,12 +69,12 @@ class ReportTest(unittest.TestCase):
             self.assertIsNone(m[key]["meets_target"])
         # One Markdown table: a header, a rule, a row per metric.
         rows = md.strip().splitlines()
-        self.assertEqual(rows[0], "| metric | value | unit | target | meets |")
+        self.assertEqual(rows[0], "| metric | value | on CPU time | unit | target | meets |")
         self.assertEqual(len(rows), 2 + len(m) + 2)  # and the load averages below it
         self.assertIn("Load average (1 min) at the start of each: backend_bench 1.50 (cores", md)
-        self.assertIn("| not measured (vmt study not built) | cases/min | >= 1000 |", md)
-        self.assertIn("| 41 | x real time | >= 20x | yes |", md)
-        self.assertIn("| 1500 | x real time | >= 2000x | **no** |", md)
+        self.assertIn("| not measured (vmt study not built) |  | cases/min | >= 1000 |", md)
+        self.assertIn("| 41 | 41.2 | x real time | >= 20x | yes |", md)
+        self.assertIn("| 1500 | 1500 | x real time | >= 2000x | **no** |", md)
 
     def test_empty_folder_reports_every_metric_not_measured(self):
         empty = os.path.join(self.tmp, "empty")
