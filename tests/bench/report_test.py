@@ -131,6 +131,17 @@ class LinuxcncCompareTest(unittest.TestCase):
         # The search read the loops as often as they run: 10 passes of each loop body.
         loops = result["programs"]["loops"]["type5_search"]["phases"]
         self.assertGreater(loops["decoder_lines"], 5 * loops["source_lines"])
+        # The RS274NGC twins make the moves of vmt's programs: 2000 straight feeds each (the loop
+        # program: 200 loops of 10 passes, one of them the subprogram's move).
+        for program in ("straight", "loops"):
+            ngc = os.path.join(self.tmp, program + ".ngc")
+            with open(ngc, "wb") as f:
+                subprocess.run([os.path.join(BUILD, "bench", "generate_program"), program,
+                                "--dialect", "rs274ngc", "--blocks", "2000"], stdout=f, check=True)
+            canon = os.path.join(self.tmp, program + ".canon")
+            subprocess.run(["rs274", "-g", ngc, canon], capture_output=True, check=True)
+            with open(canon, encoding="utf-8") as f:
+                self.assertEqual(f.read().count("STRAIGHT_FEED("), 2000, program)
         # The work files (tens of MB at 1M blocks) are gone.
         self.assertFalse(os.path.exists(os.path.join(self.tmp, "linuxcnc")))
 
