@@ -257,6 +257,9 @@ def build_report(folder):
                 value = path_value(data, spec)
         except NotMeasured as e:
             note = str(e)
+        except (ArithmeticError, AttributeError, KeyError, TypeError, ValueError) as e:
+            # A shape no check above foresaw: still a row, never a crash.
+            value, value_cpu, note = None, None, "unreadable %s.json: %r" % (spec["source"], e)
         target = spec["target"]
         metrics[key] = {
             "metric": spec["metric"],
