@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "control/channel/channel.hpp"
 #include "control/nc/parser.hpp"
 #include "generated_programs.hpp"
+#include "type5_search.hpp"
 
 namespace {
 
@@ -26,17 +26,8 @@ const bool kKeepFreedMemory = [] {
   return true;
 }();
 
-channel::ChannelAxis Axis(const std::string& name, int drive) {
-  channel::ChannelAxis a;
-  a.name = name;
-  a.number = drive + 1;
-  a.drive = drive;
-  a.rapid_per_s = 500;
-  a.acceleration = 4000;
-  return a;
-}
-
-void Search(benchmark::State& state, const std::vector<std::pair<std::string, nc::Dialect>>& files) {
+void Search(benchmark::State& state,
+            const std::vector<std::pair<std::string, nc::Dialect>>& files) {
   std::vector<nc::ParseResult> parsed;
   for (const auto& [text, dialect] : files)
     parsed.push_back(nc::ParseProgram(text, "bench.nc", dialect));
@@ -44,25 +35,11 @@ void Search(benchmark::State& state, const std::vector<std::pair<std::string, nc
     if (!r.ok()) state.SkipWithError(nc::Format(r.errors[0], r.program.files).c_str());
   std::vector<const nc::Program*> programs;
   for (const nc::ParseResult& r : parsed) programs.push_back(&r.program);
-  channel::ChannelConfig config;
-  config.axes = {Axis("X", 0), Axis("Y", 1), Axis("Z", 2)};
-  channel::BlockSearchParameters p;
-  p.type = channel::BlockSearchType::kProgramEnd;
   int64_t lines = 0;
   for (auto _ : state) {
-    channel::Channel ch(config, programs);
-    AmplifierTelegram at;
-    MasterTelegram mdt;
-    at.feedback.resize(3);
-    for (DriveFeedback& f : at.feedback) f.status = drive_status::kReady;
-    mdt.setpoints.resize(3);
-    ch.SetBlockSearch(p);
-    ch.Start();
-    while (ch.state() != channel::ChannelState::kEnded &&
-           ch.state() != channel::ChannelState::kError)
-      ch.Tick(at, mdt);
-    if (ch.state() == channel::ChannelState::kError) state.SkipWithError(ch.error().c_str());
-    lines += ch.block_search().block_count;
+    const Type5Result r = RunType5Search(programs);
+    if (!r.error.empty()) state.SkipWithError(r.error.c_str());
+    lines += int64_t(r.decoder_lines);
   }
   state.counters["lines_per_second"] =
       benchmark::Counter(double(lines), benchmark::Counter::kIsRate);
@@ -78,7 +55,7 @@ void BM_SearchToEndExpressionsIsg(benchmark::State& state) {
 }
 void BM_SearchToEndLoopsIsg(benchmark::State& state) {
   static const std::string text = LoopsIsg();
-  Search(state, {{text, nc::Dialect::kIsg}, {"%sub_a\nG01 Z1 F1000\nM17\n", nc::Dialect::kIsg}});
+  Search(state, {{text, nc::Dialect::kIsg}, {LoopsIsgSubprogram(), nc::Dialect::kIsg}});
 }
 
 BENCHMARK(BM_SearchToEndStraightMtc200)->Unit(benchmark::kMillisecond)->UseRealTime();
