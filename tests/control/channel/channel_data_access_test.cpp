@@ -11,6 +11,7 @@
 #include "channel_test_support.hpp"
 #include "control/channel/channel.hpp"
 #include "control/measure/measuring_pages.hpp"
+#include "measuring_lathe.hpp"
 
 namespace vmt::control::channel {
 namespace {
@@ -182,12 +183,7 @@ TEST(ChannelDataAccessTest, CorrectionValueOfAMeasurementGoesIntoTheWear) {
   // 5.6 in small: PROBE a diameter 0.05 oversize, COMPARE, CORRECTION, then the correction value
   // into wear L2 (X) of the turning tool T1, which the next G48 move applies. The TLD statement
   // after CORRECTION reads ERGEBNISPAGE only once CORRECTION has written it.
-  const double sphere = 3, surface = 30.05;
-  measure::MeasuringPages pages;
-  pages.stylus[0].tool_number = 3;
-  pages.stylus[0].sphere_radius[0] = sphere;
-  std::map<int, bool> events;
-  Machine m(
+  MeasuringLathe l(
       "N1 SETTING(X,Z,,18,48,15,1)\n"
       "N2 PROBE(1,1,30,5,,X,-2,100,1,1,0)\n"
       "N3 COMPARE(1,0,1,)\n"
@@ -195,30 +191,12 @@ TEST(ChannelDataAccessTest, CorrectionValueOfAMeasurementGoesIntoTheWear) {
       "N5 TLD(1,1,,1,12,) = TLD(1,1,,1,12,) + MTD(105,,1,13)\n"
       "N6 G48 T1 D1 G00 X40 Z5\n"
       "N7 RET\n",
-      50, 5, [&](ChannelConfig& c) {
-        c.tools.edges = {{1, 1, {0, 0}, 0.8, 3}, {3, 1, {0, 0}, sphere, 0}};
-      });
-  m.channel->SetMeasuringPages(&pages);
-  m.channel->SetEventSource([&](int n) { return events[n]; });
-  m.channel->SetEventSink([&](int n, bool set) { events[n] = set; });
+      30.05);
+  Machine& m = l.m;
   m.channel->Start();
-  // The PLC's part (channel_measuring_test): event 30 resets event 29; the X drive latches
-  // where the sphere meets the surface while event 30 is set, and event 7 reports it.
-  while (m.channel->state() == ChannelState::kRunning && m.t < 30) {
-    if (events[30] && m.at.feedback[0].probe.probe1.positive.latched) events[7] = true;
-    if (events[30] && events[29]) events[29] = false;
-    if (!events[30]) m.at.feedback[0].probe = {};
-    const double x_before = m.X();
-    m.Tick();
-    ProbeEdgeLatch& latch = m.at.feedback[0].probe.probe1.positive;
-    const double touch = surface + sphere;
-    if (events[30] && !latch.latched && x_before > touch && m.X() <= touch) {
-      latch.latched = true;
-      latch.measured_value = latch.exact_position = touch;
-    }
-  }
+  l.RunUntilStopped();
   ASSERT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
-  const double correction = pages.Result(0, 1)->correction_value;
+  const double correction = l.pages.Result(0, 1)->correction_value;
   EXPECT_GT(std::abs(correction), 0.01);
   EXPECT_NEAR(m.X(), 40 - correction, 1e-9);
   EXPECT_NEAR(m.Z(), 5, 1e-9);
