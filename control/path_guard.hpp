@@ -35,6 +35,12 @@ class PathGuard {
   /// A straight move of every drive from `from` to `to` (one position per drive, as DriveBus
   /// numbers them).
   virtual PathCheck CheckMove(const std::vector<double>& from, const std::vector<double>& to) = 0;
+  /// A probe's measuring path: as CheckMove, but its measuring sphere touching the workpiece
+  /// is the measurement. On every other move (jog, approach, escape) that touch is a collision.
+  virtual PathCheck CheckMeasuringPath(const std::vector<double>& from,
+                                       const std::vector<double>& to) {
+    return CheckMove(from, to);
+  }
 };
 
 }  // namespace vmt::control

@@ -390,8 +390,9 @@ class Channel {
   /// An increment of `axis` to `to_position`, checked whole before it starts: false if stopped.
   bool GuardIncrement(size_t axis, double to_position);
   /// The block motion about to start (motion_), checked whole (or up to `end`, per channel
-  /// axis): false if stopped.
-  bool GuardBlockMove(const std::string& move, const std::vector<double>* end = nullptr);
+  /// axis): false if stopped. `measuring_path`: a probe's, on which the ruby may touch the part.
+  bool GuardBlockMove(const std::string& move, const std::vector<double>* end = nullptr,
+                      bool measuring_path = false);
   std::vector<double> GuardFrom() const;  ///< every drive's position, the channel's commanded
   bool GuardStops(const std::string& move, const std::vector<double>& from,
                   const std::vector<double>& to, const PathCheck& check);

@@ -166,8 +166,8 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
   nc::PreparedBlock b = measuring_->block;
   b.calls.clear();
   b.instructions.clear();
-  b.motion = step.kind == measure::MeasuringStep::Kind::kRapid ? nc::Motion::kRapid
-                                                                : nc::Motion::kLinear;
+  b.motion =
+      step.kind == measure::MeasuringStep::Kind::kRapid ? nc::Motion::kRapid : nc::Motion::kLinear;
   b.modal.incremental = false;
   b.modal.feed_per_revolution = false;
   b.modal.compensation = 40;
@@ -208,10 +208,11 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
   continuation_ready_ = false;
   carry_speed_ = carry_accel_ = carry_leftover_ = 0;
   if (!motion_.moves) return true;
-  // The approach moves are checked before they start, as G77's (issue 6). The measuring path
-  // is checked up to where the sphere meets the nominal surface (PathGuard lets the ruby touch
-  // the part): beyond it, on the doubled path, the probe's switch ends the move long before the
-  // over-travel lets the shank reach the part.
+  // The approach moves are checked before they start, as G77's (issue 6): the ruby touching
+  // the part on them is a collision. The measuring path is checked up to where the sphere
+  // meets the nominal surface (there PathGuard lets the ruby touch the part): beyond it, on the
+  // doubled path, the probe's switch ends the move long before the over-travel lets the shank reach
+  // the part.
   if (step.kind == measure::MeasuringStep::Kind::kRapid) {
     if (!GuardBlockMove("probe approach")) return false;
   } else {
@@ -219,9 +220,9 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
     const int axis = SettingAxis(measuring_->plan.measuring_axis);
     if (axis >= 0 && measuring_setting_) {
       const auto a = static_cast<size_t>(axis);
-      const double r =
-          measuring_pages_->stylus[static_cast<size_t>(measuring_setting_->stylus - 1)]
-              .sphere_radius[static_cast<size_t>(std::clamp(step.sphere, 1, measure::kSpheres) - 1)];
+      const double r = measuring_pages_->stylus[static_cast<size_t>(measuring_setting_->stylus - 1)]
+                           .sphere_radius[static_cast<size_t>(
+                               std::clamp(step.sphere, 1, measure::kSpheres) - 1)];
       const double touch =
           measuring_->plan.command - measuring_->plan.direction * r + translation_[a];
       const double dir = measuring_->plan.direction;
@@ -230,7 +231,7 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
                : dir * (touch - motion_.end[a]) >= 0 ? motion_.end[a]
                                                      : touch;
     }
-    if (!GuardBlockMove("measuring path", &end)) return false;
+    if (!GuardBlockMove("measuring path", &end, true)) return false;
   }
   profile_.max_rate = motion_.max_rate;
   profile_.max_accel = motion_.max_accel;
@@ -271,8 +272,8 @@ bool Channel::MeasuringCycle(const AmplifierTelegram& at) {
     if (!run.reversal) TrackReverseVectors();
     if (run.measuring_move) {
       run.measuring_move = false;
-      const measure::MeasuringMessage* message = measure::FinishProbe(
-          run.call, run.plan, run.context, *measuring_pages_, run.contact);
+      const measure::MeasuringMessage* message =
+          measure::FinishProbe(run.call, run.plan, run.context, *measuring_pages_, run.contact);
       if (!message && run.contact) {
         // 6.2 event 7: the measuring path ends with the PLC's report of the contact, so its
         // block sees the latch while event 30 is still set (else it would take the path for
@@ -315,8 +316,8 @@ bool Channel::MeasuringCycle(const AmplifierTelegram& at) {
         ++run.step;
         // Q9999 (fault category 1) stops the advance program at once: the PLC acknowledges it
         // only when the reverse program has become active (7.2 typical application, network 9).
-        const bool fatal = run.message && s.q == run.message->q_function &&
-                           !run.message->advance_continuable();
+        const bool fatal =
+            run.message && s.q == run.message->q_function && !run.message->advance_continuable();
         if (config_.aux_handshake) {
           aux_output_.push_back({'Q', 0, static_cast<double>(s.q)});
           ++aux_strobe_;

@@ -54,14 +54,16 @@ bool Channel::GuardIncrement(size_t axis, double to_position) {
   return !GuardStops("jog", from, to, c);
 }
 
-bool Channel::GuardBlockMove(const std::string& move, const std::vector<double>* end) {
+bool Channel::GuardBlockMove(const std::string& move, const std::vector<double>* end,
+                             bool measuring_path) {
   if (!guard_ || config_.path_guard == GuardReaction::kOff) return true;
   const std::vector<double> from = GuardFrom();
   std::vector<double> to = from;
   for (size_t a = 0; a < config_.axes.size(); ++a)
     if (static_cast<size_t>(config_.axes[a].drive) < to.size())
       to[config_.axes[a].drive] = end ? (*end)[a] : motion_.end[a];
-  const PathCheck c = guard_->CheckMove(from, to);
+  const PathCheck c =
+      measuring_path ? guard_->CheckMeasuringPath(from, to) : guard_->CheckMove(from, to);
   if (c.clear) {
     guard_records_.push_back({move, from, to, c, 1, false});
     return true;

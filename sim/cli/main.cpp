@@ -10,6 +10,7 @@
 
 #include "control/gateway/signal_table_format.hpp"
 #include "control/nc/parser.hpp"
+#include "control/nc/program_file.hpp"
 #include "render/image.hpp"
 #include "render/image_compare.hpp"
 #include "sim/cli/serve.hpp"
@@ -78,12 +79,12 @@ int Snapshot(const std::string& scene_path, double at, const std::string& camera
 
 int Check(const std::string& file, const std::string& dialect_name) {
   namespace nc = control::nc;
-  std::ifstream in(file, std::ios::binary);
-  if (!in) {
+  const std::optional<std::string> read = nc::ReadProgramFile(file);
+  if (!read) {
     std::fprintf(stderr, "%s:0:0: error: cannot open file\n", file.c_str());
     return 2;
   }
-  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  const std::string& text = *read;
   const nc::Dialect dialect = dialect_name.empty()    ? nc::DetectDialect(text, file)
                               : dialect_name == "isg" ? nc::Dialect::kIsg
                                                       : nc::Dialect::kMtc200;

@@ -168,8 +168,6 @@ void CollisionWorld::SetAdded(const std::vector<CylinderPart>& added) {
         own = own || (j.parent_link == la && j.child_link == lb) ||
               (j.parent_link == lb && j.child_link == la);
       own = own || (!slides_between(la, lb) && Collide(a, b));
-      // A measuring sphere on the workpiece measures (a machine part comes before an added).
-      own = own || (b >= machine_parts_ && parts_[a].measures);
       may_touch_[a * n + b] = may_touch_[b * n + a] = own;
     }
 }

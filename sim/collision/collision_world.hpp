@@ -51,8 +51,16 @@ class CollisionWorld {
   /// never checked.
   bool MayTouch(int a, int b) const {
     return may_touch_[a * size() + b] || (a < machine_parts_ && aside_[a]) ||
-           (b < machine_parts_ && aside_[b]);
+           (b < machine_parts_ && aside_[b]) || (measuring_ && Measures(a, b));
   }
+  /// A probe's measuring sphere and a part the scene added (the workpiece): their touching is
+  /// the measurement on a measuring path (SetMeasuring), a collision on every other move.
+  bool Measures(int a, int b) const {
+    return (parts_[a].measures && b >= machine_parts_) ||
+           (parts_[b].measures && a >= machine_parts_);
+  }
+  /// While on, the measuring spheres may touch the added parts (a probe's measuring path).
+  void SetMeasuring(bool on) { measuring_ = on; }
   /// Sets a machine part aside (a chuck jaw while the spindle turns: an added part stands for
   /// the ring it sweeps) or back.
   void SetAside(int part, bool aside) { aside_[part] = aside; }
@@ -83,6 +91,7 @@ class CollisionWorld {
   std::vector<char> may_touch_;
   int machine_parts_ = 0;    ///< the model's parts come first, the added ones after them
   std::vector<char> aside_;  ///< per machine part
+  bool measuring_ = false;
   std::vector<Eigen::Isometry3d> X_WorldLink_;
   mutable int64_t queries_ = 0;
 };

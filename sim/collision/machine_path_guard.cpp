@@ -35,6 +35,14 @@ std::vector<double> MachinePathGuard::JointPositions(const std::vector<double>& 
   return q;
 }
 
+control::PathCheck MachinePathGuard::CheckMeasuringPath(const std::vector<double>& from,
+                                                        const std::vector<double>& to) {
+  world_.SetMeasuring(true);
+  const control::PathCheck c = CheckMove(from, to);
+  world_.SetMeasuring(false);
+  return c;
+}
+
 control::PathCheck MachinePathGuard::CheckMove(const std::vector<double>& from,
                                                const std::vector<double>& to) {
   if (before_check) before_check(world_);

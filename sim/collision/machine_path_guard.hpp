@@ -20,6 +20,8 @@ class MachinePathGuard : public control::PathGuard {
                    std::function<std::vector<double>()> current);
   control::PathCheck CheckMove(const std::vector<double>& from,
                                const std::vector<double>& to) override;
+  control::PathCheck CheckMeasuringPath(const std::vector<double>& from,
+                                        const std::vector<double>& to) override;
   /// The joint positions (SI) for the drives' positions on top of `base`; where two drives
   /// read one joint, the one `moving` marks wins.
   std::vector<double> JointPositions(const std::vector<double>& base,

@@ -94,6 +94,9 @@ StraightMoveCheck CheckStraightMove(CollisionWorld& world, const std::vector<dou
   for (int a = 0; a < world.size(); ++a)
     for (int b = a + 1; b < world.size(); ++b) {
       if (world.MayTouch(a, b)) continue;
+      // A measuring sphere resting on the part as the move starts (the measurement just
+      // latched: the escape, or the next approach after a PROBE without escape) may leave it.
+      if (world.Measures(a, b) && world.Collide(a, b)) continue;
       const auto& ca = chains[world.part(a).link];
       const auto& cb = chains[world.part(b).link];
       const size_t common = CommonDepth(ca, cb);

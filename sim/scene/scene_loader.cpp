@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "control/nc/parser.hpp"
+#include "control/nc/program_file.hpp"
 #include "control/plc/plc_programs.hpp"
 #include "sim/kinematic/kinematic_backend.hpp"
 #include "sim/model/gateway_layout.hpp"
@@ -106,9 +107,9 @@ Scene LoadScene(const std::string& path) {
     for (const YamlNode& f : files) {
       const std::string file =
           (std::filesystem::path(path).parent_path() / f.String()).lexically_normal().string();
-      std::ifstream in(file, std::ios::binary);
-      if (!in) f.Fail("cannot open NC program " + file);
-      const std::string text((std::istreambuf_iterator<char>(in)), {});
+      const std::optional<std::string> read = control::nc::ReadProgramFile(file);
+      if (!read) f.Fail("cannot open NC program " + file);
+      const std::string& text = *read;
       namespace cnc = control::nc;
       const cnc::Dialect d = dialect.empty()    ? cnc::DetectDialect(text, file)
                              : dialect == "isg" ? cnc::Dialect::kIsg
@@ -220,8 +221,9 @@ Scene LoadScene(const std::string& path) {
         const bool object = key.rfind("mc_cmd_bs_", 0) == 0 || key == "mc_command_file_offset_w" ||
                             key.rfind("bahn_lc_control.block_search.", 0) == 0;
         if (!object)
-          bs[key].Fail("not a block search object (mc_cmd_bs_*_w, mc_command_file_offset_w, "
-                       "bahn_lc_control.block_search.enable_w)");
+          bs[key].Fail(
+              "not a block search object (mc_cmd_bs_*_w, mc_command_file_offset_w, "
+              "bahn_lc_control.block_search.enable_w)");
         const std::string error = AddSignalPreset(s.nc, prefix + key, bs[key].String());
         if (!error.empty()) bs[key].Fail(error);
       }

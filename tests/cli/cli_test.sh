@@ -82,6 +82,13 @@ echo "not a png" >"$out/text.png"
 check imgdiff_not_png 2 "text.png" -- "$vmt" imgdiff "$out/a.png" "$out/text.png"
 check imgdiff_golden 0 "equal" -- "$vmt" imgdiff "$src/tests/golden/default_iso_3.2s.png" "$out/run/iso_3.2s.png" --tolerance 8 --allowed-fraction 0.002
 
+# vmt check: every error as file:line:column, exit 1; clean 0; a file it cannot read 2.
+check check_clean 0 "stepped_shaft.mtc: mtc200, [0-9]+ blocks, 0 errors" -- "$vmt" check "$src/scenes/nc/stepped_shaft.mtc"
+printf 'N10 G01 X10 F100\nN20 BRA .NOWHERE\n' >"$out/bad.mtc"
+check check_errors 1 "bad.mtc:2:[0-9]+: error: " -- "$vmt" check "$out/bad.mtc" --dialect mtc200
+check check_missing 2 "nope.mtc:0:0: error: cannot open file" -- "$vmt" check "$out/nope.mtc"
+check check_directory 2 "cannot open file" -- "$vmt" check "$out"
+
 # The signal table for the PLC engineer: the manuals' names, instantiated for the lathe.
 check signals_csv 0 "P00C.REPOS,BOOL,PLC->NC,coil,0,1" -- "$vmt" signals "$src/models/lathe-c1/machine.yaml"
 check signals_axis 0 "A01C.JGPOS" -- "$vmt" signals "$src/models/lathe-c1/machine.yaml"

@@ -360,6 +360,9 @@ TEST(SceneInputTest, Errors) {
       ", subprograms: [" + SourcePath("scenes/nc/99.mtc") + "]}\n";
   EXPECT_EQ(SceneError("select", two_programs + "timeline:\n  - nc: {select: 99}\n"), "");
   EXPECT_EQ(SceneError("select_file", two_programs + "timeline:\n  - nc: {select: 99.mtc}\n"), "");
+  EXPECT_THAT(SceneError("program_is_a_directory",
+                         "duration: 1\nnc: {program: " + SourcePath("scenes/nc") + "}\n"),
+              HasSubstr("nc.program: cannot open NC program"));
   EXPECT_THAT(SceneError("select_none", two_programs + "timeline:\n  - nc: {select: 98}\n"),
               HasSubstr("timeline[0].nc.select: is none of the scene's NC programs"));
 }

@@ -59,13 +59,20 @@ TEST(ProbeContact, TheRubyStandsWhereTheToolTipIs) {
   EXPECT_NEAR((centre - Eigen::Vector3d(0.043, 0, 0.200)).norm(), 0, 1e-8) << centre.transpose();
 }
 
-TEST(ProbeContact, TheRubyInTheWorkpieceIsAMeasurementNotACollision) {
-  // Radially onto the stock (r 30) at Z 140 until the ruby is 1.5 mm in: its shank, 3 mm
-  // behind its front, stays 1.5 mm clear.
+TEST(ProbeContact, TheRubyInTheWorkpieceIsAMeasurementOnlyOnTheMeasuringPath) {
+  // Radially onto the stock (r 30) at Z 140 until the ruby is 1.5 mm in: on the measuring path
+  // its shank, 3 mm behind its front, stays 1.5 mm clear.
   Guarded g;
-  const control::PathCheck c = g.guard.CheckMove(g.Drives(140, 250), g.Drives(140, 28.5));
+  const control::PathCheck c = g.guard.CheckMeasuringPath(g.Drives(140, 250), g.Drives(140, 28.5));
   EXPECT_TRUE(c.clear) << c.part_a << " / " << c.part_b << " at X "
                        << c.position[g.model.DriveIndex("X")];
+  // Any other move (an approach, a jog) that takes the ruby into the part is a collision.
+  const control::PathCheck a = g.guard.CheckMove(g.Drives(140, 250), g.Drives(140, 28.5));
+  ASSERT_FALSE(a.clear);
+  EXPECT_TRUE(Names(a, "probe_ruby", "workpiece")) << a.part_a << " / " << a.part_b;
+  EXPECT_NEAR(a.position[g.model.DriveIndex("X")], 30, 1e-3);
+  // Resting on the part (a measurement just latched), it may leave it.
+  EXPECT_TRUE(g.guard.CheckMove(g.Drives(140, 29.999), g.Drives(140, 60)).clear);
   // Without the probe: section, the same move is a collision of the ruby with the workpiece.
   Guarded plain(false);
   const control::PathCheck p = plain.guard.CheckMove(g.Drives(140, 250), g.Drives(140, 28.5));
@@ -86,9 +93,10 @@ TEST(ProbeContact, TheRubyIsAnExactSphereAtASharpEdge) {
 }
 
 TEST(ProbeContact, TheShankInTheWorkpieceIsACollision) {
-  // Further in, the shank's end (at the ruby's centre, r 2) meets the stock at X 27.
+  // Even on the measuring path: further in, the shank's end (at the ruby's centre, r 2) meets
+  // the stock at X 27.
   Guarded g;
-  const control::PathCheck c = g.guard.CheckMove(g.Drives(140, 250), g.Drives(140, 20));
+  const control::PathCheck c = g.guard.CheckMeasuringPath(g.Drives(140, 250), g.Drives(140, 20));
   ASSERT_FALSE(c.clear);
   EXPECT_TRUE(Names(c, "probe_stylus", "workpiece")) << c.part_a << " / " << c.part_b;
   EXPECT_NEAR(c.position[g.model.DriveIndex("X")], 27, 0.01);
@@ -96,9 +104,12 @@ TEST(ProbeContact, TheShankInTheWorkpieceIsACollision) {
 
 TEST(ProbeContact, OnlyTheRubyMayTouchOnlyTheAddedParts) {
   Guarded g;
-  const CollisionWorld& w = g.guard.world();
+  CollisionWorld& w = g.guard.world();
   const int ruby = g.Part("probe_ruby"), workpiece = g.Part("workpiece");
   EXPECT_TRUE(w.part(ruby).measures);
+  EXPECT_TRUE(w.Measures(ruby, workpiece));
+  EXPECT_FALSE(w.MayTouch(ruby, workpiece));  // only on a measuring path
+  w.SetMeasuring(true);
   EXPECT_TRUE(w.MayTouch(ruby, workpiece));
   EXPECT_TRUE(w.MayTouch(workpiece, ruby));
   for (const char* part : {"probe_stylus", "probe_band", "probe_body"}) {
@@ -113,6 +124,7 @@ TEST(ProbeContact, OnlyTheRubyMayTouchOnlyTheAddedParts) {
   for (size_t i = 0; i < stock.radius_m.size() / 2; ++i) stock.radius_m[i] = 0.025;
   g.guard.world().SetAdded(stock.Cylinders(1e-6));
   ASSERT_GE(w.size(), g.Part("probe_ruby") + 2);
+  w.SetMeasuring(true);
   for (int i = 0; i < w.size(); ++i)
     if (w.part(i).name == "workpiece") {
       EXPECT_TRUE(w.MayTouch(ruby, i));
