@@ -384,6 +384,20 @@ TEST(ChannelBlockSearchLathe, CaxTrackAlignsCBeforeTheStraightReturn) {
   EXPECT_TRUE(c_aligned);
 }
 
+TEST(ChannelBlockSearchLathe, CaxTrackPassesInANormalRun) {
+  // Both spellings steer only block search: the run goes through them to M30.
+  CaxLathe m(50, 50, 0);
+  m.channel->Start();
+  for (int i = 0; i < 400000 && m.channel->state() != ChannelState::kEnded &&
+                  m.channel->state() != ChannelState::kError;
+       ++i)
+    m.Tick();
+  EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  EXPECT_NEAR(m.X(), 30, 1e-9);
+  EXPECT_NEAR(m.Z(), 0, 1e-9);
+  EXPECT_NEAR(m.C(), 45, 1e-9);
+}
+
 TEST(ChannelBlockSearchLathe, WithoutCaxTrackCReturnsWithTheOtherAxes) {
   // Before #CAXTRACK ON (the first N20) and after #CAXTRACK OFF (N90): one straight move of
   // all axes, C included, ending together.
