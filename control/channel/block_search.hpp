@@ -8,7 +8,9 @@
 // (channel_block_search.cpp) runs.
 
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "control/axes/axis_parameters.hpp"
@@ -133,6 +135,15 @@ class ContinueMatcher {
   BlockSearchParameters p_;
   int passes_ = 0, end_passes_ = 0;
 };
+
+/// True for the #-commands that steer block search and the return to the contour, as the ISG
+/// front end keeps their text ("CAXTRACK ON [ANGLIMIT 3, OFFSET 0]"): #DISTANCE PROG START
+/// (4.1.2), #BLOCKSEARCH (6), #CAX TRACK (4.2.2; the manual's program spells it #CAXTRACK) and
+/// #VECTOR OFFSET (4.2.3). A normal run passes them.
+bool SteersBlockSearch(std::string_view text);
+
+/// #CAX TRACK ON / OFF (4.2.2): true for ON, false for OFF, nothing for any other text.
+std::optional<bool> CaxTrackCommand(std::string_view text);
 
 /// Path length of a block's motion for the distance from program start (4.1.2): the travel of
 /// the main axes (X, Y, Z); a block that moves none of them counts the travel of the following

@@ -517,9 +517,8 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
     const nc::Statement& st = program.statements[index];
     std::string name = st.kind == nc::Statement::Kind::kHashCommand ? "#" + program.texts[st.text]
                                                                     : program.symbols.Name(st.name);
-    for (const char* steering :
-         {"#DISTANCE PROG START", "#BLOCKSEARCH", "#CAX TRACK", "#VECTOR OFFSET"})
-      if (name.rfind(steering, 0) == 0) name.clear();
+    if (st.kind == nc::Statement::Kind::kHashCommand && SteersBlockSearch(program.texts[st.text]))
+      name.clear();
     // REPOS manual 4.2 Tool Storage Axis: in the REPOS subroutine MTP returns the tool storage
     // axis to where it was; the PLC controls the turret, so the NC outputs the T word of the
     // interruption again. MRY waits for the tool storage axis, which the acknowledgement of

@@ -371,6 +371,7 @@ class Channel {
   std::deque<ContourElement> ready_;     ///< tip path elements ready to run
   int64_t first_tag_ = 0, next_tag_ = 0, last_run_tag_ = -1;
   Vec2 contour_point_;             ///< end of the last programmed element pushed (program coords)
+  bool inserted_piece_ = false;    ///< block_ is a corner the compensation inserted before it
   int axis_z_ = -1, axis_x_ = -1;  ///< channel axes of the G18 plane
   std::shared_ptr<nc::ParseResult> mdi_;
   nc::ModalState last_modal_;
@@ -505,6 +506,13 @@ class Channel {
     double restart_distance = 0;  ///< distance from program start at the block's start
     double restart_length = 0;    ///< the block's length for that distance
     int64_t blocks = 0;           ///< blocks decoded in search mode
+    /// Under G41/G42 the search runs the tip path, as a run does: block_ is a piece of it, a
+    /// further piece of a block already simulated, or a corner the compensation inserted
+    /// before its block. The per mille lies in the block's own piece: found at an inserted
+    /// corner, the search runs it and takes the own piece that follows.
+    bool further_piece = false, inserted_piece = false, await_own_piece = false;
+    bool cax_track = false;    ///< #CAX TRACK is on where the search has got to (4.2.2)
+    bool return_rest = false;  ///< C is being aligned; the other axes' return follows (4.2.2)
   };
   std::optional<BlockSearchRun> search_;
   BlockSearchParameters bs_next_, bs_started_;
@@ -529,12 +537,19 @@ class Channel {
   /// The search's part of an NC cycle; true while it owns the cycle (no normal block flow).
   bool SearchCycle(const AmplifierTelegram& at);
   bool SimulateBlocks();
+  /// The search's next block into block_: from the interpreter, or under G41/G42 the next
+  /// piece of the tip path. False on an error.
+  bool NextSearchBlock();
   bool SimulateBlock(nc::PreparedBlock& b);
+  /// The motion part of SimulateBlock; `boundary`: `b` is the block of the continue position.
+  bool SimulateMotion(nc::PreparedBlock& b, bool boundary);
   /// The continue position is found at `b`, at u in its motion (planned from its start).
   void FoundContinuePosition(const nc::PreparedBlock& b, const BlockMotion& motion, double u);
   void EndSearchMode();
   bool SpindleReady(const AmplifierTelegram& at) const;
   bool StartReturnToContour();
+  /// One straight move from where the axes stand to `to` at the rapid limits, PathGuard first.
+  bool StartReturnMove(const std::vector<double>& to, const std::string& move);
   bool ApplySearchOffset();
   void ContinueAfterSearch();
   /// A start while the search or the breakpoint holds; true if it was theirs.

@@ -6,8 +6,11 @@
 // PathGuard checks first (4.2; the manual leaves the obstacle to the operator, vmt refuses the
 // move), or checks the manual return against mc_cmd_bs_deviation_max_w and keeps the offset,
 // and goes on at the continue position, inside its block when a covered distance or a
-// distance from program start says so (4.1). The breakpoint (3.5) and the distance from
-// program start (4.1.2) live here too: they count in normal runs as well.
+// distance from program start says so (4.1). Under G41/G42 the search runs the tool nose
+// radius compensation as the run does, so the continue position is on the tip path and the
+// run goes on from the compensation's state; with #CAX TRACK on, the return aligns C first
+// (4.2.2). The breakpoint (3.5) and the distance from program start (4.1.2) live here too:
+// they count in normal runs as well.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -144,6 +147,12 @@ bool Channel::SearchCycle(const AmplifierTelegram& at) {
       return true;
     case BlockSearchState::kReturningToContour:
       if (active_) return true;  // the return move interpolates in Tick
+      if (s.return_rest) {
+        // 4.2.2: C is aligned; now the straight return of the other axes.
+        s.return_rest = false;
+        StartReturnMove(s.restart, "return to contour");
+        return true;
+      }
       if (bs_started_.no_hold_at_restart) {
         ContinueAfterSearch();
         return true;
@@ -164,21 +173,90 @@ bool Channel::SearchCycle(const AmplifierTelegram& at) {
 
 bool Channel::SimulateBlocks() {
   for (int n = 0; n < kSearchBlocksPerCycle; ++n) {
-    if (!interpreter_->Next(block_)) {
-      if (interpreter_->error()) {
-        Fail(nc::Format(*interpreter_->error(), {interpreter_->ErrorFile()}), kMsgProgramError);
-        return false;
-      }
-      block_.end = true;  // the text ended without M30: its end all the same
-      block_.motion = nc::Motion::kNone;
-      block_.block = -1;
-    }
+    if (!NextSearchBlock()) return false;
     ++search_->blocks;
     if (!SimulateBlock(block_)) return false;
     if (bs_state_ != BlockSearchState::kActive || !aux_output_.empty() ||
         state_ != ChannelState::kRunning)
       return true;
   }
+  return true;
+}
+
+bool Channel::NextSearchBlock() {
+  BlockSearchRun& s = *search_;
+  s.further_piece = s.inserted_piece = false;
+  inserted_piece_ = false;
+  const auto text_ended = [&] {
+    if (interpreter_->error()) {
+      Fail(nc::Format(*interpreter_->error(), {interpreter_->ErrorFile()}), kMsgProgramError);
+      return false;
+    }
+    block_ = nc::PreparedBlock{};
+    block_.end = true;  // the text ended without M30: its end all the same
+    block_.motion = nc::Motion::kNone;
+    block_.block = -1;
+    return true;
+  };
+  if (!compensating_) {
+    if (!interpreter_->Next(block_)) return text_ended();
+    if (block_.modal.compensation == 40 || block_.motion == nc::Motion::kNone) return true;
+    // G41/G42: the search reads ahead through the compensation as the run does
+    // (NextBlock), so that the tip path it simulates is the one the run machines, and the
+    // run takes over the compensation's state at the continue position.
+    if (axis_z_ < 0 || axis_x_ < 0) {
+      Fail(*ProgramOf(block_.program), block_.block,
+           "tool nose radius compensation G41/G42 needs the axes Z and X", kMsgNotAvailable);
+      return false;
+    }
+    compensating_ = true;
+    source_done_ = false;
+    trc_.Reset();
+    ahead_.clear();
+    ready_.clear();
+    first_tag_ = next_tag_ = 0;
+    last_run_tag_ = -1;
+    // Where the program has the axes: the search moves none.
+    contour_point_ = {s.position[axis_z_] - translation_[axis_z_],
+                      s.position[axis_x_] - translation_[axis_x_]};
+    if (!PushAhead(block_)) return false;
+  }
+  ContourElement e;
+  while (ready_.empty()) {
+    while (trc_.Pop(e)) ready_.push_back(e);
+    if (!ready_.empty()) break;
+    if (const auto& err = trc_.error()) {
+      const nc::PreparedBlock& b = ahead_[static_cast<size_t>(err->tag - first_tag_)];
+      Fail(*ProgramOf(b.program), b.block, err->message, kMsgGouge);
+      return false;
+    }
+    if (source_done_ || (!trc_.active() && !trc_.pending())) {
+      // Everything read ahead is simulated: back to block by block.
+      compensating_ = false;
+      ahead_.clear();
+      if (source_done_) {
+        source_done_ = false;
+        return text_ended();
+      }
+      return NextSearchBlock();
+    }
+    nc::PreparedBlock b;
+    if (!interpreter_->Next(b)) {
+      if (interpreter_->error()) return text_ended();
+      source_done_ = true;
+      trc_.Flush();
+      continue;
+    }
+    if (!PushAhead(b)) return false;
+    if (b.end) source_done_ = true, trc_.Flush();
+  }
+  e = ready_.front();
+  ready_.pop_front();
+  while (first_tag_ < e.tag) ahead_.pop_front(), ++first_tag_;
+  block_ = ElementBlock(e, ahead_.front());
+  s.further_piece = e.tag == last_run_tag_;
+  s.inserted_piece = inserted_piece_ = e.inserted;
+  last_run_tag_ = e.tag;
   return true;
 }
 
@@ -196,6 +274,8 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
     Fail(program, b.block, text, number);
     return false;
   };
+  // A further piece of a block's tip path: its functions ran with the first.
+  if (s.further_piece) return SimulateMotion(b, false);
   const bool boundary = !s.found && s.matcher.Matches(b, program, b.program);
   if (boundary && b.search_locked)
     return fail("P-ERR-21399: the continue position lies in a region locked for block search "
@@ -222,10 +302,9 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
     const nc::Statement& st = program.statements[index];
     if (st.kind == nc::Statement::Kind::kHashCommand) {
       const std::string& text = program.texts[st.text];
-      bool steering = false;
-      for (const char* c : {"DISTANCE PROG START", "BLOCKSEARCH", "CAX TRACK", "VECTOR OFFSET"})
-        steering = steering || text.rfind(c, 0) == 0;
-      if (steering) continue;
+      // 4.2.2: whether the C axis tracks the contour at the continue position.
+      if (const auto on = CaxTrackCommand(text)) s.cax_track = *on;
+      if (SteersBlockSearch(text)) continue;
     }
     return fail("instruction " +
                     (st.kind == nc::Statement::Kind::kHashCommand ? "#" + program.texts[st.text]
@@ -262,13 +341,16 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
     if (!aux_output_.empty()) ++aux_strobe_;
   }
 
+  return SimulateMotion(b, boundary);
+}
+
+bool Channel::SimulateMotion(nc::PreparedBlock& b, bool boundary) {
+  BlockSearchRun& s = *search_;
   // The block's path from where the program has the axes. G74 is left out (8: the axes stay),
-  // G100 becomes a G01 to its target (8), a thread the straight line it is.
+  // G100 becomes a G01 to its target (8), a thread the straight line it is. Under G41/G42 the
+  // block is a piece of the tip path (NextSearchBlock): planned as the run plans it.
   BlockMotion motion;
   if ((b.motion != nc::Motion::kNone || b.measuring) && !b.homing) {
-    if (b.modal.compensation != 40)
-      return fail("block search under tool nose radius compensation G41/G42 is not available yet",
-                  kMsgNotAvailable);
     nc::PreparedBlock m = b;
     if (m.measuring || nc::SpindleSynchronous(m.motion)) {
       m.motion = nc::Motion::kLinear;
@@ -277,27 +359,40 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
     }
     const double rev_per_s = s.spindle.mode == DriveMode::kVelocity ? s.spindle.value / 360 : 0;
     if (const auto error = PlanBlockMotion(m, s.position, translation_, config_.axes,
-                                           std::abs(rev_per_s), motion, FollowUpAxes(m)))
-      return fail(error->text, error->number);
+                                           std::abs(rev_per_s), motion, FollowUpAxes(m))) {
+      Fail(*ProgramOf(b.program), b.block, error->text, error->number);
+      return false;
+    }
   }
   const double length = distance_on_ ? DistanceOf(motion, config_.axes) : 0;
+  const double permille = bs_started_.covered_distance / 1000;
+  if (s.await_own_piece && !s.inserted_piece) {
+    // The continue block's own piece after the corner the compensation inserted before it.
+    s.await_own_piece = false;
+    FoundContinuePosition(b, motion, motion.moves ? permille : 0);
+    return true;
+  }
   if (boundary) {
     s.found = true;
     const double wanted = bs_started_.distance_prog_start * 1e-4;
-    if (wanted <= 0) {
+    if (wanted <= 0 && s.inserted_piece) {
+      // The per mille measures the block's own piece of the tip path, not the corner arc
+      // before it: the same point whatever the nose radius (4.1.1, note to figure 10).
+      s.await_own_piece = true;
+    } else if (wanted <= 0) {
       // 4.1.1 / 10: the covered distance splits a motion block; a block without motion is not.
-      FoundContinuePosition(b, motion, motion.moves ? bs_started_.covered_distance / 1000 : 0);
+      FoundContinuePosition(b, motion, motion.moves ? permille : 0);
       return true;
-    }
-    if (wanted < distance_ - 1e-9) {
+    } else if (wanted < distance_ - 1e-9) {
       // 4.1.2, figure 18: never back into blocks the search has passed.
       bs_warnings_.push_back("the distance from program start " + Mm(wanted) +
                              " mm lies before the block of the continue position (" +
                              Mm(distance_) + " mm): machining continues at its start");
       FoundContinuePosition(b, motion, 0);
       return true;
+    } else {
+      s.by_distance = true;
     }
-    s.by_distance = true;
   }
   if (s.by_distance && motion.moves && length > 0) {
     const double wanted = bs_started_.distance_prog_start * 1e-4;
@@ -357,11 +452,28 @@ bool Channel::SpindleReady(const AmplifierTelegram& at) const {
 }
 
 bool Channel::StartReturnToContour() {
-  const BlockSearchRun& s = *search_;
+  BlockSearchRun& s = *search_;
+  // 4.2.2: with #CAX TRACK on at the continue position the C axis is aligned first ("1.
+  // Ausrichten der C-Achse ... 2. Wiederanfahren entsprechend der Satzvorlaufposition"). vmt
+  // runs no tracking of its own, so C's alignment is where the program has C there.
+  s.return_rest = false;
+  if (s.cax_track) {
+    for (size_t a = 0; a < commanded_.size(); ++a) {
+      if (config_.axes[a].name != "C" || std::abs(s.restart[a] - commanded_[a]) < 1e-12) continue;
+      std::vector<double> aligned = commanded_;
+      aligned[a] = s.restart[a];
+      s.return_rest = true;
+      return StartReturnMove(aligned, "C axis alignment (#CAX TRACK)");
+    }
+  }
+  return StartReturnMove(s.restart, "return to contour");
+}
+
+bool Channel::StartReturnMove(const std::vector<double>& to, const std::string& move) {
   // 4.2: one straight move at the rapid limits, every axis ending together.
   motion_ = BlockMotion{};
   motion_.start = commanded_;
-  motion_.end = s.restart;
+  motion_.end = to;
   double rate = std::numeric_limits<double>::infinity(), accel = rate;
   for (size_t a = 0; a < commanded_.size(); ++a) {
     const double distance = std::abs(motion_.end[a] - motion_.start[a]);
@@ -380,7 +492,7 @@ bool Channel::StartReturnToContour() {
     motion_.length += std::pow(motion_.end[a] - motion_.start[a], 2);
   motion_.length = std::sqrt(motion_.length);
   // The manual leaves obstacles on this line to the operator (8); vmt asks PathGuard first.
-  if (!GuardBlockMove("return to contour")) return false;
+  if (!GuardBlockMove(move)) return false;
   profile_.max_rate = rate;
   profile_.max_accel = accel;
   active_ = true;
@@ -535,7 +647,9 @@ void Channel::UpdateBlockSearchStatus() {
   st.state = bs_state_;
   st.command = bs_command_;
   const bool moving = motion_.moves && (active_ || breakpoint_hold_);
-  double u = moving ? std::clamp(profile_.u, 0.0, 1.0) : 0;
+  // A corner the compensation inserted before its block is not yet the block's own path: the
+  // per mille the search takes is measured in that (SimulateMotion).
+  double u = moving && !inserted_piece_ ? std::clamp(profile_.u, 0.0, 1.0) : 0;
   // The breakpoint cut the block: its profile runs over the first part only.
   if (moving && breakpoint_rest_) u *= breakpoint_u_;
   st.covered_distance = u * 1000;

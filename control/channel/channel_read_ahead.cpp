@@ -46,6 +46,7 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
     if (!PushAhead(block_)) return false;
     return NextCompensated(at);
   }
+  inserted_piece_ = false;
   return RunBlock(at);
 }
 
@@ -151,6 +152,7 @@ bool Channel::NextCompensated(const AmplifierTelegram& at) {
   ready_.pop_front();
   while (first_tag_ < e.tag) ahead_.pop_front(), ++first_tag_;
   block_ = ElementBlock(e, ahead_.front());
+  inserted_piece_ = e.inserted;
   if (e.tag != last_run_tag_) {
     last_run_tag_ = e.tag;
     return RunBlock(at);
