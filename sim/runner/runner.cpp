@@ -7,6 +7,7 @@
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "control/gateway/channel_gateway.hpp"
 #include "control/plc/plc_programs.hpp"
@@ -18,6 +19,7 @@
 #include "sim/model/gateway_layout.hpp"
 #include "sim/runner/channel_events.hpp"
 #include "sim/runner/drive_program.hpp"
+#include "sim/runner/event_snapshots.hpp"
 #include "sim/runner/probe_glue.hpp"
 #include "sim/runner/scene_renderer.hpp"
 
@@ -153,7 +155,10 @@ struct SceneRun::State {
     // Times on the tick grid, without binary noise (3.4995, not 3.4995000000000003).
     event["t"] = std::round(event["t"].get<double>() * 1e6) / 1e6;
     if (writing) events_file << event.dump() << '\n';
+    NoteSnapshotEvent(event);
   }
+  void NoteSnapshotEvent(const nlohmann::ordered_json& event);
+  void TakeSnapshot(const SnapshotSpec& s, const std::string& file, nlohmann::ordered_json event);
 
   const Scene& scene;
   const RunOptions options;
@@ -190,6 +195,9 @@ struct SceneRun::State {
   RunResult result;
   std::unique_ptr<SceneRenderer> renderer;
   std::vector<bool> snapped, checked;
+  std::vector<int> event_shots;  ///< per snapshot: occurrences of its event so far
+  /// Event snapshots due at this tick's pictures: snapshot index and occurrence (1, 2, ...).
+  std::vector<std::pair<size_t, int>> pending_shots;
   std::vector<ExpectationResult> checks;
   std::vector<ClutchState> clutches, last_clutches;
   std::vector<int> last_clashes;  ///< clashes of each clutch reported so far
@@ -361,6 +369,7 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
   emit_trace(TraceHeader(m, channel != nullptr));
 
   snapped.assign(scene.snapshots.size(), false);
+  event_shots.assign(scene.snapshots.size(), 0);
   checked.assign(scene.expectations.size(), false);
   checks.resize(scene.expectations.size());
   clutches.resize(m.clutches.size());
@@ -559,17 +568,17 @@ void SceneRun::State::Step() {
 
   for (size_t i = 0; i < scene.snapshots.size(); ++i) {
     const SnapshotSpec& s = scene.snapshots[i];
-    if (snapped[i] || t < s.at_s - 1e-9 || !options.snapshots) continue;
+    if (s.on != SnapshotEvent::kNone || snapped[i] || t < s.at_s - 1e-9) continue;
     snapped[i] = true;
-    if (!renderer) renderer = std::make_unique<SceneRenderer>(m, scene.workpiece);
-    const render::Image image =
-        renderer->Render(backend->JointPositions(), *scene.Camera(s.camera), s.width, s.height);
-    if (writing) {
-      const std::string path = options.out_dir + "/" + s.file;
-      render::WritePng(path, image);
-      result.snapshot_files.push_back(path);
-      emit_event({{"t", t}, {"event", "snapshot"}, {"camera", s.camera}, {"file", s.file}});
-    }
+    TakeSnapshot(s, s.file, {{"t", t}, {"event", "snapshot"}, {"camera", s.camera}});
+  }
+  // Events recorded since the last pictures (this tick's, and a stylus' over-travel found in
+  // the last physics step), in the order they came.
+  for (const auto& [i, n] : std::exchange(pending_shots, {})) {
+    const SnapshotSpec& s = scene.snapshots[i];
+    TakeSnapshot(s, EventSnapshotFile(s, n, t),
+                 {{"t", t}, {"event", "snapshot"}, {"on", ToString(s.on)}, {"n", n},
+                  {"camera", s.camera}});
   }
 
   if (tick == last_tick) {
@@ -583,6 +592,32 @@ void SceneRun::State::Step() {
     emit_event(StylusOverTravelEvent(o));
   ++tick;
   if (field_bus && tick % plc_every == 0) ReadFieldBus();
+}
+
+// An event snapshot is due for each of the scene's `on:` snapshots of this event that has not
+// reached its limit.
+void SceneRun::State::NoteSnapshotEvent(const nlohmann::ordered_json& event) {
+  if (!options.snapshots) return;
+  const SnapshotEvent kind = SnapshotEventOf(event);
+  if (kind == SnapshotEvent::kNone) return;
+  for (size_t i = 0; i < scene.snapshots.size(); ++i)
+    if (scene.snapshots[i].on == kind && event_shots[i] < scene.snapshots[i].limit)
+      pending_shots.emplace_back(i, ++event_shots[i]);
+}
+
+// The machine as it stands at this tick, written to `file` with its `snapshot` event.
+void SceneRun::State::TakeSnapshot(const SnapshotSpec& s, const std::string& file,
+                                   nlohmann::ordered_json event) {
+  if (!options.snapshots) return;
+  if (!renderer) renderer = std::make_unique<SceneRenderer>(m, scene.workpiece);
+  const render::Image picture =
+      renderer->Render(backend->JointPositions(), *scene.Camera(s.camera), s.width, s.height);
+  if (!writing) return;
+  const std::string path = options.out_dir + "/" + file;
+  render::WritePng(path, picture);
+  result.snapshot_files.push_back(path);
+  event["file"] = file;
+  emit_event(std::move(event));
 }
 
 // A headstock with a separate C servo needs its clutch switched before the PLC may acknowledge

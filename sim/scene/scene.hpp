@@ -170,11 +170,20 @@ struct Expectation {
   std::string text;  ///< "expect[2]: Z position 250 +- 0.01 at 3 s"
 };
 
+/// What an event snapshot waits for (snapshots `on:`): a collision (a PathGuard check that
+/// found a contact, or a stylus beyond its over-travel), a drive's probe latch, the NC entering
+/// its error state.
+enum class SnapshotEvent { kNone, kCollision, kProbeLatch, kError };
+const char* ToString(SnapshotEvent e);
+
+/// A picture at a time (`at:`), or at the first `limit` occurrences of an event (`on:`).
 struct SnapshotSpec {
-  double at_s = 0;
+  double at_s = 0;                          ///< time snapshots
+  SnapshotEvent on = SnapshotEvent::kNone;  ///< event snapshots (at_s unused)
+  int limit = 1;                            ///< event snapshots: occurrences pictured
   std::string camera;
   int width = 640, height = 480;
-  std::string file;  ///< relative to the output folder
+  std::string file;  ///< time snapshots: relative to the output folder; event ones name theirs
 };
 
 struct Scene {

@@ -20,6 +20,7 @@
 #include "sim/scene/measuring_pages_loader.hpp"
 #include "sim/scene/scene.hpp"
 #include "sim/scene/scene_steps.hpp"
+#include "sim/scene/snapshot_loader.hpp"
 #include "sim/scene/workpiece_loader.hpp"
 
 namespace vmt::sim {
@@ -280,27 +281,7 @@ Scene LoadScene(const std::string& path) {
     for (size_t i = 0; i < e.size(); ++i)
       s.expectations.push_back(ReadExpectation(m, e[i], i, s.nc));
   }
-  if (root.Has("snapshots")) {
-    const YamlNode sn = root["snapshots"];
-    for (size_t i = 0; i < sn.size(); ++i) {
-      const YamlNode n = sn[i];
-      n.AllowKeys({"at", "camera", "width", "height", "file"});
-      SnapshotSpec spec;
-      spec.at_s = n["at"].Double();
-      spec.camera = n["camera"].String();
-      if (!s.Camera(spec.camera)) n["camera"].Fail("no camera '" + spec.camera + "'");
-      spec.width = n.Int("width", 640);
-      spec.height = n.Int("height", 480);
-      if (spec.width < 16 || spec.width > 4096) n["width"].Fail("must be in 16..4096");
-      if (spec.height < 16 || spec.height > 4096) n["height"].Fail("must be in 16..4096");
-      std::ostringstream file;
-      file << spec.camera << "_" << Fmt(spec.at_s) << "s.png";
-      spec.file = n.String("file", file.str());
-      if (spec.file.find('/') != std::string::npos || spec.file.find("..") != std::string::npos)
-        n["file"].Fail("a plain file name inside the output folder");
-      s.snapshots.push_back(spec);
-    }
-  }
+  if (root.Has("snapshots")) s.snapshots = ReadSnapshots(root["snapshots"], s);
   return s;
 }
 

@@ -151,7 +151,7 @@ TEST(SnapshotTest, DefaultSceneMatchesGolden) {
   options.out_dir = dir;
   RunScene(scene, options);
   for (const char* name : {"iso_3.2s.png", "work_3.2s.png"}) {
-    const std::string golden = SourcePath(std::string("tests/golden/default_") + name);
+    const std::string golden = SourcePath(std::string("tests/golden/default/") + name);
     const render::Image expected = render::ReadPng(golden);
     const render::Image actual = render::ReadPng(dir + "/" + name);
     const render::CompareResult c = render::CompareImages(expected, actual, {8, 0.002});
