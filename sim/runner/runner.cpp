@@ -153,6 +153,7 @@ struct SceneRun::State {
     // Times on the tick grid, without binary noise (3.4995, not 3.4995000000000003).
     event["t"] = std::round(event["t"].get<double>() * 1e6) / 1e6;
     if (writing) events_file << event.dump() << '\n';
+    if (options.on_event) options.on_event(event);
   }
 
   const Scene& scene;
