@@ -9,6 +9,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "control/nc/parser.hpp"
 #include "sim/model/yaml_reader.hpp"
 #include "sim/runner/runner.hpp"
 #include "sim/scene/scene_steps.hpp"
@@ -159,7 +160,7 @@ class CaseObserver {
 // The latest simulated time a case may take: the retract's jogs (each waits for standstill at
 // most 10 s), the REPOS phase its timeout.
 double CaseLimit(const StudyPlan& plan, const Interruption& in, const RetractPattern& r) {
-  return in.t_s + plan.hold_s + 10.5 * static_cast<double>(r.jogs.size()) + 1 + plan.timeout_s;
+  return in.t_s + plan.hold_s + 11.5 * static_cast<double>(r.jogs.size()) + 1 + plan.timeout_s;
 }
 
 void RunCase(SceneRun& run, CaseObserver& obs, const StudyPlan& plan, double limit_s) {
@@ -219,6 +220,9 @@ Scene SubroutineScene(const Scene& base, const Subroutine& subroutine) {
   scene.nc.programs.push_back(parsed);
   scene.expectations.clear();
   scene.snapshots.clear();
+  // No trace rows between the first and the last: a case reads events only, and a row is
+  // formatted (and hashed) even when nothing is written.
+  scene.trace_period_s = 1e6;
   scene.timeline.clear();
   scene.timeline.push_back(Step(scene, "{nc: start}", 0));
   return scene;
@@ -238,7 +242,16 @@ std::vector<TimelineStep> OperatorSteps(const Scene& scene, const StudyPlan& pla
     lines.push_back("{nc: {jog_increment: " + Fixed(std::abs(j.mm)) + "}}");
     lines.push_back("{jog: {axis: " + j.axis + ", direction: " + (j.mm > 0 ? "'+'" : "'-'") +
                     ", hold: 0.05}}");
-    lines.push_back("{wait_until: {axis: " + j.axis + ", standstill: true, timeout: 10}}");
+    // Until the NC's jog is done (AxxS.MVPOS / MVNEG, its interpolation), then the drive: the
+    // drive's standstill window alone ends the wait before the increment's last tenths.
+    int number = 0;
+    for (const auto& a : scene.nc.data.axes)
+      if (a.name == j.axis) number = a.number;
+    char moving[16];
+    std::snprintf(moving, sizeof moving, "A%02dS.MV%s", number, j.mm > 0 ? "POS" : "NEG");
+    lines.push_back(std::string("{wait_until: {signal: ") + moving +
+                    ", value: false, timeout: 10}}");
+    lines.push_back("{wait_until: {axis: " + j.axis + ", standstill: true, timeout: 1}}");
   }
   char process[8];
   std::snprintf(process, sizeof process, "P%02dC", scene.nc.data.process.number);
@@ -281,10 +294,14 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
     size_t last = first;
     while (last < mine.size() && mine[last]->interruption == mine[first]->interruption) ++last;
     while (!run.done() && run.time_s() < in.t_s - kAhead) run.Step();
+    // The group's results come back a line each through a pipe, so that `sink` runs here.
+    int lines[2];
+    if (::pipe(lines) != 0) throw std::runtime_error("pipe failed");
     std::fflush(nullptr);
     const pid_t group = ::fork();
     if (group < 0) throw std::runtime_error("fork failed");
     if (group == 0) {
+      ::close(lines[0]);
       scene.timeline.push_back(HoldStep(scene, in.t_s, scene.timeline.size()));
       while (!run.done() && run.time_s() < in.t_s + plan.hold_s - kAhead) run.Step();
       for (size_t k = first; k < last; ++k) {
@@ -311,12 +328,25 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
         int status = 0;
         ::waitpid(child, &status, 0);
         const CaseResult r = nlohmann::ordered_json::parse(text, nullptr, false);
-        sink(WIFEXITED(status) && WEXITSTATUS(status) == 0 && !r.is_discarded()
-                 ? r
-                 : DiedResult(plan, interruptions, c, status));
+        const CaseResult out = WIFEXITED(status) && WEXITSTATUS(status) == 0 && !r.is_discarded()
+                                   ? r
+                                   : DiedResult(plan, interruptions, c, status);
+        WriteAll(lines[1], out.dump() + "\n");
       }
       ::_exit(0);
     }
+    ::close(lines[1]);
+    std::string pending;
+    char buf[4096];
+    for (ssize_t n; (n = ::read(lines[0], buf, sizeof buf)) > 0;) {
+      pending.append(buf, static_cast<size_t>(n));
+      for (size_t eol; (eol = pending.find('\n')) != std::string::npos;) {
+        const CaseResult r = nlohmann::ordered_json::parse(pending.substr(0, eol), nullptr, false);
+        pending.erase(0, eol + 1);
+        if (!r.is_discarded()) sink(r);
+      }
+    }
+    ::close(lines[0]);
     int status = 0;
     ::waitpid(group, &status, 0);
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)

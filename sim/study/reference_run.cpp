@@ -41,7 +41,8 @@ Reference RunReference(const Scene& base, const std::string& work_dir) {
   scene.timeline.clear();
   scene.expectations.clear();
   scene.snapshots.clear();
-  TimelineStep start{TimelineStep::Kind::kNcStart};
+  TimelineStep start{};
+  start.kind = TimelineStep::Kind::kNcStart;
   start.text = "timeline[0]: nc start";
   scene.timeline.push_back(start);
   RunOptions options;
