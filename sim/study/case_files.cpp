@@ -39,7 +39,7 @@ std::string Cell(const nlohmann::ordered_json& v) {
 const char* const kColumns[] = {"case",     "subroutine", "interrupt",        "block",
                                 "per_mille", "t_interrupt_s", "retract",      "mode",
                                 "verdict",  "parts",      "point",            "min_clearance_mm",
-                                "path_length_mm", "repos_time_s", "error"};
+                                "path_length_mm", "repos_time_s", "error_number", "error"};
 
 void WriteAll(int fd, const std::string& s) {
   size_t done = 0;

@@ -81,6 +81,8 @@ class CaseObserver {
           path_.emplace_back(cx, cz);
         }
       }
+    } else if (kind == "signal" && e.value("name", "").ends_with("S.ERRNR")) {
+      error_number_ = static_cast<int>(e.value("value", 0.0));  // the message's number (507)
     } else if (kind == "nc") {
       const std::string state = e.value("state", "");
       if (state == "error") {
@@ -133,6 +135,7 @@ class CaseObserver {
                                  Fixed(plan.timeout_s) + " s"
                            : "timeout: the retract did not end";
     if (error.empty() && done_ && !subroutine_seen_) error = "the REPOS subroutine did not run";
+    r["error_number"] = error_number_ ? nlohmann::ordered_json(error_number_) : nullptr;
     r["error"] = error.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(error);
     r["retract_contact"] = retract_contact_;
     auto& path = r["path"] = nlohmann::ordered_json::array();
@@ -154,6 +157,7 @@ class CaseObserver {
   double min_clearance_ = std::numeric_limits<double>::infinity();
   nlohmann::ordered_json parts_, point_, position_, retract_contact_;
   std::string error_;
+  int error_number_ = 0;
   std::vector<std::pair<double, double>> path_;
 };
 

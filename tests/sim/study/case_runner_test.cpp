@@ -58,9 +58,11 @@ TEST(study_cases, TinyStudyVerdicts) {
   EXPECT_GT(up["min_clearance_mm"].get<double>(), 0);
   EXPECT_GT(up["path_length_mm"].get<double>(), 39.0);  // 20 in Z, then 20 in X
   EXPECT_TRUE(up["parts"].is_null());
+  EXPECT_TRUE(up["error_number"].is_null());
   const CaseResult& chuck = by_retract["over the chuck"];
   EXPECT_EQ(chuck["verdict"], "collision") << chuck.dump();
-  EXPECT_THAT(chuck["error"].get<std::string>(), ::testing::HasSubstr("507"));
+  EXPECT_EQ(chuck["error_number"], 507) << chuck.dump();  // PxxS.ERRNR: collision ahead
+  EXPECT_THAT(chuck["error"].get<std::string>(), ::testing::HasSubstr("collision ahead (G77)"));
   ASSERT_TRUE(chuck["parts"].is_array());
   EXPECT_EQ(chuck["parts"].size(), 2u);
   EXPECT_EQ(chuck["point"].size(), 3u);
