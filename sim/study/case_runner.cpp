@@ -38,12 +38,17 @@ class CaseObserver {
  public:
   /// `start_index`: the final start's step. The phase is marked one step before it, at the
   /// switch to AUTO: a step's event comes after the channel's events of its tick.
-  explicit CaseObserver(size_t start_index)
-      : start_prefix_("timeline[" + std::to_string(start_index - 1) + "]") {}
+  /// `marker`: the step whose start ends the retract (0: none watched).
+  explicit CaseObserver(size_t start_index, size_t marker = 0)
+      : start_prefix_("timeline[" + std::to_string(start_index - 1) + "]"),
+        marker_prefix_(marker ? "timeline[" + std::to_string(marker) + "]" : "") {}
 
   void OnEvent(const nlohmann::ordered_json& e) {
     const std::string kind = e.value("event", "");
     const double t = e.value("t", 0.0);
+    if (kind == "step" && !marker_prefix_.empty() &&
+        e.value("text", "").starts_with(marker_prefix_))
+      marker_seen_ = true;
     if (kind == "step" && e.value("text", "").starts_with(start_prefix_)) {
       repos_phase_ = true;
       t_start_ = t;
@@ -95,6 +100,7 @@ class CaseObserver {
   }
 
   bool done() const { return done_; }
+  bool marker_seen() const { return marker_seen_; }
   bool repos_phase() const { return repos_phase_; }
   double t_start() const { return t_start_; }
 
@@ -150,7 +156,8 @@ class CaseObserver {
     t_end_ = t;
   }
 
-  std::string start_prefix_;
+  std::string start_prefix_, marker_prefix_;
+  bool marker_seen_ = false;
   bool repos_phase_ = false, subroutine_seen_ = false, done_ = false, contact_ = false;
   bool have_command_ = false;
   double t_start_ = 0, t_end_ = 0, x_ = 0, z_ = 0;
@@ -236,9 +243,12 @@ TimelineStep HoldStep(const Scene& scene, double t_s, size_t index) {
   return Step(scene, "{at: " + Fixed(t_s) + ", nc: stop}", index);
 }
 
-std::vector<TimelineStep> OperatorSteps(const Scene& scene, const StudyPlan& plan,
-                                        const Interruption& in, const RetractPattern& retract,
-                                        ReposMode mode, size_t first, size_t* start_index) {
+namespace {
+
+// The retract: manual mode, the jogs, and a short wait whose start marks that the retract is
+// over (its step event), so that the modes can fork from there.
+std::vector<std::string> RetractLines(const Scene& scene, const StudyPlan& plan,
+                                      const Interruption& in, const RetractPattern& retract) {
   std::vector<std::string> lines;
   lines.push_back("{at: " + Fixed(in.t_s + plan.hold_s) + ", nc: {mode: manual}}");
   for (const RetractJog& j : retract.jogs) {
@@ -257,13 +267,55 @@ std::vector<TimelineStep> OperatorSteps(const Scene& scene, const StudyPlan& pla
                     ", value: false, timeout: 10}}");
     lines.push_back("{wait_until: {axis: " + j.axis + ", standstill: true, timeout: 1}}");
   }
+  lines.push_back("{wait: 0.01}");
+  return lines;
+}
+
+// REPOS or RESTA, AUTO, start: the last line is the start.
+std::vector<std::string> ModeLines(const Scene& scene, ReposMode mode) {
   char process[8];
   std::snprintf(process, sizeof process, "P%02dC", scene.nc.data.process.number);
-  lines.push_back(std::string("{signal: {name: ") + process +
-                  (mode == ReposMode::kRepositioning ? ".REPOS" : ".RESTA") + ", value: true}}");
-  lines.push_back("{wait: 0.1}");
-  lines.push_back("{nc: {mode: automatic}}");
-  lines.push_back("{nc: start}");
+  return {std::string("{signal: {name: ") + process +
+              (mode == ReposMode::kRepositioning ? ".REPOS" : ".RESTA") + ", value: true}}",
+          "{wait: 0.1}", "{nc: {mode: automatic}}", "{nc: start}"};
+}
+
+void Append(Scene& scene, const std::vector<std::string>& lines) {
+  for (const std::string& l : lines)
+    scene.timeline.push_back(Step(scene, l, scene.timeline.size()));
+}
+
+// Runs `work` in a forked child that writes result lines to the fd it gets; the lines, and in
+// *status how the child ended.
+std::vector<std::string> InChild(const std::function<void(int)>& work, int* status) {
+  int fds[2];
+  if (::pipe(fds) != 0) ::_exit(3);
+  std::fflush(nullptr);
+  const pid_t child = ::fork();
+  if (child < 0) ::_exit(4);
+  if (child == 0) {
+    ::close(fds[0]);
+    work(fds[1]);
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  const std::string text = ReadAll(fds[0]);
+  ::close(fds[0]);
+  ::waitpid(child, status, 0);
+  std::vector<std::string> lines;
+  size_t begin = 0;
+  for (size_t end; (end = text.find('\n', begin)) != std::string::npos; begin = end + 1)
+    lines.push_back(text.substr(begin, end - begin));
+  return lines;
+}
+
+}  // namespace
+
+std::vector<TimelineStep> OperatorSteps(const Scene& scene, const StudyPlan& plan,
+                                        const Interruption& in, const RetractPattern& retract,
+                                        ReposMode mode, size_t first, size_t* start_index) {
+  std::vector<std::string> lines = RetractLines(scene, plan, in, retract);
+  for (const std::string& l : ModeLines(scene, mode)) lines.push_back(l);
   std::vector<TimelineStep> steps;
   for (size_t k = 0; k < lines.size(); ++k) steps.push_back(Step(scene, lines[k], first + k));
   *start_index = first + lines.size() - 1;
@@ -308,34 +360,55 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
       ::close(lines[0]);
       scene.timeline.push_back(HoldStep(scene, in.t_s, scene.timeline.size()));
       while (!run.done() && run.time_s() < in.t_s + plan.hold_s - kAhead) run.Step();
-      for (size_t k = first; k < last; ++k) {
-        const StudyCase& c = *mine[k];
-        int fds[2];
-        if (::pipe(fds) != 0) ::_exit(3);
-        const pid_t child = ::fork();
-        if (child < 0) ::_exit(4);
-        if (child == 0) {
-          ::close(fds[0]);
-          size_t start_index = 0;
-          for (TimelineStep& s : OperatorSteps(scene, plan, in, plan.retracts[c.retract], c.mode,
-                                               scene.timeline.size(), &start_index))
-            scene.timeline.push_back(std::move(s));
-          CaseObserver obs(start_index);
-          observer = &obs;
-          RunCase(run, obs, plan, CaseLimit(plan, in, plan.retracts[c.retract]));
-          WriteAll(fds[1], obs.Result(plan, interruptions, c, run.time_s()).dump());
-          ::_exit(0);
-        }
-        ::close(fds[1]);
-        const std::string text = ReadAll(fds[0]);
-        ::close(fds[0]);
+      // The cases of one retract share it: a child per retract runs it, a grandchild per mode.
+      for (size_t k = first; k < last;) {
+        const RetractPattern& retract = plan.retracts[mine[k]->retract];
+        size_t end = k;
+        while (end < last && mine[end]->retract == mine[k]->retract) ++end;
         int status = 0;
-        ::waitpid(child, &status, 0);
-        const CaseResult r = nlohmann::ordered_json::parse(text, nullptr, false);
-        const CaseResult out = WIFEXITED(status) && WEXITSTATUS(status) == 0 && !r.is_discarded()
-                                   ? r
-                                   : DiedResult(plan, interruptions, c, status);
-        WriteAll(lines[1], out.dump() + "\n");
+        const std::vector<std::string> got = InChild(
+            [&](int fd) {
+              Append(scene, RetractLines(scene, plan, in, retract));
+              const size_t marker = scene.timeline.size() - 1;
+              const size_t start_index = marker + ModeLines(scene, ReposMode::kRestart).size();
+              CaseObserver obs(start_index, marker);
+              observer = &obs;
+              const double limit = CaseLimit(plan, in, retract);
+              while (!run.done() && !obs.done() && !obs.marker_seen() && run.time_s() < limit)
+                run.Step();
+              for (size_t m = k; m < end; ++m) {
+                const StudyCase& c = *mine[m];
+                if (!obs.marker_seen()) {  // the retract ended the case (a refused jog)
+                  WriteAll(fd, obs.Result(plan, interruptions, c, run.time_s()).dump() + "\n");
+                  continue;
+                }
+                int mode_status = 0;
+                const std::vector<std::string> one = InChild(
+                    [&](int mode_fd) {
+                      Append(scene, ModeLines(scene, c.mode));
+                      RunCase(run, obs, plan, limit);
+                      WriteAll(mode_fd,
+                               obs.Result(plan, interruptions, c, run.time_s()).dump() + "\n");
+                    },
+                    &mode_status);
+                const bool ok = WIFEXITED(mode_status) && WEXITSTATUS(mode_status) == 0 &&
+                                one.size() == 1;
+                WriteAll(fd, (ok ? one[0]
+                                 : DiedResult(plan, interruptions, c, mode_status).dump()) +
+                                 "\n");
+              }
+            },
+            &status);
+        for (size_t m = k; m < end; ++m) {
+          const StudyCase& c = *mine[m];
+          CaseResult r = m - k < got.size()
+                             ? nlohmann::ordered_json::parse(got[m - k], nullptr, false)
+                             : nlohmann::ordered_json();
+          if (r.is_discarded() || !r.is_object() || r.value("case", "") != c.id)
+            r = DiedResult(plan, interruptions, c, status);
+          WriteAll(lines[1], r.dump() + "\n");
+        }
+        k = end;
       }
       ::_exit(0);
     }

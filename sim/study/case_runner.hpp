@@ -6,9 +6,10 @@
 //
 // The run-up to an interruption point is the same for every case there, and the simulation is
 // deterministic and single-threaded: so the program runs once per subroutine, and at each
-// interruption point the process forks (POSIX fork) -- a child holds the feed, and forks again
-// for each case, which appends its operator steps to the timeline and runs on. A case run so
-// gives the same result as the case run from the start (RunCaseFromStart; a test checks it).
+// interruption point the process forks (POSIX fork) -- a child holds the feed and forks a
+// child per retract, which appends the retract's steps to the timeline, runs them and forks a
+// child per mode (REPOS or RESTA, AUTO, start). A case run so gives the same result as the case
+// run from the start (RunCaseFromStart; a test checks it).
 
 #include <functional>
 #include <nlohmann/json.hpp>
