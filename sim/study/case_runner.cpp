@@ -46,6 +46,11 @@ class CaseObserver {
   void OnEvent(const nlohmann::ordered_json& e) {
     const std::string kind = e.value("event", "");
     const double t = e.value("t", 0.0);
+    if (kind == "signal" && e.value("name", "").ends_with("S.ERRNR")) {
+      error_number_ = static_cast<int>(e.value("value", 0.0));  // the message's number (507)
+      return;
+    }
+    if (done_) return;  // only the message number may still come (the gateway's next cycle)
     if (kind == "step" && !marker_prefix_.empty() &&
         e.value("text", "").starts_with(marker_prefix_))
       marker_seen_ = true;
@@ -86,8 +91,6 @@ class CaseObserver {
           path_.emplace_back(cx, cz);
         }
       }
-    } else if (kind == "signal" && e.value("name", "").ends_with("S.ERRNR")) {
-      error_number_ = static_cast<int>(e.value("value", 0.0));  // the message's number (507)
     } else if (kind == "nc") {
       const std::string state = e.value("state", "");
       if (state == "error") {
@@ -101,6 +104,7 @@ class CaseObserver {
 
   bool done() const { return done_; }
   bool marker_seen() const { return marker_seen_; }
+  bool error_pending() const { return !error_.empty() && error_number_ == 0; }
   bool repos_phase() const { return repos_phase_; }
   double t_start() const { return t_start_; }
 
@@ -178,6 +182,8 @@ void RunCase(SceneRun& run, CaseObserver& obs, const StudyPlan& plan, double lim
   while (!run.done() && !obs.done() && run.time_s() < limit_s &&
          !(obs.repos_phase() && run.time_s() > obs.t_start() + plan.timeout_s))
     run.Step();
+  // An NC error shows its number (PxxS.ERRNR) at the gateway's next NC cycle.
+  for (int k = 0; k < 8 && obs.error_pending() && !run.done(); ++k) run.Step();
 }
 
 RunOptions CaseOptions(CaseObserver** observer) {
@@ -376,6 +382,7 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
               const double limit = CaseLimit(plan, in, retract);
               while (!run.done() && !obs.done() && !obs.marker_seen() && run.time_s() < limit)
                 run.Step();
+              for (int w = 0; w < 8 && obs.error_pending() && !run.done(); ++w) run.Step();
               for (size_t m = k; m < end; ++m) {
                 const StudyCase& c = *mine[m];
                 if (!obs.marker_seen()) {  // the retract ended the case (a refused jog)
