@@ -5,8 +5,12 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <iostream>
+#include <thread>
+#include <unistd.h>
 
 #include "control/gateway/signal_table_format.hpp"
 #include "control/nc/parser.hpp"
@@ -18,6 +22,7 @@
 #include "sim/model/model_error.hpp"
 #include "sim/runner/runner.hpp"
 #include "sim/runner/scene_renderer.hpp"
+#include "sim/study/study.hpp"
 
 namespace {
 
@@ -74,6 +79,59 @@ int Snapshot(const std::string& scene_path, double at, const std::string& camera
   render::WritePng(out, renderer.Render(r.final_joint_positions, *cam, width, height));
   std::printf("%s: %s at %.4f s -> %s\n", scene.name.c_str(), camera.c_str(), r.simulated_s,
               out.c_str());
+  return 0;
+}
+
+// `vmt study repos`: the cases of the scene's `study:` plan into a study folder.
+int StudyRepos(sim::study::StudyOptions options, const std::string& shard,
+               const std::string& per_mille, const std::string& bench_json) {
+  if (!shard.empty()) {
+    const size_t slash = shard.find('/');
+    try {
+      size_t used = 0;
+      options.shard = std::stoi(shard.substr(0, slash), &used);
+      if (slash == std::string::npos || used != slash) throw std::invalid_argument(shard);
+      options.shards = std::stoi(shard.substr(slash + 1), &used);
+      if (used != shard.size() - slash - 1) throw std::invalid_argument(shard);
+    } catch (const std::exception&) {
+      std::fprintf(stderr, "vmt: error: --shard %s: expected K/N, e.g. 2/8\n", shard.c_str());
+      return 2;
+    }
+  }
+  if (!per_mille.empty()) {
+    std::vector<int> points;
+    std::stringstream ss(per_mille);
+    for (std::string p; std::getline(ss, p, ',');) {
+      try {
+        size_t used = 0;
+        points.push_back(std::stoi(p, &used));
+        if (used != p.size()) throw std::invalid_argument(p);
+      } catch (const std::exception&) {
+        std::fprintf(stderr, "vmt: error: --per-mille %s: expected numbers 0..1000, e.g. 250,750\n",
+                     per_mille.c_str());
+        return 2;
+      }
+    }
+    options.per_mille = points;
+  }
+  options.progress = options.progress && ::isatty(2);
+  const sim::study::StudySummary s = sim::study::RunStudy(options);
+  std::printf("%s: %zu cases (%zu run, %zu already there) in %.2f s: %.0f cases/min with %d "
+              "job(s)\n%s",
+              options.out_dir.c_str(), s.cases, s.run, s.skipped, s.wall_s, s.cases_per_minute,
+              options.jobs, s.text.c_str());
+  std::printf("output: %s/{cases.jsonl,cases.csv,report.html}\n", options.out_dir.c_str());
+  if (!bench_json.empty()) {
+    std::filesystem::create_directories(std::filesystem::path(bench_json).parent_path().empty()
+                                            ? std::filesystem::path(".")
+                                            : std::filesystem::path(bench_json).parent_path());
+    std::ofstream out(bench_json);
+    out << "{\"benchmark\": \"study\", \"scene\": \"" << options.scene
+        << "\", \"cases\": " << s.run << ", \"wall_s\": " << s.wall_s
+        << ", \"cases_per_minute\": " << s.cases_per_minute << ", \"jobs\": " << options.jobs
+        << ", \"cores\": " << std::thread::hardware_concurrency() << "}\n";
+    if (!out) throw std::runtime_error("cannot write " + bench_json);
+  }
   return 0;
 }
 
@@ -183,6 +241,38 @@ int main(int argc, char** argv) {
       "Exit status: 0 the scene ended and passed, 1 it ended with failures, 2 bad input, 3 "
       "stopped early (lockstep idle timeout, SIGINT or SIGTERM); serve.json says why.");
 
+  CLI::App* study = app.add_subcommand("study", "Collision studies of REPOS subroutines");
+  study->require_subcommand(1);
+  sim::study::StudyOptions study_options;
+  std::string shard, per_mille, bench_json;
+  double every_ms = 0;
+  size_t max_cases = 0;
+  bool no_fork = false;
+  CLI::App* repos = study->add_subcommand(
+      "repos", "Run the cases of a scene's study: plan (interruptions x retracts x modes x REPOS "
+               "subroutines) on the kinematic backend with PathGuard");
+  repos->add_option("scene", study_options.scene, "Scene file with a study: section")->required();
+  repos->add_option("--out", study_options.out_dir, "Study folder (a rerun skips its cases)")
+      ->required();
+  repos->add_option("--jobs", study_options.jobs, "Worker processes")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+  repos->add_option("--shard", shard, "K/N: this process runs shard K of N (every N-th group)");
+  repos->add_option("--every-ms", every_ms, "Interrupt every T ms of the program's run")
+      ->check(CLI::Range(1.0, 1e7));
+  repos->add_option("--per-mille", per_mille,
+                    "Interrupt every motion block at these points, e.g. 250,750");
+  repos->add_option("--max-cases", max_cases, "Only the first N cases (of this shard)");
+  repos->add_flag("--no-fork", no_fork,
+                  "Run every case from the program's start (slow; checks the forked run-ups)");
+  repos->add_option("--bench-json", bench_json, "Also write the speed here as JSON");
+  std::vector<std::string> merge_dirs;
+  std::string merge_out;
+  CLI::App* merge =
+      study->add_subcommand("merge", "Join study folders (shards) into one, one result per case");
+  merge->add_option("dirs", merge_dirs, "Study folders")->required();
+  merge->add_option("--out", merge_out, "The joined study folder")->required();
+
   CLI::App* imgdiff = app.add_subcommand(
       "imgdiff", "Compare two PNG pictures: exit 0 equal, 1 different, 2 bad input");
   imgdiff->add_option("a", a, "First PNG")->required();
@@ -206,6 +296,19 @@ int main(int argc, char** argv) {
     if (*run) return Run(scene, backend, until, out, sets);
     if (*snap) return Snapshot(scene, at, camera, out, width, height);
     if (*check) return Check(scene, dialect);
+    if (*repos) {
+      if (every_ms > 0) study_options.every_ms = every_ms;
+      if (max_cases > 0) study_options.max_cases = max_cases;
+      study_options.fork_cases = !no_fork;
+      study_options.progress = true;
+      return StudyRepos(study_options, shard, per_mille, bench_json);
+    }
+    if (*merge) {
+      const size_t n = sim::study::MergeStudies(merge_dirs, merge_out);
+      std::printf("%s: %zu cases; output: %s/{cases.jsonl,cases.csv,report.html}\n",
+                  merge_out.c_str(), n, merge_out.c_str());
+      return 0;
+    }
     if (*serve) {
       if (realtime && lockstep) {
         std::fprintf(stderr, "vmt: error: --lockstep and --realtime exclude each other\n");

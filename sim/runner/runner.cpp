@@ -156,6 +156,7 @@ struct SceneRun::State {
     event["t"] = std::round(event["t"].get<double>() * 1e6) / 1e6;
     if (writing) events_file << event.dump() << '\n';
     NoteSnapshotEvent(event);
+    if (options.on_event) options.on_event(event);
   }
   void NoteSnapshotEvent(const nlohmann::ordered_json& event);
   void TakeSnapshot(const SnapshotSpec& s, const std::string& file, nlohmann::ordered_json event);

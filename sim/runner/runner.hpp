@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "control/gateway/signal_image.hpp"
 #include "control/plc/axd_wr.hpp"
 #include "sim/scene/scene.hpp"
@@ -26,6 +28,9 @@ struct RunOptions {
   /// With external_plc: a `fault: {plc: client_gone}` step has run (vmt serve then drops its
   /// Modbus clients, after the Poll that is running the cycle). Called from Step.
   std::function<void()> on_plc_client_gone;
+  /// Every event as events.jsonl records it (also when nothing is written), in order, from
+  /// the tick that makes it: a study reads its cases' path_guard and repos events here.
+  std::function<void(const nlohmann::ordered_json&)> on_event;
 };
 
 struct ExpectationResult {

@@ -35,7 +35,8 @@ Scene LoadScene(const std::string& path) {
   const YamlNode root = YamlNode::LoadFile(path);
   if (!root.IsMap()) root.Fail("a scene file is a map");
   root.AllowKeys({"scene", "model", "backend", "duration", "trace_period", "workpiece", "initial",
-                  "plc", "nc", "timeline", "expect", "snapshots", "cameras", "measuring_pages"});
+                  "plc", "nc", "timeline", "expect", "snapshots", "cameras", "measuring_pages",
+                  "study"});  // study: read by vmt study (sim/study), not by a run
   Scene s;
   s.file = path;
   s.name = root["scene"].String();

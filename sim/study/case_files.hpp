@@ -1,0 +1,41 @@
+#pragma once
+// A study folder's results: cases.jsonl (one JSON object per case) and cases.csv (the same,
+// one row per case). Each case is appended with a single write() to files opened O_APPEND, so
+// the workers of one study write side by side without tearing lines, and a study stopped
+// half-way keeps every case it finished.
+
+#include <string>
+#include <vector>
+
+#include "sim/study/case_runner.hpp"
+
+namespace vmt::sim::study {
+
+std::string CsvHeader();
+std::string CsvRow(const CaseResult& r);
+
+/// The complete lines of a cases.jsonl (a torn last line of a killed study is left out); none
+/// if the file is not there.
+std::vector<CaseResult> ReadCases(const std::string& jsonl_path);
+
+/// One result per id (the first), sorted by id.
+std::vector<CaseResult> Deduplicated(std::vector<CaseResult> cases);
+
+/// Writes dir/cases.jsonl and dir/cases.csv anew from `cases`, in their order.
+void RewriteCaseFiles(const std::string& dir, const std::vector<CaseResult>& cases);
+
+class CaseFiles {
+ public:
+  /// Opens (creates) dir/cases.jsonl and dir/cases.csv for appending; the CSV gets its header
+  /// when empty. Throws std::runtime_error if they cannot be opened.
+  explicit CaseFiles(const std::string& dir);
+  ~CaseFiles();
+  CaseFiles(const CaseFiles&) = delete;
+  CaseFiles& operator=(const CaseFiles&) = delete;
+  void Write(const CaseResult& r);
+
+ private:
+  int jsonl_ = -1, csv_ = -1;
+};
+
+}  // namespace vmt::sim::study

@@ -1,0 +1,52 @@
+#pragma once
+// Runs a study's cases on the kinematic backend with PathGuard on every move. A case is the
+// scene's program interrupted by a feed hold, the operator's retract (incremental jogs in
+// manual mode), the call of repositioning or NC-block restart (PxxC.REPOS / PxxC.RESTA), AUTO
+// and start: the REPOS subroutine runs; the case ends at its RTS or at an NC error.
+//
+// The run-up to an interruption point is the same for every case there, and the simulation is
+// deterministic and single-threaded: so the program runs once per subroutine, and at each
+// interruption point the process forks (POSIX fork) -- a child holds the feed and forks a
+// child per retract, which appends the retract's steps to the timeline, runs them and forks a
+// child per mode (REPOS or RESTA, AUTO, start). A case run so gives the same result as the case
+// run from the start (RunCaseFromStart; a test checks it).
+
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "sim/study/study_cases.hpp"
+
+namespace vmt::sim::study {
+
+/// The scene of one subroutine: the base scene with the subroutine file appended to its
+/// programs (as program 99: the main program must have no .REPOS of its own), no expectations,
+/// no snapshots, and a timeline that only starts the program.
+Scene SubroutineScene(const Scene& base, const Subroutine& subroutine);
+
+/// The feed hold at t (timeline step `index`).
+TimelineStep HoldStep(const Scene& scene, double t_s, size_t index);
+/// The operator's steps of a case after the hold, from timeline index `first`; *start_index is
+/// the index of the final start in AUTO (where the REPOS phase begins).
+std::vector<TimelineStep> OperatorSteps(const Scene& scene, const StudyPlan& plan,
+                                        const Interruption& in, const RetractPattern& retract,
+                                        ReposMode mode, size_t first, size_t* start_index);
+
+/// The case's result line (cases.jsonl): id, interruption, retract, mode, verdict (collision |
+/// clear | error), the first contact's parts and point, the smallest clearance of the REPOS
+/// moves, the approach path (X, Z) and its length, the simulated time of the REPOS phase.
+using CaseResult = nlohmann::ordered_json;
+
+/// Runs the cases of `cases` that belong to subroutine `sub` (sorted by interruption), calling
+/// `sink` with each result as it finishes. With `fork` false each case runs from the start.
+void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
+                        const std::vector<Interruption>& interruptions,
+                        const std::vector<StudyCase>& cases, size_t sub, bool fork,
+                        const std::function<void(const CaseResult&)>& sink);
+
+/// One case from the program's start, without fork.
+CaseResult RunCaseFromStart(const Scene& base, const StudyPlan& plan,
+                            const std::vector<Interruption>& interruptions, const StudyCase& c);
+
+}  // namespace vmt::sim::study

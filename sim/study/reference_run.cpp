@@ -1,0 +1,151 @@
+#include "sim/study/reference_run.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "sim/runner/runner.hpp"
+
+namespace vmt::sim::study {
+namespace {
+
+std::vector<std::string> SplitCsv(const std::string& row) {
+  std::vector<std::string> out;
+  std::stringstream ss(row);
+  for (std::string cell; std::getline(ss, cell, ',');) out.push_back(cell);
+  return out;
+}
+
+// The first word of each source line of the main program: the block's N number if it has one.
+std::vector<std::string> FirstWords(const Scene& scene) {
+  std::vector<std::string> words;
+  if (scene.nc.programs.empty()) return words;
+  const auto& files = scene.nc.programs[0]->program.files;
+  if (files.empty()) return words;
+  std::ifstream in(files[0]);
+  for (std::string line; std::getline(in, line);) {
+    std::stringstream ss(line);
+    std::string w;
+    ss >> w;
+    words.push_back(w);
+  }
+  return words;
+}
+
+}  // namespace
+
+Reference RunReference(const Scene& base, const std::string& work_dir) {
+  Scene scene = base;
+  scene.timeline.clear();
+  scene.expectations.clear();
+  scene.snapshots.clear();
+  TimelineStep start{};
+  start.kind = TimelineStep::Kind::kNcStart;
+  start.text = "timeline[0]: nc start";
+  scene.timeline.push_back(start);
+  RunOptions options;
+  options.backend = BackendKind::kKinematic;
+  options.out_dir = work_dir;
+  options.snapshots = false;
+  std::string state, error;
+  options.on_event = [&](const nlohmann::ordered_json& e) {
+    if (e.value("event", "") != "nc") return;
+    state = e.value("state", "");
+    error = e.value("error", "");
+  };
+  {
+    SceneRun run(scene, options);
+    while (!run.done() && state != "ended" && state != "error") run.Step();
+    run.Finish();
+  }
+  if (state != "ended")
+    throw std::runtime_error("the study's reference run of " + base.file +
+                             (state == "error" ? " stopped with an NC error: " + error
+                                               : " did not end within its duration"));
+  std::ifstream trace(work_dir + "/trace.csv");
+  std::string row;
+  std::getline(trace, row);
+  const std::vector<std::string> head = SplitCsv(row);
+  auto column = [&](const std::string& name) {
+    for (size_t i = 0; i < head.size(); ++i)
+      if (head[i] == name) return static_cast<int>(i);
+    throw std::runtime_error("the reference trace has no column " + name);
+  };
+  const int cx = column("X.pos"), cz = column("Z.pos"), cs = column("nc.state"),
+            cl = column("nc.line");
+  const std::vector<std::string> words = FirstWords(base);
+  Reference ref;
+  bool started = false;
+  double last_path_t = -1;
+  BlockSpan* open = nullptr;
+  double open_x = 0, open_z = 0;
+  while (std::getline(trace, row)) {
+    const std::vector<std::string> c = SplitCsv(row);
+    if (c.size() < head.size()) continue;
+    const double t = std::stod(c[0]), x = std::stod(c[cx]), z = std::stod(c[cz]);
+    const int st = std::lround(std::stod(c[cs])), line = std::lround(std::stod(c[cl]));
+    const bool running = st == static_cast<int>(control::channel::ChannelState::kRunning);
+    if (running && !started) started = true, ref.start_s = t;
+    if (!started) continue;
+    if (t - last_path_t >= 0.01 - 1e-9) {
+      ref.path.emplace_back(x, z);
+      last_path_t = t;
+    }
+    if (!running) {
+      if (st == static_cast<int>(control::channel::ChannelState::kEnded)) {
+        ref.end_s = t;
+        break;
+      }
+      continue;
+    }
+    if (!open || open->line != line) {
+      BlockSpan b;
+      b.line = line;
+      b.label = line >= 1 && line <= static_cast<int>(words.size()) && !words[line - 1].empty() &&
+                        words[line - 1][0] == 'N'
+                    ? words[line - 1]
+                    : "L" + std::to_string(line);
+      b.start_s = b.end_s = t;
+      ref.blocks.push_back(b);
+      open = &ref.blocks.back();
+      open_x = x, open_z = z;
+    }
+    open->end_s = t;
+    if (std::abs(x - open_x) > 1e-3 || std::abs(z - open_z) > 1e-3) open->motion = true;
+  }
+  if (ref.end_s <= ref.start_s) ref.end_s = ref.blocks.empty() ? ref.start_s : ref.blocks.back().end_s;
+  return ref;
+}
+
+std::string ReferenceJson(const Reference& r) {
+  nlohmann::ordered_json j;
+  j["start_s"] = r.start_s;
+  j["end_s"] = r.end_s;
+  auto& blocks = j["blocks"] = nlohmann::ordered_json::array();
+  for (const BlockSpan& b : r.blocks)
+    blocks.push_back({{"line", b.line},
+                      {"label", b.label},
+                      {"start_s", b.start_s},
+                      {"end_s", b.end_s},
+                      {"motion", b.motion}});
+  auto& path = j["path"] = nlohmann::ordered_json::array();
+  for (const auto& [x, z] : r.path) path.push_back({x, z});
+  return j.dump() + "\n";
+}
+
+Reference ReferenceFromJson(const std::string& text) {
+  const nlohmann::json j = nlohmann::json::parse(text);
+  Reference r;
+  r.start_s = j.at("start_s").get<double>();
+  r.end_s = j.at("end_s").get<double>();
+  for (const auto& b : j.at("blocks"))
+    r.blocks.push_back({b.at("line").get<int>(), b.at("label").get<std::string>(),
+                        b.at("start_s").get<double>(), b.at("end_s").get<double>(),
+                        b.at("motion").get<bool>()});
+  for (const auto& p : j.at("path")) r.path.emplace_back(p.at(0).get<double>(), p.at(1).get<double>());
+  return r;
+}
+
+}  // namespace vmt::sim::study

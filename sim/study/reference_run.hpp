@@ -1,0 +1,38 @@
+#pragma once
+// The reference run of a study: the scene's program once, uninterrupted, on the kinematic
+// backend. Its trace gives the time span of every block of the main program (where per-mille
+// interruption points lie), the program's end (where every-T-ms points stop) and the tool's
+// XZ path (the contour as turned, the report's background).
+
+#include <string>
+#include <vector>
+
+#include "sim/scene/scene.hpp"
+
+namespace vmt::sim::study {
+
+/// A block of the main program as it ran: its source line and the time it was current.
+struct BlockSpan {
+  int line = 0;
+  std::string label;  ///< the block's first word (N0030), else "L<line>"
+  double start_s = 0, end_s = 0;
+  bool motion = false;  ///< X or Z moved while it was current
+};
+
+struct Reference {
+  double start_s = 0;  ///< the program started (the NC ran)
+  double end_s = 0;    ///< it ended
+  std::vector<BlockSpan> blocks;
+  std::vector<std::pair<double, double>> path;  ///< (X, Z) of the tool, mm, every 10 ms
+};
+
+/// Runs `scene`'s program alone (timeline: start, run to its end) and reads its trace in
+/// `work_dir` (created; the trace stays there). Throws std::runtime_error if the program does
+/// not end within the scene's duration without an error.
+Reference RunReference(const Scene& scene, const std::string& work_dir);
+
+/// The reference as JSON (the study folder's reference.json) and back.
+std::string ReferenceJson(const Reference& r);
+Reference ReferenceFromJson(const std::string& text);
+
+}  // namespace vmt::sim::study

@@ -1,0 +1,200 @@
+#include "sim/study/study.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <thread>
+
+#include "sim/study/case_files.hpp"
+#include "sim/study/study_report.hpp"
+
+namespace vmt::sim::study {
+namespace {
+
+std::string ReadText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+// The reference run is the scene's alone: a rerun (or another shard) in the folder reuses it.
+Reference LoadOrRunReference(const Scene& scene, const std::string& dir) {
+  const std::string file = dir + "/reference.json";
+  if (std::filesystem::exists(file)) {
+    try {
+      return ReferenceFromJson(ReadText(file));
+    } catch (const std::exception&) {  // torn: run it again
+    }
+  }
+  const std::string work = dir + "/.reference-" + std::to_string(::getpid());
+  const Reference ref = RunReference(scene, work);
+  std::filesystem::remove_all(work);
+  const std::string tmp = file + "." + std::to_string(::getpid());
+  std::ofstream(tmp, std::ios::binary) << ReferenceJson(ref);
+  std::filesystem::rename(tmp, file);
+  return ref;
+}
+
+size_t CountLines(const std::string& path) {
+  const std::string text = ReadText(path);
+  return static_cast<size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+void Bar(size_t done, size_t total, double wall_s) {
+  const int width = 40;
+  const int filled = total ? static_cast<int>(width * done / total) : width;
+  const double rate = wall_s > 0 ? done / wall_s * 60 : 0;
+  std::fprintf(stderr, "\r[%s%s] %zu/%zu cases, %.0f/min ", std::string(filled, '#').c_str(),
+               std::string(width - filled, '.').c_str(), done, total, rate);
+  std::fflush(stderr);
+}
+
+std::string Tally(const std::vector<CaseResult>& cases) {
+  struct Count {
+    size_t n = 0, clear = 0, collision = 0, error = 0;
+  };
+  std::map<std::string, Count> by;
+  for (const CaseResult& r : cases) {
+    Count& c = by[r.value("subroutine", "")];
+    const std::string v = r.value("verdict", "");
+    ++c.n;
+    c.clear += v == "clear", c.collision += v == "collision";
+    c.error += v != "clear" && v != "collision";
+  }
+  std::string s;
+  for (const auto& [sub, c] : by)
+    s += sub + ": " + std::to_string(c.n) + " cases, " + std::to_string(c.clear) + " clear, " +
+         std::to_string(c.collision) + " collisions, " + std::to_string(c.error) + " errors\n";
+  return s;
+}
+
+}  // namespace
+
+StudySummary RunStudy(const StudyOptions& o) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  if (o.shards < 1 || o.shard < 1 || o.shard > o.shards)
+    throw std::runtime_error("--shard K/N needs 1 <= K <= N");
+  if (o.jobs < 1 || o.jobs > 256) throw std::runtime_error("--jobs needs 1..256");
+  const Scene scene = LoadScene(o.scene);
+  StudyPlan plan = LoadStudyPlan(o.scene, scene);
+  if (o.every_ms) {
+    if (!(*o.every_ms >= 1)) throw std::runtime_error("--every-ms needs at least 1");
+    plan.every_ms = *o.every_ms;
+    plan.per_mille.clear();
+  }
+  if (o.per_mille) {
+    for (const int p : *o.per_mille)
+      if (p < 0 || p > 1000) throw std::runtime_error("--per-mille points are 0..1000");
+    plan.per_mille = *o.per_mille;
+    plan.every_ms = 0;
+  }
+  std::filesystem::create_directories(o.out_dir);
+  const Reference ref = LoadOrRunReference(scene, o.out_dir);
+  const std::vector<Interruption> interruptions = Interruptions(plan, ref);
+  std::vector<StudyCase> cases;
+  for (const StudyCase& c : EnumerateCases(plan, interruptions))
+    if (InShard(c, o.shard, o.shards)) cases.push_back(c);
+  if (o.max_cases && cases.size() > *o.max_cases) cases.resize(*o.max_cases);
+
+  // What the folder holds already (whole lines only) is kept and skipped.
+  const std::vector<CaseResult> held = Deduplicated(ReadCases(o.out_dir + "/cases.jsonl"));
+  RewriteCaseFiles(o.out_dir, held);
+  std::set<std::string> done;
+  for (const CaseResult& r : held) done.insert(r["case"].get<std::string>());
+  std::vector<StudyCase> todo;
+  for (const StudyCase& c : cases)
+    if (!done.count(c.id)) todo.push_back(c);
+
+  StudySummary summary;
+  summary.cases = cases.size();
+  summary.skipped = cases.size() - todo.size();
+  summary.run = todo.size();
+  // Workers take whole groups (one interruption point of one subroutine) in turn.
+  std::map<size_t, int> worker_of;
+  for (const StudyCase& c : todo)
+    if (!worker_of.count(c.group)) {
+      const int w = static_cast<int>(worker_of.size() % static_cast<size_t>(o.jobs));
+      worker_of[c.group] = w;
+    }
+  const size_t before = CountLines(o.out_dir + "/cases.jsonl");
+  std::vector<pid_t> workers;
+  std::fflush(nullptr);
+  for (int w = 0; w < o.jobs && !todo.empty(); ++w) {
+    const pid_t pid = ::fork();
+    if (pid < 0) throw std::runtime_error("fork failed");
+    if (pid > 0) {
+      workers.push_back(pid);
+      continue;
+    }
+    int code = 0;
+    try {
+      std::vector<StudyCase> mine;
+      for (const StudyCase& c : todo)
+        if (worker_of[c.group] == w) mine.push_back(c);
+      CaseFiles files(o.out_dir);
+      for (size_t s = 0; s < plan.subroutines.size(); ++s)
+        RunSubroutineCases(scene, plan, interruptions, mine, s, o.fork_cases,
+                           [&](const CaseResult& r) { files.Write(r); });
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "vmt study: worker %d: %s\n", w, e.what());
+      code = 1;
+    }
+    std::fflush(nullptr);
+    ::_exit(code);
+  }
+  bool failed = false;
+  for (size_t alive = workers.size(); alive > 0;) {
+    for (pid_t& pid : workers) {
+      if (pid <= 0) continue;
+      int status = 0;
+      if (::waitpid(pid, &status, WNOHANG) == pid) {
+        failed = failed || !WIFEXITED(status) || WEXITSTATUS(status) != 0;
+        pid = 0;
+        --alive;
+      }
+    }
+    if (o.progress) {
+      const double wall =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+      Bar(CountLines(o.out_dir + "/cases.jsonl") - before, todo.size(), wall);
+    }
+    if (alive > 0) std::this_thread::sleep_for(std::chrono::milliseconds(o.progress ? 200 : 20));
+  }
+  if (o.progress) std::fprintf(stderr, "\n");
+  const std::vector<CaseResult> all = Deduplicated(ReadCases(o.out_dir + "/cases.jsonl"));
+  WriteReport(o.out_dir, "REPOS study: " + scene.name);
+  if (failed) throw std::runtime_error("a study worker failed; the finished cases are kept");
+  summary.wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  summary.cases_per_minute = summary.wall_s > 0 ? summary.run / summary.wall_s * 60 : 0;
+  summary.text = Tally(all);
+  return summary;
+}
+
+size_t MergeStudies(const std::vector<std::string>& dirs, const std::string& out_dir) {
+  std::vector<CaseResult> all;
+  std::string reference;
+  for (const std::string& d : dirs) {
+    if (!std::filesystem::exists(d + "/cases.jsonl"))
+      throw std::runtime_error(d + ": no cases.jsonl (not a study folder)");
+    std::vector<CaseResult> some = ReadCases(d + "/cases.jsonl");
+    all.insert(all.end(), std::make_move_iterator(some.begin()),
+               std::make_move_iterator(some.end()));
+    if (reference.empty() && std::filesystem::exists(d + "/reference.json"))
+      reference = ReadText(d + "/reference.json");
+  }
+  all = Deduplicated(std::move(all));
+  RewriteCaseFiles(out_dir, all);
+  if (!reference.empty()) std::ofstream(out_dir + "/reference.json", std::ios::binary) << reference;
+  WriteReport(out_dir, "REPOS study (merged)");
+  return all.size();
+}
+
+}  // namespace vmt::sim::study

@@ -1,0 +1,40 @@
+#pragma once
+// `vmt study repos`: a study folder from a scene's case plan -- the reference run, the cases
+// (sharded, in worker processes), cases.jsonl / cases.csv as they finish, report.html at the
+// end. A rerun into the same folder skips the cases it holds.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vmt::sim::study {
+
+struct StudyOptions {
+  std::string scene;
+  std::string out_dir;
+  int jobs = 1;                  ///< worker processes
+  int shard = 1, shards = 1;     ///< this process' share: groups g with g % shards == shard - 1
+  std::optional<double> every_ms;           ///< overrides the plan's interruption
+  std::optional<std::vector<int>> per_mille;
+  bool fork_cases = true;  ///< false: every case runs from the program's start (slow; a check)
+  bool progress = false;   ///< a progress bar on stderr
+  std::optional<size_t> max_cases;  ///< the first N cases of this shard only (benchmarks)
+};
+
+struct StudySummary {
+  size_t cases = 0;    ///< in this shard
+  size_t skipped = 0;  ///< already in the folder
+  size_t run = 0;
+  double wall_s = 0;
+  double cases_per_minute = 0;  ///< run / wall time
+  std::string text;             ///< per subroutine: cases, collisions, errors
+};
+
+/// Throws ModelError (scene or plan) or std::runtime_error.
+StudySummary RunStudy(const StudyOptions& options);
+
+/// `vmt study merge`: joins the case files of `dirs` (one result per case id) into `out_dir`,
+/// with reference.json of the first that has one, and writes report.html. The number of cases.
+size_t MergeStudies(const std::vector<std::string>& dirs, const std::string& out_dir);
+
+}  // namespace vmt::sim::study

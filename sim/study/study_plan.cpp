@@ -1,0 +1,107 @@
+#include "sim/study/study_plan.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "sim/model/yaml_reader.hpp"
+
+namespace vmt::sim::study {
+
+const char* ToString(ReposMode m) {
+  return m == ReposMode::kRepositioning ? "repositioning" : "restart";
+}
+
+namespace {
+
+RetractPattern ReadRetract(const YamlNode& n, const Scene& scene) {
+  if (!n.IsMap()) n.Fail("expected {name: ..., jogs: [{axis: X, mm: 20}, ...]}");
+  n.AllowKeys({"name", "jogs"});
+  RetractPattern r;
+  r.name = n["name"].String();
+  if (r.name.empty()) n["name"].Fail("a retract needs a name");
+  const YamlNode jogs = n["jogs"];
+  if (!jogs.IsSequence()) jogs.Fail("expected a list of jogs");
+  for (size_t i = 0; i < jogs.size(); ++i) {
+    const YamlNode j = jogs[i];
+    if (!j.IsMap()) j.Fail("expected {axis: X, mm: 20}");
+    j.AllowKeys({"axis", "mm"});
+    RetractJog jog{j["axis"].String(), j["mm"].Double()};
+    const auto& axes = scene.nc.data.axes;
+    if (std::none_of(axes.begin(), axes.end(), [&](const auto& a) { return a.name == jog.axis; }))
+      j["axis"].Fail("no NC axis " + jog.axis + " in this scene");
+    if (jog.mm == 0 || std::abs(jog.mm) > 10000) j["mm"].Fail("expected a distance, not 0");
+    r.jogs.push_back(jog);
+  }
+  return r;
+}
+
+}  // namespace
+
+StudyPlan LoadStudyPlan(const std::string& scene_path, const Scene& scene) {
+  const YamlNode root = YamlNode::LoadFile(scene_path);
+  if (!root.IsMap() || !root.Has("study")) root.Fail("a study needs a `study:` section");
+  const YamlNode s = root["study"];
+  if (!s.IsMap()) s.Fail("expected a map");
+  s.AllowKeys({"interrupt", "retracts", "modes", "subroutines", "hold", "timeout"});
+  if (!scene.nc.present) root.Fail("a study needs an `nc:` section");
+  // The case's operator steps are NC and signal steps; an embedded PLC would take the keys.
+  if (scene.plc.present) root["plc"].Fail("a study scene has no `plc:` (the study is the operator)");
+  StudyPlan plan;
+  const YamlNode in = s["interrupt"];
+  if (!in.IsMap()) in.Fail("expected {every_ms: T} or {per_mille: [250, 750]}");
+  in.AllowKeys({"every_ms", "per_mille"});
+  if (in.Has("every_ms") == in.Has("per_mille")) in.Fail("expected one of every_ms, per_mille");
+  if (in.Has("every_ms")) {
+    plan.every_ms = in["every_ms"].Double();
+    if (!(plan.every_ms >= 1)) in["every_ms"].Fail("expected at least 1 ms");
+  } else {
+    const YamlNode pm = in["per_mille"];
+    if (!pm.IsSequence() || pm.size() == 0) pm.Fail("expected a list of points 0..1000");
+    for (size_t i = 0; i < pm.size(); ++i) {
+      const int p = pm[i].Int();
+      if (p < 0 || p > 1000) pm[i].Fail("expected 0..1000");
+      plan.per_mille.push_back(p);
+    }
+  }
+  const YamlNode rs = s["retracts"];
+  if (!rs.IsSequence() || rs.size() == 0) rs.Fail("expected a list of retract patterns");
+  for (size_t i = 0; i < rs.size(); ++i) {
+    plan.retracts.push_back(ReadRetract(rs[i], scene));
+    for (size_t k = 0; k + 1 < plan.retracts.size(); ++k)
+      if (plan.retracts[k].name == plan.retracts.back().name)
+        rs[i]["name"].Fail("two retracts named " + plan.retracts.back().name);
+  }
+  if (s.Has("modes")) {
+    const YamlNode ms = s["modes"];
+    if (!ms.IsSequence() || ms.size() == 0) ms.Fail("expected [repositioning, restart]");
+    plan.modes.clear();
+    for (size_t i = 0; i < ms.size(); ++i) {
+      const std::string m = ms[i].String();
+      if (m == "repositioning")
+        plan.modes.push_back(ReposMode::kRepositioning);
+      else if (m == "restart")
+        plan.modes.push_back(ReposMode::kRestart);
+      else
+        ms[i].Fail("expected repositioning or restart");
+    }
+  }
+  const YamlNode subs = s["subroutines"];
+  if (!subs.IsSequence() || subs.size() == 0) subs.Fail("expected a list of NC files");
+  for (size_t i = 0; i < subs.size(); ++i) {
+    Subroutine sub{subs[i].String(), ""};
+    sub.file = (std::filesystem::path(scene_path).parent_path() / sub.name).lexically_normal();
+    if (!std::ifstream(sub.file)) subs[i].Fail("cannot open NC program " + sub.file);
+    for (const Subroutine& o : plan.subroutines)
+      if (o.name == sub.name) subs[i].Fail("listed twice");
+    plan.subroutines.push_back(sub);
+  }
+  plan.hold_s = s.Double("hold", plan.hold_s);
+  if (!(plan.hold_s >= 0.01 && plan.hold_s <= 60)) s["hold"].Fail("expected 0.01..60 s");
+  plan.timeout_s = s.Double("timeout", plan.timeout_s);
+  if (!(plan.timeout_s >= 0.1 && plan.timeout_s <= 3600)) s["timeout"].Fail("expected 0.1..3600 s");
+  return plan;
+}
+
+}  // namespace vmt::sim::study

@@ -1,0 +1,57 @@
+// cases.jsonl / cases.csv: appended whole lines, a torn last line dropped on reading, one
+// result per case id, CSV quoting.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "sim/study/case_files.hpp"
+#include "sim/study/study_report.hpp"
+
+namespace vmt::sim::study {
+namespace {
+
+CaseResult Case(const std::string& id, const std::string& verdict) {
+  CaseResult r;
+  r["case"] = id;
+  r["subroutine"] = "nc/99.mtc";
+  r["retract"] = "X+, then \"Z+\"";
+  r["verdict"] = verdict;
+  r["parts"] = verdict == "collision" ? nlohmann::ordered_json({"tool", "chuck"}) : nullptr;
+  r["point"] = nullptr;
+  r["min_clearance_mm"] = verdict == "clear" ? nlohmann::ordered_json(1.5) : nullptr;
+  r["path"] = nlohmann::ordered_json::array({{40.0, 120.0}, {28.0, 100.0}});
+  return r;
+}
+
+TEST(study_files, AppendReadDeduplicate) {
+  const std::string dir = std::string(VMT_BINARY_DIR) + "/test_output/study/files";
+  std::filesystem::remove_all(dir);
+  {
+    CaseFiles files(dir);
+    files.Write(Case("b", "clear"));
+    files.Write(Case("a", "collision"));
+    files.Write(Case("b", "error"));  // a second result of b: the first stays
+  }
+  std::ofstream(dir + "/cases.jsonl", std::ios::app) << "{\"case\":\"c\",\"verd";  // torn
+  const std::vector<CaseResult> read = ReadCases(dir + "/cases.jsonl");
+  ASSERT_EQ(read.size(), 3u);
+  const std::vector<CaseResult> d = Deduplicated(read);
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_EQ(d[0]["case"], "a");
+  EXPECT_EQ(d[1]["verdict"], "clear");
+  std::ifstream csv(dir + "/cases.csv");
+  std::string header, row;
+  std::getline(csv, header);
+  std::getline(csv, row);
+  EXPECT_EQ(header.rfind("case,subroutine,interrupt,", 0), 0u);
+  EXPECT_NE(row.find("\"X+, then \"\"Z+\"\"\""), std::string::npos) << row;
+  RewriteCaseFiles(dir, d);
+  EXPECT_EQ(ReadCases(dir + "/cases.jsonl").size(), 2u);
+  const std::string html = ReportHtml("t", d, nullptr);
+  EXPECT_NE(html.find("<svg"), std::string::npos);
+  EXPECT_NE(html.find("[&quot;tool&quot;,&quot;chuck&quot;]"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace vmt::sim::study

@@ -1,0 +1,98 @@
+// A tiny study with known verdicts: over the chuck, program 99's X-first return collides (507);
+// lifted and moved off to the free end, it is clear. A forked case equals the case run from the
+// program's start; the runner's event hook sees what events.jsonl records.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "sim/runner/runner.hpp"
+#include "sim/study/case_runner.hpp"
+
+namespace vmt::sim::study {
+namespace {
+
+const std::string kTiny = std::string(VMT_SOURCE_DIR) + "/tests/sim/study/tiny-study.yaml";
+
+struct Tiny {
+  Scene scene = LoadScene(kTiny);
+  StudyPlan plan = LoadStudyPlan(kTiny, scene);
+  Reference ref;
+  std::vector<Interruption> interruptions;
+  std::vector<StudyCase> cases;
+  Tiny() {
+    const std::string dir = std::string(VMT_BINARY_DIR) + "/test_output/study/tiny-reference";
+    ref = RunReference(scene, dir);
+    interruptions = Interruptions(plan, ref);
+    // Only the first interruption (3 s after the start: N0030, the pass at X28).
+    for (const StudyCase& c : EnumerateCases(plan, interruptions))
+      if (c.interruption == 0) cases.push_back(c);
+  }
+};
+
+TEST(study_cases, ReferenceRunFindsTheBlocks) {
+  const Tiny t;
+  ASSERT_GE(t.interruptions.size(), 2u);
+  EXPECT_NEAR(t.interruptions[0].t_s - t.ref.start_s, 3.0, 0.0011);
+  EXPECT_EQ(t.interruptions[0].block, "N0030");
+  std::vector<std::string> motion;
+  for (const BlockSpan& b : t.ref.blocks)
+    if (b.motion) motion.push_back(b.label);
+  EXPECT_THAT(motion, ::testing::Contains("N0030"));
+  EXPECT_GT(t.ref.end_s, 6.0);
+  EXPECT_GT(t.ref.path.size(), 100u);
+}
+
+TEST(study_cases, TinyStudyVerdicts) {
+  const Tiny t;
+  ASSERT_EQ(t.cases.size(), 2u);
+  std::map<std::string, CaseResult> by_retract;
+  RunSubroutineCases(t.scene, t.plan, t.interruptions, t.cases, 0, true,
+                     [&](const CaseResult& r) { by_retract[r["retract"].get<std::string>()] = r; });
+  ASSERT_EQ(by_retract.size(), 2u);
+  const CaseResult& up = by_retract["X+ then Z+"];
+  EXPECT_EQ(up["verdict"], "clear") << up.dump();
+  ASSERT_TRUE(up["min_clearance_mm"].is_number()) << up.dump();
+  EXPECT_GT(up["min_clearance_mm"].get<double>(), 0);
+  EXPECT_GT(up["path_length_mm"].get<double>(), 39.0);  // 20 in Z, then 20 in X
+  EXPECT_TRUE(up["parts"].is_null());
+  EXPECT_TRUE(up["error_number"].is_null());
+  const CaseResult& chuck = by_retract["over the chuck"];
+  EXPECT_EQ(chuck["verdict"], "collision") << chuck.dump();
+  EXPECT_EQ(chuck["error_number"], 507) << chuck.dump();  // PxxS.ERRNR: collision ahead
+  EXPECT_THAT(chuck["error"].get<std::string>(), ::testing::HasSubstr("collision ahead (G77)"));
+  ASSERT_TRUE(chuck["parts"].is_array());
+  EXPECT_EQ(chuck["parts"].size(), 2u);
+  EXPECT_EQ(chuck["point"].size(), 3u);
+  EXPECT_EQ(chuck["case"], "../../../scenes/nc/99.mtc/" +
+                               t.interruptions[0].label + "/over the chuck/repositioning");
+}
+
+TEST(study_cases, ForkedCaseEqualsTheCaseRunFromTheStart) {
+  const Tiny t;
+  std::vector<CaseResult> forked;
+  RunSubroutineCases(t.scene, t.plan, t.interruptions, t.cases, 0, true,
+                     [&](const CaseResult& r) { forked.push_back(r); });
+  ASSERT_EQ(forked.size(), t.cases.size());
+  for (size_t i = 0; i < t.cases.size(); ++i)
+    EXPECT_EQ(forked[i].dump(), RunCaseFromStart(t.scene, t.plan, t.interruptions, t.cases[i]).dump());
+}
+
+TEST(study_runner_hook, OnEventSeesWhatEventsJsonlRecords) {
+  const Scene scene = LoadScene(std::string(VMT_SOURCE_DIR) + "/scenes/repos-collision.yaml");
+  RunOptions options;
+  options.snapshots = false;
+  options.out_dir = std::string(VMT_BINARY_DIR) + "/test_output/study/hook";
+  std::string seen;
+  options.on_event = [&](const nlohmann::ordered_json& e) { seen += e.dump() + "\n"; };
+  RunScene(scene, options);
+  std::ifstream in(options.out_dir + "/events.jsonl", std::ios::binary);
+  const std::string written((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_EQ(seen, written);
+  EXPECT_THAT(seen, ::testing::HasSubstr("\"event\":\"path_guard\""));
+}
+
+}  // namespace
+}  // namespace vmt::sim::study

@@ -1,0 +1,83 @@
+// The `study:` plan: read from the showcase scene, ignored by a run, bad input named with
+// file:line:col and the YAML path.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "sim/model/model_error.hpp"
+#include "sim/study/study_plan.hpp"
+
+namespace vmt::sim::study {
+namespace {
+
+const std::string kShowcase = std::string(VMT_SOURCE_DIR) + "/scenes/study-repos-turning.yaml";
+
+TEST(study_plan, ReadsTheShowcase) {
+  const Scene scene = LoadScene(kShowcase);  // the scene loader accepts `study:` and skips it
+  const StudyPlan plan = LoadStudyPlan(kShowcase, scene);
+  EXPECT_EQ(plan.every_ms, 0);
+  EXPECT_EQ(plan.per_mille, (std::vector<int>{250, 750}));
+  ASSERT_EQ(plan.retracts.size(), 4u);
+  EXPECT_EQ(plan.retracts[1].name, "X+ then Z-");
+  ASSERT_EQ(plan.retracts[1].jogs.size(), 2u);
+  EXPECT_EQ(plan.retracts[1].jogs[1].axis, "Z");
+  EXPECT_EQ(plan.retracts[1].jogs[1].mm, -20);
+  EXPECT_EQ(plan.modes, (std::vector<ReposMode>{ReposMode::kRepositioning, ReposMode::kRestart}));
+  ASSERT_EQ(plan.subroutines.size(), 2u);
+  EXPECT_EQ(plan.subroutines[1].name, "nc/99_safe.mtc");
+  EXPECT_TRUE(std::filesystem::exists(plan.subroutines[1].file));
+}
+
+// A copy of the tiny study with its `study:` section replaced.
+std::string Error(const std::string& study) {
+  const std::string dir = std::string(VMT_SOURCE_DIR) + "/tests/sim/study";
+  const std::string file = dir + "/bad-study.tmp.yaml";
+  {
+    std::ifstream in(dir + "/tiny-study.yaml");
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    text = text.substr(0, text.find("study:"));
+    std::ofstream(file) << text << study;
+  }
+  std::string message = "no error";
+  try {
+    const Scene scene = LoadScene(file);
+    LoadStudyPlan(file, scene);
+  } catch (const ModelError& e) {
+    message = e.what();
+  }
+  std::filesystem::remove(file);
+  return message;
+}
+
+TEST(study_plan, BadInputNamesFileLineAndPath) {
+  using ::testing::HasSubstr;
+  using ::testing::MatchesRegex;
+  const std::string retract = "  retracts: [{name: up, jogs: [{axis: X, mm: 20}]}]\n";
+  const std::string subs = "  subroutines: [../../../scenes/nc/99.mtc]\n";
+  std::string e = Error("study:\n  interrupt: {per_mille: [250, 2000]}\n" + retract + subs);
+  EXPECT_THAT(e, MatchesRegex(".*bad-study.tmp.yaml:[0-9]+:[0-9]+: study.interrupt.per_mille.1.*"));
+  EXPECT_THAT(e, HasSubstr("0..1000"));
+  e = Error("study:\n  interrupt: {every_ms: 500, per_mille: [1]}\n" + retract + subs);
+  EXPECT_THAT(e, HasSubstr("expected one of every_ms, per_mille"));
+  e = Error("study:\n  interrupt: {every_ms: 500}\n  retracts: [{name: up, jogs: [{axis: Q, "
+            "mm: 20}]}]\n" + subs);
+  EXPECT_THAT(e, HasSubstr("no NC axis Q"));
+  EXPECT_THAT(e, MatchesRegex(".*:[0-9]+:[0-9]+: study.retracts.0..jogs.0..axis.*"));
+  e = Error("study:\n  interrupt: {every_ms: 500}\n" + retract + "  subroutines: [nope.mtc]\n");
+  EXPECT_THAT(e, HasSubstr("cannot open NC program"));
+  e = Error("study:\n  interrupt: {every_ms: 500}\n" + retract + subs + "  modes: [manual]\n");
+  EXPECT_THAT(e, HasSubstr("expected repositioning or restart"));
+  e = Error("study:\n  interrupt: {every_ms: 500}\n" + retract + subs + "  speed: 3\n");
+  EXPECT_THAT(e, HasSubstr("speed"));
+  e = Error("study:\n  interrupt: {every_ms: 500}\n  retracts: []\n" + subs);
+  EXPECT_THAT(e, HasSubstr("expected a list of retract patterns"));
+  e = Error("study: [1, 2]\n");
+  EXPECT_THAT(e, HasSubstr("expected a map"));
+  e = Error("stud:\n  interrupt: {every_ms: 500}\n");
+  EXPECT_THAT(e, HasSubstr("stud"));  // the scene loader refuses the typo
+}
+
+}  // namespace
+}  // namespace vmt::sim::study
