@@ -31,8 +31,11 @@ if [ -x "$build/bench/search_program" ] && [ -x "$build/sim/vmt" ]; then
   echo "== LinuxCNC comparison"
   python3 bench/linuxcnc_compare.py --build "$build" --out out/bench || true
 fi
-# Study cases per minute: out/bench/study.json ({"cases_per_minute"} or {"cases", "wall_s"}) once
-# vmt study exists; until then the report says "not measured".
+# Study cases per minute: the REPOS study showcase with two workers (out/bench/study.json).
+if [ -x "$build/sim/vmt" ]; then
+  echo "== study"
+  VMT="$build/sim/vmt" bash bench/study.sh || true
+fi
 echo "== report"
 python3 bench/report.py out/bench
 cat out/bench/report.md
