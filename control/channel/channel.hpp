@@ -291,6 +291,13 @@ class Channel {
   bool NextBlock(const AmplifierTelegram& at);
   bool RunBlock(const AmplifierTelegram& at);
   bool NextCompensated(const AmplifierTelegram& at);
+  /// Under G41/G42, reads on (through ReadNext, or straight from the interpreter while
+  /// `searching`) until the compensation has a final piece ready (kPiece), has given out all it
+  /// read (kDrained: compensating_ is off, source_done_ says whether the text ended) or failed.
+  enum class Compensated { kPiece, kDrained, kFailed };
+  Compensated FillReadyPiece(bool searching);
+  /// The next ready piece of the tip path into block_, built on its block.
+  ContourElement TakeReadyPiece();
   bool PushAhead(const nc::PreparedBlock& b);
   void DropLookahead();
   bool StartMotion(const AmplifierTelegram& at);

@@ -221,39 +221,19 @@ bool Channel::NextSearchBlock() {
                       s.position[axis_x_] - translation_[axis_x_]};
     if (!PushAhead(block_)) return false;
   }
-  ContourElement e;
-  while (ready_.empty()) {
-    while (trc_.Pop(e)) ready_.push_back(e);
-    if (!ready_.empty()) break;
-    if (const auto& err = trc_.error()) {
-      const nc::PreparedBlock& b = ahead_[static_cast<size_t>(err->tag - first_tag_)];
-      Fail(*ProgramOf(b.program), b.block, err->message, kMsgGouge);
+  switch (FillReadyPiece(true)) {
+    case Compensated::kFailed:
       return false;
-    }
-    if (source_done_ || (!trc_.active() && !trc_.pending())) {
-      // Everything read ahead is simulated: back to block by block.
-      compensating_ = false;
-      ahead_.clear();
+    case Compensated::kDrained:
       if (source_done_) {
         source_done_ = false;
         return text_ended();
       }
       return NextSearchBlock();
-    }
-    nc::PreparedBlock b;
-    if (!interpreter_->Next(b)) {
-      if (interpreter_->error()) return text_ended();
-      source_done_ = true;
-      trc_.Flush();
-      continue;
-    }
-    if (!PushAhead(b)) return false;
-    if (b.end) source_done_ = true, trc_.Flush();
+    case Compensated::kPiece:
+      break;
   }
-  e = ready_.front();
-  ready_.pop_front();
-  while (first_tag_ < e.tag) ahead_.pop_front(), ++first_tag_;
-  block_ = ElementBlock(e, ahead_.front());
+  const ContourElement e = TakeReadyPiece();
   s.further_piece = e.tag == last_run_tag_;
   s.inserted_piece = inserted_piece_ = e.inserted;
   last_run_tag_ = e.tag;

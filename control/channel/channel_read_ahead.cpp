@@ -115,7 +115,7 @@ bool Channel::PushAhead(const nc::PreparedBlock& b) {
   return true;
 }
 
-bool Channel::NextCompensated(const AmplifierTelegram& at) {
+Channel::Compensated Channel::FillReadyPiece(bool searching) {
   ContourElement e;
   while (ready_.empty()) {
     while (trc_.Pop(e)) ready_.push_back(e);
@@ -123,35 +123,52 @@ bool Channel::NextCompensated(const AmplifierTelegram& at) {
     if (const auto& err = trc_.error()) {
       const nc::PreparedBlock& b = ahead_[static_cast<size_t>(err->tag - first_tag_)];
       Fail(*ProgramOf(b.program), b.block, err->message, kMsgGouge);
-      return false;
+      return Compensated::kFailed;
     }
     if (source_done_ || (!trc_.active() && !trc_.pending())) {
-      // Everything read ahead has run: back to block-by-block.
+      // Everything read ahead is given out: back to block by block.
       compensating_ = false;
       ahead_.clear();
-      if (source_done_) {
-        state_ = ChannelState::kEnded, reversing_ = false;
-        return false;
-      }
-      return NextBlock(at);
+      return Compensated::kDrained;
     }
     nc::PreparedBlock b;
-    if (!ReadNext(b)) {
+    if (!(searching ? interpreter_->Next(b) : ReadNext(b))) {
       if (interpreter_->error()) {
         Fail(nc::Format(*interpreter_->error(), {interpreter_->ErrorFile()}), kMsgProgramError);
-        return false;
+        return Compensated::kFailed;
       }
       source_done_ = true;
       trc_.Flush();
       continue;
     }
-    if (!PushAhead(b)) return false;
+    if (!PushAhead(b)) return Compensated::kFailed;
     if (b.end) source_done_ = true, trc_.Flush();
   }
-  e = ready_.front();
+  return Compensated::kPiece;
+}
+
+ContourElement Channel::TakeReadyPiece() {
+  const ContourElement e = ready_.front();
   ready_.pop_front();
   while (first_tag_ < e.tag) ahead_.pop_front(), ++first_tag_;
   block_ = ElementBlock(e, ahead_.front());
+  return e;
+}
+
+bool Channel::NextCompensated(const AmplifierTelegram& at) {
+  switch (FillReadyPiece(false)) {
+    case Compensated::kFailed:
+      return false;
+    case Compensated::kDrained:
+      if (source_done_) {
+        state_ = ChannelState::kEnded, reversing_ = false;
+        return false;
+      }
+      return NextBlock(at);
+    case Compensated::kPiece:
+      break;
+  }
+  const ContourElement e = TakeReadyPiece();
   inserted_piece_ = e.inserted;
   if (e.tag != last_run_tag_) {
     last_run_tag_ = e.tag;

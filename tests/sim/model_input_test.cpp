@@ -284,16 +284,7 @@ TEST(ModelInputTest, MissingFile) {
 }
 
 std::string SceneError(const std::string& name, const std::string& body) {
-  const std::string dir = OutputDir("bad_scenes");
-  const std::string path = Write(
-      dir, name + ".yaml",
-      "scene: " + name + "\nmodel: " + SourcePath("models/lathe-c1/machine.yaml") + "\n" + body);
-  try {
-    LoadScene(path);
-  } catch (const ModelError& e) {
-    return e.what();
-  }
-  return "";
+  return testing::SceneLoadError(testing::WriteLatheScene("bad_scenes", name, body));
 }
 
 TEST(SceneInputTest, GoodSceneLoads) {

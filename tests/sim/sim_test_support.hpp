@@ -11,6 +11,7 @@
 #include <string>
 
 #include "sim/kinematic/kinematic_backend.hpp"
+#include "sim/model/model_error.hpp"
 #include "sim/physics/physics_backend.hpp"
 #include "sim/scene/scene.hpp"
 
@@ -34,6 +35,27 @@ inline std::string OutputDir(const std::string& name) {
 inline std::string ReadBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+/// A scene file on lathe-c1 for the loader tests: test_output/sim/<folder>/<name>.yaml holding
+/// the scene's name, the model and then `body`, the rest of its YAML.
+inline std::string WriteLatheScene(const std::string& folder, const std::string& name,
+                                   const std::string& body) {
+  const std::string path = OutputDir(folder) + "/" + name + ".yaml";
+  std::ofstream(path) << "scene: " << name
+                      << "\nmodel: " << SourcePath("models/lathe-c1/machine.yaml") << "\n"
+                      << body;
+  return path;
+}
+
+/// What loading the scene file throws, "" if it loads.
+inline std::string SceneLoadError(const std::string& path) {
+  try {
+    LoadScene(path);
+  } catch (const ModelError& e) {
+    return e.what();
+  }
+  return "";
 }
 
 inline const MachineModel& Lathe() {

@@ -13,6 +13,7 @@
 #include <tuple>
 #include <limits>
 
+#include "block_search_steps.hpp"
 #include "channel_test_support.hpp"
 #include "control/channel/channel.hpp"
 
@@ -50,27 +51,9 @@ constexpr const char* kShoulder =
     "N0210 Z158\n"
     "N0220 RET\n";
 
-struct Lathe : Machine {
+struct Lathe : testing::BlockSearchSteps<Machine> {
   explicit Lathe(const std::string& program, double x = 60, double z = 200)
-      : Machine(program, x, z, WithOffsetsAndTools) {}
-  bool RunUntil(const std::function<bool()>& done, double limit = 60) {
-    const double end = t + limit;
-    while (!done() && t < end) Tick();
-    return done();
-  }
-  BlockSearchState State() const { return channel->block_search().state; }
-  bool Waits(BlockSearchState s) {
-    return RunUntil([&] {
-      return State() == s || channel->state() == ChannelState::kError ||
-             channel->state() == ChannelState::kEnded;
-    });
-  }
-  void Search(const BlockSearchParameters& p) {
-    std::string error;
-    EXPECT_TRUE(channel->SetBlockSearch(p, &error)) << error;
-    channel->Start();
-  }
-  bool Ended() const { return channel->state() == ChannelState::kEnded; }
+      : BlockSearchSteps(program, x, z, WithOffsetsAndTools) {}
 };
 
 BlockSearchParameters Type4(uint32_t number, double permille) {

@@ -9,6 +9,7 @@
 
 #include <functional>
 
+#include "block_search_steps.hpp"
 #include "channel_test_support.hpp"
 #include "control/channel/channel.hpp"
 
@@ -46,8 +47,8 @@ constexpr const char* kSquareOneBlock =
 
 /// X, Y, Z on an ideal machine (actual = setpoint), a spindle on drive 3 that ramps to its
 /// speed at 6000 deg/s^2 and reports at-speed when there.
-struct Mill {
-  explicit Mill(const std::string& text, std::vector<double> start = {0, 0, 0},
+struct MillRig {
+  explicit MillRig(const std::string& text, std::vector<double> start = {0, 0, 0},
                 const std::function<void(ChannelConfig&)>& configure = {}) {
     parsed = nc::ParseProgram(text, "t_sv_number.nc", nc::Dialect::kIsg);
     EXPECT_TRUE(parsed.ok()) << nc::Format(parsed.errors[0], parsed.program.files);
@@ -78,30 +79,6 @@ struct Mill {
                (mdt.setpoints[3].mode == DriveMode::kPosition ? drive_status::kInPosition : 0u);
     t += 250e-6;
   }
-  bool RunUntil(const std::function<bool()>& done, double limit = 30) {
-    const double end = t + limit;
-    while (!done() && t < end) Tick();
-    return done();
-  }
-  BlockSearchState State() const { return channel->block_search().state; }
-  bool Waits(BlockSearchState s) {
-    return RunUntil([&] {
-      return State() == s || channel->state() == ChannelState::kError ||
-             channel->state() == ChannelState::kEnded;
-    });
-  }
-  void Search(const BlockSearchParameters& p) {
-    std::string error;
-    EXPECT_TRUE(channel->SetBlockSearch(p, &error)) << error;
-    channel->Start();
-  }
-  /// Start, the search, the automatic return, the hold at the contour: true when the channel
-  /// stands in HLI_BS_WAIT_FOR_CONTINUE_CONTOUR.
-  bool ToContour() {
-    if (!Waits(BlockSearchState::kWaitReturnToContour)) return false;
-    channel->Start();
-    return Waits(BlockSearchState::kWaitForContinueContour);
-  }
   double X() const { return at.feedback[0].position; }
   double Y() const { return at.feedback[1].position; }
   double Z() const { return at.feedback[2].position; }
@@ -113,6 +90,7 @@ struct Mill {
   double t = 0;
   bool moved = false;
 };
+using Mill = testing::BlockSearchSteps<MillRig>;
 
 BlockSearchParameters Type4(uint32_t number, uint32_t pass = 1) {
   BlockSearchParameters p;

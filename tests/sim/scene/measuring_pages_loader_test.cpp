@@ -8,7 +8,6 @@
 #include <fstream>
 #include <string>
 
-#include "sim/model/model_error.hpp"
 #include "sim/runner/runner.hpp"
 #include "sim/scene/scene.hpp"
 #include "tests/sim/sim_test_support.hpp"
@@ -18,17 +17,10 @@ namespace {
 
 using ::testing::HasSubstr;
 using testing::OutputDir;
-using testing::SourcePath;
 
 std::string WriteScene(const std::string& name, const std::string& body,
                        const std::string& duration = "0.05") {
-  const std::string dir = OutputDir("measuring_pages");
-  const std::string path = dir + "/" + name + ".yaml";
-  std::ofstream(path) << "scene: " << name
-                      << "\nmodel: " << SourcePath("models/lathe-c1/machine.yaml")
-                      << "\nduration: " << duration << "\n"
-                      << body;
-  return path;
+  return testing::WriteLatheScene("measuring_pages", name, "duration: " + duration + "\n" + body);
 }
 
 std::string NcSection(const std::string& program_name, const std::string& program) {
@@ -38,12 +30,7 @@ std::string NcSection(const std::string& program_name, const std::string& progra
 }
 
 std::string ErrorOf(const std::string& name, const std::string& body) {
-  try {
-    LoadScene(WriteScene(name, body));
-  } catch (const ModelError& e) {
-    return e.what();
-  }
-  return "";
+  return testing::SceneLoadError(WriteScene(name, body));
 }
 
 TEST(MeasuringPagesLoaderTest, StylusPageDefaultsToTheModelsProbe) {

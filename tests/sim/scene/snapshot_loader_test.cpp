@@ -6,10 +6,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <string>
 
-#include "sim/model/model_error.hpp"
 #include "sim/scene/scene.hpp"
 #include "tests/sim/sim_test_support.hpp"
 
@@ -17,25 +15,14 @@ namespace vmt::sim {
 namespace {
 
 using ::testing::HasSubstr;
-using testing::OutputDir;
-using testing::SourcePath;
 
 std::string WriteScene(const std::string& name, const std::string& snapshots) {
-  const std::string path = OutputDir("snapshot_loader") + "/" + name + ".yaml";
-  std::ofstream(path) << "scene: " << name
-                      << "\nmodel: " << SourcePath("models/lathe-c1/machine.yaml")
-                      << "\nduration: 0.01\nsnapshots:\n"
-                      << snapshots;
-  return path;
+  return testing::WriteLatheScene("snapshot_loader", name,
+                                  "duration: 0.01\nsnapshots:\n" + snapshots);
 }
 
 std::string ErrorOf(const std::string& name, const std::string& snapshots) {
-  try {
-    LoadScene(WriteScene(name, snapshots));
-  } catch (const ModelError& e) {
-    return e.what();
-  }
-  return "";
+  return testing::SceneLoadError(WriteScene(name, snapshots));
 }
 
 TEST(SnapshotLoaderTest, TimesAndEvents) {

@@ -8,10 +8,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <string>
 
-#include "sim/model/model_error.hpp"
 #include "sim/scene/scene.hpp"
 #include "tests/sim/sim_test_support.hpp"
 
@@ -19,18 +17,12 @@ namespace vmt::sim {
 namespace {
 
 using ::testing::HasSubstr;
-using testing::OutputDir;
-using testing::SourcePath;
 
 constexpr double kMm = 1e-3;
 
 std::string WriteScene(const std::string& name, const std::string& workpiece) {
-  const std::string path = OutputDir("workpiece_loader") + "/" + name + ".yaml";
-  std::ofstream(path) << "scene: " << name
-                      << "\nmodel: " << SourcePath("models/lathe-c1/machine.yaml")
-                      << "\nduration: 0.01\nworkpiece:\n"
-                      << workpiece;
-  return path;
+  return testing::WriteLatheScene("workpiece_loader", name,
+                                  "duration: 0.01\nworkpiece:\n" + workpiece);
 }
 
 Workpiece Load(const std::string& name, const std::string& workpiece) {
@@ -38,12 +30,7 @@ Workpiece Load(const std::string& name, const std::string& workpiece) {
 }
 
 std::string ErrorOf(const std::string& name, const std::string& workpiece) {
-  try {
-    Load(name, workpiece);
-  } catch (const ModelError& e) {
-    return e.what();
-  }
-  return "";
+  return testing::SceneLoadError(WriteScene(name, workpiece));
 }
 
 // The stepped shaft of measure-shaft: the d60 master, the d40 turned.
