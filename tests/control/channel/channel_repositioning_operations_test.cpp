@@ -389,12 +389,12 @@ TEST(ReposToolStorageAxis, TheTargetMayBePassedAndTheAdjustSymbolFollows) {
   EXPECT_TRUE(m.channel->repos_status().tool_storage_adjust);
   EXPECT_FALSE(m.channel->conditions_restored());
   // A whole turn later it is the same station (endless: the short way round).
-  JogToolStorageFor(m, +1, 11.5);
-  EXPECT_GT(m.at.feedback[3].position, 360);
+  JogToolStorageFor(m, +1, 12.5);
+  EXPECT_GT(m.at.feedback[3].position, 430);
   m.channel->JogToolStorage(-1);
-  for (int i = 0; i < 60000 && m.channel->repos_status().tool_storage_adjust; ++i) Tick(m);
+  for (int i = 0; i < 20000 && m.channel->repos_status().tool_storage_adjust; ++i) Tick(m);
   m.channel->JogToolStorage(0);
-  EXPECT_NEAR(std::remainder(m.at.feedback[3].position - 60, 360), 0, 0.5);
+  EXPECT_NEAR(m.at.feedback[3].position, 420, 0.1);  // 60 + one turn
 }
 
 TEST(ReposToolStorageAxis, Bxx045DecidesWhetherItCountsForCrest) {
