@@ -379,7 +379,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
     drive_positions_.resize(at.feedback.size());
     for (size_t d = 0; d < at.feedback.size(); ++d) drive_positions_[d] = at.feedback[d].position;
     ToolStorageCycle(dt);
-    if (!tool_storage_.positioning) tool_storage_wait_ = false;
+    if (ToolStorageArrived()) tool_storage_wait_ = false;
     if (mode_ == ChannelMode::kManual) {
       Jogging(dt);
     } else if (state_ == ChannelState::kRunning || state_ == ChannelState::kHold) {

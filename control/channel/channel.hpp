@@ -471,12 +471,15 @@ class Channel {
     double target = 0;
   };
   ToolStorageAxis tool_storage_;
-  bool tool_storage_wait_ = false;  ///< MRY: the block waits for the positioning to end
+  /// MRY: the block waits until MTP's positioning has ended and the axis stands at its place.
+  bool tool_storage_wait_ = false;
   bool ToolStorageNc() const { return config_.tool_storage_nc && ToolStorageKnown(); }
   void ToolStorageCycle(double dt);
   void WriteToolStorage(MasterTelegram& mdt) const;
   /// MTP (4.2 Tool Storage Axis): the NC traverses it back to the interruption's position.
   void ReturnToolStorage();
+  /// MTP's positioning has ended and the drive stands within kToolStorageWindow of its place.
+  bool ToolStorageArrived() const;
   void ReposCycle(const AmplifierTelegram& at);
   void StartReposRun();
   bool CheckReposBlock();

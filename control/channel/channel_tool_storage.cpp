@@ -35,6 +35,14 @@ void Channel::ReturnToolStorage() {
       ReposDistanceToGo(config_.tool_storage, tool_storage_.command, interruption_->tool_storage);
 }
 
+bool Channel::ToolStorageArrived() const {
+  if (!ToolStorageNc()) return true;
+  if (tool_storage_.positioning) return false;
+  const double actual = drive_positions_[config_.tool_storage_drive];
+  return std::abs(ReposDistanceToGo(config_.tool_storage, tool_storage_.target, actual)) <=
+         kToolStorageWindow;
+}
+
 void Channel::ToolStorageCycle(double dt) {
   if (!ToolStorageNc()) return;
   ToolStorageAxis& t = tool_storage_;

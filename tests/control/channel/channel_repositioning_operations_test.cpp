@@ -154,8 +154,14 @@ TEST(ReposSemiAutomatic, ASingleBlockHoldIsAnInterruption) {
   EXPECT_NEAR(m.X(), 100, 1e-9);
   EXPECT_TRUE(m.channel->conditions_restored());
   ASSERT_TRUE(m.channel->SetMode(ChannelMode::kAutomatic));
-  m.channel->Start();  // semi-automatic: N2, then a hold
-  RunFor(m, 2.0);
+  // 2.4 instruction: with single block the NC holds after the repositioning too; the next
+  // start runs N2, then a hold.
+  m.channel->Start();
+  RunFor(m, 0.5);
+  EXPECT_EQ(m.channel->state(), ChannelState::kHold);
+  EXPECT_NEAR(m.Z(), 0, 1e-9);
+  m.channel->Start();
+  RunFor(m, 6.0);
   EXPECT_EQ(m.channel->state(), ChannelState::kHold);
   EXPECT_NEAR(m.Z(), -50, 1e-9);
   EXPECT_FALSE(m.channel->repos_status().left_contour);  // a new interruption, not left
@@ -420,7 +426,12 @@ TEST(ReposToolStorageAxis, MtpReturnsAnNcControlledToolStorageAxisAndMryWaits) {
   RunFor(m, 0.1);
   EXPECT_LT(m.at.feedback[3].position, 149);  // on its way back
   EXPECT_EQ(m.Z(), z);                         // MRY: the G77 waits for it
-  m.RunUntilEnd();
+  while (m.channel->state() == ChannelState::kRunning && m.t < 60) {
+    Tick(m);
+    if (m.at.feedback[3].position > 60 + kToolStorageWindow) {
+      EXPECT_EQ(m.Z(), z);
+    }
+  }
   EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
   EXPECT_NEAR(m.at.feedback[3].position, 60, 1e-9);
   EXPECT_NEAR(m.X(), 100, 1e-9);
