@@ -221,9 +221,10 @@ bool Channel::SetMode(ChannelMode mode) {
     if (mode == ChannelMode::kManual && !interruption_ && state_ == ChannelState::kHold &&
         !repos_run_)
       CaptureInterruption();
-    // REPOS manual 2.1: the interrupted MDI blocks keep their interpreter through manual mode.
+    // Manual mode during the REPOS subroutine's hold: the next start runs it again.
     if (mode == ChannelMode::kManual && repos_run_ && state_ == ChannelState::kHold)
       repos_rerun_ = true;
+    // REPOS manual 2.1: interrupted MDI blocks keep their interpreter through manual mode.
     if ((mode == ChannelMode::kMdi || mode_ == ChannelMode::kMdi) && !interrupted) {
       if (interpreter_) last_modal_ = interpreter_->modal();
       interpreter_.reset();
