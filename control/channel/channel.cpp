@@ -143,7 +143,10 @@ bool Channel::Mdi(const std::string& text) {
 bool Channel::Reverse() {
   if (mode_ != ChannelMode::kAutomatic || programs_.empty()) return false;
   if (state_ != ChannelState::kHold && state_ != ChannelState::kError) return false;
-  if (repos_run_) SwapProgramInWork();  // the REPOS subroutine is given up (4.1)
+  if (repos_run_) {  // the REPOS subroutine is given up (4.1); its variables are the program's
+    HandBackVariables();
+    SwapProgramInWork();
+  }
   parked_ = ProgramInWork{};
   ClearRepos();
   if (!interpreter_) interpreter_ = MakeInterpreter();
@@ -205,15 +208,24 @@ bool Channel::SetMode(ChannelMode mode) {
   if (state_ == ChannelState::kRunning && headstock_ && headstock_->busy() && mode != mode_) Stop();
   if (state_ == ChannelState::kRunning) return false;
   // MDI and an interrupted automatic program do not share the interpreter: MDI needs the
-  // program ended or reset first.
-  if (mode == ChannelMode::kMdi && state_ == ChannelState::kHold) return false;
+  // program ended or reset first, and an interrupted MDI sequence ("execute in manual mode",
+  // REPOS manual 2.1) goes on in MDI, not in automatic.
+  const bool interrupted = state_ == ChannelState::kHold && interpreter_;
+  if (interrupted && mode != ChannelMode::kManual &&
+      (mode == ChannelMode::kMdi) != running_mdi_)
+    return false;
   if (mode != mode_) {
     for (JogAxis& j : jog_) j = JogAxis{};
+    tool_storage_.key = 0;
     // Where the program was interrupted: the contour the axes must come back to (REPOS 2.1).
     if (mode == ChannelMode::kManual && !interruption_ && state_ == ChannelState::kHold &&
         !repos_run_)
       CaptureInterruption();
-    if (mode == ChannelMode::kMdi || mode_ == ChannelMode::kMdi) {
+    // Manual mode during the REPOS subroutine's hold: the next start runs it again.
+    if (mode == ChannelMode::kManual && repos_run_ && state_ == ChannelState::kHold)
+      repos_rerun_ = true;
+    // REPOS manual 2.1: interrupted MDI blocks keep their interpreter through manual mode.
+    if ((mode == ChannelMode::kMdi || mode_ == ChannelMode::kMdi) && !interrupted) {
       if (interpreter_) last_modal_ = interpreter_->modal();
       interpreter_.reset();
       if (state_ == ChannelState::kEnded) state_ = ChannelState::kIdle;
@@ -233,6 +245,13 @@ void Channel::Start() {
     if (StartBlockSearchHold()) return;
     // Fast measurement 6.1, Q9998: the new start acknowledges OVERSIZE / UNDERSIZE.
     if (error_number_ == kMsgMeasuringContinuable) error_.clear(), error_number_ = 0;
+    if (repos_run_ && repos_rerun_) {
+      // Stopped during the REPOS subroutine and left for manual mode (jogged, perhaps): its
+      // G77 in work no longer starts where the axes stand. It runs again from `.REPOS`, to
+      // the same interruption point; the subroutine's progress is no new interruption.
+      StartReposRun();
+      return;
+    }
     if (repos_run_) {  // the REPOS subroutine was held: it goes on
       state_ = ChannelState::kRunning;
       return;
@@ -286,6 +305,7 @@ void Channel::Reset() {
   dwell_left_s_ = 0;
   orienting_ = false;
   aux_output_.clear();
+  tool_storage_.positioning = tool_storage_wait_ = false;
   if (repos_run_) SwapProgramInWork();
   parked_ = ProgramInWork{};
   ClearRepos();
@@ -359,6 +379,8 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
     if (headstock_) HeadstockCycle(at, dt);
     drive_positions_.resize(at.feedback.size());
     for (size_t d = 0; d < at.feedback.size(); ++d) drive_positions_[d] = at.feedback[d].position;
+    ToolStorageCycle(dt);
+    if (ToolStorageArrived()) tool_storage_wait_ = false;
     if (mode_ == ChannelMode::kManual) {
       Jogging(dt);
     } else if (state_ == ChannelState::kRunning || state_ == ChannelState::kHold) {
@@ -375,6 +397,8 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
                      waiting_for_ == axes::HeadstockMode::kNone;
         else if (state_ == ChannelState::kRunning)
           headstock_->Request(waiting_for_);  // again, if a jog key turned the changeover round
+      } else if (tool_storage_wait_) {
+        // MRY: the block waits for the NC's tool storage axis (REPOS manual 4.2).
       } else if (pending_motion_) {
         pending_motion_ = false;
         if (StartMotion(at)) finished = !active_ && dwell_left_s_ <= 0 && !homing_ && !orienting_;
@@ -445,6 +469,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
   const DriveSetpoint spindle = SpindleSetpoint();
   if (config_.spindle_drive >= 0) mdt.setpoints[config_.spindle_drive] = spindle;
   if (headstock_) headstock_->WriteSetpoints(spindle, rotary, at, mdt);
+  WriteToolStorage(mdt);
   AcknowledgeDriveTrips(mdt);
 }
 
@@ -523,9 +548,14 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
     // axis to where it was; the PLC controls the turret, so the NC outputs the T word of the
     // interruption again. MRY waits for the tool storage axis, which the acknowledgement of
     // that T word already does.
+    // An NC-controlled tool storage axis the NC traverses back itself, and MRY waits for it.
     if (repos_run_ && interruption_ && (name == "MTP" || name == "MRY")) {
-      if (name == "MTP")
+      if (name == "MTP" && ToolStorageNc())
+        ReturnToolStorage();
+      else if (name == "MTP")
         block_.aux.push_back({'T', 0, static_cast<double>(interruption_->modal.tool)});
+      else
+        tool_storage_wait_ = tool_storage_.positioning;
       name.clear();
     }
     if (nc::IsMeasuringCall(name)) name.clear();  // StartMeasuring below
@@ -579,7 +609,7 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
   dwell_left_s_ = block_.dwell_s;
   if (block_.end) state_ = ChannelState::kEnded, reversing_ = false;
   if (block_.motion == nc::Motion::kNone && !block_.homing && !block_.repos) return true;
-  if (!aux_output_.empty()) {
+  if (!aux_output_.empty() || tool_storage_wait_) {
     pending_motion_ = true;
     return true;
   }

@@ -67,6 +67,13 @@ struct ChannelConfig {
   /// The drive of the tool storage axis (a turret the PLC indexes), -1 if none: with Bxx.045 its
   /// position at the interruption is part of the state to restore (REPOS manual 6.2, 7.3).
   int tool_storage_drive = -1;
+  /// An NC-controlled tool storage axis (REPOS manual 3.4, 6.2): the channel commands
+  /// tool_storage_drive itself, jogs it with PxxC.MGPOS / MGNEG in manual mode and returns it
+  /// with MTP. False: the PLC positions it and jogs it with those signals (lathe-c1's turret).
+  bool tool_storage_nc = false;
+  /// The tool storage axis' parameters: jogging speed (Cxx.020), acceleration, rotary without
+  /// travel limits for an endless one (its adjust symbol then measures the short way round).
+  axes::AxisParameters tool_storage;
 };
 
 /// One PathGuard check the channel made: which move, from where to where (per drive), and the
@@ -179,6 +186,13 @@ class Channel {
   /// Jog key of a channel axis: +1 positive, -1 negative, 0 released. Manual mode only; an
   /// increment, once started, is completed.
   void Jog(size_t axis, int direction);
+  /// PxxC.MGPOS / PxxC.MGNEG (REPOS manual 3.4): +1, -1, 0 released. In manual mode the NC
+  /// jogs an NC-controlled tool storage axis at its jogging speed, also during repositioning
+  /// and NC-block restart, where it may pass its target (endless rotation). Ignored for one the
+  /// PLC controls (the PLC reads the same signals) and outside manual mode.
+  void JogToolStorage(int direction);
+  /// The tool storage axis' command (deg | mm), an NC-controlled one's; NaN otherwise.
+  double tool_storage_command() const;
   /// A fault outside the program (the PLC stopped, ...): immediate stop, the error state with
   /// `number` and `text`; Control-Reset clears it.
   void MachineFault(const std::string& text, int number) {
@@ -418,6 +432,9 @@ class Channel {
   bool repos_run_ = false;      ///< the REPOS subroutine or the closing move runs (4.1)
   bool repos_closing_ = false;  ///< the closing move to the exact target runs
   bool repos_finish_ = false;   ///< no subroutine: close and continue
+  /// Stopped during the REPOS subroutine and manual mode entered: the next start runs it again
+  /// from `.REPOS` (the operator may have jogged; the interruption point stays the target).
+  bool repos_rerun_ = false;
   /// The interrupted program while the REPOS subroutine runs in its place.
   struct ProgramInWork {
     std::unique_ptr<nc::Interpreter> interpreter;
@@ -450,12 +467,34 @@ class Channel {
   bool SpindleRelevant() const;
   bool ToolStorageKnown() const;
   bool ToolStorageRestored() const;
+  // An NC-controlled tool storage axis (channel_tool_storage.cpp): its command, jogging and
+  // MTP's return to the interruption's position.
+  struct ToolStorageAxis {
+    bool taken = false;  ///< its command taken from the feedback at the first NC cycle
+    double command = 0, previous = 0;
+    int key = 0;
+    double velocity = 0;
+    bool positioning = false;  ///< MTP in the REPOS subroutine: to `target`
+    double target = 0;
+  };
+  ToolStorageAxis tool_storage_;
+  /// MRY: the block waits until MTP's positioning has ended and the axis stands at its place.
+  bool tool_storage_wait_ = false;
+  bool ToolStorageNc() const { return config_.tool_storage_nc && ToolStorageKnown(); }
+  void ToolStorageCycle(double dt);
+  void WriteToolStorage(MasterTelegram& mdt) const;
+  /// MTP (4.2 Tool Storage Axis): the NC traverses it back to the interruption's position.
+  void ReturnToolStorage();
+  /// MTP's positioning has ended and the drive stands within kToolStorageWindow of its place.
+  bool ToolStorageArrived() const;
   void ReposCycle(const AmplifierTelegram& at);
   void StartReposRun();
   bool CheckReposBlock();
   bool StartReposMotion(const AmplifierTelegram& at);
   bool FinishReposRun(const AmplifierTelegram& at);
   void ClearRepos();
+  /// The REPOS subroutine's @ variables back to the interrupted program (one set, 8.3).
+  void HandBackVariables();
   // Fast measurement (channel_measuring.cpp): a measuring instruction's block runs its plan.
   struct MeasuringRun {
     nc::PreparedBlock block;  ///< the instruction's block (block_ holds the generated moves)

@@ -5,6 +5,8 @@
 // interrupted program's place, whose G77 blocks return the axes and spindle, and at its RTS the
 // program continues at the interruption point or at the start of the interrupted block.
 #include <cmath>
+#include <map>
+#include <string>
 
 #include "control/channel/channel.hpp"
 
@@ -86,7 +88,9 @@ bool Channel::ToolStorageRestored() const {
   // 6.2 / 7.3: only with Bxx.045 'Reposition Tool Storage Axis' = yes.
   if (!config_.process.reposition_tool_storage || !ToolStorageKnown() || !interruption_)
     return true;
-  return std::abs(drive_positions_[config_.tool_storage_drive] - interruption_->tool_storage) <=
+  // 3.4: an endless one compares the short way round, however often it has turned.
+  return std::abs(ReposDistanceToGo(config_.tool_storage, interruption_->tool_storage,
+                                    drive_positions_[config_.tool_storage_drive])) <=
          kToolStorageWindow;
 }
 
@@ -272,9 +276,18 @@ void Channel::StartReposRun() {
          kMsgReposNoSubroutine);
     return;
   }
+  // The process' @ variables are one set (8.3): the subroutine starts with the program's (or,
+  // run again, with its own) and hands them back at its RTS.
+  std::map<std::string, double> variables;
+  if (const nc::Interpreter* owner = interpreter_ ? interpreter_.get() : parked_.interpreter.get())
+    variables = owner->variables();
   // The interrupted program waits, its block in work and what was read ahead, while the
   // subroutine runs in its place with its modal state (G(2), M(5) read the interrupted state).
-  SwapProgramInWork();
+  // Run again after a stop and manual mode during it, the subroutine's progress is dropped:
+  // the interrupted program stays parked and the targets stay the interruption's.
+  if (!repos_run_) SwapProgramInWork();
+  repos_rerun_ = false;
+  orienting_ = false;
   active_ = pending_motion_ = homing_ = false;
   dwell_left_s_ = 0;
   DropLookahead();
@@ -301,6 +314,7 @@ void Channel::StartReposRun() {
       return it != own_events_.end() && it->second;
     });
     interpreter_->SetDataAccess(MakeDataAccess());
+    interpreter_->SetVariables(std::move(variables));
     interpreter_->RunSubroutine(static_cast<uint32_t>(program), "REPOS");
   }
   state_ = ChannelState::kRunning;
@@ -440,6 +454,7 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
     for (size_t a = 0; a < d.size(); ++a) d[a] = now[a] - interruption_->translation[a];
     return d;
   }();
+  HandBackVariables();
   SwapProgramInWork();
   parked_ = ProgramInWork{};
   ClearRepos();
@@ -465,11 +480,17 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
   return true;
 }
 
+void Channel::HandBackVariables() {
+  // 8.3: what the subroutine wrote the program reads after RTS (one set per process).
+  if (repos_run_ && interpreter_ && parked_.interpreter)
+    parked_.interpreter->SetVariables(interpreter_->variables());
+}
+
 void Channel::ClearRepos() {
   interruption_.reset();
   repos_function_ = ReposFunction::kNone;
   crest_ = false;
-  repos_run_ = repos_closing_ = repos_finish_ = false;
+  repos_run_ = repos_closing_ = repos_finish_ = repos_rerun_ = false;
 }
 
 }  // namespace vmt::control::channel

@@ -45,6 +45,8 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
   for (int k = 0; k < 3; ++k) jogm_[k] = Id(c + "JOGM" + std::to_string(k));
   repos_ = Id(c + "REPOS");
   resta_ = Id(c + "RESTA");
+  mgpos_ = Id(c + "MGPOS");
+  mgneg_ = Id(c + "MGNEG");
   s_auto_ = Id(s + "AUTO");
   s_manu_ = Id(s + "MANU");
   s_mdi_ = Id(s + "MDI");
@@ -229,6 +231,12 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
     const bool neg = sig.jgneg >= 0 && im.Bool(sig.jgneg);
     const int key = pos == neg ? 0 : pos ? 1 : -1;  // both keys: no motion
     if (key != sig.last_key) ch.Jog(a, key), sig.last_key = key;
+  }
+  // REPOS manual 3.4: the tool storage axis' jog keys, levels; both at once: no motion.
+  {
+    const bool pos = mgpos_ >= 0 && im.Bool(mgpos_), neg = mgneg_ >= 0 && im.Bool(mgneg_);
+    const int key = pos == neg ? 0 : pos ? 1 : -1;
+    if (key != last_mg_key_) ch.JogToolStorage(key), last_mg_key_ = key;
   }
   // Acknowledgement of the auxiliary functions: AUXACK's edge, or every pending Q function
   // acknowledged on its own signal.

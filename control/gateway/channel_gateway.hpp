@@ -48,6 +48,8 @@ class ChannelGateway {
   Edge auto_, manu_, mdi_, start_, reset_, rev_, auxack_;
   int stop_ = -1, sbl_ = -1, fovr_ = -1, jogm_[3] = {-1, -1, -1};
   int repos_ = -1, resta_ = -1;  ///< PxxC.REPOS, PxxC.RESTA
+  /// PxxC.MGPOS / PxxC.MGNEG: the tool storage axis' jog keys (REPOS manual 3.4).
+  int mgpos_ = -1, mgneg_ = -1, last_mg_key_ = 0;
   int64_t last_fovr_ = -1;
   /// PxxC.ENABL, the process enabling signal: acts when it changes (C-axis manual 2.3).
   int enabl_ = -1;

@@ -200,6 +200,12 @@ void Interpreter::SetVariable(const std::string& name, double value) {
   variables_[Upper(name)] = value;
 }
 
+void Interpreter::SetVariables(std::map<std::string, double> variables) {
+  variables_ = std::move(variables);
+  // The cache points into the map's old nodes.
+  for (std::vector<double*>& cache : var_cache_) cache.clear();
+}
+
 std::vector<InstructionArg> Interpreter::ArgumentForms(ExprId id, size_t call) const {
   // A walk of the postfix code that keeps, instead of values, what each stack entry is: an
   // omitted argument, a bare name (kVariable alone), or a computed value. Jumps of AND/OR only

@@ -200,6 +200,11 @@ class Interpreter {
   double Variable(const std::string& name) const;
   /// Sets a variable (RESTORE of fast measurement writes @100..@112 back).
   void SetVariable(const std::string& name, double value);
+  /// Every variable set so far, by name (upper case).
+  const std::map<std::string, double>& variables() const { return variables_; }
+  /// Replaces all variables: an interpreter running in another's place in the same process
+  /// shares its variable set (the REPOS subroutine, REPOS manual 8.3: `@100=M(5)`).
+  void SetVariables(std::map<std::string, double> variables);
   /// The modal state from here on (SETTING of fast measurement makes its G codes modal, as the
   /// blocks the real control generates for it do).
   void SetModal(const ModalState& modal) { modal_ = modal; }

@@ -305,5 +305,47 @@ TEST(ChannelGatewayRepos, WithdrawnTooSoonInterruptsTheSubroutine) {
   EXPECT_NEAR(r.Z(), 3, 1e-9);  // N12 never moved
 }
 
+// 3.4: PxxC.MGPOS / PxxC.MGNEG jog an NC-controlled tool storage axis (drive 3) in manual
+// mode; both at once: no motion.
+TEST(ChannelGatewayRepos, MgposAndMgnegJogTheToolStorageAxis) {
+  ReposRig r;
+  channel::ChannelConfig config;
+  for (int d = 0; d < 2; ++d) {
+    channel::ChannelAxis a;
+    a.name = d == 0 ? "X" : "Z";
+    a.number = d + 1;
+    a.drive = d;
+    a.rapid_per_s = 400;
+    a.acceleration = 4000;
+    config.axes.push_back(a);
+  }
+  config.spindle_drive = 2;
+  config.tool_storage_drive = 3;
+  config.tool_storage_nc = true;
+  config.tool_storage.rotary = true;
+  config.tool_storage.jog_per_s = 30;
+  config.tool_storage.acceleration = 720;
+  r.ch = std::make_unique<channel::Channel>(config,
+                                            std::vector<const nc::Program*>{&r.parsed.program});
+  r.at.feedback.resize(4);
+  r.at.feedback[3].status = drive_status::kReady;
+  r.at.feedback[3].position = 90;
+  r.mdt.setpoints.resize(4);
+  r.Press("P00C.MANU");
+  ASSERT_TRUE(r.Get("P00S.MANU"));
+  r.Set("P00C.MGPOS", true);
+  r.Cycle(1000);
+  EXPECT_GT(r.mdt.setpoints[3].value, 115);  // about 30 deg in 1 s
+  r.Set("P00C.MGNEG", true);                  // both: the axis brakes
+  r.Cycle(100);
+  const double t = r.mdt.setpoints[3].value;
+  r.Cycle(100);
+  EXPECT_EQ(r.mdt.setpoints[3].value, t);
+  r.Set("P00C.MGPOS", false);  // MGNEG alone: back
+  r.Cycle(1000);
+  EXPECT_LT(r.mdt.setpoints[3].value, t - 25);
+  r.Set("P00C.MGNEG", false);
+}
+
 }  // namespace
 }  // namespace vmt::control::gateway

@@ -1,0 +1,92 @@
+// An NC-controlled tool storage axis (REPOS manual 3.4, 4.2 Tool Storage Axis, 6.2): the
+// channel commands its drive, jogs it with PxxC.MGPOS / MGNEG in manual mode - also during
+// repositioning and NC-block restart, where an endless one may pass its target - and MTP in
+// the REPOS subroutine traverses it back to its position at the interruption. A tool storage
+// axis the PLC controls (lathe-c1's turret) is the PLC's to move: the channel only compares its
+// position (Bxx.045).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "control/channel/channel.hpp"
+
+namespace vmt::control::channel {
+
+void Channel::JogToolStorage(int direction) {
+  if (!config_.tool_storage_nc || mode_ != ChannelMode::kManual) {
+    tool_storage_.key = 0;
+    return;
+  }
+  tool_storage_.key = direction > 0 ? 1 : direction < 0 ? -1 : 0;
+  if (tool_storage_.key != 0) take_over_pending_ = true;
+}
+
+double Channel::tool_storage_command() const {
+  return ToolStorageNc() && tool_storage_.taken ? tool_storage_.command
+                                                : std::numeric_limits<double>::quiet_NaN();
+}
+
+void Channel::ReturnToolStorage() {
+  if (!ToolStorageNc() || !interruption_) return;
+  tool_storage_.positioning = true;
+  // The short way round for an endless axis: the station, not the turns (4.2: the location).
+  tool_storage_.target =
+      tool_storage_.command -
+      ReposDistanceToGo(config_.tool_storage, tool_storage_.command, interruption_->tool_storage);
+}
+
+bool Channel::ToolStorageArrived() const {
+  if (!ToolStorageNc()) return true;
+  if (tool_storage_.positioning) return false;
+  const double actual = drive_positions_[config_.tool_storage_drive];
+  return std::abs(ReposDistanceToGo(config_.tool_storage, tool_storage_.target, actual)) <=
+         kToolStorageWindow;
+}
+
+void Channel::ToolStorageCycle(double dt) {
+  if (!ToolStorageNc()) return;
+  ToolStorageAxis& t = tool_storage_;
+  if (!t.taken) {
+    t.command = t.previous = drive_positions_[config_.tool_storage_drive];
+    t.taken = true;
+  }
+  t.previous = t.command;
+  const axes::AxisParameters& axis = config_.tool_storage;
+  const double accel = axis.acceleration > 0 ? axis.acceleration : 360;
+  const double step = accel * dt;
+  double wanted = 0;
+  if (t.positioning) {
+    // MTP: at the jogging rapid speed (4.2: no speed is programmed), braking onto the target.
+    const double to_go = t.target - t.command;
+    const double rapid = axis.jog_rapid_per_s > 0 ? axis.jog_rapid_per_s
+                         : axis.rapid_per_s > 0   ? axis.rapid_per_s / 2
+                                                  : 90;
+    wanted = std::copysign(std::min(rapid, std::sqrt(2 * accel * std::abs(to_go))), to_go);
+    t.velocity = std::clamp(wanted, t.velocity - step, t.velocity + step);
+    if (std::abs(to_go) <= std::abs(t.velocity * dt) + 1e-9) {
+      t.command = t.target;
+      t.velocity = 0;
+      t.positioning = false;
+    } else {
+      t.command += t.velocity * dt;
+    }
+    return;
+  }
+  // 3.4: as in jog mode while a key is held, braking when it is released; no target stops it.
+  const bool jogging = mode_ == ChannelMode::kManual && process_enable_;
+  const double speed = axis.jog_per_s > 0 ? axis.jog_per_s : 30;
+  wanted = jogging ? t.key * speed * override_ : 0;
+  t.velocity = std::clamp(wanted, t.velocity - step, t.velocity + step);
+  t.command += t.velocity * dt;
+}
+
+void Channel::WriteToolStorage(MasterTelegram& mdt) const {
+  if (!ToolStorageNc() || !tool_storage_.taken) return;
+  const size_t d = static_cast<size_t>(config_.tool_storage_drive);
+  if (d >= mdt.setpoints.size()) return;
+  const double f = static_cast<double>(tick_in_cycle_ + 1) / config_.ticks_per_cycle;
+  const ToolStorageAxis& t = tool_storage_;
+  mdt.setpoints[d] = {DriveMode::kPosition, t.previous + (t.command - t.previous) * f, 0};
+}
+
+}  // namespace vmt::control::channel
