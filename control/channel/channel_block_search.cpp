@@ -683,6 +683,9 @@ void Channel::UpdateBlockSearchStatus() {
                            bs_state_ == BlockSearchState::kWaitForContinueContour;
   if (hold && !breakpoint_hold_ && !single_block_ && !search_hold) sc |= kFeedhold;
   if (!aux_output_.empty()) sc |= kPlcAcknowledge | kWaitTechnoAck;
+  // The search waits for a changeover's acknowledgement as for a technology function's.
+  if (bs_state_ == BlockSearchState::kActive && waiting_for_ != axes::HeadstockMode::kNone)
+    sc |= kWaitTechnoAck;
   if (running && active_ && override_ == 0)
     sc |= block_.motion == nc::Motion::kRapid ? kOverrideRapidZero : kOverrideZero;
   if (dwell_left_s_ > 0) sc |= kDelayTime;

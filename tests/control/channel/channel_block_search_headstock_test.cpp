@@ -127,6 +127,7 @@ TEST(ChannelBlockSearchHeadstock, TheSearchWaitsForThePlcsAcknowledgementOfTheCh
   m.Ticks(2000);  // 0.5 s without ROTMOD_Q
   EXPECT_EQ(m.State(), BlockSearchState::kActive);
   EXPECT_TRUE(m.hs().busy());
+  EXPECT_TRUE(m.channel->block_search().stop_conditions & stop_condition::kWaitTechnoAck);
   EXPECT_EQ(m.C(), 200);
   m.acknowledge = true;
   ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour)) << m.channel->error();

@@ -52,14 +52,22 @@ TEST(ChannelBlockSearchMeasuring, ProbeBeforeTheContinuePositionIsSimulatedWitho
   for (int n = 0; n < 3; ++n) {
     run.m.channel->Start();
     run.RunUntilStopped();
+    for (int i = 0; i < 8; ++i) run.Tick();  // the drives reach the last fine point
     ends.push_back({run.m.X(), run.m.Z()});
   }
   ASSERT_NE(run.pages.Point(0, 1), nullptr);
+  EXPECT_NEAR(run.pages.Point(0, 1)->value.actual, 30, 1e-9);
 
   Search s(3);
+  // A former measurement of P1 (0.1 mm undersize) on the page.
+  measure::PointPage* page = s.l.pages.Point(0, 1);
+  ASSERT_NE(page, nullptr);
+  page->value.command = 30;
+  page->value.actual = 29.9;
+  page->measuring_axis = 'X';
   ASSERT_TRUE(s.Waits(BlockSearchState::kWaitReturnToContour)) << s.l.m.channel->error();
   // Nothing measured, nothing written, the measuring block's events never set.
-  EXPECT_EQ(s.l.pages.Point(0, 1), nullptr);
+  EXPECT_EQ(s.l.pages.Point(0, 1)->value.actual, 29.9);
   EXPECT_EQ(std::find(s.l.raised.begin(), s.l.raised.end(), 30), s.l.raised.end());
   // SETTING ran as in a run: its setting and its Q9992 to the PLC.
   ASSERT_TRUE(s.l.m.channel->measuring_setting());
@@ -81,7 +89,7 @@ TEST(ChannelBlockSearchMeasuring, ProbeBeforeTheContinuePositionIsSimulatedWitho
   ASSERT_EQ(s.l.m.channel->state(), ChannelState::kEnded) << s.l.m.channel->error();
   EXPECT_NEAR(s.l.m.X(), 60, 1e-9);
   EXPECT_NEAR(s.l.m.Z(), ends[2][1], 1e-9);
-  EXPECT_EQ(s.l.pages.Point(0, 1), nullptr);  // still the former value
+  EXPECT_EQ(s.l.pages.Point(0, 1)->value.actual, 29.9);  // still the former value
 }
 
 TEST(ChannelBlockSearchMeasuring, ContinuePositionInAMeasuringBlockIsRefused) {
