@@ -9,7 +9,8 @@
 // distance from program start says so (4.1). Under G41/G42 the search runs the tool nose
 // radius compensation as the run does, so the continue position is on the tip path and the
 // run goes on from the compensation's state; with #CAX TRACK on, the return aligns C first
-// (4.2.2). The breakpoint (3.5) and the distance from program start (4.1.2) live here too:
+// (4.2.2). A spindle / rotary axis changeover and measuring instructions of the skipped part:
+// channel_block_search_technology.cpp. The breakpoint (3.5) and the distance from program start (4.1.2) live here too:
 // they count in normal runs as well.
 #include <algorithm>
 #include <cmath>
