@@ -559,6 +559,11 @@ class Channel {
     bool further_piece = false, inserted_piece = false, await_own_piece = false;
     bool cax_track = false;    ///< #CAX TRACK is on where the search has got to (4.2.2)
     bool return_rest = false;  ///< C is being aligned; the other axes' return follows (4.2.2)
+    /// The block in work waited for a spindle / rotary axis changeover, which has ended: it
+    /// is simulated again from there (channel_block_search_technology.cpp).
+    bool changed_over = false;
+    /// Where the interpreter had the rotary axis before the block in work (RebaseRotaryAxis).
+    double rotary_start = 0;
   };
   std::optional<BlockSearchRun> search_;
   BlockSearchParameters bs_next_, bs_started_;
@@ -583,10 +588,20 @@ class Channel {
   /// The search's part of an NC cycle; true while it owns the cycle (no normal block flow).
   bool SearchCycle(const AmplifierTelegram& at);
   bool SimulateBlocks();
+  /// False while technology waits (PLC acknowledgement, a changeover) or the search ended.
+  bool SearchGoesOn() const;
   /// The search's next block into block_: from the interpreter, or under G41/G42 the next
   /// piece of the tip path. False on an error.
   bool NextSearchBlock();
   bool SimulateBlock(nc::PreparedBlock& b);
+  // Technology of the skipped part (channel_block_search_technology.cpp).
+  /// The changeover `b` needs, requested as in a run: false while it runs (the block waits).
+  bool SearchChangeover(const nc::PreparedBlock& b);
+  /// The changeover `b` waited for has ended: `b` goes on from there, rotary axis rebased.
+  void EndSearchChangeover(nc::PreparedBlock& b);
+  /// A measuring instruction before the continue position: state-only instructions run,
+  /// the others are simulated as their path without measuring (a warning).
+  bool SimulateMeasuringInstruction(const nc::PreparedBlock& b);
   /// The motion part of SimulateBlock; `boundary`: `b` is the block of the continue position.
   bool SimulateMotion(nc::PreparedBlock& b, bool boundary);
   /// The continue position is found at `b`, at u in its motion (planned from its start).

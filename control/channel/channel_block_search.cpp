@@ -9,7 +9,8 @@
 // distance from program start says so (4.1). Under G41/G42 the search runs the tool nose
 // radius compensation as the run does, so the continue position is on the tip path and the
 // run goes on from the compensation's state; with #CAX TRACK on, the return aligns C first
-// (4.2.2). The breakpoint (3.5) and the distance from program start (4.1.2) live here too:
+// (4.2.2). A spindle / rotary axis changeover and measuring instructions of the skipped part:
+// channel_block_search_technology.cpp. The breakpoint (3.5) and the distance from program start (4.1.2) live here too:
 // they count in normal runs as well.
 #include <algorithm>
 #include <cmath>
@@ -122,7 +123,14 @@ bool Channel::SearchCycle(const AmplifierTelegram& at) {
       bs_state_ = BlockSearchState::kActive;
       [[fallthrough]];
     case BlockSearchState::kActive:
-      if (state_ == ChannelState::kRunning) SimulateBlocks();
+      if (state_ != ChannelState::kRunning) return true;
+      if (waiting_for_ != axes::HeadstockMode::kNone) {
+        // The block waits for its changeover as in a run (channel_block_search_technology.cpp).
+        if (headstock_->mode() != waiting_for_) return true;
+        EndSearchChangeover(block_);
+        if (!SimulateBlock(block_) || !SearchGoesOn()) return true;
+      }
+      SimulateBlocks();
       return true;
     case BlockSearchState::kWaitForPlcOff:
       bs_command_ = false;
@@ -137,7 +145,10 @@ bool Channel::SearchCycle(const AmplifierTelegram& at) {
         spindle_ = s.spindle;
         return true;  // the drive's at-speed answers the new command from the next cycle on
       }
-      if (!SpindleReady(at)) return true;
+      // In rotary axis mode the headstock holds the spindle still whatever its command.
+      if ((!headstock_ || headstock_->mode() == axes::HeadstockMode::kSpindle) &&
+          !SpindleReady(at))
+        return true;
       s.start_requested = false;
       if (bs_started_.auto_return) {
         if (StartReturnToContour()) bs_state_ = BlockSearchState::kReturningToContour;
@@ -176,11 +187,15 @@ bool Channel::SimulateBlocks() {
     if (!NextSearchBlock()) return false;
     ++search_->blocks;
     if (!SimulateBlock(block_)) return false;
-    if (bs_state_ != BlockSearchState::kActive || !aux_output_.empty() ||
-        state_ != ChannelState::kRunning)
-      return true;
+    if (!SearchGoesOn()) return true;
   }
   return true;
+}
+
+bool Channel::SearchGoesOn() const {
+  // Technology waits for the PLC: its acknowledgement, or the end of a changeover.
+  return bs_state_ == BlockSearchState::kActive && aux_output_.empty() &&
+         waiting_for_ == axes::HeadstockMode::kNone && state_ == ChannelState::kRunning;
 }
 
 bool Channel::NextSearchBlock() {
@@ -199,6 +214,7 @@ bool Channel::NextSearchBlock() {
     return true;
   };
   if (!compensating_) {
+    if (headstock_) s.rotary_start = interpreter_->position()[config_.rotary_axis];
     if (!interpreter_->Next(block_)) return text_ended();
     if (block_.modal.compensation == 40 || block_.motion == nc::Motion::kNone) return true;
     // G41/G42: the search reads ahead through the compensation as the run does
@@ -256,6 +272,8 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
   };
   // A further piece of a block's tip path: its functions ran with the first.
   if (s.further_piece) return SimulateMotion(b, false);
+  // A spindle / rotary axis changeover runs as in a run; the block waits for its end.
+  if (!SearchChangeover(b)) return true;
   const bool boundary = !s.found && s.matcher.Matches(b, program, b.program);
   if (boundary && b.search_locked)
     return fail("P-ERR-21399: the continue position lies in a region locked for block search "
@@ -276,8 +294,15 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
                     "start cannot be simulated (block search 4.1.2)",
                 kMsgBlockSearch);
   if (b.repos) return fail("G77 cannot run in block search", kMsgBlockSearch);
-  if (!b.calls.empty())
-    return fail("measuring instructions cannot run in block search", kMsgNotAvailable);
+  if (!b.calls.empty()) {
+    // Section 8: the search cannot measure; the continue position after the instruction can.
+    if (boundary)
+      return fail("the continue position lies in measuring instruction " + b.calls.front().name +
+                      ": block search cannot measure without motion (section 8); continue at "
+                      "the block after it",
+                  kMsgBlockSearch);
+    return SimulateMeasuringInstruction(b);
+  }
   for (uint32_t index : b.instructions) {
     const nc::Statement& st = program.statements[index];
     if (st.kind == nc::Statement::Kind::kHashCommand) {
@@ -291,12 +316,6 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
                                                                    : program.symbols.Name(st.name)) +
                     " is not available in block search yet",
                 kMsgNotAvailable);
-  }
-  if (headstock_) {
-    const axes::HeadstockMode need = ModeNeeded(b);
-    if (need != axes::HeadstockMode::kNone && headstock_->mode() != need)
-      return fail("block search across a spindle / rotary axis changeover is not available yet",
-                  kMsgNotAvailable);
   }
   for (const auto& [n, set] : b.events) {
     own_events_[n] = set;
@@ -437,6 +456,11 @@ bool Channel::StartReturnToContour() {
   // Ausrichten der C-Achse ... 2. Wiederanfahren entsprechend der Satzvorlaufposition"). vmt
   // runs no tracking of its own, so C's alignment is where the program has C there.
   s.return_rest = false;
+  // Outside rotary axis mode C is not positioned: it stays where the spindle has it.
+  if (headstock_ && headstock_->mode() != axes::HeadstockMode::kRotary) {
+    const size_t r = static_cast<size_t>(config_.rotary_axis);
+    s.restart[r] = commanded_[r];
+  }
   if (s.cax_track) {
     for (size_t a = 0; a < commanded_.size(); ++a) {
       if (config_.axes[a].name != "C" || std::abs(s.restart[a] - commanded_[a]) < 1e-12) continue;
@@ -660,6 +684,9 @@ void Channel::UpdateBlockSearchStatus() {
                            bs_state_ == BlockSearchState::kWaitForContinueContour;
   if (hold && !breakpoint_hold_ && !single_block_ && !search_hold) sc |= kFeedhold;
   if (!aux_output_.empty()) sc |= kPlcAcknowledge | kWaitTechnoAck;
+  // The search waits for a changeover's acknowledgement as for a technology function's.
+  if (bs_state_ == BlockSearchState::kActive && waiting_for_ != axes::HeadstockMode::kNone)
+    sc |= kWaitTechnoAck;
   if (running && active_ && override_ == 0)
     sc |= block_.motion == nc::Motion::kRapid ? kOverrideRapidZero : kOverrideZero;
   if (dwell_left_s_ > 0) sc |= kDelayTime;
