@@ -41,6 +41,8 @@ class CaseObserver {
   bool error_pending() const { return !error_.empty() && error_number_ == 0; }
   bool repos_phase() const { return repos_phase_; }
   double t_start() const { return t_start_; }
+  /// When the case ended (RTS, the last jog's end, an NC error); 0 while it runs.
+  double t_end() const { return done_ ? t_end_ : 0; }
   /// The latest `repos` event (the REPOS screen: targets, distances to go, the spindle).
   const nlohmann::ordered_json& last_repos() const { return last_repos_; }
 

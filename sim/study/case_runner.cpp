@@ -349,17 +349,26 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
 }
 
 CaseResult RunCaseFromStart(const Scene& base, const StudyPlan& plan,
-                            const std::vector<Interruption>& interruptions, const StudyCase& c) {
+                            const std::vector<Interruption>& interruptions, const StudyCase& c,
+                            const std::vector<SnapshotSpec>& shots, const std::string& out_dir,
+                            double* t_end_s) {
   Scene scene = SubroutineScene(base, plan.subroutines[c.subroutine]);
+  scene.snapshots = shots;
   const Interruption& in = interruptions[c.interruption];
   const RetractPattern& retract = plan.retracts[c.retract];
   scene.timeline.push_back(HoldStep(scene, in.t_s, scene.timeline.size()));
   Append(scene, RetractLines(scene, plan, in, retract));
   CaseObserver obs;
   CaseObserver* observer = &obs;
-  SceneRun run(scene, CaseOptions(&observer));
+  RunOptions options = CaseOptions(&observer);
+  options.snapshots = !shots.empty();
+  options.out_dir = out_dir;
+  SceneRun run(scene, options);
   RunReturn(scene, run, obs, plan, plan.subroutines[c.subroutine], c.mode,
             CaseLimit(plan, in, retract));
+  // A picture due at the end (an `at:` of the case's end) is taken at the next tick.
+  for (int k = 0; k < 2 && !shots.empty() && !run.done(); ++k) run.Step();
+  if (t_end_s) *t_end_s = obs.t_end();
   return obs.Result(plan, interruptions, c, run.time_s());
 }
 

@@ -35,8 +35,12 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
                         const std::vector<StudyCase>& cases, size_t sub, bool fork,
                         const std::function<void(const CaseResult&)>& sink);
 
-/// One case from the program's start, without fork.
+/// One case from the program's start, without fork. With `shots`, the run renders them (the
+/// scene's `snapshots:` entries, e.g. {on: collision}) into `out_dir`, where it also writes its
+/// trace and events; *t_end_s gets the time the case ended.
 CaseResult RunCaseFromStart(const Scene& base, const StudyPlan& plan,
-                            const std::vector<Interruption>& interruptions, const StudyCase& c);
+                            const std::vector<Interruption>& interruptions, const StudyCase& c,
+                            const std::vector<SnapshotSpec>& shots = {},
+                            const std::string& out_dir = "", double* t_end_s = nullptr);
 
 }  // namespace vmt::sim::study
