@@ -37,7 +37,7 @@ void CaseObserver::OnEvent(const nlohmann::ordered_json& e) {
   if (kind == "step" && step == phase_step_ && !repos_phase_) {
     repos_phase_ = true;
     t_start_ = t;
-    if (have_command_) path_.emplace_back(x_, z_);
+    if (have_command_ && start_point_known_) path_.emplace_back(x_, z_);
   } else if (kind == "repos") {
     last_repos_ = e;
     if (e.contains("axes")) {

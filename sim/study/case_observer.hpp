@@ -29,7 +29,13 @@ class CaseObserver {
   explicit CaseObserver(size_t phase_step = kNoStep, size_t marker = 0)
       : phase_step_(phase_step), marker_(marker) {}
 
-  void SetPhaseStep(size_t step) { phase_step_ = step; }
+  /// `point_known`: the latest REPOS screen still shows where the tool stands when the phase
+  /// starts (program-driven: the call came before); else (manual: the phase starts with the
+  /// call) the path starts with the screen that the call brings.
+  void SetPhaseStep(size_t step, bool point_known = true) {
+    phase_step_ = step;
+    start_point_known_ = point_known;
+  }
   /// Manual mode: the case is over when this step starts (after the last jog's standstill);
   /// clear if the conditions are restored then (PxxS.CREST, 7.3).
   void SetManualEnd(size_t step) { manual_end_ = step; }
@@ -56,7 +62,7 @@ class CaseObserver {
   size_t manual_end_ = 0;  // 0: program-driven
   size_t steps_seen_ = 0;  // one past the highest timeline step started
   bool repos_phase_ = false, subroutine_seen_ = false, done_ = false, contact_ = false;
-  bool have_command_ = false;
+  bool have_command_ = false, start_point_known_ = true;
   double t_start_ = 0, t_end_ = 0, x_ = 0, z_ = 0;
   double min_clearance_ = std::numeric_limits<double>::infinity();
   nlohmann::ordered_json parts_, point_, position_, retract_contact_, last_repos_;

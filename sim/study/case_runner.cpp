@@ -201,7 +201,7 @@ void RunReturn(Scene& scene, SceneRun& run, CaseObserver& obs, const StudyPlan& 
     RunCase(run, obs, plan, limit);
     return;
   }
-  obs.SetPhaseStep(scene.timeline.size());  // the call
+  obs.SetPhaseStep(scene.timeline.size(), false);  // the call
   Append(scene, ManualCallLines(scene, mode));
   const size_t shown = scene.timeline.size() - 1;
   while (!run.done() && !obs.done() && !obs.step_seen(shown) && run.time_s() < limit) run.Step();
