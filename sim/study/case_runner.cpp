@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -169,7 +170,12 @@ std::vector<std::string> ManualReturnLines(const Scene& scene, const Subroutine&
   if (spindle.is_object() && spindle.value("adjust", false)) {
     const int m = spindle.value("command_m", 5);
     char key[24];
-    std::snprintf(key, sizeof key, "A%02dC.M%d", scene.nc.data.spindle.number, m);
+    // The spindle's Axx as the gateway numbers it (sim/model/gateway_layout.cpp).
+    int highest = 0;
+    for (const auto& a : scene.model->nc.axes) highest = std::max(highest, a.number);
+    const int number = scene.model->nc.spindle_number > 0 ? scene.model->nc.spindle_number
+                                                           : highest + 1;
+    std::snprintf(key, sizeof key, "A%02dC.M%d", number, m);
     lines.push_back(std::string("{signal: {name: ") + key + ", value: true}}");
     lines.push_back("{wait: 0.5}");  // the spindle runs up before the tool comes back
   }
@@ -222,7 +228,14 @@ std::vector<std::string> InChild(const std::function<void(int)>& work, int* stat
   if (child < 0) ::_exit(4);
   if (child == 0) {
     ::close(fds[0]);
-    work(fds[1]);
+    // A copy of the study process must never unwind into the study's own code.
+    try {
+      work(fds[1]);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "vmt study: a case failed: %s\n", e.what());
+      std::fflush(stderr);
+      ::_exit(5);
+    }
     ::_exit(0);
   }
   ::close(fds[1]);
