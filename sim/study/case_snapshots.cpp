@@ -64,7 +64,7 @@ std::vector<std::string> WorstCaseIds(const std::vector<CaseResult>& results, in
 std::string SnapshotFileOf(const std::string& case_id) {
   std::string name;
   for (const char c : case_id)
-    name += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-') ? c : '_';
+    name += (std::isalnum(static_cast<unsigned char>(c)) || c == '-') ? c : '_';  // no dot files
   return "snapshots/" + name + ".png";
 }
 
