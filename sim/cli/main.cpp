@@ -2,15 +2,15 @@
 // place of the fault; exit 0 = ok, 1 = the run or comparison failed, 2 = bad input.
 
 #include <malloc.h>
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <iostream>
+#include <sstream>
 #include <thread>
-#include <unistd.h>
 
 #include "control/gateway/signal_table_format.hpp"
 #include "control/nc/parser.hpp"
@@ -116,20 +116,26 @@ int StudyRepos(sim::study::StudyOptions options, const std::string& shard,
   }
   options.progress = options.progress && ::isatty(2);
   const sim::study::StudySummary s = sim::study::RunStudy(options);
-  std::printf("%s: %zu cases (%zu run, %zu already there) in %.2f s: %.0f cases/min with %d "
-              "job(s)\n%s",
-              options.out_dir.c_str(), s.cases, s.run, s.skipped, s.wall_s, s.cases_per_minute,
-              options.jobs, s.text.c_str());
+  std::printf(
+      "%s: %zu cases (%zu run, %zu already there) in %.2f s: %.0f cases/min with %d "
+      "job(s)\n%s",
+      options.out_dir.c_str(), s.cases, s.run, s.skipped, s.wall_s, s.cases_per_minute,
+      options.jobs, s.text.c_str());
+  std::printf("cases: %.1f s of CPU (%.3f s per case); %zu pictures in %.1f s\n", s.cases_cpu_s,
+              s.run ? s.cases_cpu_s / s.run : 0.0, s.snapshots, s.snapshots_wall_s);
   std::printf("output: %s/{cases.jsonl,cases.csv,report.html}\n", options.out_dir.c_str());
   if (!bench_json.empty()) {
     std::filesystem::create_directories(std::filesystem::path(bench_json).parent_path().empty()
                                             ? std::filesystem::path(".")
                                             : std::filesystem::path(bench_json).parent_path());
     std::ofstream out(bench_json);
-    out << "{\"benchmark\": \"study\", \"scene\": \"" << options.scene
-        << "\", \"cases\": " << s.run << ", \"wall_s\": " << s.wall_s
-        << ", \"cases_per_minute\": " << s.cases_per_minute << ", \"jobs\": " << options.jobs
-        << ", \"cores\": " << std::thread::hardware_concurrency() << "}\n";
+    out << "{\"benchmark\": \"study\", \"scene\": \"" << options.scene << "\", \"cases\": " << s.run
+        << ", \"wall_s\": " << s.wall_s << ", \"cases_per_minute\": " << s.cases_per_minute
+        << ", \"cases_cpu_s\": " << s.cases_cpu_s
+        << ", \"cpu_s_per_case\": " << (s.run ? s.cases_cpu_s / s.run : 0.0)
+        << ", \"snapshots\": " << s.snapshots << ", \"snapshots_wall_s\": " << s.snapshots_wall_s
+        << ", \"jobs\": " << options.jobs << ", \"cores\": " << std::thread::hardware_concurrency()
+        << "}\n";
     if (!out) throw std::runtime_error("cannot write " + bench_json);
   }
   return 0;
@@ -249,8 +255,9 @@ int main(int argc, char** argv) {
   size_t max_cases = 0;
   bool no_fork = false;
   CLI::App* repos = study->add_subcommand(
-      "repos", "Run the cases of a scene's study: plan (interruptions x retracts x modes x REPOS "
-               "subroutines) on the kinematic backend with PathGuard");
+      "repos",
+      "Run the cases of a scene's study: plan (interruptions x retracts x modes x REPOS "
+      "subroutines) on the kinematic backend with PathGuard");
   repos->add_option("scene", study_options.scene, "Scene file with a study: section")->required();
   repos->add_option("--out", study_options.out_dir, "Study folder (a rerun skips its cases)")
       ->required();
@@ -266,6 +273,12 @@ int main(int argc, char** argv) {
   repos->add_flag("--no-fork", no_fork,
                   "Run every case from the program's start (slow; checks the forked run-ups)");
   repos->add_option("--bench-json", bench_json, "Also write the speed here as JSON");
+  repos
+      ->add_option("--snapshots", study_options.snapshots,
+                   "Pictures of the worst cases per subroutine: this many collisions and the "
+                   "tightest clear case (0: none)")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
   std::vector<std::string> merge_dirs;
   std::string merge_out;
   CLI::App* merge =

@@ -36,10 +36,10 @@ std::string Cell(const nlohmann::ordered_json& v) {
   return Csv(v.dump());
 }
 
-const char* const kColumns[] = {"case",     "subroutine", "interrupt",        "block",
-                                "per_mille", "t_interrupt_s", "retract",      "mode",
-                                "verdict",  "parts",      "point",            "min_clearance_mm",
-                                "path_length_mm", "repos_time_s", "error_number", "error"};
+const char* const kColumns[] = {
+    "case",           "subroutine",   "interrupt",    "block", "per_mille", "t_interrupt_s",
+    "retract",        "mode",         "verdict",      "parts", "point",     "min_clearance_mm",
+    "path_length_mm", "repos_time_s", "error_number", "error"};
 
 void WriteAll(int fd, const std::string& s) {
   size_t done = 0;

@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -29,148 +30,6 @@ std::string Fixed(double v) {
   std::snprintf(buf, sizeof buf, "%.6f", v);
   return buf;
 }
-
-double Micro(double v) { return std::round(v * 1000) / 1000 + 0.0; }
-
-// What a case's events say: the REPOS phase starts with the final start in AUTO; the case ends
-// at the REPOS subroutine's RTS (the REPOS screen's subroutine flag falls) or an NC error.
-class CaseObserver {
- public:
-  /// `start_index`: the final start's step. The phase is marked one step before it, at the
-  /// switch to AUTO: a step's event comes after the channel's events of its tick.
-  /// `marker`: the step whose start ends the retract (0: none watched).
-  explicit CaseObserver(size_t start_index, size_t marker = 0)
-      : start_prefix_("timeline[" + std::to_string(start_index - 1) + "]"),
-        marker_prefix_(marker ? "timeline[" + std::to_string(marker) + "]" : "") {}
-
-  void OnEvent(const nlohmann::ordered_json& e) {
-    const std::string kind = e.value("event", "");
-    const double t = e.value("t", 0.0);
-    if (kind == "signal" && e.value("name", "").ends_with("S.ERRNR")) {
-      error_number_ = static_cast<int>(e.value("value", 0.0));  // the message's number (507)
-      return;
-    }
-    if (done_) return;  // only the message number may still come (the gateway's next cycle)
-    if (kind == "step" && !marker_prefix_.empty() &&
-        e.value("text", "").starts_with(marker_prefix_))
-      marker_seen_ = true;
-    if (kind == "step" && e.value("text", "").starts_with(start_prefix_)) {
-      repos_phase_ = true;
-      t_start_ = t;
-      if (have_command_) path_.emplace_back(x_, z_);
-    } else if (kind == "repos") {
-      if (e.contains("axes")) {
-        const auto& axes = e["axes"];
-        if (axes.contains("X")) x_ = axes["X"].value("command", x_);
-        if (axes.contains("Z")) z_ = axes["Z"].value("command", z_);
-        have_command_ = true;
-        if (repos_phase_ && !contact_ &&
-            (path_.empty() || path_.back() != std::make_pair(x_, z_)))
-          path_.emplace_back(x_, z_);
-      }
-      if (repos_phase_ && e.value("subroutine", false)) subroutine_seen_ = true;
-      if (repos_phase_ && subroutine_seen_ && !e.value("subroutine", false)) End(t);
-    } else if (kind == "path_guard") {
-      const bool clear = e.value("clear", true);
-      if (!repos_phase_) {
-        if (!clear && retract_contact_.is_null()) retract_contact_ = e["parts"];
-        return;
-      }
-      if (clear) {
-        const double c = e.value("min_clearance", std::numeric_limits<double>::infinity());
-        if (c < min_clearance_) min_clearance_ = c;
-      } else if (!contact_) {
-        contact_ = true;
-        parts_ = e["parts"];
-        point_ = e["point"];
-        position_ = e["position"];
-        // Where the move would have touched, on the drawing's axes.
-        if (position_.is_object()) {
-          const double cx = position_.contains("X") ? position_["X"].get<double>() : x_;
-          const double cz = position_.contains("Z") ? position_["Z"].get<double>() : z_;
-          path_.emplace_back(cx, cz);
-        }
-      }
-    } else if (kind == "nc") {
-      const std::string state = e.value("state", "");
-      if (state == "error") {
-        error_ = e.value("error", "NC error");
-        End(t);
-      } else if (state == "ended") {
-        End(t);
-      }
-    }
-  }
-
-  bool done() const { return done_; }
-  bool marker_seen() const { return marker_seen_; }
-  bool error_pending() const { return !error_.empty() && error_number_ == 0; }
-  bool repos_phase() const { return repos_phase_; }
-  double t_start() const { return t_start_; }
-
-  CaseResult Result(const StudyPlan& plan, const std::vector<Interruption>& interruptions,
-                    const StudyCase& c, double t_now) const {
-    const Interruption& in = interruptions[c.interruption];
-    CaseResult r;
-    r["case"] = c.id;
-    r["subroutine"] = plan.subroutines[c.subroutine].name;
-    r["interrupt"] = in.label;
-    r["block"] = in.block;
-    r["per_mille"] = in.per_mille >= 0 ? nlohmann::ordered_json(in.per_mille) : nullptr;
-    r["t_interrupt_s"] = in.t_s;
-    r["retract"] = plan.retracts[c.retract].name;
-    r["mode"] = ToString(c.mode);
-    std::string verdict = "clear";
-    if (contact_)
-      verdict = "collision";
-    else if (!error_.empty() || !done_ || !subroutine_seen_)
-      verdict = "error";
-    r["verdict"] = verdict;
-    r["parts"] = contact_ ? parts_ : nullptr;
-    r["point"] = contact_ ? point_ : nullptr;
-    r["contact_position"] = contact_ ? position_ : nullptr;
-    r["min_clearance_mm"] = std::isfinite(min_clearance_) ? nlohmann::ordered_json(min_clearance_)
-                                                          : nullptr;
-    double length = 0;
-    for (size_t i = 1; i < path_.size(); ++i)
-      length += std::hypot(path_[i].first - path_[i - 1].first,
-                           path_[i].second - path_[i - 1].second);
-    if (contact_) length = 0;  // the move was checked whole and never started
-    r["path_length_mm"] = Micro(length);
-    const double end = done_ ? t_end_ : t_now;
-    r["repos_time_s"] = repos_phase_ ? Micro(end - t_start_) : 0.0;
-    std::string error = error_;
-    if (error.empty() && !done_)
-      error = repos_phase_ ? "timeout: no RTS of the REPOS subroutine within " +
-                                 Fixed(plan.timeout_s) + " s"
-                           : "timeout: the retract did not end";
-    if (error.empty() && done_ && !subroutine_seen_) error = "the REPOS subroutine did not run";
-    r["error_number"] = error_number_ ? nlohmann::ordered_json(error_number_) : nullptr;
-    r["error"] = error.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(error);
-    r["retract_contact"] = retract_contact_;
-    auto& path = r["path"] = nlohmann::ordered_json::array();
-    for (const auto& [x, z] : path_) path.push_back({Micro(x), Micro(z)});
-    return r;
-  }
-
- private:
-  void End(double t) {
-    if (done_) return;
-    done_ = true;
-    t_end_ = t;
-  }
-
-  std::string start_prefix_, marker_prefix_;
-  bool marker_seen_ = false;
-  bool repos_phase_ = false, subroutine_seen_ = false, done_ = false, contact_ = false;
-  bool have_command_ = false;
-  double t_start_ = 0, t_end_ = 0, x_ = 0, z_ = 0;
-  double min_clearance_ = std::numeric_limits<double>::infinity();
-  nlohmann::ordered_json parts_, point_, position_, retract_contact_;
-  std::string error_;
-  int error_number_ = 0;
-  std::vector<std::pair<double, double>> path_;
-};
 
 // The latest simulated time a case may take: the retract's jogs (each waits for standstill at
 // most 10 s), the REPOS phase its timeout.
@@ -215,7 +74,7 @@ std::string ReadAll(int fd) {
 
 CaseResult DiedResult(const StudyPlan& plan, const std::vector<Interruption>& interruptions,
                       const StudyCase& c, int status) {
-  CaseObserver none(1);
+  CaseObserver none;
   CaseResult r = none.Result(plan, interruptions, c, 0);
   r["verdict"] = "error";
   r["error"] = "the case's process died (wait status " + std::to_string(status) + ")";
@@ -226,15 +85,17 @@ CaseResult DiedResult(const StudyPlan& plan, const std::vector<Interruption>& in
 
 Scene SubroutineScene(const Scene& base, const Subroutine& subroutine) {
   Scene scene = base;
-  std::ifstream in(subroutine.file, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot open NC program " + subroutine.file);
-  const std::string text((std::istreambuf_iterator<char>(in)), {});
-  namespace cnc = control::nc;
-  auto parsed = std::make_shared<cnc::ParseResult>(
-      cnc::ParseProgram(text, subroutine.file, cnc::DetectDialect(text, subroutine.file)));
-  if (!parsed->ok())
-    throw std::runtime_error(cnc::Format(parsed->errors[0], parsed->program.files));
-  scene.nc.programs.push_back(parsed);
+  if (!subroutine.manual()) {
+    std::ifstream in(subroutine.file, std::ios::binary);
+    if (!in) throw std::runtime_error("cannot open NC program " + subroutine.file);
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    namespace cnc = control::nc;
+    auto parsed = std::make_shared<cnc::ParseResult>(
+        cnc::ParseProgram(text, subroutine.file, cnc::DetectDialect(text, subroutine.file)));
+    if (!parsed->ok())
+      throw std::runtime_error(cnc::Format(parsed->errors[0], parsed->program.files));
+    scene.nc.programs.push_back(parsed);
+  }
   scene.expectations.clear();
   scene.snapshots.clear();
   // No trace rows between the first and the last: a case reads events only, and a row is
@@ -251,44 +112,110 @@ TimelineStep HoldStep(const Scene& scene, double t_s, size_t index) {
 
 namespace {
 
+// One incremental jog of `mm` (signed) on `axis`, and the waits until it is over.
+void JogLines(const Scene& scene, const std::string& axis, double mm,
+              std::vector<std::string>& lines) {
+  // An increment once started is completed: a tap of the key moves exactly |mm|.
+  lines.push_back("{nc: {jog_increment: " + Fixed(std::abs(mm)) + "}}");
+  lines.push_back("{jog: {axis: " + axis + ", direction: " + (mm > 0 ? "'+'" : "'-'") +
+                  ", hold: 0.05}}");
+  // Until the NC's jog is done (AxxS.MVPOS / MVNEG, its interpolation), then the drive: the
+  // drive's standstill window alone ends the wait before the increment's last tenths.
+  int number = 0;
+  for (const auto& a : scene.nc.data.axes)
+    if (a.name == axis) number = a.number;
+  char moving[16];
+  std::snprintf(moving, sizeof moving, "A%02dS.MV%s", number, mm > 0 ? "POS" : "NEG");
+  lines.push_back(std::string("{wait_until: {signal: ") + moving + ", value: false, timeout: 10}}");
+  lines.push_back("{wait_until: {axis: " + axis + ", standstill: true, timeout: 1}}");
+}
+
 // The retract: manual mode, the jogs, and a short wait whose start marks that the retract is
 // over (its step event), so that the modes can fork from there.
 std::vector<std::string> RetractLines(const Scene& scene, const StudyPlan& plan,
                                       const Interruption& in, const RetractPattern& retract) {
   std::vector<std::string> lines;
   lines.push_back("{at: " + Fixed(in.t_s + plan.hold_s) + ", nc: {mode: manual}}");
-  for (const RetractJog& j : retract.jogs) {
-    // An increment once started is completed: a tap of the key moves exactly |mm|.
-    lines.push_back("{nc: {jog_increment: " + Fixed(std::abs(j.mm)) + "}}");
-    lines.push_back("{jog: {axis: " + j.axis + ", direction: " + (j.mm > 0 ? "'+'" : "'-'") +
-                    ", hold: 0.05}}");
-    // Until the NC's jog is done (AxxS.MVPOS / MVNEG, its interpolation), then the drive: the
-    // drive's standstill window alone ends the wait before the increment's last tenths.
-    int number = 0;
-    for (const auto& a : scene.nc.data.axes)
-      if (a.name == j.axis) number = a.number;
-    char moving[16];
-    std::snprintf(moving, sizeof moving, "A%02dS.MV%s", number, j.mm > 0 ? "POS" : "NEG");
-    lines.push_back(std::string("{wait_until: {signal: ") + moving +
-                    ", value: false, timeout: 10}}");
-    lines.push_back("{wait_until: {axis: " + j.axis + ", standstill: true, timeout: 1}}");
-  }
+  for (const RetractJog& j : retract.jogs) JogLines(scene, j.axis, j.mm, lines);
   lines.push_back("{wait: 0.01}");
   return lines;
 }
 
-// REPOS or RESTA, AUTO, start: the last line is the start.
-std::vector<std::string> ModeLines(const Scene& scene, ReposMode mode) {
+std::string CallLine(const Scene& scene, ReposMode mode) {
   char process[8];
   std::snprintf(process, sizeof process, "P%02dC", scene.nc.data.process.number);
-  return {std::string("{signal: {name: ") + process +
-              (mode == ReposMode::kRepositioning ? ".REPOS" : ".RESTA") + ", value: true}}",
-          "{wait: 0.1}", "{nc: {mode: automatic}}", "{nc: start}"};
+  return std::string("{signal: {name: ") + process +
+         (mode == ReposMode::kRepositioning ? ".REPOS" : ".RESTA") + ", value: true}}";
 }
 
+// REPOS or RESTA, AUTO, start: the last line is the start.
+std::vector<std::string> ModeLines(const Scene& scene, ReposMode mode) {
+  return {CallLine(scene, mode), "{wait: 0.1}", "{nc: {mode: automatic}}", "{nc: start}"};
+}
+
+// Manual mode (2.2, 3): the call in manual mode, then a wait long enough for the REPOS screen
+// to show the targets; the operator's keys are chosen from it, after the last of these starts.
+std::vector<std::string> ManualCallLines(const Scene& scene, ReposMode mode) {
+  return {CallLine(scene, mode), "{wait: 0.1}", "{wait: 0.01}"};
+}
+
+// What the operator does with the REPOS screen `repos` in front of him: the spindle's key if
+// it has the adjust symbol (3.3: M3 restores M03, M4 M04, M5 M05, M19 M19), then every axis of
+// the order that has it, jogged toward its target by an increment beyond it -- the NC stops
+// the axis at the target (3.2) -- and a last short wait, the case's end.
+std::vector<std::string> ManualReturnLines(const Scene& scene, const Subroutine& order,
+                                           const nlohmann::ordered_json& repos) {
+  std::vector<std::string> lines;
+  const nlohmann::ordered_json spindle = repos.value("spindle", nlohmann::ordered_json());
+  if (spindle.is_object() && spindle.value("adjust", false)) {
+    const int m = spindle.value("command_m", 5);
+    char key[24];
+    // The spindle's Axx as the gateway numbers it (sim/model/gateway_layout.cpp).
+    int highest = 0;
+    for (const auto& a : scene.model->nc.axes) highest = std::max(highest, a.number);
+    const int number = scene.model->nc.spindle_number > 0 ? scene.model->nc.spindle_number
+                                                           : highest + 1;
+    std::snprintf(key, sizeof key, "A%02dC.M%d", number, m);
+    lines.push_back(std::string("{signal: {name: ") + key + ", value: true}}");
+    lines.push_back("{wait: 0.5}");  // the spindle runs up before the tool comes back
+  }
+  const nlohmann::ordered_json axes = repos.value("axes", nlohmann::ordered_json::object());
+  for (const std::string& axis : order.manual_order) {
+    if (!axes.contains(axis) || !axes[axis].value("adjust", false)) continue;
+    const double to_go = axes[axis].value("to_go", 0.0);
+    if (to_go == 0) continue;
+    const double beyond = std::ceil(std::abs(to_go)) + 1;
+    JogLines(scene, axis, to_go > 0 ? beyond : -beyond, lines);
+  }
+  lines.push_back("{wait: 0.01}");
+  return lines;
+}
 void Append(Scene& scene, const std::vector<std::string>& lines) {
   for (const std::string& l : lines)
     scene.timeline.push_back(Step(scene, l, scene.timeline.size()));
+}
+
+// The way back of a case whose retract is appended (and perhaps run): the REPOS subroutine
+// (the call, AUTO, start) or the operator's manual return; runs the case to its end. The same
+// steps on the same ticks whether the case was forked or runs from the start.
+void RunReturn(Scene& scene, SceneRun& run, CaseObserver& obs, const StudyPlan& plan,
+               const Subroutine& way, ReposMode mode, double limit) {
+  if (!way.manual()) {
+    const std::vector<std::string> lines = ModeLines(scene, mode);
+    obs.SetPhaseStep(scene.timeline.size() + lines.size() - 2);  // the switch to AUTO
+    Append(scene, lines);
+    RunCase(run, obs, plan, limit);
+    return;
+  }
+  obs.SetPhaseStep(scene.timeline.size(), false);  // the call
+  Append(scene, ManualCallLines(scene, mode));
+  const size_t shown = scene.timeline.size() - 1;
+  while (!run.done() && !obs.done() && !obs.step_seen(shown) && run.time_s() < limit) run.Step();
+  if (!obs.done() && obs.step_seen(shown)) {
+    Append(scene, ManualReturnLines(scene, way, obs.last_repos()));
+    obs.SetManualEnd(scene.timeline.size() - 1);
+  }
+  RunCase(run, obs, plan, limit);
 }
 
 // Runs `work` in a forked child that writes result lines to the fd it gets; the lines, and in
@@ -301,7 +228,14 @@ std::vector<std::string> InChild(const std::function<void(int)>& work, int* stat
   if (child < 0) ::_exit(4);
   if (child == 0) {
     ::close(fds[0]);
-    work(fds[1]);
+    // A copy of the study process must never unwind into the study's own code.
+    try {
+      work(fds[1]);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "vmt study: a case failed: %s\n", e.what());
+      std::fflush(stderr);
+      ::_exit(5);
+    }
     ::_exit(0);
   }
   ::close(fds[1]);
@@ -316,17 +250,6 @@ std::vector<std::string> InChild(const std::function<void(int)>& work, int* stat
 }
 
 }  // namespace
-
-std::vector<TimelineStep> OperatorSteps(const Scene& scene, const StudyPlan& plan,
-                                        const Interruption& in, const RetractPattern& retract,
-                                        ReposMode mode, size_t first, size_t* start_index) {
-  std::vector<std::string> lines = RetractLines(scene, plan, in, retract);
-  for (const std::string& l : ModeLines(scene, mode)) lines.push_back(l);
-  std::vector<TimelineStep> steps;
-  for (size_t k = 0; k < lines.size(); ++k) steps.push_back(Step(scene, lines[k], first + k));
-  *start_index = first + lines.size() - 1;
-  return steps;
-}
 
 void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
                         const std::vector<Interruption>& interruptions,
@@ -376,8 +299,7 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
             [&](int fd) {
               Append(scene, RetractLines(scene, plan, in, retract));
               const size_t marker = scene.timeline.size() - 1;
-              const size_t start_index = marker + ModeLines(scene, ReposMode::kRestart).size();
-              CaseObserver obs(start_index, marker);
+              CaseObserver obs(CaseObserver::kNoStep, marker);
               observer = &obs;
               const double limit = CaseLimit(plan, in, retract);
               while (!run.done() && !obs.done() && !obs.marker_seen() && run.time_s() < limit)
@@ -389,20 +311,26 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
                   WriteAll(fd, obs.Result(plan, interruptions, c, run.time_s()).dump() + "\n");
                   continue;
                 }
+                // The last mode needs no copy of this process: it runs here, on from the
+                // retract (a crash here is reported for it by the group, as for a child).
+                if (m + 1 == end) {
+                  RunReturn(scene, run, obs, plan, plan.subroutines[sub], c.mode, limit);
+                  WriteAll(fd, obs.Result(plan, interruptions, c, run.time_s()).dump() + "\n");
+                  continue;
+                }
                 int mode_status = 0;
                 const std::vector<std::string> one = InChild(
                     [&](int mode_fd) {
-                      Append(scene, ModeLines(scene, c.mode));
-                      RunCase(run, obs, plan, limit);
+                      RunReturn(scene, run, obs, plan, plan.subroutines[sub], c.mode, limit);
                       WriteAll(mode_fd,
                                obs.Result(plan, interruptions, c, run.time_s()).dump() + "\n");
                     },
                     &mode_status);
-                const bool ok = WIFEXITED(mode_status) && WEXITSTATUS(mode_status) == 0 &&
-                                one.size() == 1;
-                WriteAll(fd, (ok ? one[0]
-                                 : DiedResult(plan, interruptions, c, mode_status).dump()) +
-                                 "\n");
+                const bool ok =
+                    WIFEXITED(mode_status) && WEXITSTATUS(mode_status) == 0 && one.size() == 1;
+                WriteAll(
+                    fd,
+                    (ok ? one[0] : DiedResult(plan, interruptions, c, mode_status).dump()) + "\n");
               }
             },
             &status);
@@ -441,18 +369,26 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
 }
 
 CaseResult RunCaseFromStart(const Scene& base, const StudyPlan& plan,
-                            const std::vector<Interruption>& interruptions, const StudyCase& c) {
+                            const std::vector<Interruption>& interruptions, const StudyCase& c,
+                            const std::vector<SnapshotSpec>& shots, const std::string& out_dir,
+                            double* t_end_s) {
   Scene scene = SubroutineScene(base, plan.subroutines[c.subroutine]);
+  scene.snapshots = shots;
   const Interruption& in = interruptions[c.interruption];
+  const RetractPattern& retract = plan.retracts[c.retract];
   scene.timeline.push_back(HoldStep(scene, in.t_s, scene.timeline.size()));
-  size_t start_index = 0;
-  for (TimelineStep& s : OperatorSteps(scene, plan, in, plan.retracts[c.retract], c.mode,
-                                       scene.timeline.size(), &start_index))
-    scene.timeline.push_back(std::move(s));
-  CaseObserver obs(start_index);
+  Append(scene, RetractLines(scene, plan, in, retract));
+  CaseObserver obs;
   CaseObserver* observer = &obs;
-  SceneRun run(scene, CaseOptions(&observer));
-  RunCase(run, obs, plan, CaseLimit(plan, in, plan.retracts[c.retract]));
+  RunOptions options = CaseOptions(&observer);
+  options.snapshots = !shots.empty();
+  options.out_dir = out_dir;
+  SceneRun run(scene, options);
+  RunReturn(scene, run, obs, plan, plan.subroutines[c.subroutine], c.mode,
+            CaseLimit(plan, in, retract));
+  // A picture due at the end (an `at:` of the case's end) is taken at the next tick.
+  for (int k = 0; k < 2 && !shots.empty() && !run.done(); ++k) run.Step();
+  if (t_end_s) *t_end_s = obs.t_end();
   return obs.Result(plan, interruptions, c, run.time_s());
 }
 

@@ -16,28 +16,18 @@
 #include <string>
 #include <vector>
 
+#include "sim/study/case_observer.hpp"
 #include "sim/study/study_cases.hpp"
 
 namespace vmt::sim::study {
 
 /// The scene of one subroutine: the base scene with the subroutine file appended to its
-/// programs (as program 99: the main program must have no .REPOS of its own), no expectations,
-/// no snapshots, and a timeline that only starts the program.
+/// programs (as program 99: the main program must have no .REPOS of its own; nothing for a
+/// manual order), no expectations, no snapshots, and a timeline that only starts the program.
 Scene SubroutineScene(const Scene& base, const Subroutine& subroutine);
 
 /// The feed hold at t (timeline step `index`).
 TimelineStep HoldStep(const Scene& scene, double t_s, size_t index);
-/// The operator's steps of a case after the hold, from timeline index `first`; *start_index is
-/// the index of the final start in AUTO (where the REPOS phase begins).
-std::vector<TimelineStep> OperatorSteps(const Scene& scene, const StudyPlan& plan,
-                                        const Interruption& in, const RetractPattern& retract,
-                                        ReposMode mode, size_t first, size_t* start_index);
-
-/// The case's result line (cases.jsonl): id, interruption, retract, mode, verdict (collision |
-/// clear | error), the first contact's parts and point, the smallest clearance of the REPOS
-/// moves, the approach path (X, Z) and its length, the simulated time of the REPOS phase.
-using CaseResult = nlohmann::ordered_json;
-
 /// Runs the cases of `cases` that belong to subroutine `sub` (sorted by interruption), calling
 /// `sink` with each result as it finishes. With `fork` false each case runs from the start.
 void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
@@ -45,8 +35,12 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
                         const std::vector<StudyCase>& cases, size_t sub, bool fork,
                         const std::function<void(const CaseResult&)>& sink);
 
-/// One case from the program's start, without fork.
+/// One case from the program's start, without fork. With `shots`, the run renders them (the
+/// scene's `snapshots:` entries, e.g. {on: collision}) into `out_dir`, where it also writes its
+/// trace and events; *t_end_s gets the time the case ended.
 CaseResult RunCaseFromStart(const Scene& base, const StudyPlan& plan,
-                            const std::vector<Interruption>& interruptions, const StudyCase& c);
+                            const std::vector<Interruption>& interruptions, const StudyCase& c,
+                            const std::vector<SnapshotSpec>& shots = {},
+                            const std::string& out_dir = "", double* t_end_s = nullptr);
 
 }  // namespace vmt::sim::study

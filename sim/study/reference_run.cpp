@@ -115,7 +115,8 @@ Reference RunReference(const Scene& base, const std::string& work_dir) {
     open->end_s = t;
     if (std::abs(x - open_x) > 1e-3 || std::abs(z - open_z) > 1e-3) open->motion = true;
   }
-  if (ref.end_s <= ref.start_s) ref.end_s = ref.blocks.empty() ? ref.start_s : ref.blocks.back().end_s;
+  if (ref.end_s <= ref.start_s)
+    ref.end_s = ref.blocks.empty() ? ref.start_s : ref.blocks.back().end_s;
   return ref;
 }
 
@@ -144,7 +145,8 @@ Reference ReferenceFromJson(const std::string& text) {
     r.blocks.push_back({b.at("line").get<int>(), b.at("label").get<std::string>(),
                         b.at("start_s").get<double>(), b.at("end_s").get<double>(),
                         b.at("motion").get<bool>()});
-  for (const auto& p : j.at("path")) r.path.emplace_back(p.at(0).get<double>(), p.at(1).get<double>());
+  for (const auto& p : j.at("path"))
+    r.path.emplace_back(p.at(0).get<double>(), p.at(1).get<double>());
   return r;
 }
 

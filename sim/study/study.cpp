@@ -1,5 +1,6 @@
 #include "sim/study/study.hpp"
 
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -14,6 +15,7 @@
 #include <thread>
 
 #include "sim/study/case_files.hpp"
+#include "sim/study/case_snapshots.hpp"
 #include "sim/study/study_report.hpp"
 
 namespace vmt::sim::study {
@@ -75,6 +77,14 @@ std::string Tally(const std::vector<CaseResult>& cases) {
   return s;
 }
 
+// The CPU time of the waited-for child processes (the workers and, through them, every case).
+double ChildrenCpuSeconds() {
+  rusage u{};
+  ::getrusage(RUSAGE_CHILDREN, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec) / 1e6;
+}
+
 }  // namespace
 
 StudySummary RunStudy(const StudyOptions& o) {
@@ -124,6 +134,7 @@ StudySummary RunStudy(const StudyOptions& o) {
       worker_of[c.group] = w;
     }
   const size_t before = CountLines(o.out_dir + "/cases.jsonl");
+  const double cpu0 = ChildrenCpuSeconds();
   std::vector<pid_t> workers;
   std::fflush(nullptr);
   for (int w = 0; w < o.jobs && !todo.empty(); ++w) {
@@ -168,11 +179,22 @@ StudySummary RunStudy(const StudyOptions& o) {
     if (alive > 0) std::this_thread::sleep_for(std::chrono::milliseconds(o.progress ? 200 : 20));
   }
   if (o.progress) std::fprintf(stderr, "\n");
+  summary.cases_cpu_s = ChildrenCpuSeconds() - cpu0;
+  // The files in case id order, whatever the workers' interleaving: the same study gives the
+  // same bytes.
   const std::vector<CaseResult> all = Deduplicated(ReadCases(o.out_dir + "/cases.jsonl"));
+  RewriteCaseFiles(o.out_dir, all);
+  if (!failed && o.snapshots > 0) {
+    const auto shots0 = std::chrono::steady_clock::now();
+    summary.snapshots = SnapshotCases(scene, plan, interruptions, cases, all,
+                                      WorstCaseIds(all, o.snapshots), o.out_dir)
+                            .size();
+    summary.snapshots_wall_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - shots0).count();
+  }
   WriteReport(o.out_dir, "REPOS study: " + scene.name);
   if (failed) throw std::runtime_error("a study worker failed; the finished cases are kept");
-  summary.wall_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  summary.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   summary.cases_per_minute = summary.wall_s > 0 ? summary.run / summary.wall_s * 60 : 0;
   summary.text = Tally(all);
   return summary;
@@ -192,6 +214,19 @@ size_t MergeStudies(const std::vector<std::string>& dirs, const std::string& out
   }
   all = Deduplicated(std::move(all));
   RewriteCaseFiles(out_dir, all);
+  // The shards' pictures (each shard pictured its own worst cases).
+  std::map<std::string, std::string> shots;
+  for (const std::string& d : dirs)
+    for (const auto& [id, file] : ReadSnapshotIndex(d)) {
+      if (shots.count(id) || !std::filesystem::exists(d + "/" + file)) continue;
+      const std::filesystem::path to = std::filesystem::path(out_dir) / file;
+      std::filesystem::create_directories(to.parent_path());
+      if (std::filesystem::absolute(d + "/" + file) != std::filesystem::absolute(to))
+        std::filesystem::copy_file(d + "/" + file, to,
+                                   std::filesystem::copy_options::overwrite_existing);
+      shots[id] = file;
+    }
+  if (!shots.empty()) WriteSnapshotIndex(out_dir, shots);
   if (!reference.empty()) std::ofstream(out_dir + "/reference.json", std::ios::binary) << reference;
   WriteReport(out_dir, "REPOS study (merged)");
   return all.size();

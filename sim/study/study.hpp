@@ -12,22 +12,28 @@ namespace vmt::sim::study {
 struct StudyOptions {
   std::string scene;
   std::string out_dir;
-  int jobs = 1;                  ///< worker processes
-  int shard = 1, shards = 1;     ///< this process' share: groups g with g % shards == shard - 1
-  std::optional<double> every_ms;           ///< overrides the plan's interruption
+  int jobs = 1;                    ///< worker processes
+  int shard = 1, shards = 1;       ///< this process' share: groups g with g % shards == shard - 1
+  std::optional<double> every_ms;  ///< overrides the plan's interruption
   std::optional<std::vector<int>> per_mille;
   bool fork_cases = true;  ///< false: every case runs from the program's start (slow; a check)
   bool progress = false;   ///< a progress bar on stderr
   std::optional<size_t> max_cases;  ///< the first N cases of this shard only (benchmarks)
+  /// Pictures of the worst cases, rendered after the study: per subroutine this many
+  /// collisions and the tightest clear case (0: none).
+  int snapshots = 3;
 };
 
 struct StudySummary {
   size_t cases = 0;    ///< in this shard
   size_t skipped = 0;  ///< already in the folder
   size_t run = 0;
-  double wall_s = 0;
+  double wall_s = 0;            ///< the whole study: reference run, cases, pictures, report
   double cases_per_minute = 0;  ///< run / wall time
-  std::string text;             ///< per subroutine: cases, collisions, errors
+  double cases_cpu_s = 0;       ///< CPU time (user + system) of the worker processes
+  double snapshots_wall_s = 0;  ///< of wall_s, the worst cases' pictures
+  size_t snapshots = 0;
+  std::string text;  ///< per subroutine: cases, collisions, errors
 };
 
 /// Throws ModelError (scene or plan) or std::runtime_error.

@@ -37,6 +37,34 @@ RetractPattern ReadRetract(const YamlNode& n, const Scene& scene) {
   return r;
 }
 
+// `manual: [[X, Z], [Z, X]]`: the orders in which the operator jogs the feed axes back (3.1:
+// the order is the operator's). An axis not named is not jogged (it stays where the retract
+// left it: a case that needs it ends without CREST, verdict error).
+std::vector<Subroutine> ReadManualOrders(const YamlNode& n, const Scene& scene) {
+  if (!n.IsSequence() || n.size() == 0)
+    n.Fail("expected a list of axis orders, e.g. [[X, Z], [Z, X]]");
+  std::vector<Subroutine> out;
+  for (size_t i = 0; i < n.size(); ++i) {
+    const YamlNode order = n[i];
+    if (!order.IsSequence() || order.size() == 0)
+      order.Fail("expected a list of NC axes, e.g. [X, Z]");
+    Subroutine m;
+    m.name = "manual ";
+    for (size_t k = 0; k < order.size(); ++k) {
+      const std::string axis = order[k].String();
+      const auto& axes = scene.nc.data.axes;
+      if (std::none_of(axes.begin(), axes.end(), [&](const auto& a) { return a.name == axis; }))
+        order[k].Fail("no NC axis " + axis + " in this scene");
+      if (std::find(m.manual_order.begin(), m.manual_order.end(), axis) != m.manual_order.end())
+        order[k].Fail("axis " + axis + " twice in one order");
+      m.manual_order.push_back(axis);
+      m.name += (k ? "," : "") + axis;
+    }
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
 }  // namespace
 
 StudyPlan LoadStudyPlan(const std::string& scene_path, const Scene& scene) {
@@ -44,10 +72,11 @@ StudyPlan LoadStudyPlan(const std::string& scene_path, const Scene& scene) {
   if (!root.IsMap() || !root.Has("study")) root.Fail("a study needs a `study:` section");
   const YamlNode s = root["study"];
   if (!s.IsMap()) s.Fail("expected a map");
-  s.AllowKeys({"interrupt", "retracts", "modes", "subroutines", "hold", "timeout"});
+  s.AllowKeys({"interrupt", "retracts", "modes", "subroutines", "manual", "hold", "timeout"});
   if (!scene.nc.present) root.Fail("a study needs an `nc:` section");
   // The case's operator steps are NC and signal steps; an embedded PLC would take the keys.
-  if (scene.plc.present) root["plc"].Fail("a study scene has no `plc:` (the study is the operator)");
+  if (scene.plc.present)
+    root["plc"].Fail("a study scene has no `plc:` (the study is the operator)");
   StudyPlan plan;
   const YamlNode in = s["interrupt"];
   if (!in.IsMap()) in.Fail("expected {every_ms: T} or {per_mille: [250, 750]}");
@@ -87,16 +116,26 @@ StudyPlan LoadStudyPlan(const std::string& scene_path, const Scene& scene) {
         ms[i].Fail("expected repositioning or restart");
     }
   }
-  const YamlNode subs = s["subroutines"];
-  if (!subs.IsSequence() || subs.size() == 0) subs.Fail("expected a list of NC files");
-  for (size_t i = 0; i < subs.size(); ++i) {
-    Subroutine sub{subs[i].String(), ""};
-    sub.file = (std::filesystem::path(scene_path).parent_path() / sub.name).lexically_normal();
-    if (!std::ifstream(sub.file)) subs[i].Fail("cannot open NC program " + sub.file);
-    for (const Subroutine& o : plan.subroutines)
-      if (o.name == sub.name) subs[i].Fail("listed twice");
-    plan.subroutines.push_back(sub);
+  if (!s.Has("subroutines") && !s.Has("manual"))
+    s.Fail("expected `subroutines:` (REPOS subroutines) and/or `manual:` (jog orders)");
+  if (s.Has("subroutines")) {
+    const YamlNode subs = s["subroutines"];
+    if (!subs.IsSequence() || subs.size() == 0) subs.Fail("expected a list of NC files");
+    for (size_t i = 0; i < subs.size(); ++i) {
+      Subroutine sub{subs[i].String(), "", {}};
+      sub.file = (std::filesystem::path(scene_path).parent_path() / sub.name).lexically_normal();
+      if (!std::ifstream(sub.file)) subs[i].Fail("cannot open NC program " + sub.file);
+      for (const Subroutine& o : plan.subroutines)
+        if (o.name == sub.name) subs[i].Fail("listed twice");
+      plan.subroutines.push_back(sub);
+    }
   }
+  if (s.Has("manual"))
+    for (Subroutine& m : ReadManualOrders(s["manual"], scene)) {
+      for (const Subroutine& o : plan.subroutines)
+        if (o.name == m.name) s["manual"].Fail("the order " + m.name + " listed twice");
+      plan.subroutines.push_back(std::move(m));
+    }
   plan.hold_s = s.Double("hold", plan.hold_s);
   if (!(plan.hold_s >= 0.01 && plan.hold_s <= 60)) s["hold"].Fail("expected 0.01..60 s");
   plan.timeout_s = s.Double("timeout", plan.timeout_s);

@@ -30,10 +30,16 @@ struct RetractPattern {
 enum class ReposMode { kRepositioning, kRestart };
 const char* ToString(ReposMode m);
 
-/// A REPOS subroutine to compare: the file (program 99) appended to the scene's programs.
+/// A way back to the contour that the study compares: a REPOS subroutine (the file, program
+/// 99, appended to the scene's programs; program-driven, 4.1) or, with `manual_order` set, the
+/// operator in manual mode (3): the function called, the spindle restored by its key (3.3),
+/// then each feed axis jogged toward its target in this order, where the NC stops it (3.2).
 struct Subroutine {
-  std::string name;  ///< as written in the plan (nc/99.mtc), the case id's first part
-  std::string file;  ///< resolved against the scene's folder
+  std::string
+      name;  ///< nc/99.mtc as written in the plan, or "manual X,Z"; the case id's first part
+  std::string file;  ///< resolved against the scene's folder; empty for a manual order
+  std::vector<std::string> manual_order;  ///< NC axis names; empty: a REPOS subroutine
+  bool manual() const { return !manual_order.empty(); }
 };
 
 struct StudyPlan {
@@ -43,9 +49,9 @@ struct StudyPlan {
   std::vector<int> per_mille;
   std::vector<RetractPattern> retracts;
   std::vector<ReposMode> modes{ReposMode::kRepositioning};
-  std::vector<Subroutine> subroutines;
-  double hold_s = 0.3;      ///< feed hold to manual mode: the axes have stopped by then
-  double timeout_s = 30;    ///< per case, from the start in AUTO to the REPOS subroutine's RTS
+  std::vector<Subroutine> subroutines;  ///< the plan's `subroutines:`, then its `manual:` orders
+  double hold_s = 0.3;                  ///< feed hold to manual mode: the axes have stopped by then
+  double timeout_s = 30;  ///< per case, from the start in AUTO to the REPOS subroutine's RTS
 };
 
 /// The `study:` section of the scene file `scene_path`, checked against the loaded `scene`

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "sim/study/case_files.hpp"
+#include "sim/study/case_snapshots.hpp"
 
 namespace vmt::sim::study {
 namespace {
@@ -17,11 +18,16 @@ namespace {
 std::string Esc(const std::string& s) {
   std::string o;
   for (char c : s) {
-    if (c == '<') o += "&lt;";
-    else if (c == '>') o += "&gt;";
-    else if (c == '&') o += "&amp;";
-    else if (c == '"') o += "&quot;";
-    else o += c;
+    if (c == '<')
+      o += "&lt;";
+    else if (c == '>')
+      o += "&gt;";
+    else if (c == '&')
+      o += "&amp;";
+    else if (c == '"')
+      o += "&quot;";
+    else
+      o += c;
   }
   return o;
 }
@@ -82,7 +88,8 @@ std::string Plane(const std::vector<const CaseResult*>& cases, const Reference* 
       if (path.empty()) continue;
       o << "<polyline fill=\"none\" stroke-opacity=\"0.6\" stroke=\"" << Colour(v)
         << "\" stroke-width=\"1\" points=\"";
-      for (const auto& p : path) o << px(p[1].get<double>()) << "," << py(p[0].get<double>()) << " ";
+      for (const auto& p : path)
+        o << px(p[1].get<double>()) << "," << py(p[0].get<double>()) << " ";
       o << "\"><title>" << Esc(Str(*r, "case")) << ": " << v << "</title></polyline>\n";
       if (v == "collision") {
         const auto& last = path.back();
@@ -98,7 +105,8 @@ std::string Plane(const std::vector<const CaseResult*>& cases, const Reference* 
 }  // namespace
 
 std::string ReportHtml(const std::string& title, const std::vector<CaseResult>& cases,
-                       const Reference* reference) {
+                       const Reference* reference,
+                       const std::map<std::string, std::string>& snapshots) {
   std::map<std::string, std::vector<const CaseResult*>> by_sub;
   for (const CaseResult& r : cases) by_sub[Str(r, "subroutine")].push_back(&r);
   std::ostringstream o;
@@ -108,10 +116,13 @@ std::string ReportHtml(const std::string& title, const std::vector<CaseResult>& 
        ".clear{color:#2a9d3f}.collision{color:#d62828}.error{color:#f08c00}</style></head><body>\n";
   o << "<h1>" << Esc(title) << "</h1>\n<p>" << cases.size()
     << " cases. Verdicts: <span class=\"clear\">clear</span> (the REPOS subroutine returned, "
-       "every move checked clear by PathGuard), <span class=\"collision\">collision</span> "
-       "(PathGuard found a contact on a REPOS move: NC error 507), <span class=\"error\">error"
-       "</span> (another NC error or a timeout).</p>\n";
-  o << "<h2>Summary per REPOS subroutine</h2>\n<table><tr><th class=\"l\">subroutine</th>"
+       "or the operator's manual jogs restored the conditions, PxxS.CREST; every move checked "
+       "clear by PathGuard), <span class=\"collision\">collision</span> (PathGuard found a "
+       "contact on a REPOS move or a manual return jog), <span class=\"error\">error</span> "
+       "(another NC error or a timeout). The rows <i>manual X,Z</i> are the operator jogging "
+       "back in manual mode in that order of axes (repositioning manual 3).</p>\n";
+  o << "<h2>Summary per REPOS subroutine or manual order</h2>\n<table><tr><th class=\"l\">"
+       "subroutine</th>"
        "<th class=\"l\">mode</th><th>cases</th><th>clear</th><th>collisions</th><th>errors</th>"
        "<th>worst clearance, mm</th></tr>\n";
   for (const auto& [sub, list] : by_sub) {
@@ -127,10 +138,10 @@ std::string ReportHtml(const std::string& title, const std::vector<CaseResult>& 
         if (v == "clear" && (*r)["min_clearance_mm"].is_number())
           worst = std::min(worst, (*r)["min_clearance_mm"].get<double>());
       }
-      o << "<tr><td class=\"l\">" << Esc(sub) << "</td><td class=\"l\">" << Esc(mode)
-        << "</td><td>" << ms.size() << "</td><td class=\"clear\">" << clear
-        << "</td><td class=\"collision\">" << coll << "</td><td class=\"error\">" << err
-        << "</td><td>" << (std::isfinite(worst) ? Num(worst) : "&#8211;") << "</td></tr>\n";
+      o << "<tr><td class=\"l\">" << Esc(sub) << "</td><td class=\"l\">" << Esc(mode) << "</td><td>"
+        << ms.size() << "</td><td class=\"clear\">" << clear << "</td><td class=\"collision\">"
+        << coll << "</td><td class=\"error\">" << err << "</td><td>"
+        << (std::isfinite(worst) ? Num(worst) : "&#8211;") << "</td></tr>\n";
     }
   }
   o << "</table>\n";
@@ -154,18 +165,37 @@ std::string ReportHtml(const std::string& title, const std::vector<CaseResult>& 
     worst.insert(worst.end(), tight.begin(), tight.end());
     o << "<h3>Worst cases</h3>\n<table><tr><th class=\"l\">case</th><th class=\"l\">verdict"
          "</th><th class=\"l\">first contact</th><th class=\"l\">point, mm</th><th>clearance, mm"
-         "</th><th class=\"l\">error</th></tr>\n";
+         "</th><th class=\"l\">error</th><th class=\"l\">picture</th></tr>\n";
     for (const CaseResult* r : worst) {
       const std::string v = Str(*r, "verdict");
       o << "<tr><td class=\"l\">" << Esc(Str(*r, "case")) << "</td><td class=\"l " << v << "\">"
         << v << "</td><td class=\"l\">"
         << ((*r)["parts"].is_array() ? Esc((*r)["parts"].dump()) : "") << "</td><td class=\"l\">"
         << ((*r)["point"].is_array() ? Esc((*r)["point"].dump()) : "") << "</td><td>"
-        << ((*r)["min_clearance_mm"].is_number() ? Num((*r)["min_clearance_mm"].get<double>())
-                                                 : "")
-        << "</td><td class=\"l\">" << Esc(Str(*r, "error")) << "</td></tr>\n";
+        << ((*r)["min_clearance_mm"].is_number() ? Num((*r)["min_clearance_mm"].get<double>()) : "")
+        << "</td><td class=\"l\">" << Esc(Str(*r, "error")) << "</td><td class=\"l\">";
+      const auto shot = snapshots.find(Str(*r, "case"));
+      if (shot != snapshots.end()) o << "<a href=\"" << Esc(shot->second) << "\">picture</a>";
+      o << "</td></tr>\n";
     }
     o << "</table>\n";
+    // The pictures of this subroutine's worst cases: a collision at its first contact, the
+    // tightest clear case at its end.
+    bool any = false;
+    for (const CaseResult* r : list) {
+      const auto shot = snapshots.find(Str(*r, "case"));
+      if (shot == snapshots.end()) continue;
+      if (!any) o << "<h3>Pictures of the worst cases</h3>\n<div>\n";
+      any = true;
+      const std::string v = Str(*r, "verdict");
+      o << "<figure style=\"display:inline-block;margin:4px\"><a href=\"" << Esc(shot->second)
+        << "\"><img src=\"" << Esc(shot->second) << "\" width=\"320\" alt=\""
+        << Esc(Str(*r, "case")) << "\"></a><figcaption class=\"" << v << "\">"
+        << Esc(Str(*r, "case")) << ": " << v
+        << (v == "collision" ? " (first contact)" : " (end of the return)")
+        << "</figcaption></figure>\n";
+    }
+    if (any) o << "</div>\n";
   }
   o << "</body></html>\n";
   return o.str();
@@ -183,7 +213,7 @@ void WriteReport(const std::string& dir, const std::string& title) {
     }
   }
   std::ofstream(dir + "/report.html", std::ios::binary)
-      << ReportHtml(title, cases, ref ? &*ref : nullptr);
+      << ReportHtml(title, cases, ref ? &*ref : nullptr, ReadSnapshotIndex(dir));
 }
 
 }  // namespace vmt::sim::study

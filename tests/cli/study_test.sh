@@ -17,6 +17,12 @@ n=$(wc -l < whole/cases.jsonl)
 grep -q '"verdict":"collision"' whole/cases.jsonl || fail "no collision"
 grep -q '"verdict":"clear"' whole/cases.jsonl || fail "no clear case"
 grep -q '<svg' whole/report.html || fail "report.html has no SVG"
+# The worst cases' pictures (a collision at its first contact, the tightest clear case),
+# named after the case, linked from the report.
+[ -f whole/snapshots.json ] || fail "no snapshots.json"
+shots=$(ls whole/snapshots/*.png | wc -l)
+[ "$shots" -ge 2 ] || fail "expected at least 2 pictures, got $shots"
+grep -q '<a href="snapshots/[^"]*\.png">' whole/report.html || fail "report.html links no picture"
 
 # A rerun skips what the folder holds; a study cut short keeps its whole lines.
 "$vmt" study repos "$scene" --out whole | grep -q "(0 run, $n already there)" || fail "rerun ran cases"
@@ -33,6 +39,10 @@ diff <(sorted whole) <(sorted merged) > /dev/null || fail "merged shards differ 
 grep -q '<svg' merged/report.html || fail "merged report.html"
 "$vmt" study repos "$scene" --out jobs --jobs 2 > /dev/null
 diff <(sorted whole) <(sorted jobs) > /dev/null || fail "--jobs 2 differs from one job"
+cmp whole/cases.jsonl jobs/cases.jsonl || fail "cases.jsonl: not the same bytes with --jobs 2"
+"$vmt" study repos "$scene" --out noshots --snapshots 0 > /dev/null
+[ ! -e noshots/snapshots ] || fail "--snapshots 0 took pictures"
+cmp whole/cases.jsonl noshots/cases.jsonl || fail "cases.jsonl depends on the pictures"
 
 # GNU parallel, as on a workstation without Slurm.
 if command -v parallel > /dev/null; then

@@ -1,11 +1,12 @@
 // cases.jsonl / cases.csv: appended whole lines, a torn last line dropped on reading, one
 // result per case id, CSV quoting.
+#include "sim/study/case_files.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 
-#include "sim/study/case_files.hpp"
 #include "sim/study/study_report.hpp"
 
 namespace vmt::sim::study {

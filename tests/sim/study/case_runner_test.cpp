@@ -1,6 +1,8 @@
 // A tiny study with known verdicts: over the chuck, program 99's X-first return collides (507);
 // lifted and moved off to the free end, it is clear. A forked case equals the case run from the
 // program's start; the runner's event hook sees what events.jsonl records.
+#include "sim/study/case_runner.hpp"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -9,7 +11,6 @@
 #include <map>
 
 #include "sim/runner/runner.hpp"
-#include "sim/study/case_runner.hpp"
 
 namespace vmt::sim::study {
 namespace {
@@ -66,8 +67,8 @@ TEST(study_cases, TinyStudyVerdicts) {
   ASSERT_TRUE(chuck["parts"].is_array());
   EXPECT_EQ(chuck["parts"].size(), 2u);
   EXPECT_EQ(chuck["point"].size(), 3u);
-  EXPECT_EQ(chuck["case"], "../../../scenes/nc/99.mtc/" +
-                               t.interruptions[0].label + "/over the chuck/repositioning");
+  EXPECT_EQ(chuck["case"], "../../../scenes/nc/99.mtc/" + t.interruptions[0].label +
+                               "/over the chuck/repositioning");
 }
 
 TEST(study_cases, ForkedCaseEqualsTheCaseRunFromTheStart) {
@@ -77,7 +78,8 @@ TEST(study_cases, ForkedCaseEqualsTheCaseRunFromTheStart) {
                      [&](const CaseResult& r) { forked.push_back(r); });
   ASSERT_EQ(forked.size(), t.cases.size());
   for (size_t i = 0; i < t.cases.size(); ++i)
-    EXPECT_EQ(forked[i].dump(), RunCaseFromStart(t.scene, t.plan, t.interruptions, t.cases[i]).dump());
+    EXPECT_EQ(forked[i].dump(),
+              RunCaseFromStart(t.scene, t.plan, t.interruptions, t.cases[i]).dump());
 }
 
 TEST(study_runner_hook, OnEventSeesWhatEventsJsonlRecords) {

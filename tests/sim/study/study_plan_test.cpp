@@ -1,5 +1,7 @@
 // The `study:` plan: read from the showcase scene, ignored by a run, bad input named with
 // file:line:col and the YAML path.
+#include "sim/study/study_plan.hpp"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -7,7 +9,6 @@
 #include <fstream>
 
 #include "sim/model/model_error.hpp"
-#include "sim/study/study_plan.hpp"
 
 namespace vmt::sim::study {
 namespace {
@@ -25,9 +26,23 @@ TEST(study_plan, ReadsTheShowcase) {
   EXPECT_EQ(plan.retracts[1].jogs[1].axis, "Z");
   EXPECT_EQ(plan.retracts[1].jogs[1].mm, -20);
   EXPECT_EQ(plan.modes, (std::vector<ReposMode>{ReposMode::kRepositioning, ReposMode::kRestart}));
-  ASSERT_EQ(plan.subroutines.size(), 2u);
+  ASSERT_EQ(plan.subroutines.size(), 4u);  // two REPOS subroutines, two manual orders
   EXPECT_EQ(plan.subroutines[1].name, "nc/99_safe.mtc");
   EXPECT_TRUE(std::filesystem::exists(plan.subroutines[1].file));
+  EXPECT_FALSE(plan.subroutines[1].manual());
+  EXPECT_EQ(plan.subroutines[2].name, "manual X,Z");
+  EXPECT_EQ(plan.subroutines[2].manual_order, (std::vector<std::string>{"X", "Z"}));
+  EXPECT_TRUE(plan.subroutines[2].file.empty());
+  EXPECT_EQ(plan.subroutines[3].name, "manual Z,X");
+}
+
+TEST(study_plan, ManualOrdersAloneOrBesideSubroutines) {
+  const std::string file = std::string(VMT_SOURCE_DIR) + "/tests/sim/study/tiny-manual-study.yaml";
+  const Scene scene = LoadScene(file);
+  const StudyPlan plan = LoadStudyPlan(file, scene);
+  ASSERT_EQ(plan.subroutines.size(), 2u);  // no `subroutines:`: the manual orders only
+  EXPECT_EQ(plan.subroutines[0].manual_order, (std::vector<std::string>{"X", "Z"}));
+  EXPECT_EQ(plan.subroutines[1].manual_order, (std::vector<std::string>{"Z", "X"}));
 }
 
 // A copy of the tiny study with its `study:` section replaced.
@@ -61,8 +76,10 @@ TEST(study_plan, BadInputNamesFileLineAndPath) {
   EXPECT_THAT(e, HasSubstr("0..1000"));
   e = Error("study:\n  interrupt: {every_ms: 500, per_mille: [1]}\n" + retract + subs);
   EXPECT_THAT(e, HasSubstr("expected one of every_ms, per_mille"));
-  e = Error("study:\n  interrupt: {every_ms: 500}\n  retracts: [{name: up, jogs: [{axis: Q, "
-            "mm: 20}]}]\n" + subs);
+  e = Error(
+      "study:\n  interrupt: {every_ms: 500}\n  retracts: [{name: up, jogs: [{axis: Q, "
+      "mm: 20}]}]\n" +
+      subs);
   EXPECT_THAT(e, HasSubstr("no NC axis Q"));
   EXPECT_THAT(e, MatchesRegex(".*:[0-9]+:[0-9]+: study.retracts.0..jogs.0..axis.*"));
   e = Error("study:\n  interrupt: {every_ms: 500}\n" + retract + "  subroutines: [nope.mtc]\n");
@@ -73,6 +90,17 @@ TEST(study_plan, BadInputNamesFileLineAndPath) {
   EXPECT_THAT(e, HasSubstr("speed"));
   e = Error("study:\n  interrupt: {every_ms: 500}\n  retracts: []\n" + subs);
   EXPECT_THAT(e, HasSubstr("expected a list of retract patterns"));
+  e = Error("study:\n  interrupt: {every_ms: 500}\n" + retract + "  manual: [[X, Q]]\n");
+  EXPECT_THAT(e, HasSubstr("no NC axis Q"));
+  EXPECT_THAT(e, MatchesRegex(".*:[0-9]+:[0-9]+: study.manual.0..1.*"));
+  e = Error("study:\n  interrupt: {every_ms: 500}\n" + retract + "  manual: [[X, X]]\n");
+  EXPECT_THAT(e, HasSubstr("axis X twice in one order"));
+  e = Error("study:\n  interrupt: {every_ms: 500}\n" + retract + "  manual: [X, Z]\n");
+  EXPECT_THAT(e, HasSubstr("expected a list of NC axes"));
+  e = Error("study:\n  interrupt: {every_ms: 500}\n" + retract + "  manual: [[X], [X]]\n");
+  EXPECT_THAT(e, HasSubstr("listed twice"));
+  e = Error("study:\n  interrupt: {every_ms: 500}\n" + retract);
+  EXPECT_THAT(e, HasSubstr("and/or `manual:`"));
   e = Error("study: [1, 2]\n");
   EXPECT_THAT(e, HasSubstr("expected a map"));
   e = Error("stud:\n  interrupt: {every_ms: 500}\n");

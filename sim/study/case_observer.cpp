@@ -1,0 +1,142 @@
+#include "sim/study/case_observer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+namespace vmt::sim::study {
+namespace {
+
+std::string Fixed(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6f", v);
+  return buf;
+}
+
+double Micro(double v) { return std::round(v * 1000) / 1000 + 0.0; }
+
+}  // namespace
+
+void CaseObserver::OnEvent(const nlohmann::ordered_json& e) {
+  const std::string kind = e.value("event", "");
+  const double t = e.value("t", 0.0);
+  if (kind == "signal" && e.value("name", "").ends_with("S.ERRNR")) {
+    error_number_ = static_cast<int>(e.value("value", 0.0));  // the message's number (507)
+    return;
+  }
+  if (done_) return;  // only the message number may still come (the gateway's next cycle)
+  size_t step = 0;
+  if (kind == "step") {
+    // "timeline[12] ...": the step's index
+    const std::string text = e.value("text", "");
+    if (text.starts_with("timeline[")) step = std::strtoul(text.c_str() + 9, nullptr, 10);
+    steps_seen_ = std::max(steps_seen_, step + 1);
+    if (manual_end_ && step == manual_end_ && repos_phase_) End(t);
+  }
+  if (kind == "step" && step == phase_step_ && !repos_phase_) {
+    repos_phase_ = true;
+    t_start_ = t;
+    if (have_command_ && start_point_known_) path_.emplace_back(x_, z_);
+  } else if (kind == "repos") {
+    last_repos_ = e;
+    if (e.contains("axes")) {
+      const auto& axes = e["axes"];
+      if (axes.contains("X")) x_ = axes["X"].value("command", x_);
+      if (axes.contains("Z")) z_ = axes["Z"].value("command", z_);
+      have_command_ = true;
+      if (repos_phase_ && !contact_ && (path_.empty() || path_.back() != std::make_pair(x_, z_)))
+        path_.emplace_back(x_, z_);
+    }
+    if (repos_phase_ && e.value("subroutine", false)) subroutine_seen_ = true;
+    if (repos_phase_ && subroutine_seen_ && !e.value("subroutine", false)) End(t);
+  } else if (kind == "path_guard") {
+    const bool clear = e.value("clear", true);
+    if (!repos_phase_) {
+      if (!clear && retract_contact_.is_null()) retract_contact_ = e["parts"];
+      return;
+    }
+    if (clear) {
+      const double c = e.value("min_clearance", std::numeric_limits<double>::infinity());
+      if (c < min_clearance_) min_clearance_ = c;
+    } else if (!contact_) {
+      contact_ = true;
+      parts_ = e["parts"];
+      point_ = e["point"];
+      position_ = e["position"];
+      // Where the move would have touched, on the drawing's axes.
+      if (position_.is_object()) {
+        const double cx = position_.contains("X") ? position_["X"].get<double>() : x_;
+        const double cz = position_.contains("Z") ? position_["Z"].get<double>() : z_;
+        path_.emplace_back(cx, cz);
+      }
+    }
+  } else if (kind == "nc") {
+    const std::string state = e.value("state", "");
+    if (state == "error") {
+      error_ = e.value("error", "NC error");
+      End(t);
+    } else if (state == "ended") {
+      End(t);
+    }
+  }
+}
+
+CaseResult CaseObserver::Result(const StudyPlan& plan,
+                                const std::vector<Interruption>& interruptions, const StudyCase& c,
+                                double t_now) const {
+  const Interruption& in = interruptions[c.interruption];
+  CaseResult r;
+  r["case"] = c.id;
+  r["subroutine"] = plan.subroutines[c.subroutine].name;
+  r["interrupt"] = in.label;
+  r["block"] = in.block;
+  r["per_mille"] = in.per_mille >= 0 ? nlohmann::ordered_json(in.per_mille) : nullptr;
+  r["t_interrupt_s"] = in.t_s;
+  r["retract"] = plan.retracts[c.retract].name;
+  r["mode"] = ToString(c.mode);
+  std::string verdict = "clear";
+  if (contact_)
+    verdict = "collision";
+  else if (!error_.empty() || !done_ || (!manual_end_ && !subroutine_seen_) ||
+           (manual_end_ && !last_repos_.value("conditions_restored", false)))
+    verdict = "error";
+  r["verdict"] = verdict;
+  r["parts"] = contact_ ? parts_ : nullptr;
+  r["point"] = contact_ ? point_ : nullptr;
+  r["contact_position"] = contact_ ? position_ : nullptr;
+  r["min_clearance_mm"] =
+      std::isfinite(min_clearance_) ? nlohmann::ordered_json(min_clearance_) : nullptr;
+  double length = 0;
+  for (size_t i = 1; i < path_.size(); ++i)
+    length +=
+        std::hypot(path_[i].first - path_[i - 1].first, path_[i].second - path_[i - 1].second);
+  if (contact_) length = 0;  // the move was checked whole and never started
+  r["path_length_mm"] = Micro(length);
+  const double end = done_ ? t_end_ : t_now;
+  r["repos_time_s"] = repos_phase_ ? Micro(end - t_start_) : 0.0;
+  std::string error = error_;
+  if (error.empty() && !done_)
+    error = repos_phase_ ? std::string(manual_end_ ? "timeout: the jogs did not end"
+                                                   : "timeout: no RTS of the REPOS subroutine") +
+                               " within " + Fixed(plan.timeout_s) + " s"
+                         : "timeout: the retract did not end";
+  if (error.empty() && done_ && !manual_end_ && !subroutine_seen_)
+    error = "the REPOS subroutine did not run";
+  if (error.empty() && done_ && manual_end_ && !last_repos_.value("conditions_restored", false))
+    error = "conditions not restored after the jogs (PxxS.CREST 0)";
+  r["error_number"] = error_number_ ? nlohmann::ordered_json(error_number_) : nullptr;
+  r["error"] = error.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(error);
+  r["retract_contact"] = retract_contact_;
+  auto& path = r["path"] = nlohmann::ordered_json::array();
+  for (const auto& [x, z] : path_) path.push_back({Micro(x), Micro(z)});
+  return r;
+}
+
+void CaseObserver::End(double t) {
+  if (done_) return;
+  done_ = true;
+  t_end_ = t;
+}
+
+}  // namespace vmt::sim::study

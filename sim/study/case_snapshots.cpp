@@ -1,0 +1,132 @@
+#include "sim/study/case_snapshots.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+
+namespace vmt::sim::study {
+namespace {
+
+std::string Str(const CaseResult& r, const char* key) {
+  return r.contains(key) && r[key].is_string() ? r[key].get<std::string>() : "";
+}
+
+// The look of the pictures: the scene's own first snapshot's camera and size.
+SnapshotSpec Look(const Scene& scene) {
+  SnapshotSpec look;
+  look.width = 320, look.height = 240;
+  if (!scene.snapshots.empty()) {
+    look.camera = scene.snapshots[0].camera;
+    look.width = scene.snapshots[0].width, look.height = scene.snapshots[0].height;
+  } else if (!scene.cameras.empty()) {
+    look.camera = scene.cameras[0].name;
+  }
+  return look;
+}
+
+}  // namespace
+
+void WriteSnapshotIndex(const std::string& dir, const std::map<std::string, std::string>& index) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  for (const auto& [id, file] : index) j[id] = file;
+  const std::string tmp = dir + "/snapshots.json." + std::to_string(::getpid());
+  std::ofstream(tmp, std::ios::binary) << j.dump(1) << "\n";
+  std::filesystem::rename(tmp, dir + "/snapshots.json");
+}
+
+std::vector<std::string> WorstCaseIds(const std::vector<CaseResult>& results, int collisions) {
+  std::map<std::string, std::vector<const CaseResult*>> by_sub;
+  for (const CaseResult& r : results) by_sub[Str(r, "subroutine")].push_back(&r);
+  std::vector<std::string> ids;
+  for (auto& [sub, list] : by_sub) {
+    std::stable_sort(list.begin(), list.end(), [](const CaseResult* a, const CaseResult* b) {
+      return Str(*a, "case") < Str(*b, "case");
+    });
+    int n = 0;
+    const CaseResult* tightest = nullptr;
+    for (const CaseResult* r : list) {
+      const std::string v = Str(*r, "verdict");
+      if (v == "collision" && n < collisions) ++n, ids.push_back(Str(*r, "case"));
+      if (v == "clear" && (*r)["min_clearance_mm"].is_number() &&
+          (!tightest ||
+           (*r)["min_clearance_mm"].get<double>() < (*tightest)["min_clearance_mm"].get<double>()))
+        tightest = r;
+    }
+    if (tightest && collisions > 0) ids.push_back(Str(*tightest, "case"));
+  }
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
+std::string SnapshotFileOf(const std::string& case_id) {
+  std::string name;
+  for (const char c : case_id)
+    name += (std::isalnum(static_cast<unsigned char>(c)) || c == '-') ? c : '_';  // no dot files
+  return "snapshots/" + name + ".png";
+}
+
+std::map<std::string, std::string> SnapshotCases(const Scene& base, const StudyPlan& plan,
+                                                 const std::vector<Interruption>& interruptions,
+                                                 const std::vector<StudyCase>& cases,
+                                                 const std::vector<CaseResult>& results,
+                                                 const std::vector<std::string>& ids,
+                                                 const std::string& dir) {
+  std::map<std::string, std::string> index;
+  if (ids.empty()) return index;
+  std::filesystem::create_directories(dir + "/snapshots");
+  const SnapshotSpec look = Look(base);
+  for (const std::string& id : ids) {
+    const auto c =
+        std::find_if(cases.begin(), cases.end(), [&](const StudyCase& k) { return k.id == id; });
+    const auto r = std::find_if(results.begin(), results.end(),
+                                [&](const CaseResult& k) { return Str(k, "case") == id; });
+    if (c == cases.end() || r == results.end()) continue;
+    const std::string file = SnapshotFileOf(id);
+    if (std::filesystem::exists(dir + "/" + file)) {
+      index[id] = file;
+      continue;
+    }
+    const std::string work = dir + "/.snapshot-" + std::to_string(::getpid());
+    std::filesystem::remove_all(work);
+    std::filesystem::create_directories(work);
+    SnapshotSpec shot = look;
+    if (Str(*r, "verdict") == "collision") {
+      // At the first contact: PathGuard refused the move, so the tool stands where the
+      // refused move would have started; the contact point is in the case's line.
+      shot.on = SnapshotEvent::kCollision;
+      shot.limit = 1;
+    } else {
+      // The clear case at its end: first learn when that is, then picture it.
+      double t_end = 0;
+      RunCaseFromStart(base, plan, interruptions, *c, {}, "", &t_end);
+      shot.at_s = t_end;
+      shot.file = "end.png";
+    }
+    RunCaseFromStart(base, plan, interruptions, *c, {shot}, work);
+    for (const auto& entry : std::filesystem::directory_iterator(work))
+      if (entry.path().extension() == ".png") {
+        std::filesystem::rename(entry.path(), dir + "/" + file);
+        index[id] = file;
+        break;
+      }
+    std::filesystem::remove_all(work);
+  }
+  WriteSnapshotIndex(dir, index);
+  return index;
+}
+
+std::map<std::string, std::string> ReadSnapshotIndex(const std::string& dir) {
+  std::map<std::string, std::string> index;
+  std::ifstream in(dir + "/snapshots.json", std::ios::binary);
+  if (!in) return index;
+  const nlohmann::ordered_json j = nlohmann::ordered_json::parse(in, nullptr, false);
+  if (!j.is_object()) return index;
+  for (const auto& [id, file] : j.items())
+    if (file.is_string()) index[id] = file.get<std::string>();
+  return index;
+}
+
+}  // namespace vmt::sim::study

@@ -1,0 +1,41 @@
+#pragma once
+// Pictures of a study's worst cases (report.html links them): per subroutine the first few
+// collisions (in case id order) at their first contact, and the clear case with the smallest
+// clearance at its end. The study runs without pictures; the chosen cases run again from the
+// start afterwards with the scene's camera on -- a case is deterministic, so the rerun is the
+// case of cases.jsonl.
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "sim/study/case_runner.hpp"
+
+namespace vmt::sim::study {
+
+/// The ids of the cases to picture, sorted: per subroutine the first `collisions` collision
+/// cases by id and the clear case with the smallest clearance (the first by id of equals).
+std::vector<std::string> WorstCaseIds(const std::vector<CaseResult>& results, int collisions);
+
+/// `snapshots/<case id with every character but A-Z a-z 0-9 - as _>.png` (a `../` of a
+/// subroutine's path would make a hidden file).
+std::string SnapshotFileOf(const std::string& case_id);
+
+/// Renders the cases `ids` (of `cases`) into dir/snapshots/ with the camera and size of the
+/// scene's first snapshot (else its first camera, 320x240); a picture already there is kept.
+/// Returns case id -> file relative to dir, and writes it as dir/snapshots.json. A case whose
+/// rerun took no picture is left out.
+std::map<std::string, std::string> SnapshotCases(const Scene& base, const StudyPlan& plan,
+                                                 const std::vector<Interruption>& interruptions,
+                                                 const std::vector<StudyCase>& cases,
+                                                 const std::vector<CaseResult>& results,
+                                                 const std::vector<std::string>& ids,
+                                                 const std::string& dir);
+
+/// Writes `index` (case id -> file relative to dir) as dir/snapshots.json.
+void WriteSnapshotIndex(const std::string& dir, const std::map<std::string, std::string>& index);
+
+/// dir/snapshots.json, empty when there is none.
+std::map<std::string, std::string> ReadSnapshotIndex(const std::string& dir);
+
+}  // namespace vmt::sim::study
