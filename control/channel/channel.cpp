@@ -470,7 +470,8 @@ uint64_t Channel::FollowUpAxes(const nc::PreparedBlock& b) const {
   if (!headstock_ || config_.rotary_axis < 0 || headstock_->mode() == axes::HeadstockMode::kRotary)
     return 0;
   const uint64_t bit = uint64_t{1} << config_.rotary_axis;
-  return b.programmed & bit ? 0 : bit;
+  // X1/Y1 program C but position it only in rotary axis mode (coordinate_transformation.hpp).
+  return b.programmed & bit && !b.fictive ? 0 : bit;
 }
 
 bool Channel::RunBlock(const AmplifierTelegram& at) {

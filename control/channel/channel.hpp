@@ -402,6 +402,10 @@ class Channel {
   bool GuardBlockMove(const std::string& move, const std::vector<double>* end = nullptr,
                       bool measuring_path = false);
   std::vector<double> GuardFrom() const;  ///< every drive's position, the channel's commanded
+  /// G31: the block motion's curve as chords within kFaceChordTolerance of the fictive line.
+  bool GuardFaceMove(const std::string& move);
+  static constexpr double kFaceChordTolerance = 1e-3;  ///< mm
+  static constexpr int kFaceMaxChords = 20000;  ///< a bound on the work (0.1 mm min. clearance)
   bool GuardStops(const std::string& move, const std::vector<double>& from,
                   const std::vector<double>& to, const PathCheck& check);
   PathGuard* guard_ = nullptr;
@@ -446,6 +450,11 @@ class Channel {
   std::vector<double> TranslationOf(const nc::ModalState& modal) const;
   /// Per axis the function's target (machine coordinates); NaN: no target.
   std::vector<double> ReposTarget() const;
+  /// G31 was active at the interruption: the channel axes X and C, whose window (6.1) and
+  /// screen values (5.2) go by the fictive point.
+  bool FictiveRepos(int& x, int& c) const;
+  /// The fictive point of axis positions `position` in the interrupted block's frame.
+  FictivePoint FictiveOf(const std::vector<double>& position, int x, int c) const;
   bool SpindleRestored(const AmplifierTelegram& at) const;
   bool SpindleRelevant() const;
   bool ToolStorageKnown() const;
