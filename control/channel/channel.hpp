@@ -153,6 +153,10 @@ class Channel {
     jog_increment_ = std::abs(increment);
     jog_mode_ = JogMode::kContinuous;
   }
+  /// Jog key of a fictive axis of the active G31 transformation: `axis` 0 X1, 1 Y1 (REPOS
+  /// manual 5.2: X and C move as a Cartesian jog). False, and nothing moves, outside manual
+  /// mode or without G31 and rotary axis mode.
+  bool JogFictive(int axis, int direction);
   /// Jog mode from the JOGM0..2 code (0..7).
   void SetJogMode(int code);
   JogMode jog_mode() const { return jog_mode_; }
@@ -344,6 +348,19 @@ class Channel {
   bool start_pending_ = false;
   bool take_over_pending_ = false;  ///< own the axes' setpoints from the next tick on
   void Jogging(double dt);
+  // Jogging X1/Y1 under G31 (channel_fictive_jog.cpp).
+  struct FictiveJog {
+    int key = 0;
+    double velocity = 0;  ///< mm/s along the fictive axis
+    bool stepping = false;
+    double target = 0;  ///< the increment's end
+  };
+  FictiveJog fictive_jog_[2];
+  int fictive_guard_countdown_ = 0;
+  static constexpr double kFictiveJogCentre = 0.1;  ///< mm: the jog stops this far from the centre
+  bool FictiveJogAxes(int& x, int& c) const;
+  void FictiveJogging(double dt);
+  bool GuardFictiveJog(int x, int c, FictivePoint next);
 
   ChannelMode mode_ = ChannelMode::kAutomatic;
   JogMode jog_mode_ = JogMode::kContinuous;

@@ -205,9 +205,10 @@ ReposStatus Channel::repos_status(const AmplifierTelegram* at) const {
                                      OutOfItsMode(headstock(), config_.rotary_axis, fc));
     s.axes[fx].relevant = s.axes[fc].relevant = relevant;
     s.axes[fx].adjust = s.axes[fc].adjust = adjust;
+    static const std::string kNames[2] = {"X1", "Y1"};
     for (int k = 0; k < 2; ++k) {
       ReposAxisStatus f;
-      f.name = k == 0 ? "X1" : "Y1";
+      f.name = kNames[k];
       f.final_value = k == 0 ? to.x1 : to.y1;
       f.command_value = k == 0 ? now.x1 : now.y1;
       f.distance_to_go = f.final_value - f.command_value;
