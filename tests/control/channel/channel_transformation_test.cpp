@@ -56,7 +56,9 @@ TEST(ChannelTransformation, FaceLinesAreStraightInTheFacePlane) {
   m.Ticks(8);
   EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
   EXPECT_GT(samples, 4000);
-  EXPECT_LT(worst, 1e-6);  // fine interpolation between cycle points: chords of ~10 um
+  // The NC cycle's points lie on the lines; the drive ticks between them are linear in X and
+  // C (fine interpolation): 10 um chords err by ~1e-6 mm.
+  EXPECT_LT(worst, 1e-5);
   EXPECT_NEAR(m.at.feedback[kDriveX].position, std::hypot(20, 20), 1e-9);
   EXPECT_NEAR(m.at.feedback[kDriveC].position, 135, 1e-9);
   EXPECT_LE(max_c_speed, 3600);
@@ -78,8 +80,10 @@ TEST(ChannelTransformation, PathFeedNearTheCentreKeepsCWithinItsRapidRate) {
   }
   m.Ticks(8);
   EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  // Limited by C's acceleration here (v^2 th'' <= 36000 deg/s^2 / 2: ~11 mm/s at d 0.5 mm, C at
+  // ~1260 deg/s past the centre), within its rate in any case.
   EXPECT_LE(max_c_speed, 3600 * 1.001);
-  EXPECT_GT(max_c_speed, 3600 * 0.5);  // limited, not crawling
+  EXPECT_GT(max_c_speed, 1000);  // limited, not crawling
   EXPECT_LT(worst, 1e-3);              // chords of the fine interpolation where C turns fast
   EXPECT_NEAR(m.at.feedback[kDriveC].position, 180 - std::atan2(0.5, 20) * 180 / std::numbers::pi,
               1e-6);
@@ -211,6 +215,7 @@ TEST(ChannelTransformation, G77X1Y1ReturnsOnACartesianLineCheckedInChords) {
   m.channel->SetReposition(true, false);
   RunFor(m, 0.01);
   guard.chords.clear();
+  (void)m.channel->TakeGuardRecords();  // the jogs'
   ASSERT_TRUE(m.channel->SetMode(ChannelMode::kAutomatic));
   m.channel->Start();
   // N12 G77 X1=0 Y1=0: X and C on the straight line back; Z waits for N13.

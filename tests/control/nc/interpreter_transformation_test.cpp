@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "control/nc/interpreter.hpp"
 #include "control/nc/parser.hpp"
@@ -14,15 +15,15 @@ namespace {
 
 using ::testing::HasSubstr;
 
-struct Run {
+struct ProgramRun {
   ParseResult parsed;
   std::vector<PreparedBlock> blocks;
   std::string error;
   std::unique_ptr<Interpreter> interpreter;
 };
 
-Run Execute(const std::string& text, std::vector<double> start = {0, 0, 0}) {
-  Run run;
+ProgramRun Execute(const std::string& text, std::vector<double> start = {0, 0, 0}) {
+  ProgramRun run;
   run.parsed = ParseProgram(text, "t.mtc", Dialect::kMtc200);
   EXPECT_TRUE(run.parsed.ok()) << Format(run.parsed.errors[0], run.parsed.program.files);
   InterpreterConfig config;  // X Z C
@@ -40,7 +41,7 @@ Run Execute(const std::string& text, std::vector<double> start = {0, 0, 0}) {
 }
 
 TEST(InterpreterTransformation, GroupSeventeenIsModalAndReadable) {
-  const Run r = Execute(
+  const ProgramRun r = Execute(
       "N1 @100=G(17)\nN2 G31\nN3 @101=G(17)\nN4 G00 X20\nN5 G32\nN6 @102=G(17)\nN7 G30\n"
       "N8 @103=G(17)\nN9 RET\n");
   ASSERT_EQ(r.error, "");
@@ -51,15 +52,15 @@ TEST(InterpreterTransformation, GroupSeventeenIsModalAndReadable) {
 }
 
 TEST(InterpreterTransformation, FictiveWordsWithoutTransformationAreErrors) {
-  const Run r = Execute("N1 G00 X10\nN2 G01 Y1=5 F100\nN3 RET\n");
-  EXPECT_THAT(r.error, HasSubstr("t.mtc:2:10: error: axis Y1 is a fictive axis"));
+  const ProgramRun r = Execute("N1 G00 X10\nN2 G01 Y1=5 F100\nN3 RET\n");
+  EXPECT_THAT(r.error, HasSubstr("t.mtc:2:8: error: axis Y1 is a fictive axis"));
   EXPECT_THAT(r.error, HasSubstr("G31 or G32"));
-  const Run g77 = Execute("N1 G77 X1=0 Y1=0 F5000\nN2 RET\n");
+  const ProgramRun g77 = Execute("N1 G77 X1=0 Y1=0 F5000\nN2 RET\n");
   EXPECT_THAT(g77.error, HasSubstr("t.mtc:1:8: error: axis X1 is a fictive axis"));
 }
 
 TEST(InterpreterTransformation, G31NeedsXAndC) {
-  Run run;
+  ProgramRun run;
   run.parsed = ParseProgram("N1 G31\nN2 RET\n", "t.mtc", Dialect::kMtc200);
   InterpreterConfig config;
   config.axes = {"X", "Z"};
@@ -74,7 +75,7 @@ TEST(InterpreterTransformation, G31NeedsXAndC) {
 
 TEST(InterpreterTransformation, FaceWordsBecomeXAndC) {
   // From X20 C0 (X1 20 Y1 0) to X1 20 Y1 20: X = 28.28, C = 45; then incremental Y1 -40.
-  const Run r = Execute("N1 G31 G01 X1=20 Y1=20 F600\nN2 G91 Y1=-40\nN3 G90 X1=-20\nN4 RET\n",
+  const ProgramRun r = Execute("N1 G31 G01 X1=20 Y1=20 F600\nN2 G91 Y1=-40\nN3 G90 X1=-20\nN4 RET\n",
                         {20, 5, 0});
   ASSERT_EQ(r.error, "");
   ASSERT_EQ(r.blocks.size(), 4u);
@@ -92,22 +93,22 @@ TEST(InterpreterTransformation, FaceWordsBecomeXAndC) {
 }
 
 TEST(InterpreterTransformation, FaceUnwrapsCFromWhereItStands) {
-  // C stands at 720 + 10: the move to 80 deg turns 70 deg, it does not unwind two turns.
-  const Run r = Execute("N1 G31 G01 X1=0 Y1=30 F600\nN2 RET\n",
+  // C stands at 720 + 10: the move to 90 deg turns 80 deg, it does not unwind two turns.
+  const ProgramRun r = Execute("N1 G31 G01 X1=0 Y1=30 F600\nN2 RET\n",
                         {30 / std::cos(10 * std::numbers::pi / 180), 0, 730});
   ASSERT_EQ(r.error, "");
   EXPECT_NEAR(r.blocks[0].target[2], 810, 1e-9);
 }
 
 TEST(InterpreterTransformation, X1FollowsDiameterProgramming) {
-  const Run r = Execute("N1 G16 G31 G01 X1=40 Y1=0 F600\nN2 RET\n", {10, 0, 0});
+  const ProgramRun r = Execute("N1 G16 G31 G01 X1=40 Y1=0 F600\nN2 RET\n", {10, 0, 0});
   ASSERT_EQ(r.error, "");
   EXPECT_NEAR(r.blocks[0].target[0], 20, 1e-12);  // X1 is a diameter like X under G16
 }
 
 TEST(InterpreterTransformation, CylinderUnrollsAtTheActivationRadius) {
   // G32 at X 20: Y1 = 2 pi 20 / 4 is a quarter turn.
-  const Run r = Execute("N1 G32\nN2 G01 Y1=31.41592653589793 F600\nN3 X1=18\nN4 RET\n",
+  const ProgramRun r = Execute("N1 G32\nN2 G01 Y1=31.41592653589793 F600\nN3 X1=18\nN4 RET\n",
                         {20, 0, 0});
   ASSERT_EQ(r.error, "");
   EXPECT_NEAR(r.blocks[0].target[2], 90, 1e-9);
@@ -117,12 +118,12 @@ TEST(InterpreterTransformation, CylinderUnrollsAtTheActivationRadius) {
   EXPECT_NEAR(r.blocks[0].effective_distance[0], 20, 0);
   EXPECT_NEAR(r.blocks[1].target[0], 18, 0);  // X1 is X
   EXPECT_NEAR(r.blocks[1].target[2], 90, 1e-9);
-  const Run zero = Execute("N1 G32\nN2 RET\n", {0, 0, 0});
+  const ProgramRun zero = Execute("N1 G32\nN2 RET\n", {0, 0, 0});
   EXPECT_THAT(zero.error, HasSubstr("t.mtc:1:4: error: G32 (cylinder surface transformation)"));
 }
 
 TEST(InterpreterTransformation, G77TakesTheFictiveAxesWithoutTheirValues) {
-  const Run r = Execute("N1 G31\nN2 G77 X1=0 Y1=0 F5000\nN3 RET\n", {20, 0, 30});
+  const ProgramRun r = Execute("N1 G31\nN2 G77 X1=0 Y1=0 F5000\nN3 RET\n", {20, 0, 30});
   ASSERT_EQ(r.error, "");
   const PreparedBlock& b = r.blocks[0];
   EXPECT_TRUE(b.repos);
