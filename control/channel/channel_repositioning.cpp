@@ -258,6 +258,7 @@ ReposStatus Channel::repos_status(const AmplifierTelegram* at) const {
   s.g_codes.push_back(m.zero_offset);
   s.g_codes.push_back(m.incremental ? 91 : 90);
   s.g_codes.push_back(m.feed_per_revolution ? 95 : 94);
+  if (m.transformation != 30) s.g_codes.push_back(m.transformation);  // G31 / G32 (5.2)
   return s;
 }
 
