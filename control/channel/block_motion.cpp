@@ -32,6 +32,80 @@ double Length(const BlockMotion& m) {
   return std::max(std::sqrt(sum), 1e-12);
 }
 
+// G31: a straight line of the face plane (coordinate_transformation.hpp). The path feed (F, or
+// G00 at X's rapid) is limited so that C keeps its rapid rate and acceleration and X its
+// acceleration where the line passes the centre closest: dC/dt = v th', d2C/dt2 = a th' +
+// v^2 th'', d2X/dt2 <= a + v^2 r''. Half of each axis' acceleration goes to each term.
+std::optional<MotionError> PlanFaceMotion(const nc::PreparedBlock& block,
+                                          const std::vector<double>& start,
+                                          const std::vector<double>& translation,
+                                          const std::vector<axes::AxisParameters>& axes,
+                                          BlockMotion& out, uint64_t follow_up) {
+  int x = -1, c = -1;
+  for (size_t a = 0; a < axes.size(); ++a) {
+    if (axes[a].name == "X") x = static_cast<int>(a);
+    if (axes[a].name == "C") c = static_cast<int>(a);
+  }
+  if (x < 0 || c < 0)
+    return MotionError{"G31 needs the axes X and C in this channel", kMsgTransformation};
+  // The NC positions C only in rotary axis mode (C-axis manual 4.3); X1/Y1 do not select it.
+  if (follow_up >> c & 1)
+    return MotionError{"G31 (face transformation) needs the headstock in rotary axis mode: "
+                       "select it (G00 C..) before X1/Y1",
+                       kMsgTransformation};
+  if (block.motion != nc::Motion::kRapid && block.motion != nc::Motion::kLinear)
+    return MotionError{"G31 (face transformation) moves X1/Y1 with G00 or G01 only",
+                       kMsgTransformation};
+  out.face_axes[0] = x, out.face_axes[1] = c;
+  out.face_shift[0] = translation[x], out.face_shift[1] = translation[c];
+  out.face_from = nc::MachineToFace(start[x] - translation[x], start[c] - translation[c]);
+  out.face_to = nc::MachineToFace(out.end[x] - translation[x], out.end[c] - translation[c]);
+  const nc::FaceLine line = nc::FaceLineOf(out.face_from, out.face_to);
+  if (line.through_centre && line.length > 1e-9) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "G31: the line X1 %.4f Y1 %.4f -> X1 %.4f Y1 %.4f passes the centre of the "
+                  "face, where C is undefined: program it in two moves around the centre",
+                  out.face_from.x1, out.face_from.y1, out.face_to.x1, out.face_to.y1);
+    return MotionError{text, kMsgTransformation};
+  }
+  // The other linear axes (Z) follow linearly along u; the path counts them with the line.
+  double other2 = 0;
+  double rapid = axes[x].rapid_per_s, accel = axes[x].acceleration;
+  double jerk = axes[x].jerk > 0 ? axes[x].jerk : HUGE_VAL;
+  for (size_t a = 0; a < axes.size(); ++a) {
+    if (static_cast<int>(a) == x || static_cast<int>(a) == c) continue;
+    const double delta = out.end[a] - start[a];
+    if (std::abs(delta) < 1e-12) continue;
+    other2 += delta * delta;
+    rapid = std::min(rapid, axes[a].rapid_per_s);
+    accel = std::min(accel, axes[a].acceleration);
+    if (axes[a].jerk > 0) jerk = std::min(jerk, axes[a].jerk);
+  }
+  const double length = std::sqrt(line.length * line.length + other2);
+  double feed = block.motion == nc::Motion::kRapid ? rapid : block.modal.feed / 60.0;
+  if (block.motion != nc::Motion::kRapid && feed <= 0)
+    return MotionError{"no feed programmed (F)", kMsgNoFeed};
+  const double deg = 180 / std::numbers::pi;
+  double path_accel = accel / 2;
+  if (line.theta_s_max > 0) {
+    feed = std::min(feed, axes[c].rapid_per_s / deg / line.theta_s_max);
+    path_accel = std::min(path_accel, axes[c].acceleration / deg / 2 / line.theta_s_max);
+  }
+  if (line.theta_ss_max > 0)
+    feed = std::min(feed, std::sqrt(axes[c].acceleration / deg / 2 / line.theta_ss_max));
+  if (line.r_ss_max > 0) feed = std::min(feed, std::sqrt(axes[x].acceleration / 2 / line.r_ss_max));
+  feed = std::min(feed, rapid);
+  out.max_rate = feed / length;
+  out.max_accel = path_accel / length;
+  // Jerk: the linear axes' (C's third derivative near the centre is bounded by the feed and
+  // acceleration limits above only).
+  out.max_jerk = std::isfinite(jerk) ? jerk / length : 0;
+  out.length = length;
+  out.moves = true;
+  return std::nullopt;
+}
+
 }  // namespace
 
 void BlockMotion::PointAt(double u, std::vector<double>& out) const {
@@ -42,6 +116,14 @@ void BlockMotion::PointAt(double u, std::vector<double>& out) const {
     out[arc_axes[0]] = arc_centre[0] + arc_radius * std::cos(angle);
     out[arc_axes[1]] = arc_centre[1] + arc_radius * std::sin(angle);
   }
+  if (face_axes[0] >= 0) {
+    // G31: the point of the fictive line, transformed. The sweep from the start is continuous
+    // along a line that misses the centre (planning refused the others).
+    const nc::FictivePoint p{face_from.x1 + (face_to.x1 - face_from.x1) * u,
+                         face_from.y1 + (face_to.y1 - face_from.y1) * u};
+    out[face_axes[0]] = std::hypot(p.x1, p.y1) + face_shift[0];
+    out[face_axes[1]] = u >= 1 ? end[face_axes[1]] : start[face_axes[1]] + nc::SweepDeg(face_from, p);
+  }
 }
 
 std::vector<double> BlockMotion::Direction(double u) const {
@@ -51,6 +133,14 @@ std::vector<double> BlockMotion::Direction(double u) const {
     const double angle = arc_start_angle + arc_sweep * u;
     d[arc_axes[0]] = -arc_radius * arc_sweep * std::sin(angle);
     d[arc_axes[1]] = arc_radius * arc_sweep * std::cos(angle);
+  }
+  if (face_axes[0] >= 0) {
+    // G31: dX/du = (p . dp) / r, dC/du = (p x dp) / r^2 (rad -> deg).
+    const double dx = face_to.x1 - face_from.x1, dy = face_to.y1 - face_from.y1;
+    const double px = face_from.x1 + dx * u, py = face_from.y1 + dy * u;
+    const double r2 = std::max(px * px + py * py, 1e-18);
+    d[face_axes[0]] = (px * dx + py * dy) / std::sqrt(r2);
+    d[face_axes[1]] = (px * dy - py * dx) / r2 * 180 / std::numbers::pi;
   }
   return d;
 }
@@ -86,6 +176,8 @@ std::optional<MotionError> PlanBlockMotion(const nc::PreparedBlock& block,
     max_delta = std::max(max_delta, std::abs(delta[a] = out.end[a] - start[a]));
   const bool arc = block.motion == nc::Motion::kArcCw || block.motion == nc::Motion::kArcCcw;
   if (max_delta < 1e-12 && !arc) return std::nullopt;
+  if (block.fictive && block.modal.transformation == 31)
+    return PlanFaceMotion(block, start, translation, axes, out, follow_up);
 
   // Per-axis limits on du/dt and d2u/dt2 for a straight move in axis space.
   double axis_rate = std::numeric_limits<double>::infinity();

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "control/axes/axis_parameters.hpp"
+#include "control/nc/coordinate_transformation.hpp"
 #include "control/nc/interpreter.hpp"
 
 namespace vmt::control::channel {
@@ -27,6 +28,12 @@ struct BlockMotion {
   /// jerk (0: none).
   double max_rate = 0, max_accel = 0, max_jerk = 0;
   bool moves = false;  ///< false: nothing to move, the block is done at once
+  /// G31 (coordinate_transformation.hpp): X and C follow a straight line of the face plane
+  /// from `face_from` to `face_to` (program coordinates); u runs along it with the other axes.
+  /// face_axes: the channel axes X and C; -1: no transformation.
+  int face_axes[2] = {-1, -1};
+  nc::FictivePoint face_from, face_to;
+  double face_shift[2] = {0, 0};  ///< program -> axis translation of X and C
 
   /// Axis positions at u (0..1).
   void PointAt(double u, std::vector<double>& out) const;

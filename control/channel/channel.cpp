@@ -495,7 +495,8 @@ uint64_t Channel::FollowUpAxes(const nc::PreparedBlock& b) const {
   if (!headstock_ || config_.rotary_axis < 0 || headstock_->mode() == axes::HeadstockMode::kRotary)
     return 0;
   const uint64_t bit = uint64_t{1} << config_.rotary_axis;
-  return b.programmed & bit ? 0 : bit;
+  // X1/Y1 program C but position it only in rotary axis mode (coordinate_transformation.hpp).
+  return b.programmed & bit && !b.fictive ? 0 : bit;
 }
 
 bool Channel::RunBlock(const AmplifierTelegram& at) {
@@ -513,6 +514,16 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
     }
     if (waiting_for_ == axes::HeadstockMode::kRotary) RebaseRotaryAxis();
     waiting_for_ = axes::HeadstockMode::kNone;
+    // X1/Y1 of G31/G32 position C, which the NC does only in rotary axis mode; unlike C they
+    // do not select it (coordinate_transformation.hpp).
+    if (block_.fictive && headstock_->mode() != axes::HeadstockMode::kRotary) {
+      Fail(program, block_.block,
+           "X1/Y1 of G" + std::to_string(block_.modal.transformation) +
+               " need the headstock in rotary axis mode: select it (G00 " +
+               config_.axes[config_.rotary_axis].name + "..) first",
+           kMsgTransformation);
+      return false;
+    }
     // C-axis manual 2.3: offsets of the rotary axis are programmed only in rotary axis mode.
     // The manual is silent on G92 C in spindle mode; a control refuses it rather than shift an
     // axis it does not position.

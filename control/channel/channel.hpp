@@ -160,6 +160,10 @@ class Channel {
     jog_increment_ = std::abs(increment);
     jog_mode_ = JogMode::kContinuous;
   }
+  /// Jog key of a fictive axis of the active G31 transformation: `axis` 0 X1, 1 Y1 (REPOS
+  /// manual 5.2: X and C move as a Cartesian jog). False, and nothing moves, outside manual
+  /// mode or without G31 and rotary axis mode.
+  bool JogFictive(int axis, int direction);
   /// Jog mode from the JOGM0..2 code (0..7).
   void SetJogMode(int code);
   JogMode jog_mode() const { return jog_mode_; }
@@ -358,6 +362,19 @@ class Channel {
   bool start_pending_ = false;
   bool take_over_pending_ = false;  ///< own the axes' setpoints from the next tick on
   void Jogging(double dt);
+  // Jogging X1/Y1 under G31 (channel_fictive_jog.cpp).
+  struct FictiveJog {
+    int key = 0;
+    double velocity = 0;  ///< mm/s along the fictive axis
+    bool stepping = false;
+    double target = 0;  ///< the increment's end
+  };
+  FictiveJog fictive_jog_[2];
+  int fictive_guard_countdown_ = 0;
+  static constexpr double kFictiveJogCentre = 0.1;  ///< mm: the jog stops this far from the centre
+  bool FictiveJogAxes(int& x, int& c) const;
+  void FictiveJogging(double dt);
+  bool GuardFictiveJog(int x, int c, nc::FictivePoint next);
 
   ChannelMode mode_ = ChannelMode::kAutomatic;
   JogMode jog_mode_ = JogMode::kContinuous;
@@ -416,6 +433,10 @@ class Channel {
   bool GuardBlockMove(const std::string& move, const std::vector<double>* end = nullptr,
                       bool measuring_path = false);
   std::vector<double> GuardFrom() const;  ///< every drive's position, the channel's commanded
+  /// G31: the block motion's curve as chords within kFaceChordTolerance of the fictive line.
+  bool GuardFaceMove(const std::string& move);
+  static constexpr double kFaceChordTolerance = 1e-3;  ///< mm
+  static constexpr int kFaceMaxChords = 20000;  ///< a bound on the work (0.1 mm min. clearance)
   bool GuardStops(const std::string& move, const std::vector<double>& from,
                   const std::vector<double>& to, const PathCheck& check);
   PathGuard* guard_ = nullptr;
@@ -463,6 +484,11 @@ class Channel {
   std::vector<double> TranslationOf(const nc::ModalState& modal) const;
   /// Per axis the function's target (machine coordinates); NaN: no target.
   std::vector<double> ReposTarget() const;
+  /// G31 was active at the interruption: the channel axes X and C, whose window (6.1) and
+  /// screen values (5.2) go by the fictive point.
+  bool FictiveRepos(int& x, int& c) const;
+  /// The fictive point of axis positions `position` in the interrupted block's frame.
+  nc::FictivePoint FictiveOf(const std::vector<double>& position, int x, int c) const;
   bool SpindleRestored(const AmplifierTelegram& at) const;
   bool SpindleRelevant() const;
   bool ToolStorageKnown() const;

@@ -67,6 +67,9 @@ axes::HeadstockMode Channel::ModeNeeded(const nc::PreparedBlock& b) const {
   if (b.repos)
     for (const nc::AuxFunction& f : b.aux)
       if (f.letter == 'S' && f.index <= 1) return axes::HeadstockMode::kSpindle;
+  // X1/Y1 of a coordinate transformation need rotary axis mode but do not select it: without
+  // it the block is an error (block_motion.cpp).
+  if (b.fictive) return axes::HeadstockMode::kNone;
   const bool interpolates = b.motion == nc::Motion::kRapid || b.motion == nc::Motion::kLinear ||
                             b.motion == nc::Motion::kArcCw || b.motion == nc::Motion::kArcCcw;
   // G74 of the rotary axis homes it in position control: rotary axis mode too (the manual

@@ -146,6 +146,7 @@ void Channel::Jogging(double dt) {
     commanded_[a] = within(next);
     if (commanded_[a] != next) j.velocity = 0;
   }
+  FictiveJogging(dt);
 }
 
 }  // namespace vmt::control::channel

@@ -14,6 +14,9 @@ inline constexpr int kMsgArcGeometry = 202;       ///< centre/radius do not fit 
 inline constexpr int kMsgArcPlane = 203;          ///< the plane's axes are not in the channel
 inline constexpr int kMsgSpindleStill = 204;      ///< G33/G63/G64 without M3/M4 and S
 inline constexpr int kMsgLeadTooFast = 205;       ///< G33/G63/G64: lead x speed beyond a limit
+/// G31/G32: a coordinate transformation cannot run (no rotary axis mode, a line through the
+/// face's centre, a motion it does not offer).
+inline constexpr int kMsgTransformation = 206;
 inline constexpr int kMsgToolNotInList = 301;     ///< G48/G49 with a T/D the tool list lacks
 inline constexpr int kMsgTranslationInArc = 302;  ///< offset or tool change in an arc block
 inline constexpr int kMsgGouge = 303;  ///< tool nose radius compensation: contour violation
@@ -120,6 +123,8 @@ inline const char* MessageText(int number) {
       return "spindle / rotary axis mode acknowledgement removed";
     case kMsgCollision:
       return "collision ahead";
+    case kMsgTransformation:
+      return "coordinate transformation error";
     case kMsgMeasuringInstruction:
       return "measuring instruction error";
     case kMsgMeasuringContinuable:

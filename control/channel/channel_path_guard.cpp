@@ -4,6 +4,7 @@
 // (GuardReaction::kStop), or is only recorded (kWarn). The approach moves of repositioning (G77
 // and the closing move, REPOS manual 4.2) are straight: they are checked whole before they
 // start. Every check ends up in a GuardRecord.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -57,6 +58,7 @@ bool Channel::GuardIncrement(size_t axis, double to_position) {
 bool Channel::GuardBlockMove(const std::string& move, const std::vector<double>* end,
                              bool measuring_path) {
   if (!guard_ || config_.path_guard == GuardReaction::kOff) return true;
+  if (motion_.face_axes[0] >= 0 && !end) return GuardFaceMove(move);
   const std::vector<double> from = GuardFrom();
   std::vector<double> to = from;
   for (size_t a = 0; a < config_.axes.size(); ++a)
@@ -69,6 +71,35 @@ bool Channel::GuardBlockMove(const std::string& move, const std::vector<double>*
     return true;
   }
   return !GuardStops(move, from, to, c);
+}
+
+bool Channel::GuardFaceMove(const std::string& move) {
+  // G31: the straight line of the face plane is a curve of X and C. It is checked as chords,
+  // straight in the drives' positions, short enough that each stays within kFaceChordTolerance
+  // of the line (nc::FaceChordStep proves the bound); one record sums them up.
+  const nc::FaceLine line = nc::FaceLineOf(motion_.face_from, motion_.face_to);
+  const double step = nc::FaceChordStep(line, kFaceChordTolerance);
+  const int chords = static_cast<int>(std::clamp(
+      std::ceil(line.length / std::max(step, 1e-9)), 1.0, static_cast<double>(kFaceMaxChords)));
+  const std::vector<double> from = GuardFrom();
+  std::vector<double> to = from, a = from, b = from, point;
+  for (size_t k = 0; k < config_.axes.size(); ++k)
+    if (static_cast<size_t>(config_.axes[k].drive) < to.size())
+      to[config_.axes[k].drive] = motion_.end[k];
+  GuardRecord record{move, from, to, PathCheck{}, 0, false};
+  for (int i = 1; i <= chords; ++i) {
+    motion_.PointAt(static_cast<double>(i) / chords, point);
+    for (size_t k = 0; k < config_.axes.size(); ++k)
+      if (static_cast<size_t>(config_.axes[k].drive) < b.size())
+        b[config_.axes[k].drive] = point[k];
+    const PathCheck c = guard_->CheckMove(a, b);
+    if (!c.clear) return !GuardStops(move, from, to, c);
+    if (record.checks == 0 || c.min_clearance < record.check.min_clearance) record.check = c;
+    ++record.checks;
+    a = b;
+  }
+  guard_records_.push_back(record);
+  return true;
 }
 
 void Channel::GuardJog(double dt) {

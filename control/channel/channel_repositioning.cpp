@@ -66,6 +66,23 @@ void Channel::CaptureInterruption() {
   repos_start_ = commanded_;
 }
 
+bool Channel::FictiveRepos(int& x, int& c) const {
+  x = c = -1;
+  if (!interruption_ || interruption_->modal.transformation != 31) return false;
+  for (size_t a = 0; a < config_.axes.size(); ++a) {
+    if (config_.axes[a].name == "X") x = static_cast<int>(a);
+    if (config_.axes[a].name == "C") c = static_cast<int>(a);
+  }
+  return x >= 0 && c >= 0 && !std::isnan(interruption_->point[x]) &&
+         !std::isnan(interruption_->point[c]);
+}
+
+nc::FictivePoint Channel::FictiveOf(const std::vector<double>& position, int x, int c) const {
+  // Program coordinates of the interrupted block's frame, as its X1/Y1 were programmed.
+  const std::vector<double> t = TranslationOf(interruption_->modal);
+  return nc::MachineToFace(position[x] - t[x], position[c] - t[c]);
+}
+
 std::vector<double> Channel::ReposTarget() const {
   std::vector<double> target(config_.axes.size(), std::nan(""));
   if (!interruption_) return target;
@@ -139,12 +156,20 @@ void Channel::ReposCycle(const AmplifierTelegram& at) {
   if (repos_function_ == ReposFunction::kNone) return;
   const std::vector<double> target = ReposTarget();
   bool restored = true;
+  // 6.1 instruction: under G31 X and C count as the fictive point, with X's window.
+  int fx = -1, fc = -1;
+  const bool fictive = FictiveRepos(fx, fc);
   for (size_t a = 0; a < target.size() && restored; ++a) {
     const ChannelAxis& axis = config_.axes[a];
+    if (fictive && (static_cast<int>(a) == fx || static_cast<int>(a) == fc)) continue;
     if (std::isnan(target[a]) || axis.repos_window <= 0) continue;
     restored = WithinReposWindow(axis, target[a], commanded_[a]) &&
                !OutOfItsMode(headstock(), config_.rotary_axis, a);
   }
+  if (fictive && restored && config_.axes[fx].repos_window > 0)
+    restored = WithinFictiveWindow(config_.axes[fx], FictiveOf(target, fx, fc),
+                                   FictiveOf(commanded_, fx, fc)) &&
+               !OutOfItsMode(headstock(), config_.rotary_axis, fc);
   if (restored && SpindleRelevant()) restored = SpindleRestored(at);
   crest_ = restored && ToolStorageRestored();
 }
@@ -173,6 +198,28 @@ ReposStatus Channel::repos_status(const AmplifierTelegram* at) const {
                                 OutOfItsMode(headstock(), config_.rotary_axis, a));
     }
     s.axes.push_back(x);
+  }
+  // 5.2: under G31 the screen shows the fictive axes X1, Y1 as well, and X and C are adjusted
+  // as the fictive point is, with X's window (6.1).
+  int fx = -1, fc = -1;
+  if (FictiveRepos(fx, fc)) {
+    const nc::FictivePoint to = FictiveOf(target, fx, fc), now = FictiveOf(commanded_, fx, fc);
+    const bool relevant = config_.axes[fx].repos_window > 0;
+    const bool adjust = relevant && (!WithinFictiveWindow(config_.axes[fx], to, now) ||
+                                     OutOfItsMode(headstock(), config_.rotary_axis, fc));
+    s.axes[fx].relevant = s.axes[fc].relevant = relevant;
+    s.axes[fx].adjust = s.axes[fc].adjust = adjust;
+    static const std::string kNames[2] = {"X1", "Y1"};
+    for (int k = 0; k < 2; ++k) {
+      ReposAxisStatus f;
+      f.name = kNames[k];
+      f.final_value = k == 0 ? to.x1 : to.y1;
+      f.command_value = k == 0 ? now.x1 : now.y1;
+      f.distance_to_go = f.final_value - f.command_value;
+      f.relevant = relevant;
+      f.adjust = adjust;
+      s.axes.push_back(f);
+    }
   }
   ReposSpindleStatus& sp = s.spindle;
   sp.relevant = SpindleRelevant();
@@ -215,6 +262,7 @@ ReposStatus Channel::repos_status(const AmplifierTelegram* at) const {
   s.g_codes.push_back(m.zero_offset);
   s.g_codes.push_back(m.incremental ? 91 : 90);
   s.g_codes.push_back(m.feed_per_revolution ? 95 : 94);
+  if (m.transformation != 30) s.g_codes.push_back(m.transformation);  // G31 / G32 (5.2)
   return s;
 }
 
@@ -440,6 +488,7 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
       closing.instructions.clear();
       closing.events.clear();
       closing.target.assign(commanded_.size(), 0);
+      closing.fictive = false;  // within the windows: straight in the axes
       block_ = closing;
       if (!StartReposMotion(at)) return false;
       if (active_) return true;
@@ -465,6 +514,8 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
     }
     for (int k = 0; k < 2; ++k)
       if (motion_.arc_axes[k] >= 0) motion_.arc_centre[k] += shift[motion_.arc_axes[k]];
+    for (int k = 0; k < 2; ++k)
+      if (motion_.face_axes[k] >= 0) motion_.face_shift[k] += shift[motion_.face_axes[k]];
     if (function == ReposFunction::kRestart) {
       PathProfile fresh;
       fresh.max_rate = profile_.max_rate;

@@ -34,6 +34,16 @@ bool WithinReposWindow(const axes::AxisParameters& axis, double target, double a
   return std::abs(ReposDistanceToGo(axis, target, actual)) <= axis.repos_window + 1e-9;
 }
 
+bool WithinFictiveWindow(const axes::AxisParameters& x_axis, nc::FictivePoint target,
+                         nc::FictivePoint actual) {
+  return std::hypot(target.x1 - actual.x1, target.y1 - actual.y1) <= x_axis.repos_window + 1e-9;
+}
+
+ReposZone FictiveZoneOf(double target, double start) {
+  if (std::isnan(target)) return {};
+  return {true, std::min(target, start), std::max(target, start)};
+}
+
 ReposZone ZoneOf(const axes::AxisParameters& axis, double target, double start) {
   if (Endless(axis) || std::isnan(target)) return {};
   return {true, std::min(target, start), std::max(target, start)};

@@ -10,6 +10,7 @@
 
 #include "control/axes/axis_parameters.hpp"
 #include "control/axes/headstock_changeover.hpp"
+#include "control/nc/coordinate_transformation.hpp"
 #include "control/drive_bus.hpp"
 #include "control/nc/interpreter.hpp"
 
@@ -49,6 +50,12 @@ inline constexpr double kToolStorageWindow = 0.05;
 double ReposDistanceToGo(const axes::AxisParameters& axis, double target, double actual);
 bool WithinReposWindow(const axes::AxisParameters& axis, double target, double actual);
 
+/// 6.1 instruction: under a coordinate transformation with fictive axes (G31) the NC uses the
+/// adjustment window of the axis whose meaning is X: the fictive point (X1, Y1) is adjusted
+/// when its distance to the target point is within X's Cxx.086.
+bool WithinFictiveWindow(const axes::AxisParameters& x_axis, nc::FictivePoint target,
+                         nc::FictivePoint actual);
+
 /// 3.2: between the target and the position where the function was called the operator may jog
 /// the axis back and forth, never past the target. The zone [low, high]; an endless rotary axis
 /// has none (it may pass its target, 3.2 instruction).
@@ -57,6 +64,9 @@ struct ReposZone {
   double low = 0, high = 0;
 };
 ReposZone ZoneOf(const axes::AxisParameters& axis, double target, double start);
+/// 3.2 under G31, manual repositioning in Cartesian coordinates (5.2): a fictive axis may be
+/// jogged between its target and where it stood when the function was called, never past it.
+ReposZone FictiveZoneOf(double target, double start);
 
 /// 3.3: the spindle keys that restore a spindle's state before the interruption: M03 by
 /// AxxC.M3 or M4, M04 by M4 or M3, M05 by M5, M19 by M19.

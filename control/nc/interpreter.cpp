@@ -5,6 +5,10 @@
 #include <cmath>
 #include <numbers>
 
+// Pure geometry without the channel: the fictive words are converted here, so that the
+// program's position, incremental words and block search know X and C.
+#include "control/nc/coordinate_transformation.hpp"
+
 namespace vmt::control::nc {
 namespace {
 
@@ -509,7 +513,7 @@ double Interpreter::Call(uint32_t id, std::span<const double> args, uint32_t off
   out.events.clear();
   out.dwell_s = 0;
   out.homing = out.set_position = out.repos = out.measuring = out.end = false;
-  out.feed_programmed = out.returned = false;
+  out.feed_programmed = out.returned = out.fictive = false;
   out.search_locked = search_lock_;
   out.distance_command = DistanceCommand::kNone;
 }
@@ -895,11 +899,27 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
   uint8_t ijk = 0;
   // Two passes: the G codes and other words of a block act before its coordinates, wherever
   // they stand (X40 G16 is a diameter, X10 G91 an increment).
+  // X1 / Y1 of a coordinate transformation (G31/G32): read with the axes, after the G codes.
+  double fictive[2] = {std::nan(""), std::nan("")};
+  uint32_t fictive_offset = 0;
   for (int pass = 0; pass < 2; ++pass)
     for (const Word& w : p.Words(block)) {
       // A channel axis may be named like an address letter (C, X1): axes are looked up first.
       const int axis = AxisOf(w.address);
-      if ((axis >= 0) != (pass == 1)) continue;
+      if ((axis >= 0) != (pass == 1)) {
+        if (pass == 0) continue;
+        const std::string& name = p.symbols.Name(w.address);
+        if (name != "X1" && name != "Y1") continue;
+        const double v = w.value == kNoExpr ? w.number : Eval(w.value);
+        if (eval_failed_) return Fail(eval_fail_offset_, eval_fail_message_);
+        if (modal_.transformation == 30)
+          return Fail(w.offset, "axis " + name +
+                                    " is a fictive axis of a coordinate transformation: it needs "
+                                    "G31 or G32 active");
+        if (std::isnan(fictive[0]) && std::isnan(fictive[1])) fictive_offset = w.offset;
+        fictive[name[0] - 'X'] = v;
+        continue;
+      }
       const std::string& address = p.symbols.Name(w.address);
       const double v = w.value == kNoExpr ? w.number : Eval(w.value);
       if (eval_failed_) return Fail(eval_fail_offset_, eval_fail_message_);
@@ -960,6 +980,27 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
           case 19:
             modal_.plane = g;
             break;
+          case 30:
+            modal_.transformation = 30;
+            break;
+          case 31:
+          case 32: {
+            const int x = NamedAxis("X"), c = NamedAxis("C");
+            if (x < 0 || c < 0)
+              return Fail(w.offset, "G" + std::to_string(g) +
+                                        " (coordinate transformation) needs the axes X and C in "
+                                        "this channel");
+            // G32 unrolls the cylinder at the radius X has now (before the block's moves).
+            if (g == 32 && modal_.transformation != 32) {
+              if (!(std::abs(position_[x]) >= 1e-3))
+                return Fail(w.offset, "G32 (cylinder surface transformation) at X " +
+                                          std::to_string(position_[x]) +
+                                          ": the cylinder needs a radius; position X first");
+              modal_.cylinder_radius = std::abs(position_[x]);
+            }
+            modal_.transformation = g;
+            break;
+          }
           case 40:
           case 41:
           case 42:
@@ -1056,6 +1097,7 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
         default:
           break;
       }
+      if (address == "X1" || address == "Y1") continue;  // read in pass 1
       if (address == "RX" || address == "RY" || address == "RZ") {
         const int k = address[1] - 'X';
         out.effective_distance[k] = v;
@@ -1065,12 +1107,63 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
       return Fail(w.offset, "axis " + address + " is not in this channel");
     }
   if (out.dwell_s < 0) return Fail(block.pos.offset, "G04 needs its dwell time as F");
+  if ((!std::isnan(fictive[0]) || !std::isnan(fictive[1])) &&
+      !FictiveWords(fictive, fictive_offset, out))
+    return false;
   if (!SpindleSynchronous(modal_.motion)) {
     if (f_word) modal_.feed = *f_word;
   } else if (!Lead(p.dialect, f_word, f_offset, ijk, ijk_offset, block.pos.offset, out)) {
     return false;
   }
   if (out.programmed && !out.homing && !out.set_position && !out.repos) out.motion = modal_.motion;
+  return true;
+}
+
+int Interpreter::NamedAxis(const char* name) const {
+  for (size_t a = 0; a < config_.axes.size(); ++a)
+    if (config_.axes[a] == name) return static_cast<int>(a);
+  return -1;
+}
+
+bool Interpreter::FictiveWords(const double fictive[2], uint32_t offset, PreparedBlock& out) {
+  const int xa = NamedAxis("X"), ca = NamedAxis("C");
+  if (xa < 0 || ca < 0)
+    return Fail(offset, "X1/Y1 need the axes X and C in this channel");
+  const size_t x = static_cast<size_t>(xa), c = static_cast<size_t>(ca);
+  out.programmed |= uint64_t{1} << x | uint64_t{1} << c;
+  out.fictive = true;
+  // G77 X1=0 Y1=0: the values do not count, X and C return to their targets along a straight
+  // line of the fictive plane (REPOS manual 5.2, 8.3).
+  if (out.repos) return true;
+  // X1 is programmed as X is (G16: a diameter); Y1 is always a length.
+  const double x1_scale = modal_.diameter ? 0.5 : 1.0;
+  const auto word = [&](int k, double from) {
+    const double v = k == 0 ? fictive[0] * x1_scale : fictive[1];
+    if (std::isnan(v)) return from;
+    return modal_.incremental ? from + v : v;
+  };
+  // The block starts where the program has X and C (a word of X or C in the same block is
+  // overruled: the fictive axes carry the move).
+  if (modal_.transformation == 31) {
+    const FictivePoint start = MachineToFace(position_[x], position_[c]);
+    const FictivePoint end{word(0, start.x1), word(1, start.y1)};
+    double radius = 0, angle = 0;
+    FaceToMachine(end, radius, angle);
+    out.target[x] = radius;
+    const bool start_at_centre = std::hypot(start.x1, start.y1) < 1e-12;
+    out.target[c] = start_at_centre ? FaceC(end, position_[c])
+                                    : position_[c] + SweepDeg(start, end);
+    return true;
+  }
+  // G32: X1 is X; Y1 the arc length on the cylinder of modal_.cylinder_radius.
+  const double r = modal_.cylinder_radius;
+  out.target[x] = word(0, position_[x]);
+  out.target[c] = CylinderC(word(1, CylinderY1(position_[c], r)), r);
+  // The path feed counts C at the cylinder's radius (C-axis manual 1.2's effective distance).
+  if (!(out.has_effective_distance & 3)) {
+    out.effective_distance[0] = r;
+    out.has_effective_distance |= 1;
+  }
   return true;
 }
 

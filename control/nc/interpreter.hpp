@@ -52,7 +52,10 @@ struct ModalState {
   int compensation = 40;             ///< G40 G41 G42
   int tool_length = 47;              ///< G47 off | G48 tool length | G49 negative tool length
   bool low_lag = false;              ///< G06 (MTC200)
-  int transformation = 30;           ///< MTC200 G(17): 31 when a transformation is active
+  /// G group 17, coordinate transformation (control/channel/coordinate_transformation.hpp):
+  /// G30 off, G31 face (X1/Y1 in the end face), G32 cylinder surface (Y1 arc length).
+  int transformation = 30;
+  double cylinder_radius = 0;  ///< G32: X (radius, mm) when G32 became active
   int spindle = 5;                   ///< M3 M4 M5 M19
   int coolant = 9;                   ///< M7 M8 M9
   double feed = 0;                   ///< F, mm/min or mm/rev
@@ -109,6 +112,9 @@ struct PreparedBlock {
   bool repos = false;            ///< G77: return the programmed axes to the interruption point
   bool measuring = false;        ///< G100: measuring move (ISG)
   bool feed_programmed = false;  ///< an F word in this block (G77 needs one, REPOS manual 4.2)
+  /// X1/Y1 of G31/G32 programmed: X and C (set in target and programmed) move on a straight
+  /// line of the fictive Cartesian plane (G77: return along one, REPOS manual 5.2).
+  bool fictive = false;
   /// RTS at the top of a subroutine run on its own (RunSubroutine): the run is over.
   bool returned = false;
   std::vector<uint32_t> instructions;  ///< MTP, MRY, SETTING(...), #-commands: Program::statements
@@ -245,6 +251,10 @@ class Interpreter {
   bool Execute(const Block& block, PreparedBlock& out, int32_t& next);
   bool Statement_(const Statement& st, int32_t block, PreparedBlock& out, int32_t& next);
   bool Words(const Block& block, PreparedBlock& out);
+  /// X1/Y1 of G31/G32 (values in `fictive`, NaN: not programmed) into the targets of X and C.
+  bool FictiveWords(const double fictive[2], uint32_t offset, PreparedBlock& out);
+  /// The channel axis named `name`, -1 if none.
+  int NamedAxis(const char* name) const;
   /// The lead of a G33/G63/G64 block (F in MTC200, K in ISG) into modal_.lead.
   bool Lead(Dialect dialect, std::optional<double> f_word, uint32_t f_offset, uint8_t ijk,
             const uint32_t ijk_offset[3], uint32_t block_offset, PreparedBlock& out);

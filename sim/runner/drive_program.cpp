@@ -229,6 +229,12 @@ bool DriveProgram::Execute(const TimelineStep& step, double t_s,
     case Kind::kJog:
       // The key goes down when the step begins and comes up after `hold`.
       if (!channel_) return true;
+      if (step.fictive >= 0) {
+        if (t_s == step_since_s_) channel_->JogFictive(step.fictive, step.direction);
+        if (t_s - step_since_s_ < step.wait_s - 1e-9) return false;
+        channel_->JogFictive(step.fictive, 0);
+        return true;
+      }
       if (t_s == step_since_s_) channel_->Jog(step.axis, step.direction);
       if (t_s - step_since_s_ < step.wait_s - 1e-9) return false;
       channel_->Jog(step.axis, 0);

@@ -283,10 +283,17 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
     if (!has_nc) a.Fail("the scene has no nc: section");
     a.AllowKeys({"axis", "direction", "hold"});
     s.kind = TimelineStep::Kind::kJog;
-    const int drive = RequireDrive(m, a["axis"]);
-    for (size_t k = 0; k < nc.axis_drives.size(); ++k)
-      if (nc.axis_drives[k] == drive) s.axis = static_cast<int>(k);
-    if (s.axis < 0) a["axis"].Fail("not an axis of the NC channel");
+    // X1 / Y1: the fictive axes of the G31 face transformation (REPOS manual 5.2); the
+    // channel moves them only while G31 is active in rotary axis mode.
+    const std::string name = a["axis"].String();
+    if (name == "X1" || name == "Y1") {
+      s.fictive = name == "X1" ? 0 : 1;
+    } else {
+      const int drive = RequireDrive(m, a["axis"]);
+      for (size_t k = 0; k < nc.axis_drives.size(); ++k)
+        if (nc.axis_drives[k] == drive) s.axis = static_cast<int>(k);
+      if (s.axis < 0) a["axis"].Fail("not an axis of the NC channel");
+    }
     const std::string dir = a["direction"].String();
     if (dir != "+" && dir != "-") a["direction"].Fail("expected + or -");
     s.direction = dir == "+" ? 1 : -1;

@@ -1,0 +1,164 @@
+// Jogging the fictive axes X1/Y1 of G31 (REPOS manual 5.2): in manual mode under an active face
+// transformation the keys of X1 and Y1 move the tool on straight lines of the face plane, as
+// jog mode does on the real control, and X and C follow transformed. The same zone rule as for
+// the machine axes holds while a REPOS function is called (3.2): between the target and where
+// the fictive axis stood when the function was called, never past the target.
+//
+// Continuous and incremental (parametric, 0.001 .. 1 mm) modes; the handwheel moves machine
+// axes only. The speed is X's jogging speed, limited so that C keeps its jogging rapid rate
+// (tangential speed <= C's rate times the radius); the point never comes closer to the centre
+// than kFictiveJogCentre (C is undefined there). PathGuard checks the way to where the jog
+// could stop, as a straight move of the drives (it is short: the check interval's travel).
+#include <cmath>
+#include <numbers>
+
+#include "control/channel/channel.hpp"
+
+namespace vmt::control::channel {
+
+bool Channel::FictiveJogAxes(int& x, int& c) const {
+  x = c = -1;
+  const int transformation =
+      interruption_ ? interruption_->modal.transformation : modal().transformation;
+  if (transformation != 31) return false;
+  if (headstock_ && headstock_->mode() != axes::HeadstockMode::kRotary) return false;
+  for (size_t a = 0; a < config_.axes.size(); ++a) {
+    if (config_.axes[a].name == "X") x = static_cast<int>(a);
+    if (config_.axes[a].name == "C") c = static_cast<int>(a);
+  }
+  return x >= 0 && c >= 0;
+}
+
+bool Channel::JogFictive(int axis, int direction) {
+  int x = -1, c = -1;
+  if (mode_ != ChannelMode::kManual || axis < 0 || axis > 1 || !FictiveJogAxes(x, c))
+    return false;
+  if (direction != 0 && config_.process.jogging_causes_reset && state_ == ChannelState::kHold)
+    Reset();
+  fictive_jog_[axis].key = direction > 0 ? 1 : direction < 0 ? -1 : 0;
+  take_over_pending_ = true;
+  return true;
+}
+
+void Channel::FictiveJogging(double dt) {
+  int x = -1, c = -1;
+  FictiveJog* jogs = fictive_jog_;
+  if (!FictiveJogAxes(x, c)) {
+    for (int k = 0; k < 2; ++k) jogs[k] = FictiveJog{};
+    return;
+  }
+  const ChannelAxis& ax = config_.axes[x];
+  const ChannelAxis& ac = config_.axes[c];
+  const nc::FictivePoint p =
+      nc::MachineToFace(commanded_[x] - translation_[x], commanded_[c] - translation_[c]);
+  const double radius = std::hypot(p.x1, p.y1);
+  const double normal = ax.jog_per_s > 0 ? ax.jog_per_s : ax.rapid_per_s / 10;
+  const double rapid = ax.jog_rapid_per_s > 0 ? ax.jog_rapid_per_s : ax.rapid_per_s / 2;
+  const double c_rate = (ac.jog_rapid_per_s > 0 ? ac.jog_rapid_per_s : ac.rapid_per_s / 2) *
+                        std::numbers::pi / 180;
+  const double speed = std::min((jog_mode_ == JogMode::kRapid ? rapid : normal) * override_,
+                                c_rate * std::max(radius, kFictiveJogCentre));
+  // 3.2: the zone of each fictive axis while a REPOS function is called.
+  double low[2] = {-HUGE_VAL, -HUGE_VAL}, high[2] = {HUGE_VAL, HUGE_VAL};
+  int rx = -1, rc = -1;
+  if (repos_function_ != ReposFunction::kNone && FictiveRepos(rx, rc)) {
+    const nc::FictivePoint target = FictiveOf(ReposTarget(), rx, rc);
+    const nc::FictivePoint start = FictiveOf(repos_start_, rx, rc);
+    const double now[2] = {p.x1, p.y1}, to[2] = {target.x1, target.y1},
+                 from[2] = {start.x1, start.y1};
+    for (int k = 0; k < 2; ++k) {
+      const ReposZone zone = FictiveZoneOf(to[k], from[k]);
+      low[k] = std::min(zone.low, now[k]);
+      high[k] = std::max(zone.high, now[k]);
+    }
+  }
+  double pos[2] = {p.x1, p.y1};
+  const double increment = jog_mode_ == JogMode::kParametric ? ax.jog_distance : jog_increment_;
+  const double step = ax.acceleration * dt;
+  bool moved = false;
+  for (int k = 0; k < 2; ++k) {
+    FictiveJog& j = jogs[k];
+    const auto within = [&](double v) { return std::clamp(v, low[k], high[k]); };
+    if (jog_mode_ == JogMode::kHandwheel) {
+      j = FictiveJog{};
+      continue;
+    }
+    double target_velocity = 0;
+    if (increment > 0 || j.stepping) {
+      if (!j.stepping && j.key != 0 && process_enable_) {
+        j.stepping = true;
+        j.target = within(pos[k] + j.key * increment);
+        j.key = 0;  // one increment per press
+      }
+      if (!j.stepping) continue;
+      const double to_go = j.target - pos[k];
+      target_velocity =
+          std::copysign(std::min(speed, std::sqrt(2 * ax.acceleration * std::abs(to_go))), to_go);
+      j.velocity = std::clamp(target_velocity, j.velocity - step, j.velocity + step);
+      if (std::abs(to_go) <= std::abs(j.velocity * dt) || std::abs(to_go) < 1e-9) {
+        pos[k] = j.target;
+        j.velocity = 0;
+        j.stepping = false;
+      } else {
+        pos[k] += j.velocity * dt;
+      }
+      moved = true;
+      continue;
+    }
+    const int key = process_enable_ ? j.key : 0;
+    const double room = key > 0 ? high[k] - pos[k] : pos[k] - low[k];
+    target_velocity = key * std::min(speed, std::sqrt(2 * ax.acceleration * std::max(0.0, room)));
+    j.velocity = std::clamp(target_velocity, j.velocity - step, j.velocity + step);
+    if (j.velocity == 0) continue;
+    const double next = within(pos[k] + j.velocity * dt);
+    if (next != pos[k] + j.velocity * dt) j.velocity = 0;
+    pos[k] = next;
+    moved = true;
+  }
+  if (!moved) return;
+  const nc::FictivePoint q{pos[0], pos[1]};
+  // Not through the centre: the jog stops short of it.
+  if (std::hypot(q.x1, q.y1) < kFictiveJogCentre) {
+    for (int k = 0; k < 2; ++k) jogs[k].velocity = 0, jogs[k].stepping = false;
+    return;
+  }
+  std::vector<double> to = commanded_;
+  to[x] = std::hypot(q.x1, q.y1) + translation_[x];
+  to[c] = commanded_[c] + nc::SweepDeg(p, q);
+  if (!GuardFictiveJog(x, c, q)) {
+    for (int k = 0; k < 2; ++k) jogs[k] = FictiveJog{};
+    return;
+  }
+  commanded_ = to;
+}
+
+bool Channel::GuardFictiveJog(int x, int c, nc::FictivePoint next) {
+  if (!guard_ || config_.path_guard == GuardReaction::kOff) return true;
+  if (--fictive_guard_countdown_ > 0) return true;
+  fictive_guard_countdown_ = config_.path_guard_every;
+  // Where the jog could stop: the next point plus the braking distance and one check interval
+  // at the present velocity, along the jog's direction.
+  const double dt = config_.tick_s * config_.ticks_per_cycle;
+  const double interval = config_.path_guard_every * dt + dt;
+  const double a = config_.axes[x].acceleration;
+  double stop[2] = {next.x1, next.y1};
+  for (int k = 0; k < 2; ++k) {
+    const double v = fictive_jog_[k].velocity;
+    stop[k] += v * std::abs(v) / (2 * a) + v * interval;
+  }
+  const nc::FictivePoint p =
+      nc::MachineToFace(commanded_[x] - translation_[x], commanded_[c] - translation_[c]);
+  const nc::FictivePoint s{stop[0], stop[1]};
+  const std::vector<double> from = GuardFrom();
+  std::vector<double> to = from;
+  to[config_.axes[x].drive] = std::hypot(s.x1, s.y1) + translation_[x];
+  to[config_.axes[c].drive] = commanded_[c] + nc::SweepDeg(p, s);
+  const PathCheck check = guard_->CheckMove(from, to);
+  if (check.clear) {
+    guard_records_.push_back({"jog X1/Y1", from, to, check, 1, false});
+    return true;
+  }
+  return !GuardStops("jog X1/Y1", from, to, check);
+}
+
+}  // namespace vmt::control::channel

@@ -1,0 +1,264 @@
+// G31 face transformation in the channel (coordinate_transformation.hpp; REPOS manual 5.2,
+// 6.1, 8.3): X1/Y1 moves interpolated on a straight line of the face plane and transformed to
+// X and C every cycle within C's rate limit; rotary axis mode required; a line through the
+// centre refused; PathGuard's chords within 1 um of the line; repositioning with G77 X1=0 Y1=0
+// back along a Cartesian line, the fictive axes on the REPOS screen and X's window for them.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "control/channel/channel.hpp"
+#include "control/nc/coordinate_transformation.hpp"
+#include "headstock_lathe.hpp"
+
+namespace vmt::control::channel {
+namespace {
+
+using axes::HeadstockMode;
+using headstock_test::kTick;
+using headstock_test::Lathe;
+using ::testing::HasSubstr;
+
+constexpr size_t kX = 0, kZ = 1, kC = 2;
+constexpr int kDriveX = 0, kDriveC = 2;  // section 2: C is the spindle's own drive
+
+void RunFor(Lathe& m, double s) { m.Ticks(static_cast<int>(s / kTick)); }
+
+nc::FictivePoint FaceOf(const Lathe& m) {
+  return nc::MachineToFace(m.at.feedback[kDriveX].position, m.at.feedback[kDriveC].position);
+}
+
+// Distance of p from the segment a-b.
+double OffSegment(nc::FictivePoint p, nc::FictivePoint a, nc::FictivePoint b) {
+  const double dx = b.x1 - a.x1, dy = b.y1 - a.y1, l2 = dx * dx + dy * dy;
+  const double u = l2 > 0 ? std::clamp(((p.x1 - a.x1) * dx + (p.y1 - a.y1) * dy) / l2, 0.0, 1.0) : 0;
+  return std::hypot(p.x1 - a.x1 - u * dx, p.y1 - a.y1 - u * dy);
+}
+
+TEST(ChannelTransformation, FaceLinesAreStraightInTheFacePlane) {
+  Lathe m("N1 G00 X20 Z5 C0\nN2 G31 G01 X1=20 Y1=20 F600\nN3 X1=-20\nN4 G30\nN5 RET\n");
+  m.channel->Start();
+  ASSERT_TRUE(m.RunUntil([&] { return m.channel->line() == 2; }));
+  double worst = 0, max_c_speed = 0;
+  int samples = 0;
+  while (m.channel->state() == ChannelState::kRunning && m.t < 20) {
+    m.Tick();
+    const nc::FictivePoint p = FaceOf(m);
+    worst = std::max(worst, std::min(OffSegment(p, {20, 0}, {20, 20}),
+                                     OffSegment(p, {20, 20}, {-20, 20})));
+    max_c_speed = std::max(max_c_speed, std::abs(m.at.feedback[kDriveC].velocity));
+    ++samples;
+  }
+  m.Ticks(8);
+  EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  EXPECT_GT(samples, 4000);
+  // The NC cycle's points lie on the lines; the drive ticks between them are linear in X and
+  // C (fine interpolation): 10 um chords err by ~1e-6 mm.
+  EXPECT_LT(worst, 1e-5);
+  EXPECT_NEAR(m.at.feedback[kDriveX].position, std::hypot(20, 20), 1e-9);
+  EXPECT_NEAR(m.at.feedback[kDriveC].position, 135, 1e-9);
+  EXPECT_LE(max_c_speed, 3600);
+  // The path feed is F in the face plane: 40 mm at 10 mm/s in about 4 s.
+}
+
+TEST(ChannelTransformation, PathFeedNearTheCentreKeepsCWithinItsRapidRate) {
+  // d = 0.5 mm: at F 6000 (100 mm/s) C would turn 11459 deg/s past the centre; its limit is 3600.
+  Lathe m("N1 G00 X20 Z5 C1.4321\nN2 G31 G01 X1=-20 Y1=0.5 F6000\nN3 RET\n");
+  m.channel->Start();
+  ASSERT_TRUE(m.RunUntil([&] { return m.channel->line() == 2; }));
+  double max_c_speed = 0, worst = 0;
+  const nc::FictivePoint a = nc::MachineToFace(20, 1.4321), b{-20, 0.5};
+  while (m.channel->state() == ChannelState::kRunning && m.t < 20) {
+    m.Tick();
+    // The drives' velocity over one tick: the fine interpolation's.
+    max_c_speed = std::max(max_c_speed, std::abs(m.at.feedback[kDriveC].velocity));
+    worst = std::max(worst, OffSegment(FaceOf(m), a, b));
+  }
+  m.Ticks(8);
+  EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  // Limited by C's acceleration here (v^2 th'' <= 36000 deg/s^2 / 2: ~11 mm/s at d 0.5 mm, C at
+  // ~1260 deg/s past the centre), within its rate in any case.
+  EXPECT_LE(max_c_speed, 3600 * 1.001);
+  EXPECT_GT(max_c_speed, 1000);  // limited, not crawling
+  EXPECT_LT(worst, 1e-3);              // chords of the fine interpolation where C turns fast
+  EXPECT_NEAR(m.at.feedback[kDriveC].position, 180 - std::atan2(0.5, 20) * 180 / std::numbers::pi,
+              1e-6);
+}
+
+TEST(ChannelTransformation, LineThroughTheCentreIsRefused) {
+  Lathe m("N1 G00 X20 Z5 C0\nN2 G31 G01 X1=-20 Y1=0 F600\nN3 RET\n");
+  m.channel->Start();
+  m.RunUntilEnd();
+  ASSERT_EQ(m.channel->state(), ChannelState::kError);
+  EXPECT_EQ(m.channel->error_number(), kMsgTransformation);
+  EXPECT_THAT(m.channel->error(), HasSubstr("p.mtc:2:"));
+  EXPECT_THAT(m.channel->error(), HasSubstr("passes the centre"));
+}
+
+TEST(ChannelTransformation, SpindleModeIsAnError) {
+  Lathe m("N1 G00 X20 Z5\nN2 M3 S100\nN3 G31 G01 X1=10 Y1=10 F600\nN4 RET\n");
+  m.channel->Start();
+  m.RunUntilEnd();
+  ASSERT_EQ(m.channel->state(), ChannelState::kError);
+  EXPECT_EQ(m.hs().mode(), HeadstockMode::kSpindle);
+  EXPECT_EQ(m.channel->error_number(), kMsgTransformation);
+  EXPECT_THAT(m.channel->error(), HasSubstr("p.mtc:3:"));
+  EXPECT_THAT(m.channel->error(), HasSubstr("rotary axis mode"));
+}
+
+TEST(ChannelTransformation, ArcsAreRefused) {
+  Lathe m("N1 G00 X20 Z5 C0\nN2 G31 G02 X1=20 Y1=20 R30 F600\nN3 RET\n");
+  m.channel->Start();
+  m.RunUntilEnd();
+  ASSERT_EQ(m.channel->state(), ChannelState::kError);
+  EXPECT_EQ(m.channel->error_number(), kMsgTransformation);
+}
+
+// ---- Repositioning under G31 ----
+
+// Records every chord PathGuard is asked about; all clear.
+struct Recorder : PathGuard {
+  PathCheck CheckMove(const std::vector<double>& from, const std::vector<double>& to) override {
+    chords.push_back({from, to});
+    PathCheck c;
+    c.min_clearance = 5;
+    return c;
+  }
+  std::vector<std::pair<std::vector<double>, std::vector<double>>> chords;
+};
+
+const std::string kFace =
+    "N1 G00 X20 Z5 C0\n"
+    "N2 G31 G01 X1=20 Y1=30 F600\n"
+    "N3 X1=-20\n"
+    "N4 G30 RET\n"
+    ".REPOS\n"
+    "N10 @100=G(17)-31 BEQ .TRANSF\n"
+    "N11 G77 X0 C0 F3000 RTS\n"
+    ".TRANSF\n"
+    "N12 G77 X1=0 Y1=0 F3000\n"
+    "N13 G77 Z0 F2000 RTS\n";
+
+void Windows(ChannelConfig& c) {
+  c.axes[kX].repos_window = 0.5;  // Cxx.086 of X [mm]: the fictive axes' (6.1)
+  c.axes[kZ].repos_window = 0.5;
+  c.axes[kC].repos_window = 1.5;  // [deg]: not used under G31
+}
+
+void Interrupt(Lathe& m, double s) {
+  m.channel->Start();
+  RunFor(m, s);
+  m.channel->Stop();
+  RunFor(m, 0.2);
+  ASSERT_EQ(m.channel->state(), ChannelState::kHold);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+}
+
+void Press(Lathe& m, size_t axis, int direction, int times) {
+  for (int k = 0; k < times; ++k) {
+    m.channel->Jog(axis, direction);
+    RunFor(m, 0.05);
+    m.channel->Jog(axis, 0);
+    RunFor(m, 0.05);
+  }
+}
+
+const ReposAxisStatus& Axis(const ReposStatus& s, const std::string& name) {
+  for (const ReposAxisStatus& a : s.axes)
+    if (a.name == name) return a;
+  ADD_FAILURE() << "no axis " << name;
+  return s.axes.at(0);
+}
+
+TEST(ChannelTransformation, TheXWindowCountsForTheFictivePoint) {
+  Lathe m(kFace, false, Windows);
+  Interrupt(m, 5.0);  // in N3, Y1 30
+  const nc::FictivePoint stop = FaceOf(m);
+  ASSERT_NEAR(stop.y1, 30, 1e-6);
+  m.channel->SetJogMode(static_cast<int>(JogMode::kIncrement1000));  // 1 deg a press
+  Press(m, kC, +1, 1);
+  m.channel->SetReposition(true, false);
+  RunFor(m, 0.01);
+  ReposStatus s = m.channel->repos_status();
+  // C is 1 deg off, within its own 1.5 deg; at radius ~31 that is ~0.55 mm > X's 0.5 mm.
+  EXPECT_FALSE(m.channel->conditions_restored());
+  EXPECT_TRUE(Axis(s, "C").adjust);
+  EXPECT_TRUE(Axis(s, "X1").adjust);
+  EXPECT_NEAR(Axis(s, "X1").final_value, stop.x1, 1e-6);
+  EXPECT_NEAR(Axis(s, "Y1").final_value, 30, 1e-6);
+  const nc::FictivePoint now = FaceOf(m);
+  EXPECT_NEAR(Axis(s, "Y1").command_value, now.y1, 1e-6);
+  EXPECT_NEAR(Axis(s, "X1").distance_to_go, stop.x1 - now.x1, 1e-6);
+  // Half a degree back is ~0.27 mm: within X's window.
+  m.channel->SetJogMode(static_cast<int>(JogMode::kIncrement100));  // 0.1 deg a press
+  Press(m, kC, -1, 5);
+  s = m.channel->repos_status();
+  EXPECT_FALSE(Axis(s, "Y1").adjust);
+  EXPECT_FALSE(Axis(s, "C").adjust);
+  EXPECT_TRUE(m.channel->conditions_restored());
+}
+
+TEST(ChannelTransformation, G77X1Y1ReturnsOnACartesianLineCheckedInChords) {
+  Lathe m(kFace, false, Windows);
+  Recorder guard;
+  m.channel->SetPathGuard(&guard);
+  Interrupt(m, 5.0);
+  const nc::FictivePoint stop = FaceOf(m);
+  const double z_stop = m.at.feedback[1].position;
+  m.channel->SetJogMode(static_cast<int>(JogMode::kIncrement1000));
+  Press(m, kZ, +1, 5);
+  Press(m, kC, +1, 20);
+  Press(m, kX, +1, 8);
+  const nc::FictivePoint away = FaceOf(m);
+  ASSERT_GT(std::hypot(away.x1 - stop.x1, away.y1 - stop.y1), 10);
+  m.channel->SetReposition(true, false);
+  RunFor(m, 0.01);
+  guard.chords.clear();
+  (void)m.channel->TakeGuardRecords();  // the jogs'
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kAutomatic));
+  m.channel->Start();
+  // N12 G77 X1=0 Y1=0: X and C on the straight line back; Z waits for N13.
+  double worst = 0;
+  while (m.channel->repos_status().subroutine_running && m.t < 30) {
+    m.Tick();
+    if (std::abs(m.at.feedback[1].position - (z_stop + 5)) < 1e-9)
+      worst = std::max(worst, OffSegment(FaceOf(m), away, stop));
+  }
+  // Cycle points on the line; drive ticks linear in X and C between them (50 mm/s: 50 um
+  // chords err by some 1e-5 mm).
+  EXPECT_LT(worst, 5e-5);
+  // PathGuard: the G77 curve as chords, each within 1 um of the line (brute force), from the
+  // jogged point to the interruption point.
+  ASSERT_GT(guard.chords.size(), 10u);
+  double chord_worst = 0;
+  size_t face_chords = 0;
+  for (const auto& [from, to] : guard.chords) {
+    if (from[kDriveX] == to[kDriveX] && from[kDriveC] == to[kDriveC]) continue;  // Z
+    ++face_chords;
+    for (int j = 0; j <= 32; ++j) {
+      const double t = j / 32.0;
+      const nc::FictivePoint q = nc::MachineToFace(from[kDriveX] + (to[kDriveX] - from[kDriveX]) * t,
+                                           from[kDriveC] + (to[kDriveC] - from[kDriveC]) * t);
+      chord_worst = std::max(chord_worst, OffSegment(q, away, stop));
+    }
+  }
+  EXPECT_GT(face_chords, 10u);
+  EXPECT_LT(chord_worst, 1e-3);
+  const std::vector<GuardRecord> records = m.channel->TakeGuardRecords();
+  ASSERT_FALSE(records.empty());
+  EXPECT_EQ(records.front().move, "G77");
+  EXPECT_EQ(records.front().checks, static_cast<int>(face_chords));
+  // The program goes on from the interruption point to its end.
+  m.RunUntilEnd();
+  EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  const nc::FictivePoint end = FaceOf(m);
+  EXPECT_NEAR(end.x1, -20, 1e-6);
+  EXPECT_NEAR(end.y1, 30, 1e-6);
+}
+
+}  // namespace
+}  // namespace vmt::control::channel
