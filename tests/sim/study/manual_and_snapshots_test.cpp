@@ -17,8 +17,12 @@ namespace {
 const std::string kManual = std::string(VMT_SOURCE_DIR) + "/tests/sim/study/tiny-manual-study.yaml";
 const std::string kTiny = std::string(VMT_SOURCE_DIR) + "/tests/sim/study/tiny-study.yaml";
 
+/// A fresh folder of the running test: ctest runs these suites in parallel, and each builds its
+/// own reference run.
 std::string Out(const std::string& name) {
-  const std::string dir = std::string(VMT_BINARY_DIR) + "/test_output/study/" + name;
+  const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::string dir = std::string(VMT_BINARY_DIR) + "/test_output/study/" +
+                          test->test_suite_name() + "." + test->name() + "/" + name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
