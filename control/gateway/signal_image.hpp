@@ -40,6 +40,11 @@ class SignalImage {
   const std::string& String(int id) const;
   void SetString(int id, std::string_view v);
 
+  /// Every signal's stored cell (BOOL/integer value, REAL/LREAL bits, a STRING's slot), by id.
+  /// A cell that compares equal to an earlier copy holds the same value (strings aside), so a
+  /// watcher of thousands of signals finds the few that changed without a typed read of each.
+  std::span<const int64_t> cells() const { return cells_; }
+
   /// Every signal back to its preset (Control-Reset of a simulation, not of the NC).
   void Reset();
 
