@@ -297,8 +297,11 @@ class Channel {
   double Translation(size_t axis) const { return translation_[axis]; }
   /// The program address of channel axis `axis` (X, Z, C).
   const std::string& AxisName(size_t axis) const { return config_.axes[axis].name; }
-  /// Commanded position of a channel axis (program coordinates, mm | deg).
+  /// Commanded position of a channel axis: the axis position the drive is commanded to (mm |
+  /// deg); the program's coordinate is this less Translation(). Valid once holds_positions().
   double position(size_t axis) const { return commanded_[axis]; }
+  /// The channel has taken its axes over (the first start or jog): it commands their setpoints.
+  bool holds_positions() const { return holding_positions_; }
   /// Source line of the block in work, 0 when none.
   uint32_t line() const;
 

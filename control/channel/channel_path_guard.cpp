@@ -123,6 +123,11 @@ void Channel::GuardJog(double dt) {
     if (jog_mode_ == JogMode::kHandwheel) {
       stop = j.handwheel ? j.handwheel_target : commanded_[a];
     } else if (!j.stepping) {
+      // In incremental mode a key starts an increment, which GuardIncrement checks whole: no
+      // continuous run to predict (its braking distance could stop a short increment).
+      const double increment =
+          jog_mode_ == JogMode::kParametric ? axis.jog_distance : jog_increment_;
+      if (increment > 0 && j.velocity == 0) continue;
       const int key = process_enable_ && j.key != j.blocked ? j.key : 0;
       const int dir = key != 0 ? key : j.velocity > 0 ? 1 : j.velocity < 0 ? -1 : 0;
       if (dir == 0) continue;

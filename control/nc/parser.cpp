@@ -1,12 +1,12 @@
 #include "control/nc/parser.hpp"
 
 #include <algorithm>
-#include <fstream>
-#include <sstream>
+#include <optional>
 
 #include "control/nc/front_end.hpp"
 #include "control/nc/huge_pages.hpp"
 #include "control/nc/program_check.hpp"
+#include "control/nc/program_file.hpp"
 
 namespace vmt::control::nc {
 
@@ -129,16 +129,14 @@ ParseResult ParseProgram(std::string_view text, const std::string& file_name, Di
 }
 
 ParseResult ParseFile(const std::string& path, Dialect dialect) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  const std::optional<std::string> text = ReadProgramFile(path);
+  if (!text) {
     ParseResult r;
     r.program.files.push_back(path);
     r.errors.push_back({{0, 0, 0, 0}, "cannot open file"});
     return r;
   }
-  std::stringstream text;
-  text << in.rdbuf();
-  return ParseProgram(text.str(), path, dialect);
+  return ParseProgram(*text, path, dialect);
 }
 
 }  // namespace vmt::control::nc

@@ -15,6 +15,16 @@ nlohmann::ordered_json GuardEvent(double t, const control::channel::GuardRecord&
   nlohmann::ordered_json e = {{"t", t}, {"event", "path_guard"}, {"move", r.move}};
   e["clear"] = c.clear;
   if (r.checks > 1) e["checks"] = r.checks;
+  // The checked move, of the drives that move: an increment, a G77 or a closing move from
+  // where it starts to its end (a continuous jog: to where it could brake at its last check).
+  nlohmann::ordered_json from = nlohmann::ordered_json::object(), to = from;
+  for (size_t d = 0; d < r.from.size() && d < r.to.size() && d < m.drives.size(); ++d)
+    if (r.from[d] != r.to[d]) {
+      from[m.drives[d].info.name] = Micro(r.from[d]) + 0.0;
+      to[m.drives[d].info.name] = Micro(r.to[d]) + 0.0;
+    }
+  e["from"] = from;
+  e["to"] = to;
   if (!c.clear) {
     e["parts"] = {c.part_a, c.part_b};
     e["point"] = {Micro(c.point[0]), Micro(c.point[1]), Micro(c.point[2])};

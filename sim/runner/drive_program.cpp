@@ -235,7 +235,21 @@ bool DriveProgram::Execute(const TimelineStep& step, double t_s,
         channel_->JogFictive(step.fictive, 0);
         return true;
       }
-      if (t_s == step_since_s_) channel_->Jog(step.axis, step.direction);
+      if (step.jog_to && t_s == step_since_s_) {
+        // The distance from the NC's position of the axis (the drive's actual one lags it by
+        // the following error; before the NC has taken its axes over, the actual one is all
+        // there is); none (already there) presses no key, and an increment of 0 would be
+        // continuous jogging.
+        const double from = channel_->holds_positions()
+                                ? channel_->position(static_cast<size_t>(step.axis))
+                                : at.feedback[step.drive].position;
+        const double to_go = step.target - from;
+        if (std::abs(to_go) < 5e-4) return true;
+        channel_->SetJogIncrement(std::abs(to_go));
+        channel_->Jog(step.axis, to_go > 0 ? 1 : -1);
+      } else if (t_s == step_since_s_) {
+        channel_->Jog(step.axis, step.direction);
+      }
       if (t_s - step_since_s_ < step.wait_s - 1e-9) return false;
       channel_->Jog(step.axis, 0);
       return true;

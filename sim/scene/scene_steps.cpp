@@ -281,7 +281,7 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
   if (n.Has("jog")) {  // hold a jog key of a channel axis for a time
     const YamlNode a = n["jog"];
     if (!has_nc) a.Fail("the scene has no nc: section");
-    a.AllowKeys({"axis", "direction", "hold"});
+    a.AllowKeys({"axis", "direction", "hold", "to"});
     s.kind = TimelineStep::Kind::kJog;
     // X1 / Y1: the fictive axes of the G31 face transformation (REPOS manual 5.2); the
     // channel moves them only while G31 is active in rotary axis mode.
@@ -293,6 +293,20 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
       for (size_t k = 0; k < nc.axis_drives.size(); ++k)
         if (nc.axis_drives[k] == drive) s.axis = static_cast<int>(k);
       if (s.axis < 0) a["axis"].Fail("not an axis of the NC channel");
+      s.drive = drive;
+    }
+    if (a.Has("to")) {
+      // To a position, as an operator does it in incremental jog mode: the increment set to
+      // the distance, one tap toward it (an increment once started is completed).
+      if (s.fictive >= 0) a["to"].Fail("a fictive axis has no drive position");
+      if (a.Has("direction")) a["direction"].Fail("give direction or to, not both");
+      s.jog_to = true;
+      s.target = a["to"].Double();
+      s.wait_s = a.Has("hold") ? a["hold"].Double() : 0.05;
+      if (s.wait_s <= 0) a["hold"].Fail("must be > 0");
+      text << "jog " << a["axis"].String() << " to " << Fmt(s.target);
+      s.text = text.str();
+      return s;
     }
     const std::string dir = a["direction"].String();
     if (dir != "+" && dir != "-") a["direction"].Fail("expected + or -");

@@ -37,7 +37,6 @@ void CaseObserver::OnEvent(const nlohmann::ordered_json& e) {
   if (kind == "step" && step == phase_step_ && !repos_phase_) {
     repos_phase_ = true;
     t_start_ = t;
-    if (have_command_ && start_point_known_) path_.emplace_back(x_, z_);
   } else if (kind == "repos") {
     last_repos_ = e;
     if (e.contains("axes")) {
@@ -45,8 +44,6 @@ void CaseObserver::OnEvent(const nlohmann::ordered_json& e) {
       if (axes.contains("X")) x_ = axes["X"].value("command", x_);
       if (axes.contains("Z")) z_ = axes["Z"].value("command", z_);
       have_command_ = true;
-      if (repos_phase_ && !contact_ && (path_.empty() || path_.back() != std::make_pair(x_, z_)))
-        path_.emplace_back(x_, z_);
     }
     if (repos_phase_ && e.value("subroutine", false)) subroutine_seen_ = true;
     if (repos_phase_ && subroutine_seen_ && !e.value("subroutine", false)) End(t);
@@ -59,15 +56,21 @@ void CaseObserver::OnEvent(const nlohmann::ordered_json& e) {
     if (clear) {
       const double c = e.value("min_clearance", std::numeric_limits<double>::infinity());
       if (c < min_clearance_) min_clearance_ = c;
+      if (!contact_) AddMove(e);
     } else if (!contact_) {
       contact_ = true;
       parts_ = e["parts"];
       point_ = e["point"];
       position_ = e["position"];
       // Where the move would have touched, on the drawing's axes.
+      // The refused move never started: the path travelled ends where it would have begun.
+      AddMove(e, false);
+      travelled_ = path_.size();
       if (position_.is_object()) {
-        const double cx = position_.contains("X") ? position_["X"].get<double>() : x_;
-        const double cz = position_.contains("Z") ? position_["Z"].get<double>() : z_;
+        const double x = path_.empty() ? x_ : path_.back().first;
+        const double z = path_.empty() ? z_ : path_.back().second;
+        const double cx = position_.contains("X") ? position_["X"].get<double>() : x;
+        const double cz = position_.contains("Z") ? position_["Z"].get<double>() : z;
         path_.emplace_back(cx, cz);
       }
     }
@@ -80,6 +83,25 @@ void CaseObserver::OnEvent(const nlohmann::ordered_json& e) {
       End(t);
     }
   }
+}
+
+void CaseObserver::AddMove(const nlohmann::ordered_json& e, bool whole) {
+  // A drive the record leaves out does not move: it stays where the path stands.
+  const auto at = [&](const char* key, double& x, double& z) {
+    if (!e.contains(key) || !e[key].is_object()) return false;
+    x = e[key].value("X", x);
+    z = e[key].value("Z", z);
+    return true;
+  };
+  double x = path_.empty() ? x_ : path_.back().first;
+  double z = path_.empty() ? z_ : path_.back().second;
+  if (!at("from", x, z)) return;
+  if (path_.empty() || std::abs(path_.back().first - x) > 5e-4 ||
+      std::abs(path_.back().second - z) > 5e-4)
+    path_.emplace_back(x, z);
+  if (!whole || !at("to", x, z)) return;
+  if (std::abs(path_.back().first - x) > 5e-4 || std::abs(path_.back().second - z) > 5e-4)
+    path_.emplace_back(x, z);
 }
 
 CaseResult CaseObserver::Result(const StudyPlan& plan,
@@ -108,10 +130,9 @@ CaseResult CaseObserver::Result(const StudyPlan& plan,
   r["min_clearance_mm"] =
       std::isfinite(min_clearance_) ? nlohmann::ordered_json(min_clearance_) : nullptr;
   double length = 0;
-  for (size_t i = 1; i < path_.size(); ++i)
+  for (size_t i = 1; i < (contact_ ? travelled_ : path_.size()); ++i)
     length +=
         std::hypot(path_[i].first - path_[i - 1].first, path_[i].second - path_[i - 1].second);
-  if (contact_) length = 0;  // the move was checked whole and never started
   r["path_length_mm"] = Micro(length);
   const double end = done_ ? t_end_ : t_now;
   r["repos_time_s"] = repos_phase_ ? Micro(end - t_start_) : 0.0;
@@ -130,6 +151,8 @@ CaseResult CaseObserver::Result(const StudyPlan& plan,
   r["retract_contact"] = retract_contact_;
   auto& path = r["path"] = nlohmann::ordered_json::array();
   for (const auto& [x, z] : path_) path.push_back({Micro(x), Micro(z)});
+  // No move at all: the tool stayed where the REPOS screen shows it.
+  if (path_.empty() && have_command_) path.push_back({Micro(x_), Micro(z_)});
   return r;
 }
 

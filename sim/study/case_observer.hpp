@@ -1,8 +1,8 @@
 #pragma once
 // What a case's events say (the runner's on_event stream): where the REPOS phase starts, the
-// PathGuard checks of its moves (the first contact, the smallest clearance), the approach path
-// from the REPOS screen's events, the NC's error, and when the case is over -- at the REPOS
-// subroutine's RTS (program-driven, 4.1) or at the end of the operator's jogs (manual, 3).
+// PathGuard checks of its moves (the first contact, the smallest clearance, and the approach
+// path corner by corner from their records), the NC's error, and when the case is over -- at
+// the REPOS subroutine's RTS (program-driven, 4.1) or at the end of the operator's jogs (3).
 
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -29,13 +29,7 @@ class CaseObserver {
   explicit CaseObserver(size_t phase_step = kNoStep, size_t marker = 0)
       : phase_step_(phase_step), marker_(marker) {}
 
-  /// `point_known`: the latest REPOS screen still shows where the tool stands when the phase
-  /// starts (program-driven: the call came before); else (manual: the phase starts with the
-  /// call) the path starts with the screen that the call brings.
-  void SetPhaseStep(size_t step, bool point_known = true) {
-    phase_step_ = step;
-    start_point_known_ = point_known;
-  }
+  void SetPhaseStep(size_t step) { phase_step_ = step; }
   /// Manual mode: the case is over when this step starts (after the last jog's standstill);
   /// clear if the conditions are restored then (PxxS.CREST, 7.3).
   void SetManualEnd(size_t step) { manual_end_ = step; }
@@ -57,18 +51,22 @@ class CaseObserver {
 
  private:
   void End(double t);
+  /// A PathGuard record of the REPOS phase onto the path: where its move starts, and (`whole`:
+  /// a clear one) where it ends.
+  void AddMove(const nlohmann::ordered_json& e, bool whole = true);
 
   size_t phase_step_, marker_;
   size_t manual_end_ = 0;  // 0: program-driven
   size_t steps_seen_ = 0;  // one past the highest timeline step started
   bool repos_phase_ = false, subroutine_seen_ = false, done_ = false, contact_ = false;
-  bool have_command_ = false, start_point_known_ = true;
+  bool have_command_ = false;
   double t_start_ = 0, t_end_ = 0, x_ = 0, z_ = 0;
   double min_clearance_ = std::numeric_limits<double>::infinity();
   nlohmann::ordered_json parts_, point_, position_, retract_contact_, last_repos_;
   std::string error_;
   int error_number_ = 0;
   std::vector<std::pair<double, double>> path_;
+  size_t travelled_ = 0;  ///< with a contact: the path's points up to the refused move's start
 };
 
 }  // namespace vmt::sim::study

@@ -31,10 +31,12 @@ std::string Fixed(double v) {
   return buf;
 }
 
-// The latest simulated time a case may take: the retract's jogs (each waits for standstill at
-// most 10 s), the REPOS phase its timeout.
+// The latest simulated time a case may take: the retract's jogs (each waits at most 10 s for
+// the NC's jog per direction it watches, 1 s for standstill), the REPOS phase its timeout.
 double CaseLimit(const StudyPlan& plan, const Interruption& in, const RetractPattern& r) {
-  return in.t_s + plan.hold_s + 11.5 * static_cast<double>(r.jogs.size()) + 1 + plan.timeout_s;
+  double jogs_s = 0;
+  for (const RetractJog& j : r.jogs) jogs_s += j.to ? 21.5 : 11.5;
+  return in.t_s + plan.hold_s + jogs_s + 1 + plan.timeout_s;
 }
 
 void RunCase(SceneRun& run, CaseObserver& obs, const StudyPlan& plan, double limit_s) {
@@ -112,6 +114,20 @@ TimelineStep HoldStep(const Scene& scene, double t_s, size_t index) {
 
 namespace {
 
+// Until the NC's jog in `direction` (POS | NEG) is done (AxxS.MVPOS / MVNEG, its
+// interpolation), then the drive: the drive's standstill window alone ends the wait before the
+// increment's last tenths.
+void WaitLines(const Scene& scene, const std::string& axis, const char* direction,
+               std::vector<std::string>& lines, bool standstill = true) {
+  int number = 0;
+  for (const auto& a : scene.nc.data.axes)
+    if (a.name == axis) number = a.number;
+  char moving[16];
+  std::snprintf(moving, sizeof moving, "A%02dS.MV%s", number, direction);
+  lines.push_back(std::string("{wait_until: {signal: ") + moving + ", value: false, timeout: 10}}");
+  if (standstill) lines.push_back("{wait_until: {axis: " + axis + ", standstill: true, timeout: 1}}");
+}
+
 // One incremental jog of `mm` (signed) on `axis`, and the waits until it is over.
 void JogLines(const Scene& scene, const std::string& axis, double mm,
               std::vector<std::string>& lines) {
@@ -119,15 +135,16 @@ void JogLines(const Scene& scene, const std::string& axis, double mm,
   lines.push_back("{nc: {jog_increment: " + Fixed(std::abs(mm)) + "}}");
   lines.push_back("{jog: {axis: " + axis + ", direction: " + (mm > 0 ? "'+'" : "'-'") +
                   ", hold: 0.05}}");
-  // Until the NC's jog is done (AxxS.MVPOS / MVNEG, its interpolation), then the drive: the
-  // drive's standstill window alone ends the wait before the increment's last tenths.
-  int number = 0;
-  for (const auto& a : scene.nc.data.axes)
-    if (a.name == axis) number = a.number;
-  char moving[16];
-  std::snprintf(moving, sizeof moving, "A%02dS.MV%s", number, mm > 0 ? "POS" : "NEG");
-  lines.push_back(std::string("{wait_until: {signal: ") + moving + ", value: false, timeout: 10}}");
-  lines.push_back("{wait_until: {axis: " + axis + ", standstill: true, timeout: 1}}");
+  WaitLines(scene, axis, mm > 0 ? "POS" : "NEG", lines);
+}
+
+// A jog to the drive position `to` ({jog: {axis, to}}: the increment is the distance from
+// where the axis stands, so the direction is known only then: both directions' waits).
+void JogToLines(const Scene& scene, const std::string& axis, double to,
+                std::vector<std::string>& lines) {
+  lines.push_back("{jog: {axis: " + axis + ", to: " + Fixed(to) + ", hold: 0.05}}");
+  WaitLines(scene, axis, "POS", lines, false);
+  WaitLines(scene, axis, "NEG", lines);
 }
 
 // The retract: manual mode, the jogs, and a short wait whose start marks that the retract is
@@ -136,7 +153,12 @@ std::vector<std::string> RetractLines(const Scene& scene, const StudyPlan& plan,
                                       const Interruption& in, const RetractPattern& retract) {
   std::vector<std::string> lines;
   lines.push_back("{at: " + Fixed(in.t_s + plan.hold_s) + ", nc: {mode: manual}}");
-  for (const RetractJog& j : retract.jogs) JogLines(scene, j.axis, j.mm, lines);
+  for (const RetractJog& j : retract.jogs) {
+    if (j.to)
+      JogToLines(scene, j.axis, *j.to, lines);
+    else
+      JogLines(scene, j.axis, j.mm, lines);
+  }
   lines.push_back("{wait: 0.01}");
   return lines;
 }
@@ -207,7 +229,7 @@ void RunReturn(Scene& scene, SceneRun& run, CaseObserver& obs, const StudyPlan& 
     RunCase(run, obs, plan, limit);
     return;
   }
-  obs.SetPhaseStep(scene.timeline.size(), false);  // the call
+  obs.SetPhaseStep(scene.timeline.size());  // the call
   Append(scene, ManualCallLines(scene, mode));
   const size_t shown = scene.timeline.size() - 1;
   while (!run.done() && !obs.done() && !obs.step_seen(shown) && run.time_s() < limit) run.Step();

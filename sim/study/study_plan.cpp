@@ -16,7 +16,7 @@ const char* ToString(ReposMode m) {
 namespace {
 
 RetractPattern ReadRetract(const YamlNode& n, const Scene& scene) {
-  if (!n.IsMap()) n.Fail("expected {name: ..., jogs: [{axis: X, mm: 20}, ...]}");
+  if (!n.IsMap()) n.Fail("expected {name: ..., jogs: [{axis: X, mm: 20 | to: 150}, ...]}");
   n.AllowKeys({"name", "jogs"});
   RetractPattern r;
   r.name = n["name"].String();
@@ -25,13 +25,21 @@ RetractPattern ReadRetract(const YamlNode& n, const Scene& scene) {
   if (!jogs.IsSequence()) jogs.Fail("expected a list of jogs");
   for (size_t i = 0; i < jogs.size(); ++i) {
     const YamlNode j = jogs[i];
-    if (!j.IsMap()) j.Fail("expected {axis: X, mm: 20}");
-    j.AllowKeys({"axis", "mm"});
-    RetractJog jog{j["axis"].String(), j["mm"].Double()};
+    if (!j.IsMap()) j.Fail("expected {axis: X, mm: 20} or {axis: X, to: 150}");
+    j.AllowKeys({"axis", "mm", "to"});
+    RetractJog jog;
+    jog.axis = j["axis"].String();
     const auto& axes = scene.nc.data.axes;
     if (std::none_of(axes.begin(), axes.end(), [&](const auto& a) { return a.name == jog.axis; }))
       j["axis"].Fail("no NC axis " + jog.axis + " in this scene");
-    if (jog.mm == 0 || std::abs(jog.mm) > 10000) j["mm"].Fail("expected a distance, not 0");
+    if (j.Has("to")) {
+      if (j.Has("mm")) j["mm"].Fail("give mm (a distance) or to (a position), not both");
+      jog.to = j["to"].Double();
+      if (std::abs(*jog.to) > 10000) j["to"].Fail("expected a position within +-10000");
+    } else {
+      jog.mm = j["mm"].Double();
+      if (jog.mm == 0 || std::abs(jog.mm) > 10000) j["mm"].Fail("expected a distance, not 0");
+    }
     r.jogs.push_back(jog);
   }
   return r;

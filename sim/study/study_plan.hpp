@@ -12,11 +12,13 @@
 
 namespace vmt::sim::study {
 
-/// One incremental jog of the retract: the channel axis and the signed distance (mm); the
-/// operator sets the increment and taps the key, the increment is completed (manual mode).
+/// One incremental jog of the retract: the channel axis and the signed distance (mm), or the
+/// drive position `to` (a tool change point: the distance is taken where the axis stands);
+/// the operator sets the increment and taps the key, the increment is completed (manual mode).
 struct RetractJog {
   std::string axis;
   double mm = 0;
+  std::optional<double> to;
 };
 
 /// How the operator leaves the contour after the feed hold, e.g. "X+ then Z+".

@@ -88,6 +88,26 @@ TEST(ChannelPathGuard, AnIncrementIntoTheWallDoesNotStart) {
   EXPECT_NEAR(m.X(), 20.4, 1e-9);
 }
 
+TEST(ChannelPathGuard, AnIncrementIsCheckedAsItselfNotAsAContinuousRun) {
+  // 0.2 mm short of the wall: a continuous run at the jog speed could not brake in time, but
+  // the key starts an increment that ends 0.1 mm before it; one record, the increment's.
+  Wall wall;
+  Machine m("N1 RET\n", 20.3, 0);
+  m.channel->SetPathGuard(&wall);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->SetJogIncrement(0.2);
+  m.channel->Jog(0, -1);
+  Hold(m, 0.5);
+  m.channel->Jog(0, 0);
+  EXPECT_NE(m.channel->state(), ChannelState::kError) << m.channel->error();
+  EXPECT_NEAR(m.X(), 20.1, 1e-9);
+  const std::vector<GuardRecord> records = m.channel->TakeGuardRecords();
+  ASSERT_EQ(records.size(), 1u);
+  EXPECT_EQ(records[0].move, "jog");
+  EXPECT_NEAR(records[0].from[0], 20.3, 1e-9);
+  EXPECT_NEAR(records[0].to[0], 20.1, 1e-9);
+}
+
 TEST(ChannelPathGuard, WarnRecordsAndGoesOnOffAsksNothing) {
   Wall wall;
   Machine warn("N1 RET\n", 30, 0, [](ChannelConfig& c) { c.path_guard = GuardReaction::kWarn; });

@@ -70,18 +70,25 @@ TEST(study_manual, VerdictsOfTheJogOrders) {
   EXPECT_TRUE(zx["parts"].is_null());
   ASSERT_TRUE(zx["min_clearance_mm"].is_number()) << zx.dump();
   EXPECT_GT(zx["min_clearance_mm"].get<double>(), 0);
-  EXPECT_NEAR(zx["path_length_mm"].get<double>(), 145.0, 0.5) << zx.dump();
-  ASSERT_GE(zx["path"].size(), 2u);
-  const auto& first = zx["path"].front();
-  const auto& last = zx["path"].back();
-  EXPECT_NEAR(first[0].get<double>() - last[0].get<double>(), 70.0, 0.5) << zx.dump();
-  EXPECT_NEAR(last[1].get<double>() - first[1].get<double>(), 75.0, 0.5) << zx.dump();
+  // The path corner by corner (from the PathGuard records of the increments, to the µm).
+  EXPECT_NEAR(zx["path_length_mm"].get<double>(), 145.0, 0.002) << zx.dump();
+  ASSERT_EQ(zx["path"].size(), 3u) << zx.dump();
+  const auto& first = zx["path"][0];
+  const auto& corner = zx["path"][1];
+  const auto& last = zx["path"][2];
+  EXPECT_NEAR(corner[0].get<double>(), first[0].get<double>(), 0.001) << zx.dump();
+  EXPECT_NEAR(corner[1].get<double>(), last[1].get<double>(), 0.001) << zx.dump();
+  EXPECT_NEAR(first[0].get<double>() - last[0].get<double>(), 70.0, 0.001) << zx.dump();
+  EXPECT_NEAR(last[1].get<double>() - first[1].get<double>(), 75.0, 0.001) << zx.dump();
   // X first: the jog down from over the chuck runs the tool into it; PathGuard refuses it.
   const CaseResult& xz = got["manual X,Z"];
   EXPECT_EQ(xz["verdict"], "collision") << xz.dump();
   ASSERT_TRUE(xz["parts"].is_array()) << xz.dump();
   EXPECT_EQ(xz["parts"].size(), 2u);
   EXPECT_EQ(xz["point"].size(), 3u);
+  // Refused before it started: nothing travelled; the path is the start and the contact.
+  EXPECT_EQ(xz["path_length_mm"].get<double>(), 0) << xz.dump();
+  EXPECT_EQ(xz["path"].size(), 2u) << xz.dump();
 }
 
 TEST(study_manual, ForkedManualCaseEqualsTheCaseRunFromTheStart) {

@@ -25,6 +25,11 @@ TEST(study_plan, ReadsTheShowcase) {
   ASSERT_EQ(plan.retracts[1].jogs.size(), 2u);
   EXPECT_EQ(plan.retracts[1].jogs[1].axis, "Z");
   EXPECT_EQ(plan.retracts[1].jogs[1].mm, -20);
+  // The tool change point is a position of each axis, X first.
+  ASSERT_EQ(plan.retracts[3].jogs.size(), 2u);
+  EXPECT_EQ(plan.retracts[3].jogs[0].axis, "X");
+  EXPECT_EQ(plan.retracts[3].jogs[0].to, 150);
+  EXPECT_EQ(plan.retracts[3].jogs[1].to, 300);
   EXPECT_EQ(plan.modes, (std::vector<ReposMode>{ReposMode::kRepositioning, ReposMode::kRestart}));
   ASSERT_EQ(plan.subroutines.size(), 4u);  // two REPOS subroutines, two manual orders
   EXPECT_EQ(plan.subroutines[1].name, "nc/99_safe.mtc");
@@ -82,6 +87,12 @@ TEST(study_plan, BadInputNamesFileLineAndPath) {
       subs);
   EXPECT_THAT(e, HasSubstr("no NC axis Q"));
   EXPECT_THAT(e, MatchesRegex(".*:[0-9]+:[0-9]+: study.retracts.0..jogs.0..axis.*"));
+  e = Error(
+      "study:\n  interrupt: {every_ms: 500}\n  retracts: [{name: up, jogs: [{axis: X, "
+      "mm: 20, to: 150}]}]\n" +
+      subs);
+  EXPECT_THAT(e, MatchesRegex(".*:[0-9]+:[0-9]+: study.retracts.0..jogs.0..mm: give mm .a "
+                              "distance. or to .a position., not both.*"));
   e = Error("study:\n  interrupt: {every_ms: 500}\n" + retract + "  subroutines: [nope.mtc]\n");
   EXPECT_THAT(e, HasSubstr("cannot open NC program"));
   e = Error("study:\n  interrupt: {every_ms: 500}\n" + retract + subs + "  modes: [manual]\n");
