@@ -52,7 +52,7 @@ struct ModalState {
   int compensation = 40;             ///< G40 G41 G42
   int tool_length = 47;              ///< G47 off | G48 tool length | G49 negative tool length
   bool low_lag = false;              ///< G06 (MTC200)
-  /// G group 17, coordinate transformation (control/channel/coordinate_transformation.hpp):
+  /// G group 17, coordinate transformation (control/nc/coordinate_transformation.hpp):
   /// G30 off, G31 face (X1/Y1 in the end face), G32 cylinder surface (Y1 arc length).
   int transformation = 30;
   double cylinder_radius = 0;  ///< G32: X (radius, mm) when G32 became active
