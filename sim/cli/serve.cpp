@@ -80,6 +80,8 @@ int Serve(const ServeOptions& o) {
   run_options.on_plc_client_gone = [&drop_clients] { drop_clients = true; };
   run_options.out_dir = o.out_dir;
   if (o.until_s > 0) run_options.until_s = o.until_s;
+  // Against the wall clock a picture (tens of ms) would make several PLC cycles late.
+  run_options.snapshots_after_run = !o.lockstep;
   SceneRun run(scene, run_options);
   control::gateway::SignalImage* image = run.image();
   if (!image)

@@ -161,6 +161,14 @@ struct SceneRun::State {
   }
   void NoteSnapshotEvent(const nlohmann::ordered_json& event);
   void TakeSnapshot(const SnapshotSpec& s, const std::string& file, nlohmann::ordered_json event);
+  void RenderPendingSnapshots();
+  /// RunOptions::snapshots_after_run: the pictures taken, rendered at Finish.
+  struct PendingSnapshot {
+    std::vector<double> joints;
+    const SnapshotSpec* spec;
+    std::string path;
+  };
+  std::vector<PendingSnapshot> pending_snapshots;
 
   const Scene& scene;
   const RunOptions options;
@@ -619,6 +627,15 @@ void SceneRun::State::NoteSnapshotEvent(const nlohmann::ordered_json& event) {
 void SceneRun::State::TakeSnapshot(const SnapshotSpec& s, const std::string& file,
                                    nlohmann::ordered_json event) {
   if (!options.snapshots) return;
+  if (options.snapshots_after_run) {
+    if (!writing) return;
+    const std::string path = options.out_dir + "/" + file;
+    pending_snapshots.push_back({backend->JointPositions(), &s, path});
+    result.snapshot_files.push_back(path);
+    event["file"] = file;
+    emit_event(std::move(event));
+    return;
+  }
   if (!renderer) renderer = std::make_unique<SceneRenderer>(m, scene.workpiece);
   const render::Image picture =
       renderer->Render(backend->JointPositions(), *scene.Camera(s.camera), s.width, s.height);
@@ -628,6 +645,16 @@ void SceneRun::State::TakeSnapshot(const SnapshotSpec& s, const std::string& fil
   result.snapshot_files.push_back(path);
   event["file"] = file;
   emit_event(std::move(event));
+}
+
+void SceneRun::State::RenderPendingSnapshots() {
+  for (const PendingSnapshot& p : pending_snapshots) {
+    if (!renderer) renderer = std::make_unique<SceneRenderer>(m, scene.workpiece);
+    const SnapshotSpec& s = *p.spec;
+    render::WritePng(p.path,
+                     renderer->Render(p.joints, *scene.Camera(s.camera), s.width, s.height));
+  }
+  pending_snapshots.clear();
 }
 
 // A headstock with a separate C servo needs its clutch switched before the PLC may acknowledge
@@ -744,6 +771,7 @@ void SceneRun::State::ReadFieldBus() {
 }
 
 RunResult SceneRun::State::Finish() {
+  RenderPendingSnapshots();
   // A run stopped early (vmt serve) has simulated only up to where it stopped.
   result.simulated_s = (finished ? last_tick : tick) * kDriveTickS;
   result.final_joint_positions = backend->JointPositions();

@@ -22,6 +22,10 @@ struct RunOptions {
   std::optional<double> until_s;       ///< overrides the scene's duration
   std::string out_dir;                 ///< empty: write nothing (tests, benchmarks)
   bool snapshots = true;               ///< render the scene's snapshots
+  /// Render them when the run is over, from the joint positions of their tick (vmt serve
+  /// --realtime: a picture takes tens of ms, several PLC cycles of the wall clock). The files,
+  /// the events and the pictures are the same.
+  bool snapshots_after_run = false;
   /// The PLC is outside (vmt serve): no embedded program runs; the machine's I/O still goes
   /// through the signal image, which the external PLC reads and writes.
   bool external_plc = false;

@@ -1,6 +1,7 @@
 // Snapshots on events: which recorded events are collisions, probe latches and NC errors, the
 // files their pictures get, and a run that pictures them, lists them in summary.json and
-// events.jsonl like time snapshots, and writes the same bytes twice.
+// events.jsonl like time snapshots, and writes the same bytes twice (once rendering them after
+// the run, as vmt serve --realtime does).
 
 #include "sim/runner/event_snapshots.hpp"
 
@@ -59,6 +60,8 @@ TEST(EventSnapshotsTest, ARunPicturesItsEvents) {
   std::vector<std::string> runs;
   for (const char* name : {"event_snapshots_a", "event_snapshots_b"}) {
     options.out_dir = testing::OutputDir(name);
+    // The second run renders its pictures after the run (vmt serve --realtime): the same.
+    options.snapshots_after_run = runs.size() == 1;
     const RunResult r = RunScene(scene, options);
     ASSERT_EQ(r.snapshot_files.size(), 2u);  // one collision, one error, within the limits
     runs.push_back(options.out_dir);
@@ -85,6 +88,8 @@ TEST(EventSnapshotsTest, ARunPicturesItsEvents) {
   EXPECT_TRUE(files[1].starts_with("error_1_0.")) << files[1];
   EXPECT_DOUBLE_EQ(shot_t[0], collision_t);
   EXPECT_DOUBLE_EQ(shot_t[1], error_t);
+  EXPECT_EQ(testing::ReadBytes(runs[0] + "/events.jsonl"),
+            testing::ReadBytes(runs[1] + "/events.jsonl"));
   const std::string summary = testing::ReadBytes(runs[0] + "/summary.json");
   for (const std::string& f : files) {
     EXPECT_NE(summary.find(runs[0] + "/" + f), std::string::npos) << summary;
