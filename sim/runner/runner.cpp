@@ -161,13 +161,15 @@ struct SceneRun::State {
   }
   void NoteSnapshotEvent(const nlohmann::ordered_json& event);
   void TakeSnapshot(const SnapshotSpec& s, const std::string& file, nlohmann::ordered_json event);
-  void RenderPendingSnapshots();
-  /// RunOptions::snapshots_after_run: the pictures taken, rendered at Finish.
+  /// A picture as taken: the joint positions of its tick, what to render, where it goes.
   struct PendingSnapshot {
     std::vector<double> joints;
     const SnapshotSpec* spec;
     std::string path;
   };
+  void RenderSnapshot(const PendingSnapshot& shot);
+  void RenderPendingSnapshots();
+  /// RunOptions::snapshots_after_run: the pictures taken, rendered at Finish.
   std::vector<PendingSnapshot> pending_snapshots;
 
   const Scene& scene;
@@ -627,33 +629,27 @@ void SceneRun::State::NoteSnapshotEvent(const nlohmann::ordered_json& event) {
 void SceneRun::State::TakeSnapshot(const SnapshotSpec& s, const std::string& file,
                                    nlohmann::ordered_json event) {
   if (!options.snapshots) return;
-  if (options.snapshots_after_run) {
-    if (!writing) return;
-    const std::string path = options.out_dir + "/" + file;
-    pending_snapshots.push_back({backend->JointPositions(), &s, path});
-    result.snapshot_files.push_back(path);
-    event["file"] = file;
-    emit_event(std::move(event));
-    return;
-  }
-  if (!renderer) renderer = std::make_unique<SceneRenderer>(m, scene.workpiece);
-  const render::Image picture =
-      renderer->Render(backend->JointPositions(), *scene.Camera(s.camera), s.width, s.height);
+  PendingSnapshot shot{backend->JointPositions(), &s, options.out_dir + "/" + file};
+  if (!options.snapshots_after_run)
+    RenderSnapshot(shot);
+  else if (writing)
+    pending_snapshots.push_back(std::move(shot));
   if (!writing) return;
-  const std::string path = options.out_dir + "/" + file;
-  render::WritePng(path, picture);
-  result.snapshot_files.push_back(path);
+  result.snapshot_files.push_back(options.out_dir + "/" + file);
   event["file"] = file;
   emit_event(std::move(event));
 }
 
+void SceneRun::State::RenderSnapshot(const PendingSnapshot& shot) {
+  if (!renderer) renderer = std::make_unique<SceneRenderer>(m, scene.workpiece);
+  const SnapshotSpec& s = *shot.spec;
+  const render::Image picture =
+      renderer->Render(shot.joints, *scene.Camera(s.camera), s.width, s.height);
+  if (writing) render::WritePng(shot.path, picture);
+}
+
 void SceneRun::State::RenderPendingSnapshots() {
-  for (const PendingSnapshot& p : pending_snapshots) {
-    if (!renderer) renderer = std::make_unique<SceneRenderer>(m, scene.workpiece);
-    const SnapshotSpec& s = *p.spec;
-    render::WritePng(p.path,
-                     renderer->Render(p.joints, *scene.Camera(s.camera), s.width, s.height));
-  }
+  for (const PendingSnapshot& shot : pending_snapshots) RenderSnapshot(shot);
   pending_snapshots.clear();
 }
 
