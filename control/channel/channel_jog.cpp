@@ -120,7 +120,8 @@ void Channel::Jogging(double dt) {
       continue;
     }
     const double increment = JogIncrement(axis);
-    if (increment > 0 || j.stepping) {
+    // A continuous jog the jog mode has left for increments brakes to a stop first (below).
+    if (j.stepping || (increment > 0 && j.velocity == 0)) {
       // Incremental: a key press starts one increment, which then runs to its end.
       if (!j.stepping && j.key != 0 && process_enable_) {
         j.stepping = true;
@@ -146,7 +147,7 @@ void Channel::Jogging(double dt) {
     }
     // Continuous: towards the jog speed while the key is held, braking when it is released or
     // the process enabling signal is removed (C-axis manual 2.3: axes to a standstill).
-    const int key = process_enable_ && j.key != j.blocked ? j.key : 0;
+    const int key = process_enable_ && j.key != j.blocked && increment == 0 ? j.key : 0;
     double target = key * speed;
     const double step = axis.acceleration * dt;
     if (limited) {

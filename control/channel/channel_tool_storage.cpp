@@ -82,7 +82,8 @@ void Channel::ToolStorageCycle(double dt) {
   const bool jogging = mode_ == ChannelMode::kManual && process_enable_;
   const double speed = JogSpeed(axis);
   const double increment = JogIncrement(axis);
-  if (jog_mode_ != JogMode::kHandwheel && (increment > 0 || t.stepping)) {
+  // A continuous jog the jog mode has left for increments brakes to a stop first (below).
+  if (t.stepping || (increment > 0 && t.velocity == 0)) {
     // Incremental: a key press starts one increment, which then runs to its end.
     if (!t.stepping && t.key != 0 && jogging) {
       t.stepping = true;
@@ -94,7 +95,7 @@ void Channel::ToolStorageCycle(double dt) {
   }
   // Continuous while a key is held, braking when it is released; the handwheel moves the feed
   // axes only, so there the keys do nothing.
-  const bool keys = jogging && jog_mode_ != JogMode::kHandwheel;
+  const bool keys = jogging && jog_mode_ != JogMode::kHandwheel && increment == 0;
   const double accel = axis.acceleration > 0 ? axis.acceleration : 360;
   const double wanted = keys ? t.key * speed : 0;
   t.velocity = std::clamp(wanted, t.velocity - accel * dt, t.velocity + accel * dt);

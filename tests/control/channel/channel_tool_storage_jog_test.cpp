@@ -108,6 +108,25 @@ TEST(ToolStorageJog, HandwheelModeKeysDoNothing) {
   EXPECT_EQ(m.T(), 60);
 }
 
+// Parametric mode selected right after MGPOS was let go: the turret brakes to a stop, and no
+// speed is left over for when continuous jogging is selected again.
+TEST(ToolStorageJog, IncrementsSelectedWhileAJogBrakesLetItBrakeToAStop) {
+  TurretMachine m;
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->JogToolStorage(+1);
+  m.RunFor(1.0);  // 30 deg/s
+  m.channel->JogToolStorage(0);
+  m.RunFor(0.001);
+  const double released = m.T();
+  m.channel->SetJogMode(static_cast<int>(JogMode::kParametric));
+  m.RunFor(0.5);
+  EXPECT_NEAR(m.T(), released + 30 * 30 / (2 * 720.0), 0.05);  // its braking distance
+  const double stopped = m.T();
+  m.channel->SetJogMode(static_cast<int>(JogMode::kContinuous));
+  m.RunFor(0.5);
+  EXPECT_EQ(m.T(), stopped);
+}
+
 // 3.4 during repositioning: an increment may pass the target like a continuous jog; a
 // station's increment brings the turret back onto its station, and its adjust symbol goes.
 TEST(ToolStorageJog, IncrementsDuringRepositioningPassAndReachTheTarget) {
