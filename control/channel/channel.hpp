@@ -191,9 +191,11 @@ class Channel {
   /// increment, once started, is completed.
   void Jog(size_t axis, int direction);
   /// PxxC.MGPOS / PxxC.MGNEG (REPOS manual 3.4): +1, -1, 0 released. In manual mode the NC
-  /// jogs an NC-controlled tool storage axis at its jogging speed, also during repositioning
-  /// and NC-block restart, where it may pass its target (endless rotation). Ignored for one the
-  /// PLC controls (the PLC reads the same signals) and outside manual mode.
+  /// jogs an NC-controlled tool storage axis as the jog mode jogs the feed axes: continuously
+  /// at its jogging speed (rapid), one increment per press, or not at all in handwheel mode;
+  /// also during repositioning and NC-block restart, where it may pass its target (endless
+  /// rotation). Ignored for one the PLC controls (the PLC reads the same signals) and outside
+  /// manual mode.
   void JogToolStorage(int direction);
   /// The tool storage axis' command (deg | mm), an NC-controlled one's; NaN otherwise.
   double tool_storage_command() const;
@@ -373,6 +375,16 @@ class Channel {
     double target = 0;  ///< the increment's end
   };
   FictiveJog fictive_jog_[2];
+  // The jog mode's rule for every jogged axis (channel_jog.cpp): feed axes, X1/Y1 and the tool
+  // storage axis (REPOS manual 3.4: "as it would in jog mode").
+  /// Cxx.020 jogging speed (Cxx.021 in kRapid) of `axis`, each defaulting to a share of its
+  /// rapid, times the feed override.
+  double JogSpeed(const ChannelAxis& axis) const;
+  /// Cxx.021 jogging speed - rapid of `axis`, half its rapid if not given.
+  static double JogRapid(const ChannelAxis& axis);
+  /// One key press' distance in the jog mode: Cxx.022 in kParametric, the fixed increment in
+  /// kIncrement1..1000; 0 where a key jogs continuously (or, kHandwheel, not at all).
+  double JogIncrement(const ChannelAxis& axis) const;
   int fictive_guard_countdown_ = 0;
   static constexpr double kFictiveJogCentre = 0.1;  ///< mm: the jog stops this far from the centre
   bool FictiveJogAxes(int& x, int& c) const;
@@ -504,6 +516,7 @@ class Channel {
     int key = 0;
     double velocity = 0;
     bool positioning = false;  ///< MTP in the REPOS subroutine: to `target`
+    bool stepping = false;     ///< an increment of a jog key press: to `target`
     double target = 0;
   };
   ToolStorageAxis tool_storage_;
@@ -511,6 +524,8 @@ class Channel {
   bool tool_storage_wait_ = false;
   bool ToolStorageNc() const { return config_.tool_storage_nc && ToolStorageKnown(); }
   void ToolStorageCycle(double dt);
+  /// Moves the command towards `target` at most at `speed`, braking onto it; true on arrival.
+  bool TraverseToolStorage(double target, double speed, double dt);
   void WriteToolStorage(MasterTelegram& mdt) const;
   /// MTP (4.2 Tool Storage Axis): the NC traverses it back to the interruption's position.
   void ReturnToolStorage();

@@ -52,12 +52,8 @@ void Channel::FictiveJogging(double dt) {
   const nc::FictivePoint p =
       nc::MachineToFace(commanded_[x] - translation_[x], commanded_[c] - translation_[c]);
   const double radius = std::hypot(p.x1, p.y1);
-  const double normal = ax.jog_per_s > 0 ? ax.jog_per_s : ax.rapid_per_s / 10;
-  const double rapid = ax.jog_rapid_per_s > 0 ? ax.jog_rapid_per_s : ax.rapid_per_s / 2;
-  const double c_rate = (ac.jog_rapid_per_s > 0 ? ac.jog_rapid_per_s : ac.rapid_per_s / 2) *
-                        std::numbers::pi / 180;
-  const double speed = std::min((jog_mode_ == JogMode::kRapid ? rapid : normal) * override_,
-                                c_rate * std::max(radius, kFictiveJogCentre));
+  const double c_rate = JogRapid(ac) * std::numbers::pi / 180;
+  const double speed = std::min(JogSpeed(ax), c_rate * std::max(radius, kFictiveJogCentre));
   // 3.2: the zone of each fictive axis while a REPOS function is called.
   double low[2] = {-HUGE_VAL, -HUGE_VAL}, high[2] = {HUGE_VAL, HUGE_VAL};
   int rx = -1, rc = -1;
@@ -73,7 +69,7 @@ void Channel::FictiveJogging(double dt) {
     }
   }
   double pos[2] = {p.x1, p.y1};
-  const double increment = jog_mode_ == JogMode::kParametric ? ax.jog_distance : jog_increment_;
+  const double increment = JogIncrement(ax);
   const double step = ax.acceleration * dt;
   bool moved = false;
   for (int k = 0; k < 2; ++k) {

@@ -30,6 +30,19 @@ void Channel::SetJogMode(int code) {
   }
 }
 
+double Channel::JogRapid(const ChannelAxis& axis) {
+  return axis.jog_rapid_per_s > 0 ? axis.jog_rapid_per_s : axis.rapid_per_s / 2;
+}
+
+double Channel::JogSpeed(const ChannelAxis& axis) const {
+  const double normal = axis.jog_per_s > 0 ? axis.jog_per_s : axis.rapid_per_s / 10;
+  return (jog_mode_ == JogMode::kRapid ? JogRapid(axis) : normal) * override_;
+}
+
+double Channel::JogIncrement(const ChannelAxis& axis) const {
+  return jog_mode_ == JogMode::kParametric ? axis.jog_distance : jog_increment_;
+}
+
 void Channel::Handwheel(size_t axis, int counts) {
   if (mode_ != ChannelMode::kManual || jog_mode_ != JogMode::kHandwheel || axis >= jog_.size() ||
       !process_enable_)
@@ -73,9 +86,8 @@ void Channel::Jogging(double dt) {
       continue;
     JogAxis& j = jog_[a];
     const ChannelAxis& axis = config_.axes[a];
-    const double normal = axis.jog_per_s > 0 ? axis.jog_per_s : axis.rapid_per_s / 10;
-    const double rapid = axis.jog_rapid_per_s > 0 ? axis.jog_rapid_per_s : axis.rapid_per_s / 2;
-    const double speed = (jog_mode_ == JogMode::kRapid ? rapid : normal) * override_;
+    const double rapid = JogRapid(axis);
+    const double speed = JogSpeed(axis);
     // Jogging stops at the software limits and the repositioning zone, braking in time.
     bool limited = axis.travel_max > axis.travel_min;
     double low = axis.travel_min, high = axis.travel_max;
@@ -107,8 +119,9 @@ void Channel::Jogging(double dt) {
       }
       continue;
     }
-    const double increment = jog_mode_ == JogMode::kParametric ? axis.jog_distance : jog_increment_;
-    if (increment > 0 || j.stepping) {
+    const double increment = JogIncrement(axis);
+    // A continuous jog the jog mode has left for increments brakes to a stop first (below).
+    if (j.stepping || (increment > 0 && j.velocity == 0)) {
       // Incremental: a key press starts one increment, which then runs to its end.
       if (!j.stepping && j.key != 0 && process_enable_) {
         j.stepping = true;
@@ -134,7 +147,7 @@ void Channel::Jogging(double dt) {
     }
     // Continuous: towards the jog speed while the key is held, braking when it is released or
     // the process enabling signal is removed (C-axis manual 2.3: axes to a standstill).
-    const int key = process_enable_ && j.key != j.blocked ? j.key : 0;
+    const int key = process_enable_ && j.key != j.blocked && increment == 0 ? j.key : 0;
     double target = key * speed;
     const double step = axis.acceleration * dt;
     if (limited) {

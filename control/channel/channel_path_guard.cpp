@@ -125,13 +125,11 @@ void Channel::GuardJog(double dt) {
     } else if (!j.stepping) {
       // In incremental mode a key starts an increment, which GuardIncrement checks whole: no
       // continuous run to predict (its braking distance could stop a short increment).
-      const double increment =
-          jog_mode_ == JogMode::kParametric ? axis.jog_distance : jog_increment_;
-      if (increment > 0 && j.velocity == 0) continue;
+      if (JogIncrement(axis) > 0 && j.velocity == 0) continue;
       const int key = process_enable_ && j.key != j.blocked ? j.key : 0;
       const int dir = key != 0 ? key : j.velocity > 0 ? 1 : j.velocity < 0 ? -1 : 0;
       if (dir == 0) continue;
-      const double rapid = axis.jog_rapid_per_s > 0 ? axis.jog_rapid_per_s : axis.rapid_per_s / 2;
+      const double rapid = JogRapid(axis);
       // Braking (key released or stopped) it ends where the brake takes it; driven, it may
       // run on and speed up for the interval first.
       const double v = key == 0 ? std::abs(j.velocity)

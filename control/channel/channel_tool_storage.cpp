@@ -1,9 +1,9 @@
 // An NC-controlled tool storage axis (REPOS manual 3.4, 4.2 Tool Storage Axis, 6.2): the
-// channel commands its drive, jogs it with PxxC.MGPOS / MGNEG in manual mode - also during
-// repositioning and NC-block restart, where an endless one may pass its target - and MTP in
-// the REPOS subroutine traverses it back to its position at the interruption. A tool storage
-// axis the PLC controls (lathe-c1's turret) is the PLC's to move: the channel only compares its
-// position (Bxx.045).
+// channel commands its drive, jogs it with PxxC.MGPOS / MGNEG in manual mode as the jog mode
+// jogs the feed axes - also during repositioning and NC-block restart, where an endless one
+// may pass its target - and MTP in the REPOS subroutine traverses it back to its position at
+// the interruption. A tool storage axis the PLC controls (lathe-c1's turret by default) is the
+// PLC's to move: the channel only compares its position (Bxx.045).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -29,6 +29,7 @@ double Channel::tool_storage_command() const {
 void Channel::ReturnToolStorage() {
   if (!ToolStorageNc() || !interruption_) return;
   tool_storage_.positioning = true;
+  tool_storage_.stepping = false;
   // The short way round for an endless axis: the station, not the turns (4.2: the location).
   tool_storage_.target =
       tool_storage_.command -
@@ -43,6 +44,24 @@ bool Channel::ToolStorageArrived() const {
          kToolStorageWindow;
 }
 
+bool Channel::TraverseToolStorage(double target, double speed, double dt) {
+  ToolStorageAxis& t = tool_storage_;
+  const double accel = config_.tool_storage.acceleration > 0 ? config_.tool_storage.acceleration
+                                                             : 360;
+  const double step = accel * dt;
+  const double to_go = target - t.command;
+  const double wanted =
+      std::copysign(std::min(speed, std::sqrt(2 * accel * std::abs(to_go))), to_go);
+  t.velocity = std::clamp(wanted, t.velocity - step, t.velocity + step);
+  if (std::abs(to_go) <= std::abs(t.velocity * dt) + 1e-9) {
+    t.command = target;
+    t.velocity = 0;
+    return true;
+  }
+  t.command += t.velocity * dt;
+  return false;
+}
+
 void Channel::ToolStorageCycle(double dt) {
   if (!ToolStorageNc()) return;
   ToolStorageAxis& t = tool_storage_;
@@ -52,31 +71,34 @@ void Channel::ToolStorageCycle(double dt) {
   }
   t.previous = t.command;
   const axes::AxisParameters& axis = config_.tool_storage;
-  const double accel = axis.acceleration > 0 ? axis.acceleration : 360;
-  const double step = accel * dt;
-  double wanted = 0;
   if (t.positioning) {
     // MTP: at the jogging rapid speed (4.2: no speed is programmed), braking onto the target.
-    const double to_go = t.target - t.command;
-    const double rapid = axis.jog_rapid_per_s > 0 ? axis.jog_rapid_per_s
-                         : axis.rapid_per_s > 0   ? axis.rapid_per_s / 2
-                                                  : 90;
-    wanted = std::copysign(std::min(rapid, std::sqrt(2 * accel * std::abs(to_go))), to_go);
-    t.velocity = std::clamp(wanted, t.velocity - step, t.velocity + step);
-    if (std::abs(to_go) <= std::abs(t.velocity * dt) + 1e-9) {
-      t.command = t.target;
-      t.velocity = 0;
-      t.positioning = false;
-    } else {
-      t.command += t.velocity * dt;
-    }
+    const double rapid = JogRapid(axis) > 0 ? JogRapid(axis) : 90;
+    if (TraverseToolStorage(t.target, rapid, dt)) t.positioning = false;
     return;
   }
-  // 3.4: as in jog mode while a key is held, braking when it is released; no target stops it.
+  // 3.4: "as it would in jog mode" - the channel's jog mode decides, as for the feed axes. No
+  // target and no zone stops it (an endless one may pass its target).
   const bool jogging = mode_ == ChannelMode::kManual && process_enable_;
-  const double speed = axis.jog_per_s > 0 ? axis.jog_per_s : 30;
-  wanted = jogging ? t.key * speed * override_ : 0;
-  t.velocity = std::clamp(wanted, t.velocity - step, t.velocity + step);
+  const double speed = JogSpeed(axis);
+  const double increment = JogIncrement(axis);
+  // A continuous jog the jog mode has left for increments brakes to a stop first (below).
+  if (t.stepping || (increment > 0 && t.velocity == 0)) {
+    // Incremental: a key press starts one increment, which then runs to its end.
+    if (!t.stepping && t.key != 0 && jogging) {
+      t.stepping = true;
+      t.target = t.command + t.key * increment;
+      t.key = 0;  // one increment per press
+    }
+    if (t.stepping && TraverseToolStorage(t.target, speed, dt)) t.stepping = false;
+    return;
+  }
+  // Continuous while a key is held, braking when it is released; the handwheel moves the feed
+  // axes only, so there the keys do nothing.
+  const bool keys = jogging && jog_mode_ != JogMode::kHandwheel && increment == 0;
+  const double accel = axis.acceleration > 0 ? axis.acceleration : 360;
+  const double wanted = keys ? t.key * speed : 0;
+  t.velocity = std::clamp(wanted, t.velocity - accel * dt, t.velocity + accel * dt);
   t.command += t.velocity * dt;
 }
 

@@ -29,6 +29,11 @@ PlcProgram MakeProbeBlock(const gateway::SignalImage& image,
   return [program](PlcScan& scan) { (*program)(scan); };
 }
 
+PlcProgram MakeNcTurretPanel(const gateway::SignalImage& image, const measure::MeasuringPages*) {
+  auto program = std::make_shared<MachinePanel>(image, true);
+  return [program](PlcScan& scan) { (*program)(scan); };
+}
+
 PlcProgram MakeWrongChangeover(const gateway::SignalImage& image, const measure::MeasuringPages*) {
   CAxisChangeoverConfig config;
   config.acknowledge_before_clutch = true;
@@ -42,6 +47,7 @@ constexpr Entry kPrograms[] = {
     {"c_axis_changeover_wrong", &MakeWrongChangeover},
     {"probe_block", &MakeProbeBlock},
     {"machine_panel", &Make<MachinePanel>},
+    {"machine_panel_nc_turret", &MakeNcTurretPanel},
 };
 
 }  // namespace

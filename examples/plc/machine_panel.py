@@ -23,12 +23,14 @@ KEYS = ["mAUTO", "mMANU", "mSTART", "mSTOP", "mRESET", "mSBL", "mCOOLANT", "mDOO
         "mTAILSTOCK", "mREPOS", "mRESTA", "mRaR_OFF"]
 JOG = {"mJGPOS_X": "A01C.JGPOS", "mJGNEG_X": "A01C.JGNEG",
        "mJGPOS_Z": "A02C.JGPOS", "mJGNEG_Z": "A02C.JGNEG"}
-INPUTS = KEYS + list(JOG) + ["P00S.RUN", "P00S.AUXSTB", "P00S.MFUNC", "P00S.REPOS",
+# The jog mode selector: each key toggles its bit of the code on P00C.JOGM0..2.
+JOG_MODE = {"mJOGM0": "P00C.JOGM0", "mJOGM1": "P00C.JOGM1", "mJOGM2": "P00C.JOGM2"}
+INPUTS = KEYS + list(JOG) + list(JOG_MODE) + ["P00S.RUN", "P00S.AUXSTB", "P00S.MFUNC", "P00S.REPOS",
                              "A03S.N_NMIN", "IDOOR_CLOSED", "ICOOLANT_PRESSURE"]
 # P00C.REPOS/RESTA hold themselves (8.2): the program reads back what it wrote.
 OUTPUTS = ["P00C.AUTO", "P00C.MANU", "P00C.RESET", "P00C.SBL", "P00C.STOP", "P00C.START",
            "P00C.AUXACK", "P00C.REPOS", "P00C.RESTA", "QDOOR_OPEN", "QTAILSTOCK",
-           "QCOOLANT"] + list(JOG.values())
+           "QCOOLANT"] + list(JOG.values()) + list(JOG_MODE.values())
 
 
 class Edge:
@@ -46,7 +48,8 @@ class Edge:
 class MachinePanel:
     def __init__(self):
         self.edges = {k: Edge() for k in ("mSTART", "mSTOP", "mSBL", "mCOOLANT", "mDOOR",
-                                          "mTAILSTOCK")}
+                                          "mTAILSTOCK", *JOG_MODE)}
+        self.jog_mode = {k: False for k in JOG_MODE}
         self.feed_hold = self.single_block = self.coolant = self.door_open = False
         self.quill = self.aux_acked = False
 
@@ -71,6 +74,10 @@ class MachinePanel:
         io.set("P00C.START", g("mSTART") and not self.feed_hold and door_closed)
         for key, signal in JOG.items():
             io.set(signal, g(key) and door_closed)
+        for key, signal in JOG_MODE.items():
+            if edge[key]:
+                self.jog_mode[key] = not self.jog_mode[key]
+            io.set(signal, self.jog_mode[key])
         if edge["mTAILSTOCK"] and not running:
             self.quill = not self.quill
         io.set("QTAILSTOCK", self.quill)

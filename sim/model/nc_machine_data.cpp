@@ -226,13 +226,6 @@ NcMachineData ReadNcMachineData(const MachineModel& m, const YamlNode& node) {
     nc.process.jogging_causes_reset = p.Bool("Bxx.036", false);
     nc.process.reposition_tool_storage = p.Bool("Bxx.045", false);
   }
-  if (node.Has("tool_storage")) {
-    // The drive of the tool storage axis (turret), indexed by the PLC: repositioning compares
-    // its position with the one at the interruption when Bxx.045 is yes (REPOS manual 6.2).
-    const YamlNode t = node["tool_storage"];
-    nc.tool_storage_drive = m.DriveIndex(t.String());
-    if (nc.tool_storage_drive < 0) t.Fail("no drive '" + t.String() + "'");
-  }
   const YamlNode axes = node["axes"];
   for (size_t i = 0; i < axes.size(); ++i) {
     control::axes::AxisParameters a = ReadAxis(m, axes[i], i);
@@ -240,6 +233,24 @@ NcMachineData ReadNcMachineData(const MachineModel& m, const YamlNode& node) {
     for (const auto& other : nc.axes)
       if (other.number == a.number) axes[i]["number"].Fail("axis number used twice");
     nc.axes.push_back(a);
+  }
+  if (node.Has("tool_storage")) {
+    // The tool storage axis (turret): repositioning compares its position with the one at the
+    // interruption when Bxx.045 is yes (REPOS manual 6.2). `tool_storage: T` names its drive;
+    // the map form gives its axis parameters too, which an NC-controlled one is jogged and
+    // returned with (3.4, 4.2): `{name: T, Cxx.020: ..., Cxx.021: ..., Cxx.022: ...}`.
+    const YamlNode t = node["tool_storage"];
+    if (t.IsMap()) {
+      nc.tool_storage = ReadAxis(m, t, nc.axes.size());
+      if (AxisIndex(nc.axes, nc.tool_storage.name) >= 0) t["name"].Fail("already an NC axis");
+      for (const auto& other : nc.axes)
+        if (other.number == nc.tool_storage.number) t["number"].Fail("axis number used twice");
+    } else {
+      nc.tool_storage.name = t.String();
+      nc.tool_storage.drive = m.DriveIndex(t.String());
+      if (nc.tool_storage.drive < 0) t.Fail("no drive '" + t.String() + "'");
+    }
+    nc.tool_storage_drive = nc.tool_storage.drive;
   }
   if (node.Has("spindle")) {
     // `spindle: S1`, or `spindle: {drive: S1, number: 3, rotary_axis: C,

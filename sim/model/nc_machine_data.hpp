@@ -35,6 +35,9 @@ struct NcMachineData {
   /// `path_guard: stop | warn | off`: what a contact PathGuard finds ahead of a move does.
   control::GuardReaction path_guard = control::GuardReaction::kStop;
   int tool_storage_drive = -1;  ///< the turret's drive (`tool_storage: T`), -1 if none
+  /// The tool storage axis' parameters (`tool_storage: {name: T, Cxx.020: ...}`): an
+  /// NC-controlled one's jogging speeds and parametric jogging distance (REPOS manual 3.4).
+  control::axes::AxisParameters tool_storage;
 };
 
 /// Reads machine.yaml's `nc:`; the drives must be loaded. Throws ModelError (file, YAML path).

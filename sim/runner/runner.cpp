@@ -273,6 +273,8 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     for (const auto& parsed : scene.nc.programs) programs.push_back(&parsed->program);
     config.path_guard = scene.nc.data.path_guard;
     config.tool_storage_drive = scene.nc.data.tool_storage_drive;
+    config.tool_storage = scene.nc.data.tool_storage;
+    config.tool_storage_nc = scene.nc.tool_storage_nc;
     channel = std::make_unique<control::channel::Channel>(config, programs);
     channel->SetFeedOverride(scene.nc.override);
     measuring_pages = scene.nc.measuring_pages;

@@ -42,6 +42,9 @@ struct NcSetup {
   double override = 1.0;
   control::nc::ModalState initial;  ///< `initial:` G codes of the scene (e.g. G54)
   bool aux_handshake = false;       ///< M/H/Q/T wait for the PLC's acknowledgement
+  /// `tool_storage_nc: yes`: the model's tool storage axis is NC-controlled (REPOS manual 3.4,
+  /// 4.2): the channel commands its drive, PxxC.MGPOS / MGNEG jog it, MTP returns it.
+  bool tool_storage_nc = false;
   /// The gateway's signals for this machine (vmt signals MODEL); the runner's signal image.
   std::shared_ptr<const std::vector<control::gateway::Signal>> signals;
   /// The machine data pages of fast measurement as the run starts with them: `measuring_pages:`

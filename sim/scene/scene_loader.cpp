@@ -98,7 +98,8 @@ Scene LoadScene(const std::string& path) {
   if (root.Has("nc")) {
     const YamlNode nc = root["nc"];
     nc.AllowKeys({"program", "subprograms", "dialect", "axes", "spindle", "override",
-                  "zero_offsets", "tools", "initial", "aux_handshake", "block_search"});
+                  "zero_offsets", "tools", "initial", "aux_handshake", "block_search",
+                  "tool_storage_nc"});
     s.nc.present = true;
     std::vector<YamlNode> files{nc["program"]};
     if (nc.Has("subprograms"))
@@ -209,6 +210,9 @@ Scene LoadScene(const std::string& path) {
       }
     }
     s.nc.aux_handshake = nc.Bool("aux_handshake", false);
+    s.nc.tool_storage_nc = nc.Bool("tool_storage_nc", false);
+    if (s.nc.tool_storage_nc && s.nc.data.tool_storage_drive < 0)
+      nc["tool_storage_nc"].Fail("the machine has no tool storage axis (nc: tool_storage:)");
     s.nc.signals = std::make_shared<const std::vector<control::gateway::Signal>>(
         control::gateway::BuildSignalTable(GatewayLayoutOf(m)));
     s.nc.override = nc.Double("override", 100) / 100;

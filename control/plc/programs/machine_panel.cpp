@@ -6,7 +6,7 @@
 
 namespace vmt::control::plc {
 
-MachinePanel::MachinePanel(const gateway::SignalImage& image)
+MachinePanel::MachinePanel(const gateway::SignalImage& image, bool nc_turret_controlled)
     : C_AUTO(RequireSignal(image, "P00C.AUTO")),
       C_MANU(RequireSignal(image, "P00C.MANU")),
       C_START(RequireSignal(image, "P00C.START")),
@@ -42,7 +42,16 @@ MachinePanel::MachinePanel(const gateway::SignalImage& image)
       if (key >= 0) jog.push_back({key, id});
     }
   }
+  for (int bit = 0; bit < 3; ++bit) {
+    const int key = image.Find("mJOGM" + std::to_string(bit));
+    if (key < 0) continue;
+    JogModeBit b;
+    b.key = key;
+    b.signal = RequireSignal(image, "P00C.JOGM" + std::to_string(bit));
+    jog_mode.push_back(b);
+  }
   if (image.Find("mREPOS") >= 0) repos.emplace(image);
+  if (nc_turret_controlled) nc_turret.emplace(image);
   // A headstock whose spindle has a rotary axis mode through clutch K.
   bool rotmod = false;
   for (const gateway::Signal& s : image.table()) rotmod = rotmod || s.pattern == "Axx.ROTMOD";
@@ -77,6 +86,12 @@ void MachinePanel::operator()(PlcScan& s) {
   s.SetBool(C_START, s.Bool(mSTART) && !feed_hold && door_closed);
 
   for (const JogKey& j : jog) s.SetBool(j.signal, s.Bool(j.key) && door_closed);
+  // Jog mode: each key toggles its bit of the code.
+  for (JogModeBit& b : jog_mode) {
+    b.press(s.Bool(b.key));
+    if (b.press.Q) b.on = !b.on;
+    s.SetBool(b.signal, b.on);
+  }
 
   // Tailstock quill: toggled while the program is not running.
   quill_key(s.Bool(mTAILSTOCK));
@@ -101,6 +116,7 @@ void MachinePanel::operator()(PlcScan& s) {
 
   if (repos) (*repos)(s);
   if (changeover) (*changeover)(s);
+  if (nc_turret) (*nc_turret)(s, door_closed);
 }
 
 }  // namespace vmt::control::plc

@@ -10,7 +10,10 @@
 //    builds pressure keeps the block waiting, visibly), every other M/H/T function at once
 //    (the NC itself runs M3/M4/M5/M19).
 // The repositioning manual's machine keys (8.2) are a network of it (ReposMachineKeys), and so is
-// the C-axis manual's changeover of a headstock with a clutch (4.4, CAxisChangeover).
+// the C-axis manual's changeover of a headstock with a clutch (4.4, CAxisChangeover). A panel
+// with jog mode keys mJOGM0..2 toggles PxxC.JOGM0..2 with them (the jog mode's code, bit by
+// bit). machine_panel_nc_turret is the same program for a machine whose turret the NC controls
+// (NcTurret).
 
 #include <optional>
 #include <vector>
@@ -19,12 +22,13 @@
 #include "control/plc/iec_standard_blocks.hpp"
 #include "control/plc/plc_runtime.hpp"
 #include "control/plc/programs/c_axis_changeover.hpp"
+#include "control/plc/programs/nc_turret.hpp"
 #include "control/plc/programs/repos_machine_keys.hpp"
 
 namespace vmt::control::plc {
 
 struct MachinePanel {
-  explicit MachinePanel(const gateway::SignalImage& image);
+  explicit MachinePanel(const gateway::SignalImage& image, bool nc_turret = false);
   void operator()(PlcScan& scan);
 
   // NC signals (ids in the image).
@@ -35,6 +39,12 @@ struct MachinePanel {
     int key, signal;  ///< mJGPOS_X -> A01C.JGPOS
   };
   std::vector<JogKey> jog;
+  struct JogModeBit {
+    int key = -1, signal = -1;  ///< mJOGM1 -> P00C.JOGM1
+    R_TRIG press;
+    bool on = false;
+  };
+  std::vector<JogModeBit> jog_mode;
   // Machine I/O and panel keys.
   int mAUTO, mMANU, mSTART, mSTOP, mRESET, mSBL, mCOOLANT, mDOOR, mTAILSTOCK;
   int QDOOR_OPEN, IDOOR_CLOSED, QTAILSTOCK, QCOOLANT, ICOOLANT_PRESSURE;
@@ -45,6 +55,7 @@ struct MachinePanel {
   bool aux_acked = false;  ///< AUXACK pulsed last scan: drop it for one scan (edge for the NC)
   std::optional<ReposMachineKeys> repos;
   std::optional<CAxisChangeover> changeover;
+  std::optional<NcTurret> nc_turret;
 };
 
 }  // namespace vmt::control::plc

@@ -102,6 +102,26 @@ TEST(ChannelTest, JogModesRapidParametricAndHandwheel) {
   EXPECT_EQ(m.Z(), 0);
 }
 
+// The operator selects increments right after letting a continuous jog key go: the axis
+// brakes to a stop as it would have (no standstill within a cycle), and nothing of its speed
+// is left over to move it when continuous jogging is selected again.
+TEST(ChannelTest, IncrementsSelectedWhileAJogBrakesLetItBrakeToAStop) {
+  Machine m("N1 RET\n", 50, 0);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->Jog(0, +1);
+  for (int i = 0; i < 4000; ++i) m.Tick();  // 40 mm/s
+  m.channel->Jog(0, 0);
+  const double released = m.X();
+  m.channel->SetJogMode(static_cast<int>(JogMode::kIncrement1000));
+  for (int i = 0; i < 400; ++i) m.Tick();
+  EXPECT_NEAR(m.X(), released + 40 * 40 / (2 * 4000.0), 0.05);  // its braking distance
+  EXPECT_EQ(m.channel->AxisMotion(0), 0);
+  const double stopped = m.X();
+  m.channel->SetJogMode(static_cast<int>(JogMode::kContinuous));
+  for (int i = 0; i < 400; ++i) m.Tick();
+  EXPECT_EQ(m.X(), stopped);
+}
+
 TEST(ChannelTest, SoftwareLimitsStopProgramsBeforeAndJogsAtTheLimit) {
   auto configure = [](ChannelConfig& c) { c.axes[0].travel_min = 0, c.axes[0].travel_max = 300; };
   Machine m("N1 G00 X100\nN2 G00 X301\nN3 RET\n", 0, 0, configure);

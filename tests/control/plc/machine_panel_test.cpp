@@ -179,5 +179,87 @@ TEST(MachinePanelChangeoverTest, RunsTheChangeoverWhenTheSpindleHasARotaryAxisMo
   EXPECT_EQ(image.Int(image.Require("A04.AXD.65012")), 0b100);  // C hunts
 }
 
+// The jog mode selector: each key toggles its bit of PxxC.JOGM0..2.
+TEST(MachinePanelJogMode, EachKeyTogglesItsBitOfTheJogModeCode) {
+  gateway::GatewayLayout layout;
+  layout.processes = {0};
+  layout.axes = {{1, "X", false, false}, {2, "Z", false, false}, {3, "S1", true, false}};
+  for (const char* out : {"QDOOR_OPEN", "QTAILSTOCK", "QCOOLANT"})
+    layout.io.push_back({out, true, "valve"});
+  for (const char* in : {"IDOOR_CLOSED", "ICOOLANT_PRESSURE"})
+    layout.io.push_back({in, false, "switch"});
+  for (const char* key : {"mAUTO", "mMANU", "mSTART", "mSTOP", "mRESET", "mSBL", "mCOOLANT",
+                          "mDOOR", "mTAILSTOCK", "mJOGM0", "mJOGM1", "mJOGM2"})
+    layout.io.push_back({key, false, "key"});
+  gateway::SignalImage image(gateway::BuildSignalTable(layout));
+  PlcRuntime plc(image, *MakePlcProgram("machine_panel", image), PlcTime(4000));
+  auto press = [&](const char* key) {
+    image.SetBool(image.Require(key), true);
+    plc.Scan();
+    image.SetBool(image.Require(key), false);
+    plc.Scan();
+  };
+  auto code = [&] {
+    int c = 0;
+    for (int bit = 0; bit < 3; ++bit)
+      c |= image.Bool(image.Require("P00C.JOGM" + std::to_string(bit))) << bit;
+    return c;
+  };
+  plc.Scan();
+  EXPECT_EQ(code(), 0);  // continuous
+  press("mJOGM1");
+  EXPECT_EQ(code(), 2);  // parametric
+  press("mJOGM0");
+  press("mJOGM1");
+  press("mJOGM2");
+  EXPECT_EQ(code(), 5);
+  press("mJOGM0");
+  press("mJOGM2");
+  EXPECT_EQ(code(), 0);
+}
+
+// machine_panel_nc_turret: the turret is the NC's (REPOS manual 3.4) - the clamp released for
+// the NC's drive, mMGPOS / mMGNEG to PxxC.MGPOS / MGNEG while the door is closed.
+TEST(MachinePanelNcTurret, ReleasesTheClampAndPassesTheTurretJogKeys) {
+  gateway::GatewayLayout layout;
+  layout.processes = {0};
+  layout.axes = {{1, "X", false, false}, {2, "Z", false, false}, {3, "S1", true, false}};
+  for (const char* out : {"QDOOR_OPEN", "QTAILSTOCK", "QCOOLANT", "QTURRET_UNCLAMP"})
+    layout.io.push_back({out, true, "valve"});
+  for (const char* in : {"IDOOR_CLOSED", "ICOOLANT_PRESSURE"})
+    layout.io.push_back({in, false, "switch"});
+  for (const char* key : {"mAUTO", "mMANU", "mSTART", "mSTOP", "mRESET", "mSBL", "mCOOLANT",
+                          "mDOOR", "mTAILSTOCK", "mMGPOS", "mMGNEG"})
+    layout.io.push_back({key, false, "key"});
+  gateway::SignalImage image(gateway::BuildSignalTable(layout));
+  auto set = [&](const char* name, bool v) { image.SetBool(image.Require(name), v); };
+  auto get = [&](const char* name) { return image.Bool(image.Require(name)); };
+  {
+    // machine_panel keeps its hands off the turret.
+    PlcRuntime plc(image, *MakePlcProgram("machine_panel", image), PlcTime(4000));
+    set("IDOOR_CLOSED", true);
+    set("mMGPOS", true);
+    plc.Scan();
+    EXPECT_FALSE(get("QTURRET_UNCLAMP"));
+    EXPECT_FALSE(get("P00C.MGPOS"));
+    set("mMGPOS", false);
+  }
+  PlcRuntime plc(image, *MakePlcProgram("machine_panel_nc_turret", image), PlcTime(4000));
+  plc.Scan();
+  EXPECT_TRUE(get("QTURRET_UNCLAMP"));
+  set("mMGPOS", true);
+  plc.Scan();
+  EXPECT_TRUE(get("P00C.MGPOS"));
+  EXPECT_FALSE(get("P00C.MGNEG"));
+  set("mMGPOS", false);
+  set("mMGNEG", true);
+  plc.Scan();
+  EXPECT_FALSE(get("P00C.MGPOS"));
+  EXPECT_TRUE(get("P00C.MGNEG"));
+  set("IDOOR_CLOSED", false);  // an open door: no jog
+  plc.Scan();
+  EXPECT_FALSE(get("P00C.MGNEG"));
+}
+
 }  // namespace
 }  // namespace vmt::control::plc
