@@ -2,7 +2,8 @@
 // 6.1, 8.3): X1/Y1 moves interpolated on a straight line of the face plane and transformed to
 // X and C every cycle within C's rate limit; rotary axis mode required; a line through the
 // centre refused; PathGuard's chords within 1 um of the line; repositioning with G77 X1=0 Y1=0
-// back along a Cartesian line, the fictive axes on the REPOS screen and X's window for them.
+// back along a Cartesian line, the fictive axes on the REPOS screen and X's window for them;
+// the handwheel of X1/Y1.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -258,6 +259,110 @@ TEST(ChannelTransformation, G77X1Y1ReturnsOnACartesianLineCheckedInChords) {
   const nc::FictivePoint end = FaceOf(m);
   EXPECT_NEAR(end.x1, -20, 1e-6);
   EXPECT_NEAR(end.y1, 30, 1e-6);
+}
+
+// ---- The handwheel of X1/Y1 ----
+
+TEST(ChannelTransformation, HandwheelCountsOfY1AndX1MoveOnLinesOfTheFace) {
+  Lathe m(kFace, false, Windows);
+  Recorder guard;
+  m.channel->SetPathGuard(&guard);
+  Interrupt(m, 5.0);  // in N3, Y1 30
+  const nc::FictivePoint stop = FaceOf(m);
+  const double z = m.at.feedback[1].position;
+  m.channel->SetJogMode(static_cast<int>(JogMode::kHandwheel));
+  (void)m.channel->TakeGuardRecords();
+  // 500 counts of 0.01 mm: Y1 5 mm down, X1 stays; X and C follow transformed (the real axes'
+  // handwheel does not pull them back).
+  ASSERT_TRUE(m.channel->HandwheelFictive(1, -500));
+  const nc::FictivePoint y_end{stop.x1, 25};
+  double worst = 0, fastest = 0;
+  nc::FictivePoint last = FaceOf(m);
+  for (int i = 0; i < static_cast<int>(1.0 / kTick); ++i) {
+    m.Tick();
+    const nc::FictivePoint p = FaceOf(m);
+    worst = std::max(worst, OffSegment(p, stop, y_end));
+    fastest = std::max(fastest, std::hypot(p.x1 - last.x1, p.y1 - last.y1) / kTick);
+    last = p;
+  }
+  EXPECT_NEAR(FaceOf(m).x1, stop.x1, 1e-6);
+  EXPECT_NEAR(FaceOf(m).y1, 25, 1e-6);
+  EXPECT_NEAR(m.at.feedback[1].position, z, 1e-12);
+  // Cycle points on the line, the drive ticks linear in X and C between them.
+  EXPECT_LT(worst, 5e-5);
+  // X's jogging speed (rapid / 10 = 40 mm/s here) along the fictive axis; C's jogging rapid
+  // (1800 deg/s) allows ~800 mm/s at radius 25.
+  EXPECT_LE(fastest, 40 * 1.01);
+  EXPECT_GT(fastest, 30);
+  // PathGuard checked the way to the handwheel's target ahead, in chords of the line.
+  bool checked = false;
+  for (const GuardRecord& r : m.channel->TakeGuardRecords())
+    checked = checked || r.move == "handwheel X1/Y1";
+  EXPECT_TRUE(checked);
+  ASSERT_FALSE(guard.chords.empty());
+  for (const auto& [from, to] : guard.chords)
+    EXPECT_LE(to[kDriveX], std::hypot(stop.x1, 30) + 1e-9);  // never past Y1 30 .. 25
+  // Then X1: 300 counts along Y1 = 25.
+  ASSERT_TRUE(m.channel->HandwheelFictive(0, 300));
+  worst = 0;
+  for (int i = 0; i < static_cast<int>(1.0 / kTick); ++i) {
+    m.Tick();
+    worst = std::max(worst, OffSegment(FaceOf(m), y_end, {stop.x1 + 3, 25}));
+  }
+  EXPECT_LT(worst, 5e-5);
+  EXPECT_NEAR(FaceOf(m).x1, stop.x1 + 3, 1e-6);
+  EXPECT_NEAR(FaceOf(m).y1, 25, 1e-6);
+  // Counts of a real axis afterwards move it alone: X and C stay where X1/Y1 took them.
+  const double c = m.at.feedback[kDriveC].position;
+  m.channel->Handwheel(kZ, 100);
+  RunFor(m, 0.5);
+  EXPECT_NEAR(m.at.feedback[1].position, z + 1, 1e-9);
+  EXPECT_NEAR(FaceOf(m).x1, stop.x1 + 3, 1e-6);
+  EXPECT_NEAR(m.at.feedback[kDriveC].position, c, 1e-9);
+  // Outside handwheel mode the counts of X1/Y1 are refused.
+  m.channel->SetJogMode(static_cast<int>(JogMode::kContinuous));
+  EXPECT_FALSE(m.channel->HandwheelFictive(0, 100));
+}
+
+TEST(ChannelTransformation, HandwheelOfX1StaysWithinTheReposZone) {
+  Lathe m(kFace, false, Windows);
+  Interrupt(m, 5.0);
+  const nc::FictivePoint stop = FaceOf(m);
+  m.channel->SetJogMode(static_cast<int>(JogMode::kHandwheel));
+  // Away in Y1 first (no REPOS function called: no zone), then repositioning called: Y1 may go
+  // back to 30 but not past it (3.2), X1 not away from its target at all.
+  ASSERT_TRUE(m.channel->HandwheelFictive(1, -400));
+  RunFor(m, 1.0);
+  ASSERT_NEAR(FaceOf(m).y1, 26, 1e-6);
+  m.channel->SetReposition(true, false);
+  RunFor(m, 0.01);
+  ASSERT_TRUE(m.channel->HandwheelFictive(1, 1000));
+  ASSERT_TRUE(m.channel->HandwheelFictive(0, 500));
+  RunFor(m, 1.5);
+  EXPECT_NEAR(FaceOf(m).y1, 30, 1e-6);
+  EXPECT_NEAR(FaceOf(m).x1, stop.x1, 1e-6);
+}
+
+TEST(ChannelTransformation, HandwheelOfX1StopsShortOfTheCentre) {
+  // G31 stays active after the program's end (no G30): manual mode jogs in the face.
+  Lathe m("N1 G00 X20 Z5 C0\nN2 G31 G01 X1=0.5 Y1=0.05 F3000\nN3 RET\n");
+  m.channel->Start();
+  m.RunUntilEnd();
+  ASSERT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->SetJogMode(static_cast<int>(JogMode::kHandwheel));
+  // X1 to -0.5 would pass the centre 0.05 mm away: the point stops 0.1 mm short of it.
+  ASSERT_TRUE(m.channel->HandwheelFictive(0, -100));
+  RunFor(m, 1.0);
+  const nc::FictivePoint p = FaceOf(m);
+  EXPECT_GT(p.x1, 0);
+  EXPECT_NEAR(p.y1, 0.05, 1e-6);
+  EXPECT_GE(std::hypot(p.x1, p.y1), 0.1 - 1e-9);
+  EXPECT_LT(std::hypot(p.x1, p.y1), 0.11);
+  // The target is dropped there: new counts start from where the point stands.
+  ASSERT_TRUE(m.channel->HandwheelFictive(0, 10));
+  RunFor(m, 0.5);
+  EXPECT_NEAR(FaceOf(m).x1, p.x1 + 0.1, 1e-6);
 }
 
 }  // namespace
