@@ -1,9 +1,9 @@
 // G31 face transformation in the channel (coordinate_transformation.hpp; REPOS manual 5.2,
-// 6.1, 8.3): X1/Y1 moves interpolated on a straight line of the face plane and transformed to
-// X and C every cycle within C's rate limit; rotary axis mode required; a line through the
-// centre refused; PathGuard's chords within 1 um of the line; repositioning with G77 X1=0 Y1=0
-// back along a Cartesian line, the fictive axes on the REPOS screen and X's window for them;
-// the handwheel of X1/Y1.
+// 6.1, 8.3): X1/Y1 moves interpolated on a straight line or (G02/G03) an arc of the face plane
+// and transformed to X and C every cycle within C's rate limit; rotary axis mode required; a
+// line or arc through the centre refused; PathGuard's chords within 1 um of the line;
+// repositioning with G77 X1=0 Y1=0 back along a Cartesian line, the fictive axes on the REPOS
+// screen and X's window for them; the handwheel of X1/Y1.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -111,12 +111,88 @@ TEST(ChannelTransformation, SpindleModeIsAnError) {
   EXPECT_THAT(m.channel->error(), HasSubstr("rotary axis mode"));
 }
 
-TEST(ChannelTransformation, ArcsAreRefused) {
-  Lathe m("N1 G00 X20 Z5 C0\nN2 G31 G02 X1=20 Y1=20 R30 F600\nN3 RET\n");
+// ---- G02/G03 in the face ----
+
+double OffCircle(nc::FictivePoint p, nc::FictivePoint centre, double radius) {
+  return std::abs(std::hypot(p.x1 - centre.x1, p.y1 - centre.y1) - radius);
+}
+
+TEST(ChannelTransformation, FaceArcsRunOnTheirCircles) {
+  // Half a circle about the centre (C 0 -> 180), a full circle about it (C 180 -> 540), then a
+  // small clockwise arc beside it (C back to 540), R30 clockwise (as the interpreter's test).
+  Lathe m(
+      "N1 G00 X20 Z5 C0\nN2 G31 G03 X1=-20 Y1=0 I-20 J0 F3000\nN3 X1=-20 Y1=0 I20\n"
+      "N4 G02 X1=-10 Y1=0 I5\nN5 G30 RET\n");
+  m.channel->Start();
+  ASSERT_TRUE(m.RunUntil([&] { return m.channel->line() == 2; }));
+  double worst[3] = {0, 0, 0}, max_c_speed = 0;
+  int samples[3] = {0, 0, 0};
+  while (m.channel->state() == ChannelState::kRunning && m.t < 30) {
+    m.Tick();
+    const int line = m.channel->line();
+    if (line < 2 || line > 4) continue;
+    const nc::FictivePoint p = FaceOf(m);
+    // A block's first tick may still finish the one before it: the nearer circle counts.
+    const double off = std::min(OffCircle(p, {0, 0}, 20), OffCircle(p, {-15, 0}, 5));
+    worst[line - 2] = std::max(worst[line - 2], off);
+    ++samples[line - 2];
+    max_c_speed = std::max(max_c_speed, std::abs(m.at.feedback[kDriveC].velocity));
+    if (line == 3) {
+      // Never unwound back (the block's first ticks may still finish the half circle).
+      EXPECT_GT(m.at.feedback[kDriveC].position, 179);
+    }
+  }
+  m.Ticks(8);
+  EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  for (int k = 0; k < 3; ++k) EXPECT_GT(samples[k], 200) << k;
+  // NC cycle points on the circle; drive ticks linear in X and C between them: at 50 mm/s a
+  // 1 ms cycle is a 50 um chord, which sags L^2 / 8R from a circle of radius R (1.6e-5 mm at R
+  // 20, 6.3e-5 mm at R 5) plus what X and C's curvature adds.
+  EXPECT_LT(worst[0], 5e-5);
+  EXPECT_LT(worst[1], 5e-5);
+  EXPECT_LT(worst[2], 2e-4);
+  EXPECT_LE(max_c_speed, 3600 * 1.001);
+  EXPECT_NEAR(m.at.feedback[kDriveX].position, 10, 1e-9);
+  EXPECT_NEAR(m.at.feedback[kDriveC].position, 540, 1e-9);
+}
+
+TEST(ChannelTransformation, FaceArcNearTheCentreKeepsCWithinItsRates) {
+  // A circle of radius 5.2 about X1 5 Y1 0: round the centre, passing it 0.2 mm away; at F 6000
+  // C would turn 100 / 0.2 rad/s there: the path feed is limited by C's rate and acceleration.
+  Lathe m("N1 G00 X10.2 Z5 C0\nN2 G31 G03 X1=10.2 Y1=0 I-5.2 F6000\nN3 G30 RET\n");
+  m.channel->Start();
+  ASSERT_TRUE(m.RunUntil([&] { return m.channel->line() == 2; }));
+  double max_c_speed = 0, worst = 0;
+  while (m.channel->state() == ChannelState::kRunning && m.t < 30) {
+    m.Tick();
+    max_c_speed = std::max(max_c_speed, std::abs(m.at.feedback[kDriveC].velocity));
+    if (m.channel->line() == 2) worst = std::max(worst, OffCircle(FaceOf(m), {5, 0}, 5.2));
+  }
+  m.Ticks(8);
+  EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  EXPECT_LE(max_c_speed, 3600 * 1.001);
+  EXPECT_GT(max_c_speed, 500);  // limited, not crawling
+  EXPECT_LT(worst, 1e-3);
+  EXPECT_NEAR(m.at.feedback[kDriveC].position, 360, 1e-9);  // the circle goes round the centre
+}
+
+TEST(ChannelTransformation, FaceArcThroughTheCentreIsRefused) {
+  // Centre X1 10 Y1 0, radius 10: three quarters counter-clockwise pass X1 0 Y1 0.
+  Lathe m("N1 G00 X20 Z5 C0\nN2 G31 G03 X1=10 Y1=-10 I-10 F600\nN3 RET\n");
   m.channel->Start();
   m.RunUntilEnd();
   ASSERT_EQ(m.channel->state(), ChannelState::kError);
   EXPECT_EQ(m.channel->error_number(), kMsgTransformation);
+  EXPECT_THAT(m.channel->error(), HasSubstr("p.mtc:2:"));
+  EXPECT_THAT(m.channel->error(), HasSubstr("the arc"));
+  EXPECT_THAT(m.channel->error(), HasSubstr("passes the centre"));
+  EXPECT_NEAR(m.at.feedback[kDriveX].position, 20, 1e-9);  // nothing moved
+  // The quarter that stops short of the centre runs.
+  Lathe ok("N1 G00 X20 Z5 C0\nN2 G31 G03 X1=10 Y1=10 I-10 F600\nN3 G30 RET\n");
+  ok.channel->Start();
+  ok.RunUntilEnd();
+  EXPECT_EQ(ok.channel->state(), ChannelState::kEnded) << ok.channel->error();
+  EXPECT_NEAR(ok.at.feedback[kDriveC].position, 45, 1e-9);
 }
 
 // ---- Repositioning under G31 ----
