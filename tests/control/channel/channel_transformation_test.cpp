@@ -15,6 +15,7 @@
 #include "control/channel/channel.hpp"
 #include "control/nc/coordinate_transformation.hpp"
 #include "headstock_lathe.hpp"
+#include "tests/control/channel/block_search_steps.hpp"
 
 namespace vmt::control::channel {
 namespace {
@@ -193,6 +194,37 @@ TEST(ChannelTransformation, FaceArcThroughTheCentreIsRefused) {
   ok.RunUntilEnd();
   EXPECT_EQ(ok.channel->state(), ChannelState::kEnded) << ok.channel->error();
   EXPECT_NEAR(ok.at.feedback[kDriveC].position, 45, 1e-9);
+}
+
+TEST(ChannelTransformation, BlockSearchIntoAFaceArcFindsCUnwound) {
+  // A full circle about the centre (C 0 -> 360), then half of one (C 360 -> 540): searching N3
+  // at 500 per mille stands at X1 0 Y1 20 with C at 450, as the run has it.
+  using Rig = testing::BlockSearchSteps<Lathe>;
+  const std::string program =
+      "N1 G00 X20 Z5 C0\nN2 G31 G03 X1=20 Y1=0 I-20 F3000\nN3 X1=-20 Y1=0 I-20\n"
+      "N4 G30 G01 Z0 F600\nN5 RET\n";
+  Rig m(program);
+  BlockSearchParameters p;
+  p.type = BlockSearchType::kBlockNumber;
+  p.block_number = 3;
+  p.block_number_pass = 1;
+  p.covered_distance = 500;
+  p.auto_return = true;
+  m.Search(p);
+  ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour)) << m.channel->error();
+  const auto& st = m.channel->block_search();
+  ASSERT_EQ(st.continue_position.size(), 3u);
+  EXPECT_NEAR(st.continue_position[kX], 20, 1e-9);
+  EXPECT_NEAR(st.continue_position[kC], 450, 1e-9);
+  m.channel->Start();
+  ASSERT_TRUE(m.Waits(BlockSearchState::kWaitForContinueContour)) << m.channel->error();
+  m.Ticks(8);
+  EXPECT_NEAR(m.at.feedback[kDriveC].position, 450, 1e-9);
+  m.channel->Start();
+  m.RunUntilEnd();
+  ASSERT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  EXPECT_NEAR(m.at.feedback[kDriveX].position, 20, 1e-9);
+  EXPECT_NEAR(m.at.feedback[kDriveC].position, 540, 1e-9);
 }
 
 // ---- Repositioning under G31 ----
