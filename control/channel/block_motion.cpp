@@ -32,10 +32,11 @@ double Length(const BlockMotion& m) {
   return std::max(std::sqrt(sum), 1e-12);
 }
 
-// G31: a straight line of the face plane (coordinate_transformation.hpp). The path feed (F, or
-// G00 at X's rapid) is limited so that C keeps its rapid rate and acceleration and X its
-// acceleration where the line passes the centre closest: dC/dt = v th', d2C/dt2 = a th' +
-// v^2 th'', d2X/dt2 <= a + v^2 r''. Half of each axis' acceleration goes to each term.
+// G31: a straight line or (G02/G03) an arc of the face plane (coordinate_transformation.hpp).
+// The path feed (F, or G00 at X's rapid) is limited so that C keeps its rapid rate and
+// acceleration and X its acceleration where the path passes the centre closest: dC/dt = v th',
+// d2C/dt2 = a th' + v^2 th'', d2X/dt2 <= a + v^2 r'' (the bounds of th', th'', r'' of a line or
+// an arc in the header). Half of each axis' acceleration goes to each term.
 std::optional<MotionError> PlanFaceMotion(const nc::PreparedBlock& block,
                                           const std::vector<double>& start,
                                           const std::vector<double>& translation,
@@ -53,14 +54,34 @@ std::optional<MotionError> PlanFaceMotion(const nc::PreparedBlock& block,
     return MotionError{"G31 (face transformation) needs the headstock in rotary axis mode: "
                        "select it (G00 C..) before X1/Y1",
                        kMsgTransformation};
-  if (block.motion != nc::Motion::kRapid && block.motion != nc::Motion::kLinear)
-    return MotionError{"G31 (face transformation) moves X1/Y1 with G00 or G01 only",
+  const bool arc = block.motion == nc::Motion::kArcCw || block.motion == nc::Motion::kArcCcw;
+  if (block.motion != nc::Motion::kRapid && block.motion != nc::Motion::kLinear && !arc)
+    return MotionError{"G31 (face transformation) moves X1/Y1 with G00, G01, G02 or G03 only",
                        kMsgTransformation};
   out.face_axes[0] = x, out.face_axes[1] = c;
   out.face_shift[0] = translation[x], out.face_shift[1] = translation[c];
   out.face_from = nc::MachineToFace(start[x] - translation[x], start[c] - translation[c]);
   out.face_to = nc::MachineToFace(out.end[x] - translation[x], out.end[c] - translation[c]);
-  const nc::FaceLine line = nc::FaceLineOf(out.face_from, out.face_to);
+  if (arc) {
+    // The interpreter made C's target from the same words (I/J relative to the start, or R).
+    std::string error;
+    out.face_arc =
+        nc::FaceArcOf(out.face_from, out.face_to, block.motion == nc::Motion::kArcCw,
+                      block.has_centre, block.centre[0], block.centre[1], block.radius, error);
+    if (!error.empty()) return MotionError{"G31 G02/G03: " + error, kMsgArcGeometry};
+    out.face_is_arc = true;
+  }
+  const nc::FaceLine line = out.FaceBounds();
+  if (arc && line.through_centre) {
+    char text[240];
+    std::snprintf(text, sizeof text,
+                  "G31: the arc X1 %.4f Y1 %.4f -> X1 %.4f Y1 %.4f (centre X1 %.4f Y1 %.4f) "
+                  "passes the centre of the face, where C is undefined: program it around the "
+                  "centre",
+                  out.face_from.x1, out.face_from.y1, out.face_to.x1, out.face_to.y1,
+                  out.face_arc.centre.x1, out.face_arc.centre.y1);
+    return MotionError{text, kMsgTransformation};
+  }
   if (line.through_centre && line.length > 1e-9) {
     char text[200];
     std::snprintf(text, sizeof text,
@@ -108,6 +129,16 @@ std::optional<MotionError> PlanFaceMotion(const nc::PreparedBlock& block,
 
 }  // namespace
 
+nc::FictivePoint BlockMotion::FacePoint(double u) const {
+  if (face_is_arc) return face_arc.At(u);
+  return {face_from.x1 + (face_to.x1 - face_from.x1) * u,
+          face_from.y1 + (face_to.y1 - face_from.y1) * u};
+}
+
+nc::FaceLine BlockMotion::FaceBounds() const {
+  return face_is_arc ? nc::FaceArcBoundsOf(face_arc) : nc::FaceLineOf(face_from, face_to);
+}
+
 void BlockMotion::PointAt(double u, std::vector<double>& out) const {
   out.resize(start.size());
   for (size_t a = 0; a < start.size(); ++a) out[a] = start[a] + (end[a] - start[a]) * u;
@@ -117,12 +148,14 @@ void BlockMotion::PointAt(double u, std::vector<double>& out) const {
     out[arc_axes[1]] = arc_centre[1] + arc_radius * std::sin(angle);
   }
   if (face_axes[0] >= 0) {
-    // G31: the point of the fictive line, transformed. The sweep from the start is continuous
-    // along a line that misses the centre (planning refused the others).
-    const nc::FictivePoint p{face_from.x1 + (face_to.x1 - face_from.x1) * u,
-                         face_from.y1 + (face_to.y1 - face_from.y1) * u};
+    // G31: the point of the fictive line or arc, transformed. C's sweep from the start is
+    // continuous along a path that misses the centre (planning refused the others): a line's
+    // is less than 180 deg, an arc's is unwound piece by piece.
+    const nc::FictivePoint p = FacePoint(u);
     out[face_axes[0]] = std::hypot(p.x1, p.y1) + face_shift[0];
-    out[face_axes[1]] = u >= 1 ? end[face_axes[1]] : start[face_axes[1]] + nc::SweepDeg(face_from, p);
+    const double sweep =
+        face_is_arc ? nc::FaceArcSweepDeg(face_arc, u) : nc::SweepDeg(face_from, p);
+    out[face_axes[1]] = u >= 1 ? end[face_axes[1]] : start[face_axes[1]] + sweep;
   }
 }
 
@@ -136,8 +169,12 @@ std::vector<double> BlockMotion::Direction(double u) const {
   }
   if (face_axes[0] >= 0) {
     // G31: dX/du = (p . dp) / r, dC/du = (p x dp) / r^2 (rad -> deg).
-    const double dx = face_to.x1 - face_from.x1, dy = face_to.y1 - face_from.y1;
-    const double px = face_from.x1 + dx * u, py = face_from.y1 + dy * u;
+    const nc::FictivePoint tangent =
+        face_is_arc ? face_arc.Tangent(u)
+                    : nc::FictivePoint{face_to.x1 - face_from.x1, face_to.y1 - face_from.y1};
+    const double dx = tangent.x1, dy = tangent.y1;
+    const nc::FictivePoint p = FacePoint(u);
+    const double px = p.x1, py = p.y1;
     const double r2 = std::max(px * px + py * py, 1e-18);
     d[face_axes[0]] = (px * dx + py * dy) / std::sqrt(r2);
     d[face_axes[1]] = (px * dy - py * dx) / r2 * 180 / std::numbers::pi;

@@ -29,11 +29,18 @@ struct BlockMotion {
   double max_rate = 0, max_accel = 0, max_jerk = 0;
   bool moves = false;  ///< false: nothing to move, the block is done at once
   /// G31 (coordinate_transformation.hpp): X and C follow a straight line of the face plane
-  /// from `face_from` to `face_to` (program coordinates); u runs along it with the other axes.
+  /// from `face_from` to `face_to` (program coordinates), or the arc `face_arc` between them
+  /// (G02/G03, `face_is_arc`); u runs along it with the other axes.
   /// face_axes: the channel axes X and C; -1: no transformation.
   int face_axes[2] = {-1, -1};
   nc::FictivePoint face_from, face_to;
+  bool face_is_arc = false;
+  nc::FaceArc face_arc;
   double face_shift[2] = {0, 0};  ///< program -> axis translation of X and C
+
+  /// G31: the point of the face at u, and the geometry the limits and PathGuard need.
+  nc::FictivePoint FacePoint(double u) const;
+  nc::FaceLine FaceBounds() const;
 
   /// Axis positions at u (0..1).
   void PointAt(double u, std::vector<double>& out) const;

@@ -235,6 +235,7 @@ bool Channel::SetMode(ChannelMode mode) {
   if (mode == ChannelMode::kManual && jog_mode_ == JogMode::kHandwheel)
     for (size_t a = 0; a < jog_.size(); ++a)
       jog_[a].handwheel = true, jog_[a].handwheel_target = commanded_[a];
+  for (FictiveJog& f : fictive_jog_) f.handwheel = false;
   return true;
 }
 

@@ -164,6 +164,10 @@ class Channel {
   /// manual 5.2: X and C move as a Cartesian jog). False, and nothing moves, outside manual
   /// mode or without G31 and rotary axis mode.
   bool JogFictive(int axis, int direction);
+  /// Handwheel counts for a fictive axis of the active G31 transformation (JogMode::kHandwheel;
+  /// `axis` 0 X1, 1 Y1): the point moves on a line of the face, as JogFictive's keys do. False,
+  /// and nothing moves, where JogFictive would refuse or outside handwheel mode.
+  bool HandwheelFictive(int axis, int counts);
   /// Jog mode from the JOGM0..2 code (0..7).
   void SetJogMode(int code);
   JogMode jog_mode() const { return jog_mode_; }
@@ -372,7 +376,9 @@ class Channel {
     int key = 0;
     double velocity = 0;  ///< mm/s along the fictive axis
     bool stepping = false;
-    double target = 0;  ///< the increment's end
+    double target = 0;            ///< the increment's end
+    bool handwheel = false;       ///< kHandwheel: counts given, the point not there yet
+    double handwheel_target = 0;  ///< kHandwheel: where the counts want the fictive axis
   };
   FictiveJog fictive_jog_[2];
   // The jog mode's rule for every jogged axis (channel_jog.cpp): feed axes, X1/Y1 and the tool
@@ -603,6 +609,8 @@ class Channel {
     bool further_piece = false, inserted_piece = false, await_own_piece = false;
     bool cax_track = false;    ///< #CAX TRACK is on where the search has got to (4.2.2)
     bool return_rest = false;  ///< C is being aligned; the other axes' return follows (4.2.2)
+    /// G31 at the continue position: the return runs on the face's line, as G77 X1/Y1 does.
+    bool face_return = false;
     /// The block in work waited for a spindle / rotary axis changeover, which has ended: it
     /// is simulated again from there (channel_block_search_technology.cpp).
     bool changed_over = false;

@@ -18,6 +18,7 @@
 #include <limits>
 
 #include "control/channel/channel.hpp"
+#include "control/nc/coordinate_transformation.hpp"
 
 namespace vmt::control::channel {
 namespace {
@@ -414,7 +415,7 @@ bool Channel::SimulateMotion(nc::PreparedBlock& b, bool boundary) {
 void Channel::FoundContinuePosition(const nc::PreparedBlock& b, const BlockMotion& motion,
                                     double u) {
   BlockSearchRun& s = *search_;
-  (void)b;
+  s.face_return = b.modal.transformation == 31;
   s.restart_motion = motion;
   s.restart_u = u;
   s.restart_distance = distance_;
@@ -474,6 +475,38 @@ bool Channel::StartReturnToContour() {
 }
 
 bool Channel::StartReturnMove(const std::vector<double>& to, const std::string& move) {
+  profile_ = PathProfile{};
+  continuation_ready_ = false;
+  carry_speed_ = carry_accel_ = carry_leftover_ = 0;
+  // Under G31 (rotary axis mode) the return is a line of the face, as the programmed moves
+  // around it are and as G77 X1=0 Y1=0 returns (REPOS manual 5.2): straight in X and C it
+  // would sweep a spiral across the face. A line through the centre, where C is undefined,
+  // stays straight in the axes (the operator's start there is no program's move to refuse).
+  int x = -1, c = -1;
+  if (search_->face_return && FictiveJogAxes(x, c) &&
+      !nc::FaceLineOf(
+           nc::MachineToFace(commanded_[x] - translation_[x], commanded_[c] - translation_[c]),
+           nc::MachineToFace(to[x] - translation_[x], to[c] - translation_[c]))
+           .through_centre) {
+    nc::PreparedBlock b;
+    b.motion = nc::Motion::kRapid;
+    b.fictive = true;
+    b.modal.transformation = 31;
+    b.target.resize(to.size());
+    for (size_t a = 0; a < to.size(); ++a) b.target[a] = to[a] - translation_[a];
+    if (const auto error = PlanBlockMotion(b, commanded_, translation_, config_.axes, 0, motion_,
+                                           FollowUpAxes(b))) {
+      Fail("block search: return to contour: " + error->text, error->number);
+      return false;
+    }
+    if (!motion_.moves) return true;
+    if (!GuardBlockMove(move)) return false;
+    profile_.max_rate = motion_.max_rate;
+    profile_.max_accel = motion_.max_accel;
+    profile_.max_jerk = motion_.max_jerk;
+    active_ = true;
+    return true;
+  }
   // 4.2: one straight move at the rapid limits, every axis ending together.
   motion_ = BlockMotion{};
   motion_.start = commanded_;
@@ -486,9 +519,6 @@ bool Channel::StartReturnMove(const std::vector<double>& to, const std::string& 
     rate = std::min(rate, axis.rapid_per_s / distance);
     accel = std::min(accel, axis.acceleration / distance);
   }
-  profile_ = PathProfile{};
-  continuation_ready_ = false;
-  carry_speed_ = carry_accel_ = carry_leftover_ = 0;
   if (!std::isfinite(rate)) return true;  // already there
   motion_.moves = true;
   motion_.length = 0;

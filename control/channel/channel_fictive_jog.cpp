@@ -4,15 +4,22 @@
 // the machine axes holds while a REPOS function is called (3.2): between the target and where
 // the fictive axis stood when the function was called, never past the target.
 //
-// Continuous and incremental (parametric, 0.001 .. 1 mm) modes; the handwheel moves machine
-// axes only. The speed is X's jogging speed, limited so that C keeps its jogging rapid rate
-// (tangential speed <= C's rate times the radius); the point never comes closer to the centre
-// than kFictiveJogCentre (C is undefined there). PathGuard checks the way to where the jog
-// could stop, as a straight move of the drives (it is short: the check interval's travel).
+// Continuous, incremental (parametric, 0.001 .. 1 mm) and handwheel (JogMode::kHandwheel: the
+// counts of X1 or Y1 move the point along that fictive axis, handwheel_per_count each) modes.
+// The speed is X's jogging speed, limited so that C keeps its jogging rapid rate (tangential
+// speed <= C's rate times the radius); the point never comes closer to the centre than
+// kFictiveJogCentre (C is undefined there). PathGuard checks the way to where the jog could
+// stop (a handwheel's: its target, as for the real axes) in chords of the face line, each
+// within kFaceChordTolerance of it, as the G31 block moves are checked.
+//
+// The handwheel's target of a fictive axis lasts until the point gets there: the next counts
+// start from where it stands then, so moves of X or C in between are not undone. While it
+// runs, the real axes' handwheel targets of X and C follow it (they would pull X and C back).
 #include <cmath>
 #include <numbers>
 
 #include "control/channel/channel.hpp"
+#include "control/channel/jog_follow.hpp"
 
 namespace vmt::control::channel {
 
@@ -31,12 +38,28 @@ bool Channel::FictiveJogAxes(int& x, int& c) const {
 
 bool Channel::JogFictive(int axis, int direction) {
   int x = -1, c = -1;
-  if (mode_ != ChannelMode::kManual || axis < 0 || axis > 1 || !FictiveJogAxes(x, c))
-    return false;
+  if (mode_ != ChannelMode::kManual || axis < 0 || axis > 1 || !FictiveJogAxes(x, c)) return false;
   if (direction != 0 && config_.process.jogging_causes_reset && state_ == ChannelState::kHold)
     Reset();
   fictive_jog_[axis].key = direction > 0 ? 1 : direction < 0 ? -1 : 0;
   take_over_pending_ = true;
+  return true;
+}
+
+bool Channel::HandwheelFictive(int axis, int counts) {
+  int x = -1, c = -1;
+  if (mode_ != ChannelMode::kManual || jog_mode_ != JogMode::kHandwheel || axis < 0 || axis > 1 ||
+      !process_enable_ || !FictiveJogAxes(x, c))
+    return false;
+  take_over_pending_ = true;
+  FictiveJog& j = fictive_jog_[axis];
+  if (!j.handwheel) {
+    const nc::FictivePoint p =
+        nc::MachineToFace(commanded_[x] - translation_[x], commanded_[c] - translation_[c]);
+    j.handwheel = true;
+    j.handwheel_target = axis == 0 ? p.x1 : p.y1;
+  }
+  j.handwheel_target += counts * config_.handwheel_per_count;
   return true;
 }
 
@@ -76,10 +99,18 @@ void Channel::FictiveJogging(double dt) {
     FictiveJog& j = jogs[k];
     const auto within = [&](double v) { return std::clamp(v, low[k], high[k]); };
     if (jog_mode_ == JogMode::kHandwheel) {
-      j = FictiveJog{};
+      j.key = 0, j.stepping = false;
+      if (!j.handwheel) {
+        j.velocity = 0;
+        continue;
+      }
+      j.handwheel_target = within(j.handwheel_target);
+      if (FollowTarget(pos[k], j.velocity, j.handwheel_target, speed, ax.acceleration, dt))
+        j.handwheel = false;
+      moved = true;
       continue;
     }
-    double target_velocity = 0;
+    j.handwheel = false;
     if (increment > 0 || j.stepping) {
       if (!j.stepping && j.key != 0 && process_enable_) {
         j.stepping = true;
@@ -87,23 +118,15 @@ void Channel::FictiveJogging(double dt) {
         j.key = 0;  // one increment per press
       }
       if (!j.stepping) continue;
-      const double to_go = j.target - pos[k];
-      target_velocity =
-          std::copysign(std::min(speed, std::sqrt(2 * ax.acceleration * std::abs(to_go))), to_go);
-      j.velocity = std::clamp(target_velocity, j.velocity - step, j.velocity + step);
-      if (std::abs(to_go) <= std::abs(j.velocity * dt) || std::abs(to_go) < 1e-9) {
-        pos[k] = j.target;
-        j.velocity = 0;
+      if (FollowTarget(pos[k], j.velocity, j.target, speed, ax.acceleration, dt))
         j.stepping = false;
-      } else {
-        pos[k] += j.velocity * dt;
-      }
       moved = true;
       continue;
     }
     const int key = process_enable_ ? j.key : 0;
     const double room = key > 0 ? high[k] - pos[k] : pos[k] - low[k];
-    target_velocity = key * std::min(speed, std::sqrt(2 * ax.acceleration * std::max(0.0, room)));
+    const double target_velocity =
+        key * std::min(speed, std::sqrt(2 * ax.acceleration * std::max(0.0, room)));
     j.velocity = std::clamp(target_velocity, j.velocity - step, j.velocity + step);
     if (j.velocity == 0) continue;
     const double next = within(pos[k] + j.velocity * dt);
@@ -115,7 +138,7 @@ void Channel::FictiveJogging(double dt) {
   const nc::FictivePoint q{pos[0], pos[1]};
   // Not through the centre: the jog stops short of it.
   if (std::hypot(q.x1, q.y1) < kFictiveJogCentre) {
-    for (int k = 0; k < 2; ++k) jogs[k].velocity = 0, jogs[k].stepping = false;
+    for (int k = 0; k < 2; ++k) jogs[k].velocity = 0, jogs[k].stepping = jogs[k].handwheel = false;
     return;
   }
   std::vector<double> to = commanded_;
@@ -126,6 +149,8 @@ void Channel::FictiveJogging(double dt) {
     return;
   }
   commanded_ = to;
+  jog_[x].handwheel_target = commanded_[x];
+  jog_[c].handwheel_target = commanded_[c];
 }
 
 bool Channel::GuardFictiveJog(int x, int c, nc::FictivePoint next) {
@@ -137,24 +162,48 @@ bool Channel::GuardFictiveJog(int x, int c, nc::FictivePoint next) {
   const double dt = config_.tick_s * config_.ticks_per_cycle;
   const double interval = config_.path_guard_every * dt + dt;
   const double a = config_.axes[x].acceleration;
+  // The handwheel's: its target (it brakes to be there), as for the real axes.
   double stop[2] = {next.x1, next.y1};
   for (int k = 0; k < 2; ++k) {
-    const double v = fictive_jog_[k].velocity;
-    stop[k] += v * std::abs(v) / (2 * a) + v * interval;
+    const FictiveJog& j = fictive_jog_[k];
+    if (jog_mode_ == JogMode::kHandwheel) {
+      if (j.handwheel) stop[k] = j.handwheel_target;
+      continue;
+    }
+    stop[k] += j.velocity * std::abs(j.velocity) / (2 * a) + j.velocity * interval;
   }
   const nc::FictivePoint p =
       nc::MachineToFace(commanded_[x] - translation_[x], commanded_[c] - translation_[c]);
   const nc::FictivePoint s{stop[0], stop[1]};
+  const std::string move = jog_mode_ == JogMode::kHandwheel ? "handwheel X1/Y1" : "jog X1/Y1";
+  // Chords of the line p-s, straight in the drives, within kFaceChordTolerance of it (a
+  // handwheel's target may be far; the line may bend much in X and C near the centre).
+  const nc::FaceLine line = nc::FaceLineOf(p, s);
+  const double chord = nc::FaceChordStep(line, kFaceChordTolerance);
+  const int chords =
+      line.through_centre
+          ? 1
+          : static_cast<int>(std::clamp(std::ceil(line.length / std::max(chord, 1e-9)), 1.0,
+                                        static_cast<double>(kFaceMaxChords)));
   const std::vector<double> from = GuardFrom();
-  std::vector<double> to = from;
+  std::vector<double> to = from, b = from, at = from;
   to[config_.axes[x].drive] = std::hypot(s.x1, s.y1) + translation_[x];
   to[config_.axes[c].drive] = commanded_[c] + nc::SweepDeg(p, s);
-  const PathCheck check = guard_->CheckMove(from, to);
-  if (check.clear) {
-    guard_records_.push_back({"jog X1/Y1", from, to, check, 1, false});
-    return true;
+  GuardRecord record{move, from, to, PathCheck{}, 0, false};
+  for (int i = 1; i <= chords; ++i) {
+    const double u = static_cast<double>(i) / chords;
+    const nc::FictivePoint q{p.x1 + (s.x1 - p.x1) * u, p.y1 + (s.y1 - p.y1) * u};
+    b[config_.axes[x].drive] = std::hypot(q.x1, q.y1) + translation_[x];
+    b[config_.axes[c].drive] = commanded_[c] + nc::SweepDeg(p, q);
+    const PathCheck check = guard_->CheckMove(at, b);
+    if (!check.clear) return !GuardStops(move, from, to, check);
+    if (record.checks == 0 || check.min_clearance < record.check.min_clearance)
+      record.check = check;
+    ++record.checks;
+    at = b;
   }
-  return !GuardStops("jog X1/Y1", from, to, check);
+  guard_records_.push_back(record);
+  return true;
 }
 
 }  // namespace vmt::control::channel

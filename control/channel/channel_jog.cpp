@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "control/channel/channel.hpp"
+#include "control/channel/jog_follow.hpp"
 
 namespace vmt::control::channel {
 
@@ -28,6 +29,8 @@ void Channel::SetJogMode(int code) {
     jog_[a].handwheel = jog_mode_ == JogMode::kHandwheel;
     jog_[a].handwheel_target = commanded_[a];
   }
+  // The fictive axes' counts start afresh from where the point stands, as the real axes' do.
+  for (FictiveJog& f : fictive_jog_) f.handwheel = false;
 }
 
 double Channel::JogRapid(const ChannelAxis& axis) {
@@ -106,17 +109,8 @@ void Channel::Jogging(double dt) {
       // Follow the counts at most at the jogging rapid, braking so as not to pass the target.
       if (!j.handwheel) j.handwheel = true, j.handwheel_target = commanded_[a];
       j.handwheel_target = within(j.handwheel_target);
-      const double to_go = j.handwheel_target - commanded_[a];
-      const double braking = std::sqrt(2 * axis.acceleration * std::abs(to_go));
-      const double target = std::copysign(std::min(rapid * override_, braking), to_go);
-      const double step = axis.acceleration * dt;
-      j.velocity = std::clamp(target, j.velocity - step, j.velocity + step);
-      if (std::abs(to_go) <= std::abs(j.velocity * dt) || std::abs(to_go) < 1e-9) {
-        commanded_[a] = j.handwheel_target;
-        j.velocity = 0;
-      } else {
-        commanded_[a] += j.velocity * dt;
-      }
+      FollowTarget(commanded_[a], j.velocity, j.handwheel_target, rapid * override_,
+                   axis.acceleration, dt);
       continue;
     }
     const double increment = JogIncrement(axis);

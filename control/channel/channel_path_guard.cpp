@@ -74,10 +74,10 @@ bool Channel::GuardBlockMove(const std::string& move, const std::vector<double>*
 }
 
 bool Channel::GuardFaceMove(const std::string& move) {
-  // G31: the straight line of the face plane is a curve of X and C. It is checked as chords,
-  // straight in the drives' positions, short enough that each stays within kFaceChordTolerance
-  // of the line (nc::FaceChordStep proves the bound); one record sums them up.
-  const nc::FaceLine line = nc::FaceLineOf(motion_.face_from, motion_.face_to);
+  // G31: the straight line (or arc) of the face plane is a curve of X and C. It is checked as
+  // chords, straight in the drives' positions, short enough that each stays within
+  // kFaceChordTolerance of it (nc::FaceChordStep proves the bound); one record sums them up.
+  const nc::FaceLine line = motion_.FaceBounds();
   const double step = nc::FaceChordStep(line, kFaceChordTolerance);
   const int chords = static_cast<int>(std::clamp(
       std::ceil(line.length / std::max(step, 1e-9)), 1.0, static_cast<double>(kFaceMaxChords)));

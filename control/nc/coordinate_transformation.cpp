@@ -68,6 +68,134 @@ FaceLine FaceLineOf(FictivePoint a, FictivePoint b) {
   return l;
 }
 
+FictivePoint FaceArc::At(double u) const {
+  const double angle = start_angle + sweep * u;
+  return {centre.x1 + radius * std::cos(angle), centre.y1 + radius * std::sin(angle)};
+}
+
+FictivePoint FaceArc::Tangent(double u) const {
+  const double angle = start_angle + sweep * u;
+  return {-radius * sweep * std::sin(angle), radius * sweep * std::cos(angle)};
+}
+
+FaceArc FaceArcOf(FictivePoint from, FictivePoint to, bool clockwise, bool has_centre, double i,
+                  double j, double r, std::string& error) {
+  FaceArc arc;
+  error.clear();
+  const double dx = to.x1 - from.x1, dy = to.y1 - from.y1, chord = std::hypot(dx, dy);
+  double cx = 0, cy = 0;
+  if (has_centre) {
+    cx = from.x1 + i;
+    cy = from.y1 + j;
+  } else if (r != 0) {
+    // On the chord's bisector, as G17..G19 place it; R < 0 picks the arc over 180 degrees.
+    const double rr = std::abs(r);
+    if (chord < 1e-12) {
+      error = "a full circle of G31 needs its centre (I/J), not R";
+      return arc;
+    }
+    if (chord > 2 * rr + kFaceArcTolerance) {
+      error = "radius R too small for the end point";
+      return arc;
+    }
+    const double h = std::sqrt(std::max(0.0, rr * rr - chord * chord / 4));
+    const double side = ((r > 0) == clockwise) ? -1 : 1;
+    cx = (from.x1 + to.x1) / 2 - side * h * dy / chord;
+    cy = (from.y1 + to.y1) / 2 + side * h * dx / chord;
+  } else {
+    error = "G02/G03 of G31 needs a centre (I for X1, J for Y1) or a radius R";
+    return arc;
+  }
+  const double r_start = std::hypot(from.x1 - cx, from.y1 - cy);
+  const double r_end = std::hypot(to.x1 - cx, to.y1 - cy);
+  if (std::abs(r_start - r_end) > kFaceArcTolerance || r_start < 1e-9) {
+    error = "end point not on the arc (radius " + std::to_string(r_start) + " at the start, " +
+            std::to_string(r_end) + " at the end)";
+    return arc;
+  }
+  arc.centre = {cx, cy};
+  arc.radius = r_start;
+  arc.start_angle = std::atan2(from.y1 - cy, from.x1 - cx);
+  // The end's angle, swept the programmed way; end = start is a full circle (as in G17..G19).
+  double sweep = std::atan2(to.y1 - cy, to.x1 - cx) - arc.start_angle;
+  if (clockwise) {
+    while (sweep >= -1e-12) sweep -= 2 * std::numbers::pi;
+  } else {
+    while (sweep <= 1e-12) sweep += 2 * std::numbers::pi;
+  }
+  if (std::abs(std::abs(sweep) - 2 * std::numbers::pi) < 1e-9 && chord > 1e-9)
+    sweep = std::fmod(sweep, 2 * std::numbers::pi);
+  arc.sweep = sweep;
+  return arc;
+}
+
+namespace {
+
+// C's change along the piece u0..u1 of the arc (at most 90 deg of arc): the chord's sweep, plus
+// a turn where the centre lies between the piece and its chord (header comment).
+double PieceSweepDeg(const FaceArc& arc, double u0, double u1, int depth) {
+  const FictivePoint s = arc.At(u0), e = arc.At(u1);
+  const double dx = e.x1 - s.x1, dy = e.y1 - s.y1, l2 = dx * dx + dy * dy;
+  if (l2 < 1e-30) return 0;
+  // A chord through the centre has no defined sweep: halves of the piece have chords that
+  // miss it (three points of a circle are never on one line).
+  const double t = std::clamp(-(s.x1 * dx + s.y1 * dy) / l2, 0.0, 1.0);
+  if (std::hypot(s.x1 + t * dx, s.y1 + t * dy) < 1e-9 && depth < 8) {
+    const double um = (u0 + u1) / 2;
+    return PieceSweepDeg(arc, u0, um, depth + 1) + PieceSweepDeg(arc, um, u1, depth + 1);
+  }
+  double sweep = SweepDeg(s, e);
+  const double ox = -arc.centre.x1, oy = -arc.centre.y1;  // the spindle axis from the arc's centre
+  if (ox * ox + oy * oy < arc.radius * arc.radius) {
+    const FictivePoint m = arc.At((u0 + u1) / 2);
+    const double side_centre = dx * (0 - s.y1) - dy * (0 - s.x1);
+    const double side_arc = dx * (m.y1 - s.y1) - dy * (m.x1 - s.x1);
+    if (side_centre * side_arc > 0) sweep += arc.sweep > 0 ? 360 : -360;
+  }
+  return sweep;
+}
+
+// Whether the arc passes the angle `phi` (rad, about its centre).
+bool ArcPasses(const FaceArc& arc, double phi) {
+  const double turn = 2 * std::numbers::pi;
+  const double rel = arc.sweep >= 0 ? phi - arc.start_angle : arc.start_angle - phi;
+  const double wrapped = rel - turn * std::floor(rel / turn);
+  return wrapped <= std::abs(arc.sweep);
+}
+
+}  // namespace
+
+double FaceArcSweepDeg(const FaceArc& arc, double u) {
+  const int pieces = std::max(
+      1, static_cast<int>(std::ceil(std::abs(arc.sweep * u) / (std::numbers::pi / 2) - 1e-12)));
+  double sum = 0;
+  for (int k = 0; k < pieces; ++k)
+    sum += PieceSweepDeg(arc, u * k / pieces, u * (k + 1) / pieces, 0);
+  return sum;
+}
+
+FaceLine FaceArcBoundsOf(const FaceArc& arc) {
+  FaceLine b;
+  b.length = arc.radius * std::abs(arc.sweep);
+  const FictivePoint s = arc.At(0), e = arc.At(1);
+  const double rs = std::hypot(s.x1, s.y1), re = std::hypot(e.x1, e.y1);
+  b.r_min = std::min(rs, re);
+  b.r_max = std::max(rs, re);
+  // The circle's nearest and furthest points from the spindle axis, where the arc passes them.
+  const double d = std::hypot(arc.centre.x1, arc.centre.y1);
+  if (d > 0) {
+    const double far = std::atan2(arc.centre.y1, arc.centre.x1);
+    if (ArcPasses(arc, far + std::numbers::pi)) b.r_min = std::abs(d - arc.radius);
+    if (ArcPasses(arc, far)) b.r_max = d + arc.radius;
+  }
+  b.through_centre = b.r_min < kFaceCentreClearance;
+  if (b.through_centre || !(arc.radius > 0)) return b;
+  b.theta_s_max = 1 / b.r_min;
+  b.r_ss_max = (1 + d / arc.radius) / b.r_min;
+  b.theta_ss_max = 1 / (arc.radius * b.r_min) + 1 / (b.r_min * b.r_min);
+  return b;
+}
+
 double FaceChordStep(const FaceLine& line, double tolerance_mm) {
   const double curvature = line.r_ss_max + line.r_max * line.theta_ss_max;
   if (!(curvature > 0)) return std::numeric_limits<double>::infinity();

@@ -17,7 +17,22 @@
 //   r'' = d^2 / r^3      <= d^2 / r_min^3
 //   th' = d / r^2        <= d / r_min^2               (rad per mm)
 //   th''= -2 d s / r^4   |th''| <= 3 sqrt(3) / (8 d^2) (at |s| = d / sqrt(3))
+// A G02/G03 arc of G31 (centre c, radius R, D = |c| the centre's distance from the spindle
+// axis, T the unit tangent, N the unit normal towards c, P the point, r = |P|):
+//   r'  = P.T / r                               |r'|  <= 1
+//   r'' = (1 - r'^2 + P.N / R) / r = -(r'^2 + c.u / R) / r   (u = (P - c) / R)
+//                                               |r''| <= (1 + D / R) / r_min
+//   th' = (P x T) / r^2                         |th'| <= 1 / r_min     (|P x T| <= r)
+//   th''= (P x N) / (R r^2) - 2 (P x T)(P.T) / r^4
+//                                               |th''| <= 1 / (R r_min) + 1 / r_min^2
+//     (|(P x T)(P.T)| <= r^2 / 2). They bound the arc's path feed as the line's bound it.
+// C along an arc: its polar angle unwound, th(end) - th(start) = the chord's SweepDeg plus
+// 360 deg times the winding of arc-and-chord around the centre (+1 counter-clockwise, -1
+// clockwise, if the centre lies between the arc and its chord); pieces of at most 90 deg of
+// arc keep it simple (a piece's chord through the centre is split again).
 // No include of the channel: the interpreter converts fictive words with these functions too.
+
+#include <string>
 
 namespace vmt::control::nc {
 
@@ -45,7 +60,8 @@ double CylinderY1(double c_deg, double radius);
 /// it would turn half a revolution in no time).
 inline constexpr double kFaceCentreClearance = 1e-3;
 
-/// The geometry of a G31 line from a to b that the limits and PathGuard need.
+/// The geometry of a G31 line from a to b (or of an arc: FaceArcBoundsOf) that the limits and
+/// PathGuard need.
 struct FaceLine {
   double length = 0;         ///< mm
   double d = 0;              ///< distance of the line (extended) from the centre
@@ -56,6 +72,31 @@ struct FaceLine {
   bool through_centre = false;  ///< r_min < kFaceCentreClearance with C not constant
 };
 FaceLine FaceLineOf(FictivePoint a, FictivePoint b);
+
+/// A G02/G03 arc of G31 in the face: P(u) = centre + radius (cos, sin)(start_angle + sweep u).
+struct FaceArc {
+  FictivePoint centre;
+  double radius = 0;
+  double start_angle = 0;  ///< rad
+  double sweep = 0;        ///< rad, < 0 clockwise (G02); +-2 pi a full circle
+  FictivePoint At(double u) const;
+  /// dP/du.
+  FictivePoint Tangent(double u) const;
+};
+
+/// mm: an arc's radius at its start and at its end may differ this much (as in G17..G19).
+inline constexpr double kFaceArcTolerance = 0.01;
+
+/// The G31 arc from `from` to `to`, clockwise (G02) or not (G03), about from + (i, j) when
+/// `has_centre`, else of radius `r` (r < 0: the arc over 180 deg). End point = start: a full
+/// circle. Empty `error` on success, else why not (the caller places the error).
+FaceArc FaceArcOf(FictivePoint from, FictivePoint to, bool clockwise, bool has_centre, double i,
+                  double j, double r, std::string& error);
+/// C's change (deg) along the arc from u = 0 to `u`: the polar angle unwound (a full circle
+/// around the centre: +-360). Valid for an arc that misses the centre.
+double FaceArcSweepDeg(const FaceArc& arc, double u = 1);
+/// The limits' and PathGuard's geometry of the arc, as FaceLineOf gives a line's (d unused).
+FaceLine FaceArcBoundsOf(const FaceArc& arc);
 
 /// Chord step (mm of fictive path) so that machine-space chords, linear in X and C between
 /// points of the line, stay within `tolerance_mm` of it in the face plane. Bound: linear

@@ -1108,7 +1108,7 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
     }
   if (out.dwell_s < 0) return Fail(block.pos.offset, "G04 needs its dwell time as F");
   if ((!std::isnan(fictive[0]) || !std::isnan(fictive[1])) &&
-      !FictiveWords(fictive, fictive_offset, out))
+      !FictiveWords(fictive, fictive_offset, ijk, ijk_offset, out))
     return false;
   if (!SpindleSynchronous(modal_.motion)) {
     if (f_word) modal_.feed = *f_word;
@@ -1125,7 +1125,8 @@ int Interpreter::NamedAxis(const char* name) const {
   return -1;
 }
 
-bool Interpreter::FictiveWords(const double fictive[2], uint32_t offset, PreparedBlock& out) {
+bool Interpreter::FictiveWords(const double fictive[2], uint32_t offset, uint8_t ijk,
+                               const uint32_t ijk_offset[3], PreparedBlock& out) {
   const int xa = NamedAxis("X"), ca = NamedAxis("C");
   if (xa < 0 || ca < 0)
     return Fail(offset, "X1/Y1 need the axes X and C in this channel");
@@ -1150,12 +1151,33 @@ bool Interpreter::FictiveWords(const double fictive[2], uint32_t offset, Prepare
     double radius = 0, angle = 0;
     FaceToMachine(end, radius, angle);
     out.target[x] = radius;
+    if (modal_.motion == Motion::kArcCw || modal_.motion == Motion::kArcCcw) {
+      // G02/G03 in the face: centre I (X1) and J (Y1) relative to the start, as G17's I/J, or
+      // R; C goes the way the arc goes round the centre (a full circle about it: 360 deg).
+      if (ijk & 4)
+        return Fail(ijk_offset[2], "K in an arc of G31: the centre in the face is I (X1), J (Y1)");
+      std::string error;
+      // An unprogrammed I or J is 0 (`centre` keeps the last block's values); the channel
+      // plans the arc from the same words.
+      if (!(ijk & 1)) out.centre[0] = 0;
+      if (!(ijk & 2)) out.centre[1] = 0;
+      const FaceArc arc = FaceArcOf(start, end, modal_.motion == Motion::kArcCw, out.has_centre,
+                                    out.centre[0], out.centre[1], out.radius, error);
+      if (!error.empty()) return Fail(offset, "G31 G02/G03: " + error);
+      out.target[c] = position_[c] + FaceArcSweepDeg(arc);
+      return true;
+    }
     const bool start_at_centre = std::hypot(start.x1, start.y1) < 1e-12;
     out.target[c] = start_at_centre ? FaceC(end, position_[c])
                                     : position_[c] + SweepDeg(start, end);
     return true;
   }
-  // G32: X1 is X; Y1 the arc length on the cylinder of modal_.cylinder_radius.
+  // G32: X1 is X; Y1 the arc length on the cylinder of modal_.cylinder_radius. An arc there
+  // would lie in the unrolled surface (Z and Y1), a plane no G17/G18/G19 names: not offered,
+  // rather than run as an arc of the active plane with C dragged along.
+  if (modal_.motion == Motion::kArcCw || modal_.motion == Motion::kArcCcw)
+    return Fail(offset, "G32 G02/G03: arcs in the cylinder surface are not offered; program "
+                        "the curve as G01 lines in X1/Y1");
   const double r = modal_.cylinder_radius;
   out.target[x] = word(0, position_[x]);
   out.target[c] = CylinderC(word(1, CylinderY1(position_[c], r)), r);

@@ -252,7 +252,8 @@ class Interpreter {
   bool Statement_(const Statement& st, int32_t block, PreparedBlock& out, int32_t& next);
   bool Words(const Block& block, PreparedBlock& out);
   /// X1/Y1 of G31/G32 (values in `fictive`, NaN: not programmed) into the targets of X and C.
-  bool FictiveWords(const double fictive[2], uint32_t offset, PreparedBlock& out);
+  bool FictiveWords(const double fictive[2], uint32_t offset, uint8_t ijk,
+                    const uint32_t ijk_offset[3], PreparedBlock& out);
   /// The channel axis named `name`, -1 if none.
   int NamedAxis(const char* name) const;
   /// The lead of a G33/G63/G64 block (F in MTC200, K in ISG) into modal_.lead.

@@ -208,7 +208,10 @@ bool DriveProgram::Execute(const TimelineStep& step, double t_s,
       return true;
     }
     case Kind::kHandwheel:
-      if (channel_) channel_->Handwheel(step.axis, step.code);
+      if (channel_ && step.fictive >= 0)
+        channel_->HandwheelFictive(step.fictive, step.code);
+      else if (channel_)
+        channel_->Handwheel(step.axis, step.code);
       return true;
     case Kind::kSignal:
       if (image_) SetSignalNumber(*image_, step.signal, step.target);

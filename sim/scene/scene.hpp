@@ -133,7 +133,7 @@ struct TimelineStep {
   int axis = -1;          ///< kJog, kNcZeroOffset, kNcToolLength: channel axis index
   int edge = 0;           ///< kNcToolLength: D
   int direction = 0;      ///< kJog: +1 | -1
-  int fictive = -1;       ///< kJog of a fictive axis of G31: 0 X1, 1 Y1 (axis stays -1)
+  int fictive = -1;  ///< kJog, kHandwheel of a fictive axis of G31: 0 X1, 1 Y1 (axis stays -1)
   bool jog_to = false;    ///< kJog to the axis position `target`: an increment, one tap
   double wait_s = 0;
   Condition until;

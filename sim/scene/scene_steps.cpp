@@ -268,10 +268,17 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
     if (!has_nc) a.Fail("the scene has no nc: section");
     a.AllowKeys({"axis", "counts"});
     s.kind = TimelineStep::Kind::kHandwheel;
-    const int drive = RequireDrive(m, a["axis"]);
-    for (size_t k = 0; k < nc.axis_drives.size(); ++k)
-      if (nc.axis_drives[k] == drive) s.axis = static_cast<int>(k);
-    if (s.axis < 0) a["axis"].Fail("not an axis of the NC channel");
+    // X1 / Y1: the fictive axes of G31, as for jog (the channel moves them only while G31 is
+    // active in rotary axis mode).
+    const std::string name = a["axis"].String();
+    if (name == "X1" || name == "Y1") {
+      s.fictive = name == "X1" ? 0 : 1;
+    } else {
+      const int drive = RequireDrive(m, a["axis"]);
+      for (size_t k = 0; k < nc.axis_drives.size(); ++k)
+        if (nc.axis_drives[k] == drive) s.axis = static_cast<int>(k);
+      if (s.axis < 0) a["axis"].Fail("not an axis of the NC channel");
+    }
     s.code = a["counts"].Int();
     text << "handwheel " << a["axis"].String() << " " << s.code << " counts";
     s.text = text.str();

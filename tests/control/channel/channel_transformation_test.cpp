@@ -1,8 +1,9 @@
 // G31 face transformation in the channel (coordinate_transformation.hpp; REPOS manual 5.2,
-// 6.1, 8.3): X1/Y1 moves interpolated on a straight line of the face plane and transformed to
-// X and C every cycle within C's rate limit; rotary axis mode required; a line through the
-// centre refused; PathGuard's chords within 1 um of the line; repositioning with G77 X1=0 Y1=0
-// back along a Cartesian line, the fictive axes on the REPOS screen and X's window for them.
+// 6.1, 8.3): X1/Y1 moves interpolated on a straight line or (G02/G03) an arc of the face plane
+// and transformed to X and C every cycle within C's rate limit; rotary axis mode required; a
+// line or arc through the centre refused; PathGuard's chords within 1 um of the line;
+// repositioning with G77 X1=0 Y1=0 back along a Cartesian line, the fictive axes on the REPOS
+// screen and X's window for them; the handwheel of X1/Y1.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -14,6 +15,7 @@
 #include "control/channel/channel.hpp"
 #include "control/nc/coordinate_transformation.hpp"
 #include "headstock_lathe.hpp"
+#include "tests/control/channel/block_search_steps.hpp"
 
 namespace vmt::control::channel {
 namespace {
@@ -110,12 +112,160 @@ TEST(ChannelTransformation, SpindleModeIsAnError) {
   EXPECT_THAT(m.channel->error(), HasSubstr("rotary axis mode"));
 }
 
-TEST(ChannelTransformation, ArcsAreRefused) {
-  Lathe m("N1 G00 X20 Z5 C0\nN2 G31 G02 X1=20 Y1=20 R30 F600\nN3 RET\n");
+// ---- G02/G03 in the face ----
+
+double OffCircle(nc::FictivePoint p, nc::FictivePoint centre, double radius) {
+  return std::abs(std::hypot(p.x1 - centre.x1, p.y1 - centre.y1) - radius);
+}
+
+TEST(ChannelTransformation, FaceArcsRunOnTheirCircles) {
+  // Half a circle about the centre (C 0 -> 180), a full circle about it (C 180 -> 540), then a
+  // small clockwise arc beside it (C back to 540), R30 clockwise (as the interpreter's test).
+  Lathe m(
+      "N1 G00 X20 Z5 C0\nN2 G31 G03 X1=-20 Y1=0 I-20 J0 F3000\nN3 X1=-20 Y1=0 I20\n"
+      "N4 G02 X1=-10 Y1=0 I5\nN5 G30 RET\n");
+  m.channel->Start();
+  ASSERT_TRUE(m.RunUntil([&] { return m.channel->line() == 2; }));
+  double worst[3] = {0, 0, 0}, max_c_speed = 0;
+  int samples[3] = {0, 0, 0};
+  while (m.channel->state() == ChannelState::kRunning && m.t < 30) {
+    m.Tick();
+    const int line = m.channel->line();
+    if (line < 2 || line > 4) continue;
+    const nc::FictivePoint p = FaceOf(m);
+    // A block's first tick may still finish the one before it: the nearer circle counts.
+    const double off = std::min(OffCircle(p, {0, 0}, 20), OffCircle(p, {-15, 0}, 5));
+    worst[line - 2] = std::max(worst[line - 2], off);
+    ++samples[line - 2];
+    max_c_speed = std::max(max_c_speed, std::abs(m.at.feedback[kDriveC].velocity));
+    if (line == 3) {
+      // Never unwound back (the block's first ticks may still finish the half circle).
+      EXPECT_GT(m.at.feedback[kDriveC].position, 179);
+    }
+  }
+  m.Ticks(8);
+  EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  for (int k = 0; k < 3; ++k) EXPECT_GT(samples[k], 200) << k;
+  // NC cycle points on the circle; drive ticks linear in X and C between them: at 50 mm/s a
+  // 1 ms cycle is a 50 um chord, which sags L^2 / 8R from a circle of radius R (1.6e-5 mm at R
+  // 20, 6.3e-5 mm at R 5) plus what X and C's curvature adds.
+  EXPECT_LT(worst[0], 5e-5);
+  EXPECT_LT(worst[1], 5e-5);
+  EXPECT_LT(worst[2], 2e-4);
+  EXPECT_LE(max_c_speed, 3600 * 1.001);
+  EXPECT_NEAR(m.at.feedback[kDriveX].position, 10, 1e-9);
+  EXPECT_NEAR(m.at.feedback[kDriveC].position, 540, 1e-9);
+}
+
+TEST(ChannelTransformation, FaceArcNearTheCentreKeepsCWithinItsRates) {
+  // A circle of radius 5.2 about X1 5 Y1 0: round the centre, passing it 0.2 mm away; at F 6000
+  // C would turn 100 / 0.2 rad/s there: the path feed is limited by C's rate and acceleration.
+  Lathe m("N1 G00 X10.2 Z5 C0\nN2 G31 G03 X1=10.2 Y1=0 I-5.2 F6000\nN3 G30 RET\n");
+  m.channel->Start();
+  ASSERT_TRUE(m.RunUntil([&] { return m.channel->line() == 2; }));
+  double max_c_speed = 0, worst = 0;
+  while (m.channel->state() == ChannelState::kRunning && m.t < 30) {
+    m.Tick();
+    max_c_speed = std::max(max_c_speed, std::abs(m.at.feedback[kDriveC].velocity));
+    if (m.channel->line() == 2) worst = std::max(worst, OffCircle(FaceOf(m), {5, 0}, 5.2));
+  }
+  m.Ticks(8);
+  EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  EXPECT_LE(max_c_speed, 3600 * 1.001);
+  EXPECT_GT(max_c_speed, 500);  // limited, not crawling
+  EXPECT_LT(worst, 1e-3);
+  EXPECT_NEAR(m.at.feedback[kDriveC].position, 360, 1e-9);  // the circle goes round the centre
+}
+
+TEST(ChannelTransformation, FaceArcThroughTheCentreIsRefused) {
+  // Centre X1 10 Y1 0, radius 10: three quarters counter-clockwise pass X1 0 Y1 0.
+  Lathe m("N1 G00 X20 Z5 C0\nN2 G31 G03 X1=10 Y1=-10 I-10 F600\nN3 RET\n");
   m.channel->Start();
   m.RunUntilEnd();
   ASSERT_EQ(m.channel->state(), ChannelState::kError);
   EXPECT_EQ(m.channel->error_number(), kMsgTransformation);
+  EXPECT_THAT(m.channel->error(), HasSubstr("p.mtc:2:"));
+  EXPECT_THAT(m.channel->error(), HasSubstr("the arc"));
+  EXPECT_THAT(m.channel->error(), HasSubstr("passes the centre"));
+  EXPECT_NEAR(m.at.feedback[kDriveX].position, 20, 1e-9);  // nothing moved
+  // The quarter that stops short of the centre runs.
+  Lathe ok("N1 G00 X20 Z5 C0\nN2 G31 G03 X1=10 Y1=10 I-10 F600\nN3 G30 RET\n");
+  ok.channel->Start();
+  ok.RunUntilEnd();
+  EXPECT_EQ(ok.channel->state(), ChannelState::kEnded) << ok.channel->error();
+  EXPECT_NEAR(ok.at.feedback[kDriveC].position, 45, 1e-9);
+}
+
+TEST(ChannelTransformation, BlockSearchIntoAFaceArcFindsCUnwound) {
+  // A full circle about the centre (C 0 -> 360), then half of one (C 360 -> 540): searching N3
+  // at 500 per mille stands at X1 0 Y1 20 with C at 450, as the run has it.
+  using Rig = testing::BlockSearchSteps<Lathe>;
+  const std::string program =
+      "N1 G00 X20 Z5 C0\nN2 G31 G03 X1=20 Y1=0 I-20 F3000\nN3 X1=-20 Y1=0 I-20\n"
+      "N4 G30 G01 Z0 F600\nN5 RET\n";
+  Rig m(program);
+  BlockSearchParameters p;
+  p.type = BlockSearchType::kBlockNumber;
+  p.block_number = 3;
+  p.block_number_pass = 1;
+  p.covered_distance = 500;
+  p.auto_return = true;
+  m.Search(p);
+  ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour)) << m.channel->error();
+  const auto& st = m.channel->block_search();
+  ASSERT_EQ(st.continue_position.size(), 3u);
+  EXPECT_NEAR(st.continue_position[kX], 20, 1e-9);
+  EXPECT_NEAR(st.continue_position[kC], 450, 1e-9);
+  m.channel->Start();
+  ASSERT_TRUE(m.Waits(BlockSearchState::kWaitForContinueContour)) << m.channel->error();
+  m.Ticks(8);
+  EXPECT_NEAR(m.at.feedback[kDriveC].position, 450, 1e-9);
+  m.channel->Start();
+  m.RunUntilEnd();
+  ASSERT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  EXPECT_NEAR(m.at.feedback[kDriveX].position, 20, 1e-9);
+  EXPECT_NEAR(m.at.feedback[kDriveC].position, 540, 1e-9);
+}
+
+TEST(ChannelTransformation, BlockSearchUnderG31ReturnsOnALineOfTheFace) {
+  // N3 at 500 per mille continues at X1 0 Y1 20 (X 20, C 90). The axes stand at X 50 C 0
+  // (X1 50 Y1 0): the automatic return runs on the face's line between the two points, as
+  // G77 X1=0 Y1=0 does, not on the spiral a move straight in X and C sweeps (13 mm off the line
+  // half-way).
+  using Rig = testing::BlockSearchSteps<Lathe>;
+  Rig m("N1 G00 X20 Z5 C0\nN2 G31 G01 X1=20 Y1=20 F600\nN3 X1=-20\nN4 G30 G01 Z0\nN5 RET\n");
+  m.at.feedback[kDriveX].position = 50;
+  BlockSearchParameters p;
+  p.type = BlockSearchType::kBlockNumber;
+  p.block_number = 3;
+  p.block_number_pass = 1;
+  p.covered_distance = 500;
+  p.auto_return = true;
+  m.Search(p);
+  ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour)) << m.channel->error();
+  const nc::FictivePoint from = FaceOf(m);
+  ASSERT_NEAR(from.x1, 50, 1e-9);
+  ASSERT_NEAR(from.y1, 0, 1e-9);
+  m.channel->Start();
+  double worst = 0;
+  int samples = 0;
+  ASSERT_TRUE(m.RunUntil([&] {
+    worst = std::max(worst, OffSegment(FaceOf(m), from, {0, 20}));
+    ++samples;
+    return m.State() == BlockSearchState::kWaitForContinueContour ||
+           m.channel->state() == ChannelState::kError;
+  })) << m.channel->error();
+  ASSERT_EQ(m.State(), BlockSearchState::kWaitForContinueContour) << m.channel->error();
+  EXPECT_GT(samples, 100);
+  // On the line at every NC cycle; the drive ticks between are straight in X and C, which at
+  // the return's rapid rate (not the 10 mm/s of the lines above) errs by ~0.25 um.
+  EXPECT_LT(worst, 1e-3);
+  m.Ticks(8);
+  EXPECT_NEAR(m.at.feedback[kDriveX].position, 20, 1e-9);
+  EXPECT_NEAR(m.at.feedback[kDriveC].position, 90, 1e-9);
+  m.channel->Start();
+  m.RunUntilEnd();
+  EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
 }
 
 // ---- Repositioning under G31 ----
@@ -258,6 +408,110 @@ TEST(ChannelTransformation, G77X1Y1ReturnsOnACartesianLineCheckedInChords) {
   const nc::FictivePoint end = FaceOf(m);
   EXPECT_NEAR(end.x1, -20, 1e-6);
   EXPECT_NEAR(end.y1, 30, 1e-6);
+}
+
+// ---- The handwheel of X1/Y1 ----
+
+TEST(ChannelTransformation, HandwheelCountsOfY1AndX1MoveOnLinesOfTheFace) {
+  Lathe m(kFace, false, Windows);
+  Recorder guard;
+  m.channel->SetPathGuard(&guard);
+  Interrupt(m, 5.0);  // in N3, Y1 30
+  const nc::FictivePoint stop = FaceOf(m);
+  const double z = m.at.feedback[1].position;
+  m.channel->SetJogMode(static_cast<int>(JogMode::kHandwheel));
+  (void)m.channel->TakeGuardRecords();
+  // 500 counts of 0.01 mm: Y1 5 mm down, X1 stays; X and C follow transformed (the real axes'
+  // handwheel does not pull them back).
+  ASSERT_TRUE(m.channel->HandwheelFictive(1, -500));
+  const nc::FictivePoint y_end{stop.x1, 25};
+  double worst = 0, fastest = 0;
+  nc::FictivePoint last = FaceOf(m);
+  for (int i = 0; i < static_cast<int>(1.0 / kTick); ++i) {
+    m.Tick();
+    const nc::FictivePoint p = FaceOf(m);
+    worst = std::max(worst, OffSegment(p, stop, y_end));
+    fastest = std::max(fastest, std::hypot(p.x1 - last.x1, p.y1 - last.y1) / kTick);
+    last = p;
+  }
+  EXPECT_NEAR(FaceOf(m).x1, stop.x1, 1e-6);
+  EXPECT_NEAR(FaceOf(m).y1, 25, 1e-6);
+  EXPECT_NEAR(m.at.feedback[1].position, z, 1e-12);
+  // Cycle points on the line, the drive ticks linear in X and C between them.
+  EXPECT_LT(worst, 5e-5);
+  // X's jogging speed (rapid / 10 = 40 mm/s here) along the fictive axis; C's jogging rapid
+  // (1800 deg/s) allows ~800 mm/s at radius 25.
+  EXPECT_LE(fastest, 40 * 1.01);
+  EXPECT_GT(fastest, 30);
+  // PathGuard checked the way to the handwheel's target ahead, in chords of the line.
+  bool checked = false;
+  for (const GuardRecord& r : m.channel->TakeGuardRecords())
+    checked = checked || r.move == "handwheel X1/Y1";
+  EXPECT_TRUE(checked);
+  ASSERT_FALSE(guard.chords.empty());
+  for (const auto& [from, to] : guard.chords)
+    EXPECT_LE(to[kDriveX], std::hypot(stop.x1, 30) + 1e-9);  // never past Y1 30 .. 25
+  // Then X1: 300 counts along Y1 = 25.
+  ASSERT_TRUE(m.channel->HandwheelFictive(0, 300));
+  worst = 0;
+  for (int i = 0; i < static_cast<int>(1.0 / kTick); ++i) {
+    m.Tick();
+    worst = std::max(worst, OffSegment(FaceOf(m), y_end, {stop.x1 + 3, 25}));
+  }
+  EXPECT_LT(worst, 5e-5);
+  EXPECT_NEAR(FaceOf(m).x1, stop.x1 + 3, 1e-6);
+  EXPECT_NEAR(FaceOf(m).y1, 25, 1e-6);
+  // Counts of a real axis afterwards move it alone: X and C stay where X1/Y1 took them.
+  const double c = m.at.feedback[kDriveC].position;
+  m.channel->Handwheel(kZ, 100);
+  RunFor(m, 0.5);
+  EXPECT_NEAR(m.at.feedback[1].position, z + 1, 1e-9);
+  EXPECT_NEAR(FaceOf(m).x1, stop.x1 + 3, 1e-6);
+  EXPECT_NEAR(m.at.feedback[kDriveC].position, c, 1e-9);
+  // Outside handwheel mode the counts of X1/Y1 are refused.
+  m.channel->SetJogMode(static_cast<int>(JogMode::kContinuous));
+  EXPECT_FALSE(m.channel->HandwheelFictive(0, 100));
+}
+
+TEST(ChannelTransformation, HandwheelOfX1StaysWithinTheReposZone) {
+  Lathe m(kFace, false, Windows);
+  Interrupt(m, 5.0);
+  const nc::FictivePoint stop = FaceOf(m);
+  m.channel->SetJogMode(static_cast<int>(JogMode::kHandwheel));
+  // Away in Y1 first (no REPOS function called: no zone), then repositioning called: Y1 may go
+  // back to 30 but not past it (3.2), X1 not away from its target at all.
+  ASSERT_TRUE(m.channel->HandwheelFictive(1, -400));
+  RunFor(m, 1.0);
+  ASSERT_NEAR(FaceOf(m).y1, 26, 1e-6);
+  m.channel->SetReposition(true, false);
+  RunFor(m, 0.01);
+  ASSERT_TRUE(m.channel->HandwheelFictive(1, 1000));
+  ASSERT_TRUE(m.channel->HandwheelFictive(0, 500));
+  RunFor(m, 1.5);
+  EXPECT_NEAR(FaceOf(m).y1, 30, 1e-6);
+  EXPECT_NEAR(FaceOf(m).x1, stop.x1, 1e-6);
+}
+
+TEST(ChannelTransformation, HandwheelOfX1StopsShortOfTheCentre) {
+  // G31 stays active after the program's end (no G30): manual mode jogs in the face.
+  Lathe m("N1 G00 X20 Z5 C0\nN2 G31 G01 X1=0.5 Y1=0.05 F3000\nN3 RET\n");
+  m.channel->Start();
+  m.RunUntilEnd();
+  ASSERT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->SetJogMode(static_cast<int>(JogMode::kHandwheel));
+  // X1 to -0.5 would pass the centre 0.05 mm away: the point stops 0.1 mm short of it.
+  ASSERT_TRUE(m.channel->HandwheelFictive(0, -100));
+  RunFor(m, 1.0);
+  const nc::FictivePoint p = FaceOf(m);
+  EXPECT_GT(p.x1, 0);
+  EXPECT_NEAR(p.y1, 0.05, 1e-6);
+  EXPECT_GE(std::hypot(p.x1, p.y1), 0.1 - 1e-9);
+  EXPECT_LT(std::hypot(p.x1, p.y1), 0.11);
+  // The target is dropped there: new counts start from where the point stands.
+  ASSERT_TRUE(m.channel->HandwheelFictive(0, 10));
+  RunFor(m, 0.5);
+  EXPECT_NEAR(FaceOf(m).x1, p.x1 + 0.1, 1e-6);
 }
 
 }  // namespace

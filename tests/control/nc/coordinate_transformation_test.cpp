@@ -9,6 +9,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <string>
 
 namespace vmt::control::nc {
 namespace {
@@ -126,6 +127,141 @@ TEST(CoordinateTransformation, ChordsStayWithinTheToleranceOfTheLine) {
   }
   EXPECT_LE(worst_ratio, 1.0);
   EXPECT_GT(worst_ratio, 0.05);  // the bound is not absurdly loose
+}
+
+// ---- G02/G03 in the face ----
+
+double OffCircle(FictivePoint p, const FaceArc& arc) {
+  return std::abs(std::hypot(p.x1 - arc.centre.x1, p.y1 - arc.centre.y1) - arc.radius);
+}
+
+TEST(CoordinateTransformation, FaceArcsFromCentreOrRadius) {
+  std::string error;
+  // G02 R30 from X1 20 Y1 0 to X1 20 Y1 20: the centre right of the chord, 39 deg clockwise.
+  FaceArc a = FaceArcOf({20, 0}, {20, 20}, true, false, 0, 0, 30, error);
+  ASSERT_EQ(error, "");
+  EXPECT_NEAR(a.centre.x1, 20 + std::sqrt(800.0), 1e-12);
+  EXPECT_NEAR(a.centre.y1, 10, 1e-12);
+  EXPECT_NEAR(a.radius, 30, 1e-12);
+  EXPECT_NEAR(a.sweep * kDeg, -2 * std::asin(10.0 / 30) * kDeg, 1e-9);
+  EXPECT_NEAR(FaceArcSweepDeg(a), 45, 1e-9);  // C from 0 to 45 deg, as the line would
+  // R < 0: the arc over 180 deg.
+  a = FaceArcOf({20, 0}, {20, 20}, true, false, 0, 0, -30, error);
+  ASSERT_EQ(error, "");
+  EXPECT_NEAR(a.sweep * kDeg, -(360 - 2 * std::asin(10.0 / 30) * kDeg), 1e-9);
+  // I/J relative to the start; end = start: a full circle.
+  a = FaceArcOf({10, 0}, {10, 0}, false, true, -10, 0, 0, error);
+  ASSERT_EQ(error, "");
+  EXPECT_NEAR(a.sweep, 2 * std::numbers::pi, 1e-12);
+  EXPECT_NEAR(FaceArcSweepDeg(a), 360, 1e-9);  // about the centre: C one turn on
+  EXPECT_NEAR(FaceArcSweepDeg(a, 0.25), 90, 1e-9);
+  a = FaceArcOf({10, 0}, {10, 0}, true, true, -10, 0, 0, error);
+  EXPECT_NEAR(FaceArcSweepDeg(a), -360, 1e-9);  // G02: the other way
+  a = FaceArcOf({10, 0}, {10, 0}, false, true, -6, 0, 0, error);  // centre inside, off-axis
+  EXPECT_NEAR(FaceArcSweepDeg(a), 360, 1e-9);
+  a = FaceArcOf({10, 0}, {10, 0}, false, true, -4, 0, 0, error);  // the centre outside
+  EXPECT_NEAR(FaceArcSweepDeg(a), 0, 1e-9);
+  EXPECT_FALSE(FaceArcBoundsOf(a).through_centre);
+  EXPECT_NEAR(FaceArcBoundsOf(a).r_min, 2, 1e-12);
+  EXPECT_NEAR(FaceArcBoundsOf(a).r_max, 10, 1e-12);
+  // Through the centre: marked; half way round (not through it) it is not.
+  a = FaceArcOf({10, 0}, {10, 0}, false, true, -5, 0, 0, error);
+  EXPECT_TRUE(FaceArcBoundsOf(a).through_centre);
+  a = FaceArcOf({10, 0}, {0, 0}, false, true, -5, 0, 0, error);  // ends in it
+  EXPECT_TRUE(FaceArcBoundsOf(a).through_centre);
+  a = FaceArcOf({10, 0}, {5, 5}, false, true, -5, 0, 0, error);
+  EXPECT_FALSE(FaceArcBoundsOf(a).through_centre);
+  EXPECT_NEAR(FaceArcBoundsOf(a).r_min, std::hypot(5, 5), 1e-12);
+  // Bad words.
+  FaceArcOf({10, 0}, {30, 0}, false, false, 0, 0, 5, error);
+  EXPECT_EQ(error, "radius R too small for the end point");
+  FaceArcOf({10, 0}, {10, 0}, false, false, 0, 0, 5, error);
+  EXPECT_NE(error.find("full circle"), std::string::npos);
+  FaceArcOf({10, 0}, {20, 0}, false, true, 1, 0, 0, error);
+  EXPECT_NE(error.find("end point not on the arc"), std::string::npos);
+  FaceArcOf({10, 0}, {20, 0}, false, false, 0, 0, 0, error);
+  EXPECT_NE(error.find("needs a centre"), std::string::npos);
+}
+
+// Random arcs: X = |P| and C = C0 + FaceArcSweepDeg transformed back lie on the circle, at the
+// arc's point (C unwound the way the arc goes), checked against C summed in fine steps; the
+// derivative bounds hold by finite differences; chords linear in X and C FaceChordStep apart
+// stay within the tolerance of the circle.
+TEST(CoordinateTransformation, FaceArcsStayOnTheCircleByBruteForce) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> coordinate(-40, 40), radius(0.5, 30);
+  std::uniform_real_distribution<double> angle(-std::numbers::pi, std::numbers::pi);
+  std::uniform_real_distribution<double> sweep(-2 * std::numbers::pi, 2 * std::numbers::pi);
+  const double tolerance = 1e-3;
+  int arcs = 0, around = 0;
+  double worst_ratio = 0;
+  for (int k = 0; k < 300; ++k) {
+    FaceArc arc;
+    arc.centre = {coordinate(rng), coordinate(rng)};
+    arc.radius = radius(rng);
+    arc.start_angle = angle(rng);
+    arc.sweep = sweep(rng);
+    const FaceLine b = FaceArcBoundsOf(arc);
+    if (b.through_centre || b.r_min < 0.3) continue;
+    ++arcs;
+    const FictivePoint a = arc.At(0);
+    double x0 = 0, c0 = 0;
+    FaceToMachine(a, x0, c0);
+    // C summed in steps far below half a turn each.
+    const int fine = 20000;
+    double c_fine = c0;
+    FictivePoint last = a;
+    for (int i = 1; i <= fine; ++i) {
+      const double u = static_cast<double>(i) / fine;
+      const FictivePoint p = arc.At(u);
+      c_fine += SweepDeg(last, p);
+      last = p;
+      if (i % 100 != 0) continue;
+      const double c = c0 + FaceArcSweepDeg(arc, u);
+      ASSERT_NEAR(c, c_fine, 1e-6) << k << " u " << u;
+      const FictivePoint q = MachineToFace(std::hypot(p.x1, p.y1), c);
+      EXPECT_LT(std::hypot(q.x1 - p.x1, q.y1 - p.y1), 1e-9);
+      EXPECT_LT(OffCircle(q, arc), 1e-6);
+      EXPECT_GE(std::hypot(p.x1, p.y1), b.r_min - 1e-9);
+      EXPECT_LE(std::hypot(p.x1, p.y1), b.r_max + 1e-9);
+    }
+    if (std::abs(c_fine - c0) > 300) ++around;
+    // Bounds of r'' and th', th'' by finite differences along s.
+    const double h = 1e-3, length = b.length;
+    const auto at_s = [&](double s) { return arc.At(s / length); };
+    const auto theta = [&](double s) { return (c0 + FaceArcSweepDeg(arc, s / length)) / kDeg; };
+    const auto r = [&](double s) {
+      const FictivePoint p = at_s(s);
+      return std::hypot(p.x1, p.y1);
+    };
+    for (int i = 1; i < 50 && length > 4 * h; ++i) {
+      const double s = length * i / 50;
+      const double th1 = (theta(s + h) - theta(s - h)) / (2 * h);
+      const double th2 = (theta(s + h) - 2 * theta(s) + theta(s - h)) / (h * h);
+      const double r2 = (r(s + h) - 2 * r(s) + r(s - h)) / (h * h);
+      EXPECT_LE(std::abs(th1), b.theta_s_max * (1 + 1e-6) + 1e-9);
+      EXPECT_LE(std::abs(th2), b.theta_ss_max * (1 + 1e-3) + 1e-5);
+      EXPECT_LE(std::abs(r2), b.r_ss_max * (1 + 1e-3) + 1e-5);
+    }
+    // Chords.
+    const int chords = static_cast<int>(std::ceil(length / FaceChordStep(b, tolerance)));
+    double prev_x = x0, prev_c = c0;
+    for (int i = 1; i <= chords; ++i) {
+      const double u = static_cast<double>(i) / chords;
+      const FictivePoint p = arc.At(u);
+      const double x = std::hypot(p.x1, p.y1), c = c0 + FaceArcSweepDeg(arc, u);
+      for (int j = 1; j < 16; ++j) {
+        const double t = j / 16.0;
+        const FictivePoint q = MachineToFace(prev_x + (x - prev_x) * t, prev_c + (c - prev_c) * t);
+        worst_ratio = std::max(worst_ratio, OffCircle(q, arc) / tolerance);
+      }
+      prev_x = x, prev_c = c;
+    }
+  }
+  EXPECT_GT(arcs, 150);
+  EXPECT_GE(around, 5);  // arcs that go round the spindle axis: C a turn on
+  EXPECT_LE(worst_ratio, 1.0);
+  EXPECT_GT(worst_ratio, 0.01);  // the bound is not absurdly loose
 }
 
 }  // namespace

@@ -118,6 +118,9 @@ TEST(InterpreterTransformation, CylinderUnrollsAtTheActivationRadius) {
   EXPECT_NEAR(r.blocks[0].effective_distance[0], 20, 0);
   EXPECT_NEAR(r.blocks[1].target[0], 18, 0);  // X1 is X
   EXPECT_NEAR(r.blocks[1].target[2], 90, 1e-9);
+  const ProgramRun arc = Execute("N1 G32\nN2 G02 Y1=31.4 I0 K5 F600\nN3 RET\n", {20, 0, 0});
+  EXPECT_THAT(arc.error, HasSubstr("t.mtc:2:8: error: G32 G02/G03: arcs in the cylinder surface "
+                                   "are not offered"));
   const ProgramRun zero = Execute("N1 G32\nN2 RET\n", {0, 0, 0});
   EXPECT_THAT(zero.error, HasSubstr("t.mtc:1:4: error: G32 (cylinder surface transformation)"));
 }
@@ -131,6 +134,49 @@ TEST(InterpreterTransformation, G77TakesTheFictiveAxesWithoutTheirValues) {
   EXPECT_EQ(b.programmed, 0b101u);
   EXPECT_EQ(b.target[0], 20);  // G77: the channel supplies the targets
   EXPECT_EQ(b.target[2], 30);
+}
+
+// ---- G02/G03 in the face ----
+
+TEST(InterpreterTransformation, FaceArcsUnwindCTheWayTheArcGoes) {
+  // From X20 C0 (X1 20 Y1 0): half a circle about the centre, counter-clockwise (C 180) and
+  // back clockwise (C 0); a full circle about it (C one turn on); a full circle beside it (C
+  // stays); R.
+  const ProgramRun r = Execute(
+      "N1 G31 G03 X1=-20 Y1=0 I-20 J0 F600\nN2 G02 X1=20 Y1=0 I20\nN3 G03 X1=20 Y1=0 I-20\n"
+      "N4 G02 X1=20 Y1=0 J5\nN5 G02 X1=20 Y1=20 R30\nN6 G91 G03 Y1=-20 J-10\nN7 RET\n",
+      {20, 5, 0});
+  ASSERT_EQ(r.error, "");
+  ASSERT_EQ(r.blocks.size(), 7u);
+  EXPECT_TRUE(r.blocks[0].fictive);
+  EXPECT_EQ(r.blocks[0].motion, Motion::kArcCcw);
+  EXPECT_EQ(r.blocks[0].programmed, 0b101u);  // X and C, not Z
+  EXPECT_NEAR(r.blocks[0].target[0], 20, 1e-12);
+  EXPECT_NEAR(r.blocks[0].target[1], 5, 0);
+  EXPECT_NEAR(r.blocks[0].target[2], 180, 1e-9);
+  // I20 relative to X1 -20: the centre again; J unprogrammed is 0.
+  EXPECT_NEAR(r.blocks[1].target[2], 0, 1e-9);
+  EXPECT_NEAR(r.blocks[2].target[2], 360, 1e-9);
+  EXPECT_NEAR(r.blocks[3].target[0], 20, 1e-9);
+  EXPECT_NEAR(r.blocks[3].target[2], 360, 1e-9);
+  EXPECT_NEAR(r.blocks[4].target[0], std::hypot(20, 20), 1e-9);
+  EXPECT_NEAR(r.blocks[4].target[2], 405, 1e-9);
+  // G91: Y1 -20 from X1 20 Y1 20, centre 10 below: counter-clockwise on the side towards the
+  // centre (not round it), back to C 360.
+  EXPECT_NEAR(r.blocks[5].target[0], 20, 1e-9);
+  EXPECT_NEAR(r.blocks[5].target[2], 360, 1e-9);
+}
+
+TEST(InterpreterTransformation, BadFaceArcWordsAreErrorsAtTheirPlace) {
+  const ProgramRun k = Execute("N1 G31 G03 X1=-20 Y1=0 I-20 K1 F600\nN2 RET\n", {20, 5, 0});
+  EXPECT_THAT(k.error, HasSubstr("t.mtc:1:29: error: K in an arc of G31"));
+  const ProgramRun radius = Execute("N1 G31 G03 X1=-20 Y1=0 R5 F600\nN2 RET\n", {20, 5, 0});
+  EXPECT_THAT(radius.error,
+              HasSubstr("t.mtc:1:12: error: G31 G02/G03: radius R too small for the end point"));
+  const ProgramRun off = Execute("N1 G31 G02 X1=-20 Y1=0 I-15 F600\nN2 RET\n", {20, 5, 0});
+  EXPECT_THAT(off.error, HasSubstr("t.mtc:1:12: error: G31 G02/G03: end point not on the arc"));
+  const ProgramRun none = Execute("N1 G31 G02 X1=-20 Y1=0 F600\nN2 RET\n", {20, 5, 0});
+  EXPECT_THAT(none.error, HasSubstr("needs a centre (I for X1, J for Y1) or a radius R"));
 }
 
 }  // namespace
