@@ -331,4 +331,13 @@ class Interpreter {
   std::string eval_fail_message_;
 };
 
+// In the header: both the expressions' postfix loop and the assignments read variables through
+// it, and they are in two files.
+inline double& Interpreter::Var(uint32_t name) {
+  auto& cache = var_cache_[current_];
+  if (cache.size() <= name) cache.resize(name + 1, nullptr);
+  if (!cache[name]) cache[name] = &variables_[program().symbols.Name(name)];
+  return *cache[name];
+}
+
 }  // namespace vmt::control::nc

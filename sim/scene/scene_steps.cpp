@@ -22,6 +22,28 @@ int RequireDrive(const MachineModel& m, const YamlNode& n) {
   return d;
 }
 
+// The index of an NC channel axis named by its drive or NC axis name.
+int RequireChannelAxis(const MachineModel& m, const NcSetup& nc, const YamlNode& n) {
+  const int drive = RequireDrive(m, n);
+  for (size_t k = 0; k < nc.axis_drives.size(); ++k)
+    if (nc.axis_drives[k] == drive) return static_cast<int>(k);
+  n.Fail("not an axis of the NC channel");
+}
+
+// The axis of a jog or handwheel step: a channel axis, or X1 / Y1, the fictive axes of the
+// G31 face transformation (REPOS manual 5.2), which the channel moves only while G31 is active
+// in rotary axis mode.
+void RequireJogAxis(const MachineModel& m, const NcSetup& nc, const YamlNode& n,
+                    TimelineStep& s) {
+  const std::string name = n.String();
+  if (name == "X1" || name == "Y1") {
+    s.fictive = name == "X1" ? 0 : 1;
+    return;
+  }
+  s.axis = RequireChannelAxis(m, nc, n);
+  s.drive = nc.axis_drives[s.axis];
+}
+
 std::string Fmt(double v) {
   std::ostringstream s;
   s << v;
@@ -268,17 +290,7 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
     if (!has_nc) a.Fail("the scene has no nc: section");
     a.AllowKeys({"axis", "counts"});
     s.kind = TimelineStep::Kind::kHandwheel;
-    // X1 / Y1: the fictive axes of G31, as for jog (the channel moves them only while G31 is
-    // active in rotary axis mode).
-    const std::string name = a["axis"].String();
-    if (name == "X1" || name == "Y1") {
-      s.fictive = name == "X1" ? 0 : 1;
-    } else {
-      const int drive = RequireDrive(m, a["axis"]);
-      for (size_t k = 0; k < nc.axis_drives.size(); ++k)
-        if (nc.axis_drives[k] == drive) s.axis = static_cast<int>(k);
-      if (s.axis < 0) a["axis"].Fail("not an axis of the NC channel");
-    }
+    RequireJogAxis(m, nc, a["axis"], s);
     s.code = a["counts"].Int();
     text << "handwheel " << a["axis"].String() << " " << s.code << " counts";
     s.text = text.str();
@@ -290,18 +302,7 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
     if (!has_nc) a.Fail("the scene has no nc: section");
     a.AllowKeys({"axis", "direction", "hold", "to"});
     s.kind = TimelineStep::Kind::kJog;
-    // X1 / Y1: the fictive axes of the G31 face transformation (REPOS manual 5.2); the
-    // channel moves them only while G31 is active in rotary axis mode.
-    const std::string name = a["axis"].String();
-    if (name == "X1" || name == "Y1") {
-      s.fictive = name == "X1" ? 0 : 1;
-    } else {
-      const int drive = RequireDrive(m, a["axis"]);
-      for (size_t k = 0; k < nc.axis_drives.size(); ++k)
-        if (nc.axis_drives[k] == drive) s.axis = static_cast<int>(k);
-      if (s.axis < 0) a["axis"].Fail("not an axis of the NC channel");
-      s.drive = drive;
-    }
+    RequireJogAxis(m, nc, a["axis"], s);
     if (a.Has("to")) {
       // To a position, as an operator does it in incremental jog mode: the increment set to
       // the distance, one tap toward it (an increment once started is completed).
@@ -386,10 +387,7 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
       else
         e.AllowKeys({"T", "D", "axis", "value"});
       s.kind = offset ? TimelineStep::Kind::kNcZeroOffset : TimelineStep::Kind::kNcToolLength;
-      const int drive = RequireDrive(m, e["axis"]);
-      for (size_t k = 0; k < nc.axis_drives.size(); ++k)
-        if (nc.axis_drives[k] == drive) s.axis = static_cast<int>(k);
-      if (s.axis < 0) e["axis"].Fail("not an axis of the NC channel");
+      s.axis = RequireChannelAxis(m, nc, e["axis"]);
       s.target = e["value"].Double();
       if (offset) {
         s.code = e["G"].Int();

@@ -1,0 +1,293 @@
+// The interpreter's expressions: the postfix code of arithmetic, variables, functions, and the
+// arguments of the data access and measuring instructions (TLD/OTD/MTD, SETTING...), which
+// take bare names where an expression would give a value.
+#include <cmath>
+#include <numbers>
+
+#include "control/nc/interpreter.hpp"
+
+namespace vmt::control::nc {
+namespace {
+
+using Kind = Statement::Kind;
+constexpr double kRadPerDeg = std::numbers::pi / 180;
+
+}  // namespace
+
+bool IsMeasuringCall(const std::string& name) {
+  return name == "SETTING" || name == "SAVE" || name == "MOVE" || name == "PROBE" ||
+         name == "COMPARE" || name == "CORRECTION" || name == "RESTORE";
+}
+
+bool IsDataAccess(const std::string& name) {
+  return name == "TLD" || name == "OTD" || name == "MTD";
+}
+
+std::vector<InstructionArg> Interpreter::ArgumentForms(ExprId id, size_t call) const {
+  // A walk of the postfix code that keeps, instead of values, what each stack entry is: an
+  // omitted argument, a bare name (kVariable alone), or a computed value. Jumps of AND/OR only
+  // skip their right operand, which pushes and pops back to the same depth.
+  using Op = ExprOp;
+  using Kind = InstructionArg::Kind;
+  const Program& p = program();
+  std::vector<InstructionArg> stack;
+  auto value = [] { return InstructionArg{Kind::kValue, 0, {}}; };
+  auto pop_to_value = [&](size_t n) {
+    stack.resize(stack.size() >= n ? stack.size() - n : 0);
+    stack.push_back(value());
+  };
+  for (size_t pc = static_cast<size_t>(id); pc <= call && pc < p.code.size();) {
+    const uint32_t unit = p.code[pc++];
+    const bool wide = (unit >> 8) == kWideImmediate;
+    switch (OpOf(unit)) {
+      case Op::kEnd:
+        return {};
+      case Op::kInt:
+        stack.push_back(value());
+        break;
+      case Op::kNumber:
+        if (wide) ++pc;
+        stack.push_back(value());
+        break;
+      case Op::kVariable: {
+        const uint32_t name = wide ? p.code[pc++] : unit >> 8;
+        const std::string& text = p.symbols.Name(name);
+        // X, Z, XYZ: an axis designation; @100, P1, V.L.X are variables whose value counts.
+        const bool bare = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
+          return std::isalpha(static_cast<unsigned char>(c));
+        });
+        stack.push_back(bare ? InstructionArg{Kind::kName, 0, text} : value());
+        break;
+      }
+      case Op::kOmitted:
+        stack.push_back({Kind::kOmitted, 0, {}});
+        break;
+      case Op::kNeg:
+      case Op::kNot:
+      case Op::kAnd:
+      case Op::kOr:
+        pop_to_value(1);
+        break;
+      case Op::kDiv:
+      case Op::kMod:
+        pc += 2;
+        pop_to_value(2);
+        break;
+      case Op::kAndSkip:
+      case Op::kOrSkip:
+        ++pc;
+        if (!stack.empty()) stack.pop_back();
+        break;
+      case Op::kCall:
+      case Op::kArgs: {
+        if (wide) ++pc;
+        const uint32_t count = p.code[pc];
+        if (pc - 1 - (wide ? 1 : 0) == call) {
+          const size_t n = std::min<size_t>(count, stack.size());
+          return {stack.end() - static_cast<std::ptrdiff_t>(n), stack.end()};
+        }
+        pc += 3;
+        pop_to_value(count);
+        break;
+      }
+      default:  // the binary operators
+        pop_to_value(2);
+        break;
+    }
+  }
+  return {};
+}
+
+bool Interpreter::EvalArguments(ExprId id, std::vector<InstructionArg>& args) {
+  args.clear();
+  capture_ = &args;
+  Eval(id);
+  capture_ = nullptr;
+  return !eval_failed_;
+}
+
+double Interpreter::ReadData(uint32_t name, std::vector<InstructionArg> args,
+                             std::span<const double> values, uint32_t offset, uint32_t rank) {
+  for (size_t i = 0; i < args.size() && i < values.size(); ++i)
+    if (args[i].kind != InstructionArg::Kind::kOmitted) {
+      args[i].kind = InstructionArg::Kind::kValue;  // a bare name in data access is a variable
+      args[i].value = values[i];
+    }
+  const std::string& text = program().symbols.Name(name);
+  if (!data_.read) {
+    Fault(rank, offset, text + "(...) data access is not available here");
+    return 0;
+  }
+  double v = 0;
+  std::string error = data_.read(text, args, v);
+  if (!error.empty()) Fault(rank, offset, std::move(error));
+  return v;
+}
+
+
+double Interpreter::Eval(ExprId id) {
+  using Op = ExprOp;
+  const Program& p = program();
+  const uint32_t* pc = p.code.data() + id;
+  // The stack holds what the deepest expression of the programs needs (Program::max_stack).
+  double* sp = stack_.data();
+  fault_ = false;
+  auto immediate = [&](uint32_t unit) {
+    const uint32_t value = unit >> 8;
+    return value == kWideImmediate ? *pc++ : value;
+  };
+  for (;;) {
+    const uint32_t unit = *pc++;
+    switch (OpOf(unit)) {
+      case Op::kEnd:
+        if (fault_ && !eval_failed_) {
+          eval_failed_ = true;
+          eval_fail_offset_ = fault_offset_;
+          eval_fail_message_ = std::move(fault_message_);
+        }
+        return sp[-1];
+      case Op::kInt:
+        *sp++ = static_cast<double>(static_cast<int32_t>(unit) >> 8);
+        break;
+      case Op::kNumber:
+        *sp++ = p.numbers[immediate(unit)];
+        break;
+      case Op::kVariable:
+        *sp++ = Var(immediate(unit));
+        break;
+      case Op::kOmitted:
+        *sp++ = 0;
+        break;
+      case Op::kNeg:
+        sp[-1] = -sp[-1];
+        break;
+      case Op::kNot:
+        sp[-1] = sp[-1] == 0 ? 1 : 0;
+        break;
+      case Op::kAdd:
+        --sp;
+        sp[-1] = sp[-1] + sp[0];
+        break;
+      case Op::kSub:
+        --sp;
+        sp[-1] = sp[-1] - sp[0];
+        break;
+      case Op::kMul:
+        --sp;
+        sp[-1] = sp[-1] * sp[0];
+        break;
+      case Op::kDiv:
+      case Op::kMod: {
+        const double d = *--sp;
+        if (d == 0) {
+          Fault(pc[1], pc[0], OpOf(unit) == Op::kDiv ? "division by zero" : "MOD by zero");
+          sp[-1] = 0;
+        } else {
+          sp[-1] = OpOf(unit) == Op::kDiv ? sp[-1] / d : std::fmod(sp[-1], d);
+        }
+        pc += 2;
+        break;
+      }
+      case Op::kPow:
+      case Op::kEq:
+      case Op::kNe:
+      case Op::kLt:
+      case Op::kLe:
+      case Op::kGt:
+      case Op::kGe:
+      case Op::kXor:
+        --sp;
+        sp[-1] = ApplyBinary(OpOf(unit), sp[-1], sp[0]);
+        break;
+      case Op::kAndSkip:
+        // A zero left operand decides: the right one is not evaluated (nor its faults).
+        if (sp[-1] == 0) {
+          sp[-1] = 0;
+          pc += *pc + 1;
+        } else {
+          --sp;
+          ++pc;
+        }
+        break;
+      case Op::kOrSkip:
+        if (sp[-1] != 0) {
+          sp[-1] = 1;
+          pc += *pc + 1;
+        } else {
+          --sp;
+          ++pc;
+        }
+        break;
+      case Op::kAnd:
+      case Op::kOr:
+        sp[-1] = sp[-1] != 0;
+        break;
+      case Op::kCall:
+      case Op::kArgs: {
+        const size_t at = static_cast<size_t>(pc - 1 - p.code.data());
+        const uint32_t name = immediate(unit);
+        const uint32_t count = pc[0], offset = pc[1], rank = pc[2];
+        pc += 3;
+        sp -= count;
+        const std::span<const double> values{sp, count};
+        if (capture_ && OpOf(*pc) == Op::kEnd) {
+          // EvalArguments: the call that ends the expression is not made, its arguments are.
+          *capture_ = ArgumentForms(id, at);
+          for (size_t i = 0; i < capture_->size() && i < count; ++i)
+            if ((*capture_)[i].kind == InstructionArg::Kind::kValue) (*capture_)[i].value = values[i];
+          *sp = 0;
+        } else if (OpOf(unit) == Op::kArgs) {
+          *sp = 0;
+        } else if (IsDataAccess(p.symbols.Name(name))) {
+          *sp = ReadData(name, ArgumentForms(id, at), values, offset, rank);
+        } else {
+          *sp = Call(name, values, offset, rank);
+        }
+        ++sp;
+        break;
+      }
+    }
+  }
+}
+
+double Interpreter::Call(uint32_t id, std::span<const double> args, uint32_t offset,
+                         uint32_t rank) {
+  const std::string& name = program().symbols.Name(id);
+  auto fail = [&](std::string message) {
+    Fault(rank, offset, std::move(message));
+    return 0.0;
+  };
+  auto one = [&](double (*f)(double)) {
+    if (args.size() != 1) return fail(name + " takes one argument");
+    return f(args[0]);
+  };
+  if ((name == "G" || name == "M") && args.size() == 1) {
+    bool known;
+    const int v = ModalGroupValue(modal_, name[0], static_cast<int>(args[0]), known);
+    if (!known)
+      return fail(name + "(" + std::to_string(static_cast<int>(args[0])) +
+                  "): no such modal group");
+    return v;
+  }
+  if (name == "SIN") return one([](double x) { return std::sin(x * kRadPerDeg); });
+  if (name == "COS") return one([](double x) { return std::cos(x * kRadPerDeg); });
+  if (name == "TAN") return one([](double x) { return std::tan(x * kRadPerDeg); });
+  if (name == "ASIN") return one([](double x) { return std::asin(x) / kRadPerDeg; });
+  if (name == "ACOS") return one([](double x) { return std::acos(x) / kRadPerDeg; });
+  if (name == "ATAN") return one([](double x) { return std::atan(x) / kRadPerDeg; });
+  if (name == "ABS") return one([](double x) { return std::abs(x); });
+  if (name == "INT") return one([](double x) { return std::trunc(x); });
+  if (name == "ROUND") return one([](double x) { return std::round(x); });
+  if (name == "EXP") return one([](double x) { return std::exp(x); });
+  if (name == "SQRT") {
+    if (args.size() == 1 && args[0] < 0) return fail("SQRT of a negative number");
+    return one([](double x) { return std::sqrt(x); });
+  }
+  if (name == "LN") {
+    if (args.size() == 1 && args[0] <= 0) return fail("LN of a number <= 0");
+    return one([](double x) { return std::log(x); });
+  }
+  return fail("function " + name + " is not available");
+}
+
+}  // namespace vmt::control::nc
