@@ -216,6 +216,8 @@ bool Channel::SetMode(ChannelMode mode) {
     return false;
   if (mode != mode_) {
     for (JogAxis& j : jog_) j = JogAxis{};
+    // X1/Y1 alike: a jog left for another mode must not go on when manual mode comes back.
+    for (FictiveJog& f : fictive_jog_) f = FictiveJog{};
     tool_storage_.key = 0;
     // Where the program was interrupted: the contour the axes must come back to (REPOS 2.1).
     if (mode == ChannelMode::kManual && !interruption_ && state_ == ChannelState::kHold &&

@@ -6,11 +6,12 @@
 //
 // Continuous, incremental (parametric, 0.001 .. 1 mm) and handwheel (JogMode::kHandwheel: the
 // counts of X1 or Y1 move the point along that fictive axis, handwheel_per_count each) modes.
-// The speed is X's jogging speed, limited so that C keeps its jogging rapid rate (tangential
-// speed <= C's rate times the radius); the point never comes closer to the centre than
-// kFictiveJogCentre (C is undefined there). PathGuard checks the way to where the jog could
-// stop (a handwheel's: its target, as for the real axes) in chords of the face line, each
-// within kFaceChordTolerance of it, as the G31 block moves are checked.
+// The speed is X's jogging speed (the handwheel's: X's jogging rapid, as the real axes'
+// handwheel's), limited so that C keeps its jogging rapid rate (tangential speed <= C's rate
+// times the radius); the point never comes closer to the centre than kFictiveJogCentre (C is
+// undefined there). PathGuard checks the way to where the jog could stop (a handwheel's: its
+// target, as for the real axes) in chords of the face line, each within kFaceChordTolerance of
+// it, as the G31 block moves are checked.
 //
 // The handwheel's target of a fictive axis lasts until the point gets there: the next counts
 // start from where it stands then, so moves of X or C in between are not undone. While it
@@ -75,8 +76,12 @@ void Channel::FictiveJogging(double dt) {
   const nc::FictivePoint p =
       nc::MachineToFace(commanded_[x] - translation_[x], commanded_[c] - translation_[c]);
   const double radius = std::hypot(p.x1, p.y1);
-  const double c_rate = JogRapid(ac) * std::numbers::pi / 180;
-  const double speed = std::min(JogSpeed(ax), c_rate * std::max(radius, kFictiveJogCentre));
+  // The keys at X's jogging speed, the handwheel at X's jogging rapid (as the real axes'
+  // handwheel), either slower where C would pass its own jogging rapid.
+  const double c_limit =
+      JogRapid(ac) * std::numbers::pi / 180 * std::max(radius, kFictiveJogCentre);
+  const double speed = std::min(JogSpeed(ax), c_limit);
+  const double handwheel_speed = std::min(JogRapid(ax) * override_, c_limit);
   // 3.2: the zone of each fictive axis while a REPOS function is called.
   double low[2] = {-HUGE_VAL, -HUGE_VAL}, high[2] = {HUGE_VAL, HUGE_VAL};
   int rx = -1, rc = -1;
@@ -98,20 +103,23 @@ void Channel::FictiveJogging(double dt) {
   for (int k = 0; k < 2; ++k) {
     FictiveJog& j = jogs[k];
     const auto within = [&](double v) { return std::clamp(v, low[k], high[k]); };
-    if (jog_mode_ == JogMode::kHandwheel) {
-      j.key = 0, j.stepping = false;
+    if (jog_mode_ == JogMode::kHandwheel) j.key = 0;
+    // An increment under way runs to its end at the jogging speed (below), the handwheel then
+    // on from its end (SetJogMode made that its target).
+    if (jog_mode_ == JogMode::kHandwheel && !j.stepping) {
       if (!j.handwheel) {
         j.velocity = 0;
         continue;
       }
       j.handwheel_target = within(j.handwheel_target);
-      if (FollowTarget(pos[k], j.velocity, j.handwheel_target, speed, ax.acceleration, dt))
+      if (FollowTarget(pos[k], j.velocity, j.handwheel_target, handwheel_speed, ax.acceleration,
+                       dt))
         j.handwheel = false;
       moved = true;
       continue;
     }
-    j.handwheel = false;
-    if (increment > 0 || j.stepping) {
+    if (jog_mode_ != JogMode::kHandwheel) j.handwheel = false;
+    if (JogStepping(j.stepping, increment, j.velocity)) {
       if (!j.stepping && j.key != 0 && process_enable_) {
         j.stepping = true;
         j.target = within(pos[k] + j.key * increment);
@@ -123,7 +131,7 @@ void Channel::FictiveJogging(double dt) {
       moved = true;
       continue;
     }
-    const int key = process_enable_ ? j.key : 0;
+    const int key = process_enable_ && increment == 0 ? j.key : 0;
     const double room = key > 0 ? high[k] - pos[k] : pos[k] - low[k];
     const double target_velocity =
         key * std::min(speed, std::sqrt(2 * ax.acceleration * std::max(0.0, room)));

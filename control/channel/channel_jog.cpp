@@ -25,12 +25,28 @@ void Channel::SetJogMode(int code) {
     default:
       jog_increment_ = 0;
   }
+  // The handwheel's counts start afresh from where the axis comes to rest: the end of an
+  // increment under way (it runs to its end, below), or where a continuous jog stops braking
+  // (a target where it stands would stop it dead within a cycle).
   for (size_t a = 0; a < jog_.size(); ++a) {
-    jog_[a].handwheel = jog_mode_ == JogMode::kHandwheel;
-    jog_[a].handwheel_target = commanded_[a];
+    JogAxis& j = jog_[a];
+    j.handwheel = jog_mode_ == JogMode::kHandwheel;
+    j.handwheel_target =
+        j.stepping ? j.to : JogStopPoint(commanded_[a], j.velocity, config_.axes[a].acceleration);
   }
-  // The fictive axes' counts start afresh from where the point stands, as the real axes' do.
-  for (FictiveJog& f : fictive_jog_) f.handwheel = false;
+  // The fictive axes' likewise (their handwheel target is there only while counts are to go).
+  int x = -1, c = -1;
+  if (!FictiveJogAxes(x, c)) return;
+  const nc::FictivePoint p =
+      nc::MachineToFace(commanded_[x] - translation_[x], commanded_[c] - translation_[c]);
+  const double at[2] = {p.x1, p.y1};
+  for (int k = 0; k < 2; ++k) {
+    FictiveJog& f = fictive_jog_[k];
+    f.handwheel = jog_mode_ == JogMode::kHandwheel && (f.stepping || f.velocity != 0);
+    if (!f.handwheel) continue;
+    f.handwheel_target =
+        f.stepping ? f.target : JogStopPoint(at[k], f.velocity, config_.axes[x].acceleration);
+  }
 }
 
 double Channel::JogRapid(const ChannelAxis& axis) {
@@ -105,7 +121,7 @@ void Channel::Jogging(double dt) {
       }
     }
     auto within = [&](double x) { return limited ? std::clamp(x, low, high) : x; };
-    if (jog_mode_ == JogMode::kHandwheel) {
+    if (jog_mode_ == JogMode::kHandwheel && !j.stepping) {
       // Follow the counts at most at the jogging rapid, braking so as not to pass the target.
       if (!j.handwheel) j.handwheel = true, j.handwheel_target = commanded_[a];
       j.handwheel_target = within(j.handwheel_target);
@@ -114,8 +130,7 @@ void Channel::Jogging(double dt) {
       continue;
     }
     const double increment = JogIncrement(axis);
-    // A continuous jog the jog mode has left for increments brakes to a stop first (below).
-    if (j.stepping || (increment > 0 && j.velocity == 0)) {
+    if (JogStepping(j.stepping, increment, j.velocity)) {
       // Incremental: a key press starts one increment, which then runs to its end.
       if (!j.stepping && j.key != 0 && process_enable_) {
         j.stepping = true;

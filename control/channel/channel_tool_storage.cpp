@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "control/channel/channel.hpp"
+#include "control/channel/jog_follow.hpp"
 
 namespace vmt::control::channel {
 
@@ -82,8 +83,7 @@ void Channel::ToolStorageCycle(double dt) {
   const bool jogging = mode_ == ChannelMode::kManual && process_enable_;
   const double speed = JogSpeed(axis);
   const double increment = JogIncrement(axis);
-  // A continuous jog the jog mode has left for increments brakes to a stop first (below).
-  if (t.stepping || (increment > 0 && t.velocity == 0)) {
+  if (JogStepping(t.stepping, increment, t.velocity)) {
     // Incremental: a key press starts one increment, which then runs to its end.
     if (!t.stepping && t.key != 0 && jogging) {
       t.stepping = true;

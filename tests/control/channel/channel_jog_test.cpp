@@ -122,6 +122,48 @@ TEST(ChannelTest, IncrementsSelectedWhileAJogBrakesLetItBrakeToAStop) {
   EXPECT_EQ(m.X(), stopped);
 }
 
+// The handwheel selected right after a continuous jog key was let go: the axis brakes to a
+// stop as it would have, and the counts count from where it stopped.
+TEST(ChannelTest, HandwheelSelectedWhileAJogBrakesLetsItBrakeToAStop) {
+  Machine m("N1 RET\n", 50, 0);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->Jog(0, +1);
+  for (int i = 0; i < 4000; ++i) m.Tick();  // 40 mm/s
+  m.channel->Jog(0, 0);
+  const double released = m.X();
+  m.channel->SetJogMode(static_cast<int>(JogMode::kHandwheel));
+  for (int i = 0; i < 400; ++i) m.Tick();
+  EXPECT_NEAR(m.X(), released + 40 * 40 / (2 * 4000.0), 0.05);  // its braking distance
+  EXPECT_EQ(m.channel->AxisMotion(0), 0);
+  const double stopped = m.X();
+  m.channel->Handwheel(0, 100);
+  for (int i = 0; i < 4000; ++i) m.Tick();
+  EXPECT_NEAR(m.X(), stopped + 1, 1e-9);
+  m.channel->SetJogMode(static_cast<int>(JogMode::kContinuous));
+  for (int i = 0; i < 400; ++i) m.Tick();
+  EXPECT_NEAR(m.X(), stopped + 1, 1e-9);
+}
+
+// An increment runs to its end when the handwheel is selected meanwhile, as it does when
+// continuous jogging is: it neither stands still nor goes on when increments come back.
+TEST(ChannelTest, AnIncrementRunsToItsEndWhenTheHandwheelIsSelected) {
+  Machine m("N1 RET\n", 50, 0);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->SetJogMode(static_cast<int>(JogMode::kIncrement1000));
+  m.channel->Jog(0, +1);
+  for (int i = 0; i < 20; ++i) m.Tick();  // under way (1 mm takes some 35 ms)
+  m.channel->Jog(0, 0);
+  ASSERT_GT(m.X(), 50 + 1e-3);
+  ASSERT_LT(m.X(), 51 - 1e-3);
+  m.channel->SetJogMode(static_cast<int>(JogMode::kHandwheel));
+  for (int i = 0; i < 400; ++i) m.Tick();
+  EXPECT_NEAR(m.X(), 51, 1e-9);
+  m.channel->SetJogMode(static_cast<int>(JogMode::kIncrement1000));
+  for (int i = 0; i < 400; ++i) m.Tick();
+  EXPECT_NEAR(m.X(), 51, 1e-9);
+  EXPECT_EQ(m.channel->AxisMotion(0), 0);
+}
+
 TEST(ChannelTest, SoftwareLimitsStopProgramsBeforeAndJogsAtTheLimit) {
   auto configure = [](ChannelConfig& c) { c.axes[0].travel_min = 0, c.axes[0].travel_max = 300; };
   Machine m("N1 G00 X100\nN2 G00 X301\nN3 RET\n", 0, 0, configure);

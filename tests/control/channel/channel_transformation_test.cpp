@@ -439,10 +439,11 @@ TEST(ChannelTransformation, HandwheelCountsOfY1AndX1MoveOnLinesOfTheFace) {
   EXPECT_NEAR(m.at.feedback[1].position, z, 1e-12);
   // Cycle points on the line, the drive ticks linear in X and C between them.
   EXPECT_LT(worst, 5e-5);
-  // X's jogging speed (rapid / 10 = 40 mm/s here) along the fictive axis; C's jogging rapid
-  // (1800 deg/s) allows ~800 mm/s at radius 25.
-  EXPECT_LE(fastest, 40 * 1.01);
-  EXPECT_GT(fastest, 30);
+  // At most X's jogging rapid (rapid / 2 = 200 mm/s here) along the fictive axis, as the real
+  // axes' handwheel; C's jogging rapid (1800 deg/s) allows ~800 mm/s at radius 25. The 5 mm,
+  // accelerated and braked at 4000 mm/s², peak at sqrt(4000 * 5) ~ 141 mm/s.
+  EXPECT_LE(fastest, std::sqrt(4000 * 5.0) * 1.05);
+  EXPECT_GT(fastest, 120);
   // PathGuard checked the way to the handwheel's target ahead, in chords of the line.
   bool checked = false;
   for (const GuardRecord& r : m.channel->TakeGuardRecords())
@@ -453,12 +454,20 @@ TEST(ChannelTransformation, HandwheelCountsOfY1AndX1MoveOnLinesOfTheFace) {
     EXPECT_LE(to[kDriveX], std::hypot(stop.x1, 30) + 1e-9);  // never past Y1 30 .. 25
   // Then X1: 300 counts along Y1 = 25.
   ASSERT_TRUE(m.channel->HandwheelFictive(0, 300));
-  worst = 0;
+  worst = 0, fastest = 0;
+  last = FaceOf(m);
   for (int i = 0; i < static_cast<int>(1.0 / kTick); ++i) {
     m.Tick();
-    worst = std::max(worst, OffSegment(FaceOf(m), y_end, {stop.x1 + 3, 25}));
+    const nc::FictivePoint p = FaceOf(m);
+    worst = std::max(worst, OffSegment(p, y_end, {stop.x1 + 3, 25}));
+    fastest = std::max(fastest, std::hypot(p.x1 - last.x1, p.y1 - last.y1) / kTick);
+    last = p;
   }
-  EXPECT_LT(worst, 5e-5);
+  // Cycle points on the line; the drive ticks between them, linear in X and C, turn about the
+  // centre and err by the sagitta h²/8r of the cycle's chord h (some 6e-5 mm at the ~110 mm/s
+  // the 3 mm reach, radius >= 25).
+  const double h = fastest * 4 * kTick;
+  EXPECT_LT(worst, h * h / (8 * 25) + 1e-6);
   EXPECT_NEAR(FaceOf(m).x1, stop.x1 + 3, 1e-6);
   EXPECT_NEAR(FaceOf(m).y1, 25, 1e-6);
   // Counts of a real axis afterwards move it alone: X and C stay where X1/Y1 took them.
@@ -512,6 +521,169 @@ TEST(ChannelTransformation, HandwheelOfX1StopsShortOfTheCentre) {
   ASSERT_TRUE(m.channel->HandwheelFictive(0, 10));
   RunFor(m, 0.5);
   EXPECT_NEAR(FaceOf(m).x1, p.x1 + 0.1, 1e-6);
+}
+
+// ---- Jog modes changed while X1/Y1 move (as for the feed axes, channel_jog_test.cpp) ----
+
+// G31 left active at the program's end, manual mode: the point at X1 20, Y1 30.
+void FaceInManual(Lathe& m) {
+  m.channel->Start();
+  m.RunUntilEnd();
+  ASSERT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  ASSERT_NEAR(FaceOf(m).x1, 20, 1e-6);
+  ASSERT_NEAR(FaceOf(m).y1, 30, 1e-6);
+}
+const char kFaceAtRest[] = "N1 G00 X20 Z5 C0\nN2 G31 G01 X1=20 Y1=30 F3000\nN3 RET\n";
+
+// X1 jogged continuously for 1 s at X's jogging speed (40 mm/s) and let go: where it stood.
+nc::FictivePoint JogX1AndLetGo(Lathe& m) {
+  EXPECT_TRUE(m.channel->JogFictive(0, +1));
+  RunFor(m, 1.0);
+  EXPECT_TRUE(m.channel->JogFictive(0, 0));
+  return FaceOf(m);
+}
+
+// Holding still for `s`: X and C exactly where they were.
+void ExpectStill(Lathe& m, double s) {
+  const double x = m.at.feedback[kDriveX].position, c = m.at.feedback[kDriveC].position;
+  RunFor(m, s);
+  EXPECT_EQ(m.at.feedback[kDriveX].position, x);
+  EXPECT_EQ(m.at.feedback[kDriveC].position, c);
+}
+
+// Increments selected right after X1's key was let go: the point brakes to a stop as it would
+// have (no standstill within a cycle), and nothing of its speed is left over to move it when
+// continuous jogging is selected again.
+TEST(ChannelTransformation, IncrementsSelectedWhileX1BrakesLetItBrakeToAStop) {
+  Lathe m(kFaceAtRest);
+  FaceInManual(m);
+  const nc::FictivePoint released = JogX1AndLetGo(m);
+  m.channel->SetJogMode(static_cast<int>(JogMode::kIncrement1000));
+  RunFor(m, 0.1);
+  EXPECT_NEAR(FaceOf(m).x1, released.x1 + 40 * 40 / (2 * 4000.0), 0.05);  // its braking distance
+  EXPECT_NEAR(FaceOf(m).y1, 30, 1e-6);
+  m.channel->SetJogMode(static_cast<int>(JogMode::kContinuous));
+  ExpectStill(m, 0.1);
+  // The increments work from there on: one press, one millimetre.
+  m.channel->SetJogMode(static_cast<int>(JogMode::kIncrement1000));
+  const nc::FictivePoint before = FaceOf(m);
+  ASSERT_TRUE(m.channel->JogFictive(0, +1));
+  RunFor(m, 0.1);
+  EXPECT_NEAR(FaceOf(m).x1, before.x1 + 1, 1e-6);
+}
+
+// The handwheel selected while X1 brakes: the same braking, and the counts count from where
+// the point stopped.
+TEST(ChannelTransformation, HandwheelSelectedWhileX1BrakesLetsItBrakeToAStop) {
+  Lathe m(kFaceAtRest);
+  FaceInManual(m);
+  const nc::FictivePoint released = JogX1AndLetGo(m);
+  m.channel->SetJogMode(static_cast<int>(JogMode::kHandwheel));
+  RunFor(m, 0.1);
+  const nc::FictivePoint stopped = FaceOf(m);
+  EXPECT_NEAR(stopped.x1, released.x1 + 40 * 40 / (2 * 4000.0), 0.05);
+  EXPECT_NEAR(stopped.y1, 30, 1e-6);
+  ASSERT_TRUE(m.channel->HandwheelFictive(0, 100));
+  RunFor(m, 0.2);
+  EXPECT_NEAR(FaceOf(m).x1, stopped.x1 + 1, 1e-6);
+  m.channel->SetJogMode(static_cast<int>(JogMode::kContinuous));
+  ExpectStill(m, 0.1);
+}
+
+// An increment of X1 runs to its end when the handwheel is selected meanwhile, as it does when
+// continuous jogging is (it neither stands still nor goes on later).
+TEST(ChannelTransformation, AnIncrementOfX1RunsToItsEndWhenTheHandwheelIsSelected) {
+  Lathe m(kFaceAtRest);
+  FaceInManual(m);
+  m.channel->SetJogMode(static_cast<int>(JogMode::kIncrement1000));
+  ASSERT_TRUE(m.channel->JogFictive(0, +1));
+  RunFor(m, 0.005);  // under way (1 mm takes some 35 ms)
+  ASSERT_GT(FaceOf(m).x1, 20 + 1e-3);
+  ASSERT_LT(FaceOf(m).x1, 21 - 1e-3);
+  m.channel->SetJogMode(static_cast<int>(JogMode::kHandwheel));
+  RunFor(m, 0.1);
+  EXPECT_NEAR(FaceOf(m).x1, 21, 1e-6);
+  m.channel->SetJogMode(static_cast<int>(JogMode::kIncrement1000));
+  ExpectStill(m, 0.1);
+}
+
+// Automatic mode selected while X1 brakes or an increment runs: back in manual mode nothing
+// of the jog is left over to move the point on its own.
+TEST(ChannelTransformation, AJogOfX1LeftForAutomaticModeDoesNotGoOnLater) {
+  Lathe m(kFaceAtRest);
+  FaceInManual(m);
+  (void)JogX1AndLetGo(m);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kAutomatic));
+  RunFor(m, 0.01);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  ExpectStill(m, 0.1);
+  m.channel->SetJogMode(static_cast<int>(JogMode::kIncrement1000));
+  ASSERT_TRUE(m.channel->JogFictive(0, +1));
+  RunFor(m, 0.005);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kAutomatic));
+  RunFor(m, 0.01);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  ExpectStill(m, 0.1);
+}
+
+// The handwheel of X1/Y1 runs at X's jogging rapid, as the real axes' handwheel does, C at
+// most at its own jogging rapid (near the centre the point slows for it).
+TEST(ChannelTransformation, HandwheelOfX1RunsAtTheJoggingRapid) {
+  Lathe m(kFaceAtRest);
+  FaceInManual(m);
+  m.channel->SetJogMode(static_cast<int>(JogMode::kHandwheel));
+  ASSERT_TRUE(m.channel->HandwheelFictive(0, 3000));  // 30 mm
+  double fastest = 0;
+  nc::FictivePoint last = FaceOf(m);
+  for (int i = 0; i < static_cast<int>(0.5 / kTick); ++i) {
+    m.Tick();
+    const nc::FictivePoint p = FaceOf(m);
+    fastest = std::max(fastest, std::hypot(p.x1 - last.x1, p.y1 - last.y1) / kTick);
+    last = p;
+  }
+  EXPECT_NEAR(FaceOf(m).x1, 50, 1e-6);
+  EXPECT_NEAR(FaceOf(m).y1, 30, 1e-6);
+  // X's jogging rapid: half its rapid, 200 mm/s (its jogging speed would be 40).
+  EXPECT_LE(fastest, 200 * 1.01);
+  EXPECT_GT(fastest, 190);
+  // The override scales it as it does the real axes' handwheel.
+  m.channel->SetFeedOverride(0.5);
+  ASSERT_TRUE(m.channel->HandwheelFictive(0, -3000));
+  fastest = 0;
+  last = FaceOf(m);
+  for (int i = 0; i < static_cast<int>(0.5 / kTick); ++i) {
+    m.Tick();
+    const nc::FictivePoint p = FaceOf(m);
+    fastest = std::max(fastest, std::hypot(p.x1 - last.x1, p.y1 - last.y1) / kTick);
+    last = p;
+  }
+  EXPECT_NEAR(FaceOf(m).x1, 20, 1e-6);
+  EXPECT_LE(fastest, 100 * 1.01);
+  EXPECT_GT(fastest, 95);
+}
+
+TEST(ChannelTransformation, HandwheelOfX1NearTheCentreKeepsCWithinItsJoggingRapid) {
+  Lathe m("N1 G00 X20 Z5 C0\nN2 G31 G01 X1=5 Y1=1 F3000\nN3 RET\n");
+  m.channel->Start();
+  m.RunUntilEnd();
+  ASSERT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->SetJogMode(static_cast<int>(JogMode::kHandwheel));
+  ASSERT_TRUE(m.channel->HandwheelFictive(0, -1000));  // X1 5 -> -5, 1 mm from the centre
+  double c_fastest = 0;
+  double c_last = m.at.feedback[kDriveC].position;
+  for (int i = 0; i < static_cast<int>(1.0 / kTick); ++i) {
+    m.Tick();
+    const double c = m.at.feedback[kDriveC].position;
+    c_fastest = std::max(c_fastest, std::abs(c - c_last) / kTick);
+    c_last = c;
+  }
+  EXPECT_NEAR(FaceOf(m).x1, -5, 1e-6);
+  EXPECT_NEAR(FaceOf(m).y1, 1, 1e-6);
+  // C's jogging rapid: half its rapid, 1800 deg/s (X's jogging rapid would ask ~11000 here).
+  EXPECT_LE(c_fastest, 1800 * 1.02);
+  EXPECT_GT(c_fastest, 1000);
 }
 
 }  // namespace
