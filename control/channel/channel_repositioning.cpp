@@ -62,6 +62,10 @@ void Channel::CaptureInterruption() {
     }
   }
   if (ToolStorageKnown()) i.tool_storage = drive_positions_[config_.tool_storage_drive];
+  // 4.2: MTP returns to "the location which had been traversed to prior to the interruption":
+  // interrupted while a T word's indexing is still on its way, that is its station, not the
+  // place the turret has got to.
+  if (ToolStorageNc() && tool_storage_.positioning) i.tool_storage = tool_storage_.target;
   interruption_ = std::move(i);
   repos_start_ = commanded_;
 }
