@@ -27,27 +27,27 @@ void RunToEnd(NcTurretMachine& m) {
   m.RunFor(3.0);
 }
 
-// A T word starts the turret for its station (T7: 180 deg from station 1 at 0) and the block
+// A T word starts the turret for its station (T6: 150 deg from station 1 at 0) and the block
 // does not wait: X's move of the next block runs while the turret is still on its way.
 TEST(ToolStorageProgram, ATWordIndexesTheTurretAsynchronously) {
-  NcTurretMachine m("N1 T7\nN2 G01 X10 F6000\nN3 RET\n", 0);
+  NcTurretMachine m("N1 T6\nN2 G01 X10 F6000\nN3 RET\n", 0);
   m.channel->Start();
   bool overlapped = false;
   while (m.channel->state() == ChannelState::kRunning && m.t < 10) {
     m.TickAll();
-    if (m.X() > 0 && m.X() < 10 && m.T() > 1 && m.T() < 179) overlapped = true;
+    if (m.X() > 0 && m.X() < 10 && m.T() > 1 && m.T() < 149) overlapped = true;
   }
   EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
   EXPECT_TRUE(overlapped);
-  EXPECT_LT(m.T(), 179);  // the program has ended, the turret is still indexing
+  EXPECT_LT(m.T(), 149);  // the program has ended, the turret is still indexing
   m.RunFor(3.0);
-  EXPECT_NEAR(m.T(), 180, 1e-9);
+  EXPECT_NEAR(m.T(), 150, 1e-9);
   EXPECT_NEAR(m.X(), 10, 1e-9);
 }
 
 // At the jogging rapid (Cxx.021), as MTP in the REPOS subroutine: no speed is programmed.
 TEST(ToolStorageProgram, TheTurretRunsAtTheJoggingRapid) {
-  NcTurretMachine m("N1 T7\nN2 RET\n", 0);
+  NcTurretMachine m("N1 T6\nN2 RET\n", 0);
   m.channel->Start();
   double fastest = 0, last = m.T();
   for (int i = 0; i < 8000; ++i) {
@@ -56,7 +56,7 @@ TEST(ToolStorageProgram, TheTurretRunsAtTheJoggingRapid) {
     last = m.T();
   }
   EXPECT_NEAR(fastest, 180, 1.0);
-  EXPECT_NEAR(m.T(), 180, 1e-9);
+  EXPECT_NEAR(m.T(), 150, 1e-9);
 }
 
 // Endless: T12 from station 1 goes the short way round, 30 deg back, not 330 forward; the
@@ -71,6 +71,11 @@ TEST(ToolStorageProgram, AnEndlessTurretIndexesTheShortWayRound) {
   n.channel->Start();
   RunToEnd(n);
   EXPECT_NEAR(n.T(), 450, 1e-9);
+  // Half a turn either way: the way the adjust symbol and REPOS's MTP measure it, backwards.
+  NcTurretMachine k("N1 T7\nN2 RET\n", 0);
+  k.channel->Start();
+  RunToEnd(k);
+  EXPECT_NEAR(k.T(), -180, 1e-9);
 }
 
 // With travel limits the turret goes to the station's angle itself, back the way it came (a
@@ -86,16 +91,16 @@ TEST(ToolStorageProgram, ATurretWithTravelLimitsGoesToTheStationsAngle) {
 }
 
 TEST(ToolStorageProgram, MryWaitsForTheTurret) {
-  NcTurretMachine m("N1 T7\nN2 MRY G01 X10 F6000\nN3 RET\n", 0);
+  NcTurretMachine m("N1 T6\nN2 MRY G01 X10 F6000\nN3 RET\n", 0);
   m.channel->Start();
   bool moved_early = false;
   while (m.channel->state() == ChannelState::kRunning && m.t < 10) {
     m.TickAll();
-    if (m.X() > 0 && std::abs(m.T() - 180) > kToolStorageWindow) moved_early = true;
+    if (m.X() > 0 && std::abs(m.T() - 150) > kToolStorageWindow) moved_early = true;
   }
   EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
   EXPECT_FALSE(moved_early);
-  EXPECT_NEAR(m.T(), 180, 1e-9);
+  EXPECT_NEAR(m.T(), 150, 1e-9);
   EXPECT_NEAR(m.X(), 10, 1e-9);
 }
 
@@ -117,14 +122,14 @@ TEST(ToolStorageProgram, MryWaitsForTheDriveNotTheCommand) {
 // Control-Reset brakes an index to a stop between stations; an MRY after it has nothing to
 // wait for.
 TEST(ToolStorageProgram, ControlResetStopsTheIndex) {
-  NcTurretMachine m("N1 T7\nN2 G01 X100 F600\nN3 RET\n", 0);
+  NcTurretMachine m("N1 T6\nN2 G01 X100 F600\nN3 RET\n", 0);
   m.channel->Start();
   m.RunFor(0.5);
   m.channel->Reset();
   m.RunFor(1.0);
   const double stopped = m.T();
   EXPECT_GT(stopped, 30);
-  EXPECT_LT(stopped, 170);
+  EXPECT_LT(stopped, 140);
   m.RunFor(1.0);
   EXPECT_EQ(m.T(), stopped);
   ASSERT_TRUE(m.channel->SetMode(ChannelMode::kMdi));
@@ -203,7 +208,7 @@ TEST(ToolStorageProgram, TheOtherTurretCommandsStayUnavailable) {
 }
 
 const char* kReposProgram =
-    "N1 T7\nN2 G01 X100 F600\nN3 RET\n"
+    "N1 T6\nN2 G01 X100 F600\nN3 RET\n"
     ".REPOS\nN10 MTP\nN11 MRY G77 Z0 F3000\nN12 G77 X0 F3000 RTS\n";
 
 /// Feed hold at `at` s, manual mode, Z jogged off, the turret jogged on for `jog` s.
@@ -232,27 +237,27 @@ void Reposition(NcTurretMachine& m) {
   const double z = m.Z();
   while (m.channel->state() == ChannelState::kRunning && m.t < 60) {
     m.TickAll();
-    if (std::abs(m.T() - 180) > kToolStorageWindow) {
+    if (std::abs(m.T() - 150) > kToolStorageWindow) {
       EXPECT_EQ(m.Z(), z);  // MRY
     }
   }
 }
 
-// Interrupted after T7's indexing has ended: REPOS's MTP brings the turret back to station 7
+// Interrupted after T6's indexing has ended: REPOS's MTP brings the turret back to station 6
 // from where the operator jogged it.
 TEST(ToolStorageProgram, ReposReturnsToTheStationATWordIndexed) {
   NcTurretMachine m(kReposProgram, 0);
   InterruptAndJogOff(m, 2.0, 1.0);
-  EXPECT_GT(m.T(), 200);
+  EXPECT_GT(m.T(), 170);
   EXPECT_TRUE(m.channel->repos_status().tool_storage_adjust);
   Reposition(m);
   EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
-  EXPECT_NEAR(m.T(), 180, 1e-9);
+  EXPECT_NEAR(m.T(), 150, 1e-9);
   EXPECT_NEAR(m.X(), 100, 1e-9);
 }
 
 // 4.2: "the location which had been traversed to prior to the interruption" - interrupted while
-// T7's indexing is still on its way, the interruption keeps station 7, not where the turret
+// T6's indexing is still on its way, the interruption keeps station 6, not where the turret
 // had got to.
 TEST(ToolStorageProgram, AnInterruptionDuringTheIndexKeepsItsStation) {
   NcTurretMachine m(kReposProgram, 0);
@@ -260,31 +265,31 @@ TEST(ToolStorageProgram, AnInterruptionDuringTheIndexKeepsItsStation) {
   m.RunFor(0.5);
   m.channel->Stop();
   m.RunFor(0.05);
-  ASSERT_LT(m.T(), 170);
+  ASSERT_LT(m.T(), 140);
   ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
   m.RunFor(0.01);
-  EXPECT_TRUE(m.channel->repos_status().tool_storage_adjust);  // not yet at station 7
+  EXPECT_TRUE(m.channel->repos_status().tool_storage_adjust);  // not yet at station 6
   m.channel->Jog(1, +1);
   m.RunFor(0.2);
   m.channel->Jog(1, 0);
   m.RunFor(2.0);
-  EXPECT_NEAR(m.T(), 180, 1e-9);  // the index ran on in manual mode
+  EXPECT_NEAR(m.T(), 150, 1e-9);  // the index ran on in manual mode
   m.channel->JogToolStorage(-1);  // jogged back towards where it was at the interruption
   m.RunFor(1.0);
   m.channel->JogToolStorage(0);
   m.RunFor(0.5);
-  EXPECT_LT(m.T(), 160);
+  EXPECT_LT(m.T(), 130);
   Reposition(m);
   EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
-  EXPECT_NEAR(m.T(), 180, 1e-9);
+  EXPECT_NEAR(m.T(), 150, 1e-9);
   EXPECT_NEAR(m.X(), 100, 1e-9);
 }
 
 // Block search outputs the skipped part's technology as a run does: the T words it passes
-// index the turret, which ends at the station of the last one (T7) while the axes return.
+// index the turret, which ends at the station of the last one (T6) while the axes return.
 TEST(ToolStorageProgram, BlockSearchIndexesTheTurretAtTheTWordsItPasses) {
   BlockSearchSteps<NcTurretMachine> m(
-      "N10 T3\nN20 G01 X10 F600\nN30 T7\nN40 G01 X20\nN50 G01 X30\nN60 RET\n", 0);
+      "N10 T3\nN20 G01 X10 F600\nN30 T6\nN40 G01 X20\nN50 G01 X30\nN60 RET\n", 0);
   BlockSearchParameters p;
   p.type = BlockSearchType::kBlockNumber;
   p.block_number = 50;
@@ -293,7 +298,7 @@ TEST(ToolStorageProgram, BlockSearchIndexesTheTurretAtTheTWordsItPasses) {
   m.Search(p);
   ASSERT_TRUE(m.ToContour()) << m.channel->error();
   m.RunFor(2.0);
-  EXPECT_NEAR(m.channel->tool_storage_command(), 180, 1e-9);
+  EXPECT_NEAR(m.channel->tool_storage_command(), 150, 1e-9);
   EXPECT_NEAR(m.X(), 25, 1e-6);
 }
 
@@ -335,7 +340,7 @@ TEST(ToolStorageProgram, APlcTurretIsUnchanged) {
 // The NC turret's T word still goes to the PLC (its tool number), which acknowledges it as any
 // T; the turret does not wait for that, nor the block for the turret.
 TEST(ToolStorageProgram, AnNcTurretsTWordStillGoesToThePlc) {
-  NcTurretMachine m("N1 T7\nN2 G01 X10 F6000\nN3 RET\n", 0, true,
+  NcTurretMachine m("N1 T6\nN2 G01 X10 F6000\nN3 RET\n", 0, true,
                     [](ChannelConfig& c) { c.aux_handshake = true; });
   m.channel->Start();
   m.RunFor(0.2);
@@ -345,7 +350,7 @@ TEST(ToolStorageProgram, AnNcTurretsTWordStillGoesToThePlc) {
   m.channel->AcknowledgeAux();
   RunToEnd(m);
   EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
-  EXPECT_NEAR(m.T(), 180, 1e-9);
+  EXPECT_NEAR(m.T(), 150, 1e-9);
 }
 
 }  // namespace
