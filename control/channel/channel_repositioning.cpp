@@ -63,9 +63,10 @@ void Channel::CaptureInterruption() {
   }
   if (ToolStorageKnown()) i.tool_storage = drive_positions_[config_.tool_storage_drive];
   // 4.2: MTP returns to "the location which had been traversed to prior to the interruption":
-  // interrupted while a T word's indexing is still on its way, that is its station, not the
-  // place the turret has got to.
-  if (ToolStorageNc() && tool_storage_.positioning) i.tool_storage = tool_storage_.target;
+  // after a T word's (or MTP's) traverse, its station - also while it is still on its way or
+  // its drive still settles - not the place the turret has got to. A jog since (manual mode
+  // before the program) leaves the turret where the operator put it.
+  if (ToolStorageNc() && tool_storage_.programmed) i.tool_storage = tool_storage_.target;
   interruption_ = std::move(i);
   repos_start_ = commanded_;
 }

@@ -302,6 +302,23 @@ TEST(ToolStorageProgram, BlockSearchIndexesTheTurretAtTheTWordsItPasses) {
   EXPECT_NEAR(m.X(), 25, 1e-6);
 }
 
+// Interrupted after the command has reached the station but before the drive has (it lags,
+// or is held): the interruption keeps the station, so the turret is restored once it stands
+// there and REPOS's MTP would not take it back to where it lagged.
+TEST(ToolStorageProgram, AnInterruptionWhileTheDriveLagsKeepsTheStation) {
+  NcTurretMachine m("N1 T6\nN2 G01 X100 F600\nN3 RET\n", 0);
+  m.channel->Start();
+  for (int i = 0; i < 8000; ++i) m.Tick();  // 2 s: the drive held back
+  m.channel->Stop();
+  for (int i = 0; i < 200; ++i) m.Tick();
+  ASSERT_NEAR(m.channel->tool_storage_command(), 150, 1e-9);
+  ASSERT_EQ(m.T(), 0);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.RunFor(0.5);  // now it follows
+  EXPECT_NEAR(m.T(), 150, 1e-9);
+  EXPECT_FALSE(m.channel->repos_status().tool_storage_adjust);
+}
+
 /// The same turret, controlled by the PLC (tool_storage_nc off), with the T handshake.
 struct PlcTurretMachine : NcTurretMachine {
   explicit PlcTurretMachine(const std::string& program)
