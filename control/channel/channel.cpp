@@ -308,7 +308,7 @@ void Channel::Reset() {
   dwell_left_s_ = 0;
   orienting_ = false;
   aux_output_.clear();
-  tool_storage_.positioning = tool_storage_wait_ = false;
+  tool_storage_.positioning = tool_storage_.programmed = tool_storage_wait_ = false;
   if (repos_run_) SwapProgramInWork();
   parked_ = ProgramInWork{};
   ClearRepos();
@@ -549,6 +549,9 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
       block_.motion != nc::Motion::kArcCcw)
     return unsupported("I/J/K outside G02/G03");
 
+  // The T word indexes an NC-controlled turret before MTP / MRY of its block act on it.
+  if (!IndexToolStorage(block_, program)) return false;
+  bool mry = false;
   // Instructions of later issues stop the program rather than pass unnoticed. The
   // #-commands that only steer block search (and its return to the contour) have no effect on
   // a normal run.
@@ -569,7 +572,16 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
       else if (name == "MTP")
         block_.aux.push_back({'T', 0, static_cast<double>(interruption_->modal.tool)});
       else
-        tool_storage_wait_ = tool_storage_.positioning;
+        mry = true;
+      name.clear();
+    } else if (ToolStorageNc() && (name == "MRY" || (name == "MTP" && StationOf(1)))) {
+      // In the program an NC-controlled one traverses asynchronously (4.2, "As in NC-program
+      // controlled mode"): MRY waits for its traverse as in the REPOS subroutine, and MTP
+      // ("Adjust tool turret", 8.3) brings the active tool's station back to the work, after
+      // a jog in manual mode, say. A PLC-controlled one: the PLC's business, as before.
+      if (name == "MTP" && !IndexToolStorage(block_.modal.tool, program, block_.block))
+        return false;
+      if (name == "MRY") mry = true;
       name.clear();
     }
     if (nc::IsMeasuringCall(name)) name.clear();  // StartMeasuring below
@@ -581,6 +593,8 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
       return false;
     }
   }
+  // MRY: until the drive stands at the place, not only its command (a following error lags).
+  if (mry) tool_storage_wait_ = !ToolStorageArrived();
   DistanceCommand(block_);
   if (!block_.calls.empty()) return StartMeasuring(at);
   for (const auto& [n, set] : block_.events) {

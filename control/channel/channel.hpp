@@ -74,6 +74,11 @@ struct ChannelConfig {
   /// The tool storage axis' parameters: jogging speed (Cxx.020), acceleration, rotary without
   /// travel limits for an endless one (its adjust symbol then measures the short way round).
   axes::AxisParameters tool_storage;
+  /// The tool storage axis' stations, evenly spaced over a turn: tool Tn is station n, at
+  /// (n - 1) * 360 / stations deg (lathe-c1's model: joint angle (k - 1) * 30 deg puts station
+  /// k at the work). With tool_storage_nc, a T word indexes the turret to its station (REPOS
+  /// manual 4.2: asynchronously to the other axes); 0: T words do not index it.
+  int tool_storage_stations = 0;
 };
 
 /// One PathGuard check the channel made: which move, from where to where (per drive), and the
@@ -521,12 +526,18 @@ class Channel {
     double command = 0, previous = 0;
     int key = 0;
     double velocity = 0;
-    bool positioning = false;  ///< MTP in the REPOS subroutine: to `target`
+    /// A program traverse to `target` at the jogging rapid, asynchronous to the other axes:
+    /// a T word's indexing, MTP (REPOS manual 4.2).
+    bool positioning = false;
+    /// The last traverse was the program's (T, MTP): MRY waits until the drive stands at
+    /// `target`, after the command got there too. A jog since has made `target` a jog's.
+    bool programmed = false;
     bool stepping = false;     ///< an increment of a jog key press: to `target`
     double target = 0;
   };
   ToolStorageAxis tool_storage_;
-  /// MRY: the block waits until MTP's positioning has ended and the axis stands at its place.
+  /// MRY: the block waits until the program's traverse (T, MTP) has ended and the axis stands
+  /// at its place.
   bool tool_storage_wait_ = false;
   bool ToolStorageNc() const { return config_.tool_storage_nc && ToolStorageKnown(); }
   void ToolStorageCycle(double dt);
@@ -535,7 +546,19 @@ class Channel {
   void WriteToolStorage(MasterTelegram& mdt) const;
   /// MTP (4.2 Tool Storage Axis): the NC traverses it back to the interruption's position.
   void ReturnToolStorage();
-  /// MTP's positioning has ended and the drive stands within kToolStorageWindow of its place.
+  /// Starts the program's traverse to `position` (deg); an endless axis goes the short way.
+  void TraverseToolStorageTo(double position);
+  /// Where tool `tool`'s station is (deg, 0 .. 360); nullopt for T0 or without stations.
+  std::optional<double> StationOf(int tool) const;
+  /// An NC-controlled tool storage axis starts for tool `tool`'s station (4.2: asynchronously,
+  /// the block does not wait): a T word, MTP outside the REPOS subroutine. T0 and a turret
+  /// without stations stay where they are. False, with the channel in its error state at
+  /// `block`, for a tool that has no station.
+  bool IndexToolStorage(int tool, const nc::Program& program, int32_t block);
+  /// The T words of `b` (IndexToolStorage); true without an NC-controlled tool storage axis.
+  bool IndexToolStorage(const nc::PreparedBlock& b, const nc::Program& program);
+  /// The program's traverse (T, MTP) has ended and the drive stands within kToolStorageWindow
+  /// of its place; true when there is none.
   bool ToolStorageArrived() const;
   void ReposCycle(const AmplifierTelegram& at);
   void StartReposRun();

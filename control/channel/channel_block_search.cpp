@@ -333,6 +333,8 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
           rotary_translation_ = translation_[a];
       }
   SpindleFunctions(b, s.spindle);
+  // An NC-controlled turret is technology too: the T word indexes it now, as in a run.
+  if (!IndexToolStorage(b, program)) return false;
   // Technology goes to the PLC as in a normal run (2): it switches coolant, turret, ... now.
   if (config_.aux_handshake) {
     for (const nc::AuxFunction& f : b.aux)

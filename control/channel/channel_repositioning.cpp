@@ -62,6 +62,11 @@ void Channel::CaptureInterruption() {
     }
   }
   if (ToolStorageKnown()) i.tool_storage = drive_positions_[config_.tool_storage_drive];
+  // 4.2: MTP returns to "the location which had been traversed to prior to the interruption":
+  // after a T word's (or MTP's) traverse, its station - also while it is still on its way or
+  // its drive still settles - not the place the turret has got to. A jog since (manual mode
+  // before the program) leaves the turret where the operator put it.
+  if (ToolStorageNc() && tool_storage_.programmed) i.tool_storage = tool_storage_.target;
   interruption_ = std::move(i);
   repos_start_ = commanded_;
 }

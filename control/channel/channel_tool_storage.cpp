@@ -2,11 +2,16 @@
 // channel commands its drive, jogs it with PxxC.MGPOS / MGNEG in manual mode as the jog mode
 // jogs the feed axes - also during repositioning and NC-block restart, where an endless one
 // may pass its target - and MTP in the REPOS subroutine traverses it back to its position at
-// the interruption. A tool storage axis the PLC controls (lathe-c1's turret by default) is the
-// PLC's to move: the channel only compares its position (Bxx.045).
+// the interruption. In the program a T word (and MTP outside the REPOS subroutine) indexes it
+// to the tool's station, asynchronously to the other axes, and MRY waits for it (4.2: "As in
+// NC-program controlled mode, the tool storage axis can sometimes traverse asynchronously").
+// A tool storage axis the PLC controls (lathe-c1's turret by default) is the PLC's to move:
+// the channel only compares its position (Bxx.045).
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <string>
 
 #include "control/channel/channel.hpp"
 #include "control/channel/jog_follow.hpp"
@@ -29,16 +34,59 @@ double Channel::tool_storage_command() const {
 
 void Channel::ReturnToolStorage() {
   if (!ToolStorageNc() || !interruption_) return;
-  tool_storage_.positioning = true;
-  tool_storage_.stepping = false;
+  TraverseToolStorageTo(interruption_->tool_storage);
+}
+
+void Channel::TraverseToolStorageTo(double position) {
+  ToolStorageAxis& t = tool_storage_;
+  if (!t.taken) {  // a traverse before the axis' first NC cycle starts where it stands
+    t.command = t.previous = drive_positions_[config_.tool_storage_drive];
+    t.taken = true;
+  }
+  t.positioning = t.programmed = true;
+  t.stepping = false;
   // The short way round for an endless axis: the station, not the turns (4.2: the location).
-  tool_storage_.target =
-      tool_storage_.command -
-      ReposDistanceToGo(config_.tool_storage, tool_storage_.command, interruption_->tool_storage);
+  // One with travel limits goes to the position itself, back the way it came.
+  t.target = t.command - ReposDistanceToGo(config_.tool_storage, t.command, position);
+}
+
+std::optional<double> Channel::StationOf(int tool) const {
+  if (config_.tool_storage_stations <= 0 || tool < 1 || tool > config_.tool_storage_stations)
+    return std::nullopt;
+  return (tool - 1) * 360.0 / config_.tool_storage_stations;
+}
+
+bool Channel::IndexToolStorage(int tool, const nc::Program& program, int32_t block) {
+  // T0 selects no tool: nothing to index to, the turret stays.
+  if (!ToolStorageNc() || config_.tool_storage_stations <= 0 || tool == 0) return true;
+  const std::optional<double> station = StationOf(tool);
+  if (!station) {
+    // Indexing a station T does not name would put another tool at the work than the one
+    // whose corrections the block selects.
+    Fail(program, block,
+         "T" + std::to_string(tool) + " has no station on the tool storage axis " +
+             config_.tool_storage.name + " (T1..T" +
+             std::to_string(config_.tool_storage_stations) + ")",
+         kMsgProgramError);
+    return false;
+  }
+  TraverseToolStorageTo(*station);
+  return true;
+}
+
+bool Channel::IndexToolStorage(const nc::PreparedBlock& b, const nc::Program& program) {
+  if (!ToolStorageNc()) return true;
+  // The channel has one tool storage axis: T (index 0) is its tool; indexed addresses belong
+  // to tool storages the channel does not have.
+  for (const nc::AuxFunction& f : b.aux)
+    if (f.letter == 'T' && f.index == 0 &&
+        !IndexToolStorage(static_cast<int>(std::lround(f.value)), program, b.block))
+      return false;
+  return true;
 }
 
 bool Channel::ToolStorageArrived() const {
-  if (!ToolStorageNc()) return true;
+  if (!ToolStorageNc() || !tool_storage_.programmed) return true;
   if (tool_storage_.positioning) return false;
   const double actual = drive_positions_[config_.tool_storage_drive];
   return std::abs(ReposDistanceToGo(config_.tool_storage, tool_storage_.target, actual)) <=
@@ -73,7 +121,9 @@ void Channel::ToolStorageCycle(double dt) {
   t.previous = t.command;
   const axes::AxisParameters& axis = config_.tool_storage;
   if (t.positioning) {
-    // MTP: at the jogging rapid speed (4.2: no speed is programmed), braking onto the target.
+    // T, MTP: at the jogging rapid speed (4.2: no speed is programmed), braking onto the
+    // target. It runs on through a feed hold and in manual mode, as a turret the PLC indexes
+    // completes its index: the block that started it has been left, so no hold belongs to it.
     const double rapid = JogRapid(axis) > 0 ? JogRapid(axis) : 90;
     if (TraverseToolStorage(t.target, rapid, dt)) t.positioning = false;
     return;
@@ -87,6 +137,7 @@ void Channel::ToolStorageCycle(double dt) {
     // Incremental: a key press starts one increment, which then runs to its end.
     if (!t.stepping && t.key != 0 && jogging) {
       t.stepping = true;
+      t.programmed = false;
       t.target = t.command + t.key * increment;
       t.key = 0;  // one increment per press
     }
@@ -98,6 +149,7 @@ void Channel::ToolStorageCycle(double dt) {
   const bool keys = jogging && jog_mode_ != JogMode::kHandwheel && increment == 0;
   const double accel = axis.acceleration > 0 ? axis.acceleration : 360;
   const double wanted = keys ? t.key * speed : 0;
+  if (wanted != 0) t.programmed = false;
   t.velocity = std::clamp(wanted, t.velocity - accel * dt, t.velocity + accel * dt);
   t.command += t.velocity * dt;
 }

@@ -65,7 +65,7 @@ void ReadSpindleParameters(const MachineModel& m, const YamlNode& sp, NcMachineD
 control::axes::AxisParameters ReadAxis(const MachineModel& m, const YamlNode& n, size_t i) {
   n.AllowKeys({"name", "number", "drive", "rapid", "acceleration", "jerk", "Cxx.020", "Cxx.021",
                "Cxx.022", "Cxx.023", "Cxx.086", "reference", "homing", "needs_homing",
-               "encoder_periods_per_rev", "encoder_limit_hz"});
+               "encoder_periods_per_rev", "encoder_limit_hz", "stations"});
   control::axes::AxisParameters a;
   a.name = n["name"].String();
   a.number = n.Int("number", static_cast<int>(i) + 1);
@@ -229,6 +229,7 @@ NcMachineData ReadNcMachineData(const MachineModel& m, const YamlNode& node) {
   const YamlNode axes = node["axes"];
   for (size_t i = 0; i < axes.size(); ++i) {
     control::axes::AxisParameters a = ReadAxis(m, axes[i], i);
+    if (axes[i].Has("stations")) axes[i]["stations"].Fail("only the tool storage axis has stations");
     if (AxisIndex(nc.axes, a.name) >= 0) axes[i]["name"].Fail("duplicate NC axis");
     for (const auto& other : nc.axes)
       if (other.number == a.number) axes[i]["number"].Fail("axis number used twice");
@@ -238,10 +239,15 @@ NcMachineData ReadNcMachineData(const MachineModel& m, const YamlNode& node) {
     // The tool storage axis (turret): repositioning compares its position with the one at the
     // interruption when Bxx.045 is yes (REPOS manual 6.2). `tool_storage: T` names its drive;
     // the map form gives its axis parameters too, which an NC-controlled one is jogged and
-    // returned with (3.4, 4.2): `{name: T, Cxx.020: ..., Cxx.021: ..., Cxx.022: ...}`.
+    // returned with (3.4, 4.2): `{name: T, Cxx.020: ..., Cxx.021: ..., Cxx.022: ...}`, and
+    // its `stations`, evenly spaced over a turn, which an NC-controlled one's T words index.
     const YamlNode t = node["tool_storage"];
     if (t.IsMap()) {
       nc.tool_storage = ReadAxis(m, t, nc.axes.size());
+      nc.tool_storage_stations = t.Int("stations", 0);
+      if (nc.tool_storage_stations < 0) t["stations"].Fail("must be >= 0 (0: not known)");
+      if (nc.tool_storage_stations > 0 && !nc.tool_storage.rotary)
+        t["stations"].Fail("stations are spaced over a turn: the axis must be rotary");
       if (AxisIndex(nc.axes, nc.tool_storage.name) >= 0) t["name"].Fail("already an NC axis");
       for (const auto& other : nc.axes)
         if (other.number == nc.tool_storage.number) t["number"].Fail("axis number used twice");

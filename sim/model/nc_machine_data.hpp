@@ -38,6 +38,9 @@ struct NcMachineData {
   /// The tool storage axis' parameters (`tool_storage: {name: T, Cxx.020: ...}`): an
   /// NC-controlled one's jogging speeds and parametric jogging distance (REPOS manual 3.4).
   control::axes::AxisParameters tool_storage;
+  /// Its stations (`stations: 12`), evenly spaced over a turn: Tn is station n at
+  /// (n - 1) * 360 / stations deg. 0: not given.
+  int tool_storage_stations = 0;
 };
 
 /// Reads machine.yaml's `nc:`; the drives must be loaded. Throws ModelError (file, YAML path).

@@ -274,6 +274,7 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     config.path_guard = scene.nc.data.path_guard;
     config.tool_storage_drive = scene.nc.data.tool_storage_drive;
     config.tool_storage = scene.nc.data.tool_storage;
+    config.tool_storage_stations = scene.nc.data.tool_storage_stations;
     config.tool_storage_nc = scene.nc.tool_storage_nc;
     channel = std::make_unique<control::channel::Channel>(config, programs);
     channel->SetFeedOverride(scene.nc.override);

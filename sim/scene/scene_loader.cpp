@@ -213,6 +213,10 @@ Scene LoadScene(const std::string& path) {
     s.nc.tool_storage_nc = nc.Bool("tool_storage_nc", false);
     if (s.nc.tool_storage_nc && s.nc.data.tool_storage_drive < 0)
       nc["tool_storage_nc"].Fail("the machine has no tool storage axis (nc: tool_storage:)");
+    // Its T words index it to their stations (REPOS manual 4.2): the NC must know them.
+    if (s.nc.tool_storage_nc && s.nc.data.tool_storage_stations <= 0)
+      nc["tool_storage_nc"].Fail(
+          "the machine's tool storage axis has no stations (nc: tool_storage: {stations: ...})");
     s.nc.signals = std::make_shared<const std::vector<control::gateway::Signal>>(
         control::gateway::BuildSignalTable(GatewayLayoutOf(m)));
     s.nc.override = nc.Double("override", 100) / 100;

@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "channel_test_support.hpp"
+#include "nc_turret_machine.hpp"
 #include "control/channel/channel.hpp"
 
 namespace vmt::control::channel {
@@ -319,24 +320,10 @@ TEST(ReposSubroutineVariables, DataAccessReadsTheInterruptedProgramsState) {
   EXPECT_NEAR(m.Z(), 0, 1e-9);
 }
 
-/// A machine with an NC-controlled endless tool storage axis on drive 3, at 60 deg.
-struct ToolStorageMachine : Machine {
+/// The shared NC turret (nc_turret_machine.hpp) at 60 deg; this file's Tick moves it.
+struct ToolStorageMachine : NcTurretMachine {
   ToolStorageMachine(const std::string& program, bool bxx045)
-      : Machine(program, 0, 0, [bxx045](ChannelConfig& c) {
-          c.tool_storage_drive = 3;
-          c.tool_storage_nc = true;
-          c.tool_storage.name = "T";
-          c.tool_storage.rotary = true;  // no travel limits: endless
-          c.tool_storage.jog_per_s = 30;
-          c.tool_storage.jog_rapid_per_s = 180;
-          c.tool_storage.acceleration = 720;
-          c.process.reposition_tool_storage = bxx045;
-        }) {
-    at.feedback.resize(4);
-    at.feedback[3].status = drive_status::kReady;
-    at.feedback[3].position = 60;
-    mdt.setpoints.resize(4);
-  }
+      : NcTurretMachine(program, 60, bxx045) {}
 };
 
 void JogToolStorageFor(Machine& m, int direction, double s) {

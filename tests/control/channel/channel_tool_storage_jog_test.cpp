@@ -8,7 +8,7 @@
 
 #include <cmath>
 
-#include "channel_test_support.hpp"
+#include "nc_turret_machine.hpp"
 #include "control/channel/channel.hpp"
 
 namespace vmt::control::channel {
@@ -16,34 +16,9 @@ namespace {
 
 using namespace testing;  // vmt::control::channel::testing
 
-/// An NC-controlled endless tool storage axis on drive 3 at 60 deg: a 12-station turret whose
-/// parametric jogging distance is one station.
-struct TurretMachine : Machine {
-  TurretMachine()
-      : Machine("N1 G01 X100 F600\nN2 RET\n", 0, 0, [](ChannelConfig& c) {
-          c.tool_storage_drive = 3;
-          c.tool_storage_nc = true;
-          c.tool_storage.name = "T";
-          c.tool_storage.rotary = true;  // no travel limits: endless
-          c.tool_storage.jog_per_s = 30;
-          c.tool_storage.jog_rapid_per_s = 180;
-          c.tool_storage.jog_distance = 30;
-          c.tool_storage.acceleration = 720;
-          c.process.reposition_tool_storage = true;
-        }) {
-    at.feedback.resize(4);
-    at.feedback[3].status = drive_status::kReady;
-    at.feedback[3].position = 60;
-    mdt.setpoints.resize(4);
-  }
-  /// One drive tick; the tool storage axis follows its setpoint.
-  void TickAll() {
-    Tick();
-    if (mdt.setpoints[3].mode == DriveMode::kPosition) at.feedback[3].position = mdt.setpoints[3].value;
-  }
-  void RunFor(double s) {
-    for (int i = 0; i < s / 250e-6; ++i) TickAll();
-  }
+/// The shared NC turret (nc_turret_machine.hpp) at 60 deg.
+struct TurretMachine : NcTurretMachine {
+  TurretMachine() : NcTurretMachine("N1 G01 X100 F600\nN2 RET\n") {}
   /// MGPOS (+1) or MGNEG (-1) held for `s`, then released; time for a station's increment
   /// (30 deg at 30 deg/s) to end.
   void Press(int direction, double s) {
@@ -52,7 +27,6 @@ struct TurretMachine : Machine {
     channel->JogToolStorage(0);
     RunFor(1.2);
   }
-  double T() const { return at.feedback[3].position; }
 };
 
 TEST(ToolStorageJog, EachFixedIncrementModeMovesOneIncrementPerPress) {

@@ -6,8 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <functional>
 #include <string>
 
+#include "sim/model/model_error.hpp"
 #include "sim/scene/scene.hpp"
 #include "tests/sim/sim_test_support.hpp"
 
@@ -42,6 +44,52 @@ TEST(ToolStorageLoaderTest, LatheC1sTurretWithItsJoggingParameters) {
   EXPECT_DOUBLE_EQ(a.jog_rapid_per_s, 180);  // Cxx.021 10800 deg/min
   EXPECT_DOUBLE_EQ(a.jog_distance, 30);      // Cxx.022: one station
   EXPECT_DOUBLE_EQ(a.acceleration, 7200);    // the drive's limit
+  EXPECT_EQ(s.nc.data.tool_storage_stations, 12);  // T1..T12, 30 deg apart
+}
+
+// The stations its T words index (REPOS manual 4.2): only the tool storage axis has them, a
+// rotary one, and an NC-controlled one needs them.
+TEST(ToolStorageLoaderTest, StationsAreTheToolStorageAxis) {
+  const std::string from = "tool_storage: {name: T, number: 5, stations: 12,";
+  auto error = [&](const std::string& name, const std::function<std::string(std::string)>& edit) {
+    try {
+      testing::EditedLathe(name, edit);
+    } catch (const ModelError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_THAT(error("stations_negative",
+                    [&](std::string y) {
+                      return testing::ReplaceOnce(y, from, "tool_storage: {name: T, number: 5, "
+                                                           "stations: -1,");
+                    }),
+              HasSubstr("nc.tool_storage.stations: must be >= 0"));
+  EXPECT_THAT(error("stations_on_x",
+                    [](std::string y) {
+                      return testing::ReplaceOnce(y, "      number: 1\n",
+                                                  "      number: 1\n      stations: 4\n");
+                    }),
+              HasSubstr("nc.axes[0].stations: only the tool storage axis has stations"));
+  // Without stations lathe-c1's turret is the PLC's as before; NC-controlled it is refused.
+  EXPECT_EQ(error("no_stations",
+                  [&](std::string y) {
+                    return testing::ReplaceOnce(y, from, "tool_storage: {name: T, number: 5,");
+                  }),
+            "");
+  const std::string model = testing::OutputDir("edited_models") + "/no_stations.yaml";
+  auto scene = [&](const std::string& name, const std::string& nc_keys) {
+    const std::string path = testing::OutputDir("tool_storage_loader") + "/" + name + ".yaml";
+    std::ofstream(path) << "scene: " << name << "\nmodel: " << model
+                        << "\nduration: 0.01\nnc:\n  program: "
+                        << testing::SourcePath("scenes/nc/repos_turning.mtc") << "\n"
+                        << nc_keys;
+    return path;
+  };
+  EXPECT_EQ(testing::SceneLoadError(scene("no_stations_plc", "")), "");
+  const std::string path = scene("no_stations_nc", "  tool_storage_nc: yes\n");
+  EXPECT_THAT(testing::SceneLoadError(path),
+              HasSubstr("nc.tool_storage_nc: the machine's tool storage axis has no stations"));
 }
 
 TEST(ToolStorageLoaderTest, AMachineWithoutOneRefusesTheKey) {
