@@ -206,7 +206,7 @@ void Channel::Fail(const nc::Program& program, int32_t block, const std::string&
 bool Channel::SetMode(ChannelMode mode) {
   // C-axis manual 2.3: a mode change during a changeover is an immediate stop.
   if (state_ == ChannelState::kRunning && headstock_ && headstock_->busy() && mode != mode_) Stop();
-  if (state_ == ChannelState::kRunning) return false;
+  if (state_ == ChannelState::kRunning || replay_.direction != 0) return false;
   // MDI and an interrupted automatic program do not share the interpreter: MDI needs the
   // program ended or reset first, and an interrupted MDI sequence ("execute in manual mode",
   // REPOS manual 2.1) goes on in MDI, not in automatic.
@@ -223,6 +223,12 @@ bool Channel::SetMode(ChannelMode mode) {
     if (mode == ChannelMode::kManual && !interruption_ && state_ == ChannelState::kHold &&
         !repos_run_)
       CaptureInterruption();
+    // Travelled back: the program was interrupted at the point the travel started from, and
+    // the way back to it is now repositioning's (the axes have left it).
+    if (replay_.away) {
+      if (interruption_) interruption_->point = replay_.home;
+      replay_.away = false;
+    }
     // Manual mode during the REPOS subroutine's hold: the next start runs it again.
     if (mode == ChannelMode::kManual && repos_run_ && state_ == ChannelState::kHold)
       repos_rerun_ = true;
@@ -245,6 +251,7 @@ void Channel::Start() {
   if (mode_ == ChannelMode::kManual || !process_enable_) return;
   if (mode_ == ChannelMode::kMdi && !mdi_) return;
   if (state_ == ChannelState::kHold) {
+    if (StartReplay()) return;
     if (StartBlockSearchHold()) return;
     // Fast measurement 6.1, Q9998: the new start acknowledges OVERSIZE / UNDERSIZE.
     if (error_number_ == kMsgMeasuringContinuable) error_.clear(), error_number_ = 0;
@@ -293,6 +300,7 @@ void Channel::Start() {
 
 void Channel::Stop() {
   if (state_ == ChannelState::kRunning) state_ = ChannelState::kHold;
+  if (replay_.direction != 0) replay_.stopping = true;
 }
 
 void Channel::Reset() {
@@ -322,6 +330,10 @@ void Channel::Reset() {
   breakpoint_rest_.reset();
   breakpoint_hold_ = breakpoint_pending_ = false;
   search_offset_.clear();  // the G92 shift goes below
+  path_memory_.Clear();
+  const bool backward = replay_.backward_requested;
+  replay_ = PathReplay{};
+  replay_.backward_requested = backward;
   if (interpreter_) last_modal_ = interpreter_->modal();
   interpreter_.reset();
   DropLookahead();
@@ -363,6 +375,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
       holding_positions_ = true;
     }
     if (!interpreter_) {
+      path_memory_.Clear();
       interpreter_ = MakeInterpreter();
       BeginBlockSearch();
     }
@@ -386,6 +399,8 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
     if (ToolStorageArrived()) tool_storage_wait_ = false;
     if (mode_ == ChannelMode::kManual) {
       Jogging(dt);
+    } else if (replay_.away) {
+      ReplayCycle(dt);  // backward travel owns the cycle until it is back at the interruption
     } else if (state_ == ChannelState::kRunning || state_ == ChannelState::kHold) {
       bool finished = false;
       if (SearchCycle(at)) {
@@ -596,7 +611,10 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
   // MRY: until the drive stands at the place, not only its command (a following error lags).
   if (mry) tool_storage_wait_ = !ToolStorageArrived();
   DistanceCommand(block_);
-  if (!block_.calls.empty()) return StartMeasuring(at);
+  if (!block_.calls.empty()) {
+    PathBarrier();  // a probing move is no path to travel back along
+    return StartMeasuring(at);
+  }
   for (const auto& [n, set] : block_.events) {
     own_events_[n] = set;
     if (event_sink_) event_sink_(n, set);
@@ -736,6 +754,7 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
     }
     std::sort(homing_stages_.begin(), homing_stages_.end());
     homing_ = true;
+    if (!repos_run_) PathBarrier();
     return NextHomingStage();
   }
   for (size_t a = 0; a < commanded_.size(); ++a)
@@ -745,7 +764,10 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
       return false;
     }
 
-  if (nc::SpindleSynchronous(block_.motion)) return StartSynchronous(at);
+  if (nc::SpindleSynchronous(block_.motion)) {
+    if (!repos_run_) PathBarrier();  // the spindle cannot be turned back in step
+    return StartSynchronous(at);
+  }
   sync_.phase = SyncPhase::kNone;
   if (const auto error = PlanBlockMotion(block_, commanded_, translation_, config_.axes,
                                          SpindleRevPerS(at), motion_, FollowUpAxes(block_))) {
@@ -762,6 +784,7 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
   profile_.max_accel = motion_.max_accel;
   profile_.max_jerk = motion_.max_jerk;
   active_ = true;
+  if (!repos_run_) RecordPath(motion_, block_.motion == nc::Motion::kRapid);
   if (carry_speed_ > 0) {
     // Continuing at speed from the block before (look-ahead): same path speed and
     // acceleration, from where the last cycle's remainder takes it.

@@ -23,6 +23,7 @@
 #include "control/channel/block_search.hpp"
 #include "control/channel/channel_messages.hpp"
 #include "control/channel/look_ahead.hpp"
+#include "control/channel/path_memory.hpp"
 #include "control/channel/path_profile.hpp"
 #include "control/channel/repositioning.hpp"
 #include "control/channel/spindle_synchronous_motion.hpp"
@@ -277,6 +278,24 @@ class Channel {
   /// State and status data of block search and path (5.5, 5.6), as of the last NC cycle.
   const BlockSearchStatus& block_search() const { return bs_status_; }
 
+  /// Backward travel (block search manual 4.3): the direction the next start takes while the
+  /// program is held. Backward, the NC travels the path of the blocks it ran - or, after block
+  /// search, decoded - in reverse, block by block, at their feeds (G00 at rapid), until feed
+  /// hold or the oldest block it remembers (PathMemory::kBlocks); forward, it travels the path
+  /// again up to the interruption point and the program goes on from there. The manual does not
+  /// name the command; the gateway's is vmt's. Not possible (message kMsgBackward, the program
+  /// stays held) with an offset from a manual return after block search (4.2: "Bei einem
+  /// Offset > 0 ist Rückwärtsfahren nicht möglich"), during repositioning, or across a block
+  /// it cannot travel back (G74, G33/G63/G64, measuring, G31: the path memory starts after it).
+  void SetBackward(bool on) { replay_.backward_requested = on; }
+  /// The axes stand (or move) on the path behind the interruption point.
+  bool travelling_back() const { return replay_.away; }
+  /// Blocks of the path memory behind the axes while travelling back (0 at the interruption
+  /// point).
+  size_t blocks_back() const {
+    return replay_.away ? path_memory_.size() - replay_.index - 1 : 0;
+  }
+
   /// One drive tick: reads the feedback, interpolates on the NC cycle, writes setpoints.
   void Tick(const AmplifierTelegram& at, MasterTelegram& mdt);
 
@@ -503,6 +522,31 @@ class Channel {
     Vec2 contour_point;
     double rotary_start = 0, rotary_next_start = 0;
   };
+  // Backward travel (channel_backward.cpp).
+  PathMemory path_memory_;
+  struct PathReplay {
+    bool backward_requested = false;  ///< SetBackward
+    bool away = false;          ///< off the interruption point, on the path behind it
+    std::vector<double> home;   ///< the interruption point
+    size_t index = 0;           ///< the path memory's step the axes stand on
+    double u = 1;               ///< where on it (its own parameter)
+    double home_u = 1;          ///< the interruption point on the last step
+    int direction = 0;          ///< a leg in work: -1 back, +1 forward; 0 standing
+    bool stopping = false;      ///< feed hold: the leg brakes to rest on the path
+    double leg_from = 0, leg_to = 0;  ///< the leg on the step (u)
+    BlockMotion leg;
+    PathProfile profile;
+  };
+  PathReplay replay_;
+  /// A block's motion starts: remembered for backward travel (`rapid`: G00).
+  void RecordPath(const BlockMotion& motion, bool rapid);
+  /// A block backward travel cannot take: the path before it is forgotten.
+  void PathBarrier() { path_memory_.Clear(); }
+  /// Start() while held: a backward or forward leg. False when Start's other cases apply.
+  bool StartReplay();
+  bool StartReplayLeg();
+  void ReplayCycle(double dt);
+  void RefuseBackward(const std::string& why);
   ProgramInWork parked_;
   void SwapProgramInWork();
   void CaptureInterruption();

@@ -405,6 +405,12 @@ bool Channel::SimulateMotion(nc::PreparedBlock& b, bool boundary) {
   }
   if (motion.moves) s.position = motion.end;
   distance_ += length;
+  // The decoded path, for backward travel from the continue position (4.3); not to the
+  // program's end (type 5), where the program ends in search mode.
+  if (b.homing || b.measuring || nc::SpindleSynchronous(b.motion))
+    PathBarrier();
+  else if (bs_started_.type != BlockSearchType::kProgramEnd)
+    RecordPath(motion, b.motion == nc::Motion::kRapid);
   if (b.end) {
     if (bs_started_.type != BlockSearchType::kProgramEnd)
       bs_warnings_.push_back(kNotFound);
@@ -424,6 +430,10 @@ void Channel::FoundContinuePosition(const nc::PreparedBlock& b, const BlockMotio
   s.restart_length = distance_on_ ? DistanceOf(motion, config_.axes) : 0;
   s.restart = s.position;
   if (motion.moves) motion.PointAt(u, s.restart);
+  if (b.homing || b.measuring || nc::SpindleSynchronous(b.motion))
+    PathBarrier();
+  else
+    RecordPath(motion, b.motion == nc::Motion::kRapid);
   s.position = s.restart;
   bs_state_ = BlockSearchState::kWaitForPlcOff;
 }

@@ -43,6 +43,9 @@ inline constexpr int kMsgBlockSearchDeviation = 410;
 /// P-ERR-21399: the continue position lies in a region #BLOCKSEARCH LOCKED (block search 6).
 /// The manual's own number.
 inline constexpr int kMsgBlockSearchLocked = 21399;
+/// Backward travel refused (block search 4.3): an offset after manual return, no path behind
+/// the axes, repositioning in work. A message, not an error: the program stays held.
+inline constexpr int kMsgBackward = 411;
 inline constexpr int kMsgNotHomed = 501;        ///< a move of an axis that has no reference
 inline constexpr int kMsgSoftwareLimit = 502;   ///< a target beyond the axis' travel
 inline constexpr int kMsgDriveFault = 503;      ///< a drive of the channel is not ready
@@ -95,6 +98,8 @@ inline const char* MessageText(int number) {
       return "block search: axes too far from the continue position";
     case kMsgBlockSearchLocked:
       return "continue position locked for block search";
+    case kMsgBackward:
+      return "backward travel not possible";
     case kMsgReposNotActive:
       return "G77 without repositioning";
     case kMsgReposNoFeed:

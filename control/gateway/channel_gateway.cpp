@@ -155,6 +155,8 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
     b.command = Id(lc + "command_r");
     b.plc_state = Id(lc + "state_r");
     b.enable = Id(lc + "enable_w");
+    b.backward_w = Id(prefix_ + ".backward_motion_w");
+    b.backward_r = Id(st + "backward_motion_r");
   }
   // Q functions the table knows: Pxx.Qnnnn out, Pxx.Qnnnn_Q acknowledgement.
   const std::string q = prefix_ + ".Q";
@@ -404,6 +406,7 @@ void ChannelGateway::ReadBlockSearch(channel::Channel& ch) {
   p.block_nbr_prog_name = text(b.prog_name_w);
   ch.SetBlockSearch(p);
   ch.SetBlockSearchPlc(Number(b.enable) != 0, Number(b.plc_state) != 0);
+  ch.SetBackward(Number(b.backward_w) != 0);
 }
 
 void ChannelGateway::WriteBlockSearch(const channel::Channel& ch) {
@@ -441,6 +444,7 @@ void ChannelGateway::WriteBlockSearch(const channel::Channel& ch) {
   SetNumber(b.path_deviation, std::min(std::round(st.path_deviation * 1e4), 2147483647.0));
   SetNumber(b.stop_conditions, static_cast<int32_t>(st.stop_conditions));
   SetNumber(b.command, st.command);
+  SetNumber(b.backward_r, ch.travelling_back());
 }
 
 }  // namespace vmt::control::gateway

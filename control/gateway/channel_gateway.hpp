@@ -93,6 +93,7 @@ class ChannelGateway {
     int active = -1, state = -1, covered_distance = -1, dist_prog_start = -1, line_count = -1,
         path_deviation = -1, stop_conditions = -1, distance_object = -1;
     int command = -1, plc_state = -1, enable = -1;
+    int backward_w = -1, backward_r = -1;  ///< backward travel (4.3), vmt's names
   } bs_;
   /// Any signal as a number (BOOL 0/1, integers, REAL/LREAL); 0 for a missing one.
   double Number(int id) const;

@@ -169,6 +169,16 @@ constexpr SignalFamily kFamilies[] = {
      "Distance of the actual positions from the restart position (from HLI_BS_WAIT_FOR_PLC_OFF; "
      "cyclic in HLI_BS_RETURNING_TO_CONTOUR), 0..MAX_SGN32",
      BSRCH "5.6; 5.6.1", "0.1 um", "StateBahn_Data.D_BlockSearchPathDeviation"},
+    // Backward travel (4.3): the manual describes it but names no command; these names are
+    // vmt's, in the manual's style.
+    {"Pxx.backward_motion_w", kProcess, kBool, kPlcToNc,
+     "Backward travel: while the program is held, the next start travels the path of the last "
+     "blocks (after block search: of the decoded ones) backwards; 0, forward to the "
+     "interruption point and on with the program. Not with the offset of a manual return",
+     "vmt (backward travel: " BSRCH "4.2; 4.3)"},
+    {"Pxx.bahn_state.backward_motion_r", kProcess, kBool, kNcToPlc,
+     "Backward travel: the axes stand or move on the path behind the interruption point",
+     "vmt (backward travel: " BSRCH "4.3)"},
     {"Pxx.bahn_state.stop_conditions_r", kProcess, kDint, kNcToPlc,
      "Stop conditions: why the current motion is held (HLI_SC_* bits)", BSRCH "5.6; 5.6.1", "",
      "StateBahn_Data.D_StopConditions"},

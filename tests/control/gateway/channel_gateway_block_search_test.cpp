@@ -121,3 +121,34 @@ TEST(ChannelGatewayBlockSearch, AWrongTypeStopsTheStartWithItsMessage) {
 
 }  // namespace
 }  // namespace vmt::control::gateway
+
+namespace vmt::control::gateway {
+namespace {
+
+TEST(ChannelGatewayBlockSearch, BackwardTravelAfterTheSearchThroughItsSignals) {
+  // 4.3: at the contour after the search, backward_motion_w and a start take the axes back
+  // along N2 and N1, which the search decoded; cleared, a start brings them forward and the
+  // program goes on. backward_motion_r says they stand behind the interruption point.
+  SearchRig r;
+  r.Type4(3, 500);
+  r.Press("P00C.START");
+  r.Cycle(5);
+  r.Press("P00C.START");
+  for (int k = 0; k < 5000 && r.State() != 6; ++k) r.Cycle();
+  ASSERT_EQ(r.State(), 6);
+  r.Set("P00.backward_motion_w", true);
+  r.Press("P00C.START");
+  for (int k = 0; k < 20000 && r.at.feedback[0].position > 1e-9; ++k) r.Cycle();
+  EXPECT_NEAR(r.at.feedback[0].position, 0, 1e-9);  // N1's start, the program's start
+  EXPECT_NEAR(r.at.feedback[1].position, 0, 1e-9);
+  EXPECT_TRUE(r.Get("P00.bahn_state.backward_motion_r"));
+  r.Set("P00.backward_motion_w", false);
+  r.Press("P00C.START");
+  for (int k = 0; k < 20000 && r.ch->state() != channel::ChannelState::kEnded; ++k) r.Cycle();
+  ASSERT_EQ(r.ch->state(), channel::ChannelState::kEnded);
+  EXPECT_FALSE(r.Get("P00.bahn_state.backward_motion_r"));
+  EXPECT_NEAR(r.at.feedback[0].position, 30, 1e-9);
+}
+
+}  // namespace
+}  // namespace vmt::control::gateway
