@@ -215,9 +215,11 @@ bool Channel::SetMode(ChannelMode mode) {
       (mode == ChannelMode::kMdi) != running_mdi_)
     return false;
   if (mode != mode_) {
-    for (JogAxis& j : jog_) j = JogAxis{};
-    // X1/Y1 alike: a jog left for another mode must not go on when manual mode comes back.
-    for (FictiveJog& f : fictive_jog_) f = FictiveJog{};
+    // A jog under way is let go as at released keys: it brakes to rest in the new mode (Cycle)
+    // rather than stopping dead, an increment runs to its end, and neither goes on when manual
+    // mode comes back. X1/Y1 and the tool storage axis alike.
+    for (JogAxis& j : jog_) j.key = 0, j.blocked = 0;
+    for (FictiveJog& f : fictive_jog_) f.key = 0;
     tool_storage_.key = 0;
     // Where the program was interrupted: the contour the axes must come back to (REPOS 2.1).
     if (mode == ChannelMode::kManual && !interruption_ && state_ == ChannelState::kHold &&
@@ -240,16 +242,20 @@ bool Channel::SetMode(ChannelMode mode) {
     }
   }
   mode_ = mode;
-  if (mode == ChannelMode::kManual && jog_mode_ == JogMode::kHandwheel)
-    for (size_t a = 0; a < jog_.size(); ++a)
-      jog_[a].handwheel = true, jog_[a].handwheel_target = commanded_[a];
-  for (FictiveJog& f : fictive_jog_) f.handwheel = false;
+  start_deferred_ = false;
+  // The handwheel's counts start afresh from where each axis comes to rest.
+  SetJogMode(static_cast<int>(jog_mode_));
   return true;
 }
 
 void Channel::Start() {
   if (mode_ == ChannelMode::kManual || !process_enable_) return;
   if (mode_ == ChannelMode::kMdi && !mdi_) return;
+  // A jog left for this mode still brakes: the start is taken when the axes are at rest.
+  if (JogsMoving()) {
+    start_deferred_ = true;
+    return;
+  }
   if (state_ == ChannelState::kHold) {
     if (StartReplay()) return;
     if (StartBlockSearchHold()) return;
@@ -299,6 +305,7 @@ void Channel::Start() {
 }
 
 void Channel::Stop() {
+  start_deferred_ = false;
   if (state_ == ChannelState::kRunning) state_ = ChannelState::kHold;
   if (replay_.direction != 0) replay_.stopping = true;
 }
@@ -310,6 +317,7 @@ void Channel::Reset() {
   state_ = ChannelState::kIdle;
   error_.clear();
   error_number_ = 0;
+  start_deferred_ = false;
   active_ = false;
   homing_ = false;
   reversing_ = false;
@@ -399,6 +407,9 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
     if (ToolStorageArrived()) tool_storage_wait_ = false;
     if (mode_ == ChannelMode::kManual) {
       Jogging(dt);
+    } else if (JogsMoving()) {
+      Jogging(dt);  // a jog left for this mode brakes to rest first; a start waits for it
+      if (!JogsMoving() && std::exchange(start_deferred_, false)) Start();
     } else if (replay_.away) {
       ReplayCycle(dt);  // backward travel owns the cycle until it is back at the interruption
     } else if (state_ == ChannelState::kRunning || state_ == ChannelState::kHold) {
@@ -780,6 +791,10 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
     if (breakpoint_pending_) HoldAtBreakpoint();  // at the very start of the block
     return true;
   }
+  // Issue 6: the REPOS subroutine's moves are approach moves, checked whole before they start
+  // as G77's are (its blocks are reached at rest for that: LookAhead). The program's own cuts
+  // are not: the stock is theirs to cut.
+  if (repos_run_ && !GuardBlockMove("REPOS subroutine")) return false;
   profile_.max_rate = motion_.max_rate;
   profile_.max_accel = motion_.max_accel;
   profile_.max_jerk = motion_.max_jerk;

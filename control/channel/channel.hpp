@@ -393,6 +393,7 @@ class Channel {
   int tick_in_cycle_ = 0;
   bool holding_positions_ = false;  ///< once started, the channel owns its axes' setpoints
   bool start_pending_ = false;
+  bool start_deferred_ = false;  ///< started while a jog left for this mode still brakes
   bool take_over_pending_ = false;  ///< own the axes' setpoints from the next tick on
   void Jogging(double dt);
   // Jogging X1/Y1 under G31 (channel_fictive_jog.cpp).
@@ -469,6 +470,8 @@ class Channel {
     int blocked = 0;  ///< PathGuard stopped the key in this direction: until it is released
   };
   std::vector<JogAxis> jog_;
+  /// A feed axis or X1/Y1 still jogs: braking after a mode change, or an increment under way.
+  bool JogsMoving() const;
   // PathGuard of the jog moves (channel_path_guard.cpp).
   void GuardJog(double dt);
   /// An increment of `axis` to `to_position`, checked whole before it starts: false if stopped.
@@ -478,10 +481,11 @@ class Channel {
   bool GuardBlockMove(const std::string& move, const std::vector<double>* end = nullptr,
                       bool measuring_path = false);
   std::vector<double> GuardFrom() const;  ///< every drive's position, the channel's commanded
-  /// G31: the block motion's curve as chords within kFaceChordTolerance of the fictive line.
-  bool GuardFaceMove(const std::string& move);
-  static constexpr double kFaceChordTolerance = 1e-3;  ///< mm
-  static constexpr int kFaceMaxChords = 20000;  ///< a bound on the work (0.1 mm min. clearance)
+  /// A curved block motion (an arc, or G31's line or arc of the face) as chords, each within
+  /// kChordTolerance of the curve.
+  bool GuardCurvedMove(const std::string& move);
+  static constexpr double kChordTolerance = 1e-3;  ///< mm
+  static constexpr int kMaxChords = 20000;  ///< a bound on the work (0.1 mm min. clearance)
   bool GuardStops(const std::string& move, const std::vector<double>& from,
                   const std::vector<double>& to, const PathCheck& check);
   PathGuard* guard_ = nullptr;

@@ -10,7 +10,7 @@
 // handwheel's), limited so that C keeps its jogging rapid rate (tangential speed <= C's rate
 // times the radius); the point never comes closer to the centre than kFictiveJogCentre (C is
 // undefined there). PathGuard checks the way to where the jog could stop (a handwheel's: its
-// target, as for the real axes) in chords of the face line, each within kFaceChordTolerance of
+// target, as for the real axes) in chords of the face line, each within kChordTolerance of
 // it, as the G31 block moves are checked.
 //
 // The handwheel's target of a fictive axis lasts until the point gets there: the next counts
@@ -184,15 +184,15 @@ bool Channel::GuardFictiveJog(int x, int c, nc::FictivePoint next) {
       nc::MachineToFace(commanded_[x] - translation_[x], commanded_[c] - translation_[c]);
   const nc::FictivePoint s{stop[0], stop[1]};
   const std::string move = jog_mode_ == JogMode::kHandwheel ? "handwheel X1/Y1" : "jog X1/Y1";
-  // Chords of the line p-s, straight in the drives, within kFaceChordTolerance of it (a
+  // Chords of the line p-s, straight in the drives, within kChordTolerance of it (a
   // handwheel's target may be far; the line may bend much in X and C near the centre).
   const nc::FaceLine line = nc::FaceLineOf(p, s);
-  const double chord = nc::FaceChordStep(line, kFaceChordTolerance);
+  const double chord = nc::FaceChordStep(line, kChordTolerance);
   const int chords =
       line.through_centre
           ? 1
           : static_cast<int>(std::clamp(std::ceil(line.length / std::max(chord, 1e-9)), 1.0,
-                                        static_cast<double>(kFaceMaxChords)));
+                                        static_cast<double>(kMaxChords)));
   const std::vector<double> from = GuardFrom();
   std::vector<double> to = from, b = from, at = from;
   to[config_.axes[x].drive] = std::hypot(s.x1, s.y1) + translation_[x];

@@ -86,6 +86,14 @@ void Channel::Jog(size_t axis, int direction) {
   take_over_pending_ = true;
 }
 
+bool Channel::JogsMoving() const {
+  for (const JogAxis& j : jog_)
+    if (j.velocity != 0 || j.stepping) return true;
+  for (const FictiveJog& f : fictive_jog_)
+    if (f.velocity != 0 || f.stepping) return true;
+  return false;
+}
+
 int Channel::AxisMotion(size_t axis) const {
   const double d = commanded_[axis] - previous_[axis];
   return d > 0 ? 1 : d < 0 ? -1 : 0;
@@ -100,10 +108,13 @@ void Channel::Jogging(double dt) {
   const std::vector<double> repos_target =
       repos_function_ != ReposFunction::kNone ? ReposTarget() : std::vector<double>{};
   for (size_t a = 0; a < jog_.size(); ++a) {
-    if (headstock_ && static_cast<int>(a) == config_.rotary_axis &&
-        headstock_->mode() != axes::HeadstockMode::kRotary)
-      continue;
     JogAxis& j = jog_[a];
+    // Outside rotary axis mode the rotary axis follows the spindle: it has no jog to go on with.
+    if (headstock_ && static_cast<int>(a) == config_.rotary_axis &&
+        headstock_->mode() != axes::HeadstockMode::kRotary) {
+      j.velocity = 0, j.stepping = false;
+      continue;
+    }
     const ChannelAxis& axis = config_.axes[a];
     const double rapid = JogRapid(axis);
     const double speed = JogSpeed(axis);

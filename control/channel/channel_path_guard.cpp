@@ -2,8 +2,8 @@
 // enough to brake before a contact; an increment is checked whole before it starts. A contact
 // stops the move before it happens with an NC error naming the parts and the position
 // (GuardReaction::kStop), or is only recorded (kWarn). The approach moves of repositioning (G77
-// and the closing move, REPOS manual 4.2) are straight: they are checked whole before they
-// start. Every check ends up in a GuardRecord.
+// and the closing move, REPOS manual 4.2) and every move the REPOS subroutine programs are
+// checked whole before they start, arcs as chords. Every check ends up in a GuardRecord.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -58,7 +58,8 @@ bool Channel::GuardIncrement(size_t axis, double to_position) {
 bool Channel::GuardBlockMove(const std::string& move, const std::vector<double>* end,
                              bool measuring_path) {
   if (!guard_ || config_.path_guard == GuardReaction::kOff) return true;
-  if (motion_.face_axes[0] >= 0 && !end) return GuardFaceMove(move);
+  if (!end && (motion_.face_axes[0] >= 0 || motion_.arc_axes[0] >= 0))
+    return GuardCurvedMove(move);
   const std::vector<double> from = GuardFrom();
   std::vector<double> to = from;
   for (size_t a = 0; a < config_.axes.size(); ++a)
@@ -73,22 +74,28 @@ bool Channel::GuardBlockMove(const std::string& move, const std::vector<double>*
   return !GuardStops(move, from, to, c);
 }
 
-bool Channel::GuardFaceMove(const std::string& move) {
-  // G31: the straight line (or arc) of the face plane is a curve of X and C. It is checked as
-  // chords, straight in the drives' positions, short enough that each stays within
-  // kFaceChordTolerance of it (nc::FaceChordStep proves the bound); one record sums them up.
-  const nc::FaceLine line = motion_.FaceBounds();
-  const double step = nc::FaceChordStep(line, kFaceChordTolerance);
-  const int chords = static_cast<int>(std::clamp(
-      std::ceil(line.length / std::max(step, 1e-9)), 1.0, static_cast<double>(kFaceMaxChords)));
+bool Channel::GuardCurvedMove(const std::string& move) {
+  // The curve is checked as chords, straight in the drives' positions, short enough that each
+  // stays within kChordTolerance of it; one record sums them up. An arc's chord of angle t lies
+  // r (1 - cos(t/2)) inside it. G31's line (or arc) of the face plane is a curve of X and C:
+  // nc::FaceChordStep proves its bound.
+  double chords = 1;
+  if (motion_.face_axes[0] >= 0) {
+    const nc::FaceLine line = motion_.FaceBounds();
+    chords = std::ceil(line.length / std::max(nc::FaceChordStep(line, kChordTolerance), 1e-9));
+  } else if (motion_.arc_radius > kChordTolerance) {
+    const double angle = 2 * std::acos(1 - kChordTolerance / motion_.arc_radius);
+    chords = std::ceil(std::abs(motion_.arc_sweep) / angle);
+  }
+  const int n = static_cast<int>(std::clamp(chords, 1.0, static_cast<double>(kMaxChords)));
   const std::vector<double> from = GuardFrom();
   std::vector<double> to = from, a = from, b = from, point;
   for (size_t k = 0; k < config_.axes.size(); ++k)
     if (static_cast<size_t>(config_.axes[k].drive) < to.size())
       to[config_.axes[k].drive] = motion_.end[k];
   GuardRecord record{move, from, to, PathCheck{}, 0, false};
-  for (int i = 1; i <= chords; ++i) {
-    motion_.PointAt(static_cast<double>(i) / chords, point);
+  for (int i = 1; i <= n; ++i) {
+    motion_.PointAt(static_cast<double>(i) / n, point);
     for (size_t k = 0; k < config_.axes.size(); ++k)
       if (static_cast<size_t>(config_.axes[k].drive) < b.size())
         b[config_.axes[k].drive] = point[k];

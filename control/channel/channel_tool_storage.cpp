@@ -120,6 +120,15 @@ void Channel::ToolStorageCycle(double dt) {
   }
   t.previous = t.command;
   const axes::AxisParameters& axis = config_.tool_storage;
+  if (!process_enable_ && (t.positioning || t.stepping)) {
+    // C-axis manual 2.3: without the process enabling signal the axes come to a standstill. An
+    // index or increment under way brakes and goes on to its target when the signal is back.
+    const double accel = axis.acceleration > 0 ? axis.acceleration : 360;
+    t.velocity = t.velocity > 0 ? std::max(0.0, t.velocity - accel * dt)
+                                : std::min(0.0, t.velocity + accel * dt);
+    t.command += t.velocity * dt;
+    return;
+  }
   if (t.positioning) {
     // T, MTP: at the jogging rapid speed (4.2: no speed is programmed), braking onto the
     // target. It runs on through a feed hold and in manual mode, as a turret the PLC indexes

@@ -105,16 +105,23 @@ TEST(ChannelTest, JogModesRapidParametricAndHandwheel) {
 // The operator selects increments right after letting a continuous jog key go: the axis
 // brakes to a stop as it would have (no standstill within a cycle), and nothing of its speed
 // is left over to move it when continuous jogging is selected again.
+/// Jogs X from 50 in manual mode for 1 s (40 mm/s) and lets the key go: where it was let go.
+/// It brakes kBrakingDistance from there.
+double LetGoAJog(Machine& m) {
+  EXPECT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  m.channel->Jog(0, +1);
+  for (int i = 0; i < 4000; ++i) m.Tick();
+  m.channel->Jog(0, 0);
+  return m.X();
+}
+constexpr double kBrakingDistance = 40 * 40 / (2 * 4000.0);
+
 TEST(ChannelTest, IncrementsSelectedWhileAJogBrakesLetItBrakeToAStop) {
   Machine m("N1 RET\n", 50, 0);
-  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
-  m.channel->Jog(0, +1);
-  for (int i = 0; i < 4000; ++i) m.Tick();  // 40 mm/s
-  m.channel->Jog(0, 0);
-  const double released = m.X();
+  const double released = LetGoAJog(m);
   m.channel->SetJogMode(static_cast<int>(JogMode::kIncrement1000));
   for (int i = 0; i < 400; ++i) m.Tick();
-  EXPECT_NEAR(m.X(), released + 40 * 40 / (2 * 4000.0), 0.05);  // its braking distance
+  EXPECT_NEAR(m.X(), released + kBrakingDistance, 0.05);
   EXPECT_EQ(m.channel->AxisMotion(0), 0);
   const double stopped = m.X();
   m.channel->SetJogMode(static_cast<int>(JogMode::kContinuous));
@@ -126,14 +133,10 @@ TEST(ChannelTest, IncrementsSelectedWhileAJogBrakesLetItBrakeToAStop) {
 // stop as it would have, and the counts count from where it stopped.
 TEST(ChannelTest, HandwheelSelectedWhileAJogBrakesLetsItBrakeToAStop) {
   Machine m("N1 RET\n", 50, 0);
-  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
-  m.channel->Jog(0, +1);
-  for (int i = 0; i < 4000; ++i) m.Tick();  // 40 mm/s
-  m.channel->Jog(0, 0);
-  const double released = m.X();
+  const double released = LetGoAJog(m);
   m.channel->SetJogMode(static_cast<int>(JogMode::kHandwheel));
   for (int i = 0; i < 400; ++i) m.Tick();
-  EXPECT_NEAR(m.X(), released + 40 * 40 / (2 * 4000.0), 0.05);  // its braking distance
+  EXPECT_NEAR(m.X(), released + kBrakingDistance, 0.05);
   EXPECT_EQ(m.channel->AxisMotion(0), 0);
   const double stopped = m.X();
   m.channel->Handwheel(0, 100);
@@ -142,6 +145,34 @@ TEST(ChannelTest, HandwheelSelectedWhileAJogBrakesLetsItBrakeToAStop) {
   m.channel->SetJogMode(static_cast<int>(JogMode::kContinuous));
   for (int i = 0; i < 400; ++i) m.Tick();
   EXPECT_NEAR(m.X(), stopped + 1, 1e-9);
+}
+
+// Automatic mode selected while the jog brakes: the axis brakes to a stop as it would have in
+// manual mode (not dead within a cycle), and a start meanwhile is taken once it stands.
+TEST(ChannelTest, AutomaticSelectedWhileAJogBrakesLetsItStopBeforeTheStart) {
+  Machine m("N1 G01 Z10 F600\nN2 RET\n", 50, 0);
+  const double released = LetGoAJog(m);
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kAutomatic));
+  m.channel->Start();
+  double before = m.X();
+  bool program_moved_early = false;
+  while (m.channel->state() != ChannelState::kRunning && m.t < 2) {
+    m.Tick();
+    EXPECT_GE(m.X(), before);  // no jump back, no standstill then motion
+    before = m.X();
+    program_moved_early = program_moved_early || m.Z() != 0;
+  }
+  EXPECT_FALSE(program_moved_early);
+  EXPECT_NEAR(m.X(), released + kBrakingDistance, 0.05);
+  m.RunUntilEnd();
+  EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+  EXPECT_NEAR(m.X(), released + kBrakingDistance, 0.05);
+  EXPECT_NEAR(m.Z(), 10, 1e-9);
+  // Back in manual mode the jog does not go on.
+  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  const double stopped = m.X();
+  for (int i = 0; i < 400; ++i) m.Tick();
+  EXPECT_EQ(m.X(), stopped);
 }
 
 // An increment runs to its end when the handwheel is selected meanwhile, as it does when

@@ -448,6 +448,81 @@ TEST(ChannelRepositioning, PathGuardStopsAG77MoveBeforeItStarts) {
   EXPECT_TRUE(records.back().stopped);
 }
 
+/// kProgram with the REPOS subroutine `subroutine` (its blocks from `.REPOS` on).
+std::string WithSubroutine(const std::string& subroutine) {
+  const std::string program = kProgram;
+  return program.substr(0, program.find(".REPOS")) + subroutine;
+}
+
+// Issue 6: the REPOS subroutine's own moves are approach moves, checked whole before they start
+// as G77's are: X up out of the way is clear, Z down onto the shoulder is not.
+TEST(ChannelRepositioning, PathGuardChecksTheSubroutinesOwnMoves) {
+  Shoulder guard;
+  Machine clear(WithSubroutine(".REPOS\nN10 G77 S1=0\nN11 G00 X60\nN12 G77 Z0 F3000\n"
+                               "N13 G77 X0 F3000 RTS\n"));
+  clear.channel->SetPathGuard(&guard);
+  const double x = InterruptAndJogAway(clear);
+  Call(clear, true, false);
+  ASSERT_TRUE(clear.channel->SetMode(ChannelMode::kAutomatic));
+  clear.channel->TakeGuardRecords();
+  clear.channel->Start();
+  RunFor(clear, 3.0);
+  EXPECT_NE(clear.channel->state(), ChannelState::kError) << clear.channel->error();
+  const auto records = clear.channel->TakeGuardRecords();
+  ASSERT_GE(records.size(), 3u);
+  EXPECT_EQ(records[0].move, "REPOS subroutine");
+  EXPECT_TRUE(records[0].check.clear);
+  EXPECT_NEAR(records[0].from[0], x, 1e-9);
+  EXPECT_NEAR(records[0].to[0], 60, 1e-9);
+  EXPECT_EQ(records[1].move, "G77");
+
+  Machine hit(WithSubroutine(".REPOS\nN10 G77 S1=0\nN11 G01 Z1 F1000\nN12 G77 Z0 F3000\n"
+                             "N13 G77 X0 F3000 RTS\n"));
+  hit.channel->SetPathGuard(&guard);
+  InterruptAndJogAway(hit);
+  Call(hit, true, false);
+  ASSERT_TRUE(hit.channel->SetMode(ChannelMode::kAutomatic));
+  const double z = hit.Z();
+  hit.channel->Start();
+  RunFor(hit, 1.0);
+  EXPECT_EQ(hit.channel->error_number(), kMsgCollision);
+  EXPECT_THAT(hit.channel->error(), ::testing::HasSubstr("collision ahead (REPOS subroutine)"));
+  EXPECT_EQ(hit.Z(), z);  // never started
+}
+
+// An arc of the REPOS subroutine is checked along its curve, as chords within 1 um of it: the
+// half circles start and end above the shoulder (which ends at X50); the one that dips 5 mm
+// into it on the way is refused, the other is clear chord by chord.
+TEST(ChannelRepositioning, PathGuardChecksASubroutineArcAlongItsCurve) {
+  int refused = 0;
+  for (const char* arc : {"G02", "G03"}) {
+    Shoulder guard;
+    Machine m(WithSubroutine(std::string(".REPOS\nN10 G77 S1=0\nN11 G00 X40 Z5\nN12 G18 ") +
+                             arc + " X50 Z5 R5 F1000\nN13 G77 Z0 F3000\nN14 G77 X0 F3000 RTS\n"));
+    m.channel->SetPathGuard(&guard);
+    InterruptAndJogAway(m);
+    Call(m, true, false);
+    ASSERT_TRUE(m.channel->SetMode(ChannelMode::kAutomatic));
+    m.channel->TakeGuardRecords();
+    m.channel->Start();
+    RunFor(m, 1.5);
+    const auto records = m.channel->TakeGuardRecords();
+    ASSERT_GE(records.size(), 2u) << arc << ": " << m.channel->error();
+    EXPECT_EQ(records[1].move, "REPOS subroutine");
+    if (records[1].stopped) {
+      ++refused;
+      EXPECT_EQ(m.channel->error_number(), kMsgCollision);
+      EXPECT_NEAR(m.X(), 40, 1e-9);  // never started
+      EXPECT_NEAR(m.Z(), 5, 1e-9);
+      continue;
+    }
+    EXPECT_GE(records[1].checks, 78) << arc;  // 15.7 mm in chords of 0.2 mm at most
+    EXPECT_TRUE(records[1].check.clear);
+    EXPECT_NE(m.channel->state(), ChannelState::kError) << m.channel->error();
+  }
+  EXPECT_EQ(refused, 1);
+}
+
 TEST(ChannelRepositioning, SubroutineFromProgram99AndReverseDuringIt) {
   auto main = nc::ParseProgram("N1 G01 X100 F600\nN2 RET\n.HOME\nN90 G00 X0\nN91 RET\n", "p.mtc",
                                nc::Dialect::kMtc200);

@@ -141,6 +141,29 @@ TEST(ToolStorageProgram, ControlResetStopsTheIndex) {
   EXPECT_EQ(m.T(), stopped);
 }
 
+// C-axis manual 2.3: without the process enabling signal the axes come to a standstill, the
+// turret's index among them; it goes on to its station when the signal is back.
+TEST(ToolStorageProgram, RemovingTheProcessEnableBrakesTheIndex) {
+  NcTurretMachine m("N1 T6\nN2 MRY\nN3 RET\n", 0);
+  m.channel->Start();
+  m.RunFor(0.5);  // at 180 deg/s
+  m.channel->SetProcessEnable(false);
+  m.RunFor(0.5);
+  const double stopped = m.T();
+  EXPECT_GT(stopped, 75);  // braked at 720 deg/s^2 (some 22 deg), not stopped dead
+  EXPECT_LT(stopped, 140);
+  m.RunFor(1.0);
+  EXPECT_EQ(m.T(), stopped);
+  // The removal held the program; the index goes on at once, as through a feed hold.
+  EXPECT_EQ(m.channel->state(), ChannelState::kHold);
+  m.channel->SetProcessEnable(true);
+  m.RunFor(2.0);
+  EXPECT_NEAR(m.T(), 150, 1e-9);
+  m.channel->Start();
+  RunToEnd(m);
+  EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+}
+
 // MRY in a block of its own, and MRY with the turret at its station: no wait at all.
 TEST(ToolStorageProgram, MryWithTheTurretInPlaceDoesNotWait) {
   NcTurretMachine m("N1 T3\nN2 MRY\nN3 G01 X10 F6000\nN4 MRY\nN5 RET\n", 60);

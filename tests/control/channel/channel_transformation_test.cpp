@@ -608,22 +608,30 @@ TEST(ChannelTransformation, AnIncrementOfX1RunsToItsEndWhenTheHandwheelIsSelecte
   ExpectStill(m, 0.1);
 }
 
-// Automatic mode selected while X1 brakes or an increment runs: back in manual mode nothing
-// of the jog is left over to move the point on its own.
+// Automatic mode selected while X1 brakes or an increment runs: the point brakes to a stop as
+// it would have (the increment runs to its end), and back in manual mode nothing of the jog is
+// left over to move it on its own.
 TEST(ChannelTransformation, AJogOfX1LeftForAutomaticModeDoesNotGoOnLater) {
   Lathe m(kFaceAtRest);
   FaceInManual(m);
-  (void)JogX1AndLetGo(m);
+  const nc::FictivePoint let_go = JogX1AndLetGo(m);
   ASSERT_TRUE(m.channel->SetMode(ChannelMode::kAutomatic));
-  RunFor(m, 0.01);
+  RunFor(m, 0.001);
+  EXPECT_GT(FaceOf(m).x1, let_go.x1 + 0.02);  // still braking: 40 mm/s at 4000 mm/s^2
+  RunFor(m, 0.02);
   ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  EXPECT_NEAR(FaceOf(m).x1, let_go.x1 + 0.2, 0.02);  // its braking distance
   ExpectStill(m, 0.1);
   m.channel->SetJogMode(static_cast<int>(JogMode::kIncrement1000));
+  const nc::FictivePoint from = FaceOf(m);
   ASSERT_TRUE(m.channel->JogFictive(0, +1));
   RunFor(m, 0.005);
   ASSERT_TRUE(m.channel->SetMode(ChannelMode::kAutomatic));
   RunFor(m, 0.01);
   ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  RunFor(m, 0.1);
+  EXPECT_NEAR(FaceOf(m).x1, from.x1 + 1, 1e-6);
+  EXPECT_NEAR(FaceOf(m).y1, from.y1, 1e-6);
   ExpectStill(m, 0.1);
 }
 
