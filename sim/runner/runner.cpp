@@ -22,13 +22,12 @@
 #include "sim/runner/drive_program.hpp"
 #include "sim/runner/event_snapshots.hpp"
 #include "sim/runner/probe_glue.hpp"
+#include "sim/runner/runner_state.hpp"
 #include "sim/runner/scene_renderer.hpp"
 
 namespace vmt::sim {
 namespace {
 
-// PLC cycles a scan may be overdue before the watchdog stops the PLC.
-constexpr int64_t kPlcWatchdogCycles = 2;
 /// Turned stock slices whose radii differ by less make one cylinder for PathGuard: well below
 /// the cut's allowance, so a merged run never stands above a tool in its cut.
 constexpr double kStockTolerance = 2e-6;
@@ -39,21 +38,6 @@ void Append(std::string& row, double v) {
   std::snprintf(buf, sizeof buf, ",%.6f", v == 0 ? 0.0 : v);  // no "-0.000000"
   row += buf;
 }
-
-class Fnv1a64 {
- public:
-  void Add(const std::string& s) {
-    for (unsigned char c : s) hash_ = (hash_ ^ c) * 0x100000001b3ull;
-  }
-  std::string Hex() const {
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(hash_));
-    return buf;
-  }
-
- private:
-  uint64_t hash_ = 0xcbf29ce484222325ull;
-};
 
 std::string TraceHeader(const MachineModel& m, bool nc) {
   std::string h = "t";
@@ -136,107 +120,6 @@ nlohmann::ordered_json SpindleStatusJson(const control::channel::Channel& ch,
 }
 
 }  // namespace
-
-// Everything a run holds between ticks.
-struct SceneRun::State {
-  State(const Scene& scene, const RunOptions& options);
-  void Step();
-  RunResult Finish();
-  void ReadFieldBus();
-  const control::AmplifierTelegram& Faulted(const control::AmplifierTelegram& raw);
-  void ApplyOutputFaults();
-  void ScanPlc(double t);
-  void StopPlc(double t, const std::string& reason, const std::string& nc_text);
-
-  void emit_trace(const std::string& row) {
-    digest.Add(row);
-    if (writing) trace_file << row;
-  }
-  void emit_event(nlohmann::ordered_json event) {
-    // Times on the tick grid, without binary noise (3.4995, not 3.4995000000000003).
-    event["t"] = std::round(event["t"].get<double>() * 1e6) / 1e6;
-    if (writing) events_file << event.dump() << '\n';
-    NoteSnapshotEvent(event);
-    if (options.on_event) options.on_event(event);
-  }
-  void NoteSnapshotEvent(const nlohmann::ordered_json& event);
-  void TakeSnapshot(const SnapshotSpec& s, const std::string& file, nlohmann::ordered_json event);
-  /// A picture as taken: the joint positions of its tick, what to render, where it goes.
-  struct PendingSnapshot {
-    std::vector<double> joints;
-    const SnapshotSpec* spec;
-    std::string path;
-  };
-  void RenderSnapshot(const PendingSnapshot& shot);
-  void RenderPendingSnapshots();
-  /// RunOptions::snapshots_after_run: the pictures taken, rendered at Finish.
-  std::vector<PendingSnapshot> pending_snapshots;
-
-  const Scene& scene;
-  const RunOptions options;
-  const MachineModel& m;
-  const std::chrono::steady_clock::time_point wall_start = std::chrono::steady_clock::now();
-  std::unique_ptr<MachineBackend> backend;
-  std::unique_ptr<MachinePathGuard> path_guard;  ///< before the channel, which asks it
-  /// The workpiece as turned and the chuck as it sweeps while the spindle turns, for
-  /// PathGuard; its added parts are rebuilt before a check after either changed.
-  std::unique_ptr<StockCutter> cutter;
-  SpindleSweep sweep;
-  bool spindle_turning = false;
-  double spindle_angle = 0;
-  bool guard_parts_stale = false;
-  void FollowSpindle(double t);
-  /// The machine data pages of fast measurement: the channel's MTD(...) and the probe block's
-  /// MTD_RD read and write the same ones.
-  control::measure::MeasuringPages measuring_pages;
-  std::unique_ptr<control::channel::Channel> channel;
-  std::unique_ptr<control::gateway::SignalImage> image;
-  std::unique_ptr<control::gateway::ChannelGateway> gateway;
-  std::unique_ptr<control::plc::PlcRuntime> plc;
-  bool field_bus = false;  ///< the machine's I/O goes through the image (a PLC is there)
-  int64_t plc_every = 16;  ///< drive ticks per PLC cycle
-  std::vector<std::pair<int, int>> plc_inputs, plc_outputs;  // I/O point, signal id
-  std::unique_ptr<ProbeGlue> probe_glue;  ///< the SERCOS side of the PLC's probe block
-  std::unique_ptr<DriveProgram> program;
-  std::vector<double> last_signals;
-  std::vector<int64_t> last_cells;  ///< the image's cells when last_signals was taken
-  control::channel::ChannelState nc_state = control::channel::ChannelState::kIdle;
-  int64_t tick = 0, last_tick = 0, trace_every = 1;
-  bool writing = false, finished = false;
-  std::ofstream trace_file, events_file;
-  Fnv1a64 digest;
-  RunResult result;
-  std::unique_ptr<SceneRenderer> renderer;
-  std::vector<bool> snapped, checked;
-  std::vector<int> event_shots;  ///< per snapshot: occurrences of its event so far
-  /// Event snapshots due at this tick's pictures: snapshot index and occurrence (1, 2, ...).
-  std::vector<std::pair<size_t, int>> pending_shots;
-  std::vector<ExpectationResult> checks;
-  std::vector<ClutchState> clutches, last_clutches;
-  std::vector<int> last_clashes;  ///< clashes of each clutch reported so far
-  std::vector<uint8_t> last_inputs;
-  std::vector<uint32_t> last_faults;  ///< per drive: its fault bits at the last tick
-  std::vector<uint8_t> last_sets;     ///< per drive: its current parameter set at the last tick
-  std::vector<uint8_t> last_latches;  ///< per drive: its probe latched flags at the last tick
-  control::MasterTelegram mdt;
-  std::vector<ProgramEvent> events;
-  control::AmplifierTelegram faulted_at;  ///< the machine as the control sees it, faults applied
-  int64_t plc_overdue = 0;                ///< scans in a row the PLC has missed
-  /// Without a PLC the runner acknowledges the headstock changeover at once, as a PLC does
-  /// when no mechanical changeover is needed (C-axis manual 4.2), reports spindle mode at
-  /// power-on and enables the drives (AxxC.READY); a timeline that writes ROTMOD_Q / SPMOD_Q
-  /// itself turns this off.
-  bool default_headstock_plc = false;
-  void AcknowledgeHeadstock();
-  void StartHeadstockPlc();
-  control::axes::HeadstockMode headstock_mode = control::axes::HeadstockMode::kNone;
-  control::axes::HeadstockMode headstock_target = control::axes::HeadstockMode::kNone;
-  std::string repos_key;         ///< the REPOS screen last emitted (ReposEventKey)
-  control::channel::BlockSearchState block_search_state =
-      control::channel::BlockSearchState::kInactive;
-  size_t block_search_warnings = 0;  ///< warnings of the block search already emitted
-  int plc_client_gone_told = 0;  ///< client_gone steps passed to the callback
-};
 
 SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     : scene(scene_), options(options_), m(*scene_.model) {
@@ -411,62 +294,7 @@ void SceneRun::State::Step() {
   }
   if (field_bus)
     for (const auto& [io, id] : plc_outputs) mdt.outputs[io] = image->Bool(id) ? 1 : 0;
-  if (channel) {
-    const bool nc_cycle = tick % channel->ticks_per_cycle() == 0;
-    if (gateway && nc_cycle && default_headstock_plc) AcknowledgeHeadstock();
-    if (gateway && nc_cycle) gateway->ReadControls(*channel);
-    if (path_guard && nc_cycle) FollowSpindle(t);
-    channel->Tick(at, mdt);
-    if (probe_glue) probe_glue->WriteSetpoints(mdt);
-    if (gateway && nc_cycle) gateway->WriteStatus(*channel, at);
-    if (const auto* hs = channel->headstock(); hs && hs->target() != headstock_target) {
-      // The operator's display: the axis designation of the mode (S1 <-> C, 2.3 position
-      // indication) once the changeover is complete.
-      headstock_target = hs->target();
-      emit_event({{"t", t},
-                  {"event", "headstock"},
-                  {"mode", ToString(hs->mode())},
-                  {"target", ToString(hs->target())}});
-    }
-    if (const auto* hs = channel->headstock(); hs && hs->mode() != headstock_mode) {
-      headstock_mode = hs->mode();
-      // The status indication switches with it: speeds in spindle mode, lines in rotary mode.
-      emit_event({{"t", t},
-                  {"event", "headstock"},
-                  {"mode", ToString(headstock_mode)},
-                  {"axis", channel->HeadstockAxisName()},
-                  {"speeds", channel->spindle_status().speeds_shown ? "shown" : "lines"}});
-    }
-    for (const control::channel::GuardRecord& r : channel->TakeGuardRecords())
-      emit_event(GuardEvent(t, r, m));
-    if (nc_cycle) {
-      // The REPOS screen (repositioning manual 2.2) when its function, status or an adjust
-      // symbol changes.
-      const control::channel::ReposStatus rs = channel->repos_status(&at);
-      std::string key = ReposEventKey(rs);
-      if (key != repos_key) {
-        if (!repos_key.empty() || rs.allowed) emit_event(ReposEvent(t, rs));
-        repos_key = std::move(key);
-      }
-    }
-    if (nc_cycle) {
-      // Block search: its state as the PLC sees it change, and each warning once.
-      const control::channel::BlockSearchStatus& bs = channel->block_search();
-      if (bs.state != block_search_state) {
-        block_search_state = bs.state;
-        emit_event(BlockSearchEvent(t, *channel));
-      }
-      if (bs.warnings.size() < block_search_warnings) block_search_warnings = 0;  // a new run
-      for (; block_search_warnings < bs.warnings.size(); ++block_search_warnings)
-        emit_event(BlockSearchEvent(t, *channel, bs.warnings[block_search_warnings]));
-    }
-    if (channel->state() != nc_state) {
-      nc_state = channel->state();
-      nlohmann::ordered_json e = {{"t", t}, {"event", "nc"}, {"state", ToString(nc_state)}};
-      if (!channel->error().empty()) e["error"] = channel->error();
-      emit_event(e);
-    }
-  }
+  if (channel) StepChannel(t, at);
   for (const ProgramEvent& e : events)
     emit_event({{"t", e.t_s}, {"event", e.kind}, {"text", e.text}});
   if (image) {
@@ -615,158 +443,6 @@ void SceneRun::State::Step() {
     emit_event(StylusOverTravelEvent(o));
   ++tick;
   if (field_bus && tick % plc_every == 0) ReadFieldBus();
-}
-
-// An event snapshot is due for each of the scene's `on:` snapshots of this event that has not
-// reached its limit.
-void SceneRun::State::NoteSnapshotEvent(const nlohmann::ordered_json& event) {
-  if (!options.snapshots) return;
-  const SnapshotEvent kind = SnapshotEventOf(event);
-  if (kind == SnapshotEvent::kNone) return;
-  for (size_t i = 0; i < scene.snapshots.size(); ++i)
-    if (scene.snapshots[i].on == kind && event_shots[i] < scene.snapshots[i].limit)
-      pending_shots.emplace_back(i, ++event_shots[i]);
-}
-
-// The machine as it stands at this tick, written to `file` with its `snapshot` event.
-void SceneRun::State::TakeSnapshot(const SnapshotSpec& s, const std::string& file,
-                                   nlohmann::ordered_json event) {
-  if (!options.snapshots) return;
-  PendingSnapshot shot{backend->JointPositions(), &s, options.out_dir + "/" + file};
-  if (!options.snapshots_after_run)
-    RenderSnapshot(shot);
-  else if (writing)
-    pending_snapshots.push_back(std::move(shot));
-  if (!writing) return;
-  result.snapshot_files.push_back(options.out_dir + "/" + file);
-  event["file"] = file;
-  emit_event(std::move(event));
-}
-
-void SceneRun::State::RenderSnapshot(const PendingSnapshot& shot) {
-  if (!renderer) renderer = std::make_unique<SceneRenderer>(m, scene.workpiece);
-  const SnapshotSpec& s = *shot.spec;
-  const render::Image picture =
-      renderer->Render(shot.joints, *scene.Camera(s.camera), s.width, s.height);
-  if (writing) render::WritePng(shot.path, picture);
-}
-
-void SceneRun::State::RenderPendingSnapshots() {
-  for (const PendingSnapshot& shot : pending_snapshots) RenderSnapshot(shot);
-  pending_snapshots.clear();
-}
-
-// A headstock with a separate C servo needs its clutch switched before the PLC may acknowledge
-// (C-axis manual 4.4): without a PLC of the scene's own, the manual's typical program runs as the
-// machine's PLC for it. It sees every sensor, as a PLC does, and drives the clutch valves alone:
-// the timeline keeps the other valves.
-void SceneRun::State::StartHeadstockPlc() {
-  auto made = control::plc::MakePlcProgram("c_axis_changeover", *image);
-  if (!made) return;
-  plc = std::make_unique<control::plc::PlcRuntime>(*image, std::move(*made),
-                                                   control::plc::PlcTime(plc_every * 250));
-  field_bus = true;
-  default_headstock_plc = false;
-  for (size_t i = 0; i < m.io.size(); ++i) {
-    const std::string& name = m.io[i].name;
-    const int id = image->Find(name);
-    if (id < 0 || m.io[i].key) continue;
-    if (!m.io[i].is_output) {
-      plc_inputs.emplace_back(static_cast<int>(i), id);
-      continue;
-    }
-    if (name != "QROTMODE" && name != "QSPMODE") continue;
-    for (const TimelineStep& step : scene.timeline)
-      if (step.kind == TimelineStep::Kind::kOutput && step.io == static_cast<int>(i))
-        throw std::runtime_error(step.text + ": valve " + name +
-                                 " is switched by the headstock changeover PLC (C-axis manual "
-                                 "4.4) in a scene with an NC and no plc:");
-    plc_outputs.emplace_back(static_cast<int>(i), id);
-  }
-}
-
-void SceneRun::State::AcknowledgeHeadstock() {
-  const control::axes::HeadstockChangeover& hs = *channel->headstock();
-  for (int id = 0; id < image->size(); ++id) {
-    const std::string& pattern = image->table()[id].pattern;
-    if (pattern == "AxxC.READY") image->SetBool(id, true);  // every drive enabled
-    if (pattern == "Axx.ROTMOD_Q") image->SetBool(id, hs.rotmod());
-    if (pattern == "Axx.SPMOD_Q")
-      image->SetBool(
-          id, hs.spmod() || (!hs.busy() && hs.mode() == control::axes::HeadstockMode::kNone));
-  }
-}
-
-// Faults between the machine and the control (timeline `fault:` steps): a stuck sensor reads
-// its stuck level, a faulted drive reports itself not ready.
-const control::AmplifierTelegram& SceneRun::State::Faulted(const control::AmplifierTelegram& raw) {
-  InjectedFaults& f = program->faults();
-  if (!f.any) return raw;
-  faulted_at = raw;
-  for (size_t i = 0; i < f.sensor.size(); ++i)
-    if (f.sensor[i] >= 0) faulted_at.inputs[i] = static_cast<uint8_t>(f.sensor[i]);
-  for (size_t d = 0; d < f.drive.size(); ++d)
-    if (f.drive[d])
-      faulted_at.feedback[d].status &=
-          ~(control::drive_status::kReady | control::drive_status::kEnabled);
-  return faulted_at;
-}
-
-// A stuck valve stays where it is whatever the PLC commands; a faulted drive's power stage is
-// off, so its axis coasts.
-void SceneRun::State::ApplyOutputFaults() {
-  InjectedFaults& f = program->faults();
-  if (!f.any) return;
-  for (size_t i = 0; i < f.valve.size(); ++i)
-    if (f.valve[i] >= 0) mdt.outputs[i] = static_cast<uint8_t>(f.valve[i]);
-  for (size_t d = 0; d < f.drive.size(); ++d)
-    if (f.drive[d]) mdt.setpoints[d] = {control::DriveMode::kOff, 0, 0};
-}
-
-// The PLC scans unless an overrun makes it miss its cycles or its link is gone; after two missed
-// cycles its watchdog stops it (its outputs drop) and the NC stops with "PLC not running".
-// Each NC cycle, before the channel may ask PathGuard: cut the stock where the tools stand and
-// note whether the spindle turns (the chuck is then checked as it sweeps).
-void SceneRun::State::FollowSpindle(double t) {
-  const std::vector<double> q = backend->JointPositions();
-  if (cutter && cutter->Cut(q, t)) guard_parts_stale = true;
-  if (sweep.joint < 0) return;
-  const double cycle_s = channel->ticks_per_cycle() * kDriveTickS;
-  const bool turning = std::abs(q[sweep.joint] - spindle_angle) >= kTurningSpeedRadS * cycle_s;
-  spindle_angle = q[sweep.joint];
-  if (turning != spindle_turning) guard_parts_stale = true;
-  spindle_turning = turning;
-}
-
-void SceneRun::State::ScanPlc(double t) {
-  InjectedFaults& f = program->faults();
-  if (plc->stopped()) return;
-  if (f.plc_missed_scans > 0 || f.plc_client_gone > 0) {
-    if (f.plc_missed_scans > 0) --f.plc_missed_scans;
-    if (++plc_overdue > kPlcWatchdogCycles)
-      StopPlc(
-          t, "watchdog",
-          "PLC watchdog: " + std::to_string(plc_overdue) + " scans missed, the PLC has stopped");
-    return;
-  }
-  plc_overdue = 0;
-  plc->Scan();
-}
-
-// The reaction of the manuals to a PLC that is no longer there, whoever notices it: its outputs
-// drop, the NC stops at once with message 505, and the event records why.
-void SceneRun::State::StopPlc(double t, const std::string& reason, const std::string& nc_text) {
-  if (plc)
-    plc->Stop();
-  else if (image)
-    control::plc::DropPlcOutputs(*image);
-  if (channel) channel->MachineFault(nc_text, control::channel::kMsgPlcFault);
-  emit_event({{"t", t}, {"event", "plc"}, {"state", "stopped"}, {"reason", reason}});
-}
-
-void SceneRun::State::ReadFieldBus() {
-  const control::AmplifierTelegram& at = Faulted(backend->Read());
-  for (const auto& [io, id] : plc_inputs) image->SetBool(id, at.inputs[io] != 0);
 }
 
 RunResult SceneRun::State::Finish() {

@@ -1,0 +1,79 @@
+// The NC channel's part of a scene run's tick: the gateway's controls in, PathGuard's view of
+// the stock, the channel's cycle, the gateway's status out, and the events of what changed.
+#include "sim/runner/channel_events.hpp"
+#include "sim/runner/runner_state.hpp"
+
+namespace vmt::sim {
+
+// Each NC cycle, before the channel may ask PathGuard: cut the stock where the tools stand and
+// note whether the spindle turns (the chuck is then checked as it sweeps).
+void SceneRun::State::FollowSpindle(double t) {
+  const std::vector<double> q = backend->JointPositions();
+  if (cutter && cutter->Cut(q, t)) guard_parts_stale = true;
+  if (sweep.joint < 0) return;
+  const double cycle_s = channel->ticks_per_cycle() * kDriveTickS;
+  const bool turning = std::abs(q[sweep.joint] - spindle_angle) >= kTurningSpeedRadS * cycle_s;
+  spindle_angle = q[sweep.joint];
+  if (turning != spindle_turning) guard_parts_stale = true;
+  spindle_turning = turning;
+}
+
+void SceneRun::State::StepChannel(double t, const control::AmplifierTelegram& at) {
+  const bool nc_cycle = tick % channel->ticks_per_cycle() == 0;
+  if (gateway && nc_cycle && default_headstock_plc) AcknowledgeHeadstock();
+  if (gateway && nc_cycle) gateway->ReadControls(*channel);
+  if (path_guard && nc_cycle) FollowSpindle(t);
+  channel->Tick(at, mdt);
+  if (probe_glue) probe_glue->WriteSetpoints(mdt);
+  if (gateway && nc_cycle) gateway->WriteStatus(*channel, at);
+  if (const auto* hs = channel->headstock(); hs && hs->target() != headstock_target) {
+    // The operator's display: the axis designation of the mode (S1 <-> C, 2.3 position
+    // indication) once the changeover is complete.
+    headstock_target = hs->target();
+    emit_event({{"t", t},
+                {"event", "headstock"},
+                {"mode", ToString(hs->mode())},
+                {"target", ToString(hs->target())}});
+  }
+  if (const auto* hs = channel->headstock(); hs && hs->mode() != headstock_mode) {
+    headstock_mode = hs->mode();
+    // The status indication switches with it: speeds in spindle mode, lines in rotary mode.
+    emit_event({{"t", t},
+                {"event", "headstock"},
+                {"mode", ToString(headstock_mode)},
+                {"axis", channel->HeadstockAxisName()},
+                {"speeds", channel->spindle_status().speeds_shown ? "shown" : "lines"}});
+  }
+  for (const control::channel::GuardRecord& r : channel->TakeGuardRecords())
+    emit_event(GuardEvent(t, r, m));
+  if (nc_cycle) {
+    // The REPOS screen (repositioning manual 2.2) when its function, status or an adjust
+    // symbol changes.
+    const control::channel::ReposStatus rs = channel->repos_status(&at);
+    std::string key = ReposEventKey(rs);
+    if (key != repos_key) {
+      if (!repos_key.empty() || rs.allowed) emit_event(ReposEvent(t, rs));
+      repos_key = std::move(key);
+    }
+  }
+  if (nc_cycle) {
+    // Block search: its state as the PLC sees it change, and each warning once.
+    const control::channel::BlockSearchStatus& bs = channel->block_search();
+    if (bs.state != block_search_state) {
+      block_search_state = bs.state;
+      emit_event(BlockSearchEvent(t, *channel));
+    }
+    if (bs.warnings.size() < block_search_warnings) block_search_warnings = 0;  // a new run
+    for (; block_search_warnings < bs.warnings.size(); ++block_search_warnings)
+      emit_event(BlockSearchEvent(t, *channel, bs.warnings[block_search_warnings]));
+  }
+  if (channel->state() != nc_state) {
+    nc_state = channel->state();
+    nlohmann::ordered_json e = {{"t", t}, {"event", "nc"}, {"state", ToString(nc_state)}};
+    if (!channel->error().empty()) e["error"] = channel->error();
+    emit_event(e);
+  }
+
+}
+
+}  // namespace vmt::sim

@@ -1,0 +1,47 @@
+// Pictures of a scene run: at a time or on an event, rendered at once or after the run.
+#include "render/image.hpp"
+#include "sim/runner/event_snapshots.hpp"
+#include "sim/runner/runner_state.hpp"
+
+namespace vmt::sim {
+
+// An event snapshot is due for each of the scene's `on:` snapshots of this event that has not
+// reached its limit.
+void SceneRun::State::NoteSnapshotEvent(const nlohmann::ordered_json& event) {
+  if (!options.snapshots) return;
+  const SnapshotEvent kind = SnapshotEventOf(event);
+  if (kind == SnapshotEvent::kNone) return;
+  for (size_t i = 0; i < scene.snapshots.size(); ++i)
+    if (scene.snapshots[i].on == kind && event_shots[i] < scene.snapshots[i].limit)
+      pending_shots.emplace_back(i, ++event_shots[i]);
+}
+
+// The machine as it stands at this tick, written to `file` with its `snapshot` event.
+void SceneRun::State::TakeSnapshot(const SnapshotSpec& s, const std::string& file,
+                                   nlohmann::ordered_json event) {
+  if (!options.snapshots) return;
+  PendingSnapshot shot{backend->JointPositions(), &s, options.out_dir + "/" + file};
+  if (!options.snapshots_after_run)
+    RenderSnapshot(shot);
+  else if (writing)
+    pending_snapshots.push_back(std::move(shot));
+  if (!writing) return;
+  result.snapshot_files.push_back(options.out_dir + "/" + file);
+  event["file"] = file;
+  emit_event(std::move(event));
+}
+
+void SceneRun::State::RenderSnapshot(const PendingSnapshot& shot) {
+  if (!renderer) renderer = std::make_unique<SceneRenderer>(m, scene.workpiece);
+  const SnapshotSpec& s = *shot.spec;
+  const render::Image picture =
+      renderer->Render(shot.joints, *scene.Camera(s.camera), s.width, s.height);
+  if (writing) render::WritePng(shot.path, picture);
+}
+
+void SceneRun::State::RenderPendingSnapshots() {
+  for (const PendingSnapshot& shot : pending_snapshots) RenderSnapshot(shot);
+  pending_snapshots.clear();
+}
+
+}  // namespace vmt::sim

@@ -1,0 +1,148 @@
+#pragma once
+// What a scene run holds between ticks (SceneRun::State): private to sim/runner/, whose files
+// each take one part of a tick - runner.cpp the tick and the run's end, runner_channel.cpp the
+// NC channel's part, runner_plc.cpp the PLC and the field bus, runner_snapshots.cpp pictures.
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "control/gateway/channel_gateway.hpp"
+#include "control/plc/plc_runtime.hpp"
+#include "sim/collision/machine_path_guard.hpp"
+#include "sim/collision/spindle_sweep.hpp"
+#include "sim/collision/stock_cutter.hpp"
+#include "sim/runner/drive_program.hpp"
+#include "sim/runner/probe_glue.hpp"
+#include "sim/runner/runner.hpp"
+#include "sim/runner/scene_renderer.hpp"
+
+namespace vmt::sim {
+
+/// The trace's digest: same scene, same bytes, same digest.
+class Fnv1a64 {
+ public:
+  void Add(const std::string& s) {
+    for (unsigned char c : s) hash_ = (hash_ ^ c) * 0x100000001b3ull;
+  }
+  std::string Hex() const {
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(hash_));
+    return buf;
+  }
+
+ private:
+  uint64_t hash_ = 0xcbf29ce484222325ull;
+};
+
+// Everything a run holds between ticks.
+struct SceneRun::State {
+  State(const Scene& scene, const RunOptions& options);
+  void Step();
+  RunResult Finish();
+  void ReadFieldBus();
+  const control::AmplifierTelegram& Faulted(const control::AmplifierTelegram& raw);
+  void ApplyOutputFaults();
+  void ScanPlc(double t);
+  /// The channel's NC cycle work of a tick: gateway, PathGuard's stock, the channel, events.
+  void StepChannel(double t, const control::AmplifierTelegram& at);
+  void StopPlc(double t, const std::string& reason, const std::string& nc_text);
+
+  void emit_trace(const std::string& row) {
+    digest.Add(row);
+    if (writing) trace_file << row;
+  }
+  void emit_event(nlohmann::ordered_json event) {
+    // Times on the tick grid, without binary noise (3.4995, not 3.4995000000000003).
+    event["t"] = std::round(event["t"].get<double>() * 1e6) / 1e6;
+    if (writing) events_file << event.dump() << '\n';
+    NoteSnapshotEvent(event);
+    if (options.on_event) options.on_event(event);
+  }
+  void NoteSnapshotEvent(const nlohmann::ordered_json& event);
+  void TakeSnapshot(const SnapshotSpec& s, const std::string& file, nlohmann::ordered_json event);
+  /// A picture as taken: the joint positions of its tick, what to render, where it goes.
+  struct PendingSnapshot {
+    std::vector<double> joints;
+    const SnapshotSpec* spec;
+    std::string path;
+  };
+  void RenderSnapshot(const PendingSnapshot& shot);
+  void RenderPendingSnapshots();
+  /// RunOptions::snapshots_after_run: the pictures taken, rendered at Finish.
+  std::vector<PendingSnapshot> pending_snapshots;
+
+  const Scene& scene;
+  const RunOptions options;
+  const MachineModel& m;
+  const std::chrono::steady_clock::time_point wall_start = std::chrono::steady_clock::now();
+  std::unique_ptr<MachineBackend> backend;
+  std::unique_ptr<MachinePathGuard> path_guard;  ///< before the channel, which asks it
+  /// The workpiece as turned and the chuck as it sweeps while the spindle turns, for
+  /// PathGuard; its added parts are rebuilt before a check after either changed.
+  std::unique_ptr<StockCutter> cutter;
+  SpindleSweep sweep;
+  bool spindle_turning = false;
+  double spindle_angle = 0;
+  bool guard_parts_stale = false;
+  void FollowSpindle(double t);
+  /// The machine data pages of fast measurement: the channel's MTD(...) and the probe block's
+  /// MTD_RD read and write the same ones.
+  control::measure::MeasuringPages measuring_pages;
+  std::unique_ptr<control::channel::Channel> channel;
+  std::unique_ptr<control::gateway::SignalImage> image;
+  std::unique_ptr<control::gateway::ChannelGateway> gateway;
+  std::unique_ptr<control::plc::PlcRuntime> plc;
+  bool field_bus = false;  ///< the machine's I/O goes through the image (a PLC is there)
+  int64_t plc_every = 16;  ///< drive ticks per PLC cycle
+  std::vector<std::pair<int, int>> plc_inputs, plc_outputs;  // I/O point, signal id
+  std::unique_ptr<ProbeGlue> probe_glue;  ///< the SERCOS side of the PLC's probe block
+  std::unique_ptr<DriveProgram> program;
+  std::vector<double> last_signals;
+  std::vector<int64_t> last_cells;  ///< the image's cells when last_signals was taken
+  control::channel::ChannelState nc_state = control::channel::ChannelState::kIdle;
+  int64_t tick = 0, last_tick = 0, trace_every = 1;
+  bool writing = false, finished = false;
+  std::ofstream trace_file, events_file;
+  Fnv1a64 digest;
+  RunResult result;
+  std::unique_ptr<SceneRenderer> renderer;
+  std::vector<bool> snapped, checked;
+  std::vector<int> event_shots;  ///< per snapshot: occurrences of its event so far
+  /// Event snapshots due at this tick's pictures: snapshot index and occurrence (1, 2, ...).
+  std::vector<std::pair<size_t, int>> pending_shots;
+  std::vector<ExpectationResult> checks;
+  std::vector<ClutchState> clutches, last_clutches;
+  std::vector<int> last_clashes;  ///< clashes of each clutch reported so far
+  std::vector<uint8_t> last_inputs;
+  std::vector<uint32_t> last_faults;  ///< per drive: its fault bits at the last tick
+  std::vector<uint8_t> last_sets;     ///< per drive: its current parameter set at the last tick
+  std::vector<uint8_t> last_latches;  ///< per drive: its probe latched flags at the last tick
+  control::MasterTelegram mdt;
+  std::vector<ProgramEvent> events;
+  control::AmplifierTelegram faulted_at;  ///< the machine as the control sees it, faults applied
+  int64_t plc_overdue = 0;                ///< scans in a row the PLC has missed
+  /// Without a PLC the runner acknowledges the headstock changeover at once, as a PLC does
+  /// when no mechanical changeover is needed (C-axis manual 4.2), reports spindle mode at
+  /// power-on and enables the drives (AxxC.READY); a timeline that writes ROTMOD_Q / SPMOD_Q
+  /// itself turns this off.
+  bool default_headstock_plc = false;
+  void AcknowledgeHeadstock();
+  void StartHeadstockPlc();
+  control::axes::HeadstockMode headstock_mode = control::axes::HeadstockMode::kNone;
+  control::axes::HeadstockMode headstock_target = control::axes::HeadstockMode::kNone;
+  std::string repos_key;         ///< the REPOS screen last emitted (ReposEventKey)
+  control::channel::BlockSearchState block_search_state =
+      control::channel::BlockSearchState::kInactive;
+  size_t block_search_warnings = 0;  ///< warnings of the block search already emitted
+  int plc_client_gone_told = 0;  ///< client_gone steps passed to the callback
+};
+
+}  // namespace vmt::sim
