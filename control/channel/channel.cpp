@@ -364,7 +364,36 @@ void Channel::Reset() {
   }
 }
 
+void Channel::FollowAxesOf(const Channel& holder) {
+  if (!output_suspended_ || !holding_positions_ || !holder.holding_positions_) return;
+  for (size_t a = 0; a < config_.axes.size(); ++a) {
+    if (!Lent(a)) continue;
+    for (size_t h = 0; h < holder.config_.axes.size(); ++h)
+      if (holder.config_.axes[h].drive == config_.axes[a].drive)
+        commanded_[a] = previous_[a] = holder.commanded_[h];
+  }
+}
+
+bool Channel::AxesAtRest() const {
+  // A block held by a feed hold stands as well as one that has ended: no axis moved in the
+  // last NC cycle (a jog may stand for a cycle as it turns round).
+  if (JogsMoving()) return false;
+  for (size_t a = 0; a < commanded_.size(); ++a)
+    if (commanded_[a] != previous_[a]) return false;
+  return true;
+}
+
 void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
+  // Block search 4.2.1: the axes change hands at standstill only.
+  if (const bool suspend = suspend_requested_ || axes_elsewhere_;
+      suspend != output_suspended_ && AxesAtRest()) {
+    output_suspended_ = suspend;
+    // A held program whose axes go to the other channel is left as in manual mode (REPOS 2.1):
+    // where it was interrupted is the contour to come back to. Block search has no contour yet.
+    if (suspend && state_ == ChannelState::kHold && interpreter_ && !interruption_ &&
+        !repos_run_ && bs_state_ == BlockSearchState::kInactive)
+      CaptureInterruption();
+  }
   if (headstock_ && !headstock_known_) HeadstockPowerOn();
   if (trip_reset_pending_) CollectTrips(at);
   if (take_over_pending_ && !holding_positions_) {
@@ -405,7 +434,9 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
     for (size_t d = 0; d < at.feedback.size(); ++d) drive_positions_[d] = at.feedback[d].position;
     ToolStorageCycle(dt);
     if (ToolStorageArrived()) tool_storage_wait_ = false;
-    if (mode_ == ChannelMode::kManual) {
+    if (output_suspended_) {
+      SearchCycle(at);  // 4.2.1: the search decodes on while the axes are lent; the rest waits
+    } else if (mode_ == ChannelMode::kManual) {
       Jogging(dt);
     } else if (JogsMoving()) {
       Jogging(dt);  // a jog left for this mode brakes to rest first; a start waits for it
@@ -792,9 +823,11 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
     return true;
   }
   // Issue 6: the REPOS subroutine's moves are approach moves, checked whole before they start
-  // as G77's are (its blocks are reached at rest for that: LookAhead). The program's own cuts
-  // are not: the stock is theirs to cut.
-  if (repos_run_ && !GuardBlockMove("REPOS subroutine")) return false;
+  // as G77's are (its blocks are reached at rest for that: LookAhead), and so are a JogOfPath
+  // channel's. The program's own cuts are not: the stock is theirs to cut.
+  if ((repos_run_ || config_.approach_program) &&
+      !GuardBlockMove(repos_run_ ? "REPOS subroutine" : "JogOfPath"))
+    return false;
   profile_.max_rate = motion_.max_rate;
   profile_.max_accel = motion_.max_accel;
   profile_.max_jerk = motion_.max_jerk;

@@ -80,6 +80,12 @@ struct ChannelConfig {
   /// k at the work). With tool_storage_nc, a T word indexes the turret to its station (REPOS
   /// manual 4.2: asynchronously to the other axes); 0: T words do not index it.
   int tool_storage_stations = 0;
+  /// A JogOfPath channel (jog_of_path.hpp): its axis output is suspended from the start, until
+  /// the block search channel's axes are handed to it.
+  bool output_suspended_at_start = false;
+  /// Every programmed move is an approach move, checked by PathGuard before it starts as the
+  /// REPOS subroutine's are: the JogOfPath channel's manual return to the contour.
+  bool approach_program = false;
 };
 
 /// One PathGuard check the channel made: which move, from where to where (per drive), and the
@@ -288,6 +294,23 @@ class Channel {
   /// Offset > 0 ist Rückwärtsfahren nicht möglich"), during repositioning, or across a block
   /// it cannot travel back (G74, G33/G63/G64, measuring, G31: the path memory starts after it).
   void SetBackward(bool on) { replay_.backward_requested = on; }
+  /// HLI.channel.SuspendAxisOutput (block search 4.2.1): the PLC lends the channel's feed axes
+  /// to its JogOfPath channel (jog_of_path.hpp). While the output is suspended the channel
+  /// follows where the other channel commands them (FollowAxesOf: its setpoints are that
+  /// channel's, which writes after it) and moves none of them itself; block search
+  /// decodes on, and every motion of its own (the return to the contour too) waits for the axes
+  /// to come back. The change is taken at standstill, both ways ("grundsätzlich im Stillstand
+  /// der Achsen"). The rotary axis of a headstock rides on the spindle and is never lent.
+  void SetSuspendOutput(bool on) { suspend_requested_ = on; }
+  /// Another channel still holds the axes: the output stays suspended until it gives them back.
+  void SetAxesElsewhere(bool on) { axes_elsewhere_ = on; }
+  bool suspend_output_requested() const { return suspend_requested_; }
+  bool output_suspended() const { return output_suspended_; }
+  /// While the output is suspended: the lent axes stand where `holder` commands them, and the
+  /// channel goes on from there without a step when they come back.
+  void FollowAxesOf(const Channel& holder);
+  /// No axis of the channel moved in the last NC cycle and no jog is under way.
+  bool AxesAtRest() const;
   /// The axes stand (or move) on the path behind the interruption point.
   bool travelling_back() const { return replay_.away; }
   /// Blocks of the path memory behind the axes while travelling back (0 at the interruption
@@ -332,6 +355,7 @@ class Channel {
   double position(size_t axis) const { return commanded_[axis]; }
   /// The channel has taken its axes over (the first start or jog): it commands their setpoints.
   bool holds_positions() const { return holding_positions_; }
+  const ChannelConfig& config() const { return config_; }
   /// Source line of the block in work, 0 when none.
   uint32_t line() const;
 
@@ -394,6 +418,12 @@ class Channel {
   bool holding_positions_ = false;  ///< once started, the channel owns its axes' setpoints
   bool start_pending_ = false;
   bool start_deferred_ = false;  ///< started while a jog left for this mode still brakes
+  bool suspend_requested_ = config_.output_suspended_at_start, axes_elsewhere_ = false;
+  bool output_suspended_ = config_.output_suspended_at_start;
+  /// The output is suspended and `axis` is one the JogOfPath channel takes.
+  bool Lent(size_t axis) const {
+    return output_suspended_ && !(headstock_ && static_cast<int>(axis) == config_.rotary_axis);
+  }
   bool take_over_pending_ = false;  ///< own the axes' setpoints from the next tick on
   void Jogging(double dt);
   // Jogging X1/Y1 under G31 (channel_fictive_jog.cpp).

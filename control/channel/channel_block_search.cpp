@@ -116,6 +116,10 @@ bool Channel::SearchCycle(const AmplifierTelegram& at) {
   BlockSearchRun& s = *search_;
   // Technology functions of the search wait for the PLC as in a normal run (2, 7).
   if (!aux_output_.empty()) return true;
+  // 4.2.1: from the return on the search moves axes; lent to the JogOfPath channel, they must
+  // come back first ("Vor dem Weiterfahren des Satzvorlaufkanals wird die Kanal-Ausgabe wieder
+  // auf den Satzvorlaufkanal umgeschaltet").
+  if (output_suspended_ && bs_state_ >= BlockSearchState::kWaitReturnToContour) return true;
   switch (bs_state_) {
     case BlockSearchState::kWaitForPlcOn:
       // 7: with enable_w the NC asks and waits for the PLC's acknowledgement.

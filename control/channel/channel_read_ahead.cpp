@@ -304,9 +304,9 @@ void Channel::LookAhead(const AmplifierTelegram& at) {
   };
   continuation_ready_ = false;
   targets_.clear();
-  // The REPOS subroutine's blocks start at rest: PathGuard may refuse each before it moves.
+  // The blocks of approach moves start at rest: PathGuard may refuse each before it moves.
   if (single_block_ || state_ != ChannelState::kRunning || !feed_move(block_.motion) ||
-      block_.end || homing_ || !motion_.moves || repos_run_)
+      block_.end || homing_ || !motion_.moves || repos_run_ || config_.approach_program)
     return;
   const double cycle_s = config_.tick_s * config_.ticks_per_cycle;
   const double speed = motion_.max_rate * motion_.length;

@@ -157,6 +157,13 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
     b.enable = Id(lc + "enable_w");
     b.backward_w = Id(prefix_ + ".backward_motion_w");
     b.backward_r = Id(st + "backward_motion_r");
+    b.suspend_w = Id(prefix_ + ".suspend_axis_output_w");
+    b.suspended_r = Id(st + "axis_output_suspended_r");
+    const std::string jop = prefix_ + ".jog_of_path.";
+    b.jop_start_w = Id(jop + "start_w");
+    b.jop_stop_w = Id(jop + "stop_w");
+    b.jop_state_r = Id(jop + "state_r");
+    b.jop_output_r = Id(jop + "axis_output_r");
   }
   // Q functions the table knows: Pxx.Qnnnn out, Pxx.Qnnnn_Q acknowledgement.
   const std::string q = prefix_ + ".Q";
@@ -407,6 +414,21 @@ void ChannelGateway::ReadBlockSearch(channel::Channel& ch) {
   ch.SetBlockSearch(p);
   ch.SetBlockSearchPlc(Number(b.enable) != 0, Number(b.plc_state) != 0);
   ch.SetBackward(Number(b.backward_w) != 0);
+  ch.SetSuspendOutput(Number(b.suspend_w) != 0);
+}
+
+void ChannelGateway::ReadJogOfPath(channel::Channel& jog_of_path) {
+  BlockSearch& b = bs_;
+  const bool start = Number(b.jop_start_w) != 0, stop = Number(b.jop_stop_w) != 0;
+  if (stop && !b.jop_stop) jog_of_path.Stop();
+  if (start && !b.jop_start) jog_of_path.Start();
+  b.jop_start = start;
+  b.jop_stop = stop;
+}
+
+void ChannelGateway::WriteJogOfPath(const channel::Channel& jog_of_path) {
+  SetNumber(bs_.jop_state_r, static_cast<double>(jog_of_path.state()));
+  SetNumber(bs_.jop_output_r, !jog_of_path.output_suspended());
 }
 
 void ChannelGateway::WriteBlockSearch(const channel::Channel& ch) {
@@ -445,6 +467,7 @@ void ChannelGateway::WriteBlockSearch(const channel::Channel& ch) {
   SetNumber(b.stop_conditions, static_cast<int32_t>(st.stop_conditions));
   SetNumber(b.command, st.command);
   SetNumber(b.backward_r, ch.travelling_back());
+  SetNumber(b.suspended_r, ch.output_suspended());
 }
 
 }  // namespace vmt::control::gateway

@@ -30,6 +30,10 @@ class ChannelGateway {
   void ReadControls(channel::Channel& channel);
   /// NC -> PLC: the channel's and the drives' state into the image.
   void WriteStatus(const channel::Channel& channel, const AmplifierTelegram& at);
+  /// The JogOfPath channel (block search 4.2.1) beside `channel`: Pxx.jog_of_path.* start and
+  /// hold its program, and report its state and whether it holds the axes.
+  void ReadJogOfPath(channel::Channel& jog_of_path);
+  void WriteJogOfPath(const channel::Channel& jog_of_path);
 
   /// Event n (Pxx.EVn): set by the PLC or by the program's SE/RE, tested by BES/BEC. Events the
   /// table does not list live here only (the PLC cannot see them).
@@ -94,6 +98,9 @@ class ChannelGateway {
         path_deviation = -1, stop_conditions = -1, distance_object = -1;
     int command = -1, plc_state = -1, enable = -1;
     int backward_w = -1, backward_r = -1;  ///< backward travel (4.3), vmt's names
+    int suspend_w = -1, suspended_r = -1;  ///< HLI.channel.SuspendAxisOutput (4.2.1)
+    int jop_start_w = -1, jop_stop_w = -1, jop_state_r = -1, jop_output_r = -1;  ///< vmt's
+    bool jop_start = false, jop_stop = false;  ///< the levels last seen, for their edges
   } bs_;
   /// Any signal as a number (BOOL 0/1, integers, REAL/LREAL); 0 for a missing one.
   double Number(int id) const;

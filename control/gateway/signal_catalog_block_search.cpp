@@ -179,6 +179,29 @@ constexpr SignalFamily kFamilies[] = {
     {"Pxx.bahn_state.backward_motion_r", kProcess, kBool, kNcToPlc,
      "Backward travel: the axes stand or move on the path behind the interruption point",
      "vmt (backward travel: " BSRCH "4.3)"},
+    // The manual return through a JogOfPath channel (4.2.1): the manual names the HLI element
+    // that lends the axes (HLI.channel.SuspendAxisOutput); the JogOfPath channel's own controls
+    // are its HLI channel's (FCT-C15), which vmt does not carry: these names are vmt's.
+    {"Pxx.suspend_axis_output_w", kProcess, kBool, kPlcToNc,
+     "Suspend the channel's axis output: its feed axes go to the JogOfPath channel (taken at "
+     "standstill); block search decodes on, its return to the contour waits until they are back",
+     BSRCH "4.2.1", "", "HLI.channel.SuspendAxisOutput"},
+    {"Pxx.bahn_state.axis_output_suspended_r", kProcess, kBool, kNcToPlc,
+     "The channel's axis output is suspended: its feed axes are with the JogOfPath channel",
+     "vmt (JogOfPath: " BSRCH "4.2.1)"},
+    {"Pxx.jog_of_path.start_w", kProcess, kBool, kPlcToNc,
+     "JogOfPath channel: a rising edge starts its program (the manual return to the contour); "
+     "it moves the axes only while the channel's axis output is suspended",
+     "vmt (JogOfPath: " BSRCH "4.2.1)"},
+    {"Pxx.jog_of_path.stop_w", kProcess, kBool, kPlcToNc,
+     "JogOfPath channel: a rising edge holds its program (feed hold)",
+     "vmt (JogOfPath: " BSRCH "4.2.1)"},
+    {"Pxx.jog_of_path.state_r", kProcess, kInt, kNcToPlc,
+     "JogOfPath channel: 0 idle, 1 running, 2 held, 3 program ended, 4 error",
+     "vmt (JogOfPath: " BSRCH "4.2.1)"},
+    {"Pxx.jog_of_path.axis_output_r", kProcess, kBool, kNcToPlc,
+     "JogOfPath channel: it holds the axes (HLI.JogOfPathChannel.SuspendOutput = FALSE)",
+     "vmt (JogOfPath: " BSRCH "4.2.1)"},
     {"Pxx.bahn_state.stop_conditions_r", kProcess, kDint, kNcToPlc,
      "Stop conditions: why the current motion is held (HLI_SC_* bits)", BSRCH "5.6; 5.6.1", "",
      "StateBahn_Data.D_StopConditions"},

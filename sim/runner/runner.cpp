@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <utility>
 
+#include "control/channel/jog_of_path.hpp"
 #include "control/gateway/channel_gateway.hpp"
 #include "control/plc/plc_programs.hpp"
 #include "control/plc/plc_runtime.hpp"
@@ -161,6 +162,12 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     config.tool_storage_nc = scene.nc.tool_storage_nc;
     channel = std::make_unique<control::channel::Channel>(config, programs);
     channel->SetFeedOverride(scene.nc.override);
+    if (scene.nc.jog_of_path) {
+      jog_of_path = std::make_unique<control::channel::Channel>(
+          control::channel::JogOfPathConfig(config),
+          std::vector<const control::nc::Program*>{&scene.nc.jog_of_path->program});
+      jog_of_path->SetFeedOverride(scene.nc.override);
+    }
     measuring_pages = scene.nc.measuring_pages;
     channel->SetMeasuringPages(&measuring_pages);
     if (config.path_guard != control::GuardReaction::kOff) {
@@ -186,6 +193,7 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
         guard_parts_stale = false;
       };
       channel->SetPathGuard(path_guard.get());
+      if (jog_of_path) jog_of_path->SetPathGuard(path_guard.get());
     }
   }
   // The gateway: the channel reads its control signals and writes its status each NC cycle.

@@ -1,5 +1,6 @@
 // The NC channel's part of a scene run's tick: the gateway's controls in, PathGuard's view of
 // the stock, the channel's cycle, the gateway's status out, and the events of what changed.
+#include "control/channel/jog_of_path.hpp"
 #include "sim/runner/channel_events.hpp"
 #include "sim/runner/runner_state.hpp"
 
@@ -22,10 +23,18 @@ void SceneRun::State::StepChannel(double t, const control::AmplifierTelegram& at
   const bool nc_cycle = tick % channel->ticks_per_cycle() == 0;
   if (gateway && nc_cycle && default_headstock_plc) AcknowledgeHeadstock();
   if (gateway && nc_cycle) gateway->ReadControls(*channel);
+  if (jog_of_path && gateway && nc_cycle) gateway->ReadJogOfPath(*jog_of_path);
+  if (jog_of_path && nc_cycle) control::channel::HandOverAxes(*channel, *jog_of_path);
   if (path_guard && nc_cycle) FollowSpindle(t);
+  // The channel holding the axes writes their setpoints last; the other holds them where the
+  // holder commanded them, which also covers the cycle in which both have let them go.
+  const bool jog_of_path_holds = jog_of_path && !jog_of_path->output_suspended();
+  if (jog_of_path && !jog_of_path_holds) jog_of_path->Tick(at, mdt);
   channel->Tick(at, mdt);
+  if (jog_of_path_holds) jog_of_path->Tick(at, mdt);
   if (probe_glue) probe_glue->WriteSetpoints(mdt);
   if (gateway && nc_cycle) gateway->WriteStatus(*channel, at);
+  if (jog_of_path && gateway && nc_cycle) gateway->WriteJogOfPath(*jog_of_path);
   if (const auto* hs = channel->headstock(); hs && hs->target() != headstock_target) {
     // The operator's display: the axis designation of the mode (S1 <-> C, 2.3 position
     // indication) once the changeover is complete.
@@ -46,6 +55,22 @@ void SceneRun::State::StepChannel(double t, const control::AmplifierTelegram& at
   }
   for (const control::channel::GuardRecord& r : channel->TakeGuardRecords())
     emit_event(GuardEvent(t, r, m));
+  if (jog_of_path) {
+    for (const control::channel::GuardRecord& r : jog_of_path->TakeGuardRecords()) {
+      nlohmann::ordered_json e = GuardEvent(t, r, m);
+      e["channel"] = "jog_of_path";
+      emit_event(e);
+    }
+    if (jog_of_path->state() != jog_of_path_state) {
+      jog_of_path_state = jog_of_path->state();
+      nlohmann::ordered_json e = {{"t", t},
+                                  {"event", "nc"},
+                                  {"channel", "jog_of_path"},
+                                  {"state", ToString(jog_of_path_state)}};
+      if (!jog_of_path->error().empty()) e["error"] = jog_of_path->error();
+      emit_event(e);
+    }
+  }
   if (nc_cycle) {
     // The REPOS screen (repositioning manual 2.2) when its function, status or an adjust
     // symbol changes.
@@ -73,7 +98,6 @@ void SceneRun::State::StepChannel(double t, const control::AmplifierTelegram& at
     if (!channel->error().empty()) e["error"] = channel->error();
     emit_event(e);
   }
-
 }
 
 }  // namespace vmt::sim

@@ -97,6 +97,10 @@ struct SceneRun::State {
   /// MTD_RD read and write the same ones.
   control::measure::MeasuringPages measuring_pages;
   std::unique_ptr<control::channel::Channel> channel;
+  /// The JogOfPath channel of `nc: jog_of_path:` (block search 4.2.1): on the channel's feed
+  /// axes while the PLC lends them; its events are the channel's, tagged "jog_of_path".
+  std::unique_ptr<control::channel::Channel> jog_of_path;
+  control::channel::ChannelState jog_of_path_state = control::channel::ChannelState::kIdle;
   std::unique_ptr<control::gateway::SignalImage> image;
   std::unique_ptr<control::gateway::ChannelGateway> gateway;
   std::unique_ptr<control::plc::PlcRuntime> plc;
@@ -138,11 +142,11 @@ struct SceneRun::State {
   void StartHeadstockPlc();
   control::axes::HeadstockMode headstock_mode = control::axes::HeadstockMode::kNone;
   control::axes::HeadstockMode headstock_target = control::axes::HeadstockMode::kNone;
-  std::string repos_key;         ///< the REPOS screen last emitted (ReposEventKey)
+  std::string repos_key;  ///< the REPOS screen last emitted (ReposEventKey)
   control::channel::BlockSearchState block_search_state =
       control::channel::BlockSearchState::kInactive;
   size_t block_search_warnings = 0;  ///< warnings of the block search already emitted
-  int plc_client_gone_told = 0;  ///< client_gone steps passed to the callback
+  int plc_client_gone_told = 0;      ///< client_gone steps passed to the callback
 };
 
 }  // namespace vmt::sim

@@ -45,6 +45,9 @@ struct NcSetup {
   /// `tool_storage_nc: yes`: the model's tool storage axis is NC-controlled (REPOS manual 3.4,
   /// 4.2): the channel commands its drive, PxxC.MGPOS / MGNEG jog it, MTP returns it.
   bool tool_storage_nc = false;
+  /// `jog_of_path: FILE`: a JogOfPath channel on the channel's feed axes runs this program, the
+  /// manual return to the contour during block search (twincat-cnc-block-search-de.md 4.2.1).
+  std::shared_ptr<const control::nc::ParseResult> jog_of_path;
   /// The gateway's signals for this machine (vmt signals MODEL); the runner's signal image.
   std::shared_ptr<const std::vector<control::gateway::Signal>> signals;
   /// The machine data pages of fast measurement as the run starts with them: `measuring_pages:`

@@ -99,7 +99,7 @@ Scene LoadScene(const std::string& path) {
     const YamlNode nc = root["nc"];
     nc.AllowKeys({"program", "subprograms", "dialect", "axes", "spindle", "override",
                   "zero_offsets", "tools", "initial", "aux_handshake", "block_search",
-                  "tool_storage_nc"});
+                  "tool_storage_nc", "jog_of_path"});
     s.nc.present = true;
     std::vector<YamlNode> files{nc["program"]};
     if (nc.Has("subprograms"))
@@ -107,7 +107,7 @@ Scene LoadScene(const std::string& path) {
     const std::string dialect = nc.String("dialect", "");
     if (!dialect.empty() && dialect != "mtc200" && dialect != "isg")
       nc["dialect"].Fail("expected mtc200 or isg");
-    for (const YamlNode& f : files) {
+    const auto parse = [&](const YamlNode& f) {
       const std::string file =
           (std::filesystem::path(path).parent_path() / f.String()).lexically_normal().string();
       const std::optional<std::string> read = control::nc::ReadProgramFile(file);
@@ -120,8 +120,11 @@ Scene LoadScene(const std::string& path) {
       auto parsed = std::make_shared<cnc::ParseResult>(cnc::ParseProgram(text, file, d));
       // NC errors read like a compiler's, the first one names the scene entry that loaded it.
       if (!parsed->ok()) f.Fail(cnc::Format(parsed->errors[0], parsed->program.files));
-      s.nc.programs.push_back(parsed);
-    }
+      return parsed;
+    };
+    for (const YamlNode& f : files) s.nc.programs.push_back(parse(f));
+    // Block search 4.2.1: the manual return's program, for a JogOfPath channel of its own.
+    if (nc.Has("jog_of_path")) s.nc.jog_of_path = parse(nc["jog_of_path"]);
     // The channel's axes: the machine's NC axes, or the scene's choice among them. A machine
     // without an `nc:` section gets axes from its drives with the drives' limits.
     s.nc.data = m.nc;

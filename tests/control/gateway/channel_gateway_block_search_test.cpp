@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "control/channel/channel_messages.hpp"
+#include "control/channel/jog_of_path.hpp"
 #include "control/gateway/channel_gateway.hpp"
 #include "tests/control/gateway/gateway_rig.hpp"
 
@@ -148,6 +149,49 @@ TEST(ChannelGatewayBlockSearch, BackwardTravelAfterTheSearchThroughItsSignals) {
   ASSERT_EQ(r.ch->state(), channel::ChannelState::kEnded);
   EXPECT_FALSE(r.Get("P00.bahn_state.backward_motion_r"));
   EXPECT_NEAR(r.at.feedback[0].position, 30, 1e-9);
+}
+
+// 4.2.1 through the signals: P00.suspend_axis_output_w lends the axes to the JogOfPath channel
+// (P00.bahn_state.axis_output_suspended_r, P00.jog_of_path.axis_output_r), a rising edge of
+// P00.jog_of_path.start_w starts its program and P00.jog_of_path.state_r follows it.
+TEST(ChannelGatewayBlockSearch, JogOfPathThroughItsSignals) {
+  SearchRig r;
+  auto manual = nc::ParseProgram("N10 G00 Z-5\nN20 X15\nN30 RET\n", "r.mtc", nc::Dialect::kMtc200);
+  ASSERT_TRUE(manual.ok());
+  channel::Channel jop(channel::JogOfPathConfig(r.ch->config()), {&manual.program});
+  // One NC cycle of both channels, as vmt's runner runs it.
+  const auto cycle = [&](int n) {
+    for (int k = 0; k < n; ++k) {
+      r.gateway->ReadControls(*r.ch);
+      r.gateway->ReadJogOfPath(jop);
+      channel::HandOverAxes(*r.ch, jop);
+      for (int i = 0; i < 4; ++i) {
+        const bool holds = !jop.output_suspended();
+        if (!holds) jop.Tick(r.at, r.mdt);
+        r.ch->Tick(r.at, r.mdt);
+        if (holds) jop.Tick(r.at, r.mdt);
+        for (int d = 0; d < 2; ++d) r.at.feedback[d].position = r.mdt.setpoints[d].value;
+      }
+      r.gateway->WriteStatus(*r.ch, r.at);
+      r.gateway->WriteJogOfPath(jop);
+    }
+  };
+  r.Set("P00.suspend_axis_output_w", true);
+  cycle(2);
+  EXPECT_TRUE(r.Get("P00.bahn_state.axis_output_suspended_r"));
+  EXPECT_TRUE(r.Get("P00.jog_of_path.axis_output_r"));
+  EXPECT_EQ(r.GetInt("P00.jog_of_path.state_r"), 0);  // idle
+  r.Set("P00.jog_of_path.start_w", true);
+  cycle(1);
+  EXPECT_EQ(r.GetInt("P00.jog_of_path.state_r"), 1);  // running
+  for (int k = 0; k < 5000 && r.GetInt("P00.jog_of_path.state_r") == 1; ++k) cycle(1);
+  EXPECT_EQ(r.GetInt("P00.jog_of_path.state_r"), 3);  // ended
+  EXPECT_NEAR(r.at.feedback[0].position, 15, 1e-9);
+  EXPECT_NEAR(r.at.feedback[1].position, -5, 1e-9);
+  r.Set("P00.suspend_axis_output_w", false);
+  cycle(3);
+  EXPECT_FALSE(r.Get("P00.bahn_state.axis_output_suspended_r"));
+  EXPECT_FALSE(r.Get("P00.jog_of_path.axis_output_r"));
 }
 
 }  // namespace
