@@ -668,6 +668,9 @@ class Channel {
   measure::MeasuringPages* measuring_pages_ = nullptr;
   /// The block's measuring instruction: check it, plan it, start its steps. False on an error.
   bool StartMeasuring(const AmplifierTelegram& at);
+  /// What `plan` leaves as state, in a run and in block search alike: SETTING's setting and its
+  /// G codes (modal in the interpreter), RESTORE's @100..@112 and feed.
+  void ApplyMeasuringState(const measure::MeasuringPlan& plan);
   /// Advances the steps while no move is in work; true when the instruction is done.
   bool MeasuringCycle(const AmplifierTelegram& at);
   /// While a measuring move runs: the probe's contact stops it.

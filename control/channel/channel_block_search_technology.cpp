@@ -80,22 +80,7 @@ bool Channel::SimulateMeasuringInstruction(const nc::PreparedBlock& b) {
   if (call.name == "SETTING" || call.name == "SAVE" || call.name == "RESTORE") {
     // No motion, no measurement: as in a run (StartMeasuring).
     *measuring_pages_ = pages;
-    if (plan.setting) {
-      measuring_setting_ = plan.setting;
-      nc::ModalState m = interpreter_->modal();
-      m.plane = plan.setting->plane;
-      m.tool_length = plan.setting->tool_length;
-      m.diameter = plan.setting->diameter;
-      interpreter_->SetModal(m);
-    }
-    if (plan.restore_variables)
-      for (size_t i = 0; i < plan.restore_variables->size(); ++i)
-        interpreter_->SetVariable("@" + std::to_string(100 + i), (*plan.restore_variables)[i]);
-    if (plan.restore_feed) {
-      nc::ModalState m = interpreter_->modal();
-      m.feed = *plan.restore_feed;
-      interpreter_->SetModal(m);
-    }
+    ApplyMeasuringState(plan);
     // Their Q functions (SETTING's Q9992, 6.1) go to the PLC and wait for it, as in a run.
     if (config_.aux_handshake) {
       for (const measure::MeasuringStep& step : plan.steps)

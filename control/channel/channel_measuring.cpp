@@ -90,6 +90,27 @@ measure::MeasuringContext Channel::MeasuringContextNow() const {
   return c;
 }
 
+void Channel::ApplyMeasuringState(const measure::MeasuringPlan& plan) {
+  if (plan.setting) {
+    // SETTING: its G codes are modal in the program from here (2.1: "Activating the G
+    // functions"), as in the blocks the real control generates.
+    measuring_setting_ = plan.setting;
+    nc::ModalState m = interpreter_->modal();
+    m.plane = plan.setting->plane;
+    m.tool_length = plan.setting->tool_length;
+    m.diameter = plan.setting->diameter;
+    interpreter_->SetModal(m);
+  }
+  if (plan.restore_variables)
+    for (size_t i = 0; i < plan.restore_variables->size(); ++i)
+      interpreter_->SetVariable("@" + std::to_string(100 + i), (*plan.restore_variables)[i]);
+  if (plan.restore_feed) {
+    nc::ModalState m = interpreter_->modal();
+    m.feed = *plan.restore_feed;
+    interpreter_->SetModal(m);
+  }
+}
+
 bool Channel::StartMeasuring(const AmplifierTelegram& at) {
   (void)at;
   const nc::Program& program = *ProgramOf(block_.program);
@@ -131,25 +152,10 @@ bool Channel::StartMeasuring(const AmplifierTelegram& at) {
     return fail(error);
   }
   const measure::MeasuringPlan& plan = measuring_->plan;
-  if (plan.setting) {
-    // SETTING: its G codes are modal in the program from here (2.1: "Activating the G
-    // functions"), as in the blocks the real control generates.
-    measuring_setting_ = plan.setting;
-    nc::ModalState m = interpreter_->modal();
-    m.plane = plan.setting->plane;
-    m.tool_length = plan.setting->tool_length;
-    m.diameter = plan.setting->diameter;
-    interpreter_->SetModal(m);
-    measuring_->block.modal = m;
-  }
-  if (plan.restore_variables)
-    for (size_t i = 0; i < plan.restore_variables->size(); ++i)
-      interpreter_->SetVariable("@" + std::to_string(100 + i), (*plan.restore_variables)[i]);
-  if (plan.restore_feed) {
-    nc::ModalState m = interpreter_->modal();
-    m.feed = *plan.restore_feed;
-    interpreter_->SetModal(m);
-  }
+  ApplyMeasuringState(plan);
+  // The blocks generated for the instruction run in the setting's G codes (a plan that sets
+  // has nothing to restore: the modal state now is the setting's).
+  if (plan.setting) measuring_->block.modal = interpreter_->modal();
   if (plan.message) {
     // CORRECTION: the Q function goes to the PLC first, the program stops when it has
     // acknowledged it (6.1).

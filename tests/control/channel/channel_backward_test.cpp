@@ -69,12 +69,29 @@ double RunToRest(Lathe& m, const std::vector<std::pair<double, double>>& path, d
   return off;
 }
 
+/// Feed hold, then RunToRest along `path`: the largest distance from it while braking.
+double HoldToRest(Lathe& m, const std::vector<std::pair<double, double>>& path) {
+  m.channel->Stop();
+  return RunToRest(m, path);
+}
+
+/// Backward travel on, and the start key: the legs go back from where the axes stand.
+void StartBackward(Lathe& m) {
+  m.channel->SetBackward(true);
+  m.channel->Start();
+}
+
+/// Backward travel off, and the start key: forward again (or the program goes on).
+void StartForward(Lathe& m) {
+  m.channel->SetBackward(false);
+  m.channel->Start();
+}
+
 /// Started, held in N30 at Z-15 and braked to rest.
 void HoldInN30(Lathe& m) {
   m.channel->Start();
   ASSERT_TRUE(m.RunUntil([&] { return m.Z() < -15; }));
-  m.channel->Stop();
-  RunToRest(m, PassPolyline());
+  HoldToRest(m, PassPolyline());
   ASSERT_EQ(m.channel->state(), ChannelState::kHold);
 }
 
@@ -83,8 +100,7 @@ TEST(ChannelBackward, RetracesTheBlocksThenForwardGoesOnFromTheInterruptionPoint
   HoldInN30(m);
   const double hold_x = m.X(), hold_z = m.Z();
   EXPECT_NEAR(hold_x, 40, 1e-9);
-  m.channel->SetBackward(true);
-  m.channel->Start();
+  StartBackward(m);
   // Back through N30, N20 and the G00 of N10 to where the program started, on the path all
   // the way.
   EXPECT_LT(RunToRest(m, PassPolyline()), 1e-6);
@@ -94,8 +110,7 @@ TEST(ChannelBackward, RetracesTheBlocksThenForwardGoesOnFromTheInterruptionPoint
   EXPECT_EQ(m.channel->blocks_back(), 2u);  // standing on N10, two blocks behind N30
   EXPECT_EQ(m.channel->state(), ChannelState::kHold);
   // Forward: along the path to the interruption point, and the program goes on to its end.
-  m.channel->SetBackward(false);
-  m.channel->Start();
+  StartForward(m);
   ASSERT_TRUE(m.RunUntil([&] { return !m.channel->travelling_back(); }));
   EXPECT_EQ(m.channel->position(0), hold_x);  // exactly: the block goes on from there
   EXPECT_EQ(m.channel->position(1), hold_z);
@@ -109,14 +124,12 @@ TEST(ChannelBackward, RetracesTheBlocksThenForwardGoesOnFromTheInterruptionPoint
 TEST(ChannelBackward, FeedHoldStopsOnThePathAndTheFeedOfEachBlockHolds) {
   Lathe m(kPass);
   HoldInN30(m);
-  m.channel->SetBackward(true);
-  m.channel->Start();
+  StartBackward(m);
   // N30 backwards at its F600 (10 mm/s): after 0.5 s about 5 mm of Z.
   const double z0 = m.Z();
   m.RunUntil([] { return false; }, 0.5);
   EXPECT_NEAR(m.Z() - z0, 5, 0.1);
-  m.channel->Stop();
-  EXPECT_LT(RunToRest(m, PassPolyline()), 1e-6);
+  EXPECT_LT(HoldToRest(m, PassPolyline()), 1e-6);
   const double z1 = m.Z();
   EXPECT_GT(z1, z0 + 5);
   EXPECT_LT(z1, 0);  // braked inside N30
@@ -125,8 +138,7 @@ TEST(ChannelBackward, FeedHoldStopsOnThePathAndTheFeedOfEachBlockHolds) {
   m.channel->Start();
   RunToRest(m, PassPolyline());
   EXPECT_NEAR(m.Z(), 0, 1e-9);
-  m.channel->SetBackward(false);
-  m.channel->Start();
+  StartForward(m);
   EXPECT_LT(RunToRest(m, PassPolyline()), 1e-4);
   EXPECT_EQ(m.channel->state(), ChannelState::kEnded);
 }
@@ -136,20 +148,16 @@ TEST(ChannelBackward, AfterTheArcRetracesItBackwards) {
   m.channel->Start();
   // Held in N50, after the arc.
   ASSERT_TRUE(m.RunUntil([&] { return m.X() > 52; }));
-  m.channel->Stop();
-  RunToRest(m, PassPolyline());
-  m.channel->SetBackward(true);
-  m.channel->Start();
+  HoldToRest(m, PassPolyline());
+  StartBackward(m);
   double off = 0;
   ASSERT_TRUE(m.RunUntil([&] {
     off = std::max(off, DistanceToPolyline(m.X(), m.Z(), PassPolyline()));
     return m.Z() > -29;
   }));
   EXPECT_LT(off, 1e-4);  // the chords of PassPolyline
-  m.channel->Stop();
-  RunToRest(m, PassPolyline());
-  m.channel->SetBackward(false);
-  m.channel->Start();
+  HoldToRest(m, PassPolyline());
+  StartForward(m);
   EXPECT_LT(RunToRest(m, PassPolyline()), 1e-4);
   EXPECT_EQ(m.channel->state(), ChannelState::kEnded);
 }
@@ -157,18 +165,15 @@ TEST(ChannelBackward, AfterTheArcRetracesItBackwards) {
 TEST(ChannelBackward, ManualModeAfterTravellingBackLeavesTheContourAtTheInterruptionPoint) {
   Lathe m(kPass);
   HoldInN30(m);
-  m.channel->SetBackward(true);
-  m.channel->Start();
+  StartBackward(m);
   ASSERT_TRUE(m.RunUntil([&] { return m.Z() > -10; }));
-  m.channel->Stop();
-  RunToRest(m, PassPolyline());
+  HoldToRest(m, PassPolyline());
   // Manual mode: the interruption point is where the program stopped, which the axes have
   // left; continuing needs repositioning first (REPOS manual 2.1).
   ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
   EXPECT_FALSE(m.channel->travelling_back());
   ASSERT_TRUE(m.channel->SetMode(ChannelMode::kAutomatic));
-  m.channel->SetBackward(false);
-  m.channel->Start();
+  StartForward(m);
   m.Tick();
   EXPECT_EQ(m.channel->state(), ChannelState::kError);
   EXPECT_EQ(m.channel->error_number(), kMsgLeftContour);
@@ -177,8 +182,7 @@ TEST(ChannelBackward, ManualModeAfterTravellingBackLeavesTheContourAtTheInterrup
 TEST(ChannelBackward, ModeChangeIsRefusedWhileALegMoves) {
   Lathe m(kPass);
   HoldInN30(m);
-  m.channel->SetBackward(true);
-  m.channel->Start();
+  StartBackward(m);
   m.RunUntil([] { return false; }, 0.1);
   EXPECT_FALSE(m.channel->SetMode(ChannelMode::kManual));
 }
@@ -206,8 +210,7 @@ TEST(ChannelBackward, TheWayBackOfATravelledPathIsNotChecked) {
   HoldInN30(m);
   WallAtZ8 wall;  // N10 came from Z10 over the wall
   m.channel->SetPathGuard(&wall);
-  m.channel->SetBackward(true);
-  m.channel->Start();
+  StartBackward(m);
   RunToRest(m, PassPolyline());
   EXPECT_TRUE(wall.moves.empty());
   EXPECT_EQ(m.channel->state(), ChannelState::kHold);
@@ -244,14 +247,12 @@ TEST(ChannelBackward, AfterBlockSearchTravelsTheDecodedProgramBackwards) {
   EXPECT_NEAR(m.Z(), -10, 1e-9);
   const std::vector<std::pair<double, double>> path = {
       {50, 50}, {20, 5}, {10, 5}, {10, -10}, {30, -10}, {30, -20}};
-  m.channel->SetBackward(true);
-  m.channel->Start();
+  StartBackward(m);
   EXPECT_LT(RunToRest(m, path), 1e-6);
   EXPECT_NEAR(m.X(), 50, 1e-9);
   EXPECT_NEAR(m.Z(), 50, 1e-9);
   // Forward to the continue position, where the program goes on as after the search.
-  m.channel->SetBackward(false);
-  m.channel->Start();
+  StartForward(m);
   EXPECT_LT(RunToRest(m, path), 1e-6);
   EXPECT_EQ(m.channel->state(), ChannelState::kEnded);
   EXPECT_NEAR(m.X(), 30, 1e-9);
@@ -268,8 +269,7 @@ TEST(ChannelBackward, TheDecodedRapidLegsAreAskedOfPathGuardFirst) {
   WallAtZ8 wall;
   m.channel->SetPathGuard(&wall);
   m.channel->TakeGuardRecords();
-  m.channel->SetBackward(true);
-  m.channel->Start();
+  StartBackward(m);
   ASSERT_TRUE(m.RunUntil([&] { return m.channel->state() == ChannelState::kError; }));
   EXPECT_EQ(m.channel->error_number(), kMsgCollision);
   EXPECT_THAT(m.channel->error(), HasSubstr("collision ahead (backward travel): tool would touch wall"));
@@ -293,18 +293,15 @@ TEST(ChannelBackward, NotPossibleWithTheOffsetOfAManualReturn) {
   ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour));
   m.channel->Start();
   ASSERT_TRUE(m.RunUntil([&] { return m.X() > 15; }));
-  m.channel->Stop();
-  RunToRest(m, {{10.2, -10.1}, {30.2, -10.1}});
+  HoldToRest(m, {{10.2, -10.1}, {30.2, -10.1}});
   const double x = m.X();
-  m.channel->SetBackward(true);
-  m.channel->Start();
+  StartBackward(m);
   m.RunUntil([] { return false; }, 0.1);
   EXPECT_EQ(m.channel->state(), ChannelState::kHold);  // a message, the program still held
   EXPECT_EQ(m.channel->error_number(), kMsgBackward);
   EXPECT_THAT(m.channel->error(), HasSubstr("offset"));
   EXPECT_EQ(m.X(), x);
-  m.channel->SetBackward(false);
-  m.channel->Start();
+  StartForward(m);
   ASSERT_TRUE(m.RunUntil([&] { return m.channel->state() == ChannelState::kEnded; }));
   EXPECT_EQ(m.channel->error_number(), 0);
   EXPECT_NEAR(m.X(), 30.2, 1e-9);
@@ -314,10 +311,8 @@ TEST(ChannelBackward, TheStartOfTheOldestBlockIsAsFarAsItGoes) {
   Lathe m("N10 G01 X10 F600\nN20 M30\n");
   m.channel->Start();
   ASSERT_TRUE(m.RunUntil([&] { return m.X() > 0; }));
-  m.channel->Stop();
-  RunToRest(m, {{0, 0}, {10, 0}});
-  m.channel->SetBackward(true);
-  m.channel->Start();
+  HoldToRest(m, {{0, 0}, {10, 0}});
+  StartBackward(m);
   m.Tick();
   // Inside the first block there is its start behind the axes: that much goes back.
   RunToRest(m, {{0, 0}, {10, 0}});

@@ -5,6 +5,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <functional>
+
 #include "channel_test_support.hpp"
 #include "control/channel/channel.hpp"
 
@@ -38,11 +40,22 @@ void Hold(Machine& m, double s) {
   for (int i = 0; i < s / 250e-6; ++i) m.Tick();
 }
 
+/// The channel's machine with X at `x` (Z 0), `guard` asking about its moves, switched to
+/// manual mode: `manual` says whether the channel took it.
+struct GuardedManualMachine : Machine {
+  GuardedManualMachine(PathGuard& guard, double x,
+                       const std::function<void(ChannelConfig&)>& configure = {})
+      : Machine("N1 RET\n", x, 0, configure) {
+    channel->SetPathGuard(&guard);
+    manual = channel->SetMode(ChannelMode::kManual);
+  }
+  bool manual = false;
+};
+
 TEST(ChannelPathGuard, ContinuousJogStopsBeforeTheWallWithMessage507) {
   Wall wall;
-  Machine m("N1 RET\n", 60, 0);
-  m.channel->SetPathGuard(&wall);
-  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  GuardedManualMachine m(wall, 60);
+  ASSERT_TRUE(m.manual);
   m.channel->SetJogMode(static_cast<int>(JogMode::kRapid));  // 200 mm/s towards the wall
   m.channel->Jog(0, -1);
   Hold(m, 1.0);
@@ -71,9 +84,8 @@ TEST(ChannelPathGuard, ContinuousJogStopsBeforeTheWallWithMessage507) {
 
 TEST(ChannelPathGuard, AnIncrementIntoTheWallDoesNotStart) {
   Wall wall;
-  Machine m("N1 RET\n", 20.5, 0);
-  m.channel->SetPathGuard(&wall);
-  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  GuardedManualMachine m(wall, 20.5);
+  ASSERT_TRUE(m.manual);
   m.channel->SetJogIncrement(1.0);
   m.channel->Jog(0, -1);
   Hold(m, 0.5);
@@ -92,9 +104,8 @@ TEST(ChannelPathGuard, AnIncrementIsCheckedAsItselfNotAsAContinuousRun) {
   // 0.2 mm short of the wall: a continuous run at the jog speed could not brake in time, but
   // the key starts an increment that ends 0.1 mm before it; one record, the increment's.
   Wall wall;
-  Machine m("N1 RET\n", 20.3, 0);
-  m.channel->SetPathGuard(&wall);
-  ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  GuardedManualMachine m(wall, 20.3);
+  ASSERT_TRUE(m.manual);
   m.channel->SetJogIncrement(0.2);
   m.channel->Jog(0, -1);
   Hold(m, 0.5);
@@ -110,9 +121,9 @@ TEST(ChannelPathGuard, AnIncrementIsCheckedAsItselfNotAsAContinuousRun) {
 
 TEST(ChannelPathGuard, WarnRecordsAndGoesOnOffAsksNothing) {
   Wall wall;
-  Machine warn("N1 RET\n", 30, 0, [](ChannelConfig& c) { c.path_guard = GuardReaction::kWarn; });
-  warn.channel->SetPathGuard(&wall);
-  ASSERT_TRUE(warn.channel->SetMode(ChannelMode::kManual));
+  GuardedManualMachine warn(wall, 30,
+                            [](ChannelConfig& c) { c.path_guard = GuardReaction::kWarn; });
+  ASSERT_TRUE(warn.manual);
   warn.channel->Jog(0, -1);
   Hold(warn, 0.5);
   EXPECT_LT(warn.X(), 20);  // through the wall: a warning only
@@ -123,9 +134,9 @@ TEST(ChannelPathGuard, WarnRecordsAndGoesOnOffAsksNothing) {
   EXPECT_TRUE(recorded);
 
   Wall unused;
-  Machine off("N1 RET\n", 30, 0, [](ChannelConfig& c) { c.path_guard = GuardReaction::kOff; });
-  off.channel->SetPathGuard(&unused);
-  ASSERT_TRUE(off.channel->SetMode(ChannelMode::kManual));
+  GuardedManualMachine off(unused, 30,
+                           [](ChannelConfig& c) { c.path_guard = GuardReaction::kOff; });
+  ASSERT_TRUE(off.manual);
   off.channel->Jog(0, -1);
   Hold(off, 0.5);
   EXPECT_EQ(unused.checks, 0);

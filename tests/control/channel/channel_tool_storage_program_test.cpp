@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include "block_search_steps.hpp"
@@ -21,10 +22,41 @@ namespace {
 using namespace testing;  // vmt::control::channel::testing
 using ::testing::HasSubstr;
 
+/// Ticks while the program runs, up to `limit` s; `each_tick` looks at the axes after every tick.
+void RunWhileRunning(NcTurretMachine& m, double limit,
+                     const std::function<void()>& each_tick = {}) {
+  while (m.channel->state() == ChannelState::kRunning && m.t < limit) {
+    m.TickAll();
+    if (each_tick) each_tick();
+  }
+}
+
 /// Runs until the program has ended (or failed), then until the turret stands still.
 void RunToEnd(NcTurretMachine& m) {
-  while (m.channel->state() == ChannelState::kRunning && m.t < 60) m.TickAll();
+  RunWhileRunning(m, 60);
   m.RunFor(3.0);
+}
+
+/// The start key, then RunToEnd.
+void StartAndRunToEnd(NcTurretMachine& m) {
+  m.channel->Start();
+  RunToEnd(m);
+}
+
+/// Z jogged off in + for 0.2 s, and the time for a traverse still on its way to finish.
+void JogZOff(NcTurretMachine& m) {
+  m.channel->Jog(1, +1);
+  m.RunFor(0.2);
+  m.channel->Jog(1, 0);
+  m.RunFor(2.0);
+}
+
+/// The turret jogged in `direction` for `s` s, then braked to rest.
+void JogTurret(NcTurretMachine& m, int direction, double s) {
+  m.channel->JogToolStorage(direction);
+  m.RunFor(s);
+  m.channel->JogToolStorage(0);
+  m.RunFor(0.5);
 }
 
 // A T word starts the turret for its station (T6: 150 deg from station 1 at 0) and the block
@@ -33,10 +65,9 @@ TEST(ToolStorageProgram, ATWordIndexesTheTurretAsynchronously) {
   NcTurretMachine m("N1 T6\nN2 G01 X10 F6000\nN3 RET\n", 0);
   m.channel->Start();
   bool overlapped = false;
-  while (m.channel->state() == ChannelState::kRunning && m.t < 10) {
-    m.TickAll();
+  RunWhileRunning(m, 10, [&] {
     if (m.X() > 0 && m.X() < 10 && m.T() > 1 && m.T() < 149) overlapped = true;
-  }
+  });
   EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
   EXPECT_TRUE(overlapped);
   EXPECT_LT(m.T(), 149);  // the program has ended, the turret is still indexing
@@ -63,18 +94,15 @@ TEST(ToolStorageProgram, TheTurretRunsAtTheJoggingRapid) {
 // station is the same one (the adjust symbol and MTP compare modulo a turn).
 TEST(ToolStorageProgram, AnEndlessTurretIndexesTheShortWayRound) {
   NcTurretMachine m("N1 T12\nN2 RET\n", 0);
-  m.channel->Start();
-  RunToEnd(m);
+  StartAndRunToEnd(m);
   EXPECT_NEAR(m.T(), -30, 1e-9);
   // From 420 (station 3 a turn on) to T4: 30 deg on.
   NcTurretMachine n("N1 T4\nN2 RET\n", 420);
-  n.channel->Start();
-  RunToEnd(n);
+  StartAndRunToEnd(n);
   EXPECT_NEAR(n.T(), 450, 1e-9);
   // Half a turn either way: the way the adjust symbol and REPOS's MTP measure it, backwards.
   NcTurretMachine k("N1 T7\nN2 RET\n", 0);
-  k.channel->Start();
-  RunToEnd(k);
+  StartAndRunToEnd(k);
   EXPECT_NEAR(k.T(), -180, 1e-9);
 }
 
@@ -85,8 +113,7 @@ TEST(ToolStorageProgram, ATurretWithTravelLimitsGoesToTheStationsAngle) {
     c.tool_storage.travel_min = -360;
     c.tool_storage.travel_max = 360;
   });
-  m.channel->Start();
-  RunToEnd(m);
+  StartAndRunToEnd(m);
   EXPECT_NEAR(m.T(), 330, 1e-9);
 }
 
@@ -94,10 +121,9 @@ TEST(ToolStorageProgram, MryWaitsForTheTurret) {
   NcTurretMachine m("N1 T6\nN2 MRY G01 X10 F6000\nN3 RET\n", 0);
   m.channel->Start();
   bool moved_early = false;
-  while (m.channel->state() == ChannelState::kRunning && m.t < 10) {
-    m.TickAll();
+  RunWhileRunning(m, 10, [&] {
     if (m.X() > 0 && std::abs(m.T() - 150) > kToolStorageWindow) moved_early = true;
-  }
+  });
   EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
   EXPECT_FALSE(moved_early);
   EXPECT_NEAR(m.T(), 150, 1e-9);
@@ -134,8 +160,7 @@ TEST(ToolStorageProgram, ControlResetStopsTheIndex) {
   EXPECT_EQ(m.T(), stopped);
   ASSERT_TRUE(m.channel->SetMode(ChannelMode::kMdi));
   ASSERT_TRUE(m.channel->Mdi("MRY G01 X5 F6000\n"));
-  m.channel->Start();
-  RunToEnd(m);
+  StartAndRunToEnd(m);
   EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
   EXPECT_NEAR(m.X(), 5, 1e-9);
   EXPECT_EQ(m.T(), stopped);
@@ -159,8 +184,7 @@ TEST(ToolStorageProgram, RemovingTheProcessEnableBrakesTheIndex) {
   m.channel->SetProcessEnable(true);
   m.RunFor(2.0);
   EXPECT_NEAR(m.T(), 150, 1e-9);
-  m.channel->Start();
-  RunToEnd(m);
+  StartAndRunToEnd(m);
   EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
 }
 
@@ -168,14 +192,14 @@ TEST(ToolStorageProgram, RemovingTheProcessEnableBrakesTheIndex) {
 TEST(ToolStorageProgram, MryWithTheTurretInPlaceDoesNotWait) {
   NcTurretMachine m("N1 T3\nN2 MRY\nN3 G01 X10 F6000\nN4 MRY\nN5 RET\n", 60);
   m.channel->Start();
-  while (m.channel->state() == ChannelState::kRunning && m.t < 10) m.TickAll();
+  RunWhileRunning(m, 10);
   EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
   EXPECT_NEAR(m.T(), 60, 1e-9);
   EXPECT_NEAR(m.X(), 10, 1e-9);
   // As long as without the MRY blocks, but for their own NC cycles.
   NcTurretMachine n("N1 T3\nN3 G01 X10 F6000\nN5 RET\n", 60);
   n.channel->Start();
-  while (n.channel->state() == ChannelState::kRunning && n.t < 10) n.TickAll();
+  RunWhileRunning(n, 10);
   EXPECT_NEAR(m.t, n.t, 0.005);
 }
 
@@ -186,25 +210,22 @@ TEST(ToolStorageProgram, MtpAdjustsTheTurretToTheActiveToolsStation) {
                     [](ChannelConfig& c) { c.initial.tool = 3; });
   m.channel->Start();
   bool moved_early = false;
-  while (m.channel->state() == ChannelState::kRunning && m.t < 10) {
-    m.TickAll();
+  RunWhileRunning(m, 10, [&] {
     if (m.X() > 0 && std::abs(m.T() - 60) > kToolStorageWindow) moved_early = true;
-  }
+  });
   EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
   EXPECT_FALSE(moved_early);
   EXPECT_NEAR(m.T(), 60, 1e-9);
   // T0 selects no tool: MTP leaves the turret where it is.
   NcTurretMachine n("N1 T0 MTP\nN2 RET\n", 100);
-  n.channel->Start();
-  RunToEnd(n);
+  StartAndRunToEnd(n);
   EXPECT_EQ(n.channel->state(), ChannelState::kEnded) << n.channel->error();
   EXPECT_NEAR(n.T(), 100, 1e-9);
 }
 
 TEST(ToolStorageProgram, ATWordWithoutAStationIsAnErrorAtItsBlock) {
   NcTurretMachine m("N1 G01 X10 F6000\nN2 T13\nN3 RET\n", 0);
-  m.channel->Start();
-  RunToEnd(m);
+  StartAndRunToEnd(m);
   EXPECT_EQ(m.channel->state(), ChannelState::kError);
   EXPECT_THAT(m.channel->error(), HasSubstr("p.mtc:2:"));
   EXPECT_THAT(m.channel->error(), HasSubstr("T13 has no station on the tool storage axis T"));
@@ -216,8 +237,7 @@ TEST(ToolStorageProgram, ATWordWithoutAStationIsAnErrorAtItsBlock) {
 TEST(ToolStorageProgram, TheOtherTurretCommandsStayUnavailable) {
   for (const char* name : {"MMP", "MRF", "MHP", "MFP", "MOP"}) {
     NcTurretMachine m(std::string("N1 ") + name + "\nN2 RET\n", 0);
-    m.channel->Start();
-    RunToEnd(m);
+    StartAndRunToEnd(m);
     EXPECT_EQ(m.channel->state(), ChannelState::kError) << name;
     EXPECT_THAT(m.channel->error(), HasSubstr(std::string("instruction ") + name +
                                               " is not available in the channel yet"));
@@ -225,8 +245,7 @@ TEST(ToolStorageProgram, TheOtherTurretCommandsStayUnavailable) {
   // Without stations the NC cannot know where MTP would go.
   NcTurretMachine n("N1 MTP\nN2 RET\n", 0, true,
                     [](ChannelConfig& c) { c.tool_storage_stations = 0; });
-  n.channel->Start();
-  RunToEnd(n);
+  StartAndRunToEnd(n);
   EXPECT_THAT(n.channel->error(), HasSubstr("instruction MTP is not available"));
 }
 
@@ -241,14 +260,8 @@ void InterruptAndJogOff(NcTurretMachine& m, double at, double jog) {
   m.channel->Stop();
   m.RunFor(0.05);
   ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
-  m.channel->Jog(1, +1);
-  m.RunFor(0.2);
-  m.channel->Jog(1, 0);
-  m.RunFor(2.0);  // a traverse still on its way finishes first
-  m.channel->JogToolStorage(+1);
-  m.RunFor(jog);
-  m.channel->JogToolStorage(0);
-  m.RunFor(0.5);
+  JogZOff(m);
+  JogTurret(m, +1, jog);
 }
 
 /// Repositioning, the REPOS subroutine (MTP, MRY, G77) and the rest of the program.
@@ -258,12 +271,11 @@ void Reposition(NcTurretMachine& m) {
   ASSERT_TRUE(m.channel->SetMode(ChannelMode::kAutomatic));
   m.channel->Start();
   const double z = m.Z();
-  while (m.channel->state() == ChannelState::kRunning && m.t < 60) {
-    m.TickAll();
+  RunWhileRunning(m, 60, [&] {
     if (std::abs(m.T() - 150) > kToolStorageWindow) {
       EXPECT_EQ(m.Z(), z);  // MRY
     }
-  }
+  });
 }
 
 // Interrupted after T6's indexing has ended: REPOS's MTP brings the turret back to station 6
@@ -292,15 +304,9 @@ TEST(ToolStorageProgram, AnInterruptionDuringTheIndexKeepsItsStation) {
   ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
   m.RunFor(0.01);
   EXPECT_TRUE(m.channel->repos_status().tool_storage_adjust);  // not yet at station 6
-  m.channel->Jog(1, +1);
-  m.RunFor(0.2);
-  m.channel->Jog(1, 0);
-  m.RunFor(2.0);
+  JogZOff(m);
   EXPECT_NEAR(m.T(), 150, 1e-9);  // the index ran on in manual mode
-  m.channel->JogToolStorage(-1);  // jogged back towards where it was at the interruption
-  m.RunFor(1.0);
-  m.channel->JogToolStorage(0);
-  m.RunFor(0.5);
+  JogTurret(m, -1, 1.0);          // back towards where it was at the interruption
   EXPECT_LT(m.T(), 130);
   Reposition(m);
   EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
@@ -370,8 +376,7 @@ TEST(ToolStorageProgram, APlcTurretIsUnchanged) {
   EXPECT_NEAR(m.X(), 10, 1e-9);
   for (const char* name : {"MTP", "MRY"}) {
     PlcTurretMachine n(std::string("N1 ") + name + "\nN2 RET\n");
-    n.channel->Start();
-    RunToEnd(n);
+    StartAndRunToEnd(n);
     EXPECT_THAT(n.channel->error(), HasSubstr(std::string("instruction ") + name +
                                               " is not available in the channel yet"));
   }

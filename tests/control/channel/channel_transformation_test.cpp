@@ -196,6 +196,18 @@ TEST(ChannelTransformation, FaceArcThroughTheCentreIsRefused) {
   EXPECT_NEAR(ok.at.feedback[kDriveC].position, 45, 1e-9);
 }
 
+/// Block search type 4: the first pass of block N`number`, continuing `per_mille` of the way
+/// into it, with the automatic return to the contour.
+BlockSearchParameters Type4(uint32_t number, double per_mille) {
+  BlockSearchParameters p;
+  p.type = BlockSearchType::kBlockNumber;
+  p.block_number = number;
+  p.block_number_pass = 1;
+  p.covered_distance = per_mille;
+  p.auto_return = true;
+  return p;
+}
+
 TEST(ChannelTransformation, BlockSearchIntoAFaceArcFindsCUnwound) {
   // A full circle about the centre (C 0 -> 360), then half of one (C 360 -> 540): searching N3
   // at 500 per mille stands at X1 0 Y1 20 with C at 450, as the run has it.
@@ -204,13 +216,7 @@ TEST(ChannelTransformation, BlockSearchIntoAFaceArcFindsCUnwound) {
       "N1 G00 X20 Z5 C0\nN2 G31 G03 X1=20 Y1=0 I-20 F3000\nN3 X1=-20 Y1=0 I-20\n"
       "N4 G30 G01 Z0 F600\nN5 RET\n";
   Rig m(program);
-  BlockSearchParameters p;
-  p.type = BlockSearchType::kBlockNumber;
-  p.block_number = 3;
-  p.block_number_pass = 1;
-  p.covered_distance = 500;
-  p.auto_return = true;
-  m.Search(p);
+  m.Search(Type4(3, 500));
   ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour)) << m.channel->error();
   const auto& st = m.channel->block_search();
   ASSERT_EQ(st.continue_position.size(), 3u);
@@ -235,13 +241,7 @@ TEST(ChannelTransformation, BlockSearchUnderG31ReturnsOnALineOfTheFace) {
   using Rig = testing::BlockSearchSteps<Lathe>;
   Rig m("N1 G00 X20 Z5 C0\nN2 G31 G01 X1=20 Y1=20 F600\nN3 X1=-20\nN4 G30 G01 Z0\nN5 RET\n");
   m.at.feedback[kDriveX].position = 50;
-  BlockSearchParameters p;
-  p.type = BlockSearchType::kBlockNumber;
-  p.block_number = 3;
-  p.block_number_pass = 1;
-  p.covered_distance = 500;
-  p.auto_return = true;
-  m.Search(p);
+  m.Search(Type4(3, 500));
   ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour)) << m.channel->error();
   const nc::FictivePoint from = FaceOf(m);
   ASSERT_NEAR(from.x1, 50, 1e-9);
