@@ -55,8 +55,11 @@ class DriveController {
   /// time at the torque limit (overload).
   double Torque(double velocity_reference, double velocity, double dt_s);
 
-  /// Feedback in machine units for the control (encoder-quantised position).
-  control::DriveFeedback Feedback(double position, double velocity, double torque) const;
+  /// Feedback in machine units for the control (encoder-quantised position), written into the
+  /// drive's entry of the telegram in place. fb.probe is left alone: the probe latch writes it
+  /// (ProbeWiring), and building a whole DriveFeedback per drive and tick -- clearing and
+  /// copying its probe registers -- was a large part of a kinematic step.
+  void Feedback(double position, double velocity, double torque, control::DriveFeedback& fb) const;
 
   /// The mode the drive is in: the setpoint's, or kOff while tripped.
   control::DriveMode mode() const { return mode_; }
