@@ -66,11 +66,15 @@ void ProbeWiring::Step(const std::vector<control::DriveSetpoint>& setpoints,
                        std::vector<control::DriveFeedback>& feedback) {
   for (const int d : wired_) {
     const DriveParams& p = model_->drives[d];
+    // Only an active function latches, i.e. reads the exact position (most ticks it is off).
+    const bool active =
+        setpoints[d].probe.probe_cycle_command == control::probe_control::kProbeCycleActive;
     std::array<ProbeInputSample, 2> pins;
     for (int k = 0; k < 2; ++k) {
       const int io = p.probe_inputs[k];
       if (io < 0) continue;
       pins[k].level = inputs[io] != 0;
+      if (!active) continue;
       // The axis moves nearly uniformly within 250 us: the position at the change lies on the
       // line between the two ticks' (a modulo drive's the shorter way round).
       const Switch& s = switches_[io];
@@ -82,8 +86,10 @@ void ProbeWiring::Step(const std::vector<control::DriveSetpoint>& setpoints,
       if (modulo > 0) exact -= modulo * std::floor(exact / modulo);
       pins[k].exact_position = exact;
     }
-    latches_[d].Step(setpoints[d].probe, pins, feedback[d].position);
-    feedback[d].probe = latches_[d].status();
+    // Nothing else writes DriveFeedback::probe (DriveController::Feedback leaves it), so an
+    // unchanged status need not be copied again.
+    if (latches_[d].Step(setpoints[d].probe, pins, feedback[d].position))
+      feedback[d].probe = latches_[d].status();
     positions_before_[d] = positions[d];
   }
   for (const int i : changed_) switches_[i].changed = false;
