@@ -6,6 +6,9 @@
 namespace vmt::sim {
 
 void ActuatorLogic::Step(const Actuator& a, bool valve, double dt_s) {
+  // At the end the valve drives it to (most ticks) the stroke stays: times are > 0, so the
+  // clamp below would return the end itself, after a division.
+  if (valve ? stroke >= 1 : stroke <= 0) return;
   stroke = valve ? std::min(1.0, stroke + dt_s / a.time_on_s)
                  : std::max(0.0, stroke - dt_s / a.time_off_s);
 }

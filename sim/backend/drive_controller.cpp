@@ -37,7 +37,8 @@ double PositionError(const DriveParams& p, double command, double position) {
 control::DriveSetpoint ToSi(const DriveParams& p, const control::DriveSetpoint& sp) {
   control::DriveSetpoint si = sp;
   if (sp.mode != control::DriveMode::kTorque) si.value = sp.value / Unit(p);
-  si.velocity_feedforward = sp.velocity_feedforward / Unit(p);
+  // Without feed-forward (G05, most of the time) 0 / unit is the 0 itself: no division.
+  if (sp.velocity_feedforward != 0) si.velocity_feedforward = sp.velocity_feedforward / Unit(p);
   return si;
 }
 

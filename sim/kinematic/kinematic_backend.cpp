@@ -98,7 +98,7 @@ void KinematicBackend::Step() {
     const control::DriveSetpoint sp = ToSi(p, mdt_.setpoints[d]);
     // Position loop on its encoder (possibly load side), velocity loop on the motor.
     const double pos = EncoderPosition(p, [&q_before](int j) { return q_before[j]; });
-    const double vel = qd_[p.motor_joint] / p.ratio;
+    const double vel = LoadSide(p, qd_[p.motor_joint]);
     const double v_ref = ctrl.VelocityReference(sp, pos, vel, dt);
     // The controller's mode, not the setpoint's: a tripped drive's power stage is off.
     const bool leads = ctrl.mode() == control::DriveMode::kPosition ||
@@ -144,7 +144,7 @@ void KinematicBackend::UpdateFeedback() {
   for (size_t d = 0; d < controllers_.size(); ++d) {
     const DriveParams& p = model_->drives[d];
     controllers_[d].Feedback(EncoderPosition(p, [this](int j) { return q_[j]; }),
-                             qd_[p.motor_joint] / p.ratio, 0, at_.feedback[d]);
+                             LoadSide(p, qd_[p.motor_joint]), 0, at_.feedback[d]);
   }
   inputs_.Read(mdt_.outputs, clutches_, actuators_, at_.feedback, at_.inputs);
   probes_.ShowInputs(at_.inputs);

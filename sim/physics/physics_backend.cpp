@@ -228,7 +228,7 @@ void PhysicsBackend::Step() {
     const DriveParams& p = model_->drives[d];
     // Position loop on its encoder (possibly load side), velocity loop on the motor.
     const double pos = EncoderPosition(p, [&mb](int j) { return mb.getJointPos(j); });
-    const double vel = mb.getJointVel(p.motor_joint) / p.ratio;
+    const double vel = LoadSide(p, mb.getJointVel(p.motor_joint));
     DriveController& ctrl = controllers_[d];
     const double v_ref = ctrl.VelocityReference(ToSi(p, mdt_.setpoints[d]), pos, vel, dt);
     torques[d] = ctrl.Torque(v_ref, vel, dt);
@@ -279,7 +279,8 @@ void PhysicsBackend::UpdateFeedback(const std::vector<double>& torques) {
   for (size_t d = 0; d < controllers_.size(); ++d) {
     const DriveParams& p = model_->drives[d];
     controllers_[d].Feedback(EncoderPosition(p, [&mb](int j) { return mb.getJointPos(j); }),
-                             mb.getJointVel(p.motor_joint) / p.ratio, torques[d], at_.feedback[d]);
+                             LoadSide(p, mb.getJointVel(p.motor_joint)), torques[d],
+                             at_.feedback[d]);
   }
   inputs_.Read(mdt_.outputs, clutches_, actuators_, at_.feedback, at_.inputs);
   probes_.ShowInputs(at_.inputs);
