@@ -29,9 +29,23 @@ bool PositionSwitchOn(const PositionSwitch& p, double drive_position);
 /// The digital inputs the machine shows: outputs read back, clutch end-position switches,
 /// actuator end switches, cam switches on the drives' actual positions. Keys stay 0: they are
 /// the operator's, set on the control side.
-void ReadInputs(const MachineModel& model, const std::vector<uint8_t>& outputs,
-                const std::vector<DogClutchLogic>& clutches,
-                const std::vector<ActuatorLogic>& actuators,
-                const std::vector<control::DriveFeedback>& feedback, std::vector<uint8_t>& inputs);
+class MachineInputs {
+ public:
+  explicit MachineInputs(const MachineModel& model);
+
+  /// Every I/O point's input as the machine shows it this tick (`outputs`: one per I/O point,
+  /// as the master wrote them).
+  void Read(const std::vector<uint8_t>& outputs, const std::vector<DogClutchLogic>& clutches,
+            const std::vector<ActuatorLogic>& actuators,
+            const std::vector<control::DriveFeedback>& feedback,
+            std::vector<uint8_t>& inputs) const;
+
+ private:
+  const MachineModel* model_;
+  /// Per I/O point 0xff for an output (read back), else 0: every tick reads every point, and a
+  /// mask over the bytes is a few vector instructions where testing IoInfo::is_output point by
+  /// point was a loop of loads.
+  std::vector<uint8_t> read_back_;
+};
 
 }  // namespace vmt::sim

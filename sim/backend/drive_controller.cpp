@@ -24,7 +24,9 @@ double Wrap(double a) {
 double PositionError(const DriveParams& p, double command, double position) {
   const double e = command - position;
   if (p.modulo <= 0) return e;
-  double w = std::fmod(e, p.modulo);
+  // Within one modulo fmod would return e itself (it is exact): spare its libm call, which a
+  // rotary axis would pay twice per tick.
+  double w = std::abs(e) < p.modulo ? e : std::fmod(e, p.modulo);
   if (w <= -p.modulo / 2) w += p.modulo;
   if (w > p.modulo / 2) w -= p.modulo;
   return w;
@@ -35,7 +37,8 @@ double PositionError(const DriveParams& p, double command, double position) {
 control::DriveSetpoint ToSi(const DriveParams& p, const control::DriveSetpoint& sp) {
   control::DriveSetpoint si = sp;
   if (sp.mode != control::DriveMode::kTorque) si.value = sp.value / Unit(p);
-  si.velocity_feedforward = sp.velocity_feedforward / Unit(p);
+  // Without feed-forward (G05, most of the time) 0 / unit is the 0 itself: no division.
+  if (sp.velocity_feedforward != 0) si.velocity_feedforward = sp.velocity_feedforward / Unit(p);
   return si;
 }
 
@@ -139,15 +142,14 @@ double DriveController::Torque(double velocity_reference, double velocity, doubl
   return torque;
 }
 
-control::DriveFeedback DriveController::Feedback(double position, double velocity,
-                                                 double torque) const {
+void DriveController::Feedback(double position, double velocity, double torque,
+                               control::DriveFeedback& fb) const {
   using namespace control::drive_status;
   const DriveParameterSet& g = *set_;
   const double unit = Unit(*p_);
   const double res = p_->encoder_resolution;
   // floor(x + 0.5), not round(): the same for an encoder, and no libm call on the hot path.
   const double quantised = std::floor(position * counts_per_unit_ + 0.5) * res;
-  control::DriveFeedback fb;
   // Modulo scaling: the drive reports the position within [0, modulo).
   const double reported =
       p_->modulo > 0 ? quantised - p_->modulo * std::floor(quantised / p_->modulo) : quantised;
@@ -161,6 +163,7 @@ control::DriveFeedback DriveController::Feedback(double position, double velocit
   if (mode != control::DriveMode::kOff) fb.status |= kEnabled;
   if (std::abs(velocity) < g.standstill_window) fb.status |= kStandstill;
   if (saturated_) fb.status |= kTorqueLimit;
+  fb.following_error = 0;
   if (mode == control::DriveMode::kPosition) {
     const bool orienting = g.spindle && !interpolated_;
     const double target = orienting ? orient_target_ : command_;
@@ -174,7 +177,6 @@ control::DriveFeedback DriveController::Feedback(double position, double velocit
     if (ramp_velocity_ == target && std::abs(velocity - target) < g.standstill_window)
       fb.status |= kAtSpeed;
   }
-  return fb;
 }
 
 }  // namespace vmt::sim

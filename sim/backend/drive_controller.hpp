@@ -55,8 +55,11 @@ class DriveController {
   /// time at the torque limit (overload).
   double Torque(double velocity_reference, double velocity, double dt_s);
 
-  /// Feedback in machine units for the control (encoder-quantised position).
-  control::DriveFeedback Feedback(double position, double velocity, double torque) const;
+  /// Feedback in machine units for the control (encoder-quantised position), written into the
+  /// drive's entry of the telegram in place. fb.probe is left alone: the probe latch writes it
+  /// (ProbeWiring), and building a whole DriveFeedback per drive and tick -- clearing and
+  /// copying its probe registers -- was a large part of a kinematic step.
+  void Feedback(double position, double velocity, double torque, control::DriveFeedback& fb) const;
 
   /// The mode the drive is in: the setpoint's, or kOff while tripped.
   control::DriveMode mode() const { return mode_; }
@@ -90,12 +93,20 @@ class DriveController {
 /// Setpoint value from machine units to SI (mm -> m, deg -> rad).
 control::DriveSetpoint ToSi(const DriveParams& p, const control::DriveSetpoint& sp);
 
+/// A motor joint's position or velocity on the load side (divided by the drive's ratio). A
+/// direct drive (ratio 1, most of them) skips the division: x / 1 is x exactly, and the
+/// divisions were the dearest instructions of a kinematic tick.
+inline double LoadSide(const DriveParams& p, double motor) {
+  return p.ratio == 1 ? motor : motor / p.ratio;
+}
+
 /// The position the drive's position loop closes on (m | rad, load side), from a function that
 /// gives a joint's position: the load-side encoder's joint (`encoder: load`), else the motor
 /// joint through the ratio.
 template <typename JointPosition>
 double EncoderPosition(const DriveParams& p, const JointPosition& joint_position) {
-  return p.load_joint >= 0 ? joint_position(p.load_joint) : joint_position(p.motor_joint) / p.ratio;
+  return p.load_joint >= 0 ? joint_position(p.load_joint)
+                           : LoadSide(p, joint_position(p.motor_joint));
 }
 
 }  // namespace vmt::sim

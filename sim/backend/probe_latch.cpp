@@ -17,10 +17,20 @@ void Latch(control::ProbeEdgeLatch& latch, double actual_position, double exact_
 
 }  // namespace
 
-void ProbeLatch::Step(const control::ProbeControl& control,
+bool ProbeLatch::Step(const control::ProbeControl& control,
                       const std::array<ProbeInputSample, 2>& pins, double actual_position) {
   const bool active = control.probe_cycle_command == pc::kProbeCycleActive;
   const std::array<bool, 2> enables = {control.probe1_enable, control.probe2_enable};
+  if (!active && off_) {
+    // Still off: what the rules below would do, minus the clearing already done -- the samples
+    // and enables are remembered for the edges and the arming after the function comes on.
+    for (size_t n = 0; n < 2; ++n) {
+      inputs_[n].level_before = pins[n].level;
+      inputs_[n].enable_before = enables[n];
+    }
+    return false;
+  }
+  off_ = !active;
   std::array<control::ProbeInputStatus*, 2> shown = {&status_.probe1, &status_.probe2};
 
   for (size_t n = 0; n < 2; ++n) {
@@ -50,6 +60,7 @@ void ProbeLatch::Step(const control::ProbeControl& control,
     // transition the function saw, so it arms only after 0 and back to 1.
     in.enable_before = enables[n];
   }
+  return true;
 }
 
 }  // namespace vmt::sim

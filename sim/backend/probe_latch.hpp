@@ -39,8 +39,9 @@ class ProbeLatch {
  public:
   /// One 250 us tick: the master's probe parameters and enables of this tick, PIN4 and PIN5 as
   /// sampled now, and the drive's actual position value of this tick (DriveFeedback::position,
-  /// mm | deg).
-  void Step(const control::ProbeControl& control, const std::array<ProbeInputSample, 2>& pins,
+  /// mm | deg). Returns false when status() is the same as before the tick: the function was
+  /// off and stays off (most ticks of a run), so whoever shows it need not copy it again.
+  bool Step(const control::ProbeControl& control, const std::array<ProbeInputSample, 2>& pins,
             double actual_position);
 
   /// S-0-0401/0402, S-0-0409..0412, S-0-0130..0133 after the last Step.
@@ -55,6 +56,7 @@ class ProbeLatch {
 
   std::array<Input, 2> inputs_;
   control::ProbeStatus status_;
+  bool off_ = true;  ///< the function was off in the last tick: nothing armed, status_ all clear
 };
 
 }  // namespace vmt::sim

@@ -22,9 +22,12 @@ ProbeWiring::ProbeWiring(const MachineModel& model)
       switches_(model.io.size()),
       latches_(model.drives.size()),
       positions_before_(model.drives.size(), 0.0) {
-  for (const DriveParams& p : model.drives)
-    any_ = any_ || p.probe_inputs[0] >= 0 || p.probe_inputs[1] >= 0;
-  // What a device shows on an input (ReadInputs) would overwrite a switch set here.
+  for (size_t d = 0; d < model.drives.size(); ++d) {
+    const DriveParams& p = model.drives[d];
+    if (p.probe_inputs[0] >= 0 || p.probe_inputs[1] >= 0) wired_.push_back(static_cast<int>(d));
+  }
+  any_ = !wired_.empty();
+  // What a device shows on an input (MachineInputs) would overwrite a switch set here.
   for (size_t i = 0; i < model.io.size(); ++i)
     if (model.io[i].is_output || model.io[i].key) settable_[i] = 0;
   for (const DogClutch& k : model.clutches) settable_[k.sensor_engaged] = 0;
@@ -44,30 +47,34 @@ void ProbeWiring::SetSwitch(int io_input, bool level, double tick_fraction) {
                                 "' is not a machine input a switch may set (an output, a key, or "
                                 "the switch of a clutch, actuator or cam)");
   Switch& s = switches_[io_input];
+  if (!set_[io_input]) set_points_.push_back(io_input);
   set_[io_input] = 1;
   if (s.level == level) return;
   s.level = level;
+  if (!s.changed) changed_.push_back(io_input);
   s.changed = true;
   // NaN counts as the tick's end: the drive then sees the change at its sample, no earlier.
   s.fraction = tick_fraction >= 0 ? std::min(tick_fraction, 1.0) : tick_fraction < 0 ? 0.0 : 1.0;
 }
 
 void ProbeWiring::ShowInputs(std::vector<uint8_t>& inputs) const {
-  for (size_t i = 0; i < switches_.size(); ++i)
-    if (set_[i]) inputs[i] = switches_[i].level;
+  for (const int i : set_points_) inputs[i] = switches_[i].level;
 }
 
 void ProbeWiring::Step(const std::vector<control::DriveSetpoint>& setpoints,
                        const std::vector<uint8_t>& inputs, const std::vector<double>& positions,
                        std::vector<control::DriveFeedback>& feedback) {
-  for (size_t d = 0; d < latches_.size(); ++d) {
+  for (const int d : wired_) {
     const DriveParams& p = model_->drives[d];
-    if (p.probe_inputs[0] < 0 && p.probe_inputs[1] < 0) continue;
+    // Only an active function latches, i.e. reads the exact position (most ticks it is off).
+    const bool active =
+        setpoints[d].probe.probe_cycle_command == control::probe_control::kProbeCycleActive;
     std::array<ProbeInputSample, 2> pins;
     for (int k = 0; k < 2; ++k) {
       const int io = p.probe_inputs[k];
       if (io < 0) continue;
       pins[k].level = inputs[io] != 0;
+      if (!active) continue;
       // The axis moves nearly uniformly within 250 us: the position at the change lies on the
       // line between the two ticks' (a modulo drive's the shorter way round).
       const Switch& s = switches_[io];
@@ -79,11 +86,14 @@ void ProbeWiring::Step(const std::vector<control::DriveSetpoint>& setpoints,
       if (modulo > 0) exact -= modulo * std::floor(exact / modulo);
       pins[k].exact_position = exact;
     }
-    latches_[d].Step(setpoints[d].probe, pins, feedback[d].position);
-    feedback[d].probe = latches_[d].status();
+    // Nothing else writes DriveFeedback::probe (DriveController::Feedback leaves it), so an
+    // unchanged status need not be copied again.
+    if (latches_[d].Step(setpoints[d].probe, pins, feedback[d].position))
+      feedback[d].probe = latches_[d].status();
+    positions_before_[d] = positions[d];
   }
-  positions_before_ = positions;
-  for (Switch& s : switches_) s.changed = false;
+  for (const int i : changed_) switches_[i].changed = false;
+  changed_.clear();
 }
 
 }  // namespace vmt::sim

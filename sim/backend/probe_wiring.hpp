@@ -29,6 +29,8 @@ class ProbeWiring {
 
   /// Whether any drive has a probe input wired: without, Step has nothing to do.
   bool any() const { return any_; }
+  /// The drives with a probe input wired, in drive order: the positions Step reads.
+  const std::vector<int>& wired() const { return wired_; }
 
   /// The switch on I/O input `io_input` changes to `level` at `tick_fraction` (0..1, clamped)
   /// of the tick being stepped, i.e. at time_s() + tick_fraction x 250 us when called between
@@ -38,13 +40,14 @@ class ProbeWiring {
   /// alone (an output, an operator's key, a clutch, actuator or cam switch).
   void SetSwitch(int io_input, bool level, double tick_fraction);
 
-  /// The switches' levels into the inputs the machine shows (after ReadInputs).
+  /// The switches' levels into the inputs the machine shows (after MachineInputs::Read).
   void ShowInputs(std::vector<uint8_t>& inputs) const;
 
   /// One drive tick, after the feedback of the tick is computed: each wired drive's latch
   /// samples its inputs (`inputs`: the machine's inputs of this tick) with the setpoints' probe
-  /// control and writes DriveFeedback::probe. `positions`: every drive's unquantised actual
-  /// position of this tick (ActualPositions), for the exact position at a change.
+  /// control and writes DriveFeedback::probe. `positions`: per drive, the unquantised actual
+  /// position of this tick (ActualPositions), for the exact position at a change; only the
+  /// wired() drives' entries are read.
   void Step(const std::vector<control::DriveSetpoint>& setpoints,
             const std::vector<uint8_t>& inputs, const std::vector<double>& positions,
             std::vector<control::DriveFeedback>& feedback);
@@ -56,13 +59,18 @@ class ProbeWiring {
     double fraction = 1;   ///< of the last change in that tick
   };
 
+  // Step and ShowInputs run every tick: they visit the few wired drives, set switches and
+  // changes only, not every drive and I/O point of the machine.
   const MachineModel* model_;
   bool any_ = false;
+  std::vector<int> wired_;         ///< the drives with a probe input wired, in drive order
   std::vector<uint8_t> settable_;  ///< per I/O point: SetSwitch may set it
   std::vector<uint8_t> set_;       ///< per I/O point: SetSwitch has set it
+  std::vector<int> set_points_;    ///< the I/O points SetSwitch has set
   std::vector<Switch> switches_;   ///< per I/O point
+  std::vector<int> changed_;       ///< the I/O points whose switch changed in this tick
   std::vector<ProbeLatch> latches_;
-  std::vector<double> positions_before_;
+  std::vector<double> positions_before_;  ///< per drive, read and kept for wired drives only
 };
 
 /// Every drive's actual position, unquantised, in machine units (mm | deg) and the drive's own
@@ -72,6 +80,12 @@ template <typename JointPosition>
 void ActualPositions(const MachineModel& model, const JointPosition& joint_position,
                      std::vector<double>& positions);
 
+/// The same for `drives` only (indices into model.drives); the other entries of `positions`
+/// (one per drive) stay as they are. A backend steps the probe wiring with its wired() drives'.
+template <typename JointPosition>
+void ActualPositions(const MachineModel& model, const JointPosition& joint_position,
+                     const std::vector<int>& drives, std::vector<double>& positions);
+
 /// One drive's (see ActualPositions).
 double ActualPosition(const DriveParams& p, double encoder_position_si);
 
@@ -80,6 +94,16 @@ void ActualPositions(const MachineModel& model, const JointPosition& joint_posit
                      std::vector<double>& positions) {
   positions.resize(model.drives.size());
   for (size_t d = 0; d < model.drives.size(); ++d) {
+    const DriveParams& p = model.drives[d];
+    positions[d] = ActualPosition(p, EncoderPosition(p, joint_position));
+  }
+}
+
+template <typename JointPosition>
+void ActualPositions(const MachineModel& model, const JointPosition& joint_position,
+                     const std::vector<int>& drives, std::vector<double>& positions) {
+  positions.resize(model.drives.size());
+  for (const int d : drives) {
     const DriveParams& p = model.drives[d];
     positions[d] = ActualPosition(p, EncoderPosition(p, joint_position));
   }

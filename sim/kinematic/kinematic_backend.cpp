@@ -3,13 +3,16 @@
 namespace vmt::sim {
 
 KinematicBackend::KinematicBackend(const MachineModel& model, const InitialState& init)
-    : model_(&model), drive_infos_(model.DriveInfos()), probes_(model), styluses_(model) {
+    : model_(&model),
+      drive_infos_(model.DriveInfos()),
+      inputs_(model),
+      probes_(model),
+      styluses_(model) {
   for (const DriveParams& p : model.drives) controllers_.emplace_back(p);
   clutches_.resize(model.clutches.size());
   clutch_offsets_.assign(model.clutches.size(), 0.0);
   actuators_.resize(model.actuators.size());
   q_ = InitialJointPositions(model, init);
-  held_.assign(q_.size(), 0);
   qd_.assign(q_.size(), 0.0);
   for (size_t k = 0; k < model.clutches.size(); ++k) {
     auto it = init.clutch_engaged.find(model.clutches[k].name);
@@ -69,6 +72,7 @@ void KinematicBackend::RebuildPlan() {
     }
   }
   group_led_.assign(groups, -1);
+  group_held_.assign(groups, 0);
 }
 
 void KinematicBackend::Step() {
@@ -78,11 +82,11 @@ void KinematicBackend::Step() {
   const std::vector<double>& q_before = q_before_;
 
   // A clamp holds its joint and what is coupled to it: the ideal machine's clamp never slips.
-  std::fill(held_.begin(), held_.end(), 0);
+  std::fill(group_held_.begin(), group_held_.end(), 0);
   for (size_t k = 0; k < actuators_.size(); ++k) {
     const Actuator& a = model_->actuators[k];
     actuators_[k].Step(a, mdt_.outputs[a.valve], dt);
-    if (actuators_[k].Holds(a)) held_[model_->drives[a.holds_drive].motor_joint] = 1;
+    if (actuators_[k].Holds(a)) group_held_[group_[model_->drives[a.holds_drive].motor_joint]] = 1;
   }
 
   // Enabled drives lead their coupled group, first in YAML order; a second enabled drive on the
@@ -94,16 +98,14 @@ void KinematicBackend::Step() {
     const control::DriveSetpoint sp = ToSi(p, mdt_.setpoints[d]);
     // Position loop on its encoder (possibly load side), velocity loop on the motor.
     const double pos = EncoderPosition(p, [&q_before](int j) { return q_before[j]; });
-    const double vel = qd_[p.motor_joint] / p.ratio;
+    const double vel = LoadSide(p, qd_[p.motor_joint]);
     const double v_ref = ctrl.VelocityReference(sp, pos, vel, dt);
     // The controller's mode, not the setpoint's: a tripped drive's power stage is off.
     const bool leads = ctrl.mode() == control::DriveMode::kPosition ||
                        ctrl.mode() == control::DriveMode::kVelocity;
-    int64_t& led = group_led_[group_[p.motor_joint]];
-    bool held = false;
-    for (size_t j = 0; j < held_.size(); ++j)
-      held = held || (held_[j] && group_[j] == group_[p.motor_joint]);
-    if (!leads || led == ticks_ || held) continue;
+    const int group = group_[p.motor_joint];
+    int64_t& led = group_led_[group];
+    if (!leads || led == ticks_ || group_held_[group]) continue;
     led = ticks_;
     q_[p.motor_joint] = q_before[p.motor_joint] + p.ratio * v_ref * dt;
     for (const Follower& f : followers_[p.motor_joint])
@@ -133,7 +135,7 @@ void KinematicBackend::Step() {
   UpdateFeedback();
   if (probes_.any()) {
     const auto joint = [this](int j) { return q_[j]; };
-    ActualPositions(*model_, joint, probe_positions_);
+    ActualPositions(*model_, joint, probes_.wired(), probe_positions_);
     probes_.Step(mdt_.setpoints, at_.inputs, probe_positions_, at_.feedback);
   }
 }
@@ -141,10 +143,10 @@ void KinematicBackend::Step() {
 void KinematicBackend::UpdateFeedback() {
   for (size_t d = 0; d < controllers_.size(); ++d) {
     const DriveParams& p = model_->drives[d];
-    at_.feedback[d] = controllers_[d].Feedback(EncoderPosition(p, [this](int j) { return q_[j]; }),
-                                               qd_[p.motor_joint] / p.ratio, 0);
+    controllers_[d].Feedback(EncoderPosition(p, [this](int j) { return q_[j]; }),
+                             LoadSide(p, qd_[p.motor_joint]), 0, at_.feedback[d]);
   }
-  ReadInputs(*model_, mdt_.outputs, clutches_, actuators_, at_.feedback, at_.inputs);
+  inputs_.Read(mdt_.outputs, clutches_, actuators_, at_.feedback, at_.inputs);
   probes_.ShowInputs(at_.inputs);
 }
 

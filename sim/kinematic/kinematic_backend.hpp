@@ -46,7 +46,6 @@ class KinematicBackend : public MachineBackend {
   std::vector<DogClutchLogic> clutches_;
   std::vector<double> clutch_offsets_;
   std::vector<ActuatorLogic> actuators_;
-  std::vector<uint8_t> held_;  ///< per joint: a clamp holds it this tick
   std::vector<double> q_, qd_;
   std::vector<double> q_before_;
 
@@ -58,9 +57,11 @@ class KinematicBackend : public MachineBackend {
   void RebuildPlan();
   std::vector<std::vector<Follower>> followers_;  ///< per leading joint, in propagation order
   std::vector<int> group_;                        ///< coupled group of each joint
-  std::vector<int64_t> group_led_;  ///< per group: the tick in which an enabled drive led it
+  std::vector<int64_t> group_led_;   ///< per group: the tick in which an enabled drive led it
+  std::vector<uint8_t> group_held_;  ///< per group: a clamp holds one of its joints this tick
   control::MasterTelegram mdt_;
   control::AmplifierTelegram at_;
+  MachineInputs inputs_;
   ProbeWiring probes_;
   StylusContacts styluses_;
   std::vector<double> probe_positions_;  ///< per drive, unquantised (ActualPositions)

@@ -58,6 +58,7 @@ PhysicsBackend::PhysicsBackend(const MachineModel& model, const InitialState& in
     : model_(&model),
       drive_infos_(model.DriveInfos()),
       world_(std::make_unique<World>()),
+      inputs_(model),
       probes_(model),
       styluses_(model) {
   for (const DriveParams& p : model.drives) controllers_.emplace_back(p);
@@ -227,7 +228,7 @@ void PhysicsBackend::Step() {
     const DriveParams& p = model_->drives[d];
     // Position loop on its encoder (possibly load side), velocity loop on the motor.
     const double pos = EncoderPosition(p, [&mb](int j) { return mb.getJointPos(j); });
-    const double vel = mb.getJointVel(p.motor_joint) / p.ratio;
+    const double vel = LoadSide(p, mb.getJointVel(p.motor_joint));
     DriveController& ctrl = controllers_[d];
     const double v_ref = ctrl.VelocityReference(ToSi(p, mdt_.setpoints[d]), pos, vel, dt);
     torques[d] = ctrl.Torque(v_ref, vel, dt);
@@ -268,7 +269,7 @@ void PhysicsBackend::Step() {
   UpdateFeedback(torques);
   if (probes_.any()) {
     const auto joint = [&mb](int j) { return mb.getJointPos(j); };
-    ActualPositions(*model_, joint, probe_positions_);
+    ActualPositions(*model_, joint, probes_.wired(), probe_positions_);
     probes_.Step(mdt_.setpoints, at_.inputs, probe_positions_, at_.feedback);
   }
 }
@@ -277,11 +278,11 @@ void PhysicsBackend::UpdateFeedback(const std::vector<double>& torques) {
   const btMultiBody& mb = *world_->body;
   for (size_t d = 0; d < controllers_.size(); ++d) {
     const DriveParams& p = model_->drives[d];
-    at_.feedback[d] =
-        controllers_[d].Feedback(EncoderPosition(p, [&mb](int j) { return mb.getJointPos(j); }),
-                                 mb.getJointVel(p.motor_joint) / p.ratio, torques[d]);
+    controllers_[d].Feedback(EncoderPosition(p, [&mb](int j) { return mb.getJointPos(j); }),
+                             LoadSide(p, mb.getJointVel(p.motor_joint)), torques[d],
+                             at_.feedback[d]);
   }
-  ReadInputs(*model_, mdt_.outputs, clutches_, actuators_, at_.feedback, at_.inputs);
+  inputs_.Read(mdt_.outputs, clutches_, actuators_, at_.feedback, at_.inputs);
   probes_.ShowInputs(at_.inputs);
 }
 

@@ -67,11 +67,12 @@ class PhysicsBackend : public MachineBackend {
   std::unique_ptr<World> world_;
   control::MasterTelegram mdt_;
   control::AmplifierTelegram at_;
+  MachineInputs inputs_;
   ProbeWiring probes_;
   StylusContacts styluses_;
   std::vector<double> probe_positions_;  ///< per drive, unquantised (ActualPositions)
-  std::vector<double> q_before_;  ///< joint positions before the tick's motion (styluses)
-  std::vector<double> torques_;  ///< load side, per drive, of the last tick
+  std::vector<double> q_before_;         ///< joint positions before the tick's motion (styluses)
+  std::vector<double> torques_;          ///< load side, per drive, of the last tick
   int64_t ticks_ = 0;
 };
 

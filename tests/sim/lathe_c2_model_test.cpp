@@ -158,13 +158,16 @@ TEST(LatheC2ModelTest, S1WorksWithTheGainsOfTheSelectedSet) {
   const double v_ref = drive.VelocityReference(ToSi(p, rotary), 0, 0, dt);
   EXPECT_NEAR(v_ref, 30 * one_deg, 1e-9);
   EXPECT_NEAR(drive.Torque(v_ref, 0, dt), 1.5 * 30 * (1 + dt / 0.02), 1e-6);
-  EXPECT_EQ(drive.Feedback(0, 0, 0).parameter_set, 1);
+  control::DriveFeedback fb;
+  drive.Feedback(0, 0, 0, fb);
+  EXPECT_EQ(fb.parameter_set, 1);
   // Speed control, set 0 (at standstill: bumpless), 1 deg/s of speed error.
   DriveController spindle(p);
   const control::DriveSetpoint speed{DriveMode::kVelocity, 1, 0};
   const double s_ref = spindle.VelocityReference(ToSi(p, speed), 0, 0, dt);
   EXPECT_NEAR(spindle.Torque(s_ref, s_ref - one_deg, dt), 0.8 * (1 + dt / 0.03), 1e-6);
-  EXPECT_EQ(spindle.Feedback(0, 0, 0).parameter_set, 0);
+  spindle.Feedback(0, 0, 0, fb);
+  EXPECT_EQ(fb.parameter_set, 0);
 }
 
 class LatheC2SpindleTest : public ::testing::TestWithParam<BackendKind> {};
