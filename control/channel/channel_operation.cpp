@@ -1,0 +1,189 @@
+// What the operator and the PLC do to the channel as a whole: the operating mode, start, feed
+// hold and Control-Reset, and lending the axes to a JogOfPath channel (jog_of_path.hpp).
+#include <cmath>
+
+#include "control/channel/channel.hpp"
+
+namespace vmt::control::channel {
+
+bool Channel::SetMode(ChannelMode mode) {
+  // C-axis manual 2.3: a mode change during a changeover is an immediate stop.
+  if (state_ == ChannelState::kRunning && headstock_ && headstock_->busy() && mode != mode_) Stop();
+  if (state_ == ChannelState::kRunning || replay_.direction != 0) return false;
+  // MDI and an interrupted automatic program do not share the interpreter: MDI needs the
+  // program ended or reset first, and an interrupted MDI sequence ("execute in manual mode",
+  // REPOS manual 2.1) goes on in MDI, not in automatic.
+  const bool interrupted = state_ == ChannelState::kHold && interpreter_;
+  if (interrupted && mode != ChannelMode::kManual &&
+      (mode == ChannelMode::kMdi) != running_mdi_)
+    return false;
+  if (mode != mode_) {
+    // A jog under way is let go as at released keys: it brakes to rest in the new mode (Cycle)
+    // rather than stopping dead, an increment runs to its end, and neither goes on when manual
+    // mode comes back. X1/Y1 and the tool storage axis alike.
+    for (JogAxis& j : jog_) j.key = 0, j.blocked = 0;
+    for (FictiveJog& f : fictive_jog_) f.key = 0;
+    tool_storage_.key = 0;
+    // Where the program was interrupted: the contour the axes must come back to (REPOS 2.1).
+    if (mode == ChannelMode::kManual && !interruption_ && state_ == ChannelState::kHold &&
+        !repos_run_)
+      CaptureInterruption();
+    // Travelled back: the program was interrupted at the point the travel started from, and
+    // the way back to it is now repositioning's (the axes have left it).
+    if (replay_.away) {
+      if (interruption_) interruption_->point = replay_.home;
+      replay_.away = false;
+    }
+    // Manual mode during the REPOS subroutine's hold: the next start runs it again.
+    if (mode == ChannelMode::kManual && repos_run_ && state_ == ChannelState::kHold)
+      repos_rerun_ = true;
+    // REPOS manual 2.1: interrupted MDI blocks keep their interpreter through manual mode.
+    if ((mode == ChannelMode::kMdi || mode_ == ChannelMode::kMdi) && !interrupted) {
+      if (interpreter_) last_modal_ = interpreter_->modal();
+      interpreter_.reset();
+      if (state_ == ChannelState::kEnded) state_ = ChannelState::kIdle;
+    }
+  }
+  mode_ = mode;
+  start_deferred_ = false;
+  // The handwheel's counts start afresh from where each axis comes to rest.
+  SetJogMode(static_cast<int>(jog_mode_));
+  return true;
+}
+
+void Channel::Start() {
+  if (mode_ == ChannelMode::kManual || !process_enable_) return;
+  if (mode_ == ChannelMode::kMdi && !mdi_) return;
+  // A jog left for this mode still brakes: the start is taken when the axes are at rest.
+  if (JogsMoving()) {
+    start_deferred_ = true;
+    return;
+  }
+  if (state_ == ChannelState::kHold) {
+    if (StartReplay()) return;
+    if (StartBlockSearchHold()) return;
+    // Fast measurement 6.1, Q9998: the new start acknowledges OVERSIZE / UNDERSIZE.
+    if (error_number_ == kMsgMeasuringContinuable) error_.clear(), error_number_ = 0;
+    if (repos_run_ && repos_rerun_) {
+      // Stopped during the REPOS subroutine and left for manual mode (jogged, perhaps): its
+      // G77 in work no longer starts where the axes stand. It runs again from `.REPOS`, to
+      // the same interruption point; the subroutine's progress is no new interruption.
+      StartReposRun();
+      return;
+    }
+    if (repos_run_) {  // the REPOS subroutine was held: it goes on
+      state_ = ChannelState::kRunning;
+      return;
+    }
+    // Repositioning or NC-block restart called: the REPOS subroutine returns the axes (4.1).
+    if (interruption_ && repos_function_ != ReposFunction::kNone) {
+      StartReposRun();
+      return;
+    }
+    // Continuing from off the contour would jump back to the path: the axes must first be
+    // repositioned to the interruption point.
+    for (size_t a = 0; a < commanded_.size() && interruption_; ++a) {
+      // The rotary axis outside rotary axis mode follows the spindle: no contour to leave.
+      if (headstock_ && static_cast<int>(a) == config_.rotary_axis &&
+          headstock_->mode() != axes::HeadstockMode::kRotary)
+        continue;
+      const double point = interruption_->point[a];
+      if (std::isnan(point)) continue;  // not on the contour (CaptureInterruption)
+      if (std::abs(commanded_[a] - point) > 1e-6) {
+        Fail("axis " + config_.axes[a].name +
+                 " has left the contour at the interruption point: reposition it first",
+             kMsgLeftContour);
+        return;
+      }
+    }
+    ClearRepos();
+    state_ = ChannelState::kRunning;
+    return;
+  }
+  if (state_ == ChannelState::kRunning || state_ == ChannelState::kError) return;
+  // Start after the end runs the program again from its first block.
+  if (state_ == ChannelState::kEnded) ForgetEndedProgram();
+  state_ = ChannelState::kRunning;
+  start_pending_ = true;  // positions are taken from the feedback at the next tick
+}
+
+void Channel::Stop() {
+  start_deferred_ = false;
+  if (state_ == ChannelState::kRunning) state_ = ChannelState::kHold;
+  if (replay_.direction != 0) replay_.stopping = true;
+}
+
+void Channel::Reset() {
+  // Control-Reset aborts a changeover; the mode is again what the PLC acknowledges (2.3).
+  if (headstock_) headstock_->TakeModeFromPlc(headstock_plc_);
+  waiting_for_ = axes::HeadstockMode::kNone;
+  state_ = ChannelState::kIdle;
+  error_.clear();
+  error_number_ = 0;
+  start_deferred_ = false;
+  active_ = false;
+  homing_ = false;
+  reversing_ = false;
+  dwell_left_s_ = 0;
+  orienting_ = false;
+  aux_output_.clear();
+  tool_storage_.positioning = tool_storage_.programmed = tool_storage_wait_ = false;
+  if (repos_run_) SwapProgramInWork();
+  parked_ = ProgramInWork{};
+  ClearRepos();
+  measuring_.reset();
+  measuring_setting_.reset();
+  reverse_vectors_ = {};
+  // Block search 7: a reset leaves block search without the handshake.
+  search_.reset();
+  bs_state_ = BlockSearchState::kInactive;
+  bs_command_ = false;
+  breakpoint_rest_.reset();
+  breakpoint_hold_ = breakpoint_pending_ = false;
+  search_offset_.clear();  // the G92 shift goes below
+  path_memory_.Clear();
+  const bool backward = replay_.backward_requested;
+  replay_ = PathReplay{};
+  replay_.backward_requested = backward;
+  if (interpreter_) last_modal_ = interpreter_->modal();
+  interpreter_.reset();
+  DropLookahead();
+  previous_ = commanded_;
+  spindle_ = {DriveMode::kVelocity, 0, 0};
+  spindle_referencing_ = false;
+  manual_changeover_ = false;
+  // A real control acknowledges its drives' errors with Control-Reset: the drives that tripped
+  // get their controller enable removed for a cycle (the drive's fault reset), see Tick.
+  trip_reset_pending_ = true;
+  // Control-Reset drops the G92 shift and returns to the initial modal state (offsets too).
+  std::fill(shift_.begin(), shift_.end(), 0.0);
+  last_modal_ = config_.initial;
+  for (size_t a = 0; a < translation_.size(); ++a)
+    translation_[a] = config_.zero_offsets.Offset(config_.initial.zero_offset, a);
+  if (headstock_) {
+    const size_t r = static_cast<size_t>(config_.rotary_axis);
+    rotary_translation_ = translation_[r];
+    if (!RotaryOffsetsActive()) translation_[r] = 0;
+  }
+}
+
+void Channel::FollowAxesOf(const Channel& holder) {
+  if (!output_suspended_ || !holding_positions_ || !holder.holding_positions_) return;
+  for (size_t a = 0; a < config_.axes.size(); ++a) {
+    if (!Lent(a)) continue;
+    for (size_t h = 0; h < holder.config_.axes.size(); ++h)
+      if (holder.config_.axes[h].drive == config_.axes[a].drive)
+        commanded_[a] = previous_[a] = holder.commanded_[h];
+  }
+}
+
+bool Channel::AxesAtRest() const {
+  // A block held by a feed hold stands as well as one that has ended: no axis moved in the
+  // last NC cycle (a jog may stand for a cycle as it turns round).
+  if (JogsMoving()) return false;
+  for (size_t a = 0; a < commanded_.size(); ++a)
+    if (commanded_[a] != previous_[a]) return false;
+  return true;
+}
+
+}  // namespace vmt::control::channel

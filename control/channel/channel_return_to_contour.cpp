@@ -1,0 +1,188 @@
+// The return to the contour after block search (twincat-cnc-block-search-de.md 4.2): at the
+// start the spindle gets its speed back first, then the axes return in one straight G00 move
+// that PathGuard checks first (the manual leaves the obstacle to the operator, vmt refuses the
+// move; with #CAX TRACK, C is aligned first, 4.2.2; under G31 the line is one of the face), or
+// the manual return is checked against mc_cmd_bs_deviation_max_w and its offset kept until the
+// program's end (8). Machining then goes on at the continue position, inside its block when a
+// covered distance or a distance from program start says so (4.1).
+#include <cmath>
+#include <limits>
+
+#include "control/channel/block_search_support.hpp"
+#include "control/channel/channel.hpp"
+#include "control/nc/coordinate_transformation.hpp"
+
+namespace vmt::control::channel {
+
+bool Channel::SpindleReady(const AmplifierTelegram& at) const {
+  if (config_.spindle_drive < 0 || at.feedback.size() <= static_cast<size_t>(config_.spindle_drive))
+    return true;
+  const uint32_t status = at.feedback[config_.spindle_drive].status;
+  if (spindle_.mode == DriveMode::kPosition) return status & drive_status::kInPosition;
+  return spindle_.value == 0 || (status & drive_status::kAtSpeed);
+}
+
+bool Channel::StartReturnToContour() {
+  BlockSearchRun& s = *search_;
+  // 4.2.2: with #CAX TRACK on at the continue position the C axis is aligned first ("1.
+  // Ausrichten der C-Achse ... 2. Wiederanfahren entsprechend der Satzvorlaufposition"). vmt
+  // runs no tracking of its own, so C's alignment is where the program has C there.
+  s.return_rest = false;
+  // Outside rotary axis mode C is not positioned: it stays where the spindle has it.
+  if (headstock_ && headstock_->mode() != axes::HeadstockMode::kRotary) {
+    const size_t r = static_cast<size_t>(config_.rotary_axis);
+    s.restart[r] = commanded_[r];
+  }
+  if (s.cax_track) {
+    for (size_t a = 0; a < commanded_.size(); ++a) {
+      if (config_.axes[a].name != "C" || std::abs(s.restart[a] - commanded_[a]) < 1e-12) continue;
+      std::vector<double> aligned = commanded_;
+      aligned[a] = s.restart[a];
+      s.return_rest = true;
+      return StartReturnMove(aligned, "C axis alignment (#CAX TRACK)");
+    }
+  }
+  return StartReturnMove(s.restart, "return to contour");
+}
+
+bool Channel::StartReturnMove(const std::vector<double>& to, const std::string& move) {
+  profile_ = PathProfile{};
+  continuation_ready_ = false;
+  carry_speed_ = carry_accel_ = carry_leftover_ = 0;
+  // Under G31 (rotary axis mode) the return is a line of the face, as the programmed moves
+  // around it are and as G77 X1=0 Y1=0 returns (REPOS manual 5.2): straight in X and C it
+  // would sweep a spiral across the face. A line through the centre, where C is undefined,
+  // stays straight in the axes (the operator's start there is no program's move to refuse).
+  int x = -1, c = -1;
+  if (search_->face_return && FictiveJogAxes(x, c) &&
+      !nc::FaceLineOf(
+           nc::MachineToFace(commanded_[x] - translation_[x], commanded_[c] - translation_[c]),
+           nc::MachineToFace(to[x] - translation_[x], to[c] - translation_[c]))
+           .through_centre) {
+    nc::PreparedBlock b;
+    b.motion = nc::Motion::kRapid;
+    b.fictive = true;
+    b.modal.transformation = 31;
+    b.target.resize(to.size());
+    for (size_t a = 0; a < to.size(); ++a) b.target[a] = to[a] - translation_[a];
+    if (const auto error = PlanBlockMotion(b, commanded_, translation_, config_.axes, 0, motion_,
+                                           FollowUpAxes(b))) {
+      Fail("block search: return to contour: " + error->text, error->number);
+      return false;
+    }
+    if (!motion_.moves) return true;
+    if (!GuardBlockMove(move)) return false;
+    profile_.max_rate = motion_.max_rate;
+    profile_.max_accel = motion_.max_accel;
+    profile_.max_jerk = motion_.max_jerk;
+    active_ = true;
+    return true;
+  }
+  // 4.2: one straight move at the rapid limits, every axis ending together.
+  motion_ = BlockMotion{};
+  motion_.start = commanded_;
+  motion_.end = to;
+  double rate = std::numeric_limits<double>::infinity(), accel = rate;
+  for (size_t a = 0; a < commanded_.size(); ++a) {
+    const double distance = std::abs(motion_.end[a] - motion_.start[a]);
+    if (distance < 1e-12) continue;
+    const ChannelAxis& axis = config_.axes[a];
+    rate = std::min(rate, axis.rapid_per_s / distance);
+    accel = std::min(accel, axis.acceleration / distance);
+  }
+  if (!std::isfinite(rate)) return true;  // already there
+  motion_.moves = true;
+  motion_.length = 0;
+  for (size_t a = 0; a < commanded_.size(); ++a)
+    motion_.length += std::pow(motion_.end[a] - motion_.start[a], 2);
+  motion_.length = std::sqrt(motion_.length);
+  // The manual leaves obstacles on this line to the operator (8); vmt asks PathGuard first.
+  if (!GuardBlockMove(move)) return false;
+  profile_.max_rate = rate;
+  profile_.max_accel = accel;
+  active_ = true;
+  return true;
+}
+
+bool Channel::ApplySearchOffset() {
+  BlockSearchRun& s = *search_;
+  double deviation2 = 0;
+  for (size_t a = 0; a < commanded_.size(); ++a)
+    if (MainAxis(config_.axes[a].name)) deviation2 += std::pow(commanded_[a] - s.restart[a], 2);
+  const double deviation = std::sqrt(deviation2);
+  const double allowed = static_cast<double>(bs_started_.deviation_max) * 1e-4;
+  if (deviation > allowed + 1e-9) {
+    Fail("block search: the axes stand " + Mm(deviation) +
+             " mm from the continue position, more than mc_cmd_bs_deviation_max_w allows (" +
+             Mm(allowed) + " mm): bring them closer, or select the automatic return",
+         kMsgBlockSearchDeviation);
+    return false;
+  }
+  // 4.2, 8: the program goes on offset by where the axes stand, until its end or a reset.
+  search_offset_.assign(commanded_.size(), 0.0);
+  for (size_t a = 0; a < commanded_.size(); ++a) {
+    const double offset = commanded_[a] - s.restart[a];
+    search_offset_[a] = offset;
+    shift_[a] += offset;
+    translation_[a] += offset;
+    s.restart_motion.start[a] += offset;
+    s.restart_motion.end[a] += offset;
+  }
+  for (int k = 0; k < 2; ++k)
+    if (const int axis = s.restart_motion.arc_axes[k]; axis >= 0)
+      s.restart_motion.arc_centre[k] += search_offset_[static_cast<size_t>(axis)];
+  return true;
+}
+
+void Channel::ContinueAfterSearch() {
+  BlockSearchRun& s = *search_;
+  bs_state_ = BlockSearchState::kInactive;
+  state_ = ChannelState::kRunning;
+  s.start_requested = false;
+  if (spindle_.mode == DriveMode::kPosition) spindle_referencing_ = true;
+  if (!s.restart_motion.moves) return;  // the next block starts the real run
+  // The rest of the continue block, from the continue position on.
+  motion_ = s.restart_motion;
+  block_distance_start_ = s.restart_distance;
+  block_distance_ = s.restart_length;
+  distance_ = s.restart_distance + block_distance_;
+  if (s.restart_u >= 1) return;
+  profile_ = ProfileFrom(motion_, s.restart_u);
+  continuation_ready_ = false;
+  carry_speed_ = carry_accel_ = carry_leftover_ = 0;
+  active_ = true;
+}
+
+bool Channel::StartBlockSearchHold() {
+  if (breakpoint_hold_) {
+    // 3.5: after the breakpoint the rest of its block runs on.
+    breakpoint_hold_ = false;
+    if (bs_state_ == BlockSearchState::kWaitForContinueContour)
+      bs_state_ = BlockSearchState::kInactive;
+    state_ = ChannelState::kRunning;
+    if (breakpoint_rest_) {
+      motion_ = *breakpoint_rest_;
+      breakpoint_rest_.reset();
+      profile_ = ProfileFrom(motion_, breakpoint_u_);
+      active_ = true;
+    }
+    breakpoint_u_ = 0;
+    return true;
+  }
+  if (!search_ || bs_state_ == BlockSearchState::kInactive) return false;
+  if (bs_state_ == BlockSearchState::kWaitReturnToContour ||
+      bs_state_ == BlockSearchState::kWaitForContinueContour)
+    search_->start_requested = true;
+  state_ = ChannelState::kRunning;  // a feed hold during the search or the return ends
+  return true;
+}
+
+void Channel::RemoveSearchOffset() {
+  for (size_t a = 0; a < search_offset_.size() && a < shift_.size(); ++a) {
+    shift_[a] -= search_offset_[a];
+    translation_[a] -= search_offset_[a];
+  }
+  search_offset_.clear();
+}
+
+}  // namespace vmt::control::channel
