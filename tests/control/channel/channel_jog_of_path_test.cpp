@@ -190,5 +190,28 @@ TEST(ChannelJogOfPath, WithoutTheRequestTheJogOfPathChannelMovesNothing) {
   EXPECT_EQ(m.Z(), 0);
 }
 
+// The JogOfPath channel has the feed axes only: not the headstock's C, which rides on the
+// spindle, and with C the column of C goes from the zero offsets and the tool lengths.
+TEST(ChannelJogOfPath, ItsAxesAreTheFeedAxesWithoutTheHeadstocksC) {
+  ChannelConfig c;
+  c.axes = {Axis("X", 0, 400), Axis("C", 3, 360), Axis("Z", 1, 500)};
+  c.spindle_drive = 2;
+  c.headstock = axes::HeadstockConfig{};
+  c.rotary_axis = 1;
+  c.zero_offsets.g54_to_g59[0] = {1, 2, 3};
+  c.tools.edges.push_back({.tool = 1, .edge = 1, .length = {10, 20, 30}});
+  const ChannelConfig j = JogOfPathConfig(c);
+  ASSERT_EQ(j.axes.size(), 2u);
+  EXPECT_EQ(j.axes[0].name, "X");
+  EXPECT_EQ(j.axes[1].name, "Z");
+  EXPECT_EQ(j.zero_offsets.g54_to_g59[0], (std::vector<double>{1, 3}));
+  EXPECT_EQ(j.tools.edges[0].length, (std::vector<double>{10, 30}));
+  EXPECT_FALSE(j.headstock);
+  EXPECT_EQ(j.rotary_axis, -1);
+  EXPECT_EQ(j.spindle_drive, -1);
+  EXPECT_TRUE(j.output_suspended_at_start);
+  EXPECT_TRUE(j.approach_program);
+}
+
 }  // namespace
 }  // namespace vmt::control::channel
