@@ -9,12 +9,13 @@
 
 #include <chrono>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "control/nc/parser.hpp"
+#include "control/nc/program_file.hpp"
 #include "type5_search.hpp"
 
 namespace {
@@ -49,16 +50,16 @@ int main(int argc, char** argv) {
     return 2;
   }
   Stopwatch watch;
-  std::vector<std::string> texts;
+  std::vector<nc::ProgramFile> texts;
   size_t source_lines = 0;
   for (int i = 1; i < argc; ++i) {
-    std::ifstream in(argv[i], std::ios::binary);
-    if (!in) {
+    std::optional<nc::ProgramFile> read = nc::ReadProgramFile(argv[i]);
+    if (!read) {
       std::fprintf(stderr, "%s:0:0: error: cannot open file\n", argv[i]);
       return 2;
     }
-    texts.emplace_back(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    for (char c : texts.back()) source_lines += c == '\n';
+    texts.push_back(std::move(*read));
+    for (char c : texts.back().text()) source_lines += c == '\n';
   }
   const double read_s = watch.WallS(), read_cpu_s = watch.CpuSince();
 

@@ -129,7 +129,7 @@ ParseResult ParseProgram(std::string_view text, const std::string& file_name, Di
 }
 
 ParseResult ParseFile(const std::string& path, Dialect dialect) {
-  const std::optional<std::string> text = ReadProgramFile(path);
+  const std::optional<ProgramFile> text = ReadProgramFile(path);
   if (!text) {
     ParseResult r;
     r.program.files.push_back(path);

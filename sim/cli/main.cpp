@@ -143,12 +143,12 @@ int StudyRepos(sim::study::StudyOptions options, const std::string& shard,
 
 int Check(const std::string& file, const std::string& dialect_name) {
   namespace nc = control::nc;
-  const std::optional<std::string> read = nc::ReadProgramFile(file);
+  const std::optional<nc::ProgramFile> read = nc::ReadProgramFile(file);
   if (!read) {
     std::fprintf(stderr, "%s:0:0: error: cannot open file\n", file.c_str());
     return 2;
   }
-  const std::string& text = *read;
+  const std::string_view text = *read;
   const nc::Dialect dialect = dialect_name.empty()    ? nc::DetectDialect(text, file)
                               : dialect_name == "isg" ? nc::Dialect::kIsg
                                                       : nc::Dialect::kMtc200;

@@ -110,9 +110,9 @@ Scene LoadScene(const std::string& path) {
     const auto parse = [&](const YamlNode& f) {
       const std::string file =
           (std::filesystem::path(path).parent_path() / f.String()).lexically_normal().string();
-      const std::optional<std::string> read = control::nc::ReadProgramFile(file);
+      const std::optional<control::nc::ProgramFile> read = control::nc::ReadProgramFile(file);
       if (!read) f.Fail("cannot open NC program " + file);
-      const std::string& text = *read;
+      const std::string_view text = *read;
       namespace cnc = control::nc;
       const cnc::Dialect d = dialect.empty()    ? cnc::DetectDialect(text, file)
                              : dialect == "isg" ? cnc::Dialect::kIsg
