@@ -426,6 +426,8 @@ class Channel {
   }
   bool take_over_pending_ = false;  ///< own the axes' setpoints from the next tick on
   void Jogging(double dt);
+  /// The handwheel's counts start afresh from where each jogged axis (X1/Y1 too) comes to rest.
+  void RestartHandwheel();
   // Jogging X1/Y1 under G31 (channel_fictive_jog.cpp).
   struct FictiveJog {
     int key = 0;

@@ -25,6 +25,10 @@ void Channel::SetJogMode(int code) {
     default:
       jog_increment_ = 0;
   }
+  RestartHandwheel();
+}
+
+void Channel::RestartHandwheel() {
   // The handwheel's counts start afresh from where the axis comes to rest: the end of an
   // increment under way (it runs to its end, below), or where a continuous jog stops braking
   // (a target where it stands would stop it dead within a cycle).

@@ -46,8 +46,7 @@ bool Channel::SetMode(ChannelMode mode) {
   }
   mode_ = mode;
   start_deferred_ = false;
-  // The handwheel's counts start afresh from where each axis comes to rest.
-  SetJogMode(static_cast<int>(jog_mode_));
+  RestartHandwheel();
   return true;
 }
 
