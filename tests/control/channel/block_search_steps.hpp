@@ -11,6 +11,19 @@
 
 namespace vmt::control::channel::testing {
 
+/// Block search type 4: pass `pass` of block N`number`, continuing `per_mille` of the way into
+/// it, with the automatic return to the contour.
+inline BlockSearchParameters BlockNumberSearch(uint32_t number, double per_mille = 0,
+                                               uint32_t pass = 1) {
+  BlockSearchParameters p;
+  p.type = BlockSearchType::kBlockNumber;
+  p.block_number = number;
+  p.block_number_pass = pass;
+  p.covered_distance = per_mille;
+  p.auto_return = true;
+  return p;
+}
+
 template <class Rig>
 struct BlockSearchSteps : Rig {
   using Rig::Rig;
@@ -25,9 +38,8 @@ struct BlockSearchSteps : Rig {
   bool Ended() const { return this->channel->state() == ChannelState::kEnded; }
   /// Until the search state is `s`, or the channel ends or fails on the way.
   bool Waits(BlockSearchState s) {
-    return RunUntil([&] {
-      return State() == s || this->channel->state() == ChannelState::kError || Ended();
-    });
+    return RunUntil(
+        [&] { return State() == s || this->channel->state() == ChannelState::kError || Ended(); });
   }
   void Search(const BlockSearchParameters& p) {
     std::string error;

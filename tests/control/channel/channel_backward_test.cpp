@@ -8,8 +8,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <functional>
+#include <numbers>
 #include <vector>
 
 #include "block_search_steps.hpp"
@@ -227,26 +227,17 @@ constexpr const char* kSearchPass =
     "N50 Z-20\n"
     "N60 M30\n";
 
-BlockSearchParameters Type4(uint32_t number) {
-  BlockSearchParameters p;
-  p.type = BlockSearchType::kBlockNumber;
-  p.block_number = number;
-  p.block_number_pass = 1;
-  p.auto_return = true;
-  return p;
-}
-
 TEST(ChannelBackward, AfterBlockSearchTravelsTheDecodedProgramBackwards) {
   // 4.3: "in Rückwärtsrichtung ab der Startposition aus dem Satzvorlauf das real programmierte
   // NC-Programm": from the continue position (N40's start, X10 Z-10) back along N30, N20 and
   // N10, which the axes never travelled, to where the program started (X50 Z50).
   Lathe m(kSearchPass, 50, 50, {}, nc::Dialect::kIsg);
-  m.Search(Type4(40));
+  m.Search(testing::BlockNumberSearch(40));
   ASSERT_TRUE(m.ToContour());
   EXPECT_NEAR(m.X(), 10, 1e-9);
   EXPECT_NEAR(m.Z(), -10, 1e-9);
-  const std::vector<std::pair<double, double>> path = {
-      {50, 50}, {20, 5}, {10, 5}, {10, -10}, {30, -10}, {30, -20}};
+  const std::vector<std::pair<double, double>> path = {{50, 50},  {20, 5},   {10, 5},
+                                                       {10, -10}, {30, -10}, {30, -20}};
   StartBackward(m);
   EXPECT_LT(RunToRest(m, path), 1e-6);
   EXPECT_NEAR(m.X(), 50, 1e-9);
@@ -264,7 +255,7 @@ TEST(ChannelBackward, TheDecodedRapidLegsAreAskedOfPathGuardFirst) {
   // skipped may be there. N10's G00 (X20 Z5 <- X50 Z50) crosses the wall; N30 and N20 are feed
   // legs, the program's cuts, and go back unchecked.
   Lathe m(kSearchPass, 50, 50, {}, nc::Dialect::kIsg);
-  m.Search(Type4(40));
+  m.Search(testing::BlockNumberSearch(40));
   ASSERT_TRUE(m.ToContour());
   WallAtZ8 wall;
   m.channel->SetPathGuard(&wall);
@@ -272,7 +263,8 @@ TEST(ChannelBackward, TheDecodedRapidLegsAreAskedOfPathGuardFirst) {
   StartBackward(m);
   ASSERT_TRUE(m.RunUntil([&] { return m.channel->state() == ChannelState::kError; }));
   EXPECT_EQ(m.channel->error_number(), kMsgCollision);
-  EXPECT_THAT(m.channel->error(), HasSubstr("collision ahead (backward travel): tool would touch wall"));
+  EXPECT_THAT(m.channel->error(),
+              HasSubstr("collision ahead (backward travel): tool would touch wall"));
   ASSERT_EQ(wall.moves.size(), 1u);  // stopped before it moved: at N10's end
   EXPECT_EQ(m.channel->position(0), 20);
   EXPECT_EQ(m.channel->position(1), 5);
@@ -284,7 +276,7 @@ TEST(ChannelBackward, TheDecodedRapidLegsAreAskedOfPathGuardFirst) {
 
 TEST(ChannelBackward, NotPossibleWithTheOffsetOfAManualReturn) {
   // 4.2: "Bei einem Offset > 0 ist Rückwärtsfahren nicht möglich!"
-  BlockSearchParameters p = Type4(40);
+  BlockSearchParameters p = testing::BlockNumberSearch(40);
   p.auto_return = false;
   p.deviation_max = 5000;  // 0.5 mm
   Lathe m(kSearchPass, 10.2, -10.1, {}, nc::Dialect::kIsg);

@@ -56,20 +56,10 @@ std::vector<std::array<double, 3>> RunBlockEnds(const std::string& program = kPr
   return ends;
 }
 
-BlockSearchParameters Type4(uint32_t number, int permille) {
-  BlockSearchParameters p;
-  p.type = BlockSearchType::kBlockNumber;
-  p.block_number = number;
-  p.block_number_pass = 1;
-  p.covered_distance = permille;
-  p.auto_return = true;
-  return p;
-}
-
 TEST(ChannelBlockSearchHeadstock, ContinueInRotaryAxisModeChangesOverAndReturnsC) {
   const auto run = RunBlockEnds();
   Headstock m;
-  m.Search(Type4(7, 500));
+  m.Search(testing::BlockNumberSearch(7, 500));
   ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour)) << m.channel->error();
   // The changeover ran during the search; no axis moved.
   EXPECT_EQ(m.hs().mode(), HeadstockMode::kRotary);
@@ -101,7 +91,7 @@ TEST(ChannelBlockSearchHeadstock, ContinueAfterTheChangeoverBackIsInSpindleMode)
   // not positioned in spindle mode, does not move with the return.
   const auto run = RunBlockEnds();
   Headstock m;
-  m.Search(Type4(9, 500));
+  m.Search(testing::BlockNumberSearch(9, 500));
   ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour)) << m.channel->error();
   EXPECT_EQ(m.hs().mode(), HeadstockMode::kSpindle);
   const double c_before = m.C();
@@ -122,7 +112,7 @@ TEST(ChannelBlockSearchHeadstock, ContinueAfterTheChangeoverBackIsInSpindleMode)
 TEST(ChannelBlockSearchHeadstock, TheSearchWaitsForThePlcsAcknowledgementOfTheChangeover) {
   Headstock m;
   m.acknowledge = false;
-  m.Search(Type4(7, 500));
+  m.Search(testing::BlockNumberSearch(7, 500));
   m.RunUntil([&] { return m.hs().busy(); }, 1);
   m.Ticks(2000);  // 0.5 s without ROTMOD_Q
   EXPECT_EQ(m.State(), BlockSearchState::kActive);
@@ -145,7 +135,7 @@ TEST(ChannelBlockSearchHeadstock, AnIncrementAfterTheChangeoverCountsFromWhereCS
       "N4 G90 X30\n"
       "N5 RET\n";
   Headstock m(program);
-  m.Search(Type4(3, 500));
+  m.Search(testing::BlockNumberSearch(3, 500));
   ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour)) << m.channel->error();
   const auto& st = m.channel->block_search();
   ASSERT_EQ(st.continue_position.size(), 3u);

@@ -10,8 +10,8 @@
 #include <array>
 #include <cmath>
 #include <functional>
-#include <tuple>
 #include <limits>
+#include <tuple>
 
 #include "block_search_steps.hpp"
 #include "channel_test_support.hpp"
@@ -56,15 +56,6 @@ struct Lathe : testing::BlockSearchSteps<Machine> {
       : BlockSearchSteps(program, x, z, WithOffsetsAndTools) {}
 };
 
-BlockSearchParameters Type4(uint32_t number, double permille) {
-  BlockSearchParameters p;
-  p.type = BlockSearchType::kBlockNumber;
-  p.block_number = number;
-  p.covered_distance = permille;
-  p.auto_return = true;
-  return p;
-}
-
 /// The uninterrupted run's (X, Z) at `mm` from program start: the breakpoint (3.5) holds the
 /// path there.
 std::pair<double, double> NormalRunAt(const char* program, double mm, double x = 60,
@@ -75,8 +66,7 @@ std::pair<double, double> NormalRunAt(const char* program, double mm, double x =
   p.breakpoint_position = mm * 1e4;  // 0.1 um
   m.Search(p);
   EXPECT_TRUE(m.RunUntil([&] {
-    return m.channel->block_search().stop_conditions & stop_condition::kBreakpointStop ||
-           m.Ended();
+    return m.channel->block_search().stop_conditions & stop_condition::kBreakpointStop || m.Ended();
   }));
   EXPECT_FALSE(m.Ended()) << "the breakpoint at " << mm << " mm did not stop the run";
   for (int i = 0; i < 8; ++i) m.Tick();  // the fine interpolation reaches the hold point
@@ -127,11 +117,11 @@ double FromPath(const std::vector<std::pair<double, double>>& path, double x, do
 /// is the uninterrupted run's point at the same distance from program start, within 1 um;
 /// every point machined after the continue lies on the uninterrupted run's path (the
 /// compensation is still on), within 1 um.
-void ContinuesOnTheCompensatedPath(const char* program, uint32_t number, double permille,
-                                   double x, double z) {
+void ContinuesOnTheCompensatedPath(const char* program, uint32_t number, double permille, double x,
+                                   double z) {
   SCOPED_TRACE("N" + std::to_string(number) + " at " + std::to_string(permille) + " per mille");
   Lathe m(program);
-  m.Search(Type4(number, permille));
+  m.Search(testing::BlockNumberSearch(number, permille));
   ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour)) << m.channel->error();
   const BlockSearchStatus& st = m.channel->block_search();
   ASSERT_EQ(st.continue_position.size(), 2u);
@@ -191,8 +181,8 @@ TEST(ChannelBlockSearchLathe, InsertedCornerShowsZeroPerMilleOfItsBlock) {
   double seen_on_arc = -1;
   ASSERT_TRUE(m.RunUntil([&] {
     // The tip on the corner arc: from X22.2 Z138 to X23 Z137.2.
-    const bool on_arc = m.Z() > 137.2 + 1e-6 && m.Z() < 138 - 1e-6 && m.X() > 22.2 + 1e-6 &&
-                        m.X() < 23 - 1e-6;
+    const bool on_arc =
+        m.Z() > 137.2 + 1e-6 && m.Z() < 138 - 1e-6 && m.X() > 22.2 + 1e-6 && m.X() < 23 - 1e-6;
     if (on_arc && seen_on_arc < 0) seen_on_arc = m.channel->block_search().covered_distance;
     return m.Ended();
   }));
@@ -203,7 +193,7 @@ TEST(ChannelBlockSearchLathe, G42ByDistanceFromProgramStartMatchesTheRun) {
   // 4.1.2: the distance counts the tip path the run counts, so a distance lands where the
   // uninterrupted run was at that distance.
   Lathe m(kFinishing);
-  BlockSearchParameters p = Type4(140, 0);
+  BlockSearchParameters p = testing::BlockNumberSearch(140, 0);
   p.distance_prog_start = 60 * 1e4;
   m.Search(p);
   ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour)) << m.channel->error();
@@ -236,7 +226,7 @@ TEST(ChannelBlockSearchLathe, G91OnlyRegionContinuesRelativeToWhereTheSearchStar
   for (const auto& [x, z] : {std::pair{60.0, 200.0}, {50.0, 150.0}}) {
     SCOPED_TRACE("start X" + std::to_string(x) + " Z" + std::to_string(z));
     Lathe m(kIncremental, x, z);
-    m.Search(Type4(40, 0));
+    m.Search(testing::BlockNumberSearch(40, 0));
     ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour)) << m.channel->error();
     const BlockSearchStatus& st = m.channel->block_search();
     ASSERT_EQ(st.continue_position.size(), 2u);
@@ -259,7 +249,7 @@ TEST(ChannelBlockSearchLathe, G91OnlyRegionContinuesRelativeToWhereTheSearchStar
   const std::string anchored = std::string("N05 G90 G01 X40 Z100 F1000\n") + kIncremental;
   for (const auto& [x, z] : {std::pair{60.0, 200.0}, {50.0, 150.0}}) {
     Lathe m(anchored.c_str(), x, z);
-    m.Search(Type4(40, 0));
+    m.Search(testing::BlockNumberSearch(40, 0));
     ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour)) << m.channel->error();
     EXPECT_NEAR(m.channel->block_search().continue_position[0], 50, 1e-9);
     EXPECT_NEAR(m.channel->block_search().continue_position[1], 80, 1e-9);
@@ -300,7 +290,8 @@ struct CaxLathe {
   void Tick() {
     channel->Tick(at, mdt);
     for (int d = 0; d < 3; ++d)
-      if (mdt.setpoints[d].mode == DriveMode::kPosition) at.feedback[d].position = mdt.setpoints[d].value;
+      if (mdt.setpoints[d].mode == DriveMode::kPosition)
+        at.feedback[d].position = mdt.setpoints[d].value;
   }
   bool Waits(BlockSearchState s, const std::function<void()>& each = {}) {
     for (int i = 0; i < 400000; ++i) {
@@ -336,9 +327,9 @@ std::vector<std::array<double, 3>> ReturnPath(uint32_t number, uint32_t pass,
   std::vector<std::array<double, 3>> path;
   EXPECT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour)) << m.channel->error();
   m.channel->Start();
-  EXPECT_TRUE(m.Waits(BlockSearchState::kWaitForContinueContour,
-                      [&] { path.push_back({m.X(), m.Z(), m.C()}); }))
-      << m.channel->error();
+  EXPECT_TRUE(m.Waits(BlockSearchState::kWaitForContinueContour, [&] {
+    path.push_back({m.X(), m.Z(), m.C()});
+  })) << m.channel->error();
   *continue_position = {m.X(), m.Z(), m.C()};
   return path;
 }
@@ -360,7 +351,7 @@ TEST(ChannelBlockSearchLathe, CaxTrackAlignsCBeforeTheStraightReturn) {
       EXPECT_EQ(z, 50);
       c_aligned = c == 45;
     } else {
-      EXPECT_EQ(c, 45);  // then C stands
+      EXPECT_EQ(c, 45);                   // then C stands
       EXPECT_NEAR(x - 10, z - 10, 1e-9);  // and X and Z go straight (both 40 mm off)
     }
   }
@@ -384,8 +375,7 @@ TEST(ChannelBlockSearchLathe, CaxTrackPassesInANormalRun) {
 TEST(ChannelBlockSearchLathe, WithoutCaxTrackCReturnsWithTheOtherAxes) {
   // Before #CAXTRACK ON (the first N20) and after #CAXTRACK OFF (N90): one straight move of
   // all axes, C included, ending together.
-  for (const auto& [number, x, z, c] :
-       {std::tuple{20u, 0.0, 0.0, 0.0}, {90u, 30.0, 0.0, 45.0}}) {
+  for (const auto& [number, x, z, c] : {std::tuple{20u, 0.0, 0.0, 0.0}, {90u, 30.0, 0.0, 45.0}}) {
     SCOPED_TRACE("N" + std::to_string(number));
     std::array<double, 3> at{};
     const auto path = ReturnPath(number, 1, &at);

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 
+#include "tests/control/channel/block_search_steps.hpp"
 #include "tests/control/channel/measuring_lathe.hpp"
 
 namespace vmt::control::channel::testing {
@@ -22,20 +23,16 @@ constexpr const char* kProgram =
 
 struct Search {
   explicit Search(uint32_t block, int permille = 500) : l(kProgram, 30.0) {
-    BlockSearchParameters p;
-    p.type = BlockSearchType::kBlockNumber;
-    p.block_number = block;
-    p.block_number_pass = 1;
-    p.covered_distance = permille;
-    p.auto_return = true;
     std::string error;
-    EXPECT_TRUE(l.m.channel->SetBlockSearch(p, &error)) << error;
+    EXPECT_TRUE(l.m.channel->SetBlockSearch(testing::BlockNumberSearch(block, permille), &error))
+        << error;
     l.m.channel->Start();
   }
   bool Waits(BlockSearchState s) {
     for (int i = 0; i < 400000; ++i) {
       if (l.m.channel->block_search().state == s) return true;
-      if (l.m.channel->state() == ChannelState::kError || l.m.channel->state() == ChannelState::kEnded)
+      if (l.m.channel->state() == ChannelState::kError ||
+          l.m.channel->state() == ChannelState::kEnded)
         return false;
       l.Tick();
     }

@@ -49,7 +49,7 @@ constexpr const char* kSquareOneBlock =
 /// speed at 6000 deg/s^2 and reports at-speed when there.
 struct MillRig {
   explicit MillRig(const std::string& text, std::vector<double> start = {0, 0, 0},
-                const std::function<void(ChannelConfig&)>& configure = {}) {
+                   const std::function<void(ChannelConfig&)>& configure = {}) {
     parsed = nc::ParseProgram(text, "t_sv_number.nc", nc::Dialect::kIsg);
     EXPECT_TRUE(parsed.ok()) << nc::Format(parsed.errors[0], parsed.program.files);
     ChannelConfig config;
@@ -73,8 +73,9 @@ struct MillRig {
     DriveFeedback& s = at.feedback[3];
     const double want = mdt.setpoints[3].mode == DriveMode::kVelocity ? mdt.setpoints[3].value : 0;
     const double step = 6000 * 250e-6;
-    s.velocity = std::abs(want - s.velocity) <= step ? want
-                                                     : s.velocity + std::copysign(step, want - s.velocity);
+    s.velocity = std::abs(want - s.velocity) <= step
+                     ? want
+                     : s.velocity + std::copysign(step, want - s.velocity);
     s.status = drive_status::kReady | (s.velocity == want ? drive_status::kAtSpeed : 0u) |
                (mdt.setpoints[3].mode == DriveMode::kPosition ? drive_status::kInPosition : 0u);
     t += 250e-6;
@@ -92,21 +93,12 @@ struct MillRig {
 };
 using Mill = testing::BlockSearchSteps<MillRig>;
 
-BlockSearchParameters Type4(uint32_t number, uint32_t pass = 1) {
-  BlockSearchParameters p;
-  p.type = BlockSearchType::kBlockNumber;
-  p.block_number = number;
-  p.block_number_pass = pass;
-  p.auto_return = true;
-  return p;
-}
-
 TEST(ChannelBlockSearch, Type4FindsTheBlockWithoutMovingAndReturnsToItsStart) {
   // 9.1.1: block number 100, pass 1. The continue position is the start of the first N100
   // (X12 Y12), where its motion begins for real; the manual's "X = 10 Y = 12" is where that
   // block ends, the first point reached after the continue.
   Mill m(kSquare, {50, 40, 5});
-  m.Search(Type4(100));
+  m.Search(testing::BlockNumberSearch(100));
   ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour));
   EXPECT_FALSE(m.moved);  // the search moves no axis
   EXPECT_EQ(m.channel->state(), ChannelState::kHold);
@@ -133,13 +125,13 @@ TEST(ChannelBlockSearch, Type4FindsTheBlockWithoutMovingAndReturnsToItsStart) {
 TEST(ChannelBlockSearch, Type4PassCounterCountsTheLoop) {
   // 9.1.1 with pass 4: the fourth N100 starts at X6.
   Mill m(kSquare);
-  m.Search(Type4(100, 4));
+  m.Search(testing::BlockNumberSearch(100, 0, 4));
   ASSERT_TRUE(m.ToContour());
   EXPECT_NEAR(m.X(), 6, 1e-9);
   EXPECT_NEAR(m.Y(), 12, 1e-9);
   // Section 10: a pass count below 2 takes the first occurrence.
   Mill first(kSquare);
-  first.Search(Type4(100, 0));
+  first.Search(testing::BlockNumberSearch(100, 0, 0));
   ASSERT_TRUE(first.ToContour());
   EXPECT_NEAR(first.X(), 12, 1e-9);
 }
@@ -147,7 +139,7 @@ TEST(ChannelBlockSearch, Type4PassCounterCountsTheLoop) {
 TEST(ChannelBlockSearch, PassBeyondTheLoopIsNotFoundAndTheProgramEndsInSearchMode) {
   // Section 10: pass 6 of five: P-ERR-20704, a warning; the whole program ran without motion.
   Mill m(kSquare, {50, 40, 5});
-  m.Search(Type4(100, 6));
+  m.Search(testing::BlockNumberSearch(100, 0, 6));
   ASSERT_TRUE(m.RunUntil([&] { return m.channel->state() == ChannelState::kEnded; }));
   EXPECT_FALSE(m.moved);
   EXPECT_EQ(m.State(), BlockSearchState::kInactive);
@@ -155,7 +147,7 @@ TEST(ChannelBlockSearch, PassBeyondTheLoopIsNotFoundAndTheProgramEndsInSearchMod
   EXPECT_THAT(m.channel->block_search().warnings[0], HasSubstr("P-ERR-20704"));
   // An unknown block number: the same.
   Mill unknown(kSquare);
-  unknown.Search(Type4(777));
+  unknown.Search(testing::BlockNumberSearch(777));
   ASSERT_TRUE(unknown.RunUntil([&] { return unknown.channel->state() == ChannelState::kEnded; }));
   EXPECT_FALSE(unknown.moved);
   EXPECT_EQ(unknown.channel->block_search().warnings.size(), 1u);
@@ -166,7 +158,7 @@ TEST(ChannelBlockSearch, CoveredDistanceSplitsTheBlock) {
   for (const auto& [permille, x] :
        {std::pair{0.0, 12.0}, {300.0, 9.0}, {800.0, 4.0}, {1000.0, 2.0}}) {
     Mill m(kSquareOneBlock);
-    BlockSearchParameters p = Type4(100);
+    BlockSearchParameters p = testing::BlockNumberSearch(100);
     p.covered_distance = permille;
     m.Search(p);
     ASSERT_TRUE(m.ToContour()) << permille;
@@ -254,11 +246,10 @@ constexpr const char* kDistance =
 TEST(ChannelBlockSearch, DistanceFromProgramStartMovesTheContinuePositionForward) {
   // Figures 15 and 16: block number 30, then 16 mm from program start lies in N30 (10 + 6 of
   // its 14.14 mm), 234.79 mm in N50 (34.14 + 200.65).
-  for (const auto& [mm, x, y] :
-       {std::tuple{16.0, 10 + 6 / std::sqrt(2.0), 6 / std::sqrt(2.0)},
-        {234.79, 30 + (234.79 - 20 - std::hypot(10.0, 10.0)), 10.0}}) {
+  for (const auto& [mm, x, y] : {std::tuple{16.0, 10 + 6 / std::sqrt(2.0), 6 / std::sqrt(2.0)},
+                                 {234.79, 30 + (234.79 - 20 - std::hypot(10.0, 10.0)), 10.0}}) {
     Mill m(kDistance);
-    BlockSearchParameters p = Type4(30);
+    BlockSearchParameters p = testing::BlockNumberSearch(30);
     p.distance_prog_start = mm * 1e4;  // 0.1 um
     m.Search(p);
     ASSERT_TRUE(m.ToContour()) << mm << " " << m.channel->error();
@@ -272,7 +263,7 @@ TEST(ChannelBlockSearch, DistanceFromProgramStartMovesTheContinuePositionForward
 TEST(ChannelBlockSearch, DistanceBeforeTheBlockWarnsAndContinuesAtItsStart) {
   // Figure 18: block 30 with 2 mm, which lies in N20: never back; a warning, N30's start.
   Mill m(kDistance);
-  BlockSearchParameters p = Type4(30);
+  BlockSearchParameters p = testing::BlockNumberSearch(30);
   p.distance_prog_start = 2e4;
   m.Search(p);
   ASSERT_TRUE(m.ToContour());
@@ -285,7 +276,7 @@ TEST(ChannelBlockSearch, DistanceBeforeTheBlockWarnsAndContinuesAtItsStart) {
 TEST(ChannelBlockSearch, G74BeyondTheBlockBoundaryIsAnError) {
   // Figure 17: searching on by distance past a G74 cannot simulate it.
   Mill m(kDistance);
-  BlockSearchParameters p = Type4(30);
+  BlockSearchParameters p = testing::BlockNumberSearch(30);
   p.distance_prog_start = 900 * 1e4;  // beyond N50's end (434.14)
   m.Search(p);
   ASSERT_TRUE(m.RunUntil([&] { return m.channel->state() == ChannelState::kError; }));
@@ -307,7 +298,7 @@ TEST(ChannelBlockSearch, ABlockWithoutMotionIsNotSplit) {
       "N120 G90 X3.1 Y3.2 Z3.3\n"
       "N907091 M30\n",
       {20, 20, 20});
-  BlockSearchParameters p = Type4(100);
+  BlockSearchParameters p = testing::BlockNumberSearch(100);
   p.covered_distance = 100;
   m.Search(p);
   ASSERT_TRUE(m.ToContour());
@@ -343,13 +334,13 @@ TEST(ChannelBlockSearch, ALockedRegionRefusesTheContinuePosition) {
       "N999 M30\n";
   for (const uint32_t locked : {40u, 60u, 75u}) {
     Mill m(program);
-    m.Search(Type4(locked));
+    m.Search(testing::BlockNumberSearch(locked));
     ASSERT_TRUE(m.RunUntil([&] { return m.channel->state() == ChannelState::kError; })) << locked;
     EXPECT_EQ(m.channel->error_number(), kMsgBlockSearchLocked) << locked;
     EXPECT_THAT(m.channel->error(), HasSubstr("P-ERR-21399"));
   }
   Mill free(program);
-  free.Search(Type4(80));
+  free.Search(testing::BlockNumberSearch(80));
   ASSERT_TRUE(free.ToContour());
   EXPECT_NEAR(free.X(), 20, 1e-9);
   EXPECT_NEAR(free.Z(), 20, 1e-9);
@@ -377,7 +368,7 @@ TEST(ChannelBlockSearch, ReturnThroughAnObstacleIsRefusedBeforeItMoves) {
   Wall wall;
   Mill m(kSquare, {50, 40, 0});
   m.channel->SetPathGuard(&wall);
-  m.Search(Type4(100));
+  m.Search(testing::BlockNumberSearch(100));
   ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour));
   m.channel->Start();
   ASSERT_TRUE(m.RunUntil([&] { return m.channel->state() == ChannelState::kError; }));
@@ -394,7 +385,7 @@ TEST(ChannelBlockSearch, ReturnThroughAnObstacleIsRefusedBeforeItMoves) {
 TEST(ChannelBlockSearch, ManualReturnKeepsTheOffsetWithinTheAllowedDeviation) {
   // 4.2: without the automatic return the axes stay where the operator put them; within
   // mc_cmd_bs_deviation_max_w the program goes on offset by the difference.
-  BlockSearchParameters p = Type4(100);
+  BlockSearchParameters p = testing::BlockNumberSearch(100);
   p.auto_return = false;
   p.deviation_max = 5000;  // 0.5 mm
   Mill m(kSquare, {12.3, 12.4, 0});
@@ -418,7 +409,7 @@ TEST(ChannelBlockSearch, ManualReturnKeepsTheOffsetWithinTheAllowedDeviation) {
 
 TEST(ChannelBlockSearch, NoHoldAtRestartGoesOnAfterTheReturn) {
   Mill m(kSquare, {30, 30, 0});
-  BlockSearchParameters p = Type4(100, 5);
+  BlockSearchParameters p = testing::BlockNumberSearch(100, 0, 5);
   p.no_hold_at_restart = true;
   m.Search(p);
   ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour));
@@ -437,7 +428,7 @@ TEST(ChannelBlockSearch, HandshakeWithThePlcOnAndOff) {
   // found, it drops command_r and waits for the PLC's FALSE.
   Mill m(kSquare);
   m.channel->SetBlockSearchPlc(true, false);
-  m.Search(Type4(100));
+  m.Search(testing::BlockNumberSearch(100));
   for (int i = 0; i < 400; ++i) m.Tick();
   EXPECT_EQ(m.State(), BlockSearchState::kWaitForPlcOn);
   EXPECT_TRUE(m.channel->block_search().command);
@@ -464,7 +455,7 @@ TEST(ChannelBlockSearch, TechnologyOfTheSkippedPartGoesToThePlcAndTheSpindleRuns
       "N40 Y10\n"
       "N50 M30\n",
       {0, 0, 0}, [](ChannelConfig& c) { c.aux_handshake = true; });
-  m.Search(Type4(40));
+  m.Search(testing::BlockNumberSearch(40));
   std::vector<int> m_functions;
   ASSERT_TRUE(m.RunUntil([&] {
     if (!m.channel->aux_output().empty()) {
@@ -530,7 +521,7 @@ TEST(ChannelBlockSearch, EntryPointSkipsThePartBeforeIt) {
   // 3.6: type 4 from an entry point: the blocks before it are not evaluated (P1 stays 0).
   const std::string text = kSquare;
   Mill m(text);
-  BlockSearchParameters p = Type4(100, 2);
+  BlockSearchParameters p = testing::BlockNumberSearch(100, 0, 2);
   p.file_offset = static_cast<int64_t>(text.find("N095"));
   m.Search(p);
   ASSERT_TRUE(m.ToContour()) << m.channel->error();
@@ -548,7 +539,7 @@ TEST(ChannelBlockSearch, EntryPointSkipsThePartBeforeIt) {
 
 TEST(ChannelBlockSearch, ResetLeavesBlockSearchWithoutHandshake) {
   Mill m(kSquare);
-  m.Search(Type4(100));
+  m.Search(testing::BlockNumberSearch(100));
   ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour));
   m.channel->Reset();
   m.Tick();
@@ -560,7 +551,7 @@ TEST(ChannelBlockSearch, ResetLeavesBlockSearchWithoutHandshake) {
 
 TEST(ChannelBlockSearch, BadParametersStopTheStart) {
   Mill m(kSquare);
-  BlockSearchParameters p = Type4(100);
+  BlockSearchParameters p = testing::BlockNumberSearch(100);
   p.covered_distance = 1200;
   std::string error;
   EXPECT_FALSE(m.channel->SetBlockSearch(p, &error));

@@ -60,15 +60,6 @@ using Rig = BlockSearchSteps<JogOfPathMachine>;
 const char kProgram[] = "N1 G01 X100 F6000\nN2 G01 Z-50\nN3 G01 X0\nN4 RET\n";
 const char kManualReturn[] = "N10 G00 Z-40\nN20 X40\nN30 RET\n";
 
-BlockSearchParameters ToN3HalfWay() {
-  BlockSearchParameters p;
-  p.type = BlockSearchType::kBlockNumber;
-  p.block_number = 3;
-  p.covered_distance = 500;
-  p.auto_return = true;
-  return p;
-}
-
 // 4.2.1's sequence: axes to the JogOfPath channel, the search started, the manual return run
 // meanwhile, the axes back, the automatic return of the rest, machining on.
 TEST(ChannelJogOfPath, TheManualReturnRunsWhileTheSearchDecodesTheAutomaticOneDoesTheRest) {
@@ -77,7 +68,7 @@ TEST(ChannelJogOfPath, TheManualReturnRunsWhileTheSearchDecodesTheAutomaticOneDo
   m.RunFor(0.01);
   EXPECT_TRUE(m.channel->output_suspended());
   EXPECT_FALSE(m.jog_of_path->output_suspended());
-  m.Search(ToN3HalfWay());
+  m.Search(BlockNumberSearch(3, 500));  // N3 half way: X50 Z-50
   ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour)) << m.channel->error();
   EXPECT_EQ(m.X(), 0);  // the search moved nothing
   m.jog_of_path->Start();

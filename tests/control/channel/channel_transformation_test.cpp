@@ -37,7 +37,8 @@ nc::FictivePoint FaceOf(const Lathe& m) {
 // Distance of p from the segment a-b.
 double OffSegment(nc::FictivePoint p, nc::FictivePoint a, nc::FictivePoint b) {
   const double dx = b.x1 - a.x1, dy = b.y1 - a.y1, l2 = dx * dx + dy * dy;
-  const double u = l2 > 0 ? std::clamp(((p.x1 - a.x1) * dx + (p.y1 - a.y1) * dy) / l2, 0.0, 1.0) : 0;
+  const double u =
+      l2 > 0 ? std::clamp(((p.x1 - a.x1) * dx + (p.y1 - a.y1) * dy) / l2, 0.0, 1.0) : 0;
   return std::hypot(p.x1 - a.x1 - u * dx, p.y1 - a.y1 - u * dy);
 }
 
@@ -50,8 +51,8 @@ TEST(ChannelTransformation, FaceLinesAreStraightInTheFacePlane) {
   while (m.channel->state() == ChannelState::kRunning && m.t < 20) {
     m.Tick();
     const nc::FictivePoint p = FaceOf(m);
-    worst = std::max(worst, std::min(OffSegment(p, {20, 0}, {20, 20}),
-                                     OffSegment(p, {20, 20}, {-20, 20})));
+    worst = std::max(
+        worst, std::min(OffSegment(p, {20, 0}, {20, 20}), OffSegment(p, {20, 20}, {-20, 20})));
     max_c_speed = std::max(max_c_speed, std::abs(m.at.feedback[kDriveC].velocity));
     ++samples;
   }
@@ -86,7 +87,7 @@ TEST(ChannelTransformation, PathFeedNearTheCentreKeepsCWithinItsRapidRate) {
   // ~1260 deg/s past the centre), within its rate in any case.
   EXPECT_LE(max_c_speed, 3600 * 1.001);
   EXPECT_GT(max_c_speed, 1000);  // limited, not crawling
-  EXPECT_LT(worst, 1e-3);              // chords of the fine interpolation where C turns fast
+  EXPECT_LT(worst, 1e-3);        // chords of the fine interpolation where C turns fast
   EXPECT_NEAR(m.at.feedback[kDriveC].position, 180 - std::atan2(0.5, 20) * 180 / std::numbers::pi,
               1e-6);
 }
@@ -196,18 +197,6 @@ TEST(ChannelTransformation, FaceArcThroughTheCentreIsRefused) {
   EXPECT_NEAR(ok.at.feedback[kDriveC].position, 45, 1e-9);
 }
 
-/// Block search type 4: the first pass of block N`number`, continuing `per_mille` of the way
-/// into it, with the automatic return to the contour.
-BlockSearchParameters Type4(uint32_t number, double per_mille) {
-  BlockSearchParameters p;
-  p.type = BlockSearchType::kBlockNumber;
-  p.block_number = number;
-  p.block_number_pass = 1;
-  p.covered_distance = per_mille;
-  p.auto_return = true;
-  return p;
-}
-
 TEST(ChannelTransformation, BlockSearchIntoAFaceArcFindsCUnwound) {
   // A full circle about the centre (C 0 -> 360), then half of one (C 360 -> 540): searching N3
   // at 500 per mille stands at X1 0 Y1 20 with C at 450, as the run has it.
@@ -216,7 +205,7 @@ TEST(ChannelTransformation, BlockSearchIntoAFaceArcFindsCUnwound) {
       "N1 G00 X20 Z5 C0\nN2 G31 G03 X1=20 Y1=0 I-20 F3000\nN3 X1=-20 Y1=0 I-20\n"
       "N4 G30 G01 Z0 F600\nN5 RET\n";
   Rig m(program);
-  m.Search(Type4(3, 500));
+  m.Search(testing::BlockNumberSearch(3, 500));
   ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour)) << m.channel->error();
   const auto& st = m.channel->block_search();
   ASSERT_EQ(st.continue_position.size(), 3u);
@@ -241,7 +230,7 @@ TEST(ChannelTransformation, BlockSearchUnderG31ReturnsOnALineOfTheFace) {
   using Rig = testing::BlockSearchSteps<Lathe>;
   Rig m("N1 G00 X20 Z5 C0\nN2 G31 G01 X1=20 Y1=20 F600\nN3 X1=-20\nN4 G30 G01 Z0\nN5 RET\n");
   m.at.feedback[kDriveX].position = 50;
-  m.Search(Type4(3, 500));
+  m.Search(testing::BlockNumberSearch(3, 500));
   ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour)) << m.channel->error();
   const nc::FictivePoint from = FaceOf(m);
   ASSERT_NEAR(from.x1, 50, 1e-9);
@@ -391,8 +380,9 @@ TEST(ChannelTransformation, G77X1Y1ReturnsOnACartesianLineCheckedInChords) {
     ++face_chords;
     for (int j = 0; j <= 32; ++j) {
       const double t = j / 32.0;
-      const nc::FictivePoint q = nc::MachineToFace(from[kDriveX] + (to[kDriveX] - from[kDriveX]) * t,
-                                           from[kDriveC] + (to[kDriveC] - from[kDriveC]) * t);
+      const nc::FictivePoint q =
+          nc::MachineToFace(from[kDriveX] + (to[kDriveX] - from[kDriveX]) * t,
+                            from[kDriveC] + (to[kDriveC] - from[kDriveC]) * t);
       chord_worst = std::max(chord_worst, OffSegment(q, away, stop));
     }
   }
