@@ -44,6 +44,14 @@ void SceneRun::State::StepChannel(double t, const control::AmplifierTelegram& at
                 {"mode", ToString(hs->mode())},
                 {"target", ToString(hs->target())}});
   }
+  if (const auto* hs = channel->headstock();
+      hs && (hs->rotmod() != rotmod || hs->spmod() != spmod)) {
+    // The pre-selections ROTMOD / SPMOD (4.1) as the PLC sees them: the end of the internal
+    // changeover, with the drives at standstill (4.2), starts the external one.
+    rotmod = hs->rotmod();
+    spmod = hs->spmod();
+    emit_event({{"t", t}, {"event", "headstock"}, {"rotmod", rotmod}, {"spmod", spmod}});
+  }
   if (const auto* hs = channel->headstock(); hs && hs->mode() != headstock_mode) {
     headstock_mode = hs->mode();
     // The status indication switches with it: speeds in spindle mode, lines in rotary mode.

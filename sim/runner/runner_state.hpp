@@ -142,6 +142,7 @@ struct SceneRun::State {
   void StartHeadstockPlc();
   control::axes::HeadstockMode headstock_mode = control::axes::HeadstockMode::kNone;
   control::axes::HeadstockMode headstock_target = control::axes::HeadstockMode::kNone;
+  bool rotmod = false, spmod = false;  ///< the pre-selections the PLC was last shown
   std::string repos_key;  ///< the REPOS screen last emitted (ReposEventKey)
   control::channel::BlockSearchState block_search_state =
       control::channel::BlockSearchState::kInactive;
