@@ -22,6 +22,7 @@
 #include "control/channel/block_motion.hpp"
 #include "control/channel/block_search.hpp"
 #include "control/channel/channel_messages.hpp"
+#include "control/channel/operator_messages.hpp"
 #include "control/channel/look_ahead.hpp"
 #include "control/channel/path_memory.hpp"
 #include "control/channel/path_profile.hpp"
@@ -327,6 +328,11 @@ class Channel {
   const std::string& error() const { return error_; }
   /// Its message number (channel_messages.hpp), 0 when there is none.
   int error_number() const { return error_number_; }
+  /// The PLC's message (MSG_WR / MSG_WR_N), as the gateway reads it each NC cycle.
+  void SetPlcMessage(const PlcMessage& m) { plc_message_ = m; }
+  const PlcMessage& plc_message() const { return plc_message_; }
+  /// The NC's message list: the error in force, then the PLC's message.
+  std::vector<OperatorMessage> messages() const;
   /// The modal state of the program (initial state before the first block).
   const nc::ModalState& modal() const;
   /// Axis referenced (homed): from the start, or after G74; the rotary axis of a headstock
@@ -827,6 +833,7 @@ class Channel {
   bool InSynchronousBlock() const { return active_ && sync_.phase != SyncPhase::kNone; }
   std::optional<axes::HeadstockChangeover> headstock_;
   axes::HeadstockPlc headstock_plc_;
+  PlcMessage plc_message_;
   bool headstock_known_ = false;  ///< the power-on mode has been taken from the PLC
   axes::HeadstockMode waiting_for_ = axes::HeadstockMode::kNone;
   bool manual_changeover_ = false;  ///< the changeover in progress was commanded by a key

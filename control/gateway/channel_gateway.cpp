@@ -61,6 +61,8 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
   s_mfunc_ = Id(s + "MFUNC");
   s_hfunc_ = Id(s + "HFUNC");
   s_tfunc_ = Id(s + "TFUNC");
+  msg_wr_ = Id(prefix_ + ".MSG_WR");
+  msg_wr_n_ = Id(prefix_ + ".MSG_WR_N");
   for (int number : axis_numbers) {
     const std::string a = "A" + Number2(number);
     AxisSignals sig;
@@ -262,6 +264,9 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
     ack = all_q;
   }
   if (ack) ch.AcknowledgeAux();
+  // Fast-measurement 6.3: the PLC's messages to the NC go to its message list.
+  if (msg_wr_ >= 0)
+    ch.SetPlcMessage({static_cast<int>(im.Int(msg_wr_)), msg_wr_n_ >= 0 ? im.Int(msg_wr_n_) : 0});
 
   if (ch.headstock()) {
     const Headstock& h = headstock_;

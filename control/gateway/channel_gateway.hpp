@@ -73,6 +73,7 @@ class ChannelGateway {
   int s_auto_ = -1, s_manu_ = -1, s_mdi_ = -1, s_run_ = -1, s_stop_ = -1, s_rev_ = -1;
   int s_repos_ = -1, s_crest_ = -1;
   int s_error_ = -1, s_errnr_ = -1, s_auxstb_ = -1, s_mfunc_ = -1, s_hfunc_ = -1, s_tfunc_ = -1;
+  int msg_wr_ = -1, msg_wr_n_ = -1;  ///< Pxx.MSG_WR / MSG_WR_N: the PLC's message
   int spindle_drive_ = -1, n_ncmd_ = -1, n_nmin_ = -1, inpos_ = -1;
   /// The headstock changeover (C-axis manual 4.1-4.3): ROTMOD/SPMOD out, their
   /// acknowledgements, the drives' enables (AxxC.READY) and AXD idents 65012..65015 in.

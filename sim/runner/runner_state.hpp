@@ -148,6 +148,11 @@ struct SceneRun::State {
       control::channel::BlockSearchState::kInactive;
   size_t block_search_warnings = 0;  ///< warnings of the block search already emitted
   int plc_client_gone_told = 0;      ///< client_gone steps passed to the callback
+  /// The NC's message list as last emitted, and every message of the run for summary.json
+  /// (with when it came and, once gone, when it went).
+  std::vector<control::channel::OperatorMessage> messages;
+  nlohmann::ordered_json messages_seen = nlohmann::ordered_json::array();
+  void NoteMessages(double t);
 };
 
 }  // namespace vmt::sim
