@@ -160,6 +160,12 @@ class Channel {
   /// immediate stop interrupted), then turn the spindle at its jogging speed, stop it or position
   /// it to its jogging spindle position. Ignored outside manual mode.
   void ManualSpindle(int m);
+  /// The main spindle's jog keys AxxC.JGPOS / JGNEG (C-axis manual 2.3, 3.3, 4.3, 4.4): +1, -1,
+  /// 0 released. Manual mode only. They select spindle mode on a headstock (aborting a
+  /// changeover an immediate stop interrupted) and move the spindle as the jog mode says
+  /// (PxxC.JOGM0..2): turning at its jogging speed (rapid) while held, or one increment or its
+  /// parametric jogging distance per press; in handwheel mode the keys move nothing.
+  void JogSpindle(int direction);
   /// Single block (semi-automatic): after each block the channel holds until the next start.
   void SetSingleBlock(bool on) { single_block_ = on; }
   /// Changes the mode; refused (false) while a program runs. An interrupted program (hold)
@@ -849,6 +855,7 @@ class Channel {
   bool process_enable_ = true;
   bool spindle_homed_ = true;         ///< a separate spindle's reference (section 3)
   bool spindle_referencing_ = false;  ///< M19 runs: the reference comes when it is in position
+  bool spindle_jogging_ = false;      ///< the spindle turns because a jog key is held
   /// The block waits for the spindle: M19's positioning to end, G77 S1=0's speed to be reached.
   bool orienting_ = false;
   double spindle_position_ = 0;       ///< the spindle's actual position at the last NC cycle

@@ -78,6 +78,8 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
     const std::string ac = "A" + Number2(spindle_number) + "C.";
     const char* keys[4] = {"M3", "M4", "M5", "M19"};
     for (int k = 0; k < 4; ++k) spindle_m_[k].id = Id(ac + keys[k]);
+    spindle_jgpos_ = Id(ac + "JGPOS");
+    spindle_jgneg_ = Id(ac + "JGNEG");
     sovr_ = Id(ac + "SOVR");
     if (sovr_ >= 0) last_sovr_ = image.Int(sovr_);
     spindle_homed_ = Id(a + "HOMED");
@@ -235,6 +237,13 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
   if (jogm_[0] >= 0 && jogm_[1] >= 0 && jogm_[2] >= 0) {
     const int code = im.Bool(jogm_[0]) | im.Bool(jogm_[1]) << 1 | im.Bool(jogm_[2]) << 2;
     if (code != last_jogm_) ch.SetJogMode(code), last_jogm_ = code;
+  }
+  // The main spindle's own jog keys (C-axis manual 4.3), levels; both at once: no motion.
+  {
+    const bool pos = spindle_jgpos_ >= 0 && im.Bool(spindle_jgpos_);
+    const bool neg = spindle_jgneg_ >= 0 && im.Bool(spindle_jgneg_);
+    const int key = pos == neg ? 0 : pos ? 1 : -1;
+    if (key != last_spindle_key_) ch.JogSpindle(key), last_spindle_key_ = key;
   }
   for (size_t a = 0; a < axes_.size(); ++a) {
     AxisSignals& sig = axes_[a];

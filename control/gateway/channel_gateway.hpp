@@ -61,6 +61,7 @@ class ChannelGateway {
   /// The main spindle's keys AxxC.M3 / M4 / M5 / M19 (rising edges), its override AxxC.SOVR
   /// (acts when it changes) and its reference AxxS.HOMED (C-axis manual 4.2).
   Edge spindle_m_[4];
+  int spindle_jgpos_ = -1, spindle_jgneg_ = -1, last_spindle_key_ = 0;  ///< AxxC.JGPOS/JGNEG
   int sovr_ = -1, spindle_homed_ = -1;
   int64_t last_sovr_ = -1;
   bool last_sbl_ = false;
