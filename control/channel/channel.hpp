@@ -166,6 +166,16 @@ class Channel {
   /// (PxxC.JOGM0..2): turning at its jogging speed (rapid) while held, or one increment or its
   /// parametric jogging distance per press; in handwheel mode the keys move nothing.
   void JogSpindle(int direction);
+  /// AxxC.ENABL of a channel axis and of the main spindle (C-axis manual 4.2): without it the
+  /// axis cannot be moved in manual mode, in rotary axis mode or spindle mode alike. Its keys
+  /// start nothing and a continuous jog under way brakes (an increment runs to its end, as when
+  /// the process enabling signal goes). Programmed motion does not ask for it.
+  void SetAxisEnable(size_t axis, bool on);
+  void SetSpindleEnable(bool on);
+  bool axis_enabled(size_t axis) const { return axis >= axis_enable_.size() || axis_enable_[axis]; }
+  /// AxxS.NC_NMAX of the main spindle: its speed command (override applied) at the speed limit
+  /// Cxx.049 or beyond.
+  bool SpindleAtSpeedLimit() const;
   /// Single block (semi-automatic): after each block the channel holds until the next start.
   void SetSingleBlock(bool on) { single_block_ = on; }
   /// Changes the mode; refused (false) while a program runs. An interrupted program (hold)
@@ -856,6 +866,8 @@ class Channel {
   bool spindle_homed_ = true;         ///< a separate spindle's reference (section 3)
   bool spindle_referencing_ = false;  ///< M19 runs: the reference comes when it is in position
   bool spindle_jogging_ = false;      ///< the spindle turns because a jog key is held
+  std::vector<bool> axis_enable_;     ///< AxxC.ENABL per channel axis (empty: all enabled)
+  bool spindle_enable_ = true;        ///< AxxC.ENABL of the main spindle
   /// The block waits for the spindle: M19's positioning to end, G77 S1=0's speed to be reached.
   bool orienting_ = false;
   double spindle_position_ = 0;       ///< the spindle's actual position at the last NC cycle

@@ -71,6 +71,9 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
     sig.mvpos = Id(a + "S.MVPOS");
     sig.mvneg = Id(a + "S.MVNEG");
     sig.homed = Id(a + "S.HOMED");
+    sig.enabl = Id(a + "C.ENABL");
+    sig.rf = Id(a + "S.RF");
+    sig.bbdig = Id(a + "S.BBDIG");
     axes_.push_back(sig);
   }
   if (spindle_number > 0) {
@@ -80,6 +83,10 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
     for (int k = 0; k < 4; ++k) spindle_m_[k].id = Id(ac + keys[k]);
     spindle_jgpos_ = Id(ac + "JGPOS");
     spindle_jgneg_ = Id(ac + "JGNEG");
+    spindle_enabl_ = Id(ac + "ENABL");
+    spindle_rf_ = Id(a + "RF");
+    spindle_bbdig_ = Id(a + "BBDIG");
+    nc_nmax_ = Id(a + "NC_NMAX");
     sovr_ = Id(ac + "SOVR");
     if (sovr_ >= 0) last_sovr_ = image.Int(sovr_);
     spindle_homed_ = Id(a + "HOMED");
@@ -231,6 +238,11 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
     if (percent != last_sovr_)
       ch.SetSpindleOverride(static_cast<double>(percent) / 100), last_sovr_ = percent;
   }
+  // C-axis manual 4.2: the axis enabling signals, levels, before the keys they gate.
+  for (size_t a = 0; a < axes_.size(); ++a)
+    ch.SetAxisEnable(a, axes_[a].enabl < 0 || im.Bool(axes_[a].enabl));
+  const bool spindle_enabled = spindle_enabl_ < 0 || im.Bool(spindle_enabl_);
+  ch.SetSpindleEnable(spindle_enabled);
   const int spindle_m[4] = {3, 4, 5, 19};
   for (int k = 0; k < 4; ++k)
     if (spindle_m_[k].Rising(im)) ch.ManualSpindle(spindle_m[k]);
@@ -238,12 +250,15 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
     const int code = im.Bool(jogm_[0]) | im.Bool(jogm_[1]) << 1 | im.Bool(jogm_[2]) << 2;
     if (code != last_jogm_) ch.SetJogMode(code), last_jogm_ = code;
   }
-  // The main spindle's own jog keys (C-axis manual 4.3), levels; both at once: no motion.
+  // The main spindle's own jog keys (C-axis manual 4.3), levels; both at once: no motion. A
+  // key held while the axis enabling signal comes back acts then, as a feed axis' jog key does.
   {
     const bool pos = spindle_jgpos_ >= 0 && im.Bool(spindle_jgpos_);
     const bool neg = spindle_jgneg_ >= 0 && im.Bool(spindle_jgneg_);
     const int key = pos == neg ? 0 : pos ? 1 : -1;
-    if (key != last_spindle_key_) ch.JogSpindle(key), last_spindle_key_ = key;
+    if (key != last_spindle_key_ || (spindle_enabled && !last_spindle_enabled_))
+      ch.JogSpindle(key), last_spindle_key_ = key;
+    last_spindle_enabled_ = spindle_enabled;
   }
   for (size_t a = 0; a < axes_.size(); ++a) {
     AxisSignals& sig = axes_[a];
@@ -338,6 +353,12 @@ void ChannelGateway::WriteStatus(const channel::Channel& ch, const AmplifierTele
     set(axes_[a].mvpos, motion > 0);
     set(axes_[a].mvneg, motion < 0);
     set(axes_[a].homed, ch.homed(a));
+    // 4.2: the controller enable the NC gives the drive over SERCOS, and the drive's ready.
+    const int drive = a < ch.config().axes.size() ? ch.config().axes[a].drive : -1;
+    if (drive >= 0 && drive < static_cast<int>(at.feedback.size())) {
+      set(axes_[a].rf, at.feedback[drive].status & drive_status::kEnabled);
+      set(axes_[a].bbdig, at.feedback[drive].status & drive_status::kReady);
+    }
   }
   if (const axes::HeadstockChangeover* hs = ch.headstock()) {
     const Headstock& h = headstock_;
@@ -360,7 +381,10 @@ void ChannelGateway::WriteStatus(const channel::Channel& ch, const AmplifierTele
     set(n_ncmd_, st & drive_status::kAtSpeed);
     set(n_nmin_, st & drive_status::kStandstill);
     set(inpos_, st & drive_status::kInPosition);
+    set(spindle_rf_, st & drive_status::kEnabled);
+    set(spindle_bbdig_, st & drive_status::kReady);
   }
+  set(nc_nmax_, ch.SpindleAtSpeedLimit());
 }
 
 double ChannelGateway::Number(int id) const {

@@ -62,12 +62,15 @@ class ChannelGateway {
   /// (acts when it changes) and its reference AxxS.HOMED (C-axis manual 4.2).
   Edge spindle_m_[4];
   int spindle_jgpos_ = -1, spindle_jgneg_ = -1, last_spindle_key_ = 0;  ///< AxxC.JGPOS/JGNEG
+  int spindle_enabl_ = -1, spindle_rf_ = -1, spindle_bbdig_ = -1, nc_nmax_ = -1;
+  bool last_spindle_enabled_ = true;
   int sovr_ = -1, spindle_homed_ = -1;
   int64_t last_sovr_ = -1;
   bool last_sbl_ = false;
   int last_jogm_ = -1;
   struct AxisSignals {
     int jgpos = -1, jgneg = -1, mvpos = -1, mvneg = -1, homed = -1;
+    int enabl = -1, rf = -1, bbdig = -1;  ///< AxxC.ENABL, AxxS.RF, AxxS.BBDIG
     int last_key = 0;
   };
   std::vector<AxisSignals> axes_;
