@@ -177,10 +177,14 @@ TEST(ChannelGatewayHeadstock, AxisEnablingSignalGatesManualMotion) {
 TEST(ChannelGatewayHeadstock, DriveStatusAndSpeedLimitSignals) {
   HeadstockRig r;
   r.Cycle(2);
+  for (int d : {0, 2}) r.at.feedback[d].status = drive_status::kReady | drive_status::kEnabled;
+  r.gateway->WriteStatus(*r.ch, r.at);
   EXPECT_TRUE(r.Get("A01S.RF"));
   EXPECT_TRUE(r.Get("A01S.BBDIG"));
   EXPECT_TRUE(r.Get("A03S.RF"));
   EXPECT_TRUE(r.Get("A03S.BBDIG"));
+  EXPECT_FALSE(r.Get("A02S.RF"));  // Z's drive: ready, never given its controller enable
+  EXPECT_TRUE(r.Get("A02S.BBDIG"));
   r.at.feedback[0].status = 0;  // a drive fault: neither ready nor enabled
   r.gateway->WriteStatus(*r.ch, r.at);
   EXPECT_FALSE(r.Get("A01S.RF"));
@@ -232,8 +236,11 @@ TEST(ChannelGatewayHeadstock, EveryAxisSignalIsEvaluatedOrMarkedNot) {
   EXPECT_EQ(seen, listed.size());
   // And the signal table carries the mark to the PLC engineer.
   const std::vector<Signal> table = BuildSignalTable(testing::LatheLayout());
-  for (const Signal& s : table)
-    if (s.name == "A03S.SYNCHRON") EXPECT_NE(s.not_evaluated.find("coupling"), std::string::npos);
+  for (const Signal& s : table) {
+    if (s.name == "A03S.SYNCHRON") {
+      EXPECT_NE(s.not_evaluated.find("coupling"), std::string::npos);
+    }
+  }
 }
 
 // 2.3 / 3.3 Power-On State: the PLC presents rotary axis mode (ROTMOD_Q, the spindle's enable
