@@ -72,6 +72,7 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
     sig.mvneg = Id(a + "S.MVNEG");
     sig.homed = Id(a + "S.HOMED");
     sig.enabl = Id(a + "C.ENABL");
+    if (sig.enabl >= 0) sig.last_enabl = image.Bool(sig.enabl);  // only changes act
     sig.rf = Id(a + "S.RF");
     sig.bbdig = Id(a + "S.BBDIG");
     axes_.push_back(sig);
@@ -84,6 +85,7 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
     spindle_jgpos_ = Id(ac + "JGPOS");
     spindle_jgneg_ = Id(ac + "JGNEG");
     spindle_enabl_ = Id(ac + "ENABL");
+    if (spindle_enabl_ >= 0) last_spindle_enabl_ = image.Bool(spindle_enabl_);
     spindle_rf_ = Id(a + "RF");
     spindle_bbdig_ = Id(a + "BBDIG");
     nc_nmax_ = Id(a + "NC_NMAX");
@@ -238,11 +240,14 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
     if (percent != last_sovr_)
       ch.SetSpindleOverride(static_cast<double>(percent) / 100), last_sovr_ = percent;
   }
-  // C-axis manual 4.2: the axis enabling signals, levels, before the keys they gate.
-  for (size_t a = 0; a < axes_.size(); ++a)
-    ch.SetAxisEnable(a, axes_[a].enabl < 0 || im.Bool(axes_[a].enabl));
-  const bool spindle_enabled = spindle_enabl_ < 0 || im.Bool(spindle_enabl_);
-  ch.SetSpindleEnable(spindle_enabled);
+  // C-axis manual 4.2: the axis enabling signals, before the keys they gate. Like the process
+  // enabling signal they act when they change: a PLC that never writes them (a machine
+  // without one, a scene's timeline) leaves the axes enabled.
+  for (AxisSignals& sig : axes_)
+    if (sig.enabl >= 0 && im.Bool(sig.enabl) != sig.last_enabl)
+      ch.SetAxisEnable(static_cast<size_t>(&sig - axes_.data()), sig.last_enabl = !sig.last_enabl);
+  if (spindle_enabl_ >= 0 && im.Bool(spindle_enabl_) != last_spindle_enabl_)
+    ch.SetSpindleEnable(spindle_enabled_ = last_spindle_enabl_ = !last_spindle_enabl_);
   const int spindle_m[4] = {3, 4, 5, 19};
   for (int k = 0; k < 4; ++k)
     if (spindle_m_[k].Rising(im)) ch.ManualSpindle(spindle_m[k]);
@@ -256,9 +261,9 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
     const bool pos = spindle_jgpos_ >= 0 && im.Bool(spindle_jgpos_);
     const bool neg = spindle_jgneg_ >= 0 && im.Bool(spindle_jgneg_);
     const int key = pos == neg ? 0 : pos ? 1 : -1;
-    if (key != last_spindle_key_ || (spindle_enabled && !last_spindle_enabled_))
+    if (key != last_spindle_key_ || (spindle_enabled_ && !spindle_key_enabled_))
       ch.JogSpindle(key), last_spindle_key_ = key;
-    last_spindle_enabled_ = spindle_enabled;
+    spindle_key_enabled_ = spindle_enabled_;
   }
   for (size_t a = 0; a < axes_.size(); ++a) {
     AxisSignals& sig = axes_[a];

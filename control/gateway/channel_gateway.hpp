@@ -63,7 +63,9 @@ class ChannelGateway {
   Edge spindle_m_[4];
   int spindle_jgpos_ = -1, spindle_jgneg_ = -1, last_spindle_key_ = 0;  ///< AxxC.JGPOS/JGNEG
   int spindle_enabl_ = -1, spindle_rf_ = -1, spindle_bbdig_ = -1, nc_nmax_ = -1;
-  bool last_spindle_enabled_ = true;
+  bool last_spindle_enabl_ = false;   ///< the spindle's AxxC.ENABL as last seen
+  bool spindle_enabled_ = true;       ///< what the channel was last told of it
+  bool spindle_key_enabled_ = true;   ///< spindle_enabled_ when its jog key was last read
   int sovr_ = -1, spindle_homed_ = -1;
   int64_t last_sovr_ = -1;
   bool last_sbl_ = false;
@@ -71,6 +73,7 @@ class ChannelGateway {
   struct AxisSignals {
     int jgpos = -1, jgneg = -1, mvpos = -1, mvneg = -1, homed = -1;
     int enabl = -1, rf = -1, bbdig = -1;  ///< AxxC.ENABL, AxxS.RF, AxxS.BBDIG
+    bool last_enabl = false;              ///< ENABL acts when it changes
     int last_key = 0;
   };
   std::vector<AxisSignals> axes_;

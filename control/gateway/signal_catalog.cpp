@@ -186,8 +186,9 @@ constexpr SignalFamily kPanelAndAxisFamilies[] = {
      "built"},
     {"AxxC.ENABL", kAxis, kBool, kPlcToNc,
      "Axis enabling signal: without it the axis cannot move in manual mode (its keys start "
-     "nothing, a continuous jog brakes); 1 until the PLC takes it away",
-     CAXIS "2.3; 4.2", "", "", 1},
+     "nothing, a continuous jog brakes); acts when it changes, so an axis whose PLC never "
+     "writes it stays enabled",
+     CAXIS "2.3; 4.2"},
     {"AxxC.STRBP", kAxis, kBool, kPlcToNc, "Position strobe: the NC saves the current position",
      CAXIS "4.2", "", "", 0,
      "the manual names no place where the saved position is read, and nothing in vmt reads one"},

@@ -135,8 +135,17 @@ TEST(ChannelGatewayHeadstock, ProcessEnableRemovedStopsAndBlocksTheSpindleKeys) 
 // the mode of the headstock: jog keys and spindle keys start nothing, a continuous jog brakes.
 TEST(ChannelGatewayHeadstock, AxisEnablingSignalGatesManualMotion) {
   HeadstockRig r;
-  EXPECT_TRUE(r.Get("A01C.ENABL"));  // preset: enabled until the PLC takes it away
+  // Like PxxC.ENABL the signals act when they change: unwritten (0) the axes are enabled.
+  EXPECT_FALSE(r.Get("A01C.ENABL"));
   r.Press("P00C.MANU");
+  r.Set("A03C.JGPOS", true);
+  r.Cycle(4);
+  EXPECT_DOUBLE_EQ(r.at.feedback[2].velocity, 600);
+  r.Set("A03C.JGPOS", false);
+  r.Cycle(4);
+  for (const char* enabl : {"A01C.ENABL", "A02C.ENABL", "A03C.ENABL", "A04C.ENABL"})
+    r.Set(enabl, true);
+  r.Cycle();
   r.Set("A01C.ENABL", false);
   r.Set("A01C.JGPOS", true);
   r.Cycle(200);
