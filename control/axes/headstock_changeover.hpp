@@ -124,7 +124,11 @@ class HeadstockChangeover {
   /// An AXD motion function running on one drive.
   struct Function {
     int64_t word = 0;          ///< 65012 with acknowledgement bits
-    DriveSetpoint setpoint{};  ///< what it commands this cycle
+    /// What it commands this cycle. Until a function runs: speed control at zero, so that a
+    /// changeover decelerates its drives from the first cycle on (4.2/4.3 internal changeover:
+    /// the drive is braked, never let go; a drive without enable coasts, and the kinematic
+    /// backend, having no inertia, would stop it dead).
+    DriveSetpoint setpoint{DriveMode::kVelocity, 0, 0};
     double speed = 0;          ///< deg/s, ramped speed of the speed specification
     double hunting_s = 0;      ///< time into the hunting oscillation
     bool active = false;       ///< a function commands the drive

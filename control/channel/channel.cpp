@@ -195,6 +195,16 @@ void Channel::Fail(const std::string& message, int number) {
   homing_ = false;
 }
 
+std::vector<OperatorMessage> Channel::messages() const {
+  std::vector<OperatorMessage> list;
+  if (state_ == ChannelState::kError)
+    list.push_back({OperatorMessage::Source::kNc, error_number_, 0, error_});
+  if (plc_message_.number != 0)
+    list.push_back(
+        {OperatorMessage::Source::kPlc, plc_message_.number, plc_message_.parameter, {}});
+  return list;
+}
+
 void Channel::Fail(const nc::Program& program, int32_t block, const std::string& text, int number) {
   if (planning_only_) {
     plan_failed_ = true;  // read ahead under G41/G42: the block's error comes in its turn

@@ -22,6 +22,7 @@
 #include "control/channel/block_motion.hpp"
 #include "control/channel/block_search.hpp"
 #include "control/channel/channel_messages.hpp"
+#include "control/channel/operator_messages.hpp"
 #include "control/channel/look_ahead.hpp"
 #include "control/channel/path_memory.hpp"
 #include "control/channel/path_profile.hpp"
@@ -159,6 +160,22 @@ class Channel {
   /// immediate stop interrupted), then turn the spindle at its jogging speed, stop it or position
   /// it to its jogging spindle position. Ignored outside manual mode.
   void ManualSpindle(int m);
+  /// The main spindle's jog keys AxxC.JGPOS / JGNEG (C-axis manual 2.3, 3.3, 4.3, 4.4): +1, -1,
+  /// 0 released. Manual mode only. They select spindle mode on a headstock (aborting a
+  /// changeover an immediate stop interrupted) and move the spindle as the jog mode says
+  /// (PxxC.JOGM0..2): turning at its jogging speed (rapid) while held, or one increment or its
+  /// parametric jogging distance per press; in handwheel mode the keys move nothing.
+  void JogSpindle(int direction);
+  /// AxxC.ENABL of a channel axis and of the main spindle (C-axis manual 4.2): without it the
+  /// axis cannot be moved in manual mode, in rotary axis mode or spindle mode alike. Its keys
+  /// start nothing and a continuous jog under way brakes (an increment runs to its end, as when
+  /// the process enabling signal goes). Programmed motion does not ask for it.
+  void SetAxisEnable(size_t axis, bool on);
+  void SetSpindleEnable(bool on);
+  bool axis_enabled(size_t axis) const { return axis >= axis_enable_.size() || axis_enable_[axis]; }
+  /// AxxS.NC_NMAX of the main spindle: its speed command (override applied) at the speed limit
+  /// Cxx.049 or beyond.
+  bool SpindleAtSpeedLimit() const;
   /// Single block (semi-automatic): after each block the channel holds until the next start.
   void SetSingleBlock(bool on) { single_block_ = on; }
   /// Changes the mode; refused (false) while a program runs. An interrupted program (hold)
@@ -327,6 +344,11 @@ class Channel {
   const std::string& error() const { return error_; }
   /// Its message number (channel_messages.hpp), 0 when there is none.
   int error_number() const { return error_number_; }
+  /// The PLC's message (MSG_WR / MSG_WR_N), as the gateway reads it each NC cycle.
+  void SetPlcMessage(const PlcMessage& m) { plc_message_ = m; }
+  const PlcMessage& plc_message() const { return plc_message_; }
+  /// The NC's message list: the error in force, then the PLC's message.
+  std::vector<OperatorMessage> messages() const;
   /// The modal state of the program (initial state before the first block).
   const nc::ModalState& modal() const;
   /// Axis referenced (homed): from the start, or after G74; the rotary axis of a headstock
@@ -827,6 +849,7 @@ class Channel {
   bool InSynchronousBlock() const { return active_ && sync_.phase != SyncPhase::kNone; }
   std::optional<axes::HeadstockChangeover> headstock_;
   axes::HeadstockPlc headstock_plc_;
+  PlcMessage plc_message_;
   bool headstock_known_ = false;  ///< the power-on mode has been taken from the PLC
   axes::HeadstockMode waiting_for_ = axes::HeadstockMode::kNone;
   bool manual_changeover_ = false;  ///< the changeover in progress was commanded by a key
@@ -842,6 +865,9 @@ class Channel {
   bool process_enable_ = true;
   bool spindle_homed_ = true;         ///< a separate spindle's reference (section 3)
   bool spindle_referencing_ = false;  ///< M19 runs: the reference comes when it is in position
+  bool spindle_jogging_ = false;      ///< the spindle turns because a jog key is held
+  std::vector<bool> axis_enable_;     ///< AxxC.ENABL per channel axis (empty: all enabled)
+  bool spindle_enable_ = true;        ///< AxxC.ENABL of the main spindle
   /// The block waits for the spindle: M19's positioning to end, G77 S1=0's speed to be reached.
   bool orienting_ = false;
   double spindle_position_ = 0;       ///< the spindle's actual position at the last NC cycle

@@ -50,7 +50,7 @@ bool Channel::JogFictive(int axis, int direction) {
 bool Channel::HandwheelFictive(int axis, int counts) {
   int x = -1, c = -1;
   if (mode_ != ChannelMode::kManual || jog_mode_ != JogMode::kHandwheel || axis < 0 || axis > 1 ||
-      !process_enable_ || !FictiveJogAxes(x, c))
+      !process_enable_ || !FictiveJogAxes(x, c) || !axis_enabled(x) || !axis_enabled(c))
     return false;
   take_over_pending_ = true;
   FictiveJog& j = fictive_jog_[axis];
@@ -73,6 +73,8 @@ void Channel::FictiveJogging(double dt) {
   }
   const ChannelAxis& ax = config_.axes[x];
   const ChannelAxis& ac = config_.axes[c];
+  // A fictive axis moves X and C together: both need their axis enabling signal (C-axis 4.2).
+  const bool enabled = process_enable_ && axis_enabled(x) && axis_enabled(c);
   const nc::FictivePoint p =
       nc::MachineToFace(commanded_[x] - translation_[x], commanded_[c] - translation_[c]);
   const double radius = std::hypot(p.x1, p.y1);
@@ -120,7 +122,7 @@ void Channel::FictiveJogging(double dt) {
     }
     if (jog_mode_ != JogMode::kHandwheel) j.handwheel = false;
     if (JogStepping(j.stepping, increment, j.velocity)) {
-      if (!j.stepping && j.key != 0 && process_enable_) {
+      if (!j.stepping && j.key != 0 && enabled) {
         j.stepping = true;
         j.target = within(pos[k] + j.key * increment);
         j.key = 0;  // one increment per press
@@ -131,7 +133,7 @@ void Channel::FictiveJogging(double dt) {
       moved = true;
       continue;
     }
-    const int key = process_enable_ && increment == 0 ? j.key : 0;
+    const int key = enabled && increment == 0 ? j.key : 0;
     const double room = key > 0 ? high[k] - pos[k] : pos[k] - low[k];
     const double target_velocity =
         key * std::min(speed, std::sqrt(2 * ax.acceleration * std::max(0.0, room)));

@@ -91,8 +91,9 @@ void Channel::ManualChangeover(axes::HeadstockMode target) {
 void Channel::ManualSpindle(int m) {
   if (mode_ != ChannelMode::kManual || config_.spindle_drive < 0) return;
   if (m != 3 && m != 4 && m != 5 && m != 19) return;
-  // Without the process enabling signal nothing starts; a stop is always taken.
-  if (m != 5 && !process_enable_) return;
+  // Without the process enabling signal or the spindle's axis enabling signal (4.2) nothing
+  // starts; a stop is always taken.
+  if (m != 5 && (!process_enable_ || !spindle_enable_)) return;
   // 4.2: "The NC automatically switches over to main spindle mode if rotary axis mode is active
   // when one of these commands is started"; the command acts once spindle mode is there.
   if (headstock_) ManualChangeover(axes::HeadstockMode::kSpindle);
@@ -114,7 +115,73 @@ void Channel::ManualSpindle(int m) {
     spindle_referencing_ = true;
   }
   spindle_referencing_ = spindle_referencing_ && m == 19;
+  spindle_jogging_ = false;
   take_over_pending_ = true;
+}
+
+void Channel::JogSpindle(int direction) {
+  if (mode_ != ChannelMode::kManual || config_.spindle_drive < 0) return;
+  if (direction == 0) {
+    // Released: a spindle the key turned brakes; an increment runs to its end.
+    if (spindle_jogging_) spindle_ = {DriveMode::kVelocity, 0, 0};
+    spindle_jogging_ = false;
+    take_over_pending_ = true;
+    return;
+  }
+  if (!process_enable_ || !spindle_enable_) return;
+  // 4.4: jogging the main spindle initiates the changeover to spindle mode; 2.3 / 3.3 Jogging
+  // Movements: its jog keys abort a changeover an immediate stop interrupted. The motion acts
+  // once spindle mode is there.
+  if (headstock_) ManualChangeover(axes::HeadstockMode::kSpindle);
+  // 4.3: the jog mode selects the type of the spindle's jogging as of the feed axes. Continuous
+  // jogging turns it at the main spindle's "Jogging speed" (its rapid one in rapid mode); an
+  // increment or the parametric distance positions it by that many degrees from where it
+  // stands (the spindle set's position control, as M19: vmt's reading, the manual names no
+  // separate spindle increment). Handwheel mode: the keys move nothing, as for every axis.
+  const axes::AxisParameters& p = config_.spindle;
+  const double rapid = p.jog_rapid_per_s > 0 ? p.jog_rapid_per_s : p.jog_per_s;
+  switch (jog_mode_) {
+    case JogMode::kContinuous:
+    case JogMode::kRapid:
+      spindle_ = {DriveMode::kVelocity,
+                  direction * (jog_mode_ == JogMode::kRapid ? rapid : p.jog_per_s), 0};
+      spindle_jogging_ = true;
+      break;
+    case JogMode::kHandwheel:
+      return;
+    default: {
+      const double step = jog_mode_ == JogMode::kParametric ? p.jog_distance : jog_increment_;
+      spindle_ = {DriveMode::kPosition, spindle_position_ + direction * step, 0};
+      spindle_jogging_ = false;
+    }
+  }
+  spindle_referencing_ = false;
+  take_over_pending_ = true;
+}
+
+void Channel::SetAxisEnable(size_t axis, bool on) {
+  if (axis >= config_.axes.size()) return;
+  if (axis_enable_.size() != config_.axes.size()) axis_enable_.assign(config_.axes.size(), true);
+  axis_enable_[axis] = on;
+}
+
+void Channel::SetSpindleEnable(bool on) {
+  spindle_enable_ = on;
+  // 4.2: without the axis enabling signal the spindle cannot be moved in manual mode: a jog
+  // key's turning stops. (A spindle turning by M3 from the program or AxxC.M3 keeps its
+  // command: vmt's reading, as the signal gates motion the keys start.)
+  if (!on && spindle_jogging_) {
+    spindle_ = {DriveMode::kVelocity, 0, 0};
+    spindle_jogging_ = false;
+    take_over_pending_ = true;
+  }
+}
+
+bool Channel::SpindleAtSpeedLimit() const {
+  const double limit = config_.spindle.max_spindle_rpm;
+  if (config_.spindle_drive < 0 || limit <= 0 || spindle_.mode != DriveMode::kVelocity)
+    return false;
+  return std::abs(spindle_.value / 6 * spindle_override_) >= limit * (1 - 1e-9);
 }
 
 void Channel::SetProcessEnable(bool on) {

@@ -68,7 +68,7 @@ double Channel::JogIncrement(const ChannelAxis& axis) const {
 
 void Channel::Handwheel(size_t axis, int counts) {
   if (mode_ != ChannelMode::kManual || jog_mode_ != JogMode::kHandwheel || axis >= jog_.size() ||
-      !process_enable_)
+      !process_enable_ || !axis_enabled(axis))
     return;
   take_over_pending_ = true;
   JogAxis& j = jog_[axis];
@@ -84,7 +84,7 @@ void Channel::Jog(size_t axis, int direction) {
     Reset();
   // C-axis manual 4.2: jogging the rotary axis selects rotary axis mode; it moves once there.
   if (headstock_ && static_cast<int>(axis) == config_.rotary_axis && direction != 0 &&
-      process_enable_)
+      process_enable_ && axis_enabled(axis))
     ManualChangeover(axes::HeadstockMode::kRotary);
   jog_[axis].key = direction > 0 ? 1 : direction < 0 ? -1 : 0;
   take_over_pending_ = true;
@@ -147,7 +147,7 @@ void Channel::Jogging(double dt) {
     const double increment = JogIncrement(axis);
     if (JogStepping(j.stepping, increment, j.velocity)) {
       // Incremental: a key press starts one increment, which then runs to its end.
-      if (!j.stepping && j.key != 0 && process_enable_) {
+      if (!j.stepping && j.key != 0 && process_enable_ && axis_enabled(a)) {
         j.stepping = true;
         j.from = commanded_[a];
         j.to = within(commanded_[a] + j.key * increment);
@@ -170,8 +170,10 @@ void Channel::Jogging(double dt) {
       continue;
     }
     // Continuous: towards the jog speed while the key is held, braking when it is released or
-    // the process enabling signal is removed (C-axis manual 2.3: axes to a standstill).
-    const int key = process_enable_ && j.key != j.blocked && increment == 0 ? j.key : 0;
+    // the process enabling signal is removed (C-axis manual 2.3: axes to a standstill), or the
+    // axis enabling signal (4.2).
+    const int key =
+        process_enable_ && axis_enabled(a) && j.key != j.blocked && increment == 0 ? j.key : 0;
     double target = key * speed;
     const double step = axis.acceleration * dt;
     if (limited) {

@@ -61,6 +61,8 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
   s_mfunc_ = Id(s + "MFUNC");
   s_hfunc_ = Id(s + "HFUNC");
   s_tfunc_ = Id(s + "TFUNC");
+  msg_wr_ = Id(prefix_ + ".MSG_WR");
+  msg_wr_n_ = Id(prefix_ + ".MSG_WR_N");
   for (int number : axis_numbers) {
     const std::string a = "A" + Number2(number);
     AxisSignals sig;
@@ -69,6 +71,10 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
     sig.mvpos = Id(a + "S.MVPOS");
     sig.mvneg = Id(a + "S.MVNEG");
     sig.homed = Id(a + "S.HOMED");
+    sig.enabl = Id(a + "C.ENABL");
+    if (sig.enabl >= 0) sig.last_enabl = image.Bool(sig.enabl);  // only changes act
+    sig.rf = Id(a + "S.RF");
+    sig.bbdig = Id(a + "S.BBDIG");
     axes_.push_back(sig);
   }
   if (spindle_number > 0) {
@@ -76,6 +82,13 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
     const std::string ac = "A" + Number2(spindle_number) + "C.";
     const char* keys[4] = {"M3", "M4", "M5", "M19"};
     for (int k = 0; k < 4; ++k) spindle_m_[k].id = Id(ac + keys[k]);
+    spindle_jgpos_ = Id(ac + "JGPOS");
+    spindle_jgneg_ = Id(ac + "JGNEG");
+    spindle_enabl_ = Id(ac + "ENABL");
+    if (spindle_enabl_ >= 0) last_spindle_enabl_ = image.Bool(spindle_enabl_);
+    spindle_rf_ = Id(a + "RF");
+    spindle_bbdig_ = Id(a + "BBDIG");
+    nc_nmax_ = Id(a + "NC_NMAX");
     sovr_ = Id(ac + "SOVR");
     if (sovr_ >= 0) last_sovr_ = image.Int(sovr_);
     spindle_homed_ = Id(a + "HOMED");
@@ -227,12 +240,30 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
     if (percent != last_sovr_)
       ch.SetSpindleOverride(static_cast<double>(percent) / 100), last_sovr_ = percent;
   }
+  // C-axis manual 4.2: the axis enabling signals, before the keys they gate. Like the process
+  // enabling signal they act when they change: a PLC that never writes them (a machine
+  // without one, a scene's timeline) leaves the axes enabled.
+  for (AxisSignals& sig : axes_)
+    if (sig.enabl >= 0 && im.Bool(sig.enabl) != sig.last_enabl)
+      ch.SetAxisEnable(static_cast<size_t>(&sig - axes_.data()), sig.last_enabl = !sig.last_enabl);
+  if (spindle_enabl_ >= 0 && im.Bool(spindle_enabl_) != last_spindle_enabl_)
+    ch.SetSpindleEnable(spindle_enabled_ = last_spindle_enabl_ = !last_spindle_enabl_);
   const int spindle_m[4] = {3, 4, 5, 19};
   for (int k = 0; k < 4; ++k)
     if (spindle_m_[k].Rising(im)) ch.ManualSpindle(spindle_m[k]);
   if (jogm_[0] >= 0 && jogm_[1] >= 0 && jogm_[2] >= 0) {
     const int code = im.Bool(jogm_[0]) | im.Bool(jogm_[1]) << 1 | im.Bool(jogm_[2]) << 2;
     if (code != last_jogm_) ch.SetJogMode(code), last_jogm_ = code;
+  }
+  // The main spindle's own jog keys (C-axis manual 4.3), levels; both at once: no motion. A
+  // key held while the axis enabling signal comes back acts then, as a feed axis' jog key does.
+  {
+    const bool pos = spindle_jgpos_ >= 0 && im.Bool(spindle_jgpos_);
+    const bool neg = spindle_jgneg_ >= 0 && im.Bool(spindle_jgneg_);
+    const int key = pos == neg ? 0 : pos ? 1 : -1;
+    if (key != last_spindle_key_ || (spindle_enabled_ && !spindle_key_enabled_))
+      ch.JogSpindle(key), last_spindle_key_ = key;
+    spindle_key_enabled_ = spindle_enabled_;
   }
   for (size_t a = 0; a < axes_.size(); ++a) {
     AxisSignals& sig = axes_[a];
@@ -262,6 +293,9 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
     ack = all_q;
   }
   if (ack) ch.AcknowledgeAux();
+  // Fast-measurement 6.3: the PLC's messages to the NC go to its message list.
+  if (msg_wr_ >= 0)
+    ch.SetPlcMessage({static_cast<int>(im.Int(msg_wr_)), msg_wr_n_ >= 0 ? im.Int(msg_wr_n_) : 0});
 
   if (ch.headstock()) {
     const Headstock& h = headstock_;
@@ -324,6 +358,12 @@ void ChannelGateway::WriteStatus(const channel::Channel& ch, const AmplifierTele
     set(axes_[a].mvpos, motion > 0);
     set(axes_[a].mvneg, motion < 0);
     set(axes_[a].homed, ch.homed(a));
+    // 4.2: the controller enable the NC gives the drive over SERCOS, and the drive's ready.
+    const int drive = a < ch.config().axes.size() ? ch.config().axes[a].drive : -1;
+    if (drive >= 0 && drive < static_cast<int>(at.feedback.size())) {
+      set(axes_[a].rf, at.feedback[drive].status & drive_status::kEnabled);
+      set(axes_[a].bbdig, at.feedback[drive].status & drive_status::kReady);
+    }
   }
   if (const axes::HeadstockChangeover* hs = ch.headstock()) {
     const Headstock& h = headstock_;
@@ -346,7 +386,10 @@ void ChannelGateway::WriteStatus(const channel::Channel& ch, const AmplifierTele
     set(n_ncmd_, st & drive_status::kAtSpeed);
     set(n_nmin_, st & drive_status::kStandstill);
     set(inpos_, st & drive_status::kInPosition);
+    set(spindle_rf_, st & drive_status::kEnabled);
+    set(spindle_bbdig_, st & drive_status::kReady);
   }
+  set(nc_nmax_, ch.SpindleAtSpeedLimit());
 }
 
 double ChannelGateway::Number(int id) const {

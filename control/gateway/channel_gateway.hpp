@@ -61,18 +61,26 @@ class ChannelGateway {
   /// The main spindle's keys AxxC.M3 / M4 / M5 / M19 (rising edges), its override AxxC.SOVR
   /// (acts when it changes) and its reference AxxS.HOMED (C-axis manual 4.2).
   Edge spindle_m_[4];
+  int spindle_jgpos_ = -1, spindle_jgneg_ = -1, last_spindle_key_ = 0;  ///< AxxC.JGPOS/JGNEG
+  int spindle_enabl_ = -1, spindle_rf_ = -1, spindle_bbdig_ = -1, nc_nmax_ = -1;
+  bool last_spindle_enabl_ = false;   ///< the spindle's AxxC.ENABL as last seen
+  bool spindle_enabled_ = true;       ///< what the channel was last told of it
+  bool spindle_key_enabled_ = true;   ///< spindle_enabled_ when its jog key was last read
   int sovr_ = -1, spindle_homed_ = -1;
   int64_t last_sovr_ = -1;
   bool last_sbl_ = false;
   int last_jogm_ = -1;
   struct AxisSignals {
     int jgpos = -1, jgneg = -1, mvpos = -1, mvneg = -1, homed = -1;
+    int enabl = -1, rf = -1, bbdig = -1;  ///< AxxC.ENABL, AxxS.RF, AxxS.BBDIG
+    bool last_enabl = false;              ///< ENABL acts when it changes
     int last_key = 0;
   };
   std::vector<AxisSignals> axes_;
   int s_auto_ = -1, s_manu_ = -1, s_mdi_ = -1, s_run_ = -1, s_stop_ = -1, s_rev_ = -1;
   int s_repos_ = -1, s_crest_ = -1;
   int s_error_ = -1, s_errnr_ = -1, s_auxstb_ = -1, s_mfunc_ = -1, s_hfunc_ = -1, s_tfunc_ = -1;
+  int msg_wr_ = -1, msg_wr_n_ = -1;  ///< Pxx.MSG_WR / MSG_WR_N: the PLC's message
   int spindle_drive_ = -1, n_ncmd_ = -1, n_nmin_ = -1, inpos_ = -1;
   /// The headstock changeover (C-axis manual 4.1-4.3): ROTMOD/SPMOD out, their
   /// acknowledgements, the drives' enables (AxxC.READY) and AXD idents 65012..65015 in.

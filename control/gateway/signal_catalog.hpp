@@ -35,6 +35,10 @@ struct SignalFamily {
   std::string_view unit = {};
   std::string_view aliases = {};  ///< other spellings in the manuals, ';'-separated
   double preset = 0;              ///< value before anyone writes (e.g. QMFB1Axx input presets)
+  /// Empty: vmt reads (PLC->NC) or writes (NC->PLC) the signal as its meaning says. Otherwise
+  /// why vmt neither evaluates nor drives it: the cell is there for the PLC program, but a
+  /// write changes nothing, or it stays at its preset.
+  std::string_view not_evaluated = {};
 };
 
 /// A named value or bit of a signal family (state numbers, bit masks, error numbers).

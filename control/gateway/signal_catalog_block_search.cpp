@@ -219,11 +219,15 @@ constexpr SignalFamily kFamilies[] = {
      BSRCH "7 (LC_CONTROL_BOOL_UNIT)", "", "LCControlBoolUnit_BlockSearch.X_Enable"},
     {"Pxx.SuspendAxisOutput", kProcess, kBool, kPlcToNc,
      "The channel's axes are lent to a JogOfPath channel; block search may already start",
-     BSRCH "4.2.1 (HLI.channel.SuspendAxisOutput)"},
+     BSRCH "4.2.1 (HLI.channel.SuspendAxisOutput)", "", "", 0,
+     "vmt's gateway lends the axes by Pxx.suspend_axis_output_w, the same request"},
     {"Pxx.SuspendOutput", kProcess, kBool, kPlcToNc,
      "Suspend the channel's output while the other channel (block search / JogOfPath) moves the "
      "axes",
-     BSRCH "4.2.1 (HLI.BlockSearchChannel.SuspendOutput, HLI.JogOfPathChannel.SuspendOutput)"},
+     BSRCH "4.2.1 (HLI.BlockSearchChannel.SuspendOutput, HLI.JogOfPathChannel.SuspendOutput)",
+     "", "", 0,
+     "vmt's JogOfPath channel suspends its output by Pxx.suspend_axis_output_w and "
+     "Pxx.jog_of_path.*"},
 };
 
 constexpr ValueName kValues[] = {

@@ -69,6 +69,7 @@ Signal FromFamily(const SignalFamily& family, int number, std::string instance_n
   s.unit = std::string(family.unit);
   s.aliases = SplitAliases(family.aliases, number);
   s.preset = family.preset;
+  s.not_evaluated = std::string(family.not_evaluated);
   return s;
 }
 

@@ -53,6 +53,8 @@ struct Signal {
   std::string unit;
   std::vector<std::string> aliases;  ///< other spellings in the manuals, instantiated
   double preset;                     ///< initial value
+  /// Empty when vmt evaluates or drives the signal, else why not (SignalFamily::not_evaluated).
+  std::string not_evaluated;
 };
 
 /// What a machine has: its NC processes, axes and I/O points.

@@ -20,13 +20,17 @@ std::string CsvField(std::string_view field) {
 
 }  // namespace
 
+std::string VmtColumn(const Signal& s) {
+  return s.not_evaluated.empty() ? "evaluated" : "not evaluated: " + s.not_evaluated;
+}
+
 std::string FormatCsv(const std::vector<Signal>& table) {
-  std::string out = "name,type,direction,area,address,count,meaning,source\n";
+  std::string out = "name,type,direction,area,address,count,meaning,source,vmt\n";
   for (const Signal& s : table) {
     out += CsvField(s.name) + ',' + ToString(s.type) + ',' + ToString(s.direction) + ',' +
            ToString(s.modbus.area) + ',' + std::to_string(s.modbus.address) + ',' +
            std::to_string(s.modbus.count) + ',' + CsvField(s.meaning) + ',' + CsvField(s.source) +
-           '\n';
+           ',' + CsvField(VmtColumn(s)) + '\n';
   }
   return out;
 }
@@ -68,6 +72,8 @@ std::string FormatJson(const std::vector<Signal>& table) {
     j["source"] = s.source;
     if (!s.aliases.empty()) j["aliases"] = s.aliases;
     if (s.preset != 0) j["preset"] = s.preset;
+    j["vmt"] = s.not_evaluated.empty() ? "evaluated" : "not evaluated";
+    if (!s.not_evaluated.empty()) j["not_evaluated"] = s.not_evaluated;
     signals.push_back(std::move(j));
   }
   doc["signals"] = std::move(signals);

@@ -10,7 +10,12 @@
 
 namespace vmt::control::gateway {
 
-/// One line per signal under the header `name,type,direction,area,address,count,meaning,source`
+/// The `vmt` column: "evaluated" when vmt reads or drives the signal as its meaning says, else
+/// "not evaluated: <why>" (the cell is there, nothing in vmt acts on it or sets it).
+std::string VmtColumn(const Signal& s);
+
+/// One line per signal under the header
+/// `name,type,direction,area,address,count,meaning,source,vmt`
 /// (RFC 4180 quoting: a field with a comma, quote or line break is enclosed in quotes, quotes
 /// doubled; lines end with "\n"). type: BOOL, INT, ...; direction: PLC->NC, NC->PLC, NC<->PLC,
 /// MACHINE->PLC, PLC->MACHINE; area: coil, discrete_input, holding_register, input_register.
@@ -18,7 +23,8 @@ std::string FormatCsv(const std::vector<Signal>& table);
 
 /// {"format": "vmt-gateway-signals", "version": 1, "modbus": {...encoding...},
 ///  "signals": [{name, type, direction, scope, instance, axis_name, pattern, modbus: {area,
-///  address, count}, meaning, unit, source, aliases, preset}],
+///  address, count}, meaning, unit, source, aliases, preset, vmt: "evaluated" | "not evaluated",
+///  not_evaluated: why}],
 ///  "values": [{signal_pattern, name, value, bit_mask, meaning, source}] (those of the families
 ///  present in the table), "unrepresented": [{name, reason, source}]}, indented by 2.
 std::string FormatJson(const std::vector<Signal>& table);

@@ -1,6 +1,9 @@
 // The NC channel's part of a scene run's tick: the gateway's controls in, PathGuard's view of
 // the stock, the channel's cycle, the gateway's status out, and the events of what changed.
+#include <algorithm>
+
 #include "control/channel/jog_of_path.hpp"
+#include "control/plc/plc_message_texts.hpp"
 #include "sim/runner/channel_events.hpp"
 #include "sim/runner/runner_state.hpp"
 
@@ -43,6 +46,14 @@ void SceneRun::State::StepChannel(double t, const control::AmplifierTelegram& at
                 {"event", "headstock"},
                 {"mode", ToString(hs->mode())},
                 {"target", ToString(hs->target())}});
+  }
+  if (const auto* hs = channel->headstock();
+      hs && (hs->rotmod() != rotmod || hs->spmod() != spmod)) {
+    // The pre-selections ROTMOD / SPMOD (4.1) as the PLC sees them: the end of the internal
+    // changeover, with the drives at standstill (4.2), starts the external one.
+    rotmod = hs->rotmod();
+    spmod = hs->spmod();
+    emit_event({{"t", t}, {"event", "headstock"}, {"rotmod", rotmod}, {"spmod", spmod}});
   }
   if (const auto* hs = channel->headstock(); hs && hs->mode() != headstock_mode) {
     headstock_mode = hs->mode();
@@ -92,12 +103,55 @@ void SceneRun::State::StepChannel(double t, const control::AmplifierTelegram& at
     for (; block_search_warnings < bs.warnings.size(); ++block_search_warnings)
       emit_event(BlockSearchEvent(t, *channel, bs.warnings[block_search_warnings]));
   }
+  if (nc_cycle) NoteMessages(t);
   if (channel->state() != nc_state) {
     nc_state = channel->state();
     nlohmann::ordered_json e = {{"t", t}, {"event", "nc"}, {"state", ToString(nc_state)}};
     if (!channel->error().empty()) e["error"] = channel->error();
     emit_event(e);
   }
+}
+
+// The NC's message list (the error in force, the PLC's MSG_WR): each message once as it
+// appears and once as it goes, so that the operator's log shows what the PLC reported.
+void SceneRun::State::NoteMessages(double t) {
+  using control::channel::OperatorMessage;
+  std::vector<OperatorMessage> now = channel->messages();
+  const auto same = [](const OperatorMessage& a, const OperatorMessage& b) {
+    return a.source == b.source && a.number == b.number && a.parameter == b.parameter &&
+           a.text == b.text;
+  };
+  const auto contains = [&](const std::vector<OperatorMessage>& list, const OperatorMessage& m) {
+    return std::any_of(list.begin(), list.end(), [&](const auto& x) { return same(x, m); });
+  };
+  for (const OperatorMessage& m : messages) {
+    if (contains(now, m)) continue;
+    emit_event({{"t", t},
+                {"event", "message"},
+                {"source", ToString(m.source)},
+                {"number", m.number},
+                {"state", "cleared"}});
+    for (auto& seen : messages_seen)
+      if (seen["source"] == ToString(m.source) && seen["number"] == m.number &&
+          !seen.contains("cleared_t"))
+        seen["cleared_t"] = t;
+  }
+  for (const OperatorMessage& m : now) {
+    if (contains(messages, m)) continue;
+    nlohmann::ordered_json e = {{"t", t},
+                                {"event", "message"},
+                                {"source", ToString(m.source)},
+                                {"number", m.number}};
+    if (m.source == OperatorMessage::Source::kPlc) e["parameter"] = m.parameter;
+    e["text"] = m.source == OperatorMessage::Source::kPlc
+                    ? control::plc::PlcMessageText(m.number, m.parameter)
+                    : m.text;
+    emit_event(e);
+    nlohmann::ordered_json seen = e;
+    seen.erase("event");
+    messages_seen.push_back(seen);
+  }
+  messages = std::move(now);
 }
 
 }  // namespace vmt::sim

@@ -142,11 +142,17 @@ struct SceneRun::State {
   void StartHeadstockPlc();
   control::axes::HeadstockMode headstock_mode = control::axes::HeadstockMode::kNone;
   control::axes::HeadstockMode headstock_target = control::axes::HeadstockMode::kNone;
+  bool rotmod = false, spmod = false;  ///< the pre-selections the PLC was last shown
   std::string repos_key;  ///< the REPOS screen last emitted (ReposEventKey)
   control::channel::BlockSearchState block_search_state =
       control::channel::BlockSearchState::kInactive;
   size_t block_search_warnings = 0;  ///< warnings of the block search already emitted
   int plc_client_gone_told = 0;      ///< client_gone steps passed to the callback
+  /// The NC's message list as last emitted, and every message of the run for summary.json
+  /// (with when it came and, once gone, when it went).
+  std::vector<control::channel::OperatorMessage> messages;
+  nlohmann::ordered_json messages_seen = nlohmann::ordered_json::array();
+  void NoteMessages(double t);
 };
 
 }  // namespace vmt::sim

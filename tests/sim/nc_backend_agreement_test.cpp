@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "sim/runner/runner.hpp"
 #include "sim_test_support.hpp"
@@ -91,6 +92,50 @@ TEST(NcBackendAgreementTest, CAxisProgramsRunOnBothBackends) {
                                << (backend == BackendKind::kPhysics ? " physics" : " kinematic");
     }
   }
+}
+
+// When the changeover to rotary axis mode was asked for and when ROTMOD first went to the PLC.
+struct RotmodTiming {
+  double requested_s = -1, rotmod_s = -1;
+};
+
+RotmodTiming Rotmod(const std::string& dir) {
+  std::ifstream in(dir + "/events.jsonl");
+  RotmodTiming r;
+  for (std::string line; std::getline(in, line);) {
+    const nlohmann::json e = nlohmann::json::parse(line);
+    if (e["event"] != "headstock") continue;
+    if (r.requested_s < 0 && e.contains("target") && e["target"] == "rotary")
+      r.requested_s = e["t"].get<double>();
+    if (r.rotmod_s < 0 && e.contains("rotmod") && e["rotmod"].get<bool>())
+      r.rotmod_s = e["t"].get<double>();
+  }
+  return r;
+}
+
+TEST(NcBackendAgreementTest, RotmodWaitsForTheSpindleToBrakeOnBothBackends) {
+  // C-axis manual 4.2 / 4.3: the internal changeover decelerates the drives before ROTMOD goes
+  // out. From 3000 rpm S1 brakes for about 2 s (9000 deg/s^2) on either backend: a drive let go
+  // for a cycle coasts on the physics backend and stops dead on the kinematic one.
+  const Scene scene = LoadScene(testing::SourcePath("scenes/c-axis-changeover-at-speed.yaml"));
+  const double braking_s = 3000 * 6.0 / 9000;
+  RotmodTiming timing[2];
+  int k = 0;
+  for (BackendKind backend : {BackendKind::kPhysics, BackendKind::kKinematic}) {
+    RunOptions options;
+    options.snapshots = false;
+    options.backend = backend;
+    options.out_dir = testing::OutputDir(k == 0 ? "rotmod_physics" : "rotmod_kinematic");
+    const RunResult result = RunScene(scene, options);
+    EXPECT_TRUE(result.ok()) << (k == 0 ? "physics" : "kinematic");
+    timing[k] = Rotmod(options.out_dir);
+    ASSERT_GE(timing[k].requested_s, 0);
+    ASSERT_GE(timing[k].rotmod_s, 0);
+    EXPECT_GT(timing[k].rotmod_s - timing[k].requested_s, 0.9 * braking_s)
+        << (k == 0 ? "physics" : "kinematic");
+    ++k;
+  }
+  EXPECT_NEAR(timing[0].rotmod_s, timing[1].rotmod_s, 0.1 * braking_s);
 }
 
 }  // namespace

@@ -6,8 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
+#include <string_view>
 
 #include "control/gateway/channel_gateway.hpp"
+#include "control/gateway/signal_catalog.hpp"
 #include "control/nc/parser.hpp"
 #include "tests/control/gateway/lathe_channel.hpp"
 #include "tests/control/gateway/lathe_layout.hpp"
@@ -51,6 +54,7 @@ struct HeadstockRig {
           if (sp.mode == DriveMode::kPosition) f.position = sp.value;
           if (sp.mode == DriveMode::kVelocity) f.position += sp.value * 250e-6;
           f.status = drive_status::kReady;
+          if (sp.mode != DriveMode::kOff) f.status |= drive_status::kEnabled;
           if (std::abs(f.velocity) < 1e-9) f.status |= drive_status::kStandstill;
           if (sp.mode == DriveMode::kPosition) f.status |= drive_status::kInPosition;
         }
@@ -125,6 +129,127 @@ TEST(ChannelGatewayHeadstock, ProcessEnableRemovedStopsAndBlocksTheSpindleKeys) 
   r.Cycle();
   r.Press("A03C.M3");
   EXPECT_DOUBLE_EQ(r.at.feedback[2].velocity, 600);
+}
+
+// 4.2: "the axis cannot be moved in manual mode without the axis enabling signal", whatever
+// the mode of the headstock: jog keys and spindle keys start nothing, a continuous jog brakes.
+TEST(ChannelGatewayHeadstock, AxisEnablingSignalGatesManualMotion) {
+  HeadstockRig r;
+  // Like PxxC.ENABL the signals act when they change: unwritten (0) the axes are enabled.
+  EXPECT_FALSE(r.Get("A01C.ENABL"));
+  r.Press("P00C.MANU");
+  r.Set("A03C.JGPOS", true);
+  r.Cycle(4);
+  EXPECT_DOUBLE_EQ(r.at.feedback[2].velocity, 600);
+  r.Set("A03C.JGPOS", false);
+  r.Cycle(4);
+  for (const char* enabl : {"A01C.ENABL", "A02C.ENABL", "A03C.ENABL", "A04C.ENABL"})
+    r.Set(enabl, true);
+  r.Cycle();
+  r.Set("A01C.ENABL", false);
+  r.Set("A01C.JGPOS", true);
+  r.Cycle(200);
+  EXPECT_DOUBLE_EQ(r.at.feedback[0].position, 0);
+  r.Set("A01C.ENABL", true);
+  r.Cycle(200);
+  EXPECT_GT(r.at.feedback[0].position, 1);
+  r.Set("A01C.ENABL", false);  // under way: brakes to a standstill with the key still held
+  r.Cycle(200);
+  const double stopped = r.at.feedback[0].position;
+  r.Cycle(50);
+  EXPECT_DOUBLE_EQ(r.at.feedback[0].position, stopped);
+  r.Set("A01C.JGPOS", false);
+  r.Set("A01C.ENABL", true);
+  // The spindle's own signal gates its keys: M3 and its jog keys.
+  r.Set("A03C.ENABL", false);
+  r.Press("A03C.M3");
+  r.Set("A03C.JGPOS", true);
+  r.Cycle(4);
+  EXPECT_DOUBLE_EQ(r.at.feedback[2].velocity, 0);
+  r.Set("A03C.ENABL", true);  // the key still held acts now, as a feed axis' does
+  r.Cycle(4);
+  EXPECT_DOUBLE_EQ(r.at.feedback[2].velocity, 600);
+  r.Set("A03C.ENABL", false);  // the jog key's turning stops
+  r.Cycle(4);
+  EXPECT_DOUBLE_EQ(r.at.feedback[2].velocity, 0);
+  r.Set("A03C.JGPOS", false);
+  // The rotary axis' signal gates jogging C, and with it the changeover C's key would start.
+  r.Set("A04C.ENABL", false);
+  r.Set("A04C.JGPOS", true);
+  r.Cycle(40);
+  EXPECT_FALSE(r.ch->headstock()->busy());
+  EXPECT_EQ(r.ch->headstock()->mode(), axes::HeadstockMode::kSpindle);
+}
+
+// 4.2 status signals: RF, the controller enable the NC gives the drive, and BBDIG, the drive
+// ready; NC_NMAX, the speed command at the spindle's limit.
+TEST(ChannelGatewayHeadstock, DriveStatusAndSpeedLimitSignals) {
+  HeadstockRig r;
+  r.Cycle(2);
+  for (int d : {0, 2}) r.at.feedback[d].status = drive_status::kReady | drive_status::kEnabled;
+  r.gateway->WriteStatus(*r.ch, r.at);
+  EXPECT_TRUE(r.Get("A01S.RF"));
+  EXPECT_TRUE(r.Get("A01S.BBDIG"));
+  EXPECT_TRUE(r.Get("A03S.RF"));
+  EXPECT_TRUE(r.Get("A03S.BBDIG"));
+  EXPECT_FALSE(r.Get("A02S.RF"));  // Z's drive: ready, never given its controller enable
+  EXPECT_TRUE(r.Get("A02S.BBDIG"));
+  r.at.feedback[0].status = 0;  // a drive fault: neither ready nor enabled
+  r.gateway->WriteStatus(*r.ch, r.at);
+  EXPECT_FALSE(r.Get("A01S.RF"));
+  EXPECT_FALSE(r.Get("A01S.BBDIG"));
+  r.at.feedback[2].status = drive_status::kReady;  // ready, controller enable off
+  r.gateway->WriteStatus(*r.ch, r.at);
+  EXPECT_FALSE(r.Get("A03S.RF"));
+  EXPECT_TRUE(r.Get("A03S.BBDIG"));
+}
+
+TEST(ChannelGatewayHeadstock, SpeedCommandAtTheLimitSetsNcNmax) {
+  HeadstockRig r;
+  channel::ChannelConfig config = r.ch->config();
+  config.spindle.max_spindle_rpm = 100;  // the jogging speed, 600 deg/s, is the limit
+  r.ch = std::make_unique<channel::Channel>(config,
+                                            std::vector<const nc::Program*>{&r.parsed.program});
+  r.Press("P00C.MANU");
+  r.Cycle();
+  EXPECT_FALSE(r.Get("A03S.NC_NMAX"));
+  r.Press("A03C.M3");
+  EXPECT_TRUE(r.Get("A03S.NC_NMAX"));
+  r.image.SetInt(r.image.Require("A03C.SOVR"), 50);
+  r.Cycle();
+  EXPECT_FALSE(r.Get("A03S.NC_NMAX"));
+}
+
+// The C-axis signals of 4.2 that vmt evaluates are tested above (and the others of the table in
+// the tests of the gateway and the changeover); the rest say in the signal table that vmt does
+// not evaluate them, and why.
+TEST(ChannelGatewayHeadstock, EveryAxisSignalIsEvaluatedOrMarkedNot) {
+  const std::set<std::string_view> tested = {"AxxC.ENABL", "AxxS.RF", "AxxS.BBDIG",
+                                             "AxxS.NC_NMAX", "AxxC.JGPOS", "AxxC.JGNEG"};
+  const std::set<std::string_view> listed = {
+      "AxxC.ENABL", "AxxC.HOME",    "AxxC.HOMLS",  "AxxC.STRBP",   "AxxC.OTRVL",
+      "AxxC.MTAS",  "AxxC.GEAR1",   "AxxC.GEAR2",  "AxxC.GEAR3",   "AxxS.RF",
+      "AxxS.BBDIG", "AxxS.WP0",     "AxxS.WP1",    "AxxS.WP2",     "AxxS.WP3",
+      "AxxS.WP4",   "AxxS.WP5",     "AxxS.WP6",    "AxxS.WP7",     "AxxS.MD_MDX",
+      "AxxS.NC_NMAX", "AxxS.P_PX",  "AxxS.LOAD90", "AxxS.SYNCHRON", "AxxC.JGPOS",
+      "AxxC.JGNEG"};
+  size_t seen = 0;
+  for (const SignalFamily& f : SignalFamilies()) {
+    if (!listed.count(f.pattern)) continue;
+    ++seen;
+    if (tested.count(f.pattern))
+      EXPECT_TRUE(f.not_evaluated.empty()) << f.pattern;
+    else
+      EXPECT_FALSE(f.not_evaluated.empty()) << f.pattern << " is neither tested nor marked";
+  }
+  EXPECT_EQ(seen, listed.size());
+  // And the signal table carries the mark to the PLC engineer.
+  const std::vector<Signal> table = BuildSignalTable(testing::LatheLayout());
+  for (const Signal& s : table) {
+    if (s.name == "A03S.SYNCHRON") {
+      EXPECT_NE(s.not_evaluated.find("coupling"), std::string::npos);
+    }
+  }
 }
 
 // 2.3 / 3.3 Power-On State: the PLC presents rotary axis mode (ROTMOD_Q, the spindle's enable

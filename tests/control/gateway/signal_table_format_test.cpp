@@ -54,11 +54,11 @@ TEST(SignalTableFormat, CsvRoundTrip) {
   const auto rows = ParseCsv(FormatCsv(table));
   ASSERT_EQ(rows.size(), table.size() + 1);
   EXPECT_EQ(rows[0], (std::vector<std::string>{"name", "type", "direction", "area", "address",
-                                               "count", "meaning", "source"}));
+                                               "count", "meaning", "source", "vmt"}));
   for (size_t i = 0; i < table.size(); ++i) {
     const auto& r = rows[i + 1];
     const Signal& s = table[i];
-    ASSERT_EQ(r.size(), 8u) << s.name;
+    ASSERT_EQ(r.size(), 9u) << s.name;
     EXPECT_EQ(r[0], s.name);
     EXPECT_EQ(r[1], ToString(s.type));
     EXPECT_EQ(r[2], ToString(s.direction));
@@ -67,6 +67,7 @@ TEST(SignalTableFormat, CsvRoundTrip) {
     EXPECT_EQ(r[5], std::to_string(s.modbus.count));
     EXPECT_EQ(r[6], s.meaning);
     EXPECT_EQ(r[7], s.source);
+    EXPECT_EQ(r[8], VmtColumn(s));
   }
 }
 
@@ -100,6 +101,7 @@ TEST(SignalTableFormat, JsonParsesAndListsEverySignal) {
     EXPECT_EQ(j["modbus"]["count"], table[i].modbus.count);
     EXPECT_EQ(j["meaning"], table[i].meaning);
     EXPECT_EQ(j["source"], table[i].source);
+    EXPECT_EQ(j["vmt"], table[i].not_evaluated.empty() ? "evaluated" : "not evaluated");
   }
   // Extra fields where they say something.
   for (const auto& j : signals) {
