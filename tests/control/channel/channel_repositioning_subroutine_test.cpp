@@ -83,6 +83,7 @@ TEST(ReposSubroutineEnd, RetIsRefusedAtItsWordAndTheProgramStaysInterrupted) {
   // 7.2: still interrupted, repositioning still allowed, the same interruption point.
   EXPECT_TRUE(m.channel->repos_allowed());
   const ReposStatus s = m.channel->repos_status();
+  ASSERT_EQ(s.axes.size(), 2u);
   EXPECT_NEAR(s.axes[0].final_value, x, 1e-9);
   EXPECT_NEAR(s.axes[1].final_value, 0, 1e-9);
 }
@@ -168,6 +169,7 @@ TEST(ReposSubroutineErrors, AfterACollisionAheadStartRunsTheSubroutineAgain) {
   EXPECT_EQ(m.Z(), z);
   EXPECT_TRUE(m.channel->repos_allowed());
   ASSERT_TRUE(m.channel->SetMode(ChannelMode::kManual));
+  ASSERT_EQ(m.channel->repos_status().axes.size(), 2u);
   EXPECT_NEAR(m.channel->repos_status().axes[0].final_value, x, 1e-9);
   ASSERT_TRUE(m.channel->SetMode(ChannelMode::kAutomatic));
   guard.there = false;
