@@ -397,6 +397,14 @@ bool Channel::CheckReposBlock() {
          kMsgReposNoFeed);
     return false;
   }
+  // 4.2: G77 S1=0 (or S=0) restores the main spindle: a channel without one has none to restore.
+  for (const nc::AuxFunction& f : block_.aux)
+    if (f.letter == 'S' && f.index <= 1 && config_.spindle_drive < 0) {
+      const std::string word = f.index == 0 ? "S0" : "S" + std::to_string(f.index) + "=0";
+      Fail(program, block_.block, "G77 " + word + ": the channel has no spindle S1 to restore",
+           kMsgNotAvailable);
+      return false;
+    }
   // 4.2: the mode before the interruption decides between G77 S1=0 and G77 C0 (the manual's
   // sentence names the modes the other way round; its own example, 8.3, tests rotary axis
   // mode to choose G77 C0).

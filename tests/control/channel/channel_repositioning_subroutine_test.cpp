@@ -136,6 +136,22 @@ TEST(ReposSubroutineErrors, AfterG77WithoutTheFunctionStartRunsTheSubroutineAgai
   EXPECT_NEAR(m.Z(), -50, 1e-9);
 }
 
+// 4.2: G77 S1=0 restores the main spindle; in a channel without one it is refused, not passed
+// over.
+TEST(ReposSubroutineErrors, G77OfASpindleTheChannelDoesNotHaveIsRefused) {
+  Machine m("N1 G01 X100 F600\nN2 RET\n.REPOS\nN10 G77 S1=0\nN11 G77 Z0 F3000 RTS\n", 0, 0,
+            [](ChannelConfig& c) { c.spindle_drive = -1; });
+  InterruptJogAwayAndCall(m);
+  const double z = m.Z();
+  m.channel->Start();
+  RunFor(m, 0.5);
+  EXPECT_EQ(m.channel->error_number(), kMsgNotAvailable);
+  EXPECT_THAT(m.channel->error(),
+              HasSubstr("p.mtc:4:1: error: G77 S1=0: the channel has no spindle S1 to restore"));
+  EXPECT_EQ(m.Z(), z);
+  EXPECT_TRUE(m.channel->repos_allowed());
+}
+
 /// A PathGuard with an obstacle the operator can take away: every move collides while it is
 /// there.
 struct Obstacle : PathGuard {
