@@ -5,6 +5,22 @@
 #include "control/channel/channel.hpp"
 
 namespace vmt::control::channel {
+namespace {
+
+/// An error the REPOS subroutine may be started again after (see Start).
+bool ReposErrorInterrupts(int number) {
+  switch (number) {
+    case kMsgDriveFault:
+    case kMsgFollowingError:
+    case kMsgPlcFault:
+    case kMsgChangeoverAck:
+    case kMsgMeasuringReverseOnly:
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
 
 bool Channel::SetMode(ChannelMode mode) {
   // C-axis manual 2.3: a mode change during a changeover is an immediate stop.
@@ -97,6 +113,19 @@ void Channel::Start() {
     }
     ClearRepos();
     state_ = ChannelState::kRunning;
+    return;
+  }
+  // REPOS manual 4.2 and 7.1 call the REPOS subroutine's errors (G77 without F or without the
+  // function, G77 in the wrong headstock mode) a program interruption: the interrupted program
+  // keeps its interruption point and PxxS.REPOS stays set (7.2). vmt reads every error of the
+  // subroutine's blocks so (PathGuard's 507 included): the operator may put things right, in
+  // manual mode if need be, and Start acknowledges the error and runs the subroutine again from
+  // `.REPOS`. Faults of the machine (drives, PLC, a changeover acknowledgement) and the measuring
+  // faults only the reverse program leaves still need Control-Reset (or the reverse program).
+  if (state_ == ChannelState::kError && repos_run_ && ReposErrorInterrupts(error_number_)) {
+    error_.clear();
+    error_number_ = 0;
+    StartReposRun();
     return;
   }
   if (state_ == ChannelState::kRunning || state_ == ChannelState::kError) return;

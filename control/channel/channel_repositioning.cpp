@@ -153,11 +153,20 @@ void Channel::ReposCycle(const AmplifierTelegram& at) {
   const bool evaluated = (state_ == ChannelState::kHold || repos_run_) && i.left_contour &&
                          !config_.process.reverse_program_required;
   const ReposFunction function = evaluated ? repos_request_ : ReposFunction::kNone;
+  // 7.3: updated only while a function is called; the relevant axes within their windows, the
+  // spindle in its former state. Withdrawing the function drops it at once.
+  crest_ = false;
+  // 7.1 instruction: withdrawn in manual mode, repositioning ends once the motion under way has
+  // ended: a jog still moving, or its key still held, keeps its zone and stops at the target;
+  // the next press is a plain jog.
+  bool key_held = false;
+  for (const JogAxis& j : jog_) key_held |= j.key != 0;
+  for (const FictiveJog& f : fictive_jog_) key_held |= f.key != 0;
+  if (evaluated && function == ReposFunction::kNone && repos_function_ != ReposFunction::kNone &&
+      mode_ == ChannelMode::kManual && (key_held || JogsMoving()))
+    return;
   if (function != repos_function_ && function != ReposFunction::kNone) repos_start_ = commanded_;
   repos_function_ = function;
-  // 7.3: updated only while a function is called; the relevant axes within their windows, the
-  // spindle in its former state.
-  crest_ = false;
   if (repos_function_ == ReposFunction::kNone) return;
   const std::vector<double> target = ReposTarget();
   bool restored = true;
@@ -388,6 +397,14 @@ bool Channel::CheckReposBlock() {
          kMsgReposNoFeed);
     return false;
   }
+  // 4.2: G77 S1=0 (or S=0) restores the main spindle: a channel without one has none to restore.
+  for (const nc::AuxFunction& f : block_.aux)
+    if (f.letter == 'S' && f.index <= 1 && config_.spindle_drive < 0) {
+      const std::string word = f.index == 0 ? "S0" : "S" + std::to_string(f.index) + "=0";
+      Fail(program, block_.block, "G77 " + word + ": the channel has no spindle S1 to restore",
+           kMsgNotAvailable);
+      return false;
+    }
   // 4.2: the mode before the interruption decides between G77 S1=0 and G77 C0 (the manual's
   // sentence names the modes the other way round; its own example, 8.3, tests rotary axis
   // mode to choose G77 C0).

@@ -416,6 +416,11 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
     case Kind::kReturn:
       if (calls_.empty()) {
         if (subroutine_) {
+          // REPOS manual 4.1: only RTS returns from a subroutine run on its own and keeps the
+          // state of the program it serves; RET is a program end, which would reset that state.
+          if (p.symbols.Name(st.name) == "RET")
+            return Fail(st.pos.offset,
+                        "RET ends a program: a subroutine run on its own (.REPOS) ends with RTS");
           out.returned = true;  // the subroutine run on its own is over (RunSubroutine)
           ended_ = true;
           next = block;

@@ -89,7 +89,10 @@ control::axes::AxisParameters ReadAxis(const MachineModel& m, const YamlNode& n,
   if (a.jog_distance < 0) n["Cxx.022"].Fail("must be >= 0");
   a.in_position_window = n.Double("Cxx.023", d.in_position_window * unit);
   a.repos_window = n.Double("Cxx.086", 0.2);
-  if (a.repos_window < 0) n["Cxx.086"].Fail("must be >= 0 (0: the axis is not repositioned)");
+  // REPOS manual 6.1: 0 leaves the axis out of repositioning; any other window lies in the
+  // value range 0.1 .. 200000.
+  if (a.repos_window != 0 && !(a.repos_window >= 0.1 && a.repos_window <= 200000))
+    n["Cxx.086"].Fail("must be 0 (the axis is not repositioned) or in 0.1..200000");
   a.reference_position = n.Double("reference", 0);
   a.homing_per_s = PerMinute(n, "homing", 0);
   a.homed_at_start = !n.Bool("needs_homing", false);

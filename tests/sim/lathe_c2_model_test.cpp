@@ -122,6 +122,25 @@ TEST(LatheC2ModelTest, RotaryAxisOnTheSpindleDriveErrors) {
             "");
 }
 
+// REPOS manual 6.1: Cxx.086 is 0 (the axis is not repositioned) or a window of 0.1 .. 200000;
+// a value outside is refused with the file and the YAML path.
+TEST(LatheC2ModelTest, ReposWindowOutsideItsValueRangeErrors) {
+  using ::testing::HasSubstr;
+  auto with_x_window = [](const std::string& value) {
+    return LoadEditedLatheC2("c2_cxx086_" + value, [&](std::string s) {
+      return testing::ReplaceOnce(s, "Cxx.086: 0.2          #", "Cxx.086: " + value + " #");
+    });
+  };
+  for (const char* bad : {"0.05", "200001", "-1"}) {
+    const std::string error = with_x_window(bad);
+    EXPECT_THAT(error, HasSubstr(std::string("c2_cxx086_") + bad +
+                                 ".yaml: nc.axes[0].Cxx.086: must be 0 (the axis is not "
+                                 "repositioned) or in 0.1..200000"))
+        << bad;
+  }
+  for (const char* good : {"0", "0.1", "200000"}) EXPECT_EQ(with_x_window(good), "") << good;
+}
+
 // 2.3 Homing: one drive, one encoder, one reference: the spindle's encoder (a high-resolution
 // incremental encoder on the 100 kHz main spindle interface) is C's, and given twice is an error.
 TEST(LatheC2ModelTest, SpindleAndCShareTheOneEncoder) {

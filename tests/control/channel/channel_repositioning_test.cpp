@@ -141,6 +141,30 @@ TEST(ChannelRepositioning, ManualJogStopsAtTheTargetAndStaysInTheZone) {
   EXPECT_NEAR(m.Z(), -1, 1e-9);
 }
 
+// 7.1 instruction: withdrawn in manual mode, repositioning ends after the motion under way: the
+// jog still moving when the PLC withdraws PxxC.REPOS stops at the target as repositioning's
+// does; only the next jog is a plain jog that may pass it.
+TEST(ChannelRepositioning, WithdrawnInManualModeItEndsAfterTheCurrentMotion) {
+  Machine m(kProgram);
+  InterruptAndJogAway(m);
+  Call(m, true, false);
+  m.channel->Jog(1, -1);  // Z back towards its target 0, the key held
+  RunFor(m, 0.03);
+  ASSERT_GT(m.Z(), 2);  // on its way
+  Call(m, false, false);
+  EXPECT_FALSE(m.channel->conditions_restored());  // 7.3: reset when withdrawn
+  EXPECT_EQ(m.channel->repos_function(), ReposFunction::kRepositioning);  // the motion goes on
+  RunFor(m, 1.0);
+  EXPECT_NEAR(m.Z(), 0, 1e-9);  // stopped at the target, the key still held
+  EXPECT_FALSE(m.channel->conditions_restored());
+  m.channel->Jog(1, 0);
+  RunFor(m, 0.1);
+  EXPECT_EQ(m.channel->repos_function(), ReposFunction::kNone);  // the press is over: jog mode
+  EXPECT_FALSE(m.channel->conditions_restored());
+  JogFor(m, 1, -1, 0.2);  // the next jog passes the target
+  EXPECT_LT(m.Z(), -1);
+}
+
 TEST(ChannelRepositioning, ContinuingAfterManualRepositioningNeedsNoSubroutineAndNoJump) {
   // No REPOS subroutine: the operator restores everything, Start continues at the point.
   Machine m("N1 G01 X100 F600\nN2 RET\n");
