@@ -484,10 +484,10 @@ void ProbeBlockProgram::operator()(PlcScan& s) {
   // Typical application, networks 5, 6, 10 and 12: the Q function the NC outputs sets the
   // program's flag (on its rising edge: the output stays until acknowledged, the fault stays
   // until cleared). Q9999's flag clears when the reverse program is started (network 10) or
-  // with Control-Reset, which aborts the program that output it (vmt: the manual's program
-  // keeps it, leaving nothing to reverse from). Q9998's flag clears with the reverse program or
-  // Control-Reset (network 12) and, vmt having no error-clear key, when the program it stopped
-  // is no longer stopped (the new advance start that acknowledges the message).
+  // with Control-Reset, which aborts the program that output it and withdraws the output (vmt:
+  // the manual's program keeps it, leaving nothing to reverse from). Q9998's flag clears with
+  // the reverse program or Control-Reset (network 12) and, vmt having no error-clear key, when
+  // the program it stopped is no longer stopped (the new start that acknowledges the message).
   {
     const int q9999 = Lookup(q_functions_, m.MessProc, measure::kQ9999);
     const int q9998 = Lookup(q_functions_, m.MessProc, measure::kQ9998);
@@ -496,7 +496,9 @@ void ProbeBlockProgram::operator()(PlcScan& s) {
     const bool reset = read(control_reset_) || !m.ENABLE;
     const bool stopped = read(program_stopped_);
     if (out9999 && !q9999_before_) M_Q9999 = true;
-    if (reset || reversing || read(reverse_start_)) M_Q9999 = false;
+    // An output withdrawn: acknowledged (in the reverse program) or dropped by Control-Reset.
+    const bool withdrawn = !out9999 && q9999_before_;
+    if (reset || reversing || withdrawn || read(reverse_start_)) M_Q9999 = false;
     if (out9998 && !q9998_before_) M_Q9998 = true, q9998_stopped_ = false;
     if (M_Q9998 && stopped) q9998_stopped_ = true;
     if (reset || reversing || (q9998_stopped_ && !stopped)) M_Q9998 = false;
