@@ -520,7 +520,8 @@ void ProbeBlockProgram::operator()(PlcScan& s) {
     const bool fault = m.FEHLER && !reversing;
     const measure::QFunctionDefinition& type1 = *measure::QFunction(measure::kQ9999);
     const measure::QFunctionDefinition& type2 = *measure::QFunction(measure::kQ9998);
-    const bool locked = collision || fault || (M_Q9999 && !type1.advance_continuable);
+    // 6.1 fault category 1: process stop and advance inhibit until the reverse program.
+    const bool locked = collision || fault || (M_Q9999 && type1.fault_category == 1);
     if (const int id = at(process_enable_); id >= 0) s.SetBool(id, !locked);
     const int message = collision ? (m.page().PIN_DDS ? 202 : 203)
                         : fault   ? (m.FEHLER_NR <= 13 ? 206 : 207)
