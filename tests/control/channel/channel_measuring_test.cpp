@@ -214,8 +214,10 @@ TEST(ChannelMeasuring, AProbeDisplacedOnTheApproachStopsWithQ9999) {
   ASSERT_EQ(l.m.channel->state(), ChannelState::kRunning);
   ASSERT_TRUE(l.events[29]);
   l.probe_level = true;  // a normally open contact closes: displaced
-  l.Tick();
-  l.Tick();
+  // The next NC cycle sees it (the stand-in PLC acknowledges Q9999 only in the tick after).
+  const double t_displaced = l.m.t;
+  while (l.m.channel->state() == ChannelState::kRunning && l.m.t < 10) l.Tick();
+  EXPECT_LT(l.m.t - t_displaced, 0.01);
   ASSERT_EQ(l.m.channel->state(), ChannelState::kError);
   EXPECT_EQ(l.m.channel->error_number(), kMsgMeasuringReverseOnly);
   EXPECT_NE(l.m.channel->error().find("p.mtc:2:"), std::string::npos) << l.m.channel->error();
@@ -254,8 +256,7 @@ TEST(ChannelMeasuring, AfterAMoveTheProbeStaysWatched) {
   ASSERT_EQ(l.m.channel->state(), ChannelState::kRunning);
   ASSERT_NEAR(l.m.X(), 45, 1e-9);
   l.probe_level = true;
-  l.Tick();
-  l.Tick();
+  while (l.m.channel->state() == ChannelState::kRunning && l.m.t < 10) l.Tick();
   ASSERT_EQ(l.m.channel->state(), ChannelState::kError);
   EXPECT_NE(l.m.channel->error().find("p.mtc:3:"), std::string::npos) << l.m.channel->error();
   ASSERT_EQ(l.m.channel->aux_output().size(), 1u);
@@ -286,8 +287,9 @@ TEST(ChannelMeasuring, ANormallyClosedProbeCountsOnlyAfterItWasFree) {
     ASSERT_EQ(l.m.channel->state(), ChannelState::kRunning);
     ASSERT_TRUE(l.events[29]);
     l.probe_level = false;  // opens: displaced
-    l.Tick();
-    l.Tick();
+    const double t_open = l.m.t;
+    while (l.m.channel->state() == ChannelState::kRunning && l.m.t < 10) l.Tick();
+    EXPECT_LT(l.m.t - t_open, 0.01);  // within an NC cycle or two
     ASSERT_EQ(l.m.channel->state(), ChannelState::kError);
     EXPECT_NE(l.m.channel->error().find("TEST POINT NOT FOUND"), std::string::npos);
   }

@@ -61,7 +61,8 @@ Measured MeasureRepeatedly(const std::string& name, const std::string& probe) {
   options.on_event = [&m](const nlohmann::ordered_json& e) {
     if (e["event"] == "measuring") m.warnings.push_back(e["warning"].get<std::string>());
   };
-  SceneRun run(LoadScene(dir + "/scene.yaml"), options);
+  const Scene scene = LoadScene(dir + "/scene.yaml");  // the run keeps a reference
+  SceneRun run(scene, options);
   while (!run.done()) run.Step();
   const control::measure::MeasuringPages& pages = *run.measuring_pages();
   for (int n = 1; n <= kRepetitions; ++n) {
