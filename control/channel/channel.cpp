@@ -275,6 +275,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
       ReplayCycle(dt);  // backward travel owns the cycle until it is back at the interruption
     } else if (state_ == ChannelState::kRunning || state_ == ChannelState::kHold) {
       bool finished = false;
+      WatchProbeCollision(at);  // fast measurement 6.1: a collision fails the channel here
       if (SearchCycle(at)) {
         // Block search owns the cycle: decoding without motion, its handshakes and holds (a
         // return move interpolates below).

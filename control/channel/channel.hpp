@@ -264,6 +264,10 @@ class Channel {
   void SetPathGuard(PathGuard* guard) { guard_ = guard; }
   /// The checks made since the last call, oldest first.
   std::vector<GuardRecord> TakeGuardRecords() { return std::exchange(guard_records_, {}); }
+  /// Warnings of the measuring instructions since the last call ("file:line:col: warning: ...").
+  std::vector<std::string> TakeMeasuringWarnings() {
+    return std::exchange(measuring_warnings_, {});
+  }
 
   /// Repositioning and NC-block restart (REPOS manual): the PLC's PxxC.REPOS and PxxC.RESTA,
   /// levels given every NC cycle. They count only while the program is interrupted and an axis
@@ -690,6 +694,7 @@ class Channel {
   std::optional<measure::MeasuringSetting> measuring_setting_;
   measure::ReverseVectors reverse_vectors_;
   measure::MeasuringPages* measuring_pages_ = nullptr;
+  std::vector<std::string> measuring_warnings_;
   /// The block's measuring instruction: check it, plan it, start its steps. False on an error.
   bool StartMeasuring(const AmplifierTelegram& at);
   /// What `plan` leaves as state, in a run and in block search alike: SETTING's setting and its
@@ -699,6 +704,11 @@ class Channel {
   bool MeasuringCycle(const AmplifierTelegram& at);
   /// While a measuring move runs: the probe's contact stops it.
   void WatchMeasuringMove(const AmplifierTelegram& at);
+  /// While event 29 (collision monitoring) is set in a program that has run SETTING: a probe
+  /// displaced outside the measuring path stops the axes, outputs Q9999 and fails (6.1).
+  void WatchProbeCollision(const AmplifierTelegram& at);
+  /// Bit n: SETTING axis n+1's drive has shown the probe free since event 29 was set.
+  uint8_t probe_free_seen_ = 0;
   bool StartMeasuringMove(const measure::MeasuringStep& step);
   /// After a move of the instruction: the reverse vectors reached, and a way back to a point
   /// already recorded (the escape) ends the record there.

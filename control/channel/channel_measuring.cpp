@@ -15,6 +15,9 @@ namespace {
 
 /// 6.2 Event 7: the PLC's measuring block sets it when the probe is displaced.
 constexpr int kTouchEvent = 7;
+/// 6.2 Event 29: collision monitoring, from the start of MOVE / PROBE to the PLC's
+/// acknowledgement at the setup position.
+constexpr int kCollisionEvent = 29;
 
 /// The latch of `input` that the stylus' switching edge fills, or the other one, or none.
 const ProbeEdgeLatch* Latched(const ProbeInputStatus& input, bool normally_closed) {
@@ -152,6 +155,13 @@ bool Channel::StartMeasuring(const AmplifierTelegram& at) {
     return fail(error);
   }
   const measure::MeasuringPlan& plan = measuring_->plan;
+  if (!plan.warning.empty()) {
+    const nc::SourcePos& pos = program.blocks[static_cast<size_t>(block_.block)].pos;
+    measuring_warnings_.push_back(
+        (pos.file < program.files.size() ? program.files[pos.file] : "<input>") + ":" +
+        std::to_string(pos.line) + ":" + std::to_string(pos.column) +
+        ": warning: " + plan.warning);
+  }
   ApplyMeasuringState(plan);
   // The blocks generated for the instruction run in the setting's G codes (a plan that sets
   // has nothing to restore: the modal state now is the setting's).
@@ -248,10 +258,68 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
   return true;
 }
 
+void Channel::WatchProbeCollision(const AmplifierTelegram& at) {
+  // 6.1 / 7.2 Q_MTstKol: the NC watches the probe as the PLC's block does, from the event 29 of
+  // a MOVE or PROBE until the PLC acknowledges the setup position by resetting it (a MOVE
+  // leaves it set: the stylus travels on, watched, to the next instruction). After the
+  // measuring path the PLC has switched the probe off, and the reverse program takes a
+  // deflected stylus away unwatched (network 7 suppresses the PLC's monitoring as well).
+  if (!measuring_setting_ || !measuring_pages_ || reversing_ || !EventSet(kCollisionEvent)) {
+    probe_free_seen_ = 0;
+    return;
+  }
+  const measure::TastwerkzeugPage& stylus =
+      measuring_pages_->stylus[static_cast<size_t>(measuring_setting_->stylus - 1)];
+  bool displaced = false;
+  for (int n = 0; n < 3; ++n) {
+    const int axis = SettingAxis(n);
+    if (axis < 0) continue;
+    const int drive = config_.axes[static_cast<size_t>(axis)].drive;
+    if (drive < 0 || static_cast<size_t>(drive) >= at.feedback.size()) continue;
+    const ProbeStatus& probe = at.feedback[static_cast<size_t>(drive)].probe;
+    const bool level = (stylus.pin5 ? probe.probe2 : probe.probe1).level;
+    // A normally closed contact reads "displaced" while the probe is off or the drive's probe
+    // function is not active (S-0-0401 reads 0): only a change from the free level the drive
+    // has shown since event 29 counts. A probe already deflected when it switches on thus
+    // escapes the NC with such a contact; the PLC's block reports it (Q_MTstKol).
+    const auto bit = static_cast<uint8_t>(1u << n);
+    if (level == stylus.normally_closed) {
+      probe_free_seen_ |= bit;
+    } else if (probe_free_seen_ & bit) {
+      displaced = true;
+    }
+  }
+  if (!displaced) return;
+  probe_free_seen_ = 0;
+  // vmt's reading of the NC's reaction: the move in work ends at once (as the latch ends a
+  // measuring path) and Q9999 goes to the PLC with the message; fault category 1 leaves only
+  // the reverse program, which takes the stylus back the way it came (4.4).
+  active_ = false;
+  dwell_left_s_ = 0;
+  int32_t block = block_.block;
+  uint32_t program_index = block_.program;
+  if (measuring_) {
+    measuring_->moving = false;
+    measuring_->measuring_move = false;
+    block = measuring_->block.block;
+    program_index = measuring_->block.program;
+  }
+  const measure::MeasuringMessage& message = measure::kProbeDisplacedOutsidePath;
+  if (config_.aux_handshake) {
+    aux_output_.push_back({'Q', 0, static_cast<double>(message.q_function)});
+    ++aux_strobe_;
+  }
+  const nc::Program& program = *ProgramOf(program_index);
+  const std::string text =
+      block >= 0 ? nc::Format({program.blocks[static_cast<size_t>(block)].pos, message.text},
+                              program.files)
+                 : std::string(message.text);
+  Fail(text, kMsgMeasuringReverseOnly);
+}
+
 void Channel::WatchMeasuringMove(const AmplifierTelegram& at) {
   if (!measuring_ || !measuring_->moving || !active_) return;
-  // Outside the measuring path a displaced probe is the PLC's to catch (6.3: its measuring
-  // block reports the collision, the typical application locks the process).
+  // Outside the measuring path the probe is watched for collisions (WatchProbeCollision).
   if (!measuring_->measuring_move) return;
   // The measuring path: the drive of the measuring axis latched its position at the probe's
   // switching edge (7.3); that ends the move (distance to go deleted) and is the measured value.
@@ -271,6 +339,8 @@ void Channel::WatchMeasuringMove(const AmplifierTelegram& at) {
 
 bool Channel::MeasuringCycle(const AmplifierTelegram& at) {
   (void)at;
+  // Stopped by a probe collision: the instruction stays interrupted where the stylus stands.
+  if (state_ == ChannelState::kError) return false;
   MeasuringRun& run = *measuring_;
   const nc::Program& program = *ProgramOf(run.block.program);
   if (run.moving) {

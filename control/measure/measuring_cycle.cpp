@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <sstream>
 
 #include "control/measure/compare.hpp"
 #include "control/measure/correction.hpp"
@@ -523,6 +524,20 @@ MeasuringPlan PlanProbe(Arguments& args, const MeasuringContext& context, Measur
     } else {
       plan.steps.push_back(Rapid(start, all, *sphere));
     }
+  }
+  // 3.1 EICHWERTEPAGE keeps each direction's calibration value beside the feed it was found
+  // at: the deflection, switching travel and latch delay the value holds grow with the feed, so
+  // at another feed the measured value is off by the difference. The manual has no message
+  // for it (its PROBE does not check the feed, 4.1 Feed Programming): vmt warns and measures.
+  const double calibration_feed =
+      pages.calibration[static_cast<size_t>(s.stylus - 1)][static_cast<size_t>(*sphere - 1)]
+          .measuring_feed[static_cast<size_t>(2 * axis + (direction < 0 ? 1 : 0))];
+  if (*calibration == 1 && calibration_feed > 0 && *feed != calibration_feed) {
+    std::ostringstream w;
+    w << "PROBE measures at F" << *feed << " but axis " << s.axis[axis]
+      << (direction < 0 ? '-' : '+') << " of sphere " << *sphere << " was calibrated at F"
+      << calibration_feed << ": the measured value is off by the latch delay's difference (3.1)";
+    plan.warning = w.str();
   }
   plan.measuring_axis = axis;
   plan.direction = direction;

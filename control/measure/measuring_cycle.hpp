@@ -130,6 +130,9 @@ struct MeasuringPlan {
   /// CORRECTION: the message its dimensional accuracy asks for (OVERSIZE, UNDERSIZE, CHECK TOOL,
   /// ILLEGALLY HIGH DIMENSIONAL DEVIATION); nullptr for accuracy 0 and the other instructions.
   const MeasuringMessage* message = nullptr;
+  /// "" or a warning for the operator that does not stop the program (a measuring PROBE at a
+  /// feed other than its direction's calibration feed).
+  std::string warning;
 };
 
 /// Plans one instruction. `pages` may be written at once by the instructions that do no moving

@@ -23,6 +23,9 @@ struct QFunctionDefinition {
   /// Fault category 1: the advance program stays inhibited; only the reverse program (or manual
   /// mode) remains.
   bool advance_continuable = false;
+  /// The message the PLC writes to the NC (MSG_WR) while the fault stands: 7.2 typical
+  /// application, network 19 (204, type 2) and network 18 (205, type 1).
+  int plc_message = 0;
 };
 
 inline constexpr QFunctionDefinition kQ9998Definition = {
@@ -32,7 +35,7 @@ inline constexpr QFunctionDefinition kQ9998Definition = {
     "program. Acknowledging the fault by pressing the key provided for this purpose permits the "
     "interrupted advance program to be continued after a new advance program start or the home "
     "position to be approached by a reverse program start.",
-    true};
+    true, 204};
 
 inline constexpr QFunctionDefinition kQ9999Definition = {
     kQ9999, 1, "CNC software fault message of TYPE 1",
@@ -41,7 +44,7 @@ inline constexpr QFunctionDefinition kQ9999Definition = {
     "issued by the NC program. Acknowledging the fault by pressing the key provided for this "
     "purpose permits machining to be continued after a reverse program has been triggered by "
     "pressing a reverse program start key.",
-    false};
+    false, 205};
 
 /// An NC message of fast measurement and the Q function issued with it.
 struct MeasuringMessage {
@@ -60,6 +63,11 @@ inline constexpr MeasuringMessage kOversize = {kQ9998, "OVERSIZE"};
 inline constexpr MeasuringMessage kUndersize = {kQ9998, "UNDERSIZE"};
 /// 6.1: the probe did not switch on the measuring path, or was displaced outside it.
 inline constexpr MeasuringMessage kTestPointNotFound = {kQ9999, "TEST POINT NOT FOUND"};
+/// 6.1: the probe displaced outside the measuring path. 6.1 names this case in the same
+/// sentence as a test point not found and lists no message of its own for it, so vmt issues
+/// TEST POINT NOT FOUND and says which of the two it was.
+inline constexpr MeasuringMessage kProbeDisplacedOutsidePath = {
+    kQ9999, "TEST POINT NOT FOUND (probe displaced outside the measuring path)"};
 /// 4.6 Upper limit exceeded: a gross error in the parameters or the stylus.
 inline constexpr MeasuringMessage kIllegallyHighDimensionalDeviation = {
     kQ9999, "ILLEGALLY HIGH DIMENSIONAL DEVIATION"};

@@ -10,6 +10,7 @@
 #include "control/drive_bus.hpp"
 #include "sim/backend/actuator.hpp"
 #include "sim/backend/dog_clutch.hpp"
+#include "sim/backend/probe_wiring.hpp"
 #include "sim/backend/stylus_contacts.hpp"
 #include "sim/model/machine_model.hpp"
 
@@ -43,6 +44,8 @@ class MachineBackend : public control::DriveBus {
   /// it between Step()s for the next tick, or from within Step before the drives sample. Throws
   /// std::invalid_argument for an input a device drives, an output or a key (ProbeWiring).
   virtual void SetProbeSwitch(int io_input, bool level, double tick_fraction) = 0;
+  /// Where the drives' probe sampling stands to a contact (ProbeSamplingPhase); off until set.
+  virtual void SetProbeSamplingPhase(const ProbeSamplingPhase& phase) = 0;
   /// The scene's workpiece, which the model's styluses (machine.yaml `probe:`) touch from the
   /// next Step on: each tick the stylus' contact trips its input at the exact instant
   /// (StylusContacts). Throws std::invalid_argument for a part on a link the model lacks.

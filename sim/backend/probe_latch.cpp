@@ -50,9 +50,11 @@ bool ProbeLatch::Step(const control::ProbeControl& control,
     }
     if (in.armed) {
       if (rising && (control.probe_control_parameter & kPositiveBit[n]) && !out.positive.latched)
-        Latch(out.positive, actual_position, pins[n].exact_position);
+        Latch(out.positive, pins[n].acquired_position.value_or(actual_position),
+              pins[n].exact_position);
       if (falling && (control.probe_control_parameter & kNegativeBit[n]) && !out.negative.latched)
-        Latch(out.negative, actual_position, pins[n].exact_position);
+        Latch(out.negative, pins[n].acquired_position.value_or(actual_position),
+              pins[n].exact_position);
     }
     out.level = active && level;
     in.level_before = level;

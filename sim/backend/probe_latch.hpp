@@ -11,7 +11,8 @@
 //   function is active: an enable already set when S-0-0170 becomes 3 needs 0 then 1.
 // - After arming, only the first positive (0-1) and the first negative (1-0) edge that
 //   S-0-0169 selects are latched: S-0-0409..0412 set, S-0-0130..0133 take the actual position
-//   value of the tick whose sample saw the edge. Later edges change nothing.
+//   value acquired for the sample that saw the edge (ProbeInputSample::acquired_position, else
+//   the tick's). Later edges change nothing.
 // - Clearing the enable clears its input's flags and measured values; a new measurement needs
 //   the enable 0 and back to 1.
 // - An edge is a change between two samples: a change and its return within one tick is not
@@ -21,6 +22,7 @@
 //   sentence contradicts them, docs/design-notes.md).
 
 #include <array>
+#include <optional>
 
 #include "control/drive_bus.hpp"
 
@@ -33,6 +35,10 @@ struct ProbeInputSample {
   /// the previous tick: vmt's truth beside the measured value. Read only when the level differs
   /// from the previous tick's.
   double exact_position = 0;
+  /// The drive's actual position value acquired for a change in this tick (mm | deg, quantised
+  /// as DriveFeedback::position): 7.3 puts the position measurement up to about 170 us from the
+  /// edge (ProbeWiring). None: the tick's actual position value.
+  std::optional<double> acquired_position;
 };
 
 class ProbeLatch {

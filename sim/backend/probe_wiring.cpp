@@ -39,6 +39,21 @@ ProbeWiring::ProbeWiring(const MachineModel& model)
   for (const PositionSwitch& s : model.position_switches) settable_[s.input] = 0;
 }
 
+void ProbeWiring::SetSamplingPhase(const ProbeSamplingPhase& phase) {
+  phase_ = phase;
+  phase_state_ = phase.seed;
+}
+
+double ProbeWiring::NextPhase() {
+  // SplitMix64: the same sequence on every platform and standard library, unlike the
+  // distributions of <random>.
+  uint64_t z = (phase_state_ += 0x9e3779b97f4a7c15ULL);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  z ^= z >> 31;
+  return static_cast<double>(z >> 11) * 0x1.0p-53;
+}
+
 void ProbeWiring::SetSwitch(int io_input, bool level, double tick_fraction) {
   if (io_input < 0 || static_cast<size_t>(io_input) >= switches_.size())
     throw std::invalid_argument("SetProbeSwitch: no I/O point " + std::to_string(io_input));
@@ -55,6 +70,7 @@ void ProbeWiring::SetSwitch(int io_input, bool level, double tick_fraction) {
   s.changed = true;
   // NaN counts as the tick's end: the drive then sees the change at its sample, no earlier.
   s.fraction = tick_fraction >= 0 ? std::min(tick_fraction, 1.0) : tick_fraction < 0 ? 0.0 : 1.0;
+  if (phase_.seeded) s.sample_wait = NextPhase();
 }
 
 void ProbeWiring::ShowInputs(std::vector<uint8_t>& inputs) const {
@@ -83,6 +99,19 @@ void ProbeWiring::Step(const std::vector<control::DriveSetpoint>& setpoints,
       const double modulo = p.modulo * kDegPerRad;  // only a rotary drive has one
       if (modulo > 0) step -= modulo * std::round(step / modulo);
       double exact = s.changed ? before + s.fraction * step : positions[d];
+      if (s.changed) {
+        // 7.3: the position value is acquired kLatchPositionLeadS before the input sample that
+        // sees the change, on the same line (a sample a little into the next tick extrapolates
+        // it). Off, that sample is this tick's end; seeded, it lies sample_wait after the change.
+        const double wait = phase_.seeded ? s.sample_wait : 1 - s.fraction;
+        double acquired = exact + (wait - kLatchPositionLeadS / kProbeSamplePeriodS) * step;
+        // Quantised by the encoder as DriveController::Feedback quantises the tick's position.
+        const double unit = p.info.kind == control::AxisKind::kLinear ? kMmPerM : kDegPerRad;
+        acquired = std::floor(acquired / unit / p.encoder_resolution + 0.5) *
+                   p.encoder_resolution * unit;
+        if (modulo > 0) acquired -= modulo * std::floor(acquired / modulo);
+        pins[k].acquired_position = acquired;
+      }
       if (modulo > 0) exact -= modulo * std::floor(exact / modulo);
       pins[k].exact_position = exact;
     }

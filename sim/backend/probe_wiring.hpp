@@ -10,6 +10,7 @@
 // change within the tick being stepped; a change of any other input wired to a drive (a cam
 // switch, a clutch switch) has no sub-tick instant and counts at the tick's end.
 
+#include <cstdint>
 #include <vector>
 
 #include "control/drive_bus.hpp"
@@ -19,6 +20,26 @@
 
 namespace vmt::sim {
 
+/// Fast-measurement manual 7.3: the drive scans its probe inputs every 250 us and generates the
+/// actual position value it latches every 250 us, at most about 170 us away from the edge. vmt
+/// acquires that value 80 us before the input sample that sees the edge: the edge lies up to
+/// one period before the sample, so the position is taken between 170 us after and 80 us
+/// before the edge.
+inline constexpr double kProbeSamplePeriodS = 250e-6;
+inline constexpr double kLatchMaxDelayS = 170e-6;
+inline constexpr double kLatchPositionLeadS = kProbeSamplePeriodS - kLatchMaxDelayS;
+
+/// Where within the drive's sampling period a contact falls. Off: the drive's 250 us clock runs
+/// with the simulation's ticks, so a contact reached on the same path at the same feed falls at
+/// the same point of the period and is latched with the same error (calibration cancels it).
+/// Seeded: the drive's clock stands at a random phase to the contact, different for every
+/// switch change, as on a real machine, where repeated measurements scatter by up to one
+/// period times the feed. Deterministic for a given seed (scene `probe: sampling_phase:`).
+struct ProbeSamplingPhase {
+  bool seeded = false;
+  uint64_t seed = 0;
+};
+
 class ProbeWiring {
  public:
   explicit ProbeWiring(const MachineModel& model);
@@ -26,6 +47,9 @@ class ProbeWiring {
   /// Every drive's unquantised actual position at t = 0 (ActualPositions): where the first
   /// tick's interpolation starts.
   void Start(const std::vector<double>& positions) { positions_before_ = positions; }
+
+  /// The sampling-phase model; off until set. Restarts the seeded sequence.
+  void SetSamplingPhase(const ProbeSamplingPhase& phase);
 
   /// Whether any drive has a probe input wired: without, Step has nothing to do.
   bool any() const { return any_; }
@@ -57,7 +81,13 @@ class ProbeWiring {
     bool level = false;
     bool changed = false;  ///< changed in the tick being stepped
     double fraction = 1;   ///< of the last change in that tick
+    /// Seeded sampling phase: from the last change to the input sample that sees it, in
+    /// periods, [0, 1).
+    double sample_wait = 0;
   };
+
+  /// The next number of the seeded sequence, uniform in [0, 1).
+  double NextPhase();
 
   // Step and ShowInputs run every tick: they visit the few wired drives, set switches and
   // changes only, not every drive and I/O point of the machine.
@@ -71,6 +101,8 @@ class ProbeWiring {
   std::vector<int> changed_;       ///< the I/O points whose switch changed in this tick
   std::vector<ProbeLatch> latches_;
   std::vector<double> positions_before_;  ///< per drive, read and kept for wired drives only
+  ProbeSamplingPhase phase_;
+  uint64_t phase_state_ = 0;  ///< SplitMix64 state of the seeded sequence
 };
 
 /// Every drive's actual position, unquantised, in machine units (mm | deg) and the drive's own

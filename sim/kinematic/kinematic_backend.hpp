@@ -32,6 +32,9 @@ class KinematicBackend : public MachineBackend {
   void SetProbeSwitch(int io_input, bool level, double tick_fraction) override {
     probes_.SetSwitch(io_input, level, tick_fraction);
   }
+  void SetProbeSamplingPhase(const ProbeSamplingPhase& phase) override {
+    probes_.SetSamplingPhase(phase);
+  }
   void SetWorkpiece(const RevolvedPart& part) override { styluses_.SetPart(part); }
   std::vector<StylusOverTravel> TakeStylusOverTravels() override {
     return styluses_.TakeOverTravels();

@@ -126,6 +126,7 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     : scene(scene_), options(options_), m(*scene_.model) {
   backend = MakeBackend(options.backend.value_or(scene.backend), m, scene.initial);
   if (scene.workpiece.present) backend->SetWorkpiece(scene.workpiece.part);
+  backend->SetProbeSamplingPhase(scene.probe_sampling);
   // The NC channel, if the scene has one: its axes move at the drives' rapid and acceleration.
   if (scene.nc.present) {
     control::channel::ChannelConfig config;
@@ -517,6 +518,9 @@ bool SceneRun::done() const { return state_->finished; }
 void SceneRun::Step() { state_->Step(); }
 RunResult SceneRun::Finish() { return state_->Finish(); }
 control::gateway::SignalImage* SceneRun::image() { return state_->image.get(); }
+const control::measure::MeasuringPages* SceneRun::measuring_pages() const {
+  return state_->channel ? &state_->measuring_pages : nullptr;
+}
 int64_t SceneRun::ticks_per_plc_cycle() const { return state_->plc_every; }
 control::plc::AxdWrStatus SceneRun::AxdWrite(int axis, int ident, int64_t value) {
   if (!state_->probe_glue) return control::plc::AxdWrStatus::kNoAxis;

@@ -82,6 +82,9 @@ class SceneRun {
   /// The NC stays in its error until Control-Reset, as after any immediate stop.
   void PlcRunning();
   double time_s() const;
+  /// The NC's machine data pages of fast measurement as the run has them now (what its
+  /// instructions wrote); null without an nc: section.
+  const control::measure::MeasuringPages* measuring_pages() const;
 
  private:
   struct State;

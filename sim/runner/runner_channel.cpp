@@ -66,6 +66,8 @@ void SceneRun::State::StepChannel(double t, const control::AmplifierTelegram& at
   }
   for (const control::channel::GuardRecord& r : channel->TakeGuardRecords())
     emit_event(GuardEvent(t, r, m));
+  for (const std::string& w : channel->TakeMeasuringWarnings())
+    emit_event({{"t", t}, {"event", "measuring"}, {"warning", w}});
   if (jog_of_path) {
     for (const control::channel::GuardRecord& r : jog_of_path->TakeGuardRecords()) {
       nlohmann::ordered_json e = GuardEvent(t, r, m);

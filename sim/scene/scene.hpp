@@ -209,6 +209,8 @@ struct Scene {
   std::vector<Expectation> expectations;
   std::vector<SnapshotSpec> snapshots;
   std::vector<NamedCamera> cameras;  ///< the model's, then the scene's (same name replaces)
+  /// `probe: {sampling_phase: seeded, seed: N}`: the drives' probe sampling phase (off: fixed).
+  ProbeSamplingPhase probe_sampling;
 
   const NamedCamera* Camera(const std::string& name) const;
 };

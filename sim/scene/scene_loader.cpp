@@ -36,7 +36,7 @@ Scene LoadScene(const std::string& path) {
   if (!root.IsMap()) root.Fail("a scene file is a map");
   root.AllowKeys({"scene", "model", "backend", "duration", "trace_period", "workpiece", "initial",
                   "plc", "nc", "timeline", "expect", "snapshots", "cameras", "measuring_pages",
-                  "study"});  // study: read by vmt study (sim/study), not by a run
+                  "probe", "study"});  // study: read by vmt study (sim/study), not by a run
   Scene s;
   s.file = path;
   s.name = root["scene"].String();
@@ -60,6 +60,24 @@ Scene LoadScene(const std::string& path) {
   if (s.trace_period_s < kDriveTickS) root["trace_period"].Fail("must be >= 0.00025 s");
 
   if (root.Has("workpiece")) s.workpiece = LoadWorkpiece(root["workpiece"], m);
+
+  if (root.Has("probe")) {
+    const YamlNode probe = root["probe"];
+    if (!probe.IsMap()) probe.Fail("expected a map: {sampling_phase: fixed | seeded, seed: N}");
+    probe.AllowKeys({"sampling_phase", "seed"});
+    const std::string phase = probe.String("sampling_phase", "fixed");
+    if (phase == "seeded")
+      s.probe_sampling.seeded = true;
+    else if (phase != "fixed")
+      probe["sampling_phase"].Fail("expected fixed or seeded, got \"" + phase + "\"");
+    if (probe.Has("seed")) {
+      if (!s.probe_sampling.seeded) probe["seed"].Fail("a seed needs sampling_phase: seeded");
+      const double seed = probe["seed"].Double();
+      if (seed < 0 || seed > 4294967295.0 || seed != std::floor(seed))
+        probe["seed"].Fail("expected a whole number 0..4294967295");
+      s.probe_sampling.seed = static_cast<uint64_t>(seed);
+    }
+  }
 
   if (root.Has("initial")) {
     const YamlNode init = root["initial"];

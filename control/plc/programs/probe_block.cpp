@@ -345,6 +345,12 @@ ProbeBlockProgram::ProbeBlockProgram(const gateway::SignalImage& image)
         events_[{s.instance, *n}] = id;
       } else if (p == "PxxS.REV") {
         reverse_running_[s.instance] = id;
+      } else if (p == "PxxC.REV") {
+        reverse_start_[s.instance] = id;
+      } else if (p == "PxxC.RESET") {
+        control_reset_[s.instance] = id;
+      } else if (p == "PxxS.STOP") {
+        program_stopped_[s.instance] = id;
       } else if (p == "PxxC.ENABL") {
         process_enable_[s.instance] = id;
       } else if (p == "Pxx.MSG_WR") {
@@ -455,6 +461,16 @@ void ProbeBlockProgram::operator()(PlcScan& s) {
   }
   qdds_axes_ = std::move(named);
 
+  const auto at = [&](const std::map<int, int>& ids) {
+    const auto it = ids.find(m.MessProc);
+    return it == ids.end() ? -1 : it->second;
+  };
+  const auto read = [&](const std::map<int, int>& ids) {
+    const int id = at(ids);
+    return id >= 0 && s.Bool(id);
+  };
+  const bool reversing = read(reverse_running_);
+
   // Typical application, networks 9 and 11 (6.1): Q9999 is acknowledged when the reverse
   // program has become active; Q9998 at once, vmt's program having no error-clear key to wait
   // for (the NC holds with OVERSIZE / UNDERSIZE and a new start continues).
@@ -462,28 +478,55 @@ void ProbeBlockProgram::operator()(PlcScan& s) {
     const int qf = Lookup(q_functions_, m.MessProc, number);
     const int qa = Lookup(q_acks_, m.MessProc, number);
     if (qf < 0 || qa < 0) continue;
-    const auto rev = reverse_running_.find(m.MessProc);
-    const bool reverse = rev != reverse_running_.end() && s.Bool(rev->second);
-    s.SetBool(qa, s.Bool(qf) && (number == measure::kQ9998 || reverse));
+    s.SetBool(qa, s.Bool(qf) && (number == measure::kQ9998 || reversing));
   }
 
-  // Typical application, networks 7, 8, 13, 14, 20 and 24 (what reaches the NC): a probe
-  // collision or an error of the block locks the process (no process enable: the NC stops at
-  // once) with message 203 / 202 (probe monitoring 1 / 2), or 206 (errors 1..13) / 207 (14..)
-  // with the error number; both are suppressed while the reverse program runs (network 7), so
-  // that it can take the stylus away. They last until RESET clears the block.
+  // Typical application, networks 5, 6, 10 and 12: the Q function the NC outputs sets the
+  // program's flag (on its rising edge: the output stays until acknowledged, the fault stays
+  // until cleared). Q9999's flag clears when the reverse program is started (network 10) or
+  // with Control-Reset, which aborts the program that output it and withdraws the output (vmt:
+  // the manual's program keeps it, leaving nothing to reverse from). Q9998's flag clears with
+  // the reverse program or Control-Reset (network 12) and, vmt having no error-clear key, when
+  // the program it stopped is no longer stopped (the new start that acknowledges the message).
   {
-    const auto rev = reverse_running_.find(m.MessProc);
-    const bool reversing = rev != reverse_running_.end() && s.Bool(rev->second);
+    const int q9999 = Lookup(q_functions_, m.MessProc, measure::kQ9999);
+    const int q9998 = Lookup(q_functions_, m.MessProc, measure::kQ9998);
+    const bool out9999 = q9999 >= 0 && s.Bool(q9999);
+    const bool out9998 = q9998 >= 0 && s.Bool(q9998);
+    const bool reset = read(control_reset_) || !m.ENABLE;
+    const bool stopped = read(program_stopped_);
+    if (out9999 && !q9999_before_) M_Q9999 = true;
+    // An output withdrawn: acknowledged (in the reverse program) or dropped by Control-Reset.
+    const bool withdrawn = !out9999 && q9999_before_;
+    if (reset || reversing || withdrawn || read(reverse_start_)) M_Q9999 = false;
+    if (out9998 && !q9998_before_) M_Q9998 = true, q9998_stopped_ = false;
+    if (M_Q9998 && stopped) q9998_stopped_ = true;
+    if (reset || reversing || (q9998_stopped_ && !stopped)) M_Q9998 = false;
+    q9999_before_ = out9999;
+    q9998_before_ = out9998;
+  }
+
+  // Typical application, networks 7, 8, 13, 14, 18 to 20 and 24 (what reaches the NC): a probe
+  // collision, an error of the block or the NC's Q9999 (fault category 1) locks the process (no
+  // process enable: the NC stops at once), with message 203 / 202 (probe monitoring 1 / 2), 206
+  // (errors 1..13) / 207 (14..) with the error number, or 205. Collision and error are
+  // suppressed while the reverse program runs (network 7), so that it can take the stylus away;
+  // they last until RESET clears the block. Q9998 (fault category 2) writes 204 and leaves the
+  // process enable alone: the NC itself holds the program until the next start (vmt's reading,
+  // as its program has no error-clear key that would lift a lock). One message number shows at
+  // a time: the probe's own (collision, block error) before the NC's Q functions.
+  {
     const bool collision = m.Q_MTstKol && !reversing;
     const bool fault = m.FEHLER && !reversing;
-    const auto at = [&](const std::map<int, int>& ids) {
-      const auto it = ids.find(m.MessProc);
-      return it == ids.end() ? -1 : it->second;
-    };
-    if (const int id = at(process_enable_); id >= 0) s.SetBool(id, !collision && !fault);
+    const measure::QFunctionDefinition& type1 = *measure::QFunction(measure::kQ9999);
+    const measure::QFunctionDefinition& type2 = *measure::QFunction(measure::kQ9998);
+    // 6.1 fault category 1: process stop and advance inhibit until the reverse program.
+    const bool locked = collision || fault || (M_Q9999 && type1.fault_category == 1);
+    if (const int id = at(process_enable_); id >= 0) s.SetBool(id, !locked);
     const int message = collision ? (m.page().PIN_DDS ? 202 : 203)
                         : fault   ? (m.FEHLER_NR <= 13 ? 206 : 207)
+                        : M_Q9999 ? type1.plc_message
+                        : M_Q9998 ? type2.plc_message
                                   : 0;
     if (const int id = at(message_); id >= 0) s.SetInt(id, message);
     if (const int id = at(message_n_); id >= 0) s.SetInt(id, collision || !fault ? 0 : m.FEHLER_NR);

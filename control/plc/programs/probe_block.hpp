@@ -155,6 +155,10 @@ struct ProbeBlockProgram {
   /// Stands in for BASISMESSPAGE while no pages are connected: the lathe's SETTING(X, Z, , ...)
   /// with the stylus at pin 4 (probe 1) and a normally open contact.
   BasisMessPage basis_page{false, false, true, true, false};
+  /// Typical application networks 5, 6 (flags of the program): the NC has output Q9999 / Q9998
+  /// in process MessProc and the fault stands (see operator() for what clears each).
+  bool M_Q9999 = false;
+  bool M_Q9998 = false;
 
  private:
   // Input pins.
@@ -182,6 +186,11 @@ struct ProbeBlockProgram {
   std::array<AxdWrResult, 3> axd_answers_{};
   int q_ack_ = -1;              ///< the Pxx.Qnnnn_Q written last scan
   std::map<int, int> reverse_running_;  ///< PxxS.REV by process
+  /// PxxC.REV (reverse program start), PxxC.RESET (Control-Reset), PxxS.STOP by process: what
+  /// clears M_Q9999 / M_Q9998.
+  std::map<int, int> reverse_start_, control_reset_, program_stopped_;
+  bool q9998_stopped_ = false;  ///< the program has stopped since M_Q9998 was set
+  bool q9999_before_ = false, q9998_before_ = false;  ///< the NC's Q outputs last scan
   /// PxxC.ENABL, Pxx.MSG_WR, Pxx.MSG_WR_N by process: the typical application's reaction to a
   /// probe collision or an error of the block.
   std::map<int, int> process_enable_, message_, message_n_;

@@ -197,6 +197,104 @@ TEST(ChannelMeasuring, ReverseTakesTheStylusBackTheWayItCameBeforeHome) {
   EXPECT_NEAR(l.m.X(), 80, 1e-9);      // and .HOME's G00 X80
 }
 
+// 6.1, 7.2 Q_MTstKol: the probe displaced on the way to the setup position (event 29 set) is a
+// collision the NC reports with Q9999 itself, whatever the PLC does: the axes stop at once, the
+// program fails with fault category 1, and the reverse program takes the stylus back.
+TEST(ChannelMeasuring, AProbeDisplacedOnTheApproachStopsWithQ9999) {
+  MeasuringLathe l(
+      "N1 SETTING(X,Z,,18,48,15,1)\n"
+      "N2 PROBE(1,1,30,5,,X,-2,100,1,2,0)\n"
+      "N3 RET\n"
+      ".HOME\n"
+      "N10 G00 X80\n"
+      "N11 RET\n",
+      30.0, 50, 20);
+  l.m.channel->Start();
+  while (l.m.Z() > 12 && l.m.t < 10) l.Tick();
+  ASSERT_EQ(l.m.channel->state(), ChannelState::kRunning);
+  ASSERT_TRUE(l.events[29]);
+  l.probe_level = true;  // a normally open contact closes: displaced
+  // The next NC cycle sees it (the stand-in PLC acknowledges Q9999 only in the tick after).
+  const double t_displaced = l.m.t;
+  while (l.m.channel->state() == ChannelState::kRunning && l.m.t < 10) l.Tick();
+  EXPECT_LT(l.m.t - t_displaced, 0.01);
+  ASSERT_EQ(l.m.channel->state(), ChannelState::kError);
+  EXPECT_EQ(l.m.channel->error_number(), kMsgMeasuringReverseOnly);
+  EXPECT_NE(l.m.channel->error().find("p.mtc:2:"), std::string::npos) << l.m.channel->error();
+  EXPECT_NE(l.m.channel->error().find("probe displaced outside the measuring path"),
+            std::string::npos)
+      << l.m.channel->error();
+  ASSERT_EQ(l.m.channel->aux_output().size(), 1u);
+  EXPECT_EQ(l.m.channel->aux_output()[0].value, 9999);
+  EXPECT_FALSE(l.events[30]);  // the measuring path never began
+  const double x_stop = l.m.X(), z_stop = l.m.Z();
+  for (int i = 0; i < 400; ++i) l.Tick();
+  EXPECT_EQ(l.m.X(), x_stop);  // nothing moves on
+  EXPECT_EQ(l.m.Z(), z_stop);
+  l.m.channel->Start();  // fault category 1: no advance start
+  EXPECT_EQ(l.m.channel->state(), ChannelState::kError);
+  // The reverse program runs with the stylus still deflected (unwatched) and acknowledges.
+  ASSERT_TRUE(l.m.channel->Reverse());
+  l.RunUntilStopped();
+  EXPECT_EQ(l.m.channel->state(), ChannelState::kEnded) << l.m.channel->error();
+  EXPECT_EQ(l.q_functions.back(), 9999);
+  EXPECT_NEAR(l.m.Z(), 20, 1e-9);  // back along the leg it travelled
+  EXPECT_NEAR(l.m.X(), 80, 1e-9);
+}
+
+// A MOVE leaves event 29 set: the stylus stays watched until the next PROBE's setup position,
+// also in the blocks between (here a dwell, the block the error names).
+TEST(ChannelMeasuring, AfterAMoveTheProbeStaysWatched) {
+  MeasuringLathe l(
+      "N1 SETTING(X,Z,,18,48,15,1)\n"
+      "N2 MOVE(45,5,,1,0)\n"
+      "N3 G04 F1\n"
+      "N4 RET\n",
+      30.0);
+  l.m.channel->Start();
+  while (l.m.t < 0.5) l.Tick();
+  ASSERT_EQ(l.m.channel->state(), ChannelState::kRunning);
+  ASSERT_NEAR(l.m.X(), 45, 1e-9);
+  l.probe_level = true;
+  while (l.m.channel->state() == ChannelState::kRunning && l.m.t < 10) l.Tick();
+  ASSERT_EQ(l.m.channel->state(), ChannelState::kError);
+  EXPECT_NE(l.m.channel->error().find("p.mtc:3:"), std::string::npos) << l.m.channel->error();
+  ASSERT_EQ(l.m.channel->aux_output().size(), 1u);
+  EXPECT_EQ(l.m.channel->aux_output()[0].value, 9999);
+}
+
+// A normally closed contact reads 0 while the probe is off (the fail-safe "displaced"): the NC
+// counts a displacement only after the drive has shown the probe free since event 29.
+TEST(ChannelMeasuring, ANormallyClosedProbeCountsOnlyAfterItWasFree) {
+  const char* program =
+      "N1 SETTING(X,Z,,18,48,15,1)\n"
+      "N2 PROBE(1,1,30,5,,X,-2,100,1,1,0)\n"
+      "N3 RET\n";
+  {
+    MeasuringLathe l(program, 30.0);
+    l.pages.stylus[0].normally_closed = true;
+    l.probe_level = false;  // never switched on: reads 0 all along
+    l.m.channel->Start();
+    l.RunUntilStopped();
+    EXPECT_EQ(l.m.channel->state(), ChannelState::kEnded) << l.m.channel->error();
+  }
+  {
+    MeasuringLathe l(program, 30.0);
+    l.pages.stylus[0].normally_closed = true;
+    l.probe_level = true;  // on and free: the contact is closed
+    l.m.channel->Start();
+    for (int i = 0; i < 40; ++i) l.Tick();
+    ASSERT_EQ(l.m.channel->state(), ChannelState::kRunning);
+    ASSERT_TRUE(l.events[29]);
+    l.probe_level = false;  // opens: displaced
+    const double t_open = l.m.t;
+    while (l.m.channel->state() == ChannelState::kRunning && l.m.t < 10) l.Tick();
+    EXPECT_LT(l.m.t - t_open, 0.01);  // within an NC cycle or two
+    ASSERT_EQ(l.m.channel->state(), ChannelState::kError);
+    EXPECT_NE(l.m.channel->error().find("TEST POINT NOT FOUND"), std::string::npos);
+  }
+}
+
 TEST(ChannelMeasuring, ReverseRetracesALinearPathSequenceWithEachLegsSphere) {
   // 4.4 linear path sequence 2 over three MOVEs that change the sphere (figure 4-9 blocks 54, 55
   // do): sphere 2's centre is 4 mm lower in X and 6 mm further in Z than sphere 1's (tool

@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,7 @@ struct MeasuringLathe {
     }
     if (events[30] && events[29]) events[29] = false;
     if (!events[30]) m.at.feedback[0].probe = {};
+    if (probe_level) m.at.feedback[0].probe.probe1.level = *probe_level;
     const double x_before = m.X();
     m.Tick();
     ProbeEdgeLatch& latch = m.at.feedback[0].probe.probe1.positive;
@@ -72,6 +74,8 @@ struct MeasuringLathe {
   std::vector<int> raised;
   std::vector<double> q_functions;
   bool events_30_before = false;
+  /// The X drive's S-0-0401 'Probe-1' as the test sets it (none: as the latch leaves it).
+  std::optional<bool> probe_level;
 };
 
 }  // namespace vmt::control::channel::testing

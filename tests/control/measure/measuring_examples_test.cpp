@@ -55,6 +55,24 @@ TEST_F(Lathe, CalibrationExample2ThenMeasuringTheSameSurfaceGivesDeviation0) {
   EXPECT_NEAR(pages.Point(0, 1)->value.deviation, 0.03, kTol);
 }
 
+// 3.1 EICHWERTEPAGE keeps the feed a direction was calibrated at: a measuring PROBE at another
+// feed warns (the calibration value holds that feed's latch delay), and still measures. The
+// same feed, a calibration, another direction or a direction never calibrated do not warn.
+TEST_F(Lathe, MeasuringAtAnotherFeedThanTheCalibrationsWarns) {
+  Setting();
+  context.position = {50, 80, 0};
+  EXPECT_EQ(Run("PROBE(1,1,30,55,,X,-2,300,1,1,0)", 17.48).warning, "");  // not calibrated
+  EXPECT_EQ(Run("PROBE(,0,30,55,,X,-2,100,1,1,0)", 17.48).warning, "");
+  EXPECT_EQ(Run("PROBE(1,1,30,55,,X,-2,100,1,1,0)", 17.48).warning, "");
+  const MeasuringPlan other = Run("PROBE(2,1,30,55,,X,-2,250,1,1,0)", 17.48);
+  EXPECT_THAT(other.warning, HasSubstr("F250"));
+  EXPECT_THAT(other.warning, HasSubstr("axis X- of sphere 1 was calibrated at F100"));
+  EXPECT_NE(pages.Point(0, 2), nullptr);  // measured all the same
+  EXPECT_EQ(Run("PROBE(,0,30,55,,X,-2,250,1,1,0)", 17.48).warning, "");  // a new calibration
+  EXPECT_EQ(Run("PROBE(3,1,30,55,,X,-2,250,1,1,0)", 17.48).warning, "");
+  EXPECT_EQ(Run("PROBE(4,1,70,-44,,Z,1,400,1,1,0)", -46.97).warning, "");  // Z+ never calibrated
+}
+
 TEST_F(Lathe, CalibrationInThePlusDirection) {
   Setting();
   // Z measured in + toward a face at Z-44, sphere 2 (radius 3): setup Z -48; the latch at

@@ -18,7 +18,8 @@ TEST(MeasuringMessages, QFunctionNumbers) {
   ASSERT_NE(QFunction(9999), nullptr);
 }
 
-// 6.1 Q9998: fault category 2, continued by a new advance program start.
+// 6.1 Q9998: fault category 2, continued by a new advance program start. The probe program
+// (control/plc/programs/probe_block.cpp) acts on these definitions.
 TEST(MeasuringMessages, Q9998IsFaultCategory2) {
   const QFunctionDefinition& q = *QFunction(9998);
   EXPECT_EQ(q.number, 9998);
@@ -32,6 +33,7 @@ TEST(MeasuringMessages, Q9998IsFaultCategory2) {
   EXPECT_NE(std::string(q.additional_text).find("continued after a new advance program start"),
             std::string::npos);
   EXPECT_TRUE(q.advance_continuable);
+  EXPECT_EQ(q.plc_message, 204);  // 7.2 typical application, network 19
   for (const MeasuringMessage& m : {kOversize, kUndersize}) {
     EXPECT_EQ(m.q_function, 9998) << m.text;
     EXPECT_EQ(m.fault_category(), 2) << m.text;
@@ -55,13 +57,16 @@ TEST(MeasuringMessages, Q9999IsFaultCategory1) {
   EXPECT_NE(std::string(q.additional_text).find("after a reverse program has been triggered"),
             std::string::npos);
   EXPECT_FALSE(q.advance_continuable);
-  for (const MeasuringMessage& m :
-       {kTestPointNotFound, kIllegallyHighDimensionalDeviation, kCheckTool}) {
+  EXPECT_EQ(q.plc_message, 205);  // 7.2 typical application, network 18
+  for (const MeasuringMessage& m : {kTestPointNotFound, kProbeDisplacedOutsidePath,
+                                    kIllegallyHighDimensionalDeviation, kCheckTool}) {
     EXPECT_EQ(m.q_function, 9999) << m.text;
     EXPECT_EQ(m.fault_category(), 1) << m.text;
     EXPECT_FALSE(m.advance_continuable()) << m.text;
   }
   EXPECT_STREQ(kTestPointNotFound.text, "TEST POINT NOT FOUND");
+  // 6.1 names the probe displaced outside the measuring path beside the test point not found.
+  EXPECT_EQ(std::string(kProbeDisplacedOutsidePath.text).find("TEST POINT NOT FOUND"), 0u);
   EXPECT_STREQ(kIllegallyHighDimensionalDeviation.text, "ILLEGALLY HIGH DIMENSIONAL DEVIATION");
   EXPECT_STREQ(kCheckTool.text, "CHECK TOOL");
 }

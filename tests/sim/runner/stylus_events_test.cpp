@@ -10,6 +10,7 @@
 #include <string>
 
 #include "../sim_test_support.hpp"
+#include "sim/backend/probe_wiring.hpp"
 #include "sim/runner/runner.hpp"
 
 namespace vmt::sim {
@@ -53,7 +54,8 @@ namespace {
 
 // The measuring scene: each latch event gives the drive's measured value beside the exact
 // contact; the exact contact is the analytic surface less the pre-travel (5 µm), the measured
-// value within the feed's travel in one 250 µs sample (200 mm/min: 0.83 µm) of it.
+// value within the feed's travel in 170 µs (7.3: the most between edge and position value;
+// 200 mm/min: 0.57 µm) and half an encoder increment of it.
 TEST(StylusEventsTest, ProbeLatchEventsShowTheSamplingError) {
   const std::string dir = testing::OutputDir("probe_latch_events");
   RunOptions options;
@@ -65,12 +67,13 @@ TEST(StylusEventsTest, ProbeLatchEventsShowTheSamplingError) {
   std::ifstream events(dir + "/events.jsonl");
   std::string line;
   int x_latches = 0, z_latches = 0;
-  const double feed_mm_s = 200.0 / 60, sample_s = 250e-6;
+  const double feed_mm_s = 200.0 / 60, half_increment_mm = 0.5e-4;
   while (std::getline(events, line)) {
     const auto e = nlohmann::json::parse(line);
     if (e["event"] != "probe_latch") continue;
     const double exact = e["exact_position"], measured = e["measured_value"];
-    EXPECT_LE(std::abs(measured - exact), feed_mm_s * sample_s + 1e-6) << line;
+    EXPECT_LE(std::abs(measured - exact), feed_mm_s * kLatchMaxDelayS + half_increment_mm)
+        << line;
     EXPECT_NEAR(e["sampling_error"].get<double>(), measured - exact, 2e-6) << line;
     // The axis that measured stands where the ruby met the surface, less the pre-travel: X
     // reads the ruby's lowest point (radius 30 and 20.05), Z its centre (faces at 160, 130).
