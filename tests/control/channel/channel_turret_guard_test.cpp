@@ -183,7 +183,7 @@ TEST(TurretGuard, ASpindleStartWithTheToolInTheJawsSweepIsRefused) {
   EXPECT_TRUE(r[0].check.clear);
 }
 
-/// Runs the program 3 s (X at about 30 at F600 from 0), holds it and goes to manual mode.
+/// Runs the program 3 s (at F600 X has gone about 30 mm), holds it and goes to manual mode.
 void Interrupt(Guarded& m) {
   m.channel->Start();
   m.Run(3.0);
@@ -197,9 +197,9 @@ TEST(TurretGuard, G77S1RestoringTheSpindleIntoTheToolIsRefused) {
   // the tool stands in the jaws' sweep: G77 S1=0 does not start the spindle.
   TurretScene scene;
   Guarded m(scene,
-            "N1 M3 S1000\nN2 G01 X30 F600\nN3 G01 X100\nN4 RET\n"
+            "N1 M3 S1000\nN2 G01 X100 F600\nN3 RET\n"
             ".REPOS\nN10 G77 S1=0\nN11 G77 Z0 F3000\nN12 G77 X0 F3000 RTS\n",
-            0, 0);
+            50, 0);
   Interrupt(m);
   m.channel->ManualSpindle(5);
   m.Run(0.2);
