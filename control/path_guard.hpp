@@ -2,7 +2,8 @@
 // PathGuard (DESIGN.md): the machine geometry's answer to "may the axes move in a straight line
 // from here to there without touching anything?". The control kernel asks it before approach
 // moves start (jogging ahead, G77, the REPOS subroutine's moves, return to the contour, probe
-// approach); the simulation answers from the model's collision geometry at the current poses.
+// approach), before a turret indexes (a move of its drive alone) and before a spindle starts;
+// the simulation answers from the model's collision geometry at the current poses.
 // Like DriveBus it speaks machine units: positions per drive, mm | deg.
 
 #include <string>
@@ -40,6 +41,12 @@ class PathGuard {
   virtual PathCheck CheckMeasuringPath(const std::vector<double>& from,
                                        const std::vector<double>& to) {
     return CheckMove(from, to);
+  }
+  /// Spindle drive `spindle` starting to turn with every drive standing at `at`: whatever turns
+  /// with it (chuck, jaws, workpiece) checked as the solid it sweeps against everything else,
+  /// where that stands. A guard that knows no sweep of that spindle has nothing to check.
+  virtual PathCheck CheckSpindleStart(const std::vector<double>& /*at*/, int /*spindle*/) {
+    return {};
   }
 };
 

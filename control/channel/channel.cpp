@@ -455,12 +455,13 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
     // that T word already does.
     // An NC-controlled tool storage axis the NC traverses back itself, and MRY waits for it.
     if (repos_run_ && interruption_ && (name == "MTP" || name == "MRY")) {
-      if (name == "MTP" && ToolStorageNc())
-        ReturnToolStorage();
-      else if (name == "MTP")
+      if (name == "MTP" && ToolStorageNc()) {
+        if (!ReturnToolStorage()) return false;
+      } else if (name == "MTP") {
         block_.aux.push_back({'T', 0, static_cast<double>(interruption_->modal.tool)});
-      else
+      } else {
         mry = true;
+      }
       name.clear();
     } else if (ToolStorageNc() && (name == "MRY" || (name == "MTP" && StationOf(1)))) {
       // In the program an NC-controlled one traverses asynchronously (4.2, "As in NC-program
@@ -514,8 +515,12 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
     return false;
   }
 
-  // Spindle: M3/M4 with S (rpm), M5, M19 (orient to 0 deg).
-  if (SpindleFunctions(block_, spindle_)) spindle_referencing_ = orienting_ = true;
+  // Spindle: M3/M4 with S (rpm), M5, M19 (orient to 0 deg); a start is checked by PathGuard.
+  DriveSetpoint spindle = spindle_;
+  const bool orient = SpindleFunctions(block_, spindle);
+  if (!GuardSpindleStart("spindle start", spindle)) return false;
+  spindle_ = spindle;
+  if (orient) spindle_referencing_ = orienting_ = true;
 
   // M, H, Q and T go to the PLC; the block goes on when it has acknowledged them.
   if (config_.aux_handshake) {

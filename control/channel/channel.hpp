@@ -546,6 +546,20 @@ class Channel {
   static constexpr int kMaxChords = 20000;  ///< a bound on the work (0.1 mm min. clearance)
   bool GuardStops(const std::string& move, const std::vector<double>& from,
                   const std::vector<double>& to, const PathCheck& check);
+  // PathGuard of the NC turret's index and of a spindle start (channel_turret_guard.cpp).
+  /// A straight move of the drives; while the NC turret indexes, against it as it turns on.
+  PathCheck GuardCheck(const std::vector<double>& from, const std::vector<double>& to,
+                       bool measuring_path = false);
+  /// The turret's index from where its command stands to `target` (deg), its sweep checked
+  /// whole before it starts: false if stopped.
+  bool GuardTurretIndex(const std::string& move, double target);
+  /// A continuous turret jog (`key` the effective MGPOS / MGNEG) checked ahead as GuardJog.
+  void GuardTurretJog(int key, double dt);
+  /// The main spindle about to take setpoint `sp`: a start sweeps what turns with it. False
+  /// if stopped.
+  bool GuardSpindleStart(const std::string& move, const DriveSetpoint& sp);
+  std::optional<GuardRecord> guarded_turret_jog_;
+  int turret_guard_countdown_ = 0;
   PathGuard* guard_ = nullptr;
   std::vector<GuardRecord> guard_records_;
   std::optional<GuardRecord> guarded_jog_;  ///< the continuous jog being checked, summed up
@@ -640,6 +654,7 @@ class Channel {
     bool programmed = false;
     bool stepping = false;     ///< an increment of a jog key press: to `target`
     double target = 0;
+    int blocked = 0;  ///< PathGuard stopped the jog key in this direction: until released
   };
   ToolStorageAxis tool_storage_;
   /// MRY: the block waits until the program's traverse (T, MTP) has ended and the axis stands
@@ -651,9 +666,11 @@ class Channel {
   bool TraverseToolStorage(double target, double speed, double dt);
   void WriteToolStorage(MasterTelegram& mdt) const;
   /// MTP (4.2 Tool Storage Axis): the NC traverses it back to the interruption's position.
-  void ReturnToolStorage();
-  /// Starts the program's traverse to `position` (deg); an endless axis goes the short way.
-  void TraverseToolStorageTo(double position);
+  /// False if PathGuard stopped it.
+  bool ReturnToolStorage();
+  /// Starts the program's traverse to `position` (deg) for `move` (the word that asks for it);
+  /// an endless axis goes the short way. False if PathGuard stopped it before it started.
+  bool TraverseToolStorageTo(double position, const std::string& move);
   /// Where tool `tool`'s station is (deg, 0 .. 360); nullopt for T0 or without stations.
   std::optional<double> StationOf(int tool) const;
   /// An NC-controlled tool storage axis starts for tool `tool`'s station (4.2: asynchronously,

@@ -101,19 +101,21 @@ void Channel::ManualSpindle(int m) {
   // the spindle's state before the interruption (M03 / M04 at the programmed speed, M05, M19).
   if (repos_function_ != ReposFunction::kNone && SpindleRelevant() &&
       KeyRestoresSpindle(interruption_->spindle_m, m)) {
+    if (!GuardSpindleStart("spindle start", interruption_->spindle)) return;
     spindle_ = interruption_->spindle;
     spindle_referencing_ = m == 19;
     take_over_pending_ = true;
     return;
   }
   const double speed = config_.spindle.jog_per_s;  // main spindle "Jogging speed"
-  if (m == 3) spindle_ = {DriveMode::kVelocity, speed, 0};
-  if (m == 4) spindle_ = {DriveMode::kVelocity, -speed, 0};
-  if (m == 5) spindle_ = {DriveMode::kVelocity, 0, 0};
-  if (m == 19) {
-    spindle_ = {DriveMode::kPosition, config_.spindle.jog_spindle_position, 0};
-    spindle_referencing_ = true;
-  }
+  DriveSetpoint sp = m == 3   ? DriveSetpoint{DriveMode::kVelocity, speed, 0}
+                     : m == 4 ? DriveSetpoint{DriveMode::kVelocity, -speed, 0}
+                     : m == 5 ? DriveSetpoint{DriveMode::kVelocity, 0, 0}
+                              : DriveSetpoint{DriveMode::kPosition,
+                                              config_.spindle.jog_spindle_position, 0};
+  if (!GuardSpindleStart("spindle start", sp)) return;
+  spindle_ = sp;
+  if (m == 19) spindle_referencing_ = true;
   spindle_referencing_ = spindle_referencing_ && m == 19;
   spindle_jogging_ = false;
   take_over_pending_ = true;

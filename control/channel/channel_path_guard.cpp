@@ -33,6 +33,15 @@ bool Channel::GuardStops(const std::string& move, const std::vector<double>& fro
                   check.position[axis.drive]);
     where += text;
   }
+  // A turret index, or an axis move against the turret indexing: where the turret stands then.
+  const size_t t = static_cast<size_t>(config_.tool_storage_drive);
+  if (ToolStorageNc() && t < check.position.size() && t < from.size() &&
+      (from[t] != to[t] || check.position[t] != drive_positions_[t])) {
+    char text[48];
+    std::snprintf(text, sizeof text, " %s%.3f", config_.tool_storage.name.c_str(),
+                  check.position[t]);
+    where += text;
+  }
   char point[96];
   std::snprintf(point, sizeof point, " (contact at x %.3f y %.3f z %.3f mm)", check.point[0],
                 check.point[1], check.point[2]);
@@ -47,7 +56,7 @@ bool Channel::GuardIncrement(size_t axis, double to_position) {
   const std::vector<double> from = GuardFrom();
   std::vector<double> to = from;
   to[config_.axes[axis].drive] = to_position;
-  const PathCheck c = guard_->CheckMove(from, to);
+  const PathCheck c = GuardCheck(from, to);
   if (c.clear) {
     guard_records_.push_back({"jog", from, to, c, 1, false});
     return true;
@@ -65,8 +74,7 @@ bool Channel::GuardBlockMove(const std::string& move, const std::vector<double>*
   for (size_t a = 0; a < config_.axes.size(); ++a)
     if (static_cast<size_t>(config_.axes[a].drive) < to.size())
       to[config_.axes[a].drive] = end ? (*end)[a] : motion_.end[a];
-  const PathCheck c =
-      measuring_path ? guard_->CheckMeasuringPath(from, to) : guard_->CheckMove(from, to);
+  const PathCheck c = GuardCheck(from, to, measuring_path);
   if (c.clear) {
     guard_records_.push_back({move, from, to, c, 1, false});
     return true;
@@ -99,7 +107,7 @@ bool Channel::GuardCurvedMove(const std::string& move) {
     for (size_t k = 0; k < config_.axes.size(); ++k)
       if (static_cast<size_t>(config_.axes[k].drive) < b.size())
         b[config_.axes[k].drive] = point[k];
-    const PathCheck c = guard_->CheckMove(a, b);
+    const PathCheck c = GuardCheck(a, b);
     if (!c.clear) return !GuardStops(move, from, to, c);
     if (record.checks == 0 || c.min_clearance < record.check.min_clearance) record.check = c;
     ++record.checks;
@@ -157,7 +165,7 @@ void Channel::GuardJog(double dt) {
   }
   if (guarded_jog_ && --guard_countdown_ > 0) return;  // checked at the start, then every n
   guard_countdown_ = config_.path_guard_every;
-  const PathCheck c = guard_->CheckMove(from, to);
+  const PathCheck c = GuardCheck(from, to);
   if (c.clear) {
     if (!guarded_jog_) {
       guarded_jog_ = GuardRecord{"jog", from, to, c, 1, false};

@@ -437,6 +437,7 @@ bool Channel::StartReposMotion(const AmplifierTelegram& /*at*/) {
   // it has reached it. Spindles the channel does not command have nothing to restore.
   for (const nc::AuxFunction& f : block_.aux)
     if (f.letter == 'S' && f.index <= 1 && config_.spindle_drive >= 0) {
+      if (!GuardSpindleStart("spindle start G77 S1", interruption_->spindle)) return false;
       spindle_ = interruption_->spindle;
       spindle_referencing_ = spindle_.mode == DriveMode::kPosition;
       orienting_ = true;

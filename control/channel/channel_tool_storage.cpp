@@ -32,22 +32,25 @@ double Channel::tool_storage_command() const {
                                                 : std::numeric_limits<double>::quiet_NaN();
 }
 
-void Channel::ReturnToolStorage() {
-  if (!ToolStorageNc() || !interruption_) return;
-  TraverseToolStorageTo(interruption_->tool_storage);
+bool Channel::ReturnToolStorage() {
+  if (!ToolStorageNc() || !interruption_) return true;
+  return TraverseToolStorageTo(interruption_->tool_storage, "turret index MTP");
 }
 
-void Channel::TraverseToolStorageTo(double position) {
+bool Channel::TraverseToolStorageTo(double position, const std::string& move) {
   ToolStorageAxis& t = tool_storage_;
   if (!t.taken) {  // a traverse before the axis' first NC cycle starts where it stands
     t.command = t.previous = drive_positions_[config_.tool_storage_drive];
     t.taken = true;
   }
-  t.positioning = t.programmed = true;
-  t.stepping = false;
   // The short way round for an endless axis: the station, not the turns (4.2: the location).
   // One with travel limits goes to the position itself, back the way it came.
-  t.target = t.command - ReposDistanceToGo(config_.tool_storage, t.command, position);
+  const double target = t.command - ReposDistanceToGo(config_.tool_storage, t.command, position);
+  if (!GuardTurretIndex(move, target)) return false;
+  t.target = target;
+  t.positioning = t.programmed = true;
+  t.stepping = false;
+  return true;
 }
 
 std::optional<double> Channel::StationOf(int tool) const {
@@ -70,8 +73,7 @@ bool Channel::IndexToolStorage(int tool, const nc::Program& program, int32_t blo
          kMsgProgramError);
     return false;
   }
-  TraverseToolStorageTo(*station);
-  return true;
+  return TraverseToolStorageTo(*station, "turret index T" + std::to_string(tool));
 }
 
 bool Channel::IndexToolStorage(const nc::PreparedBlock& b, const nc::Program& program) {
@@ -145,9 +147,13 @@ void Channel::ToolStorageCycle(double dt) {
   if (JogStepping(t.stepping, increment, t.velocity)) {
     // Incremental: a key press starts one increment, which then runs to its end.
     if (!t.stepping && t.key != 0 && jogging) {
-      t.stepping = true;
-      t.programmed = false;
-      t.target = t.command + t.key * increment;
+      // The increment's sweep is checked whole before it starts, as a feed axis' increment.
+      const double target = t.command + t.key * increment;
+      if (GuardTurretIndex(t.key > 0 ? "turret index MGPOS" : "turret index MGNEG", target)) {
+        t.stepping = true;
+        t.programmed = false;
+        t.target = target;
+      }
       t.key = 0;  // one increment per press
     }
     if (t.stepping && TraverseToolStorage(t.target, speed, dt)) t.stepping = false;
@@ -157,7 +163,8 @@ void Channel::ToolStorageCycle(double dt) {
   // axes only, so there the keys do nothing.
   const bool keys = jogging && jog_mode_ != JogMode::kHandwheel && increment == 0;
   const double accel = axis.acceleration > 0 ? axis.acceleration : 360;
-  const double wanted = keys ? t.key * speed : 0;
+  GuardTurretJog(keys ? t.key : 0, dt);
+  const double wanted = keys && t.key != t.blocked ? t.key * speed : 0;
   if (wanted != 0) t.programmed = false;
   t.velocity = std::clamp(wanted, t.velocity - accel * dt, t.velocity + accel * dt);
   t.command += t.velocity * dt;

@@ -7,7 +7,29 @@ namespace vmt::sim {
 MachinePathGuard::MachinePathGuard(const MachineModel& model,
                                    const std::vector<CylinderPart>& added,
                                    std::function<std::vector<double>()> current)
-    : model_(&model), world_(model, added), current_(std::move(current)) {}
+    : model_(&model), world_(model, added), current_(std::move(current)), added_(added) {}
+
+void MachinePathGuard::SetAdded(std::vector<CylinderPart> added) {
+  added_ = std::move(added);
+  stale_ = true;
+}
+
+void MachinePathGuard::SetSweep(SpindleSweep sweep) {
+  if (world_swept_)
+    for (const int part : sweep_.parts) world_.SetAside(part, false);
+  sweep_ = std::move(sweep);
+  stale_ = true;
+}
+
+void MachinePathGuard::Refresh(bool swept) {
+  if (!stale_ && swept == world_swept_) return;
+  std::vector<CylinderPart> parts = added_;
+  if (swept) parts.insert(parts.end(), sweep_.swept.begin(), sweep_.swept.end());
+  world_.SetAdded(parts);
+  for (const int part : sweep_.parts) world_.SetAside(part, swept);
+  world_swept_ = swept;
+  stale_ = false;
+}
 
 std::vector<double> MachinePathGuard::JointPositions(const std::vector<double>& base,
                                                      const std::vector<double>& drives,
@@ -43,9 +65,32 @@ control::PathCheck MachinePathGuard::CheckMeasuringPath(const std::vector<double
   return c;
 }
 
+control::PathCheck MachinePathGuard::CheckSpindleStart(const std::vector<double>& at,
+                                                       int spindle) {
+  if (sweep_.joint < 0 || spindle < 0) return {};
+  if (before_check) before_check(world_);
+  Refresh(true);
+  const std::vector<char> standing(at.size(), 0);
+  const StraightMoveCheck c =
+      sim::CheckSpindleStart(world_, JointPositions(current_(), at, standing), sweep_.joint,
+                             world_.size() - static_cast<int>(sweep_.swept.size()));
+  control::PathCheck out;
+  out.clear = c.clear;
+  out.min_clearance = c.closest_a >= 0 ? c.min_clearance_m * kMmPerM : 0;
+  if (c.closest_a >= 0) out.closest_a = world_.part(c.closest_a).name;
+  if (c.closest_b >= 0) out.closest_b = world_.part(c.closest_b).name;
+  out.position = at;
+  if (c.clear) return out;
+  out.part_a = world_.part(c.part_a).name;
+  out.part_b = world_.part(c.part_b).name;
+  for (int i = 0; i < 3; ++i) out.point[i] = c.point[i] * kMmPerM;
+  return out;
+}
+
 control::PathCheck MachinePathGuard::CheckMove(const std::vector<double>& from,
                                                const std::vector<double>& to) {
   if (before_check) before_check(world_);
+  Refresh(turning_);
   std::vector<char> moving(from.size(), 0);
   double path = 0;
   for (size_t d = 0; d < from.size() && d < to.size(); ++d) {

@@ -3,12 +3,14 @@
 // drive's gear or load encoder and the model's gear couplings), the straight-move check on the
 // CollisionWorld, and the answer back in machine units. Joints no drive sets (a spindle whose
 // clutch is open, the turret's driven tool) stay where `current` says the machine stands now
-// (the backend's poses).
+// (the backend's poses). While the spindle turns, or before it starts, the chuck is checked as
+// the solid it sweeps (spindle_sweep.hpp).
 
 #include <functional>
 #include <vector>
 
 #include "control/path_guard.hpp"
+#include "sim/collision/spindle_sweep.hpp"
 #include "sim/collision/straight_move_check.hpp"
 
 namespace vmt::sim {
@@ -22,6 +24,9 @@ class MachinePathGuard : public control::PathGuard {
                                const std::vector<double>& to) override;
   control::PathCheck CheckMeasuringPath(const std::vector<double>& from,
                                         const std::vector<double>& to) override;
+  /// The main spindle's `sweep` (the workpiece's link) against the rest: `spindle` is the
+  /// channel's main spindle drive, the one whose chuck `sweep` is.
+  control::PathCheck CheckSpindleStart(const std::vector<double>& at, int spindle) override;
   /// The joint positions (SI) for the drives' positions on top of `base`; where two drives
   /// read one joint, the one `moving` marks wins.
   std::vector<double> JointPositions(const std::vector<double>& base,
@@ -29,13 +34,27 @@ class MachinePathGuard : public control::PathGuard {
                                      const std::vector<char>& moving) const;
   CollisionWorld& world() { return world_; }
   StraightMoveOptions options;
-  /// Called before every check: the runner brings the workpiece up to date here (as turned).
+  /// Called before every check: the runner brings the workpiece up to date here (SetAdded).
   std::function<void(CollisionWorld&)> before_check;
+  /// The parts the scene adds (the workpiece as turned), in the world from the next check on.
+  void SetAdded(std::vector<CylinderPart> added);
+  /// What the chuck sweeps while its spindle turns (SweepOf the workpiece's link).
+  void SetSweep(SpindleSweep sweep);
+  const SpindleSweep& sweep() const { return sweep_; }
+  /// While the spindle turns, the chuck's parts are checked as the solid they sweep.
+  void SetSpindleTurning(bool turning) { turning_ = turning; }
 
  private:
   const MachineModel* model_;
   CollisionWorld world_;
   std::function<std::vector<double>()> current_;
+  /// Brings the world's added parts and the chuck up to date: `swept`, the chuck as it sweeps.
+  void Refresh(bool swept);
+  std::vector<CylinderPart> added_;
+  SpindleSweep sweep_;
+  bool turning_ = false;
+  bool world_swept_ = false;  ///< the world holds the sweep in the chuck's place
+  bool stale_ = false;        ///< added_ or the sweep changed since the world was built
 };
 
 }  // namespace vmt::sim

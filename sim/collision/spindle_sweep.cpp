@@ -33,4 +33,37 @@ SpindleSweep SweepOf(const CollisionWorld& world, const std::string& link) {
   return s;
 }
 
+StraightMoveCheck CheckSpindleStart(CollisionWorld& world, const std::vector<double>& q,
+                                    int joint, int first_swept) {
+  const MachineModel& m = world.model();
+  auto turns = [&](int link) {
+    for (int l = link; m.links[l].parent_joint >= 0;
+         l = m.joints[m.links[l].parent_joint].parent_link)
+      if (m.links[l].parent_joint == joint) return true;
+    return false;
+  };
+  std::vector<char> turning(world.size());
+  for (int i = 0; i < world.size(); ++i) turning[i] = turns(world.part(i).link);
+  world.Pose(q);
+  StraightMoveCheck out;
+  out.u = 0;
+  out.q = q;
+  for (int a = std::max(first_swept, 0); a < world.size(); ++a)
+    for (int b = 0; b < world.size(); ++b) {
+      if (turning[b] || world.MayTouch(a, b)) continue;
+      // The boxes first: the exact distance only where it could be the smallest.
+      if (world.BoxDistance(a, b) > out.min_clearance_m) continue;
+      ++out.pairs_checked;
+      const double d = world.Distance(a, b);
+      if (d < out.min_clearance_m) out.min_clearance_m = d, out.closest_a = a, out.closest_b = b;
+      if (d <= 0 && world.Collide(a, b, &out.point)) {
+        out.clear = false;
+        out.part_a = a, out.part_b = b;
+        out.min_clearance_m = 0;
+        return out;
+      }
+    }
+  return out;
+}
+
 }  // namespace vmt::sim

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "sim/collision/collision_world.hpp"
+#include "sim/collision/straight_move_check.hpp"
 
 namespace vmt::sim {
 
@@ -21,5 +22,14 @@ struct SpindleSweep {
 /// The sweep of the machine parts on `link`; empty (joint -1) if the model lacks the link or it
 /// has no revolute parent joint.
 SpindleSweep SweepOf(const CollisionWorld& world, const std::string& link);
+
+/// A spindle about to start at joint positions `q`, in a world that holds the sweep of its
+/// chuck from part `first_swept` on (PathGuard's while the spindle turns): the swept solids
+/// against every part that does not turn with `joint`. The workpiece is a body of revolution
+/// already: what touches it at rest (a cut ends on its surface, the tailstock's centre sits in
+/// it) touches it as it turns, so vmt takes the start to add only what the chuck sweeps beyond
+/// its standing parts. The first contact found (u 0), else the smallest clearance.
+StraightMoveCheck CheckSpindleStart(CollisionWorld& world, const std::vector<double>& q,
+                                    int joint, int first_swept);
 
 }  // namespace vmt::sim

@@ -182,15 +182,12 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
       MachineBackend* b = backend.get();
       path_guard =
           std::make_unique<MachinePathGuard>(m, parts, [b] { return b->JointPositions(); });
-      sweep = SweepOf(path_guard->world(),
-                      scene.workpiece.present ? scene.workpiece.part.link : std::string("spindle"));
-      path_guard->before_check = [this](CollisionWorld& world) {
-        if (!guard_parts_stale) return;
-        std::vector<CylinderPart> added;
-        if (cutter) added = cutter->stock().Cylinders(kStockTolerance);
-        if (spindle_turning) added.insert(added.end(), sweep.swept.begin(), sweep.swept.end());
-        world.SetAdded(added);
-        for (const int part : sweep.parts) world.SetAside(part, spindle_turning);
+      path_guard->SetSweep(
+          SweepOf(path_guard->world(),
+                  scene.workpiece.present ? scene.workpiece.part.link : std::string("spindle")));
+      path_guard->before_check = [this](CollisionWorld&) {
+        if (!guard_parts_stale || !cutter) return;
+        path_guard->SetAdded(cutter->stock().Cylinders(kStockTolerance));
         guard_parts_stale = false;
       };
       channel->SetPathGuard(path_guard.get());

@@ -14,12 +14,11 @@ namespace vmt::sim {
 void SceneRun::State::FollowSpindle(double t) {
   const std::vector<double> q = backend->JointPositions();
   if (cutter && cutter->Cut(q, t)) guard_parts_stale = true;
-  if (sweep.joint < 0) return;
+  const int joint = path_guard->sweep().joint;
+  if (joint < 0) return;
   const double cycle_s = channel->ticks_per_cycle() * kDriveTickS;
-  const bool turning = std::abs(q[sweep.joint] - spindle_angle) >= kTurningSpeedRadS * cycle_s;
-  spindle_angle = q[sweep.joint];
-  if (turning != spindle_turning) guard_parts_stale = true;
-  spindle_turning = turning;
+  path_guard->SetSpindleTurning(std::abs(q[joint] - spindle_angle) >= kTurningSpeedRadS * cycle_s);
+  spindle_angle = q[joint];
 }
 
 void SceneRun::State::StepChannel(double t, const control::AmplifierTelegram& at) {

@@ -85,11 +85,9 @@ struct SceneRun::State {
   const std::chrono::steady_clock::time_point wall_start = std::chrono::steady_clock::now();
   std::unique_ptr<MachineBackend> backend;
   std::unique_ptr<MachinePathGuard> path_guard;  ///< before the channel, which asks it
-  /// The workpiece as turned and the chuck as it sweeps while the spindle turns, for
-  /// PathGuard; its added parts are rebuilt before a check after either changed.
+  /// The workpiece as turned, for PathGuard (which checks the chuck as it sweeps while the
+  /// spindle turns); PathGuard's parts are rebuilt before a check after a cut.
   std::unique_ptr<StockCutter> cutter;
-  SpindleSweep sweep;
-  bool spindle_turning = false;
   double spindle_angle = 0;
   bool guard_parts_stale = false;
   void FollowSpindle(double t);

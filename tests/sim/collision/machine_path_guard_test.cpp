@@ -98,5 +98,31 @@ TEST(MachinePathGuard, ARingIsMaterialOnlyBetweenItsRadii) {
   EXPECT_TRUE(above.clear);
 }
 
+// A turret index swings every station's tools round. Over the part (Z 130) at X 6, stations 8
+// and 9 each stand clear of it (their holders reach it at X 5), but between them a holder's
+// corner dips into it: the index from 8 to 9 is refused, from 1 to 2 above the part it is clear.
+// The check is the turn of the T drive alone.
+TEST(MachinePathGuard, ATurretIndexSweepsItsToolsThroughThePart) {
+  Guarded g;
+  const int t = g.model.DriveIndex("T"), x = g.model.DriveIndex("X");
+  auto at = [&](double turret, double x_mm) {
+    std::vector<double> d = g.Drives(130, x_mm, 450);
+    d[t] = turret;
+    return d;
+  };
+  EXPECT_TRUE(g.guard.CheckMove(at(210, 7), at(210, 6)).clear);
+  EXPECT_TRUE(g.guard.CheckMove(at(240, 7), at(240, 6)).clear);
+  const control::PathCheck c = g.guard.CheckMove(at(210, 6), at(240, 6));
+  ASSERT_FALSE(c.clear);
+  EXPECT_TRUE(c.part_a.starts_with("turret_st08") || c.part_b.starts_with("turret_st08"))
+      << c.part_a << " " << c.part_b;
+  EXPECT_TRUE(c.part_a == "workpiece" || c.part_b == "workpiece") << c.part_a << " " << c.part_b;
+  EXPECT_GT(c.position[t], 210);  // on the way
+  EXPECT_LT(c.position[t], 240);
+  EXPECT_EQ(c.position[x], 6);
+  EXPECT_EQ(c.distance, 0);  // no linear drive moved
+  EXPECT_TRUE(g.guard.CheckMove(at(0, 31), at(30, 31)).clear);
+}
+
 }  // namespace
 }  // namespace vmt::sim

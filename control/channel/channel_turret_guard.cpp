@@ -1,0 +1,135 @@
+// PathGuard of the NC-controlled turret and of a spindle start. A turret index (T word, MTP,
+// MGPOS / MGNEG) swings every tool of the disc through space: its sweep, the turn of the tool
+// storage drive alone with the axes where they stand, is checked whole before it starts (the
+// guard's straight-move check is exact for a turn as for a slide). A spindle about to start
+// sweeps its chuck, jaws and workpiece round: PathGuard checks that solid of revolution
+// against the tools where they stand. And while the turret indexes asynchronously to the
+// other axes (REPOS manual 4.2: the REPOS subroutine's G77 may run before an MRY), an axis
+// move is checked against the turret as it turns on, not where it happens to stand.
+#include <cmath>
+
+#include "control/channel/channel.hpp"
+
+namespace vmt::control::channel {
+
+PathCheck Channel::GuardCheck(const std::vector<double>& from, const std::vector<double>& to,
+                              bool measuring_path) {
+  auto check = [&](const std::vector<double>& a, const std::vector<double>& b) {
+    return measuring_path ? guard_->CheckMeasuringPath(a, b) : guard_->CheckMove(a, b);
+  };
+  const size_t t = static_cast<size_t>(config_.tool_storage_drive);
+  const ToolStorageAxis& ts = tool_storage_;
+  const bool indexing = ToolStorageNc() && (ts.positioning || ts.stepping) && t < from.size() &&
+                        t < to.size() && from[t] == to[t] && ts.target != from[t];
+  if (!indexing) return check(from, to);
+  // The two motions run side by side, each at its own pace: vmt checks the edges of what they
+  // span together - the axis move with the turret where it stands and at its target station
+  // (where it will be once the index ends, most likely before the axes arrive), and the rest
+  // of the index with the axes at the move's start and at its end. Not every timing: a contact
+  // inside what they span with all four edges clear is not excluded (MRY makes it sure). The
+  // first contact found is the answer; clear, the check with the smallest clearance.
+  std::vector<double> a = from, b = to;
+  a[t] = b[t] = ts.target;
+  std::vector<double> sweep_from = from, sweep_to = from;
+  sweep_to[t] = ts.target;
+  std::vector<double> sweep_end_from = to, sweep_end_to = to;
+  sweep_end_to[t] = ts.target;
+  PathCheck best = check(a, b);
+  if (!best.clear) return best;
+  for (const PathCheck& c :
+       {check(from, to), guard_->CheckMove(sweep_from, sweep_to),
+        guard_->CheckMove(sweep_end_from, sweep_end_to)}) {
+    if (!c.clear) return c;
+    if (c.min_clearance < best.min_clearance) best = c;
+  }
+  return best;
+}
+
+bool Channel::GuardTurretIndex(const std::string& move, double target) {
+  if (!guard_ || config_.path_guard == GuardReaction::kOff) return true;
+  const size_t t = static_cast<size_t>(config_.tool_storage_drive);
+  std::vector<double> from = GuardFrom();
+  if (t >= from.size()) return true;
+  // From where the command stands: an index may start while the last one is still on its way.
+  // The axes stand where the channel commands them; a T word's block may move them as the
+  // turret turns (asynchronously), which its own move's check (if it has one) covers.
+  from[t] = tool_storage_.command;
+  std::vector<double> to = from;
+  to[t] = target;
+  if (from[t] == to[t]) return true;
+  const PathCheck c = guard_->CheckMove(from, to);
+  if (c.clear) {
+    guard_records_.push_back({move, from, to, c, 1, false});
+    return true;
+  }
+  return !GuardStops(move, from, to, c);
+}
+
+void Channel::GuardTurretJog(int key, double dt) {
+  ToolStorageAxis& t = tool_storage_;
+  // A stopped key stays stopped until it is released (or the other way is pressed).
+  if (t.blocked != 0 && key != t.blocked) t.blocked = 0;
+  if (!guard_ || config_.path_guard == GuardReaction::kOff) return;
+  const int pressed = key != t.blocked ? key : 0;
+  const int dir = pressed != 0 ? pressed : t.velocity > 0 ? 1 : t.velocity < 0 ? -1 : 0;
+  if (dir == 0) {
+    if (guarded_turret_jog_) guard_records_.push_back(*guarded_turret_jog_);
+    guarded_turret_jog_.reset();
+    turret_guard_countdown_ = 0;
+    return;
+  }
+  if (guarded_turret_jog_ && --turret_guard_countdown_ > 0) return;
+  turret_guard_countdown_ = config_.path_guard_every;
+  // As GuardJog: where the turret would stand if it braked at the next check, having run on
+  // (and sped up) for one check interval first while the key is held.
+  const axes::AxisParameters& axis = config_.tool_storage;
+  const double accel = axis.acceleration > 0 ? axis.acceleration : 360;
+  const double interval = config_.path_guard_every * dt + dt;
+  const double v = pressed == 0 ? std::abs(t.velocity)
+                                : std::min(std::abs(t.velocity) + accel * interval,
+                                           std::max(JogSpeed(axis), std::abs(t.velocity)));
+  const size_t d = static_cast<size_t>(config_.tool_storage_drive);
+  std::vector<double> from = GuardFrom();
+  if (d >= from.size()) return;
+  from[d] = t.command;
+  std::vector<double> to = from;
+  to[d] = t.command + dir * (v * v / (2 * accel) + v * (pressed == 0 ? dt : interval));
+  const std::string move = dir > 0 ? "turret index MGPOS" : "turret index MGNEG";
+  const PathCheck c = guard_->CheckMove(from, to);
+  if (c.clear) {
+    if (!guarded_turret_jog_) {
+      guarded_turret_jog_ = GuardRecord{move, from, to, c, 1, false};
+    } else {
+      GuardRecord& r = *guarded_turret_jog_;
+      r.to = to;
+      ++r.checks;
+      if (c.min_clearance < r.check.min_clearance) r.check = c;
+    }
+    return;
+  }
+  if (guarded_turret_jog_) guard_records_.push_back(*guarded_turret_jog_);
+  guarded_turret_jog_.reset();
+  if (!GuardStops(move, from, to, c)) return;
+  t.blocked = pressed != 0 ? pressed : dir;
+}
+
+bool Channel::GuardSpindleStart(const std::string& move, const DriveSetpoint& sp) {
+  if (!guard_ || config_.path_guard == GuardReaction::kOff || config_.spindle_drive < 0)
+    return true;
+  // A spindle already turning sweeps its chuck now: the moves are checked against that. One
+  // standing starts to turn on a speed, or on a position other than the one it holds (M19).
+  const bool turning = spindle_.mode == DriveMode::kVelocity && spindle_.value != 0;
+  const bool starts = sp.mode == DriveMode::kVelocity
+                          ? sp.value != 0
+                          : !(spindle_.mode == DriveMode::kPosition && spindle_.value == sp.value);
+  if (turning || !starts) return true;
+  const std::vector<double> at = GuardFrom();
+  const PathCheck c = guard_->CheckSpindleStart(at, config_.spindle_drive);
+  if (c.clear) {
+    guard_records_.push_back({move, at, at, c, 1, false});
+    return true;
+  }
+  return !GuardStops(move, at, at, c);
+}
+
+}  // namespace vmt::control::channel
