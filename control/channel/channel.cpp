@@ -175,6 +175,7 @@ bool Channel::Reverse() {
   for (size_t a = 0; a < position.size(); ++a) position[a] = commanded_[a] - translation_[a];
   interpreter_->SetPosition(position);
   reversing_ = true;
+  programmed_stop_.Leave();
   state_ = ChannelState::kRunning;
   // Fast measurement 4.4: the stylus first travels its reverse vectors back.
   StartReversal();
@@ -323,6 +324,9 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
           carry_speed_ = carry_accel_ = carry_leftover_ = 0;
         }
       }
+      // M00 / M01: the block is done, its functions acknowledged; the channel holds.
+      if (finished && programmed_stop_.Finish() && state_ == ChannelState::kRunning)
+        state_ = ChannelState::kHold;
       if (finished && single_block_ && state_ == ChannelState::kRunning)
         state_ = ChannelState::kHold;
     }
@@ -436,8 +440,14 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
     const nc::Statement& st = program.statements[index];
     std::string name = st.kind == nc::Statement::Kind::kHashCommand ? "#" + program.texts[st.text]
                                                                     : program.symbols.Name(st.name);
-    if (st.kind == nc::Statement::Kind::kHashCommand && SteersBlockSearch(program.texts[st.text]))
-      name.clear();
+    if (st.kind == nc::Statement::Kind::kHashCommand) {
+      if (const std::string refused = RefusedHashCommand(program.texts[st.text]);
+          !refused.empty()) {
+        Fail(nc::Format({st.pos, refused}, program.files), kMsgNotAvailable);
+        return false;
+      }
+      if (SteersBlockSearch(program.texts[st.text])) name.clear();
+    }
     // REPOS manual 4.2 Tool Storage Axis: in the REPOS subroutine MTP returns the tool storage
     // axis to where it was; the PLC controls the turret, so the NC outputs the T word of the
     // interruption again. MRY waits for the tool storage axis, which the acknowledgement of
@@ -514,6 +524,7 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
     if (!aux_output_.empty()) ++aux_strobe_;
   }
 
+  programmed_stop_.Prepare(block_);
   dwell_left_s_ = block_.dwell_s;
   if (block_.end) state_ = ChannelState::kEnded, reversing_ = false;
   if (block_.motion == nc::Motion::kNone && !block_.homing && !block_.repos) return true;

@@ -59,6 +59,7 @@ void Channel::Start() {
     return;
   }
   if (state_ == ChannelState::kHold) {
+    programmed_stop_.Leave();
     if (StartReplay()) return;
     if (StartBlockSearchHold()) return;
     // Fast measurement 6.1, Q9998: the new start acknowledges OVERSIZE / UNDERSIZE.
@@ -126,6 +127,7 @@ void Channel::Reset() {
   dwell_left_s_ = 0;
   orienting_ = false;
   aux_output_.clear();
+  programmed_stop_.Leave();
   tool_storage_.positioning = tool_storage_.programmed = tool_storage_wait_ = false;
   if (repos_run_) SwapProgramInWork();
   parked_ = ProgramInWork{};
