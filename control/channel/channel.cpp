@@ -295,6 +295,10 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
         finished = !orienting_;
       } else if (measuring_ && !active_) {
         finished = MeasuringCycle(at);
+      } else if (!active_ && state_ == ChannelState::kRunning && programmed_stop_.Finish()) {
+        // M00 / M01: the block before is done, its motion and the acknowledgement of its
+        // functions included; the channel holds before the next one.
+        state_ = ChannelState::kHold;
       } else if (!active_ && state_ == ChannelState::kRunning) {
         finished = NextBlock(at) && !active_ && dwell_left_s_ <= 0 && !orienting_ &&
                    waiting_for_ == axes::HeadstockMode::kNone;
@@ -324,9 +328,6 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
           carry_speed_ = carry_accel_ = carry_leftover_ = 0;
         }
       }
-      // M00 / M01: the block is done, its functions acknowledged; the channel holds.
-      if (finished && programmed_stop_.Finish() && state_ == ChannelState::kRunning)
-        state_ = ChannelState::kHold;
       if (finished && single_block_ && state_ == ChannelState::kRunning)
         state_ = ChannelState::kHold;
     }

@@ -103,6 +103,7 @@ void Channel::Start() {
   if (state_ == ChannelState::kRunning || state_ == ChannelState::kError) return;
   // Start after the end runs the program again from its first block.
   if (state_ == ChannelState::kEnded) ForgetEndedProgram();
+  programmed_stop_.Leave();
   state_ = ChannelState::kRunning;
   start_pending_ = true;  // positions are taken from the feedback at the next tick
 }

@@ -25,9 +25,11 @@ void Ticks(Machine& m, double s) {
 
 uint32_t StopConditions(const Machine& m) { return m.channel->block_search().stop_conditions; }
 
+/// Runs until the channel holds, and on for the drives' fine interpolation of the last cycle.
 bool RunUntilHeld(Machine& m, double limit_s = 10) {
   const double end = m.t + limit_s;
   while (m.channel->state() == ChannelState::kRunning && m.t < end) m.Tick();
+  Ticks(m, 0.002);
   return m.channel->state() == ChannelState::kHold;
 }
 
@@ -111,6 +113,27 @@ TEST(ChannelProgramStopTest, FeedHoldAndControlResetLeaveNoProgrammedStop) {
   m.channel->Reset();
   Ticks(m, 0.01);
   EXPECT_EQ(StopConditions(m), 0u);
+}
+
+TEST(ChannelProgramStopTest, OverrideZeroDwellAndSingleBlockAreTheirOwnStopConditions) {
+  Machine m("N1 G01 X10 F6000\nN2 G00 X20\nN3 G04 F0.5\nN4 RET\n");
+  m.channel->Start();
+  Ticks(m, 0.05);
+  m.channel->SetFeedOverride(0);
+  Ticks(m, 0.01);
+  EXPECT_EQ(StopConditions(m), sc::kOverrideZero);
+  m.channel->SetFeedOverride(1);
+  while (m.X() < 12 && m.t < 5) m.Tick();
+  m.channel->SetFeedOverride(0);
+  Ticks(m, 0.01);
+  EXPECT_EQ(StopConditions(m), sc::kOverrideRapidZero);
+  m.channel->SetFeedOverride(1);
+  while (m.X() < 20 && m.t < 5) m.Tick();
+  Ticks(m, 0.1);
+  EXPECT_EQ(StopConditions(m), sc::kDelayTime);
+  m.channel->SetSingleBlock(true);
+  ASSERT_TRUE(RunUntilHeld(m));
+  EXPECT_EQ(StopConditions(m), sc::kSingleBlock);
 }
 
 TEST(ChannelProgramStopTest, AnAxisExchangeAndASuspendedOutputAreStopConditions) {
