@@ -5,10 +5,16 @@
 namespace vmt::control::channel {
 
 bool SteersBlockSearch(std::string_view text) {
-  for (const char* c :
-       {"DISTANCE PROG START", "BLOCKSEARCH", "CAX TRACK", "CAXTRACK", "VECTOR OFFSET"})
+  for (const char* c : {"DISTANCE PROG START", "BLOCKSEARCH", "CAX TRACK", "CAXTRACK"})
     if (text.starts_with(c)) return true;
   return false;
+}
+
+std::string RefusedHashCommand(std::string_view text) {
+  if (text.starts_with("VECTOR OFFSET"))
+    return "#VECTOR OFFSET (path-dependent angle correction, block search 4.2.3) is not "
+           "available: vmt has no tool orientation angles (ANC, DRC) to offset";
+  return "";
 }
 
 std::optional<bool> CaxTrackCommand(std::string_view text) {

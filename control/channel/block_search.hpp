@@ -77,7 +77,8 @@ enum class BlockSearchState : uint8_t {
 };
 const char* ToString(BlockSearchState s);  ///< "HLI_BS_ACTIVE", ...
 
-/// stop_conditions_r, HLI_SC_* (5.6): why the path stands.
+/// stop_conditions_r, HLI_SC_* (5.6): why the path stands. The bits vmt sets; the catalog's
+/// table (signal_catalog_block_search.cpp) says for each of the others why vmt never sets it.
 namespace stop_condition {
 inline constexpr uint32_t kFeedhold = 0x0001;
 inline constexpr uint32_t kSingleBlock = 0x0004;
@@ -87,11 +88,15 @@ inline constexpr uint32_t kOverrideZero = 0x0040;
 inline constexpr uint32_t kOverrideRapidZero = 0x0080;
 inline constexpr uint32_t kDelayTime = 0x0200;
 inline constexpr uint32_t kIpoInputEmpty = 0x1000;
+inline constexpr uint32_t kIpoInputDisabled = 0x2000;
+inline constexpr uint32_t kWaitForAxes = 0x8000;
 inline constexpr uint32_t kChannelError = 0x00010000;
 inline constexpr uint32_t kWaitTechnoAck = 0x00020000;
 inline constexpr uint32_t kWaitContinueAfterCollision = 0x00040000;
+inline constexpr uint32_t kStopReversible = 0x00200000;
 inline constexpr uint32_t kBreakpointStop = 0x00400000;
 inline constexpr uint32_t kM0Stop = 0x02000000;
+inline constexpr uint32_t kM1Stop = 0x04000000;
 }  // namespace stop_condition
 
 /// The status data of block search and path the PLC reads (5.5, 5.6), as of the last NC cycle.
@@ -138,9 +143,13 @@ class ContinueMatcher {
 
 /// True for the #-commands that steer block search and the return to the contour, as the ISG
 /// front end keeps their text ("CAXTRACK ON [ANGLIMIT 3, OFFSET 0]"): #DISTANCE PROG START
-/// (4.1.2), #BLOCKSEARCH (6), #CAX TRACK (4.2.2; the manual's program spells it #CAXTRACK) and
-/// #VECTOR OFFSET (4.2.3). A normal run passes them.
+/// (4.1.2), #BLOCKSEARCH (6) and #CAX TRACK (4.2.2; the manual's program spells it #CAXTRACK).
+/// A normal run passes them. #VECTOR OFFSET (4.2.3) is not one: vmt refuses it.
 bool SteersBlockSearch(std::string_view text);
+
+/// The refusal of a #-command (text as in SteersBlockSearch) that vmt does not run, naming it
+/// and why; empty for any other text.
+std::string RefusedHashCommand(std::string_view text);
 
 /// #CAX TRACK ON / OFF (4.2.2): true for ON, false for OFF, nothing for any other text.
 std::optional<bool> CaxTrackCommand(std::string_view text);

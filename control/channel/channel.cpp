@@ -175,6 +175,7 @@ bool Channel::Reverse() {
   for (size_t a = 0; a < position.size(); ++a) position[a] = commanded_[a] - translation_[a];
   interpreter_->SetPosition(position);
   reversing_ = true;
+  programmed_stop_.Leave();
   state_ = ChannelState::kRunning;
   // Fast measurement 4.4: the stylus first travels its reverse vectors back.
   StartReversal();
@@ -305,6 +306,10 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
         finished = !orienting_;
       } else if (measuring_ && !active_) {
         finished = MeasuringCycle(at);
+      } else if (!active_ && state_ == ChannelState::kRunning && programmed_stop_.Finish()) {
+        // M00 / M01: the block before is done, its motion and the acknowledgement of its
+        // functions included; the channel holds before the next one.
+        state_ = ChannelState::kHold;
       } else if (!active_ && state_ == ChannelState::kRunning) {
         finished = NextBlock(at) && !active_ && dwell_left_s_ <= 0 && !orienting_ &&
                    waiting_for_ == axes::HeadstockMode::kNone;
@@ -447,8 +452,14 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
     const nc::Statement& st = program.statements[index];
     std::string name = st.kind == nc::Statement::Kind::kHashCommand ? "#" + program.texts[st.text]
                                                                     : program.symbols.Name(st.name);
-    if (st.kind == nc::Statement::Kind::kHashCommand && SteersBlockSearch(program.texts[st.text]))
-      name.clear();
+    if (st.kind == nc::Statement::Kind::kHashCommand) {
+      if (const std::string refused = RefusedHashCommand(program.texts[st.text]);
+          !refused.empty()) {
+        Fail(nc::Format({st.pos, refused}, program.files), kMsgNotAvailable);
+        return false;
+      }
+      if (SteersBlockSearch(program.texts[st.text])) name.clear();
+    }
     // REPOS manual 4.2 Tool Storage Axis: in the REPOS subroutine MTP returns the tool storage
     // axis to where it was; the PLC controls the turret, so the NC outputs the T word of the
     // interruption again. MRY waits for the tool storage axis, which the acknowledgement of
@@ -530,6 +541,7 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
     if (!aux_output_.empty()) ++aux_strobe_;
   }
 
+  programmed_stop_.Prepare(block_);
   dwell_left_s_ = block_.dwell_s;
   if (block_.end) state_ = ChannelState::kEnded, reversing_ = false;
   if (block_.motion == nc::Motion::kNone && !block_.homing && !block_.repos) return true;

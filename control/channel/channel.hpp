@@ -26,6 +26,7 @@
 #include "control/channel/look_ahead.hpp"
 #include "control/channel/path_memory.hpp"
 #include "control/channel/path_profile.hpp"
+#include "control/channel/programmed_stop.hpp"
 #include "control/channel/repositioning.hpp"
 #include "control/channel/spindle_synchronous_motion.hpp"
 #include "control/channel/tool_radius_compensation.hpp"
@@ -178,6 +179,8 @@ class Channel {
   bool SpindleAtSpeedLimit() const;
   /// Single block (semi-automatic): after each block the channel holds until the next start.
   void SetSingleBlock(bool on) { single_block_ = on; }
+  /// The optional-stop signal: M01 holds like M00 while it is set (programmed_stop.hpp).
+  void SetOptionalStop(bool on) { programmed_stop_.optional = on; }
   /// Changes the mode; refused (false) while a program runs. An interrupted program (hold)
   /// stays interrupted: the axes may be jogged away and the program continued later.
   bool SetMode(ChannelMode mode);
@@ -430,6 +433,7 @@ class Channel {
   std::string error_;
   double override_ = 1.0;
   bool single_block_ = false;
+  ProgrammedStop programmed_stop_;  ///< M00 / M01
 
   // The block in work.
   bool active_ = false;

@@ -292,6 +292,10 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
     const nc::Statement& st = program.statements[index];
     if (st.kind == nc::Statement::Kind::kHashCommand) {
       const std::string& text = program.texts[st.text];
+      if (const std::string refused = RefusedHashCommand(text); !refused.empty()) {
+        Fail(nc::Format({st.pos, refused}, program.files), kMsgNotAvailable);
+        return false;
+      }
       // 4.2.2: whether the C axis tracks the contour at the continue position.
       if (const auto on = CaxTrackCommand(text)) s.cax_track = *on;
       if (SteersBlockSearch(text)) continue;
@@ -535,17 +539,43 @@ void Channel::UpdateBlockSearchStatus() {
   const bool hold = state_ == ChannelState::kHold;
   if (breakpoint_hold_) sc |= kBreakpointStop;
   if (hold && single_block_) sc |= kSingleBlock;
+  // M00 / M01 (programmed_stop.hpp). STOP_REVERSIBLE: at an M00 the program may still be
+  // travelled back (channel_backward.cpp) while the path memory holds a path to take.
+  const ProgrammedStop::Kind programmed = hold ? programmed_stop_.held : ProgrammedStop::Kind::kNone;
+  if (programmed == ProgrammedStop::Kind::kM00)
+    sc |= kM00OrM01 | kM0Stop | (path_memory_.empty() ? 0 : kStopReversible);
+  if (programmed == ProgrammedStop::Kind::kM01) sc |= kM00OrM01 | kM1Stop;
+  // Q9998 (fast measurement 6.1, fault category 2) holds the program with a fault message: an
+  // error in the channel that a new start acknowledges, not a feed hold.
+  const bool measuring_fault = hold && error_number_ == kMsgMeasuringContinuable;
+  if (measuring_fault) sc |= kChannelError;
   const bool search_hold = bs_state_ == BlockSearchState::kWaitReturnToContour ||
                            bs_state_ == BlockSearchState::kWaitForContinueContour;
-  if (hold && !breakpoint_hold_ && !single_block_ && !search_hold) sc |= kFeedhold;
+  if (hold && !breakpoint_hold_ && !single_block_ && !search_hold &&
+      programmed == ProgrammedStop::Kind::kNone && !measuring_fault)
+    sc |= kFeedhold;
   if (!aux_output_.empty()) sc |= kPlcAcknowledge | kWaitTechnoAck;
-  // The search waits for a changeover's acknowledgement as for a technology function's.
-  if (bs_state_ == BlockSearchState::kActive && waiting_for_ != axes::HeadstockMode::kNone)
-    sc |= kWaitTechnoAck;
+  // A changeover waits for the PLC's ROTMOD / SPMOD acknowledgement (C-axis manual 2.3), in the
+  // search as in a run: a technology function's acknowledgement. Meanwhile, as while MRY waits
+  // for the tool storage axis, block preparation delivers nothing: the interpolator's input
+  // is empty.
+  if (waiting_for_ != axes::HeadstockMode::kNone) sc |= kWaitTechnoAck;
+  if (running && !active_ && (waiting_for_ != axes::HeadstockMode::kNone || tool_storage_wait_))
+    sc |= kIpoInputEmpty;
+  // Block search 4.2.1: the axes change hands at standstill only; until then the channel
+  // waits for the exchange it asked for. While its output is suspended a program (not a
+  // search, which decodes on) reads no blocks.
+  if ((suspend_requested_ || axes_elsewhere_) != output_suspended_) sc |= kWaitForAxes;
+  if (output_suspended_ && (running || hold) && bs_state_ == BlockSearchState::kInactive)
+    sc |= kIpoInputDisabled;
   if (running && active_ && override_ == 0)
     sc |= block_.motion == nc::Motion::kRapid ? kOverrideRapidZero : kOverrideZero;
   if (dwell_left_s_ > 0) sc |= kDelayTime;
   if (state_ == ChannelState::kError) sc |= kChannelError;
+  // PathGuard stops a move before a contact with an NC error (kMsgCollision): the motion
+  // stands after a detected collision until Control-Reset.
+  if (state_ == ChannelState::kError && error_number_ == kMsgCollision)
+    sc |= kWaitContinueAfterCollision;
   st.stop_conditions = sc;
   st.warnings = bs_warnings_;
 }

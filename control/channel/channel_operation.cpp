@@ -75,6 +75,7 @@ void Channel::Start() {
     return;
   }
   if (state_ == ChannelState::kHold) {
+    programmed_stop_.Leave();
     if (StartReplay()) return;
     if (StartBlockSearchHold()) return;
     // Fast measurement 6.1, Q9998: the new start acknowledges OVERSIZE / UNDERSIZE.
@@ -131,6 +132,7 @@ void Channel::Start() {
   if (state_ == ChannelState::kRunning || state_ == ChannelState::kError) return;
   // Start after the end runs the program again from its first block.
   if (state_ == ChannelState::kEnded) ForgetEndedProgram();
+  programmed_stop_.Leave();
   state_ = ChannelState::kRunning;
   start_pending_ = true;  // positions are taken from the feedback at the next tick
 }
@@ -155,6 +157,7 @@ void Channel::Reset() {
   dwell_left_s_ = 0;
   orienting_ = false;
   aux_output_.clear();
+  programmed_stop_.Leave();
   tool_storage_.positioning = tool_storage_.programmed = tool_storage_wait_ = false;
   if (repos_run_) SwapProgramInWork();
   parked_ = ProgramInWork{};

@@ -305,7 +305,9 @@ void Channel::LookAhead(const AmplifierTelegram& at) {
   continuation_ready_ = false;
   targets_.clear();
   // The blocks of approach moves start at rest: PathGuard may refuse each before it moves.
-  if (single_block_ || state_ != ChannelState::kRunning || !feed_move(block_.motion) ||
+  // A block with M00 / M01 ends at rest: the stop is decided at its end.
+  if (single_block_ || programmed_stop_.pending != ProgrammedStop::Kind::kNone ||
+      state_ != ChannelState::kRunning || !feed_move(block_.motion) ||
       block_.end || homing_ || !motion_.moves || repos_run_ || config_.approach_program)
     return;
   const double cycle_s = config_.tick_s * config_.ticks_per_cycle;

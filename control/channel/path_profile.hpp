@@ -371,6 +371,15 @@ struct PathProfile {
           cruise * t + std::min({jerk * t * t * t / 32, max_a * t * t / 4, (target - cruise) * t});
       if (t >= 0 && b.distance + spare + precision >= remaining) return arrive(end, 0);
     }
+    // At rest, not held, and the rest of the block no longer than what a pulse of the
+    // acceleration within the limits covers in this cycle: arrive, at rest. A block shorter than
+    // such a pulse would otherwise ask the search below for an acceleration far finer than it
+    // resolves, find none and never start.
+    if (!through && v <= 0 && std::abs(a) <= jdt && target > 0) {
+      const double pulse =
+          std::min({jerk * dt * dt * dt / 32, max_a * dt * dt / 4, target * dt});
+      if (pulse + precision >= remaining) return arrive(0, 0);
+    }
 
     // Candidate states at the end of the cycle.
     const auto step = [&](double x) {
@@ -489,6 +498,21 @@ struct PathProfile {
           next = step(0);
         else if (-a <= jdt)
           next = State{u + v * v / (-2 * a), 0, 0};
+      }
+    }
+
+    // At rest with the path to go and a feed: a state that does not move repeats itself in every
+    // cycle, so the block would never end. The search above resolves the acceleration to a
+    // billionth of jerk * dt in a few steps; the one that lands on the braking curve may lie
+    // below that. The overshoot is continuous in x and -(distance to go) at x = 0, so halving
+    // from the largest reachable acceleration finds one that fits, and the path starts.
+    if (next.u <= u && next.v <= 0 && v <= 0 && target > 0 && remaining > 0) {
+      for (double xx = x_max; xx > 0 && std::isfinite(xx); xx /= 2) {
+        const State s = step(xx);
+        if (s.u > u && fits(s)) {
+          next = s;
+          break;
+        }
       }
     }
 

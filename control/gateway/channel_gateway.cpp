@@ -38,6 +38,7 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
   auxack_.id = Id(c + "AUXACK");
   stop_ = Id(c + "STOP");
   sbl_ = Id(c + "SBL");
+  opstp_ = Id(c + "OPSTP");
   fovr_ = Id(c + "FOVR");
   if (fovr_ >= 0) last_fovr_ = image.Int(fovr_);  // only changes act (see ReadControls)
   enabl_ = Id(c + "ENABL");
@@ -230,6 +231,8 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
   // Levels act when they change, so that the operator's other ways in (a scene's nc: steps)
   // are not overwritten every cycle.
   if (sbl_ >= 0 && im.Bool(sbl_) != last_sbl_) ch.SetSingleBlock(last_sbl_ = im.Bool(sbl_));
+  if (opstp_ >= 0 && im.Bool(opstp_) != last_opstp_)
+    ch.SetOptionalStop(last_opstp_ = im.Bool(opstp_));
   if (fovr_ >= 0) {
     const int64_t percent = im.Int(fovr_);
     if (percent != last_fovr_)

@@ -50,7 +50,7 @@ class ChannelGateway {
 
   SignalImage* image_;
   Edge auto_, manu_, mdi_, start_, reset_, rev_, auxack_;
-  int stop_ = -1, sbl_ = -1, fovr_ = -1, jogm_[3] = {-1, -1, -1};
+  int stop_ = -1, sbl_ = -1, opstp_ = -1, fovr_ = -1, jogm_[3] = {-1, -1, -1};
   int repos_ = -1, resta_ = -1;  ///< PxxC.REPOS, PxxC.RESTA
   /// PxxC.MGPOS / PxxC.MGNEG: the tool storage axis' jog keys (REPOS manual 3.4).
   int mgpos_ = -1, mgneg_ = -1, last_mg_key_ = 0;
@@ -68,7 +68,7 @@ class ChannelGateway {
   bool spindle_key_enabled_ = true;   ///< spindle_enabled_ when its jog key was last read
   int sovr_ = -1, spindle_homed_ = -1;
   int64_t last_sovr_ = -1;
-  bool last_sbl_ = false;
+  bool last_sbl_ = false, last_opstp_ = false;
   int last_jogm_ = -1;
   struct AxisSignals {
     int jgpos = -1, jgneg = -1, mvpos = -1, mvneg = -1, homed = -1;

@@ -131,6 +131,10 @@ constexpr SignalFamily kPanelAndAxisFamilies[] = {
     {"PxxC.START", kProcess, kBool, kPlcToNc,
      "Cycle start (rising edge): start or continue the program (advance program start)",
      "vmt (start button: " REPOS "2.3; ADVANCE: " FMEAS "6.1)"},
+    {"PxxC.OPSTP", kProcess, kBool, kPlcToNc,
+     "Optional stop: while 1, M01 holds the program after its block like M00 (the M function "
+     "still goes to the PLC)",
+     "vmt (optional stop: " BSRCH "5.6 HLI_SC_M1_STOP)"},
     {"PxxC.STOP", kProcess, kBool, kPlcToNc,
      "Cycle stop (feed hold): brake on the path and interrupt the program while 1",
      "vmt (program interruption: " REPOS "2.1)"},

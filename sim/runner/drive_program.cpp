@@ -165,6 +165,9 @@ bool DriveProgram::Execute(const TimelineStep& step, double t_s,
     case Kind::kNcSingleBlock:
       if (channel_) channel_->SetSingleBlock(step.level);
       return true;
+    case Kind::kNcOptionalStop:
+      if (channel_) channel_->SetOptionalStop(step.level);
+      return true;
     case Kind::kNcMode:
       if (channel_ && !channel_->SetMode(static_cast<control::channel::ChannelMode>(step.code))) {
         failures_.push_back(step.text + ": refused while the program runs");

@@ -110,6 +110,7 @@ struct TimelineStep {
     kNcReset,
     kNcOverride,
     kNcSingleBlock,
+    kNcOptionalStop,
     kNcMode,
     kNcJogIncrement,
     kNcJogMode,

@@ -404,6 +404,11 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
       s.kind = TimelineStep::Kind::kNcSingleBlock;
       s.level = a["single_block"].Bool();
       text << "single block " << (s.level ? "on" : "off");
+    } else if (a.IsMap() && a.Has("optional_stop")) {
+      a.AllowKeys({"optional_stop"});
+      s.kind = TimelineStep::Kind::kNcOptionalStop;
+      s.level = a["optional_stop"].Bool();
+      text << "optional stop " << (s.level ? "on" : "off");
     } else if (a.IsMap()) {
       a.AllowKeys({"override"});
       s.kind = TimelineStep::Kind::kNcOverride;
@@ -423,7 +428,7 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
       else
         a.Fail(
             "expected start, stop, reset, reverse, {mode: ..}, {override: percent}, "
-            "{single_block: bool}, {jog_increment: mm}, {jog_mode: 0..7} or {mdi: blocks}");
+            "{single_block: bool}, {optional_stop: bool}, {jog_increment: mm}, {jog_mode: 0..7} or {mdi: blocks}");
       text << "NC " << cmd;
     }
     s.text = text.str();

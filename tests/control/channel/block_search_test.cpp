@@ -138,10 +138,17 @@ TEST(DistanceOf, MainAxesLineArcAndFollowingAxis) {
 TEST(BlockSearch, SteeringCommandsAndCaxTrack) {
   // The texts as the ISG front end keeps them: upper case, single spaces.
   for (const char* text : {"DISTANCE PROG START ON", "BLOCKSEARCH LOCKED", "CAX TRACK ON",
-                           "CAXTRACK ON [ANGLIMIT 3, OFFSET 0]", "VECTOR OFFSET OFF ALL"})
+                           "CAXTRACK ON [ANGLIMIT 3, OFFSET 0]"}) {
     EXPECT_TRUE(SteersBlockSearch(text)) << text;
-  for (const char* text : {"CALL AX [X, 1, 1]", "CAX", "TRACK ON"})
+    EXPECT_EQ(RefusedHashCommand(text), "") << text;
+  }
+  for (const char* text : {"CALL AX [X, 1, 1]", "CAX", "TRACK ON", "VECTOR OFFSET OFF ALL"})
     EXPECT_FALSE(SteersBlockSearch(text)) << text;
+  // 4.2.3: vmt has no orientation angles for #VECTOR OFFSET to correct: refused, not passed.
+  EXPECT_NE(RefusedHashCommand("VECTOR OFFSET ON [ DS=20 DE=15 ANC=2 DRC=3 ]").find(
+                "#VECTOR OFFSET (path-dependent angle correction, block search 4.2.3) is not "
+                "available"),
+            std::string::npos);
   // 4.2.2: the heading spells #CAX TRACK, the manual's program #CAXTRACK.
   EXPECT_EQ(CaxTrackCommand("CAXTRACK ON [ANGLIMIT 3, OFFSET 0]"), true);
   EXPECT_EQ(CaxTrackCommand("CAX TRACK ON"), true);

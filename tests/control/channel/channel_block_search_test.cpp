@@ -273,6 +273,32 @@ TEST(ChannelBlockSearch, DistanceBeforeTheBlockWarnsAndContinuesAtItsStart) {
   EXPECT_THAT(m.channel->block_search().warnings[0], HasSubstr("lies before the block"));
 }
 
+TEST(ChannelBlockSearch, VectorOffsetIsRefusedAtItsWordInARunAndInASearch) {
+  // 4.2.3: vmt has no orientation angles for #VECTOR OFFSET to correct; it refuses the command
+  // where it stands rather than pass it.
+  const std::string program =
+      "%t_sv_number.nc\n"
+      "N10 G00 G90 X2 Y2\n"
+      "N20 #VECTOR OFFSET ON [ DS=1 DE=1 ANC=0.5 DRC=0.2]\n"
+      "N30 G01 X10 F500\n"
+      "N40 M30\n";
+  const std::string refusal =
+      "t_sv_number.nc:3:5: error: #VECTOR OFFSET (path-dependent angle correction, block "
+      "search 4.2.3) is not available";
+  Mill run(program);
+  run.channel->Start();
+  run.RunUntil([&] { return run.channel->state() != ChannelState::kRunning; });
+  ASSERT_EQ(run.channel->state(), ChannelState::kError);
+  EXPECT_THAT(run.channel->error(), HasSubstr(refusal));
+  EXPECT_EQ(run.X(), 2);  // N30 never ran
+  Mill search(program);
+  search.Search(testing::BlockNumberSearch(30));
+  search.RunUntil([&] { return search.channel->state() == ChannelState::kError; }, 5);
+  ASSERT_EQ(search.channel->state(), ChannelState::kError);
+  EXPECT_THAT(search.channel->error(), HasSubstr(refusal));
+  EXPECT_FALSE(search.moved);
+}
+
 TEST(ChannelBlockSearch, G74BeyondTheBlockBoundaryIsAnError) {
   // Figure 17: searching on by distance past a G74 cannot simulate it.
   Mill m(kDistance);

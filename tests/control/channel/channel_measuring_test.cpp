@@ -131,6 +131,8 @@ TEST(ChannelMeasuring, OversizeHoldsTheProgramAndStartContinuesIt) {
   EXPECT_EQ(l.m.channel->error_number(), kMsgMeasuringContinuable);
   EXPECT_NE(l.m.channel->error().find("OVERSIZE"), std::string::npos) << l.m.channel->error();
   EXPECT_EQ(l.q_functions.back(), 9998);
+  // Block search 5.6: a fault in the channel holds the program, not a feed hold.
+  EXPECT_EQ(l.m.channel->block_search().stop_conditions, stop_condition::kChannelError);
   const measure::ErgebnisPage* r = l.pages.Result(0, 1);
   ASSERT_NE(r, nullptr);
   EXPECT_EQ(r->dimensional_accuracy, 1);

@@ -2,7 +2,7 @@
 // S-curve, acceleration and jerk limits in every cycle, arrival at u = 1 exactly and never past
 // it without creeping, ending at a speed (look-ahead) and carrying it into the next block, feed
 // hold on the path, override changes, the old trapezoid without a jerk limit, extreme limits and
-// random profiles with override changes and holds.
+// random profiles with override changes and holds, blocks far shorter than a cycle.
 
 #include "control/channel/path_profile.hpp"
 
@@ -305,6 +305,29 @@ TEST(PathProfileTest, BlocksShorterThanACycleFinishInTwoCycles) {
         EXPECT_LE(Cycles(trace), 2) << Describe(p);
         EXPECT_EQ(CheckTrace(p, trace), "");
       }
+    }
+  }
+}
+
+TEST(PathProfileTest, BlocksFarShorterThanOneCyclesJerkPulseEnd) {
+  // A block of a hair (1e-15 .. 1e-6 mm at 400 mm/s, 4000 mm/s^2, 200000 mm/s^3, scaled to u)
+  // asks for an acceleration far below what one cycle's jerk resolves: it still ends, at once,
+  // from rest and with a look-ahead end rate, and in a hold it waits.
+  for (double mm = 1e-15; mm < 1e-5; mm *= 3) {
+    for (double end_share : {0.0, 0.5}) {
+      PathProfile p;
+      p.max_rate = 400 / mm;
+      p.max_accel = 4000 / mm;
+      p.max_jerk = 200000 / mm;
+      p.end_rate = end_share * p.max_rate;
+      SCOPED_TRACE(Describe(p));
+      PathProfile held = p;
+      held.Advance(kDt, 0);
+      EXPECT_EQ(held.u, 0);
+      const auto trace = Simulate(p, 10);
+      ASSERT_EQ(trace.back().u, 1.0);
+      EXPECT_LE(Cycles(trace), 2);
+      EXPECT_EQ(CheckTrace(p, trace), "");
     }
   }
 }

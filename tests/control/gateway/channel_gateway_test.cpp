@@ -85,6 +85,29 @@ TEST(ChannelGateway, AuxFunctionsWaitForAuxAckAndQFunctionsForTheirOwn) {
   EXPECT_DOUBLE_EQ(r.at.feedback[0].position, 20);
 }
 
+TEST(ChannelGateway, OptionalStopSignalMakesM01HoldAndTheStopConditionsShowIt) {
+  // M01 goes to the PLC as an M function either way; with P00C.OPSTP the program then holds
+  // (P00S.STOP) until the next start, with HLI_SC_M00_OR_M01 | HLI_SC_M1_STOP.
+  Rig r("N1 G01 X10 F3000 M01\nN2 G01 X20\nN3 G01 X30 M01\nN4 RET\n", true);
+  r.Press("P00C.START");
+  r.Cycle(10);
+  EXPECT_EQ(r.GetInt("P00S.MFUNC"), 1);
+  r.Press("P00C.AUXACK");
+  r.Cycle(1000);
+  EXPECT_DOUBLE_EQ(r.at.feedback[0].position, 20);  // through N1's M01 and on to N3's
+  EXPECT_EQ(r.GetInt("P00S.MFUNC"), 1);
+  r.Set("P00C.OPSTP", true);
+  r.Press("P00C.AUXACK");
+  r.Cycle(1000);
+  EXPECT_DOUBLE_EQ(r.at.feedback[0].position, 30);
+  EXPECT_EQ(r.ch->state(), channel::ChannelState::kHold);
+  EXPECT_TRUE(r.Get("P00S.STOP"));
+  EXPECT_EQ(r.GetInt("P00.bahn_state.stop_conditions_r") & 0x04000010, 0x04000010);
+  r.Press("P00C.START");
+  r.Cycle(10);
+  EXPECT_EQ(r.ch->state(), channel::ChannelState::kEnded);
+}
+
 TEST(ChannelGateway, EventsBetweenProgramAndPlc) {
   // SE 30 shows on P00.EV30; BES 29 tests what the PLC set on P00.EV29; an event the table
   // does not list (E500) still works inside the NC.

@@ -250,10 +250,11 @@ TEST(SignalTable, SpindleSignalsOnlyOnSpindleCapableAxes) {
 
 TEST(SignalTable, VmtNamesAreMarked) {
   const auto table = BuildSignalTable(LatheLayout());
-  for (const char* name : {"P00C.AUTO", "P00C.MANU", "P00C.MDI", "P00C.SBL", "P00C.START",
-                           "P00C.STOP", "P00C.RESET", "P00C.ENABL", "P00C.FOVR", "P00S.AUTO",
-                           "P00S.MANU", "P00S.MDI", "P00S.ERROR", "P00S.ERRNR", "A03C.SOVR",
-                           "P00.backward_motion_w", "P00.bahn_state.backward_motion_r"}) {
+  for (const char* name :
+       {"P00C.AUTO", "P00C.MANU", "P00C.MDI", "P00C.SBL", "P00C.OPSTP", "P00C.START", "P00C.STOP",
+        "P00C.RESET", "P00C.ENABL", "P00C.FOVR", "P00S.AUTO", "P00S.MANU", "P00S.MDI",
+        "P00S.ERROR", "P00S.ERRNR", "A03C.SOVR", "P00.backward_motion_w",
+        "P00.bahn_state.backward_motion_r"}) {
     const Signal* s = ByName(table, name);
     ASSERT_NE(s, nullptr) << name;
     EXPECT_EQ(s->source.rfind("vmt", 0), 0u) << name << ": " << s->source;

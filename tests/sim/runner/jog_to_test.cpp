@@ -45,16 +45,25 @@ TEST(JogToTest, EachAxisEndsAtItsPositionWhicheverWayItIs) {
 }
 
 TEST(JogToTest, AnAxisAlreadyThereIsNotJogged) {
-  // No key: an increment of 0 would be continuous jogging, and the held key would run away.
+  // No key: an increment of 0 would be continuous jogging, and the held key would run away
+  // (Z, before any increment was set); nor is the increment of the jog before repeated (X, after
+  // its jog to 120 left an increment of 10 set). That jog shows the step moves an axis that is
+  // not there yet.
   const RunResult r = RunJogScene("already_there", kNc +
-                                               "duration: 1.5\n"
+                                               "duration: 4\n"
                                                "timeline:\n"
                                                "  - nc: {mode: manual}\n"
                                                "  - wait: 0.1\n"
-                                               "  - jog: {axis: X, to: 110, hold: 1}\n"
+                                               "  - jog: {axis: Z, to: 250, hold: 1}\n"
+                                               "  - wait: 0.3\n"
+                                               "  - jog: {axis: X, to: 120}\n"
+                                               "  - wait_until: {signal: A01S.MVPOS, value: false}\n"
+                                               "  - wait: 0.3\n"
+                                               "  - jog: {axis: X, to: 120, hold: 1}\n"
                                                "  - wait: 0.3\n"
                                                "expect:\n"
-                                               "  - {axis: X, position: 110, tol: 0.0001}\n");
+                                               "  - {axis: Z, position: 250, tol: 0.0001}\n"
+                                               "  - {axis: X, position: 120, tol: 0.0001}\n");
   EXPECT_TRUE(r.ok()) << (r.failures.empty() ? "" : r.failures[0]);
 }
 
