@@ -142,8 +142,6 @@ class ContinueMatcher {
 /// #VECTOR OFFSET (4.2.3). A normal run passes them.
 bool SteersBlockSearch(std::string_view text);
 
-/// #CAX TRACK ON / OFF (4.2.2): true for ON, false for OFF, nothing for any other text.
-std::optional<bool> CaxTrackCommand(std::string_view text);
 
 /// Path length of a block's motion for the distance from program start (4.1.2): the travel of
 /// the main axes (X, Y, Z); a block that moves none of them counts the travel of the following
