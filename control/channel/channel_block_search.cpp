@@ -544,13 +544,16 @@ void Channel::UpdateBlockSearchStatus() {
   st.command = bs_command_;
   const bool moving = motion_.moves && (active_ || breakpoint_hold_);
   // A corner the compensation inserted before its block is not yet the block's own path: the
-  // per mille the search takes is measured in that (SimulateMotion).
-  double u = moving && !inserted_piece_ ? std::clamp(profile_.u, 0.0, 1.0) : 0;
+  // per mille the search takes is measured in that (SimulateMotion); nor is the C-only turn of
+  // #CAX TRACK before its block, which has not started counting its distance yet.
+  const bool aside = inserted_piece_ || cax_aligning_;
+  double u = moving && !aside ? std::clamp(profile_.u, 0.0, 1.0) : 0;
   // The breakpoint cut the block: its profile runs over the first part only.
   if (moving && breakpoint_rest_) u *= breakpoint_u_;
   st.covered_distance = u * 1000;
-  st.dist_prog_start = active_ || breakpoint_hold_ ? block_distance_start_ + u * block_distance_
-                                                   : distance_;
+  st.dist_prog_start = (active_ || breakpoint_hold_) && !cax_aligning_
+                           ? block_distance_start_ + u * block_distance_
+                           : distance_;
   st.block_count = block_.block_count;
   st.path_deviation = 0;
   st.continue_position.clear();

@@ -84,7 +84,7 @@ struct CaxMill {
            channel->block_search().state == s;
   }
   /// Runs until the channel ends or fails; each tick's (X, Y, C).
-  std::vector<std::array<double, 3>> RunToStop() {
+  std::vector<std::array<double, 3>> RunToStop(const std::function<void()>& each = {}) {
     std::vector<std::array<double, 3>> path;
     Until(
         [&] {
@@ -93,12 +93,13 @@ struct CaxMill {
         },
         [&] {
           path.push_back({X(), Y(), C()});
+          if (each) each();
         });
     return path;
   }
   /// Runs to the end; each tick's (X, Y, C).
-  std::vector<std::array<double, 3>> RunToEnd() {
-    auto path = RunToStop();
+  std::vector<std::array<double, 3>> RunToEnd(const std::function<void()>& each = {}) {
+    auto path = RunToStop(each);
     EXPECT_EQ(channel->state(), ChannelState::kEnded) << channel->error();
     return path;
   }
@@ -118,7 +119,17 @@ TEST(ChannelCaxTrack, CFollowsTheTangentInANormalRun) {
   // X and Y stand, before the block moves.
   CaxMill m(ManualExample(), {0, 0, 0, 0});
   m.channel->Start();
-  const auto path = m.RunToEnd();
+  // While C turns alone before N40, N40 has not begun: 0 per mille, and the distance from
+  // program start is N20's and N30's (4.1).
+  bool turning_seen = false;
+  const auto path = m.RunToEnd([&] {
+    if (m.X() == 10 && m.Y() == 10 && m.C() > 1e-6 && m.C() < 45 - 1e-6) {
+      turning_seen = true;
+      EXPECT_EQ(m.channel->block_search().covered_distance, 0);
+      EXPECT_NEAR(m.channel->block_search().dist_prog_start, 2 * std::hypot(5.0, 5.0), 1e-9);
+    }
+  });
+  EXPECT_TRUE(turning_seen);
   bool n30 = false, n40 = false, n70 = false, n80 = false;
   for (size_t i = 1; i < path.size(); ++i) {
     const auto [x, y, c] = path[i];
