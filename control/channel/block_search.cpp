@@ -17,18 +17,6 @@ std::string RefusedHashCommand(std::string_view text) {
   return "";
 }
 
-std::optional<bool> CaxTrackCommand(std::string_view text) {
-  for (std::string_view name : {"CAX TRACK ", "CAXTRACK "}) {
-    if (!text.starts_with(name)) continue;
-    const std::string_view rest = text.substr(name.size());
-    // ON takes its options in brackets ([ANGLIMIT 3, OFFSET 0]); they shape the tracking
-    // itself, which vmt does not run, so only ON and OFF matter here.
-    if (rest == "ON" || rest.starts_with("ON ") || rest.starts_with("ON[")) return true;
-    if (rest == "OFF" || rest.starts_with("OFF ")) return false;
-  }
-  return std::nullopt;
-}
-
 std::string CheckBlockSearch(const BlockSearchParameters& p) {
   switch (p.type) {
     case BlockSearchType::kNone:

@@ -151,9 +151,6 @@ bool SteersBlockSearch(std::string_view text);
 /// and why; empty for any other text.
 std::string RefusedHashCommand(std::string_view text);
 
-/// #CAX TRACK ON / OFF (4.2.2): true for ON, false for OFF, nothing for any other text.
-std::optional<bool> CaxTrackCommand(std::string_view text);
-
 /// Path length of a block's motion for the distance from program start (4.1.2): the travel of
 /// the main axes (X, Y, Z); a block that moves none of them counts the travel of the following
 /// axis that takes longest at its rapid limit. mm (degrees for a rotary axis alone).

@@ -333,6 +333,9 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
         // A measuring instruction's move has ended: its next step follows at once.
         if (finished && measuring_) finished = MeasuringCycle(at);
         if (finished && homing_) finished = !NextHomingStage();
+        // C is aligned (#CAX TRACK): the block's own motion follows as one unit with it.
+        if (finished && std::exchange(cax_aligning_, false))
+          finished = StartMotion(at) && !active_ && !orienting_;
         if (finished && carry_speed_ > 0) {
           // Blended: the next block runs on from here in the same cycle.
           finished = NextBlock(at) && !active_ && !orienting_;
@@ -458,8 +461,15 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
         Fail(nc::Format({st.pos, refused}, program.files), kMsgNotAvailable);
         return false;
       }
-      if (SteersBlockSearch(program.texts[st.text])) name.clear();
+      const int c = TrackedAxis();
+      if (const auto done = CaxTrackInstruction(program, st, block_,
+                                                c < 0 ? 0 : commanded_[static_cast<size_t>(c)])) {
+        if (!*done) return false;
+        continue;
+      }
     }
+    if (st.kind == nc::Statement::Kind::kHashCommand && SteersBlockSearch(program.texts[st.text]))
+      name.clear();
     // REPOS manual 4.2 Tool Storage Axis: in the REPOS subroutine MTP returns the tool storage
     // axis to where it was; the PLC controls the turret, so the NC outputs the T word of the
     // interruption again. MRY waits for the tool storage axis, which the acknowledgement of
@@ -654,12 +664,26 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
       return false;
     }
 
+  // #CAX TRACK: C's target from the path's tangent; a turn beyond ANGLIMIT runs first on its
+  // own, and the block starts when it ends (Tick).
+  nc::PreparedBlock tracked;
+  const nc::PreparedBlock* planned = &block_;
+  if (cax_track_) {
+    tracked = block_;
+    std::optional<double> align;
+    if (!TrackC(tracked, commanded_, SpindleRevPerS(at), align)) return false;
+    if (align) {
+      cax_aligning_ = true;
+      return StartCaxAlignment(*align);
+    }
+    planned = &tracked;
+  }
   if (nc::SpindleSynchronous(block_.motion)) {
     if (!repos_run_) PathBarrier();  // the spindle cannot be turned back in step
     return StartSynchronous(at);
   }
   sync_.phase = SyncPhase::kNone;
-  if (const auto error = PlanBlockMotion(block_, commanded_, translation_, config_.axes,
+  if (const auto error = PlanBlockMotion(*planned, commanded_, translation_, config_.axes,
                                          SpindleRevPerS(at), motion_, FollowUpAxes(block_))) {
     Fail(program, block_.block, error->text, error->number);
     return false;

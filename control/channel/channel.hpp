@@ -21,6 +21,7 @@
 #include "control/axes/zero_offsets.hpp"
 #include "control/channel/block_motion.hpp"
 #include "control/channel/block_search.hpp"
+#include "control/channel/cax_track.hpp"
 #include "control/channel/channel_messages.hpp"
 #include "control/channel/operator_messages.hpp"
 #include "control/channel/look_ahead.hpp"
@@ -407,6 +408,10 @@ class Channel {
   bool StartMotion(const AmplifierTelegram& at);
   void LookAhead(const AmplifierTelegram& at);
   bool ReadNext(nc::PreparedBlock& b);
+  /// The program's next block from the interpreter: every read of the program (block by
+  /// block, the look-ahead, the G41/G42 read-ahead, the search) goes through here. False at
+  /// the text's end, on an interpreter error, and at block search type 1's end position (3.1).
+  bool ReadSource(nc::PreparedBlock& b);
   bool Peek(size_t k);
   void FillCompensated(size_t elements);
   bool PeekCompensated(size_t k, nc::PreparedBlock& out);
@@ -766,7 +771,8 @@ class Channel {
     /// before its block. The per mille lies in the block's own piece: found at an inserted
     /// corner, the search runs it and takes the own piece that follows.
     bool further_piece = false, inserted_piece = false, await_own_piece = false;
-    bool cax_track = false;    ///< #CAX TRACK is on where the search has got to (4.2.2)
+    /// Type 1's end position was read (3.1): the program ends before its block.
+    bool end_reached = false;
     bool return_rest = false;  ///< C is being aligned; the other axes' return follows (4.2.2)
     /// G31 at the continue position: the return runs on the face's line, as G77 X1/Y1 does.
     bool face_return = false;
@@ -777,6 +783,20 @@ class Channel {
     double rotary_start = 0;
   };
   std::optional<BlockSearchRun> search_;
+  // #CAX TRACK (cax_track.hpp, channel_cax_track.cpp): on with its options, in a run and in
+  // the search alike; a C-only move of a turn beyond ANGLIMIT runs before the block.
+  std::optional<CaxTrackCommand> cax_track_;
+  bool cax_aligning_ = false;
+  int TrackedAxis() const;
+  /// #CAX TRACK in `st` of block `b`, C standing at `c_machine`: nothing if `st` is another
+  /// command, false if it failed (Fail called).
+  std::optional<bool> CaxTrackInstruction(const nc::Program& program, const nc::Statement& st,
+                                          nc::PreparedBlock& b, double c_machine);
+  /// While tracking: `b`'s C target from its path's tangent, the block starting at `from`;
+  /// `align_to` set (machine coordinates) when C turns alone first. False on an error.
+  bool TrackC(nc::PreparedBlock& b, const std::vector<double>& from, double rev_per_s,
+              std::optional<double>& align_to);
+  bool StartCaxAlignment(double to);
   BlockSearchParameters bs_next_, bs_started_;
   BlockSearchState bs_state_ = BlockSearchState::kInactive;
   bool bs_plc_enable_ = false, bs_plc_state_ = false, bs_command_ = false;
@@ -816,7 +836,11 @@ class Channel {
   /// The motion part of SimulateBlock; `boundary`: `b` is the block of the continue position.
   bool SimulateMotion(nc::PreparedBlock& b, bool boundary);
   /// The continue position is found at `b`, at u in its motion (planned from its start).
-  void FoundContinuePosition(const nc::PreparedBlock& b, const BlockMotion& motion, double u);
+  /// False (an error) when the breakpoint lies before it.
+  bool FoundContinuePosition(const nc::PreparedBlock& b, const BlockMotion& motion, double u);
+  /// Block search 3.5: false, with the error, if the breakpoint lies before `continue_mm`
+  /// from program start (`b`: the block where the search has got to).
+  bool BreakpointAfter(double continue_mm, const nc::PreparedBlock& b);
   void EndSearchMode();
   bool SpindleReady(const AmplifierTelegram& at) const;
   bool StartReturnToContour();
@@ -828,6 +852,9 @@ class Channel {
   bool StartBlockSearchHold();
   /// Distance bookkeeping and the breakpoint cut, when a block's motion starts (StartMotion).
   void CountDistance();
+  /// The breakpoint's cut of motion_ if it lies in the block from `from_u` on (0: its start;
+  /// the continue position's u after block search): motion_ ends there, its rest is kept.
+  void CutAtBreakpoint(double from_u);
   void DistanceCommand(const nc::PreparedBlock& b);
   void RemoveSearchOffset();
   /// Block search 3.5: the breakpoint stops the path like an M0 until the next start.

@@ -63,6 +63,8 @@ void Channel::BeginBlockSearch() {
   bs_command_ = false;
   bs_warnings_.clear();
   distance_on_ = true;  // 4.1.2: ON and CLEAR are the state at program start
+  cax_track_.reset();
+  cax_aligning_ = false;
   distance_ = block_distance_start_ = block_distance_ = 0;
   breakpoint_rest_.reset();
   breakpoint_hold_ = false;
@@ -200,7 +202,7 @@ bool Channel::NextSearchBlock() {
   };
   if (!compensating_) {
     if (headstock_) s.rotary_start = interpreter_->position()[config_.rotary_axis];
-    if (!interpreter_->Next(block_)) return text_ended();
+    if (!ReadSource(block_)) return text_ended();
     if (block_.modal.compensation == 40 || block_.motion == nc::Motion::kNone) return true;
     // G41/G42: the search reads ahead through the compensation as the run does
     // (NextBlock), so that the tip path it simulates is the one the run machines, and the
@@ -243,8 +245,11 @@ bool Channel::NextSearchBlock() {
 
 bool Channel::SimulateBlock(nc::PreparedBlock& b) {
   BlockSearchRun& s = *search_;
-  if (b.block < 0) {  // the end of the text
-    if (bs_started_.type != BlockSearchType::kProgramEnd)
+  if (b.block < 0) {  // the end of the text, or type 1's end position (ReadSource)
+    if (s.end_reached)
+      // Type 1's end position before its continue position: nothing is left to machine.
+      bs_warnings_.push_back("the end position came before the continue position");
+    else if (bs_started_.type != BlockSearchType::kProgramEnd)
       bs_warnings_.push_back(kNotFound);
     s.ends_program = true;
     bs_state_ = BlockSearchState::kWaitForPlcOff;
@@ -264,13 +269,6 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
     return fail("P-ERR-21399: the continue position lies in a region locked for block search "
                 "(#BLOCKSEARCH LOCKED)",
                 kMsgBlockSearchLocked);
-  if (s.matcher.EndMatches(b, program, b.program)) {
-    // Type 1's end position before its continue position: nothing is left to machine.
-    bs_warnings_.push_back("the end position came before the continue position");
-    s.ends_program = true;
-    bs_state_ = BlockSearchState::kWaitForPlcOff;
-    return true;
-  }
   // 4.1.2: reference moves and measuring moves end on an external signal; up to the block
   // boundary they are simulated, beyond it (the search by distance) they cannot be.
   if (s.by_distance && (b.homing || b.measuring))
@@ -296,8 +294,13 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
         Fail(nc::Format({st.pos, refused}, program.files), kMsgNotAvailable);
         return false;
       }
-      // 4.2.2: whether the C axis tracks the contour at the continue position.
-      if (const auto on = CaxTrackCommand(text)) s.cax_track = *on;
+      // 4.2.2: the C axis tracks the contour in the search as in the run.
+      const int c = TrackedAxis();
+      if (const auto done = CaxTrackInstruction(program, st, b,
+                                                c < 0 ? 0 : s.position[static_cast<size_t>(c)])) {
+        if (!*done) return false;
+        continue;
+      }
       if (SteersBlockSearch(text)) continue;
     }
     return fail("instruction " +
@@ -348,19 +351,31 @@ bool Channel::SimulateMotion(nc::PreparedBlock& b, bool boundary) {
       if (m.modal.feed <= 0) m.modal.feed = 1;  // the geometry only: no time passes
     }
     const double rev_per_s = s.spindle.mode == DriveMode::kVelocity ? s.spindle.value / 360 : 0;
+    // #CAX TRACK: C as the run turns it; a turn beyond ANGLIMIT before the block is
+    // simulated, so that C stands at the block's tangent from its start.
+    std::optional<double> align;
+    if (!TrackC(m, s.position, std::abs(rev_per_s), align)) return false;
+    if (align) s.position[static_cast<size_t>(TrackedAxis())] = *align;
     if (const auto error = PlanBlockMotion(m, s.position, translation_, config_.axes,
                                            std::abs(rev_per_s), motion, FollowUpAxes(m))) {
       Fail(*ProgramOf(b.program), b.block, error->text, error->number);
       return false;
     }
   }
+  if (b.homing) {
+    // The interpreter took G74's words for targets; they are the homing order (ISG) or a
+    // placeholder (MTC200), never positions. The skipped G74 leaves the axes where the program
+    // had them (8), and the blocks after it count from there, as after a run's G74 they count
+    // from the reference points (NextHomingStage).
+    for (size_t a = 0; a < s.position.size(); ++a)
+      if (b.programmed >> a & 1) interpreter_->SetAxisPosition(a, s.position[a] - translation_[a]);
+  }
   const double length = distance_on_ ? DistanceOf(motion, config_.axes) : 0;
   const double permille = bs_started_.covered_distance / 1000;
   if (s.await_own_piece && !s.inserted_piece) {
     // The continue block's own piece after the corner the compensation inserted before it.
     s.await_own_piece = false;
-    FoundContinuePosition(b, motion, motion.moves ? permille : 0);
-    return true;
+    return FoundContinuePosition(b, motion, motion.moves ? permille : 0);
   }
   if (boundary) {
     s.found = true;
@@ -371,15 +386,13 @@ bool Channel::SimulateMotion(nc::PreparedBlock& b, bool boundary) {
       s.await_own_piece = true;
     } else if (wanted <= 0) {
       // 4.1.1 / 10: the covered distance splits a motion block; a block without motion is not.
-      FoundContinuePosition(b, motion, motion.moves ? permille : 0);
-      return true;
+      return FoundContinuePosition(b, motion, motion.moves ? permille : 0);
     } else if (wanted < distance_ - 1e-9) {
       // 4.1.2, figure 18: never back into blocks the search has passed.
       bs_warnings_.push_back("the distance from program start " + Mm(wanted) +
                              " mm lies before the block of the continue position (" +
                              Mm(distance_) + " mm): machining continues at its start");
-      FoundContinuePosition(b, motion, 0);
-      return true;
+      return FoundContinuePosition(b, motion, 0);
     } else {
       s.by_distance = true;
     }
@@ -387,12 +400,13 @@ bool Channel::SimulateMotion(nc::PreparedBlock& b, bool boundary) {
   if (s.by_distance && motion.moves && length > 0) {
     const double wanted = bs_started_.distance_prog_start * 1e-4;
     if (wanted <= distance_ + length + 1e-9) {
-      FoundContinuePosition(b, motion, std::clamp((wanted - distance_) / length, 0.0, 1.0));
-      return true;
+      return FoundContinuePosition(b, motion,
+                                   std::clamp((wanted - distance_) / length, 0.0, 1.0));
     }
   }
   if (motion.moves) s.position = motion.end;
   distance_ += length;
+  if (!BreakpointAfter(distance_, b)) return false;
   // The decoded path, for backward travel from the continue position (4.3); not to the
   // program's end (type 5), where the program ends in search mode.
   if (b.homing || b.measuring || nc::SpindleSynchronous(b.motion))
@@ -408,14 +422,31 @@ bool Channel::SimulateMotion(nc::PreparedBlock& b, bool boundary) {
   return true;
 }
 
-void Channel::FoundContinuePosition(const nc::PreparedBlock& b, const BlockMotion& motion,
+bool Channel::BreakpointAfter(double continue_mm, const nc::PreparedBlock& b) {
+  // 3.5 requires the breakpoint to lie after the continue position. vmt reads a breakpoint
+  // the search passes as a wrong parameter, not as one to drop: the operator asked
+  // for a stop and machining must not run on without it. The search stops with an error where
+  // it meets the breakpoint, before any axis moves; a breakpoint at the continue position
+  // itself holds as soon as machining goes on there (ContinueAfterSearch).
+  if (breakpoint_ <= 0 || breakpoint_ >= continue_mm - 1e-9) return true;
+  Fail(*ProgramOf(b.program), b.block,
+       "the breakpoint mc_cmd_bs_breakpoint_position_w at " + Mm(breakpoint_) +
+           " mm from program start lies before the continue position of block search (" +
+           Mm(continue_mm) + " mm and on): it must lie after it (block search 3.5)",
+       kMsgBlockSearch);
+  return false;
+}
+
+bool Channel::FoundContinuePosition(const nc::PreparedBlock& b, const BlockMotion& motion,
                                     double u) {
   BlockSearchRun& s = *search_;
+  const double length = distance_on_ ? DistanceOf(motion, config_.axes) : 0;
+  if (!BreakpointAfter(distance_ + u * length, b)) return false;
   s.face_return = b.modal.transformation == 31;
   s.restart_motion = motion;
   s.restart_u = u;
   s.restart_distance = distance_;
-  s.restart_length = distance_on_ ? DistanceOf(motion, config_.axes) : 0;
+  s.restart_length = length;
   s.restart = s.position;
   if (motion.moves) motion.PointAt(u, s.restart);
   if (b.homing || b.measuring || nc::SpindleSynchronous(b.motion))
@@ -424,6 +455,7 @@ void Channel::FoundContinuePosition(const nc::PreparedBlock& b, const BlockMotio
     RecordPath(motion, b.motion == nc::Motion::kRapid);
   s.position = s.restart;
   bs_state_ = BlockSearchState::kWaitForPlcOff;
+  return true;
 }
 
 void Channel::EndSearchMode() {
@@ -465,11 +497,16 @@ void Channel::CountDistance() {
   block_distance_ = distance_on_ ? DistanceOf(motion_, config_.axes) : 0;
   distance_ += block_distance_;
   breakpoint_rest_.reset();
+  CutAtBreakpoint(0);
+}
+
+void Channel::CutAtBreakpoint(double from_u) {
   // 3.5: the breakpoint stops the first time the path reaches it going forward.
   if (breakpoint_ <= 0 || block_distance_ <= 0 || breakpoint_ > distance_ + 1e-9 ||
-      breakpoint_ < block_distance_start_ - 1e-9)
+      breakpoint_ < block_distance_start_ + from_u * block_distance_ - 1e-9)
     return;
-  const double u = std::clamp((breakpoint_ - block_distance_start_) / block_distance_, 0.0, 1.0);
+  const double u =
+      std::clamp((breakpoint_ - block_distance_start_) / block_distance_, from_u, 1.0);
   breakpoint_ = 0;
   breakpoint_pending_ = true;
   breakpoint_u_ = u;
@@ -511,13 +548,16 @@ void Channel::UpdateBlockSearchStatus() {
   st.command = bs_command_;
   const bool moving = motion_.moves && (active_ || breakpoint_hold_);
   // A corner the compensation inserted before its block is not yet the block's own path: the
-  // per mille the search takes is measured in that (SimulateMotion).
-  double u = moving && !inserted_piece_ ? std::clamp(profile_.u, 0.0, 1.0) : 0;
+  // per mille the search takes is measured in that (SimulateMotion); nor is the C-only turn of
+  // #CAX TRACK before its block, which has not started counting its distance yet.
+  const bool aside = inserted_piece_ || cax_aligning_;
+  double u = moving && !aside ? std::clamp(profile_.u, 0.0, 1.0) : 0;
   // The breakpoint cut the block: its profile runs over the first part only.
   if (moving && breakpoint_rest_) u *= breakpoint_u_;
   st.covered_distance = u * 1000;
-  st.dist_prog_start = active_ || breakpoint_hold_ ? block_distance_start_ + u * block_distance_
-                                                   : distance_;
+  st.dist_prog_start = (active_ || breakpoint_hold_) && !cax_aligning_
+                           ? block_distance_start_ + u * block_distance_
+                           : distance_;
   st.block_count = block_.block_count;
   st.path_deviation = 0;
   st.continue_position.clear();

@@ -169,6 +169,11 @@ void Channel::Reset() {
   search_.reset();
   bs_state_ = BlockSearchState::kInactive;
   bs_command_ = false;
+  // 7: a CNC reset clears the CNC's and the PLC's signal of the handshake alike, so the next
+  // search waits for the PLC's TRUE again.
+  bs_plc_state_ = false;
+  cax_track_.reset();
+  cax_aligning_ = false;
   breakpoint_rest_.reset();
   breakpoint_hold_ = breakpoint_pending_ = false;
   search_offset_.clear();  // the G92 shift goes below

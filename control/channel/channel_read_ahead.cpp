@@ -20,12 +20,6 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
       state_ = ChannelState::kEnded, reversing_ = false;
     return false;
   }
-  // Block search type 1 (3.1): the end position ends the program at once.
-  if (search_ && bs_state_ == BlockSearchState::kInactive && !running_mdi_ &&
-      search_->matcher.EndMatches(block_, *ProgramOf(block_.program), block_.program)) {
-    state_ = ChannelState::kEnded, reversing_ = false;
-    return false;
-  }
   if (block_.modal.compensation != 40 && block_.motion != nc::Motion::kNone) {
     // G41/G42: from here the channel reads ahead, so that each block's path can be offset
     // with its successor in view.
@@ -132,7 +126,7 @@ Channel::Compensated Channel::FillReadyPiece(bool searching) {
       return Compensated::kDrained;
     }
     nc::PreparedBlock b;
-    if (!(searching ? interpreter_->Next(b) : ReadNext(b))) {
+    if (!(searching ? ReadSource(b) : ReadNext(b))) {
       if (interpreter_->error()) {
         Fail(nc::Format(*interpreter_->error(), {interpreter_->ErrorFile()}), kMsgProgramError);
         return Compensated::kFailed;
@@ -189,13 +183,29 @@ bool Channel::ReadNext(nc::PreparedBlock& b) {
   } else {
     if (source_returned_false_) return false;
     if (headstock_) rotary_next_start_ = interpreter_->position()[config_.rotary_axis];
-    if (!interpreter_->Next(b)) return false;
+    if (!ReadSource(b)) return false;
   }
   // Blocks leave here in the interpreter's order: each starts, for the interpreter, where the
   // one before ended (an increment of the rotary axis adds to this; see RebaseRotaryAxis).
   if (headstock_) {
     rotary_start_ = rotary_next_start_;
     rotary_next_start_ = b.target[config_.rotary_axis];
+  }
+  return true;
+}
+
+bool Channel::ReadSource(nc::PreparedBlock& b) {
+  if (search_ && search_->end_reached) return false;
+  if (!interpreter_->Next(b)) return false;
+  // Block search type 1 (3.1): machining ends at the end position, before its block runs.
+  // Tested where the blocks leave the interpreter, in their order and each once (the pass
+  // count), so that it holds whatever path the channel makes of them afterwards: block by
+  // block, blended by the look-ahead, or offset by G41/G42, whose read-ahead then meets the
+  // end as it meets the text's end (the tip path closes there).
+  if (search_ && !running_mdi_ &&
+      search_->matcher.EndMatches(b, *ProgramOf(b.program), b.program)) {
+    search_->end_reached = true;
+    return false;
   }
   return true;
 }
@@ -221,7 +231,7 @@ bool Channel::Peek(size_t k) {
   while (peeked_.size() <= k) {
     if (unpushed_ || source_returned_false_) return false;
     nc::PreparedBlock b;
-    if (!interpreter_->Next(b)) {
+    if (!ReadSource(b)) {
       source_returned_false_ = true;
       return false;
     }
@@ -242,7 +252,7 @@ void Channel::FillCompensated(size_t elements) {
     if (!peeked_.empty()) {
       b = std::move(peeked_.front());
       peeked_.pop_front();
-    } else if (!interpreter_->Next(b)) {
+    } else if (!ReadSource(b)) {
       source_returned_false_ = true;
       return;
     }
@@ -308,7 +318,8 @@ void Channel::LookAhead(const AmplifierTelegram& at) {
   // A block with M00 / M01 ends at rest: the stop is decided at its end.
   if (single_block_ || programmed_stop_.pending != ProgrammedStop::Kind::kNone ||
       state_ != ChannelState::kRunning || !feed_move(block_.motion) ||
-      block_.end || homing_ || !motion_.moves || repos_run_ || config_.approach_program)
+      block_.end || homing_ || !motion_.moves || repos_run_ || config_.approach_program ||
+      cax_track_)  // tracking sets each block's C as it starts: the look-ahead cannot know it
     return;
   const double cycle_s = config_.tick_s * config_.ticks_per_cycle;
   const double speed = motion_.max_rate * motion_.length;

@@ -24,16 +24,16 @@ bool Channel::SpindleReady(const AmplifierTelegram& at) const {
 
 bool Channel::StartReturnToContour() {
   BlockSearchRun& s = *search_;
-  // 4.2.2: with #CAX TRACK on at the continue position the C axis is aligned first ("1.
-  // Ausrichten der C-Achse ... 2. Wiederanfahren entsprechend der Satzvorlaufposition"). vmt
-  // runs no tracking of its own, so C's alignment is where the program has C there.
+  // 4.2.2: with #CAX TRACK on at the continue position the C axis turns to the path's tangent
+  // there first (where the search's tracking has C: channel_cax_track.cpp), then the other
+  // axes return; the tracking goes on with the continue block.
   s.return_rest = false;
   // Outside rotary axis mode C is not positioned: it stays where the spindle has it.
   if (headstock_ && headstock_->mode() != axes::HeadstockMode::kRotary) {
     const size_t r = static_cast<size_t>(config_.rotary_axis);
     s.restart[r] = commanded_[r];
   }
-  if (s.cax_track) {
+  if (cax_track_) {
     for (size_t a = 0; a < commanded_.size(); ++a) {
       if (config_.axes[a].name != "C" || std::abs(s.restart[a] - commanded_[a]) < 1e-12) continue;
       std::vector<double> aligned = commanded_;
@@ -147,7 +147,12 @@ void Channel::ContinueAfterSearch() {
   block_distance_ = s.restart_length;
   distance_ = s.restart_distance + block_distance_;
   if (s.restart_u >= 1) return;
-  profile_ = ProfileFrom(motion_, s.restart_u);
+  // A breakpoint in the rest of the continue block cuts it as it would cut the block whole.
+  breakpoint_rest_.reset();
+  CutAtBreakpoint(s.restart_u);
+  double u = s.restart_u;
+  if (breakpoint_rest_) u = breakpoint_u_ > 1e-12 ? s.restart_u / breakpoint_u_ : 1;
+  profile_ = ProfileFrom(motion_, u);
   continuation_ready_ = false;
   carry_speed_ = carry_accel_ = carry_leftover_ = 0;
   active_ = true;

@@ -1,8 +1,8 @@
 // Block search on a lathe (twincat-cnc-block-search-de.md): a continue position inside a
 // finishing pass under tool nose radius compensation G42 (the search runs the compensation, so
 // the position is on the tip path the uninterrupted run machines, and machining goes on there
-// with the compensation on), #CAX TRACK (4.2.2: C is aligned before the straight return), and a
-// region programmed only with G91 (8).
+// with the compensation on), every search type and type 1's end position under G42 (3.1), and a
+// region programmed only with G91 (8). #CAX TRACK: channel_cax_track_test.cpp.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -208,6 +208,101 @@ TEST(ChannelBlockSearchLathe, G42ByDistanceFromProgramStartMatchesTheRun) {
   EXPECT_TRUE(m.Ended()) << m.channel->error();
 }
 
+/// Block search type 1 (3.1) in kFinishing: from N0150's line to the end position at
+/// `end_block`'s line (no end position if empty).
+BlockSearchParameters FileOffsetSearch(const std::string& text, const char* start,
+                                       const char* end_block) {
+  BlockSearchParameters p;
+  p.type = BlockSearchType::kFileOffset;
+  p.start.offset = static_cast<int64_t>(text.find(start));
+  if (end_block) p.end.offset = static_cast<int64_t>(text.find(end_block));
+  p.auto_return = true;
+  return p;
+}
+
+/// The channel searches with `p`, returns, machines on to its end; the lowest Z it reached.
+double MachinesTo(Lathe& m, const BlockSearchParameters& p) {
+  m.Search(p);
+  EXPECT_TRUE(m.ToContour()) << m.channel->error();
+  m.channel->Start();
+  double lowest_z = m.Z();
+  EXPECT_TRUE(m.RunUntil([&] {
+    lowest_z = std::min(lowest_z, m.Z());
+    return m.Ended() || m.channel->state() == ChannelState::kError;
+  }));
+  EXPECT_TRUE(m.Ended()) << m.channel->error();
+  return lowest_z;
+}
+
+TEST(ChannelBlockSearchLathe, Type1EndPositionEndsTheCompensatedPathToo) {
+  // 3.1: machining ends at the end position (N0190's line), before N0190 runs, with G42 on as
+  // without it. The compensation's read-ahead meets the end as it meets the text's end: the tip
+  // path closes after N0180's arc, at Z114 less the nose's offset, and never goes on along
+  // N0190 to Z95 or back out with N0200.
+  for (const bool compensated : {true, false}) {
+    SCOPED_TRACE(compensated ? "G42" : "G40");
+    std::string text = kFinishing;
+    if (!compensated) text.replace(text.find("G42 "), 4, "");
+    Lathe m(text);
+    const double lowest_z = MachinesTo(m, FileOffsetSearch(text, "N0150", "N0190"));
+    EXPECT_GT(lowest_z, 113);
+    EXPECT_LT(m.X(), 29);
+    if (!compensated) {
+      EXPECT_NEAR(m.X(), 27, 1e-9);
+      EXPECT_NEAR(m.Z(), 114, 1e-9);
+    }
+  }
+  // Without an end position the same search machines to the end of the program.
+  Lathe whole(kFinishing);
+  EXPECT_LT(MachinesTo(whole, FileOffsetSearch(kFinishing, "N0150", nullptr)), 96);  // N0190
+  EXPECT_NEAR(whole.X(), 40, 1e-9);
+  EXPECT_NEAR(whole.Z(), 158, 1e-9);
+}
+
+TEST(ChannelBlockSearchLathe, Type1EndBeforeTheContinuePositionUnderG42) {
+  // The end position (N0170) comes before the continue position (N0190), inside the region
+  // the compensation reads ahead: the program ends in search mode, nothing moves.
+  Lathe m(kFinishing);
+  m.Search(FileOffsetSearch(kFinishing, "N0190", "N0170"));
+  ASSERT_TRUE(m.RunUntil([&] { return m.Ended() || m.channel->state() == ChannelState::kError; }));
+  EXPECT_TRUE(m.Ended()) << m.channel->error();
+  EXPECT_EQ(m.X(), 60);
+  EXPECT_EQ(m.Z(), 200);
+  EXPECT_THAT(m.channel->block_search().warnings,
+              ::testing::ElementsAre("the end position came before the continue position"));
+}
+
+TEST(ChannelBlockSearchLathe, EveryTypeUnderG42) {
+  // Type 3 (the decoder's line count of N0160) lands where type 4 (N0160) does, on the tip
+  // path; type 5 decodes the compensated program to its end without motion.
+  Lathe by_number(kFinishing);
+  by_number.Search(testing::BlockNumberSearch(160, 250));
+  ASSERT_TRUE(by_number.Waits(BlockSearchState::kWaitReturnToContour));
+  const BlockSearchStatus number = by_number.channel->block_search();
+  Lathe by_count(kFinishing);
+  BlockSearchParameters p = testing::BlockNumberSearch(0, 250);
+  p.type = BlockSearchType::kBlockCounter;
+  p.intern_block_count = number.block_count;
+  by_count.Search(p);
+  ASSERT_TRUE(by_count.Waits(BlockSearchState::kWaitReturnToContour)) << by_count.channel->error();
+  const BlockSearchStatus& count = by_count.channel->block_search();
+  ASSERT_EQ(count.continue_position.size(), 2u);
+  EXPECT_NEAR(count.continue_position[0], number.continue_position[0], 1e-12);
+  EXPECT_NEAR(count.continue_position[1], number.continue_position[1], 1e-12);
+  EXPECT_NEAR(count.dist_prog_start, number.dist_prog_start, 1e-12);
+
+  Lathe to_end(kFinishing);
+  BlockSearchParameters end;
+  end.type = BlockSearchType::kProgramEnd;
+  to_end.Search(end);
+  ASSERT_TRUE(to_end.RunUntil(
+      [&] { return to_end.Ended() || to_end.channel->state() == ChannelState::kError; }));
+  EXPECT_TRUE(to_end.Ended()) << to_end.channel->error();
+  EXPECT_TRUE(to_end.channel->block_search().warnings.empty());
+  EXPECT_EQ(to_end.X(), 60);
+  EXPECT_EQ(to_end.Z(), 200);
+}
+
 /// Block search 8: "Enthält ein Programm innerhalb des Satzvorlaufbereichs nur relative G91
 /// Positionierungen, so werden trotz Neustart des gleichen Programms im Satzvorlauf evtl.
 /// unterschiedliche Positionen angefahren."
@@ -253,142 +348,6 @@ TEST(ChannelBlockSearchLathe, G91OnlyRegionContinuesRelativeToWhereTheSearchStar
     ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour)) << m.channel->error();
     EXPECT_NEAR(m.channel->block_search().continue_position[0], 50, 1e-9);
     EXPECT_NEAR(m.channel->block_search().continue_position[1], 80, 1e-9);
-  }
-}
-
-/// The manual's #CAX TRACK example (4.2.2, tests/control/nc/seed_programs/
-/// blocksearch_cax_track.isg) on a lathe's axes: X, Z and the C axis, Z in the place of Y.
-constexpr const char* kCaxTrack =
-    "%block-search-cax-track\n"
-    "N10 G00 G90 X0 Z0 C0\n"
-    "N20 X5 Z5 C45 ;C parallel to the contour\n"
-    "N20 #CAXTRACK ON [ANGLIMIT 3, OFFSET 0]\n"
-    "N30 X10 Z10\n"
-    "N40 X20\n"
-    "N60 X40\n"
-    "N70 X30\n"
-    "N80 Z0\n"
-    "N90 #CAXTRACK OFF\n"
-    "M30\n";
-
-/// X, Z and C on an ideal machine (actual = setpoint), no spindle.
-struct CaxLathe {
-  CaxLathe(double x, double z, double c) {
-    parsed = nc::ParseProgram(kCaxTrack, "block-search-cax-track.isg", nc::Dialect::kIsg);
-    EXPECT_TRUE(parsed.ok()) << nc::Format(parsed.errors[0], parsed.program.files);
-    ChannelConfig config;
-    config.axes = {testing::Axis("X", 0, 400), testing::Axis("Z", 1, 500),
-                   testing::Axis("C", 2, 3600)};
-    config.axes[2].rotary = true;
-    config.spindle_drive = -1;
-    channel = std::make_unique<Channel>(config, std::vector<const nc::Program*>{&parsed.program});
-    at.feedback.resize(3);
-    for (DriveFeedback& f : at.feedback) f.status = drive_status::kReady;
-    at.feedback[0].position = x, at.feedback[1].position = z, at.feedback[2].position = c;
-    mdt.setpoints.resize(3);
-  }
-  void Tick() {
-    channel->Tick(at, mdt);
-    for (int d = 0; d < 3; ++d)
-      if (mdt.setpoints[d].mode == DriveMode::kPosition)
-        at.feedback[d].position = mdt.setpoints[d].value;
-  }
-  bool Waits(BlockSearchState s, const std::function<void()>& each = {}) {
-    for (int i = 0; i < 400000; ++i) {
-      if (channel->block_search().state == s) return true;
-      if (channel->state() == ChannelState::kError || channel->state() == ChannelState::kEnded)
-        return false;
-      Tick();
-      if (each) each();
-    }
-    return false;
-  }
-  double X() const { return at.feedback[0].position; }
-  double Z() const { return at.feedback[1].position; }
-  double C() const { return at.feedback[2].position; }
-  nc::ParseResult parsed;
-  std::unique_ptr<Channel> channel;
-  AmplifierTelegram at;
-  MasterTelegram mdt;
-};
-
-/// The return's (X, Z, C) at each tick, from the start after the search to the hold.
-std::vector<std::array<double, 3>> ReturnPath(uint32_t number, uint32_t pass,
-                                              std::array<double, 3>* continue_position) {
-  CaxLathe m(50, 50, 0);
-  BlockSearchParameters p;
-  p.type = BlockSearchType::kBlockNumber;
-  p.block_number = number;
-  p.block_number_pass = pass;
-  p.auto_return = true;
-  std::string error;
-  EXPECT_TRUE(m.channel->SetBlockSearch(p, &error)) << error;
-  m.channel->Start();
-  std::vector<std::array<double, 3>> path;
-  EXPECT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour)) << m.channel->error();
-  m.channel->Start();
-  EXPECT_TRUE(m.Waits(BlockSearchState::kWaitForContinueContour, [&] {
-    path.push_back({m.X(), m.Z(), m.C()});
-  })) << m.channel->error();
-  *continue_position = {m.X(), m.Z(), m.C()};
-  return path;
-}
-
-TEST(ChannelBlockSearchLathe, CaxTrackAlignsCBeforeTheStraightReturn) {
-  // Search to N40 with #CAXTRACK ON: "1. Ausrichten der C-Achse ... 2. Wiederanfahren
-  // entsprechend der Satzvorlaufposition". C turns to 45 deg (where N20 put it; vmt runs no
-  // tracking of its own) while X and Z stand, then X and Z return in a straight line.
-  std::array<double, 3> at{};
-  const auto path = ReturnPath(40, 1, &at);
-  EXPECT_NEAR(at[0], 10, 1e-9);
-  EXPECT_NEAR(at[1], 10, 1e-9);
-  EXPECT_NEAR(at[2], 45, 1e-9);
-  ASSERT_FALSE(path.empty());
-  bool c_aligned = false;
-  for (const auto& [x, z, c] : path) {
-    if (!c_aligned) {
-      EXPECT_EQ(x, 50);  // nothing but C moves before C is aligned
-      EXPECT_EQ(z, 50);
-      c_aligned = c == 45;
-    } else {
-      EXPECT_EQ(c, 45);                   // then C stands
-      EXPECT_NEAR(x - 10, z - 10, 1e-9);  // and X and Z go straight (both 40 mm off)
-    }
-  }
-  EXPECT_TRUE(c_aligned);
-}
-
-TEST(ChannelBlockSearchLathe, CaxTrackPassesInANormalRun) {
-  // Both spellings steer only block search: the run goes through them to M30.
-  CaxLathe m(50, 50, 0);
-  m.channel->Start();
-  for (int i = 0; i < 400000 && m.channel->state() != ChannelState::kEnded &&
-                  m.channel->state() != ChannelState::kError;
-       ++i)
-    m.Tick();
-  EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
-  EXPECT_NEAR(m.X(), 30, 1e-9);
-  EXPECT_NEAR(m.Z(), 0, 1e-9);
-  EXPECT_NEAR(m.C(), 45, 1e-9);
-}
-
-TEST(ChannelBlockSearchLathe, WithoutCaxTrackCReturnsWithTheOtherAxes) {
-  // Before #CAXTRACK ON (the first N20) and after #CAXTRACK OFF (N90): one straight move of
-  // all axes, C included, ending together.
-  for (const auto& [number, x, z, c] : {std::tuple{20u, 0.0, 0.0, 0.0}, {90u, 30.0, 0.0, 45.0}}) {
-    SCOPED_TRACE("N" + std::to_string(number));
-    std::array<double, 3> at{};
-    const auto path = ReturnPath(number, 1, &at);
-    EXPECT_NEAR(at[0], x, 1e-9);
-    EXPECT_NEAR(at[1], z, 1e-9);
-    EXPECT_NEAR(at[2], c, 1e-9);
-    bool together = false;  // C and X both between start and end at some tick
-    for (const auto& p : path)
-      together = together || (p[0] != 50 && p[0] != x && p[2] != 0 && p[2] != c);
-    EXPECT_TRUE(together || c == 0);
-    if (c == 0) {
-      for (const auto& p : path) EXPECT_EQ(p[2], 0);  // C has nowhere to go
-    }
   }
 }
 

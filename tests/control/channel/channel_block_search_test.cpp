@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <tuple>
 
 #include "block_search_steps.hpp"
 #include "channel_test_support.hpp"
@@ -564,15 +565,116 @@ TEST(ChannelBlockSearch, EntryPointSkipsThePartBeforeIt) {
 }
 
 TEST(ChannelBlockSearch, ResetLeavesBlockSearchWithoutHandshake) {
+  // 7: with the handshake enabled, a reset during the search leaves block search at once: it
+  // does not wait for the PLC's FALSE, and the CNC clears both signals, so the next search
+  // asks the PLC again and waits for its TRUE.
   Mill m(kSquare);
+  m.channel->SetBlockSearchPlc(true, false);
   m.Search(testing::BlockNumberSearch(100));
-  ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour));
-  m.channel->Reset();
-  m.Tick();
-  for (int i = 0; i < 4; ++i) m.Tick();
+  ASSERT_TRUE(m.Waits(BlockSearchState::kWaitForPlcOn));
+  m.channel->SetBlockSearchPlc(true, true);
+  ASSERT_TRUE(m.Waits(BlockSearchState::kWaitForPlcOff));
+  for (int i = 0; i < 8; ++i) m.Tick();
+  EXPECT_EQ(m.State(), BlockSearchState::kWaitForPlcOff);  // the PLC has not answered
+  EXPECT_FALSE(m.channel->block_search().command);         // the NC asks it to switch off
+  m.channel->Reset();  // the PLC still says TRUE
+  for (int i = 0; i < 8; ++i) m.Tick();
   EXPECT_EQ(m.State(), BlockSearchState::kInactive);
   EXPECT_FALSE(m.channel->block_search().command);
+  EXPECT_FALSE(m.channel->block_search().active());
   EXPECT_EQ(m.channel->state(), ChannelState::kIdle);
+  EXPECT_FALSE(m.moved);
+  // The next start asks again: command_r TRUE, and no search before the PLC's TRUE.
+  m.Search(testing::BlockNumberSearch(100));
+  for (int i = 0; i < 400; ++i) m.Tick();
+  EXPECT_EQ(m.State(), BlockSearchState::kWaitForPlcOn);
+  EXPECT_TRUE(m.channel->block_search().command);
+  m.channel->SetBlockSearchPlc(true, true);
+  ASSERT_TRUE(m.Waits(BlockSearchState::kWaitForPlcOff));
+  m.channel->SetBlockSearchPlc(true, false);
+  ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour));
+}
+
+TEST(ChannelBlockSearch, G74InTheSkippedPartLeavesTheAxesWhereTheyWere) {
+  // Section 8: G74 is left out during the search, so the axes stay where the program had them;
+  // its values are the homing order (ISG), never positions: N30 and N40 go on from X20 Y30,
+  // not from X1 Y2.
+  Mill m(
+      "%g74\n"
+      "N10 G00 G90 X20 Y30 Z5\n"
+      "N20 G74 X1 Y2\n"
+      "N30 G01 Z-1 F500\n"
+      "N40 X40\n"
+      "M30\n");
+  m.Search(testing::BlockNumberSearch(40));
+  ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour)) << m.channel->error();
+  const BlockSearchStatus& st = m.channel->block_search();
+  ASSERT_EQ(st.continue_position.size(), 3u);
+  EXPECT_NEAR(st.continue_position[0], 20, 1e-9);
+  EXPECT_NEAR(st.continue_position[1], 30, 1e-9);
+  EXPECT_NEAR(st.continue_position[2], -1, 1e-9);
+  m.channel->Start();
+  ASSERT_TRUE(m.Waits(BlockSearchState::kWaitForContinueContour));
+  m.channel->Start();
+  ASSERT_TRUE(m.RunUntil([&] { return m.Ended() || m.channel->state() == ChannelState::kError; }));
+  EXPECT_TRUE(m.Ended()) << m.channel->error();
+  EXPECT_NEAR(m.X(), 40, 1e-9);
+  EXPECT_NEAR(m.Y(), 30, 1e-9);
+  EXPECT_NEAR(m.Z(), -1, 1e-9);
+}
+
+TEST(ChannelBlockSearch, BreakpointBeforeTheContinuePositionIsAnError) {
+  // 3.5: the breakpoint must lie after the continue position. At 15 mm it lies in N95, which
+  // the search to N100 (20 mm) passes: the start is refused before any axis moves.
+  Mill m(kSquareOneBlock, {2, 2, 0});
+  BlockSearchParameters p = testing::BlockNumberSearch(100);
+  p.breakpoint_position = 15 * 1e4;
+  m.Search(p);
+  ASSERT_TRUE(m.RunUntil([&] { return m.channel->state() == ChannelState::kError || m.Ended(); }));
+  EXPECT_EQ(m.channel->state(), ChannelState::kError);
+  EXPECT_EQ(m.channel->error_number(), kMsgBlockSearch);
+  EXPECT_THAT(m.channel->error(), HasSubstr("lies before the continue position"));
+  EXPECT_THAT(m.channel->error(), HasSubstr("15.0000 mm"));
+  EXPECT_FALSE(m.moved);
+  // Inside the continue block, before the covered distance: refused too.
+  Mill inside(kSquareOneBlock, {2, 2, 0});
+  p = testing::BlockNumberSearch(100, 500);  // 25 mm
+  p.breakpoint_position = 22 * 1e4;
+  inside.Search(p);
+  ASSERT_TRUE(inside.RunUntil([&] { return inside.channel->state() == ChannelState::kError; }));
+  EXPECT_THAT(inside.channel->error(), HasSubstr("25.0000 mm"));
+  EXPECT_FALSE(inside.moved);
+}
+
+TEST(ChannelBlockSearch, BreakpointAfterTheContinuePositionStopsThere) {
+  // 3.5, figure 7: the search to N100 at 200 per mille (22 mm), then the breakpoint holds the
+  // path once where it lies: in the rest of the continue block (25 mm, X7 Y12), or in a later
+  // block (35 mm, N120 half way: X2 Y7).
+  for (const auto& [mm, x, y] : {std::tuple{25.0, 7.0, 12.0}, {35.0, 2.0, 7.0}}) {
+    SCOPED_TRACE(std::to_string(mm) + " mm");
+    Mill m(kSquareOneBlock, {2, 2, 0});
+    BlockSearchParameters p = testing::BlockNumberSearch(100, 200);
+    p.breakpoint_position = mm * 1e4;
+    m.Search(p);
+    ASSERT_TRUE(m.ToContour()) << m.channel->error();
+    EXPECT_NEAR(m.X(), 10, 1e-9);
+    EXPECT_NEAR(m.Y(), 12, 1e-9);
+    m.channel->Start();
+    ASSERT_TRUE(m.RunUntil([&] {
+      return m.channel->block_search().stop_conditions & stop_condition::kBreakpointStop ||
+             m.Ended();
+    }));
+    EXPECT_FALSE(m.Ended());
+    for (int i = 0; i < 400; ++i) m.Tick();
+    EXPECT_NEAR(m.X(), x, 1e-9);
+    EXPECT_NEAR(m.Y(), y, 1e-9);
+    EXPECT_NEAR(m.channel->block_search().dist_prog_start, mm, 1e-9);
+    EXPECT_EQ(m.State(), BlockSearchState::kWaitForContinueContour);
+    m.channel->Start();
+    ASSERT_TRUE(m.RunUntil([&] { return m.Ended(); }));
+    EXPECT_NEAR(m.X(), 2, 1e-9);
+    EXPECT_NEAR(m.Y(), 2, 1e-9);
+  }
 }
 
 TEST(ChannelBlockSearch, BadParametersStopTheStart) {
