@@ -133,8 +133,11 @@ TEST(LatheC2ModelTest, ReposWindowOutsideItsValueRangeErrors) {
   };
   for (const char* bad : {"0.05", "200001", "-1"}) {
     const std::string error = with_x_window(bad);
-    EXPECT_THAT(error, HasSubstr(std::string("c2_cxx086_") + bad +
-                                 ".yaml: nc.axes[0].Cxx.086: must be 0 (the axis is not "
+    // file:line:column: yaml.path: message
+    EXPECT_THAT(error, ::testing::ContainsRegex(std::string("c2_cxx086_") + bad +
+                                                "\\.yaml:[0-9]+:[0-9]+: "))
+        << bad;
+    EXPECT_THAT(error, HasSubstr(": nc.axes[0].Cxx.086: must be 0 (the axis is not "
                                  "repositioned) or in 0.1..200000"))
         << bad;
   }

@@ -15,7 +15,7 @@ namespace {
 TEST(PlcMessagesTest, ClutchTimeoutMessage220ReachesEventsAndSummary) {
   // Valve QROTMODE stuck: the changeover PLC gives up after T_CLUTCH (5 s) with message 220;
   // Control-Reset at 7 s ends the request, and the PLC takes the message back.
-  const Scene scene = LoadScene(testing::SourcePath("scenes/c-axis-clutch-timeout.yaml"));
+  const Scene scene = LoadScene(testing::SourcePath("scenes/fault-clutch-timeout.yaml"));
   RunOptions options;
   options.snapshots = false;
   options.out_dir = testing::OutputDir("plc_message_220");
