@@ -224,7 +224,7 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
   continuation_ready_ = false;
   carry_speed_ = carry_accel_ = carry_leftover_ = 0;
   if (!motion_.moves) return true;
-  // The approach moves are checked before they start, as G77's (issue 6): the ruby touching
+  // The approach moves are checked before they start, as G77's: the ruby touching
   // the part on them is a collision. The measuring path is checked up to where the sphere
   // meets the nominal surface (there PathGuard lets the ruby touch the part): beyond it, on the
   // doubled path, the probe's switch ends the move long before the over-travel lets the shank reach

@@ -1,7 +1,7 @@
 #pragma once
 // The channel's error messages: a number the gateway shows the PLC (PxxS error number) and the
 // operator's text. The MTC200 manuals do not list the NC's own message numbers (only the probe
-// block's, mtc200-fast-measurement.md 7.2, which arrive with issue 7), so these are vmt's,
+// block's, mtc200-fast-measurement.md 7.2, which the probe block sends), so these are vmt's,
 // grouped like a control's: 1xx program, 2xx geometry and feed, 3xx tools and offsets,
 // 4xx operation, 5xx machine.
 

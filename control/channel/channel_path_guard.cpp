@@ -1,9 +1,10 @@
-// PathGuard in the channel (issue 6, DESIGN.md): jog moves are checked ahead while they run, far
-// enough to brake before a contact; an increment is checked whole before it starts. A contact
-// stops the move before it happens with an NC error naming the parts and the position
-// (GuardReaction::kStop), or is only recorded (kWarn). The approach moves of repositioning (G77
-// and the closing move, REPOS manual 4.2) and every move the REPOS subroutine programs are
-// checked whole before they start, arcs as chords. Every check ends up in a GuardRecord.
+// PathGuard in the channel (interface: control/path_guard.hpp): jog moves are checked ahead
+// while they run, far enough to brake before a contact; an increment is checked whole before it
+// starts. A contact stops the move before it happens with an NC error naming the parts and the
+// position (GuardReaction::kStop), or is only recorded (kWarn). The approach moves of
+// repositioning (G77 and the closing move, REPOS manual 4.2) and every move the REPOS subroutine
+// programs are checked whole before they start, arcs as chords. Every check ends up in a
+// GuardRecord.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
