@@ -26,8 +26,8 @@ struct LatchBench {
   // exactly when it did (any value distinct from the sampled one will do).
   void Tick(bool pin4, bool pin5) {
     position += 1;
-    pins[0] = {pin4, position - 0.25};
-    pins[1] = {pin5, position - 0.5};
+    pins[0] = {pin4, position - 0.25, std::nullopt};
+    pins[1] = {pin5, position - 0.5, std::nullopt};
     latch.Step(control, pins, position);
   }
   void Tick() { Tick(pins[0].level, pins[1].level); }
