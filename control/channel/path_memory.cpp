@@ -5,19 +5,22 @@
 namespace vmt::control::channel {
 
 void PathMemory::Push(const BlockMotion& motion, bool rapid, bool decoded) {
-  if (ring_.size() < kBlocks) {
-    ring_.push_back({motion, rapid, decoded});
+  // A free slot of the ring (after Clear, the storage of steps forgotten) is reused first;
+  // the ring grows only while every slot holds a step; full, the oldest step gives way.
+  PathStep* slot;
+  if (count_ < ring_.size()) {
+    slot = &ring_[(head_ + count_) % ring_.size()];
     ++count_;
-    return;
-  }
-  PathStep& slot = ring_[(head_ + count_) % kBlocks];
-  slot.motion = motion;  // the vectors keep their storage
-  slot.rapid = rapid;
-  slot.decoded = decoded;
-  if (count_ < kBlocks)
+  } else if (ring_.size() < kBlocks) {
+    slot = &ring_.emplace_back();  // head_ is 0 until the ring is full
     ++count_;
-  else
+  } else {
+    slot = &ring_[head_];
     head_ = (head_ + 1) % kBlocks;
+  }
+  slot->motion = motion;  // the vectors keep their storage
+  slot->rapid = rapid;
+  slot->decoded = decoded;
 }
 
 bool Retraceable(const BlockMotion& m) { return m.face_axes[0] < 0; }

@@ -29,7 +29,7 @@ class PathMemory {
   static constexpr size_t kBlocks = 1000;
 
   void Push(const BlockMotion& motion, bool rapid, bool decoded);
-  void Clear() { count_ = 0; }
+  void Clear() { count_ = 0, head_ = 0; }
   size_t size() const { return count_; }
   bool empty() const { return count_ == 0; }
   /// 0 is the oldest step kept, size() - 1 the last.

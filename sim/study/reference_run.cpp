@@ -100,6 +100,12 @@ Reference RunReference(const Scene& base, const std::string& work_dir) {
       }
       continue;
     }
+    // Between two blocks the NC may run a cycle with none current (line 0): that cycle finishes
+    // the block before, so an interruption there belongs to it, never to a block "L0".
+    if (line == 0) {
+      if (open) open->end_s = t;
+      continue;
+    }
     if (!open || open->line != line) {
       BlockSpan b;
       b.line = line;

@@ -90,7 +90,7 @@ std::string Plane(const std::vector<const CaseResult*>& cases, const Reference* 
         << "\" stroke-width=\"1\" points=\"";
       for (const auto& p : path)
         o << px(p[1].get<double>()) << "," << py(p[0].get<double>()) << " ";
-      o << "\"><title>" << Esc(Str(*r, "case")) << ": " << v << "</title></polyline>\n";
+      o << "\"><title>" << Esc(Str(*r, "case")) << ": " << Esc(v) << "</title></polyline>\n";
       if (v == "collision") {
         const auto& last = path.back();
         o << "<circle r=\"3\" fill=\"#d62828\" cx=\"" << px(last[1].get<double>()) << "\" cy=\""
@@ -168,8 +168,8 @@ std::string ReportHtml(const std::string& title, const std::vector<CaseResult>& 
          "</th><th class=\"l\">error</th><th class=\"l\">picture</th></tr>\n";
     for (const CaseResult* r : worst) {
       const std::string v = Str(*r, "verdict");
-      o << "<tr><td class=\"l\">" << Esc(Str(*r, "case")) << "</td><td class=\"l " << v << "\">"
-        << v << "</td><td class=\"l\">"
+      o << "<tr><td class=\"l\">" << Esc(Str(*r, "case")) << "</td><td class=\"l " << Esc(v)
+        << "\">" << Esc(v) << "</td><td class=\"l\">"
         << ((*r)["parts"].is_array() ? Esc((*r)["parts"].dump()) : "") << "</td><td class=\"l\">"
         << ((*r)["point"].is_array() ? Esc((*r)["point"].dump()) : "") << "</td><td>"
         << ((*r)["min_clearance_mm"].is_number() ? Num((*r)["min_clearance_mm"].get<double>()) : "")
@@ -190,8 +190,8 @@ std::string ReportHtml(const std::string& title, const std::vector<CaseResult>& 
       const std::string v = Str(*r, "verdict");
       o << "<figure style=\"display:inline-block;margin:4px\"><a href=\"" << Esc(shot->second)
         << "\"><img src=\"" << Esc(shot->second) << "\" width=\"320\" alt=\""
-        << Esc(Str(*r, "case")) << "\"></a><figcaption class=\"" << v << "\">"
-        << Esc(Str(*r, "case")) << ": " << v
+        << Esc(Str(*r, "case")) << "\"></a><figcaption class=\"" << Esc(v) << "\">"
+        << Esc(Str(*r, "case")) << ": " << Esc(v)
         << (v == "collision" ? " (first contact)" : " (end of the return)")
         << "</figcaption></figure>\n";
     }

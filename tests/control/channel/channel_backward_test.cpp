@@ -315,5 +315,35 @@ TEST(ChannelBackward, TheStartOfTheOldestBlockIsAsFarAsItGoes) {
   EXPECT_NEAR(m.X(), 0, 1e-9);
 }
 
+TEST(ChannelBackward, APathBreakIsAsFarBackAsItGoes) {
+  // G74 breaks the path (the axes were homed, there is no way back through it): backward travel
+  // ends at the start of the block after it, whatever the memory held before the break.
+  Lathe m(
+      "N10 G00 X50 Z10\n"
+      "N20 G01 X40 Z0 F600\n"
+      "N30 G74 X1\n"
+      "N40 G01 Z-30 F600\n"
+      "N50 X60\n"
+      "N60 M30\n");
+  m.channel->Start();
+  ASSERT_TRUE(m.RunUntil([&] { return m.Z() < -15; }));
+  ASSERT_NEAR(m.X(), 0, 1e-9);  // homed to its reference position
+  const std::vector<std::pair<double, double>> n40 = {{0, 0}, {0, -30}};
+  HoldToRest(m, n40);
+  StartBackward(m);
+  EXPECT_LT(RunToRest(m, n40), 1e-9);  // along N40 only
+  EXPECT_NEAR(m.X(), 0, 1e-9);
+  EXPECT_NEAR(m.Z(), 0, 1e-9);
+  EXPECT_EQ(m.channel->blocks_back(), 0u);
+  m.channel->Start();  // at the break: nowhere further back
+  for (int i = 0; i < 40; ++i) m.Tick();
+  EXPECT_EQ(m.channel->state(), ChannelState::kHold);
+  EXPECT_NEAR(m.Z(), 0, 1e-9);
+  StartForward(m);  // and on through N50's corner, within the look-ahead's corner deviation
+  EXPECT_LT(RunToRest(m, {{0, 0}, {0, -30}, {60, -30}}), kCornerDeviation);
+  EXPECT_EQ(m.channel->state(), ChannelState::kEnded);
+  EXPECT_NEAR(m.X(), 60, 1e-9);
+}
+
 }  // namespace
 }  // namespace vmt::control::channel

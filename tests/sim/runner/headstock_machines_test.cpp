@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "scene_trace_support.hpp"
+#include "../scene_trace_support.hpp"
 #include "sim/runner/runner.hpp"
-#include "sim_test_support.hpp"
+#include "../sim_test_support.hpp"
 
 namespace vmt::sim {
 namespace {

@@ -12,7 +12,7 @@
 
 #include <cmath>
 
-#include "sim_test_support.hpp"
+#include "../sim_test_support.hpp"
 
 namespace vmt::sim {
 namespace {

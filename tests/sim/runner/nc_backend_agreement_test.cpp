@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sim/runner/runner.hpp"
-#include "sim_test_support.hpp"
+#include "../sim_test_support.hpp"
 
 namespace vmt::sim {
 namespace {

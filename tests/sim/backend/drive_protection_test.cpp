@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "sim/runner/runner.hpp"
-#include "sim_test_support.hpp"
+#include "../sim_test_support.hpp"
 
 namespace vmt::sim {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "sim/model/model_error.hpp"
 #include "sim/scene/scene.hpp"
-#include "sim_test_support.hpp"
+#include "../sim_test_support.hpp"
 
 namespace vmt::sim {
 namespace {

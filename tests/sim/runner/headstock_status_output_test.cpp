@@ -11,7 +11,7 @@
 
 #include "sim/runner/runner.hpp"
 #include "sim/scene/scene.hpp"
-#include "sim_test_support.hpp"
+#include "../sim_test_support.hpp"
 
 namespace vmt::sim {
 namespace {

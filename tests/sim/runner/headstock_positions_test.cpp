@@ -13,9 +13,9 @@
 #include <fstream>
 #include <string>
 
-#include "scene_trace_support.hpp"
+#include "../scene_trace_support.hpp"
 #include "sim/runner/runner.hpp"
-#include "sim_test_support.hpp"
+#include "../sim_test_support.hpp"
 
 namespace vmt::sim {
 namespace {

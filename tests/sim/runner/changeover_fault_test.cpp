@@ -17,7 +17,7 @@
 #include "control/channel/channel_messages.hpp"
 #include "sim/runner/runner.hpp"
 #include "sim/scene/scene.hpp"
-#include "sim_test_support.hpp"
+#include "../sim_test_support.hpp"
 
 namespace vmt::sim {
 namespace {

@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "sim/kinematic/kinematic_backend.hpp"
-#include "sim_test_support.hpp"
+#include "../sim_test_support.hpp"
 
 namespace vmt::sim {
 namespace {

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "sim/scene/scene.hpp"
-#include "sim_test_support.hpp"
+#include "../sim_test_support.hpp"
 
 namespace vmt::sim {
 namespace {
