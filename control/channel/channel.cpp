@@ -161,6 +161,18 @@ bool Channel::Reverse() {
          kMsgNoHomeLabel);
     return false;
   }
+  // A block search that has not handed over to the run (waiting for the return to the contour
+  // or at it) is given up, as Control-Reset gives it up: the block search manual knows no
+  // reverse program, and vmt's reading is that the search has rebuilt an interrupted program
+  // whose reverse program runs from where the axes stand.
+  if (bs_state_ != BlockSearchState::kInactive) {
+    search_.reset();
+    bs_state_ = BlockSearchState::kInactive;
+    bs_command_ = false;
+    cax_aligning_ = false;
+    breakpoint_rest_.reset();
+    breakpoint_hold_ = breakpoint_pending_ = false;
+  }
   // The interrupted block is abandoned where the axes stand; the reverse program starts there.
   // A changeover in progress is given up and the original mode restored (C-axis manual 2.3).
   if (headstock_) headstock_->Abandon();

@@ -273,5 +273,18 @@ TEST(ChannelReverseLabel, BlockSearchKeepsTheSkippedPartsLabel) {
   EXPECT_NEAR(m.X(), 0, 1e-9);
 }
 
+// A reverse while the search waits at the continue position for the return to the contour:
+// the found block's reverse vector, which the skipped part made valid.
+TEST(ChannelReverseLabel, BlockSearchWaitingForTheReturnReversesToTheLabel) {
+  BlockSearchSteps<Machine> m(kAdvance);
+  m.Search(BlockNumberSearch(3, 200));
+  ASSERT_TRUE(m.Waits(BlockSearchState::kWaitReturnToContour)) << m.channel->error();
+  ASSERT_EQ(m.channel->state(), ChannelState::kHold);
+  const ReverseRun r = Reverse(m);
+  EXPECT_TRUE(r.Visited(0, 20));  // the axes never left X0: the return had not started
+  EXPECT_NEAR(m.X(), 0, 1e-9);
+  EXPECT_EQ(m.channel->block_search().state, BlockSearchState::kInactive);
+}
+
 }  // namespace
 }  // namespace vmt::control::channel
