@@ -143,6 +143,12 @@ bool Channel::Mdi(const std::string& text) {
 bool Channel::Reverse() {
   if (mode_ != ChannelMode::kAutomatic || programs_.empty()) return false;
   if (state_ != ChannelState::kHold && state_ != ChannelState::kError) return false;
+  // The reverse vector valid at the interrupted block (REV .LABEL): the reverse program runs
+  // from its label before `.HOME`. During the REPOS subroutine that is the subroutine's own
+  // (4.1): it starts where the operator left the axes, away from the contour the interrupted
+  // program's reverse vector was written for, so without a REV of its own it has none.
+  const nc::ReverseLabel label = interpreter_ && block_.block >= 0 ? block_.reverse
+                                                                   : nc::ReverseLabel{};
   if (repos_run_) {  // the REPOS subroutine is given up (4.1); its variables are the program's
     HandBackVariables();
     SwapProgramInWork();
@@ -150,10 +156,22 @@ bool Channel::Reverse() {
   parked_ = ProgramInWork{};
   ClearRepos();
   if (!interpreter_) interpreter_ = MakeInterpreter();
-  if (!interpreter_->JumpTo("HOME")) {
+  if (!interpreter_->Reverse(label)) {
     Fail(programs_[0]->files[0] + ": error: the program has no reverse program .HOME",
          kMsgNoHomeLabel);
     return false;
+  }
+  // A block search that has not handed over to the run (waiting for the return to the contour
+  // or at it) is given up, as Control-Reset gives it up: the block search manual knows no
+  // reverse program, and vmt's reading is that the search has rebuilt an interrupted program
+  // whose reverse program runs from where the axes stand.
+  if (bs_state_ != BlockSearchState::kInactive) {
+    search_.reset();
+    bs_state_ = BlockSearchState::kInactive;
+    bs_command_ = false;
+    cax_aligning_ = false;
+    breakpoint_rest_.reset();
+    breakpoint_hold_ = breakpoint_pending_ = false;
   }
   // The interrupted block is abandoned where the axes stand; the reverse program starts there.
   // A changeover in progress is given up and the original mode restored (C-axis manual 2.3).

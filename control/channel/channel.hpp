@@ -216,7 +216,9 @@ class Channel {
   /// False, with the channel in its error state, if the text does not parse.
   bool Mdi(const std::string& text);
   /// Reverse program: while interrupted (hold) or after an error, continue at the main
-  /// program's `.HOME` label (fast-measurement manual 4.4). PxxS.REV while it runs.
+  /// program's `.HOME` label (fast-measurement manual 4.4), first along a measuring
+  /// instruction's reverse vectors and from the label of the REV valid at the interrupted block
+  /// (REPOS manual 4.1; nc::Interpreter::Reverse). PxxS.REV while it runs.
   bool Reverse();
   bool reversing() const { return reversing_; }
   /// Auxiliary functions (M, H, Q, T) of the block in work that wait for the PLC.

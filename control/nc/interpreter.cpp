@@ -115,8 +115,37 @@ bool Interpreter::JumpTo(const std::string& label) {
   loops_.clear();
   ended_ = false;
   subroutine_ = false;
+  reverse_part_ = false;
   Jumped();
   return true;
+}
+
+bool Interpreter::Reverse(ReverseLabel label) {
+  const int32_t home = LabelBlock(*programs_[0], "HOME");
+  if (home < 0) return false;
+  calls_.clear();
+  loops_.clear();
+  ended_ = false;
+  subroutine_ = false;
+  // An error of the program is what the reverse program leaves it by (fast measurement 6.1).
+  error_.reset();
+  home_block_ = home;
+  reverse_part_ = label.valid() && static_cast<size_t>(label.program) < programs_.size() &&
+                  label.block >= 0 &&
+                  static_cast<size_t>(label.block) < programs_[label.program]->blocks.size();
+  current_ = reverse_part_ ? static_cast<uint32_t>(label.program) : 0;
+  pc_ = reverse_part_ ? label.block : home;
+  // The label brought the reverse here: a reverse during the reverse program goes to `.HOME`
+  // unless the reverse program names another reverse vector itself.
+  reverse_ = {};
+  Jumped();
+  return true;
+}
+
+void Interpreter::EndReversePart(int32_t& next) {
+  reverse_part_ = false;
+  current_ = 0;
+  next = home_block_;
 }
 
 void Interpreter::Jumped() {
@@ -165,6 +194,7 @@ bool Interpreter::RunSubroutine(uint32_t program, const std::string& label) {
   loops_.clear();
   ended_ = false;
   subroutine_ = true;
+  reverse_part_ = false;
   Jumped();
   return true;
 }
@@ -226,6 +256,7 @@ void Interpreter::Fault(uint32_t rank, uint32_t offset, std::string message) {
   out.feed_programmed = out.returned = out.fictive = false;
   out.search_locked = search_lock_;
   out.distance_command = DistanceCommand::kNone;
+  out.reverse = reverse_;
 }
 
 [[gnu::always_inline]] inline bool Interpreter::Idle(uint32_t program, int32_t block) {
@@ -274,6 +305,11 @@ bool Interpreter::Next(PreparedBlock& out) {
         count_line_ = kJumped;
         continue;
       }
+      if (reverse_part_) [[unlikely]] {  // the part at the reverse label ends with its file
+        EndReversePart(pc_);
+        count_line_ = kJumped;
+        continue;
+      }
       ended_ = true;
       idle_steps_ = 0;
       out = PreparedBlock{};
@@ -283,9 +319,14 @@ bool Interpreter::Next(PreparedBlock& out) {
       out.modal = modal_;
       out.block_count = count_;
       out.search_locked = search_lock_;
+      out.reverse = reverse_;
       return true;
     }
     const int32_t here = pc_;
+    // The part at the reverse label has reached `.HOME` in its flow: from here on the reverse
+    // program is `.HOME`'s, whose own RET ends it.
+    if (reverse_part_ && current_ == 0 && here == home_block_) [[unlikely]]
+      reverse_part_ = false;
     int32_t next = pc_ + 1;
     const uint32_t file = current_;
     Begin(out, file, here);
@@ -415,6 +456,12 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
     }
     case Kind::kReturn:
       if (calls_.empty()) {
+        if (reverse_part_) {
+          // The part at the reverse label is over: the NC goes on at `.HOME` (REPOS manual 4.1).
+          // RET too: there it would end the program before the reverse program has run.
+          EndReversePart(next);
+          return true;
+        }
         if (subroutine_) {
           // REPOS manual 4.1: only RTS returns from a subroutine run on its own and keeps the
           // state of the program it serves; RET is a program end, which would reset that state.
@@ -433,6 +480,10 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
       current_ = calls_.back().program;
       next = calls_.back().return_block;
       calls_.pop_back();
+      return true;
+    case Kind::kReverse:
+      reverse_ = {static_cast<int32_t>(current_), st.jump};
+      out.reverse = reverse_;
       return true;
     case Kind::kInstruction: {
       // SE n / RE n: set or reset event n (MTC200; fast-measurement 4.1: SE 30, RE 29).

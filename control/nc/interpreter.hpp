@@ -94,6 +94,14 @@ struct InstructionCall {
   uint32_t statement = 0;  ///< Program::statements index: the source position
 };
 
+/// A reverse vector: the label a reverse (the reverse program start) branches to before `.HOME`.
+/// `REV .LABEL` makes it valid from its block on, in the flow of the program, until the next REV.
+struct ReverseLabel {
+  int32_t program = -1;  ///< index into the interpreter's program list; -1: none valid
+  int32_t block = -1;    ///< the labelled block
+  bool valid() const { return program >= 0; }
+};
+
 struct PreparedBlock {
   uint32_t program = 0;  ///< index into the interpreter's program list
   int32_t block = -1;    ///< Program::blocks index: the source position
@@ -121,6 +129,7 @@ struct PreparedBlock {
   std::vector<InstructionCall> calls;  ///< the measuring instructions among them, evaluated
   std::vector<std::pair<int, bool>> events;  ///< SE n (true) / RE n (false), in block order
   bool end = false;                          ///< M30 / M02 / RET of the main program
+  ReverseLabel reverse;                      ///< the reverse vector valid in this block
   ModalState modal;                          ///< after the block
   /// Block counter of the block's line (TwinCAT block search manual 3.2 "Satzzähler", 5.6
   /// block_count_r): every line the decoder reads since program start, comment and blank
@@ -218,6 +227,16 @@ class Interpreter {
   /// Continues the main program at `label` (the reverse program `.HOME`): calls and loops in
   /// progress are dropped. False if the main program has no such label.
   bool JumpTo(const std::string& label);
+  /// The reverse program from where the program stands (REPOS manual 4.1, fast measurement
+  /// 4.4): with a valid `label` it runs from that label first, and its RTS or RET at the top
+  /// level (or reaching `.HOME` in the flow) continues at the main program's `.HOME`; without,
+  /// it runs `.HOME` at once. Calls and loops in progress are dropped, and no reverse vector is
+  /// valid until the reverse program programs one (a second reverse goes to `.HOME`). An error
+  /// of the program is cleared: the reverse program is the way out of it. False, and nothing
+  /// changes, if the main program has no `.HOME`.
+  bool Reverse(ReverseLabel label);
+  /// The reverse vector valid after the last block executed.
+  const ReverseLabel& reverse_label() const { return reverse_; }
   int64_t executed_blocks() const { return executed_; }
   /// The program holding `label` as a subroutine for the REPOS function (REPOS manual 4.1): the
   /// main program, else program 99, else the other programs of the store (vmt's NC-cycle
@@ -248,6 +267,8 @@ class Interpreter {
   [[gnu::cold]] bool EndlessLoop(uint32_t program, int32_t block);
   /// JumpTo / RunSubroutine: the flow goes elsewhere, the counter counts a jump.
   void Jumped();
+  /// The part at the reverse label is over: `next` becomes `.HOME` of the main program.
+  void EndReversePart(int32_t& next);
   bool Execute(const Block& block, PreparedBlock& out, int32_t& next);
   bool Statement_(const Statement& st, int32_t block, PreparedBlock& out, int32_t& next);
   bool Words(const Block& block, PreparedBlock& out);
@@ -295,6 +316,10 @@ class Interpreter {
   double last_result_ = 0;  ///< MTC200: BEQ/BNE/... test the last computed @ value
   bool ended_ = false;
   bool subroutine_ = false;  ///< RunSubroutine: a top-level RTS returns
+  ReverseLabel reverse_;     ///< REV: the reverse vector valid now
+  /// Reverse(): the part at a reverse label runs; its top-level RTS / RET goes to `.HOME`.
+  bool reverse_part_ = false;
+  int32_t home_block_ = -1;  ///< Reverse(): `.HOME` of the main program
   int64_t executed_ = 0;
   std::optional<Diagnostic> error_;
   uint32_t error_program_ = 0;

@@ -1,7 +1,8 @@
 // The MTC200 dialect (Bosch Rexroth): N0001 block numbers, .LABEL labels, ';' comments, @100
 // variables, branches on the result of the last computation (BRA/BEQ/BNE/BGT/BLT/BGE/BLE),
-// event branches BES/BEC, JSR/RTS/RET, SE/RE events, turret commands MTP/MMP/MRF/MHP/MFP/MOP,
-// MRY, data access TLD/OTD/MTD(...), fast-measurement instructions, and address words.
+// event branches BES/BEC, JSR/RTS/RET, reverse vectors REV, SE/RE events, turret commands
+// MTP/MMP/MRF/MHP/MFP/MOP, MRY, data access TLD/OTD/MTD(...), fast-measurement instructions,
+// and address words.
 
 #include <array>
 #include <string>
@@ -29,6 +30,7 @@ enum class WordClass {
   kEventBranch,
   kJump,
   kReturn,
+  kReverse,
   kEvent,
   kPlain,
   kCall,
@@ -47,6 +49,11 @@ WordClass Classify(const std::string& word) {
     for (const char* w : kAddresses) t[w] = WordClass::kAddress;
     t["JSR"] = WordClass::kJump;
     t["RTS"] = t["RET"] = WordClass::kReturn;
+    // Reverse vectors (REPOS manual 4.1, fast measurement 4.4): the manuals give no syntax for
+    // the ones a user programs, only the form the control writes for its own, `rev .*$...`
+    // (fast measurement 4.4 CAUTION). vmt reads that as the statement REV naming a jump label,
+    // and takes the same form for the user's: `REV .LABEL`, like a branch.
+    t["REV"] = WordClass::kReverse;
     return t;
   }();
   const auto it = table.find(word);
@@ -118,6 +125,10 @@ bool ParseMtc200Line(std::string_view line, SourcePos start, ExpressionParser& e
       if ((st.value = expr.Parse(s)) == kNoExpr) return true;
     } else if (cls == WordClass::kJump) {
       st.kind = Statement::Kind::kCall;
+      st.name = p.symbols.Intern(word);
+      if ((st.target = Label(s, expr, p, word)) == 0) return true;
+    } else if (cls == WordClass::kReverse) {
+      st.kind = Statement::Kind::kReverse;
       st.name = p.symbols.Intern(word);
       if ((st.target = Label(s, expr, p, word)) == 0) return true;
     } else if (cls == WordClass::kReturn) {

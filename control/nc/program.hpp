@@ -162,6 +162,8 @@ struct Statement {
     kWhile,
     kEndWhile,
     kProgramEnd,  ///< M30 / M02 as program end (ISG); MTC200 uses RET
+    /// REV .LABEL (MTC200): the reverse vector valid from this block on (target = label).
+    kReverse,
   };
   Kind kind = Kind::kInstruction;
   uint32_t name = 0;       ///< mnemonic, variable or instruction name

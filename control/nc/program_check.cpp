@@ -40,9 +40,12 @@ void CheckProgram(Program& p, std::vector<Diagnostic>& errors) {
     }
   }
 
-  // Fast measurement 4.4 CAUTION: the jump labels the control generates for the reverse vectors
-  // begin with "rev"; in a program whose MOVE / PROBE make them, the user may not use such a
-  // label (the reverse program would branch into the user's block).
+  // Fast measurement 4.4 CAUTION: the control writes the reverse vectors of MOVE / PROBE as
+  // `rev .*$...` and reserves their beginning. vmt reads `REV .LABEL` as the statement (the
+  // user's reverse vectors take that form), and since the manual leaves open whether the
+  // reserved letters are also the labels', keeps labels beginning with REV for the control in a
+  // program whose MOVE / PROBE make reverse vectors (the reverse program would branch into the
+  // user's block).
   if (p.dialect == Dialect::kMtc200) {
     bool reverse_vectors = false;
     for (const Statement& st : p.statements)
@@ -73,6 +76,14 @@ void CheckProgram(Program& p, std::vector<Diagnostic>& errors) {
             st.jump = it->second;
           else
             errors.push_back({st.pos, "label ." + p.symbols.Name(st.target) + " is not defined"});
+          break;
+        case Kind::kReverse:
+          // A reverse vector names a label of its own program, as a branch does.
+          if (auto it = p.labels.find(st.target); it != p.labels.end())
+            st.jump = it->second;
+          else
+            errors.push_back({st.pos, "REV: the reverse label ." + p.symbols.Name(st.target) +
+                                          " is not defined"});
           break;
         case Kind::kIf:
         case Kind::kFor:

@@ -108,6 +108,30 @@ TEST(Mtc200Test, RevLabelsAreFreeWithoutMoveOrProbe) {
   EXPECT_FALSE(Mtc("N0001 PROBE(1,1,30,5,,X,-2,100,1,1,0)\n.REV1\nN0002 RET\n").ok());
 }
 
+// Reverse vectors (REPOS manual 4.1, fast measurement 4.4): REV names the reverse label valid
+// from its block on; the label is resolved as a branch's is, in the program that programs it.
+TEST(Mtc200Test, ReverseVectorNamesALabel) {
+  const ParseResult r = Mtc("N1 G01 X10 F100 REV .BACK\nN2 RET\n.BACK\nN10 G01 Z5 RTS\n");
+  ASSERT_TRUE(r.ok()) << Errors(r);
+  const Program& p = r.program;
+  const auto st = p.Statements(p.blocks[0]);
+  ASSERT_EQ(st.size(), 1u);
+  EXPECT_EQ(st[0].kind, Statement::Kind::kReverse);
+  EXPECT_EQ(p.symbols.Name(st[0].target), "BACK");
+  EXPECT_EQ(st[0].jump, 2);
+  EXPECT_EQ(p.Words(p.blocks[0]).size(), 3u);  // the block's words stay its own
+}
+
+TEST(Mtc200Test, ReverseVectorToAMissingLabelIsAnErrorAtItsWord) {
+  const ParseResult r = Mtc("N1 G01 X10 F100\nN2   REV .NOWHERE\nN3 RET\n.HOME\nN4 RET\n");
+  ASSERT_FALSE(r.ok());
+  EXPECT_THAT(Errors(r), HasSubstr("t.mtc:2:6: error: REV: the reverse label .NOWHERE is not "
+                                   "defined"));
+  const ParseResult bare = Mtc("N1 REV\n");
+  ASSERT_FALSE(bare.ok());
+  EXPECT_THAT(Errors(bare), HasSubstr("t.mtc:1:7: error: expected a label (.NAME) after REV"));
+}
+
 TEST(Mtc200Test, MeasuringInstructionsWithOmittedArguments) {
   const ParseResult r =
       Mtc("N0010 SETTING (X, Z, , 18, 48, 16, 3)\nN0020 COMPARE (10, 1, 2, 8)\nN0030 SAVE ()\n");
