@@ -578,7 +578,7 @@ class Channel {
   /// G77 Sj=0 for j >= 2 (REPOS manual 4.2): checks its words, then restores the spindles'
   /// states from before the interruption. False on an error (the channel has failed).
   bool CheckReposFurtherSpindles(const nc::Program& program);
-  void RestoreFurtherSpindles();
+  void RestoreFurtherSpindles(const AmplifierTelegram& at);
   /// Each further spindle at its command of before the interruption, at speed (7.3).
   bool FurtherSpindlesRestored(const AmplifierTelegram& at) const;
   bool FurtherSpindleRestored(size_t k, const AmplifierTelegram* at) const;

@@ -89,16 +89,21 @@ bool Channel::CheckReposFurtherSpindles(const nc::Program& program) {
   return true;
 }
 
-void Channel::RestoreFurtherSpindles() {
+void Channel::RestoreFurtherSpindles(const AmplifierTelegram& at) {
+  bool changed = false, named = false;
   for (const nc::AuxFunction& f : block_.aux) {
     if (f.letter != 'S' || SpindleIndex(f.index) < 2) continue;
     for (size_t k = 0; k < config_.spindles.size(); ++k)
-      if (config_.spindles[k].index == f.index &&
-          k < interruption_->further_spindles.size()) {
-        further_spindles_[k] = interruption_->further_spindles[k];
-        further_restoring_ = true;
+      if (config_.spindles[k].index == f.index && k < interruption_->further_spindles.size()) {
+        const FurtherSpindleState& before = interruption_->further_spindles[k];
+        changed |= further_spindles_[k].Command().value != before.Command().value;
+        further_spindles_[k] = before;
+        named = true;
       }
   }
+  // A new command waits at least a cycle: the drive's at-speed bit still answers the old one.
+  // A spindle that kept its command is waited for only while it has not reached it.
+  further_restoring_ = named && (changed || FurtherSpindlesRamping(at));
 }
 
 bool Channel::FurtherSpindleRestored(size_t k, const AmplifierTelegram* at) const {

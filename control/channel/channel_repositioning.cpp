@@ -449,7 +449,7 @@ bool Channel::CheckReposBlock() {
   return true;
 }
 
-bool Channel::StartReposMotion(const AmplifierTelegram& /*at*/) {
+bool Channel::StartReposMotion(const AmplifierTelegram& at) {
   const nc::Program& program = *ProgramOf(block_.program);
   // 4.2 Spindles: G77 S1=0 restores the main spindle's speed or position; the block waits until
   // it has reached it. Spindles the channel does not command have nothing to restore.
@@ -461,7 +461,7 @@ bool Channel::StartReposMotion(const AmplifierTelegram& /*at*/) {
       orienting_ = true;
     }
   // The further spindles have no rotary axis mode and no PathGuard sweep (channel_turret_guard).
-  RestoreFurtherSpindles();
+  RestoreFurtherSpindles(at);
   orienting_ |= further_restoring_;
   // 4.2 Feed axes: the distance to go between target and actual position, G00-like (all axes
   // reach the target together) at F, without the G functions of interpolation and without tool
