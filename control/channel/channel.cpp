@@ -46,6 +46,7 @@ Channel::Channel(ChannelConfig config, std::vector<const nc::Program*> programs)
   homed_.resize(n);
   for (size_t a = 0; a < n; ++a) homed_[a] = config_.axes[a].homed_at_start;
   spindle_ = {DriveMode::kVelocity, 0, 0};
+  further_spindles_.assign(config_.spindles.size(), FurtherSpindleState{});
   if (config_.headstock) headstock_.emplace(*config_.headstock);
   spindle_homed_ = config_.spindle.homed_at_start;
   last_modal_ = config_.initial;
@@ -181,7 +182,7 @@ bool Channel::Reverse() {
   active_ = false;
   homing_ = false;
   dwell_left_s_ = 0;
-  orienting_ = false;
+  orienting_ = further_restoring_ = false;
   // Fast measurement 6.1 / 7.2 network 9: the PLC acknowledges Q9999 once the reverse program
   // is active; the reverse program waits for that before its first block.
   std::erase_if(aux_output_, [](const nc::AuxFunction& f) {
@@ -316,11 +317,17 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
         if (state_ == ChannelState::kRunning) dwell_left_s_ -= dt;
         finished = dwell_left_s_ <= 0;
       } else if (orienting_) {
-        // M19 ends when the spindle reports itself in position, G77 S1=0 when it is at speed.
-        const uint32_t status = at.feedback[config_.spindle_drive].status;
-        orienting_ = spindle_.mode == DriveMode::kPosition
-                         ? !(status & drive_status::kInPosition)
-                         : spindle_.value != 0 && !(status & drive_status::kAtSpeed);
+        // M19 ends when the spindle reports itself in position, G77 Sj=0 when its spindles
+        // are at speed.
+        orienting_ = false;
+        if (config_.spindle_drive >= 0) {
+          const uint32_t status = at.feedback[config_.spindle_drive].status;
+          orienting_ = spindle_.mode == DriveMode::kPosition
+                           ? !(status & drive_status::kInPosition)
+                           : spindle_.value != 0 && !(status & drive_status::kAtSpeed);
+        }
+        if (further_restoring_) further_restoring_ = FurtherSpindlesRamping(at);
+        orienting_ |= further_restoring_;
         finished = !orienting_;
       } else if (measuring_ && !active_) {
         finished = MeasuringCycle(at);
@@ -386,6 +393,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
   const DriveSetpoint spindle = SpindleSetpoint();
   if (config_.spindle_drive >= 0) mdt.setpoints[config_.spindle_drive] = spindle;
   if (headstock_) headstock_->WriteSetpoints(spindle, rotary, at, mdt);
+  WriteFurtherSpindles(mdt);
   WriteToolStorage(mdt);
   AcknowledgeDriveTrips(mdt);
 }
@@ -558,6 +566,8 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
   DriveSetpoint spindle = spindle_;
   const bool orient = SpindleFunctions(block_, spindle);
   if (!GuardSpindleStart("spindle start", spindle)) return false;
+  // Sj= / Mj= of the further spindles (G77 Sj=0 restores them instead, StartReposMotion).
+  if (!block_.repos && !FurtherSpindleWords(program, block_, further_spindles_)) return false;
   spindle_ = spindle;
   if (orient) spindle_referencing_ = orienting_ = true;
 

@@ -50,6 +50,9 @@ struct ChannelConfig {
   /// spindle position (AxxC.M3/M4/M19), encoder limits and reference at power-on. Its `drive`
   /// and `number` are not read (spindle_drive is). An empty name shows as "S1".
   axes::AxisParameters spindle;
+  /// The channel's further spindles (Sj, j >= 2: lathe-c1's driven tool S2), which the channel
+  /// commands from Sj= / Mj= words (further_spindles.hpp).
+  std::vector<ChannelSpindle> spindles;
   int ticks_per_cycle = 4;  ///< NC cycle 1 ms at the 250 us drive tick
   double tick_s = 250e-6;
   axes::ZeroOffsetTable zero_offsets;
@@ -569,6 +572,23 @@ class Channel {
   /// The main spindle about to take setpoint `sp`: a start sweeps what turns with it. False
   /// if stopped.
   bool GuardSpindleStart(const std::string& move, const DriveSetpoint& sp);
+  // Further spindles (channel_further_spindles.cpp).
+  /// Sj= / Mj= of spindle j >= 2 in a block: false (an error at the word) for a spindle the
+  /// channel does not have or a function it cannot give one; else `states` takes them.
+  bool FurtherSpindleWords(const nc::Program& program, const nc::PreparedBlock& b,
+                           std::vector<FurtherSpindleState>& states);
+  /// G77 Sj=0 for j >= 2 (REPOS manual 4.2): checks its words, then restores the spindles'
+  /// states from before the interruption. False on an error (the channel has failed).
+  bool CheckReposFurtherSpindles(const nc::Program& program);
+  void RestoreFurtherSpindles(const AmplifierTelegram& at);
+  /// Each further spindle at its command of before the interruption, at speed (7.3).
+  bool FurtherSpindlesRestored(const AmplifierTelegram& at) const;
+  bool FurtherSpindleRestored(size_t k, const AmplifierTelegram* at) const;
+  /// A further spindle restored by G77 still ramps to its speed: the block waits.
+  bool FurtherSpindlesRamping(const AmplifierTelegram& at) const;
+  void WriteFurtherSpindles(MasterTelegram& mdt) const;
+  std::vector<FurtherSpindleState> further_spindles_;  ///< per config_.spindles
+  bool further_restoring_ = false;  ///< a G77 Sj=0 (j >= 2) block waits for their speed
   std::optional<GuardRecord> guarded_turret_jog_;
   int turret_guard_countdown_ = 0;
   PathGuard* guard_ = nullptr;

@@ -277,6 +277,14 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
                     "start cannot be simulated (block search 4.1.2)",
                 kMsgBlockSearch);
   if (b.repos) return fail("G77 cannot run in block search", kMsgBlockSearch);
+  // The search restores the main spindle's speed before the return to the contour; the further
+  // spindles' it does not keep, so their words stop the search rather than be lost.
+  for (const nc::AuxFunction& f : b.aux)
+    if ((f.letter == 'S' || f.letter == 'M') && SpindleIndex(f.index) >= 2)
+      return fail(std::string(1, f.letter) + std::to_string(f.index) +
+                      "=: block search does not carry further spindles (Sj=, Mj= with j >= 2) "
+                      "to the continue position",
+                  kMsgBlockSearch);
   if (!b.calls.empty()) {
     // Section 8: the search cannot measure; the continue position after the instruction can.
     if (boundary)
@@ -526,7 +534,7 @@ void Channel::HoldAtBreakpoint() {
 bool Channel::SpindleFunctions(const nc::PreparedBlock& b, DriveSetpoint& sp) const {
   bool orient = false;
   for (const nc::AuxFunction& f : b.aux) {
-    if (f.letter != 'M' || config_.spindle_drive < 0) continue;
+    if (f.letter != 'M' || SpindleIndex(f.index) != 1 || config_.spindle_drive < 0) continue;
     const int m = static_cast<int>(f.value);
     const double rpm = b.modal.spindle_speed;
     // G64 keeps the spindle in position control: M3/M4 give its direction only.

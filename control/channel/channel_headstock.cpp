@@ -59,7 +59,8 @@ axes::HeadstockMode Channel::ModeNeeded(const nc::PreparedBlock& b) const {
   // C-axis manual 4.2: G00/G01/G02/G03 with the rotary axis' name select rotary axis mode;
   // M3, M4, M5, M19 (and G33, G63, G64) spindle mode.
   for (const nc::AuxFunction& f : b.aux)
-    if (f.letter == 'M' && (f.value == 3 || f.value == 4 || f.value == 5 || f.value == 19))
+    if (f.letter == 'M' && SpindleIndex(f.index) == 1 &&
+        (f.value == 3 || f.value == 4 || f.value == 5 || f.value == 19))
       return axes::HeadstockMode::kSpindle;
   if (nc::SpindleSynchronous(b.motion)) return axes::HeadstockMode::kSpindle;
   // G77 S1=0 restores the spindle in spindle mode, G77 C0 the rotary axis in rotary axis mode

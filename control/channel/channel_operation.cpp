@@ -155,7 +155,7 @@ void Channel::Reset() {
   homing_ = false;
   reversing_ = false;
   dwell_left_s_ = 0;
-  orienting_ = false;
+  orienting_ = further_restoring_ = false;
   aux_output_.clear();
   programmed_stop_.Leave();
   tool_storage_.positioning = tool_storage_.programmed = tool_storage_wait_ = false;
@@ -186,6 +186,7 @@ void Channel::Reset() {
   DropLookahead();
   previous_ = commanded_;
   spindle_ = {DriveMode::kVelocity, 0, 0};
+  further_spindles_.assign(config_.spindles.size(), FurtherSpindleState{});
   spindle_referencing_ = false;
   manual_changeover_ = false;
   // A real control acknowledges its drives' errors with Control-Reset: the drives that tripped

@@ -51,6 +51,7 @@ void Channel::CaptureInterruption() {
   i.line = line();
   i.spindle = spindle_;
   i.spindle_m = SpindleM(spindle_);
+  i.further_spindles = further_spindles_;
   if (headstock_) {
     i.headstock_mode = headstock_->mode();
     // Outside rotary axis mode (a changeover included) the NC does not position the rotary
@@ -185,6 +186,7 @@ void Channel::ReposCycle(const AmplifierTelegram& at) {
                                    FictiveOf(commanded_, fx, fc)) &&
                !OutOfItsMode(headstock(), config_.rotary_axis, fc);
   if (restored && SpindleRelevant()) restored = SpindleRestored(at);
+  if (restored) restored = FurtherSpindlesRestored(at);
   crest_ = restored && ToolStorageRestored();
 }
 
@@ -251,6 +253,21 @@ ReposStatus Channel::repos_status(const AmplifierTelegram* at) const {
                           : (!headstock_ || headstock_->mode() == axes::HeadstockMode::kSpindle) &&
                                 spindle_.mode == i.spindle.mode &&
                                 std::abs(spindle_.value - i.spindle.value) < 1e-9);
+  for (size_t k = 0; k < i.further_spindles.size(); ++k) {
+    const DriveSetpoint before = i.further_spindles[k].Command();
+    ReposFurtherSpindleStatus f;
+    f.name = config_.spindles[k].name;
+    f.command_rpm = before.value / 6;
+    f.command_m = i.further_spindles[k].m;
+    f.actual_m = further_spindles_[k].m;
+    const int d = config_.spindles[k].drive;
+    if (at && d >= 0 && static_cast<size_t>(d) < at->feedback.size())
+      f.actual_rpm = at->feedback[d].velocity / 6;
+    else
+      f.actual_rpm = further_spindles_[k].Command().value / 6;
+    f.adjust = !FurtherSpindleRestored(k, at);
+    s.further_spindles.push_back(f);
+  }
   s.tool_storage_relevant = config_.process.reposition_tool_storage && ToolStorageKnown();
   s.tool_storage_adjust = !ToolStorageRestored();
   s.programmed_feed = i.modal.feed;
@@ -349,7 +366,7 @@ void Channel::StartReposRun() {
   // the interrupted program stays parked and the targets stay the interruption's.
   if (!repos_run_) SwapProgramInWork();
   repos_rerun_ = false;
-  orienting_ = false;
+  orienting_ = further_restoring_ = false;
   active_ = pending_motion_ = homing_ = false;
   dwell_left_s_ = 0;
   DropLookahead();
@@ -397,6 +414,7 @@ bool Channel::CheckReposBlock() {
          kMsgReposNoFeed);
     return false;
   }
+  if (!CheckReposFurtherSpindles(program)) return false;
   // 4.2: G77 S1=0 (or S=0) restores the main spindle: a channel without one has none to restore.
   for (const nc::AuxFunction& f : block_.aux)
     if (f.letter == 'S' && f.index <= 1 && config_.spindle_drive < 0) {
@@ -431,7 +449,7 @@ bool Channel::CheckReposBlock() {
   return true;
 }
 
-bool Channel::StartReposMotion(const AmplifierTelegram& /*at*/) {
+bool Channel::StartReposMotion(const AmplifierTelegram& at) {
   const nc::Program& program = *ProgramOf(block_.program);
   // 4.2 Spindles: G77 S1=0 restores the main spindle's speed or position; the block waits until
   // it has reached it. Spindles the channel does not command have nothing to restore.
@@ -442,6 +460,9 @@ bool Channel::StartReposMotion(const AmplifierTelegram& /*at*/) {
       spindle_referencing_ = spindle_.mode == DriveMode::kPosition;
       orienting_ = true;
     }
+  // The further spindles have no rotary axis mode and no PathGuard sweep (channel_turret_guard).
+  RestoreFurtherSpindles(at);
+  orienting_ |= further_restoring_;
   // 4.2 Feed axes: the distance to go between target and actual position, G00-like (all axes
   // reach the target together) at F, without the G functions of interpolation and without tool
   // radius compensation.
@@ -489,6 +510,13 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
       Fail(ProgramOf(block_.program)->files[0] +
                ": error: the REPOS subroutine has returned with the spindle not in its state "
                "before the interruption (G77 S1=0)",
+           kMsgReposNotRestored);
+      return false;
+    }
+    if (!FurtherSpindlesRestored(at)) {
+      Fail(ProgramOf(block_.program)->files[0] +
+               ": error: the REPOS subroutine has returned with a further spindle not in its "
+               "state before the interruption (G77 Sj=0)",
            kMsgReposNotRestored);
       return false;
     }

@@ -20,6 +20,7 @@ ChannelConfig JogOfPathConfig(const ChannelConfig& block_search_channel) {
   c.headstock.reset();
   c.rotary_axis = -1;
   c.spindle_drive = -1;
+  c.spindles.clear();
   c.tool_storage_drive = -1;
   c.tool_storage_nc = false;
   c.tool_storage_stations = 0;

@@ -10,6 +10,7 @@
 
 #include "control/axes/axis_parameters.hpp"
 #include "control/axes/headstock_changeover.hpp"
+#include "control/channel/further_spindles.hpp"
 #include "control/nc/coordinate_transformation.hpp"
 #include "control/drive_bus.hpp"
 #include "control/nc/interpreter.hpp"
@@ -36,6 +37,8 @@ struct Interruption {
   uint32_t line = 0;                ///< its source line, 0 between blocks
   DriveSetpoint spindle;            ///< the main spindle's command (M3/M4 speed, M19 position)
   int spindle_m = 5;                ///< its M function: 3, 4, 5 or 19
+  /// The further spindles' programmed speed and direction (ChannelConfig::spindles' order).
+  std::vector<FurtherSpindleState> further_spindles;
   axes::HeadstockMode headstock_mode = axes::HeadstockMode::kNone;  ///< kNone: no headstock
   bool left_contour = false;  ///< an axis has been jogged away from `point` (2.1)
   double tool_storage = 0;    ///< the tool storage axis' position (deg), if there is one
@@ -102,6 +105,7 @@ struct ReposStatus {
   bool subroutine_running = false;  ///< the REPOS subroutine runs (4.1)
   std::vector<ReposAxisStatus> axes;
   ReposSpindleStatus spindle;
+  std::vector<ReposFurtherSpindleStatus> further_spindles;  ///< S2, S3 (7.3: all spindles)
   /// 2.2: the tool storage axis' adjust symbol after the T word (only with Bxx.045 = yes).
   bool tool_storage_relevant = false, tool_storage_adjust = false;
   double programmed_feed = 0;  ///< F of the interrupted block, mm/min | mm/rev

@@ -245,14 +245,18 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
           break;  // RX RY RZ below
         case 'M': {
           const int m = static_cast<int>(std::lround(v));
-          if (m == 3 || m == 4 || m == 5 || m == 19) modal_.spindle = m;
-          if (m == 7 || m == 8 || m == 9) modal_.coolant = m;
-          if (m == 30 || m == 2) out.end = true;
+          // Mj= with j >= 2 addresses spindle j (channel further_spindles.hpp), never the
+          // main spindle's, the coolant's or the program's functions.
+          const bool own = index <= 1;
+          if (own && (m == 3 || m == 4 || m == 5 || m == 19)) modal_.spindle = m;
+          if (own && (m == 7 || m == 8 || m == 9)) modal_.coolant = m;
+          if (own && (m == 30 || m == 2)) out.end = true;
           out.aux.push_back({'M', index, v});
           continue;
         }
         case 'S':
-          if (index == 0 && !out.repos) modal_.spindle_speed = v;
+          // S and S1= are the main spindle's speed; Sj= with j >= 2 spindle j's.
+          if (index <= 1 && !out.repos) modal_.spindle_speed = v;
           out.aux.push_back({'S', index, v});
           continue;
         case 'T':

@@ -93,6 +93,13 @@ nlohmann::ordered_json ReposEvent(double t, const control::channel::ReposStatus&
                   {"actual_m", sp.actual_m},
                   {"command_m", sp.command_m},
                   {"adjust", sp.adjust}};
+  // 2.2, 7.3: every further spindle of the channel, as the main one.
+  for (const control::channel::ReposFurtherSpindleStatus& f : s.further_spindles)
+    e["spindles"][f.name] = {{"actual_rpm", Micro(f.actual_rpm)},
+                             {"command_rpm", Micro(f.command_rpm)},
+                             {"actual_m", f.actual_m},
+                             {"command_m", f.command_m},
+                             {"adjust", f.adjust}};
   if (s.tool_storage_relevant) e["tool_storage"] = {{"adjust", s.tool_storage_adjust}};
   e["F"] = s.programmed_feed;
   e["feed_override"] = s.feed_override;
@@ -113,6 +120,8 @@ std::string ReposEventKey(const control::channel::ReposStatus& s) {
   key += s.subroutine_running ? "S" : "s";
   for (const control::channel::ReposAxisStatus& a : s.axes) key += a.adjust ? "1" : "0";
   key += s.spindle.adjust ? "1" : "0";
+  for (const control::channel::ReposFurtherSpindleStatus& f : s.further_spindles)
+    key += f.adjust ? "1" : "0";
   key += s.tool_storage_adjust ? "1" : "0";
   return key;
 }

@@ -141,6 +141,15 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
       config.spindle.rapid_per_s = d.parameter_sets.at(0).velocity_limit * kDegPerRad;
       config.spindle.acceleration = d.parameter_sets.at(0).acceleration_limit * kDegPerRad;
     }
+    // The further spindles (S2, S3): the machine's other spindle drives, addressed by the
+    // index of their name as the REPOS manual addresses them (G77 Sj=0, 4.2).
+    for (size_t d = 0; d < m.drives.size(); ++d) {
+      const std::string& name = m.drives[d].info.name;
+      if (!m.drives[d].spindle || static_cast<int>(d) == config.spindle_drive ||
+          name.size() != 2 || name[0] != 'S' || name[1] < '2' || name[1] > '3')
+        continue;
+      config.spindles.push_back({name[1] - '0', static_cast<int>(d), name});
+    }
     config.zero_offsets = scene.nc.data.zero_offsets;
     config.tools = scene.nc.data.tools;
     config.initial = scene.nc.initial;

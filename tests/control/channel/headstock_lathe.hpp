@@ -23,8 +23,9 @@ inline constexpr uint32_t kTrips =
     drive_status::kOverload | drive_status::kOverspeed | drive_status::kParameterSetError;
 inline constexpr double kTick = 250e-6;
 
-// Drives: 0 X, 1 Z, 2 main spindle S1, 3 C servo (section 3). Section 2 (a spindle with rotary
-// axis capability) puts C on drive 2. Channel axes: X, Z, C.
+// Drives: 0 X, 1 Z, 2 main spindle S1, 3 C servo (section 3), 4 the driven tool spindle S2 (as
+// lathe-c1's, which the REPOS subroutine of the repositioning manual's 8.3 restores). Section 2
+// (a spindle with rotary axis capability) puts C on drive 2. Channel axes: X, Z, C.
 struct Lathe {
   explicit Lathe(const std::string& program, bool separate_servo = false,
                  const std::function<void(ChannelConfig&)>& configure = {},
@@ -51,12 +52,13 @@ struct Lathe {
     h.rotary_drive = separate_servo ? 3 : 2;
     config.headstock = h;
     config.rotary_axis = 2;
+    config.spindles = {{2, 4, "S2"}};
     if (configure) configure(config);
     channel = std::make_unique<Channel>(config, std::vector<const nc::Program*>{&parsed.program});
-    at.feedback.resize(4);
+    at.feedback.resize(5);
     for (DriveFeedback& f : at.feedback)
       f.status = drive_status::kReady | drive_status::kStandstill;
-    mdt.setpoints.resize(4);
+    mdt.setpoints.resize(5);
     plc.spmod_q = power_on == HeadstockMode::kSpindle;
     plc.rotmod_q = power_on == HeadstockMode::kRotary;
   }
@@ -74,7 +76,7 @@ struct Lathe {
     }
     channel->SetHeadstockPlc(plc);
     channel->Tick(at, mdt);
-    for (int d = 0; d < 4; ++d) Drive(d);
+    for (int d = 0; d < 5; ++d) Drive(d);
     t += kTick;
   }
   void Ticks(int n) {
@@ -137,7 +139,7 @@ struct Lathe {
   MasterTelegram mdt;
   axes::HeadstockPlc plc;
   bool acknowledge = true;
-  bool persisting[4] = {false, false, false, false};
+  bool persisting[5] = {false, false, false, false, false};
   double t = 0;
 };
 
