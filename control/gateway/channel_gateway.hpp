@@ -12,6 +12,7 @@
 
 #include "control/channel/channel.hpp"
 #include "control/drive_bus.hpp"
+#include "control/gateway/axis_monitor.hpp"
 #include "control/gateway/signal_image.hpp"
 
 namespace vmt::control::gateway {
@@ -73,6 +74,7 @@ class ChannelGateway {
   struct AxisSignals {
     int jgpos = -1, jgneg = -1, mvpos = -1, mvneg = -1, homed = -1;
     int enabl = -1, rf = -1, bbdig = -1;  ///< AxxC.ENABL, AxxS.RF, AxxS.BBDIG
+    Edge home;                            ///< AxxC.HOME
     bool last_enabl = false;              ///< ENABL acts when it changes
     int last_key = 0;
   };
@@ -82,6 +84,9 @@ class ChannelGateway {
   int s_error_ = -1, s_errnr_ = -1, s_auxstb_ = -1, s_mfunc_ = -1, s_hfunc_ = -1, s_tfunc_ = -1;
   int msg_wr_ = -1, msg_wr_n_ = -1;  ///< Pxx.MSG_WR / MSG_WR_N: the PLC's message
   int spindle_drive_ = -1, n_ncmd_ = -1, n_nmin_ = -1, inpos_ = -1;
+  int md_mdx_ = -1, p_px_ = -1, load90_ = -1;  ///< the spindle drive's threshold status
+  /// Waypoints, position strobe, safety limit and thermal switches of every axis (4.2).
+  AxisMonitor axis_monitor_;
   /// The headstock changeover (C-axis manual 4.1-4.3): ROTMOD/SPMOD out, their
   /// acknowledgements, the drives' enables (AxxC.READY) and AXD idents 65012..65015 in.
   struct Headstock {
