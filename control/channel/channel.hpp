@@ -233,6 +233,10 @@ class Channel {
   /// (process and axis enabling signals, PathGuard); the rotary axis of a headstock selects
   /// rotary axis mode first. Ignored outside manual mode.
   void HomeAxis(size_t axis);
+  /// AxxC.HOME of a main spindle that is no channel axis (section 3): homing as the manual
+  /// homes a spindle, by positioning (2.3, 3.3 Homing: M19 crosses the zero impulse), here to
+  /// its reference point; AxxS.HOMED when it is in position. Gated as AxxC.M19; manual mode.
+  void HomeSpindle();
   /// PxxC.MGPOS / PxxC.MGNEG (REPOS manual 3.4): +1, -1, 0 released. In manual mode the NC
   /// jogs an NC-controlled tool storage axis as the jog mode jogs the feed axes: continuously
   /// at its jogging speed (rapid), one increment per press, or not at all in handwheel mode;

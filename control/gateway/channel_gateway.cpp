@@ -87,6 +87,9 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
     const std::string ac = "A" + Number2(spindle_number) + "C.";
     const char* keys[4] = {"M3", "M4", "M5", "M19"};
     for (int k = 0; k < 4; ++k) spindle_m_[k].id = Id(ac + keys[k]);
+    // One axis with rotary axis capability (section 2): its HOME is the rotary axis' key.
+    if (std::find(axis_numbers.begin(), axis_numbers.end(), spindle_number) == axis_numbers.end())
+      spindle_home_.id = Id(ac + "HOME");
     spindle_jgpos_ = Id(ac + "JGPOS");
     spindle_jgneg_ = Id(ac + "JGNEG");
     spindle_enabl_ = Id(ac + "ENABL");
@@ -263,6 +266,7 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
   const int spindle_m[4] = {3, 4, 5, 19};
   for (int k = 0; k < 4; ++k)
     if (spindle_m_[k].Rising(im)) ch.ManualSpindle(spindle_m[k]);
+  if (spindle_home_.Rising(im)) ch.HomeSpindle();
   if (jogm_[0] >= 0 && jogm_[1] >= 0 && jogm_[2] >= 0) {
     const int code = im.Bool(jogm_[0]) | im.Bool(jogm_[1]) << 1 | im.Bool(jogm_[2]) << 2;
     if (code != last_jogm_) ch.SetJogMode(code), last_jogm_ = code;

@@ -62,6 +62,7 @@ class ChannelGateway {
   /// The main spindle's keys AxxC.M3 / M4 / M5 / M19 (rising edges), its override AxxC.SOVR
   /// (acts when it changes) and its reference AxxS.HOMED (C-axis manual 4.2).
   Edge spindle_m_[4];
+  Edge spindle_home_;  ///< AxxC.HOME of a main spindle that is no channel axis
   int spindle_jgpos_ = -1, spindle_jgneg_ = -1, last_spindle_key_ = 0;  ///< AxxC.JGPOS/JGNEG
   int spindle_enabl_ = -1, spindle_rf_ = -1, spindle_bbdig_ = -1, nc_nmax_ = -1;
   bool last_spindle_enabl_ = false;   ///< the spindle's AxxC.ENABL as last seen

@@ -192,8 +192,8 @@ constexpr SignalFamily kPanelAndAxisFamilies[] = {
      "AxxCJGNEG"},
     {"AxxC.HOME", kAxis, kBool, kPlcToNc,
      "Homing (rising edge, manual mode): a channel axis travels to its reference point at its "
-     "homing speed as G74 takes it, and is homed there. A main spindle that is no channel axis "
-     "is homed by M19 / AxxC.M19 instead (3.3), its HOME is not read",
+     "homing speed as G74 takes it, and is homed there; a main spindle is positioned to its "
+     "reference point as M19 does, which homes it (2.3, 3.3 Homing)",
      CAXIS "2.3; 3.3; 4.2"},
     {"AxxC.ENABL", kAxis, kBool, kPlcToNc,
      "Axis enabling signal: without it the axis cannot move in manual mode (its keys start "

@@ -131,6 +131,24 @@ TEST(ChannelGatewayHeadstock, HomeKeyOfTheRotaryAxisSelectsRotaryAxisMode) {
   EXPECT_FALSE(r.Get("A04S.MVNEG"));
 }
 
+// 2.3 / 3.3 Homing: a main spindle is homed by positioning (M19 crosses the zero impulse); its
+// HOME key positions it to its reference point, and the reference is there when it is in
+// position. Outside manual mode the key does nothing.
+TEST(ChannelGatewayHeadstock, HomeKeyOfTheMainSpindlePositionsItToItsReference) {
+  HeadstockRig r;
+  r.at.feedback[2].position = 200;
+  r.Press("A03C.HOME");
+  r.Cycle(5);
+  EXPECT_FALSE(r.Get("A03S.HOMED"));
+  EXPECT_DOUBLE_EQ(r.at.feedback[2].position, 200);
+  r.Press("P00C.MANU");
+  r.Press("A03C.HOME");
+  r.Cycle(5);
+  EXPECT_EQ(r.mdt.setpoints[2].mode, DriveMode::kPosition);
+  EXPECT_DOUBLE_EQ(r.at.feedback[2].position, 0);
+  EXPECT_TRUE(r.Get("A03S.HOMED"));
+}
+
 TEST(ChannelGatewayHeadstock, ProcessEnableRemovedStopsAndBlocksTheSpindleKeys) {
   HeadstockRig r;
   r.Set("P00C.ENABL", true);
