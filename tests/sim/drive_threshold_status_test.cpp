@@ -38,7 +38,9 @@ TEST(DriveThresholdStatusTest, TorqueAndPowerThresholdsShowTheRunUp) {
     EXPECT_EQ(torque_bit, std::abs(fb.torque) >= 30) << t;
     const double power_w = std::abs(fb.torque * fb.velocity * M_PI / 180);
     // Away from the threshold by more than the deg <-> rad conversion's rounding.
-    if (std::abs(power_w - 5000) > 1e-6) EXPECT_EQ(power_bit, power_w >= 5000) << t;
+    if (std::abs(power_w - 5000) > 1e-6) {
+      EXPECT_EQ(power_bit, power_w >= 5000) << t;
+    }
     if (torque_bit && torque_on < 0) torque_on = t;
     if (power_bit && power_on < 0) power_on = t;
   });
