@@ -84,6 +84,15 @@ inline constexpr uint32_t kFollowingError = 1u << 6;  ///< following error above
 inline constexpr uint32_t kOverload = 1u << 7;   ///< net time at the torque limit > overload_time
 inline constexpr uint32_t kOverspeed = 1u << 8;  ///< |velocity| > 1.2 x the velocity limit
 inline constexpr uint32_t kParameterSetError = 1u << 9;  ///< setpoint names a set it does not have
+// Threshold status bits of a drive (SERCOS status parameters; the C-axis manual's spindle
+// signals AxxS.MD_MDX, P_PX, LOAD90, 4.2). Each stays 0 on a drive that has no threshold set.
+/// |Md| >= Mdx: the torque at or above the drive's torque threshold (S-0-0333, Mdx S-0-0126).
+inline constexpr uint32_t kTorqueThreshold = 1u << 10;
+/// |P| >= Px: the mechanical power |torque x velocity| at or above the drive's power threshold
+/// (S-0-0337, Px S-0-0158).
+inline constexpr uint32_t kPowerThreshold = 1u << 11;
+/// 90 % load: |torque| at or above 90 % of the active parameter set's torque limit.
+inline constexpr uint32_t kLoad90 = 1u << 12;
 }  // namespace drive_status
 
 /// One edge's latch of a probe input: S-0-0409..0412 and S-0-0130..0133.

@@ -4,6 +4,8 @@
 // Bxx.036 ...); the rest (rapid, acceleration, jerk, homing) are named by what they are, since
 // the manuals give them no number. Units are machine units: mm or degrees, per second.
 
+#include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -43,6 +45,11 @@ struct AxisParameters {
   /// 1 MHz for square-wave signals (3.3); the main spindle interface for incremental encoders
   /// 100 kHz (2.3).
   double encoder_limit_hz = 0;
+  /// Cxx.025..Cxx.032 waypoints 0..7 (C-axis manual 2.2), mm | deg in machine coordinates; a
+  /// rotary axis' or spindle's within [0, 360). kNoWaypoint: not set, AxxS.WPn stays 0.
+  static constexpr double kNoWaypoint = std::numeric_limits<double>::quiet_NaN();
+  std::array<double, 8> waypoints{kNoWaypoint, kNoWaypoint, kNoWaypoint, kNoWaypoint,
+                                  kNoWaypoint, kNoWaypoint, kNoWaypoint, kNoWaypoint};
 };
 
 /// Process parameters (Bxx.*), REPOS manual 6.

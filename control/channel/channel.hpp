@@ -232,6 +232,16 @@ class Channel {
   /// Jog key of a channel axis: +1 positive, -1 negative, 0 released. Manual mode only; an
   /// increment, once started, is completed.
   void Jog(size_t axis, int direction);
+  /// AxxC.HOME of a channel axis (rising edge; C-axis manual 4.2: homing "like it does for the
+  /// remaining axes"): in manual mode the axis travels to its reference point at its homing
+  /// speed, as G74 takes it, and has its reference when it arrives. Gated like an increment
+  /// (process and axis enabling signals, PathGuard); the rotary axis of a headstock selects
+  /// rotary axis mode first. Ignored outside manual mode.
+  void HomeAxis(size_t axis);
+  /// AxxC.HOME of a main spindle that is no channel axis (section 3): homing as the manual
+  /// homes a spindle, by positioning (2.3, 3.3 Homing: M19 crosses the zero impulse), here to
+  /// its reference point; AxxS.HOMED when it is in position. Gated as AxxC.M19; manual mode.
+  void HomeSpindle();
   /// PxxC.MGPOS / PxxC.MGNEG (REPOS manual 3.4): +1, -1, 0 released. In manual mode the NC
   /// jogs an NC-controlled tool storage axis as the jog mode jogs the feed axes: continuously
   /// at its jogging speed (rapid), one increment per press, or not at all in handwheel mode;
@@ -246,6 +256,11 @@ class Channel {
   void MachineFault(const std::string& text, int number) {
     if (state_ != ChannelState::kError) Fail(text, number);
   }
+  /// A safety switch of an axis or the main spindle opened (AxxC.OTRVL safety limit switch,
+  /// AxxC.MTAS thermal protection, C-axis manual 4.2): immediate stop as for a drive fault,
+  /// every jog and the spindle included, and the error state with `number` and `text`.
+  /// Control-Reset clears it, so that the axis can then be jogged off the switch.
+  void SafetyStop(const std::string& text, int number);
   /// The PLC's side of the headstock changeover (ROTMOD_Q, SPMOD_Q, enables, AXD idents),
   /// given by the gateway every NC cycle.
   void SetHeadstockPlc(const axes::HeadstockPlc& plc) { headstock_plc_ = plc; }
@@ -466,6 +481,8 @@ class Channel {
   }
   bool take_over_pending_ = false;  ///< own the axes' setpoints from the next tick on
   void Jogging(double dt);
+  /// AxxC.HOME's homing of channel axis `a` (HomeAxis): true while it owns the axis' cycle.
+  bool HomingJog(size_t a, double dt);
   /// The handwheel's counts start afresh from where each jogged axis (X1/Y1 too) comes to rest.
   void RestartHandwheel();
   // Jogging X1/Y1 under G31 (channel_fictive_jog.cpp).
@@ -540,6 +557,8 @@ class Channel {
     double handwheel_target = 0;  ///< kHandwheel: where the counts want the axis
     bool handwheel = false;
     int blocked = 0;  ///< PathGuard stopped the key in this direction: until it is released
+    bool home_requested = false;  ///< AxxC.HOME: homing starts once the axis can move
+    bool homing = false;          ///< the increment under way is homing (to the reference)
   };
   std::vector<JogAxis> jog_;
   /// A feed axis or X1/Y1 still jogs: braking after a mode change, or an increment under way.

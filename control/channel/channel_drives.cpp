@@ -14,6 +14,17 @@ constexpr uint32_t kTrips =
 
 }  // namespace
 
+void Channel::SafetyStop(const std::string& text, int number) {
+  // The axes stand where they are commanded this cycle: a program's path, a jog or an
+  // increment under way end at once, and a held key moves nothing until it is pressed again.
+  for (JogAxis& j : jog_)
+    j.velocity = 0, j.stepping = j.handwheel = j.homing = j.home_requested = false, j.key = 0;
+  for (FictiveJog& f : fictive_jog_) f.velocity = 0, f.stepping = f.handwheel = false, f.key = 0;
+  if (config_.spindle_drive >= 0) spindle_ = {DriveMode::kVelocity, 0, 0};
+  spindle_jogging_ = spindle_referencing_ = orienting_ = false;
+  if (state_ != ChannelState::kError) Fail(text, number);
+}
+
 void Channel::CheckDrives(const AmplifierTelegram& at) {
   auto tripped_text = [](uint32_t status) -> std::string {
     std::string causes;

@@ -122,6 +122,18 @@ void Channel::ManualSpindle(int m) {
   take_over_pending_ = true;
 }
 
+void Channel::HomeSpindle() {
+  if (mode_ != ChannelMode::kManual || config_.spindle_drive < 0) return;
+  if (!process_enable_ || !spindle_enable_) return;
+  if (headstock_) ManualChangeover(axes::HeadstockMode::kSpindle);
+  const DriveSetpoint sp{DriveMode::kPosition, config_.spindle.reference_position, 0};
+  if (!GuardSpindleStart("spindle start", sp)) return;
+  spindle_ = sp;
+  spindle_referencing_ = true;  // TrackReferences: homed once in position
+  spindle_jogging_ = false;
+  take_over_pending_ = true;
+}
+
 void Channel::JogSpindle(int direction) {
   if (mode_ != ChannelMode::kManual || config_.spindle_drive < 0) return;
   if (direction == 0) {

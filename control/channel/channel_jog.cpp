@@ -90,6 +90,15 @@ void Channel::Jog(size_t axis, int direction) {
   take_over_pending_ = true;
 }
 
+void Channel::HomeAxis(size_t axis) {
+  if (mode_ != ChannelMode::kManual || axis >= jog_.size()) return;
+  if (!process_enable_ || !axis_enabled(axis)) return;
+  if (headstock_ && static_cast<int>(axis) == config_.rotary_axis)
+    ManualChangeover(axes::HeadstockMode::kRotary);
+  jog_[axis].home_requested = true;
+  take_over_pending_ = true;
+}
+
 bool Channel::JogsMoving() const {
   for (const JogAxis& j : jog_)
     if (j.velocity != 0 || j.stepping) return true;
@@ -116,10 +125,11 @@ void Channel::Jogging(double dt) {
     // Outside rotary axis mode the rotary axis follows the spindle: it has no jog to go on with.
     if (headstock_ && static_cast<int>(a) == config_.rotary_axis &&
         headstock_->mode() != axes::HeadstockMode::kRotary) {
-      j.velocity = 0, j.stepping = false;
+      j.velocity = 0, j.stepping = j.homing = false;
       continue;
     }
     const ChannelAxis& axis = config_.axes[a];
+    if (HomingJog(a, dt)) continue;
     const double rapid = JogRapid(axis);
     const double speed = JogSpeed(axis);
     // Jogging stops at the software limits and the repositioning zone, braking in time.
@@ -186,6 +196,44 @@ void Channel::Jogging(double dt) {
     if (commanded_[a] != next) j.velocity = 0;
   }
   FictiveJogging(dt);
+}
+
+bool Channel::HomingJog(size_t a, double dt) {
+  JogAxis& j = jog_[a];
+  const ChannelAxis& axis = config_.axes[a];
+  // AxxC.HOME (C-axis manual 4.2): homing as G74 homes the axis (NextHomingStage), to its
+  // reference point at its homing speed; it starts once a jog or increment under way is done.
+  if (mode_ != ChannelMode::kManual) j.home_requested = false;  // a homing begun runs to its end
+  if (j.home_requested && !j.stepping && j.velocity == 0) {
+    j.home_requested = false;
+    if (!process_enable_ || !axis_enabled(a) || !GuardIncrement(a, axis.reference_position))
+      return false;
+    if (std::abs(axis.reference_position - commanded_[a]) < 1e-12) {
+      commanded_[a] = axis.reference_position;  // there already: homed without a move
+      homed_[a] = true;
+      return true;
+    }
+    j.stepping = j.homing = true;
+    j.handwheel = false;
+    j.from = commanded_[a];
+    j.to = axis.reference_position;
+    j.increment = PathProfile{};
+    const double speed = axis.homing_per_s > 0 ? axis.homing_per_s
+                         : axis.jog_per_s > 0  ? axis.jog_per_s
+                                               : axis.rapid_per_s / 10;
+    const double distance = std::abs(j.to - j.from);
+    j.increment.max_rate = speed / distance;
+    j.increment.max_accel = axis.acceleration / distance;
+  }
+  if (!j.homing) return false;
+  j.increment.Advance(dt, 1.0);
+  commanded_[a] = j.from + (j.to - j.from) * j.increment.u;
+  if (j.increment.done()) {
+    commanded_[a] = j.to;
+    j.stepping = j.homing = false;
+    homed_[a] = true;
+  }
+  return true;
 }
 
 }  // namespace vmt::control::channel

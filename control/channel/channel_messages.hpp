@@ -55,6 +55,10 @@ inline constexpr int kMsgPlcFault = 505;        ///< the PLC stopped (watchdog)
 inline constexpr int kMsgChangeoverAck = 506;
 /// PathGuard: the move would bring two parts of the machine into contact; stopped before it.
 inline constexpr int kMsgCollision = 507;
+/// AxxC.OTRVL: an axis' or the spindle's safety limit switch opened (C-axis manual 4.2).
+inline constexpr int kMsgSafetyLimitSwitch = 508;
+/// AxxC.MTAS: a motor's thermal protection switch opened (C-axis manual 4.2).
+inline constexpr int kMsgThermalSwitch = 509;
 
 /// Fast measurement: a measuring instruction cannot run (its parameters, its place, 4.1).
 inline constexpr int kMsgMeasuringInstruction = 601;
@@ -128,6 +132,10 @@ inline const char* MessageText(int number) {
       return "spindle / rotary axis mode acknowledgement removed";
     case kMsgCollision:
       return "collision ahead";
+    case kMsgSafetyLimitSwitch:
+      return "safety limit switch";
+    case kMsgThermalSwitch:
+      return "thermal protection switch";
     case kMsgTransformation:
       return "coordinate transformation error";
     case kMsgMeasuringInstruction:

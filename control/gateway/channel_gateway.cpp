@@ -26,7 +26,9 @@ bool ChannelGateway::Edge::Rising(const SignalImage& image) {
 ChannelGateway::ChannelGateway(SignalImage& image, int process,
                                const std::vector<int>& axis_numbers, int spindle_number,
                                int spindle_drive, int rotary_number)
-    : image_(&image), spindle_drive_(spindle_drive) {
+    : image_(&image),
+      spindle_drive_(spindle_drive),
+      axis_monitor_(image, axis_numbers, spindle_number) {
   prefix_ = "P" + Number2(process);
   const std::string c = prefix_ + "C.", s = prefix_ + "S.";
   auto_.id = Id(c + "AUTO");
@@ -76,6 +78,8 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
     if (sig.enabl >= 0) sig.last_enabl = image.Bool(sig.enabl);  // only changes act
     sig.rf = Id(a + "S.RF");
     sig.bbdig = Id(a + "S.BBDIG");
+    sig.home.id = Id(a + "C.HOME");
+    if (sig.home.id >= 0) sig.home.last = image.Bool(sig.home.id);
     axes_.push_back(sig);
   }
   if (spindle_number > 0) {
@@ -83,6 +87,9 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
     const std::string ac = "A" + Number2(spindle_number) + "C.";
     const char* keys[4] = {"M3", "M4", "M5", "M19"};
     for (int k = 0; k < 4; ++k) spindle_m_[k].id = Id(ac + keys[k]);
+    // One axis with rotary axis capability (section 2): its HOME is the rotary axis' key.
+    if (std::find(axis_numbers.begin(), axis_numbers.end(), spindle_number) == axis_numbers.end())
+      spindle_home_.id = Id(ac + "HOME");
     spindle_jgpos_ = Id(ac + "JGPOS");
     spindle_jgneg_ = Id(ac + "JGNEG");
     spindle_enabl_ = Id(ac + "ENABL");
@@ -96,6 +103,9 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
     n_ncmd_ = Id(a + "N_NCMD");
     n_nmin_ = Id(a + "N_NMIN");
     inpos_ = Id(a + "INPOS");
+    md_mdx_ = Id(a + "MD_MDX");
+    p_px_ = Id(a + "P_PX");
+    load90_ = Id(a + "LOAD90");
   }
   if (spindle_number > 0 && rotary_number > 0) {
     const std::string sp = "A" + Number2(spindle_number), rot = "A" + Number2(rotary_number);
@@ -243,6 +253,8 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
     if (percent != last_sovr_)
       ch.SetSpindleOverride(static_cast<double>(percent) / 100), last_sovr_ = percent;
   }
+  // C-axis manual 4.2: a safety limit or thermal protection switch that opens stops all first.
+  axis_monitor_.ReadControls(ch);
   // C-axis manual 4.2: the axis enabling signals, before the keys they gate. Like the process
   // enabling signal they act when they change: a PLC that never writes them (a machine
   // without one, a scene's timeline) leaves the axes enabled.
@@ -254,6 +266,7 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
   const int spindle_m[4] = {3, 4, 5, 19};
   for (int k = 0; k < 4; ++k)
     if (spindle_m_[k].Rising(im)) ch.ManualSpindle(spindle_m[k]);
+  if (spindle_home_.Rising(im)) ch.HomeSpindle();
   if (jogm_[0] >= 0 && jogm_[1] >= 0 && jogm_[2] >= 0) {
     const int code = im.Bool(jogm_[0]) | im.Bool(jogm_[1]) << 1 | im.Bool(jogm_[2]) << 2;
     if (code != last_jogm_) ch.SetJogMode(code), last_jogm_ = code;
@@ -270,6 +283,7 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
   }
   for (size_t a = 0; a < axes_.size(); ++a) {
     AxisSignals& sig = axes_[a];
+    if (sig.home.Rising(im)) ch.HomeAxis(a);  // 4.2: homing, as for the remaining axes
     const bool pos = sig.jgpos >= 0 && im.Bool(sig.jgpos);
     const bool neg = sig.jgneg >= 0 && im.Bool(sig.jgneg);
     const int key = pos == neg ? 0 : pos ? 1 : -1;  // both keys: no motion
@@ -391,8 +405,13 @@ void ChannelGateway::WriteStatus(const channel::Channel& ch, const AmplifierTele
     set(inpos_, st & drive_status::kInPosition);
     set(spindle_rf_, st & drive_status::kEnabled);
     set(spindle_bbdig_, st & drive_status::kReady);
+    // 4.2's SERCOS threshold status of the spindle drive (|Md| >= Mdx, |P| >= Px, 90 % load).
+    set(md_mdx_, st & drive_status::kTorqueThreshold);
+    set(p_px_, st & drive_status::kPowerThreshold);
+    set(load90_, st & drive_status::kLoad90);
   }
   set(nc_nmax_, ch.SpindleAtSpeedLimit());
+  axis_monitor_.WriteStatus(ch, at);
 }
 
 double ChannelGateway::Number(int id) const {

@@ -12,6 +12,7 @@
 
 #include "control/channel/channel.hpp"
 #include "control/drive_bus.hpp"
+#include "control/gateway/axis_monitor.hpp"
 #include "control/gateway/signal_image.hpp"
 
 namespace vmt::control::gateway {
@@ -61,6 +62,7 @@ class ChannelGateway {
   /// The main spindle's keys AxxC.M3 / M4 / M5 / M19 (rising edges), its override AxxC.SOVR
   /// (acts when it changes) and its reference AxxS.HOMED (C-axis manual 4.2).
   Edge spindle_m_[4];
+  Edge spindle_home_;  ///< AxxC.HOME of a main spindle that is no channel axis
   int spindle_jgpos_ = -1, spindle_jgneg_ = -1, last_spindle_key_ = 0;  ///< AxxC.JGPOS/JGNEG
   int spindle_enabl_ = -1, spindle_rf_ = -1, spindle_bbdig_ = -1, nc_nmax_ = -1;
   bool last_spindle_enabl_ = false;   ///< the spindle's AxxC.ENABL as last seen
@@ -73,6 +75,7 @@ class ChannelGateway {
   struct AxisSignals {
     int jgpos = -1, jgneg = -1, mvpos = -1, mvneg = -1, homed = -1;
     int enabl = -1, rf = -1, bbdig = -1;  ///< AxxC.ENABL, AxxS.RF, AxxS.BBDIG
+    Edge home;                            ///< AxxC.HOME
     bool last_enabl = false;              ///< ENABL acts when it changes
     int last_key = 0;
   };
@@ -82,6 +85,9 @@ class ChannelGateway {
   int s_error_ = -1, s_errnr_ = -1, s_auxstb_ = -1, s_mfunc_ = -1, s_hfunc_ = -1, s_tfunc_ = -1;
   int msg_wr_ = -1, msg_wr_n_ = -1;  ///< Pxx.MSG_WR / MSG_WR_N: the PLC's message
   int spindle_drive_ = -1, n_ncmd_ = -1, n_nmin_ = -1, inpos_ = -1;
+  int md_mdx_ = -1, p_px_ = -1, load90_ = -1;  ///< the spindle drive's threshold status
+  /// Waypoints, position strobe, safety limit and thermal switches of every axis (4.2).
+  AxisMonitor axis_monitor_;
   /// The headstock changeover (C-axis manual 4.1-4.3): ROTMOD/SPMOD out, their
   /// acknowledgements, the drives' enables (AxxC.READY) and AXD idents 65012..65015 in.
   struct Headstock {

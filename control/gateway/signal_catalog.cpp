@@ -113,6 +113,11 @@ constexpr SignalFamily kProcessFamilies[] = {
      FMEAS "7.2 Typical Application networks 13-17"},
 };
 
+// Why vmt reads no actual gear stage bits: 4.3 asks for them only with a changeable gear drive.
+constexpr std::string_view kNoGearbox =
+    "vmt's machines drive their spindles through a fixed belt, with no changeable gear drive "
+    "(4.3) and no per-gear parameters; a spindle with rotary axis capability has none (4.2)";
+
 constexpr SignalFamily kPanelAndAxisFamilies[] = {
     // ---------------------------------------------------------------------------------------
     // Operator panel signals the NC needs that no manual names (source "vmt"). The manuals
@@ -174,8 +179,8 @@ constexpr SignalFamily kPanelAndAxisFamilies[] = {
     // example wires axis 1 to A01C.QDDS). The spindle-related ones ("*") exist only on
     // spindle-capable axes.
     {"AxxC.HOMLS", kAxis, kBool, kPlcToNc, "Home switch", CAXIS "4.2", "", "", 0,
-     "a digital drive has its home switch wired to itself (4.2), and vmt's homing (G74) needs "
-     "none"},
+     "a digital drive has its home switch wired to the drive, not the NC (4.2); vmt's homing "
+     "(G74, AxxC.HOME) goes to the reference point and its machines have no home switch"},
     {"AxxC.READY", kAxis, kBool, kPlcToNc,
      "Axis ready; with a separate C servo also switches the drive's controller enable",
      CAXIS "4.2; 4.3", "", "AxxCREADY"},
@@ -185,27 +190,30 @@ constexpr SignalFamily kPanelAndAxisFamilies[] = {
     {"AxxC.JGNEG", kAxis, kBool, kPlcToNc,
      "Negative jogging (on a spindle: selects rotary axis mode)", CAXIS "2.3; 3.3; 4.2", "",
      "AxxCJGNEG"},
-    {"AxxC.HOME", kAxis, kBool, kPlcToNc, "Homing", CAXIS "4.2", "", "", 0,
-     "vmt homes an axis by G74 in a program (and a spindle by M19); homing from the key is not "
-     "built"},
+    {"AxxC.HOME", kAxis, kBool, kPlcToNc,
+     "Homing (rising edge, manual mode): a channel axis travels to its reference point at its "
+     "homing speed as G74 takes it, and is homed there; a main spindle is positioned to its "
+     "reference point as M19 does, which homes it (2.3, 3.3 Homing)",
+     CAXIS "2.3; 3.3; 4.2"},
     {"AxxC.ENABL", kAxis, kBool, kPlcToNc,
      "Axis enabling signal: without it the axis cannot move in manual mode (its keys start "
      "nothing, a continuous jog brakes); acts when it changes, so an axis whose PLC never "
      "writes it stays enabled",
      CAXIS "2.3; 4.2"},
-    {"AxxC.STRBP", kAxis, kBool, kPlcToNc, "Position strobe: the NC saves the current position",
-     CAXIS "4.2", "", "", 0,
-     "the manual names no place where the saved position is read, and nothing in vmt reads one"},
+    {"AxxC.STRBP", kAxis, kBool, kPlcToNc,
+     "Position strobe (rising edge): the NC saves the axis' actual position into AxxS.STRBPOS",
+     CAXIS "4.2"},
     {"AxxC.QDDS", kAxis, kBool, kPlcToNc,
      "Real-time command bit of the drive (QMFB1Axx enables the probe latch with it)",
      CAXIS "4.2; " FMEAS "7.2", "", "AxxCQDDS"},
-    {"AxxC.OTRVL", kAxis, kBool, kPlcToNc, "Safety limit switch (1 = not tripped)", CAXIS "4.2",
-     "", "", 0,
-     "the manual only says a digital spindle's must be 1, and gives no reaction to a 0; vmt "
-     "limits travel by the software limits"},
-    {"AxxC.MTAS", kAxis, kBool, kPlcToNc, "Thermal protection switch (1 = not tripped)",
-     CAXIS "4.2", "", "", 0,
-     "as AxxC.OTRVL; vmt's drives report their own overload (drive events)"},
+    {"AxxC.OTRVL", kAxis, kBool, kPlcToNc,
+     "Safety limit switch (1 = not tripped; a digital spindle's must be 1). Going from 1 to 0: "
+     "immediate stop of the channel and its spindle, message 508; Control-Reset clears it",
+     CAXIS "4.2"},
+    {"AxxC.MTAS", kAxis, kBool, kPlcToNc,
+     "Thermal protection switch (1 = not tripped; a digital spindle's must be 1). Going from 1 "
+     "to 0: immediate stop of the channel and its spindle, message 509",
+     CAXIS "4.2"},
     {"AxxC.MHOLD", kAxis, kBool, kPlcToNc,
      "Axis hold: inhibits the axis (probe recovery time in the example); name reconstructed from "
      "the garbled 'AM_schmierxC.MHOLD'",
@@ -223,14 +231,11 @@ constexpr SignalFamily kPanelAndAxisFamilies[] = {
      "Spindle positioning (rising edge, to the jogging spindle position)",
      REPOS "3.3; " CAXIS "2.3; 4.2; 4.3", "", "AxxCM19"},
     {"AxxC.GEAR1", kSpindle, kBool, kPlcToNc, "Actual gear stage bit 1", CAXIS "4.2; 4.3", "",
-     "", 0, "vmt's spindles have one gear stage (4.2: a spindle with rotary axis capability has "
-     "no gear change)"},
+     "", 0, kNoGearbox},
     {"AxxC.GEAR2", kSpindle, kBool, kPlcToNc, "Actual gear stage bit 2", CAXIS "4.2; 4.3", "",
-     "", 0, "vmt's spindles have one gear stage (4.2: a spindle with rotary axis capability has "
-     "no gear change)"},
+     "", 0, kNoGearbox},
     {"AxxC.GEAR3", kSpindle, kBool, kPlcToNc, "Actual gear stage bit 3", CAXIS "4.2; 4.3", "",
-     "", 0, "vmt's spindles have one gear stage (4.2: a spindle with rotary axis capability has "
-     "no gear change)"},
+     "", 0, kNoGearbox},
     {"AxxC.SOVR", kSpindle, kInt, kPlcToNc,
      "Spindle override (spindle-specific; acts while M3/M4/M19 are active)",
      "vmt (" CAXIS "2.3 Feed and Spindle Override)", "%", "", 100},
@@ -242,43 +247,70 @@ constexpr SignalFamily kPanelAndAxisFamilies[] = {
     {"AxxS.MVPOS", kAxis, kBool, kNcToPlc, "Positive axis movement", CAXIS "4.2"},
     {"AxxS.MVNEG", kAxis, kBool, kNcToPlc, "Negative axis movement", CAXIS "4.2"},
     {"AxxS.BBDIG", kAxis, kBool, kNcToPlc, "Digital drive ready", CAXIS "4.2"},
+    {"AxxS.STRBPOS", kAxis, kLreal, kNcToPlc,
+     "The position AxxC.STRBP's rising edge saved: the axis' actual position, machine "
+     "coordinates (rotary: within the turn)",
+     "vmt (" CAXIS "4.2 position strobe: the manual names no place to read it)", "mm | deg"},
     {"AxxS.IDDS", kAxis, kBool, kNcToPlc,
      "Real-time status bit of the drive (set when the probe value is latched, as QMFB1Axx "
      "configures it)",
      CAXIS "4.2; " FMEAS "7.2; 7.3", "", "AxxSIDDS"},
-    {"AxxS.WP0", kAxis, kBool, kNcToPlc, "Waypoint 0 passed (valid after homing)", CAXIS "4.2",
-     "", "", 0, "vmt's axes have no waypoint parameters (Cxx.025..032)"},
-    {"AxxS.WP1", kAxis, kBool, kNcToPlc, "Waypoint 1 passed (valid after homing)", CAXIS "4.2",
-     "", "", 0, "vmt's axes have no waypoint parameters (Cxx.025..032)"},
-    {"AxxS.WP2", kAxis, kBool, kNcToPlc, "Waypoint 2 passed (valid after homing)", CAXIS "4.2",
-     "", "", 0, "vmt's axes have no waypoint parameters (Cxx.025..032)"},
-    {"AxxS.WP3", kAxis, kBool, kNcToPlc, "Waypoint 3 passed (valid after homing)", CAXIS "4.2",
-     "", "", 0, "vmt's axes have no waypoint parameters (Cxx.025..032)"},
-    {"AxxS.WP4", kAxis, kBool, kNcToPlc, "Waypoint 4 passed (valid after homing)", CAXIS "4.2",
-     "", "", 0, "vmt's axes have no waypoint parameters (Cxx.025..032)"},
-    {"AxxS.WP5", kAxis, kBool, kNcToPlc, "Waypoint 5 passed (valid after homing)", CAXIS "4.2",
-     "", "", 0, "vmt's axes have no waypoint parameters (Cxx.025..032)"},
-    {"AxxS.WP6", kAxis, kBool, kNcToPlc, "Waypoint 6 passed (valid after homing)", CAXIS "4.2",
-     "", "", 0, "vmt's axes have no waypoint parameters (Cxx.025..032)"},
-    {"AxxS.WP7", kAxis, kBool, kNcToPlc, "Waypoint 7 passed (valid after homing)", CAXIS "4.2",
-     "", "", 0, "vmt's axes have no waypoint parameters (Cxx.025..032)"},
+    {"AxxS.WP0", kAxis, kBool, kNcToPlc,
+     "Waypoint 0 passed: homed and the actual position at or beyond Cxx.025 (rotary: within "
+     "the turn); 0 while the parameter is not set",
+     CAXIS "2.2; 4.2"},
+    {"AxxS.WP1", kAxis, kBool, kNcToPlc,
+     "Waypoint 1 passed: homed and the actual position at or beyond Cxx.026 (rotary: within "
+     "the turn); 0 while the parameter is not set",
+     CAXIS "2.2; 4.2"},
+    {"AxxS.WP2", kAxis, kBool, kNcToPlc,
+     "Waypoint 2 passed: homed and the actual position at or beyond Cxx.027 (rotary: within "
+     "the turn); 0 while the parameter is not set",
+     CAXIS "2.2; 4.2"},
+    {"AxxS.WP3", kAxis, kBool, kNcToPlc,
+     "Waypoint 3 passed: homed and the actual position at or beyond Cxx.028 (rotary: within "
+     "the turn); 0 while the parameter is not set",
+     CAXIS "2.2; 4.2"},
+    {"AxxS.WP4", kAxis, kBool, kNcToPlc,
+     "Waypoint 4 passed: homed and the actual position at or beyond Cxx.029 (rotary: within "
+     "the turn); 0 while the parameter is not set",
+     CAXIS "2.2; 4.2"},
+    {"AxxS.WP5", kAxis, kBool, kNcToPlc,
+     "Waypoint 5 passed: homed and the actual position at or beyond Cxx.030 (rotary: within "
+     "the turn); 0 while the parameter is not set",
+     CAXIS "2.2; 4.2"},
+    {"AxxS.WP6", kAxis, kBool, kNcToPlc,
+     "Waypoint 6 passed: homed and the actual position at or beyond Cxx.031 (rotary: within "
+     "the turn); 0 while the parameter is not set",
+     CAXIS "2.2; 4.2"},
+    {"AxxS.WP7", kAxis, kBool, kNcToPlc,
+     "Waypoint 7 passed: homed and the actual position at or beyond Cxx.032 (rotary: within "
+     "the turn); 0 while the parameter is not set",
+     CAXIS "2.2; 4.2"},
     {"AxxS.N_NCMD", kSpindle, kBool, kNcToPlc, "Nact = Ncomm: spindle at commanded speed",
      CAXIS "4.2"},
     {"AxxS.N_NMIN", kSpindle, kBool, kNcToPlc, "Nact = 0: spindle at standstill", CAXIS "4.2"},
-    {"AxxS.MD_MDX", kSpindle, kBool, kNcToPlc, "|Md| >= Mdx: torque above its threshold",
-     CAXIS "4.2", "", "", 0, "vmt's drives have no torque threshold Mdx parameter"},
+    {"AxxS.MD_MDX", kSpindle, kBool, kNcToPlc,
+     "|Md| >= Mdx: the drive's torque at or above its threshold (SERCOS S-0-0333, drive key "
+     "torque_threshold; from the torque, so 0 on the kinematic backend)",
+     CAXIS "4.2"},
     {"AxxS.NC_NMAX", kSpindle, kBool, kNcToPlc,
      "|Ncomm| >= Nlimit: speed command (override applied) at the spindle's maximum speed",
      CAXIS "4.2"},
     {"AxxS.INPOS", kSpindle, kBool, kNcToPlc, "In position (spindle positioning M19 done)",
      CAXIS "4.2"},
     {"AxxS.P_PX", kSpindle, kBool, kNcToPlc,
-     "|P| >= Px: power above its threshold (the manual's formula is cut off after '|P| >=')",
-     CAXIS "4.2", "", "", 0, "the threshold is cut off in the manual; vmt has no Px parameter"},
-    {"AxxS.LOAD90", kSpindle, kBool, kNcToPlc, "90 % load", CAXIS "4.2", "", "", 0,
-     "the 90 % refers to the drive's torque limit, which the NC does not know"},
+     "|P| >= Px: the drive's mechanical power at or above its threshold (the manual's formula "
+     "is cut off after '|P| >='; read as SERCOS S-0-0337, drive key power_threshold; 0 on the "
+     "kinematic backend)",
+     CAXIS "4.2"},
+    {"AxxS.LOAD90", kSpindle, kBool, kNcToPlc,
+     "90 % load: the drive's torque at or above 90 % of its torque limit (0 on the kinematic "
+     "backend)",
+     CAXIS "4.2"},
     {"AxxS.SYNCHRON", kSpindle, kBool, kNcToPlc, "Synchronous run", CAXIS "4.2", "", "", 0,
-     "a spindle synchronised with another: vmt has no spindle coupling"},
+     "the manual does not define it further; vmt reads it as two spindles run synchronously, "
+     "and its machines have one main spindle and no spindle coupling"},
 
     // Standard functions of the spindle <-> rotary axis changeover (AXIS input = the main
     // spindle's axis number, c-axis 4.4).

@@ -163,6 +163,13 @@ void DriveController::Feedback(double position, double velocity, double torque,
   if (mode != control::DriveMode::kOff) fb.status |= kEnabled;
   if (std::abs(velocity) < g.standstill_window) fb.status |= kStandstill;
   if (saturated_) fb.status |= kTorqueLimit;
+  // Threshold status (SERCOS S-0-0333, S-0-0337; C-axis manual 4.2 MD_MDX, P_PX, LOAD90):
+  // torque and velocity are SI here, so torque x velocity is the mechanical power in W.
+  const double abs_torque = std::abs(torque);
+  if (p_->torque_threshold > 0 && abs_torque >= p_->torque_threshold) fb.status |= kTorqueThreshold;
+  if (p_->power_threshold_w > 0 && abs_torque * std::abs(velocity) >= p_->power_threshold_w)
+    fb.status |= kPowerThreshold;
+  if (g.torque_limit > 0 && abs_torque >= 0.9 * g.torque_limit) fb.status |= kLoad90;
   fb.following_error = 0;
   if (mode == control::DriveMode::kPosition) {
     const bool orienting = g.spindle && !interpolated_;

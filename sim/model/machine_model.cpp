@@ -169,7 +169,8 @@ DriveParams ReadDrive(const MachineModel& m, const YamlNode& d) {
                "torque_limit", "velocity_limit", "acceleration_limit", "encoder_resolution",
                "in_position_window", "standstill_window", "following_error_limit",
                "positioning_speed", "encoder", "load_joint", "modulo", "overload_time",
-               "parameter_sets", "probe_inputs", "spec"});
+               "torque_threshold", "power_threshold", "parameter_sets", "probe_inputs",
+               "spec"});
   // clang-format on
   DriveParams p;
   p.info.name = d["name"].String();
@@ -195,6 +196,12 @@ DriveParams ReadDrive(const MachineModel& m, const YamlNode& d) {
   if (p.encoder_resolution <= 0) d["encoder_resolution"].Fail("must be > 0");
   p.overload_time_s = d.Double("overload_time", 1.0);
   if (p.overload_time_s <= 0) d["overload_time"].Fail("must be > 0");
+  // The threshold status bits (C-axis manual 4.2 AxxS.MD_MDX, P_PX): N | N m and W, as the
+  // torque limit, already SI.
+  p.torque_threshold = d.Double("torque_threshold", 0);
+  if (p.torque_threshold < 0) d["torque_threshold"].Fail("must be >= 0 (0: none)");
+  p.power_threshold_w = d.Double("power_threshold", 0);
+  if (p.power_threshold_w < 0) d["power_threshold"].Fail("must be >= 0 (0: none)");
   if (d.Has("modulo")) {
     if (p.info.kind != control::AxisKind::kRotary) d["modulo"].Fail("only a rotary drive has one");
     p.modulo = d["modulo"].Double() * s;

@@ -92,6 +92,12 @@ struct DriveParams : DriveParameterSet {
   /// The amplifier trips (kOverload) after this long at its torque limit, s (net: time below
   /// the limit counts back down).
   double overload_time_s = 1;
+  /// `torque_threshold:` Mdx (SERCOS S-0-0126), N | N m load side: status kTorqueThreshold
+  /// while |torque| >= it. 0: none, the bit stays clear.
+  double torque_threshold = 0;
+  /// `power_threshold:` Px (SERCOS S-0-0158), W: status kPowerThreshold while the mechanical
+  /// power |torque x velocity| >= it. 0: none, the bit stays clear.
+  double power_threshold_w = 0;
   /// `probe_inputs: {PIN4: .., PIN5: ..}`: the I/O inputs wired to the drive's probe inputs E4
   /// (probe 1) and E5 (probe 2) (fast-measurement manual 7.3; TASTWERKZEUGPAGE element 3 picks
   /// the pin). -1: not wired, the input reads 0.

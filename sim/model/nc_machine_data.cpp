@@ -38,6 +38,18 @@ void ReadEncoderLimit(const YamlNode& n, control::axes::AxisParameters& a) {
   if (a.encoder_limit_hz <= 0) n["encoder_limit_hz"].Fail("must be > 0");
 }
 
+// Cxx.025..Cxx.032, waypoints 0..7 (C-axis manual 2.2; AxxS.WP0..WP7, 4.2), in machine
+// coordinates: mm, or deg within one turn for a rotary axis or spindle.
+void ReadWaypoints(const YamlNode& n, bool rotary, control::axes::AxisParameters& a) {
+  for (int k = 0; k < 8; ++k) {
+    const std::string key = "Cxx.0" + std::to_string(25 + k);
+    if (!n.Has(key)) continue;
+    a.waypoints[k] = n[key].Double();
+    if (rotary && !(a.waypoints[k] >= 0 && a.waypoints[k] < 360))
+      n[key].Fail("must be in [0, 360) deg (a waypoint within one turn)");
+  }
+}
+
 // The main spindle's own parameters (C-axis manual 2.2 / 3.2: "Jogging speed" and "Jogging
 // spindle position" with new parameter numbers the manual does not print, Cxx.049), for
 // AxxC.M3 / M4 / M19 in manual mode (4.2) and the status indication (2.3).
@@ -60,12 +72,14 @@ void ReadSpindleParameters(const MachineModel& m, const YamlNode& sp, NcMachineD
   if (s.max_spindle_rpm > limit_rpm * (1 + 1e-9))
     sp["Cxx.049"].Fail("faster than drive " + d.info.name + "'s velocity_limit");
   ReadEncoderLimit(sp, s);
+  ReadWaypoints(sp, true, s);
 }
 
 control::axes::AxisParameters ReadAxis(const MachineModel& m, const YamlNode& n, size_t i) {
   n.AllowKeys({"name", "number", "drive", "rapid", "acceleration", "jerk", "Cxx.020", "Cxx.021",
                "Cxx.022", "Cxx.023", "Cxx.086", "reference", "homing", "needs_homing",
-               "encoder_periods_per_rev", "encoder_limit_hz", "stations"});
+               "encoder_periods_per_rev", "encoder_limit_hz", "stations", "Cxx.025",
+               "Cxx.026", "Cxx.027", "Cxx.028", "Cxx.029", "Cxx.030", "Cxx.031", "Cxx.032"});
   control::axes::AxisParameters a;
   a.name = n["name"].String();
   a.number = n.Int("number", static_cast<int>(i) + 1);
@@ -97,6 +111,7 @@ control::axes::AxisParameters ReadAxis(const MachineModel& m, const YamlNode& n,
   a.homing_per_s = PerMinute(n, "homing", 0);
   a.homed_at_start = !n.Bool("needs_homing", false);
   ReadEncoderLimit(n, a);
+  ReadWaypoints(n, a.rotary, a);
   // Software limits: the joint's travel (the axis position is the joint position).
   const Joint& joint = m.joints[d.motor_joint];
   if (joint.type == JointType::kPrismatic || joint.type == JointType::kRevolute) {
@@ -273,7 +288,8 @@ NcMachineData ReadNcMachineData(const MachineModel& m, const YamlNode& node) {
     if (sp.IsMap()) {
       sp.AllowKeys({"drive", "number", "rotary_axis", "rotary_parameter_set", "jogging_speed",
                     "jogging_spindle_position", "Cxx.049", "encoder_periods_per_rev",
-                    "encoder_limit_hz"});
+                    "encoder_limit_hz", "Cxx.025", "Cxx.026", "Cxx.027", "Cxx.028", "Cxx.029",
+                    "Cxx.030", "Cxx.031", "Cxx.032"});
       ReadSpindleParameters(m, sp, nc);
       nc.spindle_number = sp.Int("number", -1);
       if (sp.Has("number") && (nc.spindle_number < 1 || nc.spindle_number > 99))

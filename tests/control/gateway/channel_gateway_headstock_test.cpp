@@ -112,6 +112,43 @@ TEST(ChannelGatewayHeadstock, SpindleKeysOverrideAndReference) {
   EXPECT_EQ(r.ch->HeadstockAxisName(), "S1");
 }
 
+// 4.2: AxxC.HOME homes the rotary axis like the other axes, in rotary axis mode: as C's jog keys
+// do, the key selects it first, and C travels to its reference point once it is there.
+TEST(ChannelGatewayHeadstock, HomeKeyOfTheRotaryAxisSelectsRotaryAxisMode) {
+  HeadstockRig r;
+  r.Press("P00C.MANU");
+  r.Cycle(5);
+  ASSERT_EQ(r.ch->headstock()->mode(), axes::HeadstockMode::kSpindle);
+  r.at.feedback[3].position = 100;  // C reads the spindle at 100 deg; its reference point is 0
+  r.Cycle();
+  r.Press("A04C.HOME");
+  r.Cycle(20);
+  EXPECT_TRUE(r.Get("A03.ROTMOD"));
+  r.Cycle(4000);  // 100 deg at a tenth of C's rapid
+  EXPECT_EQ(r.ch->headstock()->mode(), axes::HeadstockMode::kRotary);
+  EXPECT_NEAR(r.at.feedback[3].position, 0, 1e-9);
+  EXPECT_TRUE(r.Get("A04S.HOMED"));
+  EXPECT_FALSE(r.Get("A04S.MVNEG"));
+}
+
+// 2.3 / 3.3 Homing: a main spindle is homed by positioning (M19 crosses the zero impulse); its
+// HOME key positions it to its reference point, and the reference is there when it is in
+// position. Outside manual mode the key does nothing.
+TEST(ChannelGatewayHeadstock, HomeKeyOfTheMainSpindlePositionsItToItsReference) {
+  HeadstockRig r;
+  r.at.feedback[2].position = 200;
+  r.Press("A03C.HOME");
+  r.Cycle(5);
+  EXPECT_FALSE(r.Get("A03S.HOMED"));
+  EXPECT_DOUBLE_EQ(r.at.feedback[2].position, 200);
+  r.Press("P00C.MANU");
+  r.Press("A03C.HOME");
+  r.Cycle(5);
+  EXPECT_EQ(r.mdt.setpoints[2].mode, DriveMode::kPosition);
+  EXPECT_DOUBLE_EQ(r.at.feedback[2].position, 0);
+  EXPECT_TRUE(r.Get("A03S.HOMED"));
+}
+
 TEST(ChannelGatewayHeadstock, ProcessEnableRemovedStopsAndBlocksTheSpindleKeys) {
   HeadstockRig r;
   r.Set("P00C.ENABL", true);
@@ -224,8 +261,13 @@ TEST(ChannelGatewayHeadstock, SpeedCommandAtTheLimitSetsNcNmax) {
 // the tests of the gateway and the changeover); the rest say in the signal table that vmt does
 // not evaluate them, and why.
 TEST(ChannelGatewayHeadstock, EveryAxisSignalIsEvaluatedOrMarkedNot) {
-  const std::set<std::string_view> tested = {"AxxC.ENABL", "AxxS.RF", "AxxS.BBDIG",
-                                             "AxxS.NC_NMAX", "AxxC.JGPOS", "AxxC.JGNEG"};
+  // (channel_gateway_axis_signals_test.cpp: HOME, STRBP, OTRVL, MTAS, WP0..7, MD_MDX, P_PX,
+  // LOAD90.)
+  const std::set<std::string_view> tested = {
+      "AxxC.HOME",  "AxxC.ENABL", "AxxS.RF",   "AxxS.BBDIG", "AxxS.NC_NMAX", "AxxC.JGPOS",  "AxxC.JGNEG",
+      "AxxC.STRBP", "AxxC.OTRVL", "AxxC.MTAS", "AxxS.WP0",     "AxxS.WP1",    "AxxS.WP2",
+      "AxxS.WP3",   "AxxS.WP4",  "AxxS.WP5",   "AxxS.WP6",     "AxxS.WP7",    "AxxS.MD_MDX",
+      "AxxS.P_PX",  "AxxS.LOAD90"};
   const std::set<std::string_view> listed = {
       "AxxC.ENABL", "AxxC.HOME",    "AxxC.HOMLS",  "AxxC.STRBP",   "AxxC.OTRVL",
       "AxxC.MTAS",  "AxxC.GEAR1",   "AxxC.GEAR2",  "AxxC.GEAR3",   "AxxS.RF",

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -18,8 +19,10 @@ namespace vmt::control::gateway::testing {
 struct GatewayRig {
   /// X A01 (drive 0), Z A02 (drive 1), main spindle A03 (drive 2). `spindle_at_speed`: the
   /// spindle reaches its commanded speed at once and says so (at speed / standstill).
+  /// `configure` may change the channel's parameters before the channel is built.
   explicit GatewayRig(const std::string& program, bool handshake = false,
-                      bool spindle_at_speed = false)
+                      bool spindle_at_speed = false,
+                      const std::function<void(channel::ChannelConfig&)>& configure = {})
       : image(BuildSignalTable(LatheLayout())), spindle_at_speed_(spindle_at_speed) {
     parsed = nc::ParseProgram(program, "p.mtc", nc::Dialect::kMtc200);
     EXPECT_TRUE(parsed.ok());
@@ -35,6 +38,7 @@ struct GatewayRig {
     }
     config.spindle_drive = 2;
     config.aux_handshake = handshake;
+    if (configure) configure(config);
     ch = std::make_unique<channel::Channel>(config,
                                             std::vector<const nc::Program*>{&parsed.program});
     gateway = std::make_unique<ChannelGateway>(image, 0, std::vector<int>{1, 2}, 3, 2);
