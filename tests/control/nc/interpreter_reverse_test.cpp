@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <deque>
 #include <memory>
 #include <optional>
 #include <string>
@@ -52,7 +53,7 @@ struct Reversal {
     return p.labels.at(p.symbols.Find(label));
   }
 
-  std::vector<ParseResult> parsed;
+  std::deque<ParseResult> parsed;  ///< stable addresses: the interpreter keeps the programs'
   std::unique_ptr<Interpreter> interpreter;
   PreparedBlock block;
 };
