@@ -14,8 +14,8 @@
 #include <utility>
 #include <vector>
 
+#include "common/mapped_file.hpp"
 #include "control/nc/parser.hpp"
-#include "control/nc/program_file.hpp"
 #include "type5_search.hpp"
 
 namespace {
@@ -50,10 +50,10 @@ int main(int argc, char** argv) {
     return 2;
   }
   Stopwatch watch;
-  std::vector<nc::ProgramFile> texts;
+  std::vector<vmt::common::MappedFile> texts;
   size_t source_lines = 0;
   for (int i = 1; i < argc; ++i) {
-    std::optional<nc::ProgramFile> read = nc::ReadProgramFile(argv[i]);
+    std::optional<vmt::common::MappedFile> read = vmt::common::MappedFile::Read(argv[i]);
     if (!read) {
       std::fprintf(stderr, "%s:0:0: error: cannot open file\n", argv[i]);
       return 2;

@@ -6,6 +6,8 @@
 #include <numbers>
 #include <utility>
 
+#include "common/demand.hpp"
+
 namespace vmt::control::channel {
 namespace {
 
@@ -16,12 +18,6 @@ constexpr double kAngleTolerance = 1e-9;   // rad: turns smaller than this are t
 // whose programmed end and start differ by at most this much.
 constexpr double kContinuityTolerance = 0.01;  // mm
 
-// Our own invariants: abort with context rather than continue on a broken state.
-void Demand(bool condition, const char* what) {
-  if (condition) return;
-  std::fprintf(stderr, "ToolRadiusCompensation: invariant violated: %s\n", what);
-  std::abort();
-}
 
 std::string Number(double v) {
   char buffer[32];
@@ -223,12 +219,13 @@ void ToolRadiusCompensation::ZeroLength(const ContourElement& e) {
 }
 
 Vec2 ToolRadiusCompensation::ProgrammedEnd() const {
-  Demand(pending_ || last_, "no compensated element before this one");
+  VMT_DEMAND(pending_ || last_, "ToolRadiusCompensation: no compensated element before this one");
   return pending_ ? pending_->block.end : last_->block.end;
 }
 
 Vec2 ToolRadiusCompensation::TipNow() const {
-  Demand(!pending_ && last_, "tip point asked for while an element is held back");
+  VMT_DEMAND(!pending_ && last_,
+             "ToolRadiusCompensation: tip point asked for while an element is held back");
   return last_->q1 + last_->tip;
 }
 

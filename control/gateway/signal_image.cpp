@@ -3,17 +3,12 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <stdexcept>
+
+#include "common/demand.hpp"
 
 namespace vmt::control::gateway {
 namespace {
-
-[[noreturn]] void Fail(const std::string& what) {
-  std::fprintf(stderr, "gateway: %s\n", what.c_str());
-  std::abort();
-}
 
 bool IsReal(SignalType t) { return t == SignalType::kReal || t == SignalType::kLreal; }
 
@@ -60,7 +55,7 @@ void SignalImage::Reset() {
 }
 
 void SignalImage::CopyValuesFrom(const SignalImage& other) {
-  if (other.size() != size()) Fail("CopyValuesFrom: an image of another table");
+  VMT_DEMAND(other.size() == size(), "gateway: CopyValuesFrom: an image of another table");
   cells_ = other.cells_;
   strings_ = other.strings_;
 }
@@ -83,19 +78,16 @@ int SignalImage::Find(std::string_view name) const {
 
 int SignalImage::Require(std::string_view name) const {
   const int id = Find(name);
-  if (id < 0) Fail("no signal called '" + std::string(name) + "' in the gateway table");
+  VMT_DEMAND(id >= 0, "gateway: no signal called '%.*s' in the gateway table",
+             static_cast<int>(name.size()), name.data());
   return id;
 }
 
 void SignalImage::Check(int id, bool ok_type, const char* accessor) const {
-  if (id < 0 || id >= size()) {
-    Fail(std::string(accessor) + "(" + std::to_string(id) + "): no such signal id (table has " +
-         std::to_string(size()) + ")");
-  }
-  if (!ok_type) {
-    Fail(std::string(accessor) + "(" + table_[id].name + "): the signal is " +
-         ToString(types_[id]));
-  }
+  VMT_DEMAND(id >= 0 && id < size(), "gateway: %s(%d): no such signal id (table has %d)",
+             accessor, id, size());
+  VMT_DEMAND(ok_type, "gateway: %s(%s): the signal is %s", accessor, table_[id].name.c_str(),
+             ToString(types_[id]));
 }
 
 bool SignalImage::Bool(int id) const {
@@ -116,10 +108,8 @@ int64_t SignalImage::Int(int id) const {
 void SignalImage::SetInt(int id, int64_t v) {
   Check(id, id >= 0 && id < size() && IsInteger(types_[id]), "SetInt");
   const SignalType t = types_[id];
-  if (v < MinValue(t) || v > MaxValue(t)) {
-    Fail("SetInt(" + table_[id].name + ", " + std::to_string(v) + "): outside the range of " +
-         ToString(t));
-  }
+  VMT_DEMAND(v >= MinValue(t) && v <= MaxValue(t), "gateway: SetInt(%s, %lld): outside the range of %s",
+             table_[id].name.c_str(), static_cast<long long>(v), ToString(t));
   cells_[id] = v;
 }
 
@@ -140,25 +130,22 @@ const std::string& SignalImage::String(int id) const {
 
 void SignalImage::SetString(int id, std::string_view v) {
   Check(id, id >= 0 && id < size() && types_[id] == SignalType::kString, "SetString");
-  if (v.size() > static_cast<size_t>(kStringBytes - 1) || v.find('\0') != std::string_view::npos) {
-    Fail("SetString(" + table_[id].name + "): " + std::to_string(v.size()) +
-         " bytes or an embedded NUL; a STRING holds at most " + std::to_string(kStringBytes - 1));
-  }
+  VMT_DEMAND(v.size() <= static_cast<size_t>(kStringBytes - 1) &&
+                 v.find('\0') == std::string_view::npos,
+             "gateway: SetString(%s): %zu bytes or an embedded NUL; a STRING holds at most %d",
+             table_[id].name.c_str(), v.size(), kStringBytes - 1);
   strings_[cells_[id]].assign(v);
 }
 
 namespace {
 
 void CheckRegisters(const SignalImage& image, int id, size_t size, const char* what) {
-  if (id < 0 || id >= image.size()) {
-    Fail(std::string(what) + "(" + std::to_string(id) + "): no such signal id");
-  }
+  VMT_DEMAND(id >= 0 && id < image.size(), "gateway: %s(%d): no such signal id", what, id);
   const Signal& s = image.table()[id];
-  if (s.type == SignalType::kBool) Fail(std::string(what) + "(" + s.name + "): a BOOL is a bit");
-  if (size != static_cast<size_t>(RegisterCount(s.type))) {
-    Fail(std::string(what) + "(" + s.name + "): " + std::to_string(size) + " registers for " +
-         ToString(s.type) + ", which takes " + std::to_string(RegisterCount(s.type)));
-  }
+  VMT_DEMAND(s.type != SignalType::kBool, "gateway: %s(%s): a BOOL is a bit", what, s.name.c_str());
+  VMT_DEMAND(size == static_cast<size_t>(RegisterCount(s.type)),
+             "gateway: %s(%s): %zu registers for %s, which takes %d", what, s.name.c_str(), size,
+             ToString(s.type), RegisterCount(s.type));
 }
 
 void PutWords(uint64_t v, std::span<uint16_t> out) {

@@ -1,7 +1,6 @@
 #include "control/gateway/signal_types.hpp"
 
-#include <cstdio>
-#include <cstdlib>
+#include "common/demand.hpp"
 
 namespace vmt::control::gateway {
 
@@ -104,14 +103,8 @@ bool IsInteger(SignalType type) {
   }
 }
 
-namespace {
-[[noreturn]] void NotInteger(SignalType type) {
-  std::fprintf(stderr, "gateway: %s is not an integer type\n", ToString(type));
-  std::abort();
-}
-}  // namespace
-
 int64_t MinValue(SignalType type) {
+  VMT_DEMAND(IsInteger(type), "gateway: %s is not an integer type", ToString(type));
   switch (type) {
     case SignalType::kInt:
       return -32768;
@@ -123,11 +116,12 @@ int64_t MinValue(SignalType type) {
     case SignalType::kDword:
       return 0;
     default:
-      NotInteger(type);
+      return 0;  // not an integer type: refused above
   }
 }
 
 int64_t MaxValue(SignalType type) {
+  VMT_DEMAND(IsInteger(type), "gateway: %s is not an integer type", ToString(type));
   switch (type) {
     case SignalType::kInt:
       return 32767;
@@ -140,7 +134,7 @@ int64_t MaxValue(SignalType type) {
     case SignalType::kDword:
       return 4294967295LL;
     default:
-      NotInteger(type);
+      return 0;  // not an integer type: refused above
   }
 }
 

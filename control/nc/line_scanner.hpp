@@ -84,10 +84,6 @@ class LineScanner {
     value = v;
     return true;
   }
-  std::string_view Rest() const {
-    return i_ < line_.size() ? line_.substr(i_) : std::string_view();
-  }
-  void SkipToEnd() { i_ = line_.size(); }
 
   SourcePos Pos() const {
     SourcePos p = start_;

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <optional>
 
+#include "common/huge_pages.hpp"
+#include "common/mapped_file.hpp"
 #include "control/nc/front_end.hpp"
-#include "control/nc/huge_pages.hpp"
 #include "control/nc/program_check.hpp"
-#include "control/nc/program_file.hpp"
 
 namespace vmt::control::nc {
 
@@ -87,11 +87,11 @@ ParseResult ParseProgram(std::string_view text, const std::string& file_name, Di
   // Reserve the arenas once, for what the text can hold, so that a million-block program does
   // not spend its time copying them as they grow; huge pages make their first touch cheap.
   const size_t lines = static_cast<size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
-  ReserveHugePages(p.line_starts, lines);
-  ReserveHugePages(p.blocks, lines);
-  ReserveHugePages(p.statements, lines + lines / 4);
-  ReserveHugePages(p.words, text.size() / 6 + 16);
-  ReserveHugePages(p.code, text.size() / 3 + 16);
+  common::ReserveHugePages(p.line_starts, lines);
+  common::ReserveHugePages(p.blocks, lines);
+  common::ReserveHugePages(p.statements, lines + lines / 4);
+  common::ReserveHugePages(p.words, text.size() / 6 + 16);
+  common::ReserveHugePages(p.code, text.size() / 3 + 16);
   ExpressionParser expr(p, r.errors);
   const auto parse_line = dialect == Dialect::kIsg ? ParseIsgLine : ParseMtc200Line;
   uint32_t line_number = 0, counter = 0;
@@ -129,7 +129,7 @@ ParseResult ParseProgram(std::string_view text, const std::string& file_name, Di
 }
 
 ParseResult ParseFile(const std::string& path, Dialect dialect) {
-  const std::optional<ProgramFile> text = ReadProgramFile(path);
+  const std::optional<common::MappedFile> text = common::MappedFile::Read(path);
   if (!text) {
     ParseResult r;
     r.program.files.push_back(path);

@@ -11,13 +11,14 @@
 #include <algorithm>
 #include <array>
 #include <cerrno>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <new>
 #include <stdexcept>
 #include <utility>
 #include <vector>
+
+#include "common/demand.hpp"
 
 namespace vmt::control::plc {
 namespace {
@@ -103,11 +104,6 @@ struct ModbusServer::State {
 
   bool InAxd(int a) const {
     return axd_register >= 0 && a >= axd_register && a < axd_register + kAxdRegisters;
-  }
-  // Whether [address, address + quantity) touches the AXD_WR block.
-  bool TouchesAxd(int address, int quantity) const {
-    return axd_register >= 0 && address < axd_register + kAxdRegisters &&
-           address + quantity > axd_register;
   }
 
   bool Readable(ModbusAddress::Area area, int address, int quantity) const {
@@ -612,10 +608,7 @@ void ModbusServer::Poll(int timeout_ms) {
 
 void ModbusServer::DropClients() {
   State& s = *state_;
-  if (s.polling) {
-    std::fprintf(stderr, "ModbusServer::DropClients called from inside Poll (on_cycle)\n");
-    std::abort();
-  }
+  VMT_DEMAND(!s.polling, "ModbusServer::DropClients called from inside Poll (on_cycle)");
   for (Client& c : s.clients) s.Drop(c);
   s.clients.clear();
 }

@@ -1,7 +1,6 @@
 #include "control/plc/plc_runtime.hpp"
 
-#include <cstdio>
-#include <cstdlib>
+#include "common/demand.hpp"
 
 namespace vmt::control::plc {
 
@@ -23,12 +22,9 @@ void DropPlcOutputs(gateway::SignalImage& image) {
 void PlcScan::Writable(int id) const {
   // A PLC program that writes an NC status or a machine input is wrong as compiled code is
   // wrong: stop with its name rather than let the write vanish at the end of the scan.
-  if (id < 0 || id >= static_cast<int>(writable_.size()) || !writable_[id]) {
-    const std::string name = id >= 0 && id < latched_.size() ? latched_.table()[id].name : "?";
-    std::fprintf(stderr, "plc: the program writes %s (id %d), which the PLC does not drive\n",
-                 name.c_str(), id);
-    std::abort();
-  }
+  const bool writable = id >= 0 && id < static_cast<int>(writable_.size()) && writable_[id];
+  VMT_DEMAND(writable, "plc: the program writes %s (id %d), which the PLC does not drive",
+             id >= 0 && id < latched_.size() ? latched_.table()[id].name.c_str() : "?", id);
 }
 
 PlcRuntime::PlcRuntime(gateway::SignalImage& image, PlcProgram program, PlcTime period)

@@ -29,7 +29,6 @@ class PlcScan {
 
   PlcTime now() const { return now_; }       ///< PLC time at the start of this scan
   uint64_t cycle() const { return cycle_; }  ///< scans before this one
-  bool first_scan() const { return cycle_ == 0; }
 
   bool Bool(int id) const { return latched_.Bool(id); }
   int64_t Int(int id) const { return latched_.Int(id); }

@@ -68,8 +68,6 @@ class DriveController {
   /// Fault bits latched (kOverload | kOverspeed | kParameterSetError), 0 when ready.
   uint32_t faults() const { return faults_; }
   const DriveParams& params() const { return *p_; }
-  /// The gains and limits in use (the parameter set last selected).
-  const DriveParameterSet& active_set() const { return *set_; }
 
  private:
   void SelectParameterSet(uint8_t number);

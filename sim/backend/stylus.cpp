@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdio>
-#include <cstdlib>
+
+#include "common/demand.hpp"
 
 namespace vmt::sim {
 namespace {
@@ -53,11 +53,9 @@ double SphereDeflection(const ProbeStylus& stylus, const RevolvedPart& part, int
 StylusTick StepStylus(const ProbeStylus& stylus, const RevolvedPart& part, StylusState& state,
                       const std::vector<Eigen::Vector3d>& before,
                       const std::vector<Eigen::Vector3d>& after, bool ready) {
-  if (before.size() != stylus.spheres.size() || after.size() != stylus.spheres.size()) {
-    std::fprintf(stderr, "StepStylus: %zu spheres, %zu centres before, %zu after\n",
-                 stylus.spheres.size(), before.size(), after.size());
-    std::abort();
-  }
+  VMT_DEMAND(before.size() == stylus.spheres.size() && after.size() == stylus.spheres.size(),
+             "StepStylus: %zu spheres, %zu centres before, %zu after", stylus.spheres.size(),
+             before.size(), after.size());
   StylusTick tick;
   tick.io_input = stylus.contact_input;
   double travel_m = 0;  // the farthest any centre moves: bounds how fast the depth changes

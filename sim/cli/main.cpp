@@ -12,9 +12,9 @@
 #include <sstream>
 #include <thread>
 
+#include "common/mapped_file.hpp"
 #include "control/gateway/signal_table_format.hpp"
 #include "control/nc/parser.hpp"
-#include "control/nc/program_file.hpp"
 #include "render/image.hpp"
 #include "render/image_compare.hpp"
 #include "sim/cli/serve.hpp"
@@ -143,7 +143,7 @@ int StudyRepos(sim::study::StudyOptions options, const std::string& shard,
 
 int Check(const std::string& file, const std::string& dialect_name) {
   namespace nc = control::nc;
-  const std::optional<nc::ProgramFile> read = nc::ReadProgramFile(file);
+  const std::optional<common::MappedFile> read = common::MappedFile::Read(file);
   if (!read) {
     std::fprintf(stderr, "%s:0:0: error: cannot open file\n", file.c_str());
     return 2;

@@ -8,8 +8,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/mapped_file.hpp"
 #include "control/nc/parser.hpp"
-#include "control/nc/program_file.hpp"
 #include "control/plc/plc_programs.hpp"
 #include "sim/kinematic/kinematic_backend.hpp"
 #include "sim/model/gateway_layout.hpp"
@@ -128,7 +128,7 @@ Scene LoadScene(const std::string& path) {
     const auto parse = [&](const YamlNode& f) {
       const std::string file =
           (std::filesystem::path(path).parent_path() / f.String()).lexically_normal().string();
-      const std::optional<control::nc::ProgramFile> read = control::nc::ReadProgramFile(file);
+      const std::optional<common::MappedFile> read = common::MappedFile::Read(file);
       if (!read) f.Fail("cannot open NC program " + file);
       const std::string_view text = *read;
       namespace cnc = control::nc;

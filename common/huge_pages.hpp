@@ -12,7 +12,7 @@
 #include <sys/mman.h>
 #endif
 
-namespace vmt::control::nc {
+namespace vmt::common {
 
 /// Reserves room for `n` elements and advises the kernel to back the whole 2 MiB pages inside
 /// it with huge pages. Reserving maps nothing: only what is written is paid for.
@@ -28,4 +28,4 @@ void ReserveHugePages(std::vector<T>& v, size_t n) {
 #endif
 }
 
-}  // namespace vmt::control::nc
+}  // namespace vmt::common
