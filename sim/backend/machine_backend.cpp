@@ -6,6 +6,32 @@
 
 namespace vmt::sim {
 
+MachineBackend::MachineBackend(const MachineModel& model, const InitialState& init)
+    : model_(&model),
+      drive_infos_(model.DriveInfos()),
+      inputs_(model),
+      probes_(model),
+      styluses_(model) {
+  for (const DriveParams& p : model.drives) controllers_.emplace_back(p);
+  clutches_.resize(model.clutches.size());
+  for (size_t k = 0; k < model.clutches.size(); ++k) {
+    auto it = init.clutch_engaged.find(model.clutches[k].name);
+    if (it != init.clutch_engaged.end() && it->second) clutches_[k].state = ClutchState::kEngaged;
+  }
+  actuators_.resize(model.actuators.size());
+  mdt_.setpoints.resize(model.drives.size());
+  mdt_.outputs.assign(model.io.size(), 0);
+  at_.feedback.resize(model.drives.size());
+  at_.inputs.assign(model.io.size(), 0);
+}
+
+void MachineBackend::Write(const control::MasterTelegram& mdt) {
+  mdt_.setpoints = mdt.setpoints;
+  mdt_.setpoints.resize(model_->drives.size());
+  mdt_.outputs = mdt.outputs;
+  mdt_.outputs.resize(model_->io.size(), 0);
+}
+
 std::vector<double> InitialJointPositions(const MachineModel& model, const InitialState& init) {
   std::vector<double> q(model.joints.size(), 0.0);
   std::vector<bool> known(model.joints.size(), false);

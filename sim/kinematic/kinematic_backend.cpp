@@ -3,37 +3,13 @@
 namespace vmt::sim {
 
 KinematicBackend::KinematicBackend(const MachineModel& model, const InitialState& init)
-    : model_(&model),
-      drive_infos_(model.DriveInfos()),
-      inputs_(model),
-      probes_(model),
-      styluses_(model) {
-  for (const DriveParams& p : model.drives) controllers_.emplace_back(p);
-  clutches_.resize(model.clutches.size());
+    : MachineBackend(model, init) {
   clutch_offsets_.assign(model.clutches.size(), 0.0);
-  actuators_.resize(model.actuators.size());
   q_ = InitialJointPositions(model, init);
   qd_.assign(q_.size(), 0.0);
-  for (size_t k = 0; k < model.clutches.size(); ++k) {
-    auto it = init.clutch_engaged.find(model.clutches[k].name);
-    if (it != init.clutch_engaged.end() && it->second) clutches_[k].state = ClutchState::kEngaged;
-  }
-  mdt_.setpoints.resize(model.drives.size());
-  mdt_.outputs.assign(model.io.size(), 0);
-  at_.feedback.resize(model.drives.size());
-  at_.inputs.assign(model.io.size(), 0);
   RebuildPlan();
   UpdateFeedback();
-  const auto joint = [this](int j) { return q_[j]; };
-  ActualPositions(model, joint, probe_positions_);
-  probes_.Start(probe_positions_);
-}
-
-void KinematicBackend::Write(const control::MasterTelegram& mdt) {
-  mdt_.setpoints = mdt.setpoints;
-  mdt_.setpoints.resize(model_->drives.size());
-  mdt_.outputs = mdt.outputs;
-  mdt_.outputs.resize(model_->io.size(), 0);
+  StartProbes([this](int j) { return q_[j]; });
 }
 
 void KinematicBackend::RebuildPlan() {
@@ -133,11 +109,7 @@ void KinematicBackend::Step() {
   if (styluses_.any()) styluses_.Step(q_before, q_, at_.inputs, time_s(), probes_);
   ++ticks_;
   UpdateFeedback();
-  if (probes_.any()) {
-    const auto joint = [this](int j) { return q_[j]; };
-    ActualPositions(*model_, joint, probes_.wired(), probe_positions_);
-    probes_.Step(mdt_.setpoints, at_.inputs, probe_positions_, at_.feedback);
-  }
+  SampleProbes([this](int j) { return q_[j]; });
 }
 
 void KinematicBackend::UpdateFeedback() {
@@ -146,8 +118,7 @@ void KinematicBackend::UpdateFeedback() {
     controllers_[d].Feedback(EncoderPosition(p, [this](int j) { return q_[j]; }),
                              LoadSide(p, qd_[p.motor_joint]), 0, at_.feedback[d]);
   }
-  inputs_.Read(mdt_.outputs, clutches_, actuators_, at_.feedback, at_.inputs);
-  probes_.ShowInputs(at_.inputs);
+  ReadInputs();
 }
 
 }  // namespace vmt::sim

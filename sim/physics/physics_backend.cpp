@@ -55,16 +55,8 @@ struct PhysicsBackend::World {
 };
 
 PhysicsBackend::PhysicsBackend(const MachineModel& model, const InitialState& init)
-    : model_(&model),
-      drive_infos_(model.DriveInfos()),
-      world_(std::make_unique<World>()),
-      inputs_(model),
-      probes_(model),
-      styluses_(model) {
-  for (const DriveParams& p : model.drives) controllers_.emplace_back(p);
-  clutches_.resize(model.clutches.size());
+    : MachineBackend(model, init), world_(std::make_unique<World>()) {
   world_->clutch_gears.resize(model.clutches.size());
-  actuators_.resize(model.actuators.size());
   world_->clamps.resize(model.actuators.size());
   world_->world.setGravity(btVector3(0, -9.81, 0));
 
@@ -132,26 +124,15 @@ PhysicsBackend::PhysicsBackend(const MachineModel& model, const InitialState& in
 
   for (const GearCoupling& g : model.gears)
     world_->gears.push_back(world_->Gear(g.motor_joint, g.load_joint, g.ratio, 0));
-  for (size_t k = 0; k < model.clutches.size(); ++k) {
-    auto it = init.clutch_engaged.find(model.clutches[k].name);
-    if (it != init.clutch_engaged.end() && it->second) {
-      clutches_[k].state = ClutchState::kEngaged;
-      Couple(static_cast<int>(k));
-    }
-  }
+  for (size_t k = 0; k < model.clutches.size(); ++k)
+    if (clutches_[k].state == ClutchState::kEngaged) Couple(static_cast<int>(k));
 
   for (size_t k = 0; k < model.actuators.size(); ++k)
     if (actuators_[k].Holds(model.actuators[k])) Clamp(static_cast<int>(k), true);
 
-  mdt_.setpoints.resize(model.drives.size());
-  mdt_.outputs.assign(model.io.size(), 0);
-  at_.feedback.resize(model.drives.size());
-  at_.inputs.assign(model.io.size(), 0);
   torques_.assign(model.drives.size(), 0.0);
   UpdateFeedback(torques_);
-  const auto joint = [&mb](int j) { return mb.getJointPos(j); };
-  ActualPositions(model, joint, probe_positions_);
-  probes_.Start(probe_positions_);
+  StartProbes([&mb](int j) { return mb.getJointPos(j); });
 }
 
 PhysicsBackend::~PhysicsBackend() {
@@ -162,13 +143,6 @@ PhysicsBackend::~PhysicsBackend() {
   for (auto& g : world_->gears) world_->world.removeMultiBodyConstraint(g.get());
   for (auto& col : world_->colliders) world_->world.removeCollisionObject(col.get());
   world_->world.removeMultiBody(world_->body.get());
-}
-
-void PhysicsBackend::Write(const control::MasterTelegram& mdt) {
-  mdt_.setpoints = mdt.setpoints;
-  mdt_.setpoints.resize(model_->drives.size());
-  mdt_.outputs = mdt.outputs;
-  mdt_.outputs.resize(model_->io.size(), 0);
 }
 
 std::vector<double> PhysicsBackend::JointPositions() const {
@@ -267,11 +241,7 @@ void PhysicsBackend::Step() {
   if (styluses_.any()) styluses_.Step(q_before_, JointPositions(), at_.inputs, time_s(), probes_);
   ++ticks_;
   UpdateFeedback(torques);
-  if (probes_.any()) {
-    const auto joint = [&mb](int j) { return mb.getJointPos(j); };
-    ActualPositions(*model_, joint, probes_.wired(), probe_positions_);
-    probes_.Step(mdt_.setpoints, at_.inputs, probe_positions_, at_.feedback);
-  }
+  SampleProbes([&mb](int j) { return mb.getJointPos(j); });
 }
 
 void PhysicsBackend::UpdateFeedback(const std::vector<double>& torques) {
@@ -282,8 +252,7 @@ void PhysicsBackend::UpdateFeedback(const std::vector<double>& torques) {
                              LoadSide(p, mb.getJointVel(p.motor_joint)), torques[d],
                              at_.feedback[d]);
   }
-  inputs_.Read(mdt_.outputs, clutches_, actuators_, at_.feedback, at_.inputs);
-  probes_.ShowInputs(at_.inputs);
+  ReadInputs();
 }
 
 }  // namespace vmt::sim

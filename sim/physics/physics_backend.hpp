@@ -14,9 +14,7 @@
 
 #include <memory>
 
-#include "sim/backend/drive_controller.hpp"
 #include "sim/backend/machine_backend.hpp"
-#include "sim/backend/probe_wiring.hpp"
 
 class btMultiBody;
 class btMultiBodyDynamicsWorld;
@@ -29,28 +27,8 @@ class PhysicsBackend : public MachineBackend {
   PhysicsBackend(const MachineModel& model, const InitialState& init);
   ~PhysicsBackend() override;
 
-  const std::vector<control::DriveInfo>& Drives() const override { return drive_infos_; }
-  const std::vector<control::IoInfo>& Io() const override { return model_->io; }
-  void Write(const control::MasterTelegram& mdt) override;
-  const control::AmplifierTelegram& Read() const override { return at_; }
-
   void Step() override;
-  double time_s() const override { return ticks_ * kDriveTickS; }
   std::vector<double> JointPositions() const override;
-  ClutchState Clutch(int index) const override { return clutches_[index].state; }
-  const DogClutchLogic& ClutchLogic(int index) const override { return clutches_[index]; }
-  double ActuatorStroke(int index) const override { return actuators_[index].stroke; }
-  const MachineModel& model() const override { return *model_; }
-  void SetProbeSwitch(int io_input, bool level, double tick_fraction) override {
-    probes_.SetSwitch(io_input, level, tick_fraction);
-  }
-  void SetProbeSamplingPhase(const ProbeSamplingPhase& phase) override {
-    probes_.SetSamplingPhase(phase);
-  }
-  void SetWorkpiece(const RevolvedPart& part) override { styluses_.SetPart(part); }
-  std::vector<StylusOverTravel> TakeStylusOverTravels() override {
-    return styluses_.TakeOverTravels();
-  }
 
   /// Joint velocities (m/s | rad/s).
   std::vector<double> JointVelocities() const;
@@ -62,21 +40,9 @@ class PhysicsBackend : public MachineBackend {
   void Clamp(int actuator_index, bool hold);
   void UpdateFeedback(const std::vector<double>& torques);
 
-  const MachineModel* model_;
-  std::vector<control::DriveInfo> drive_infos_;
-  std::vector<DriveController> controllers_;
-  std::vector<DogClutchLogic> clutches_;
-  std::vector<ActuatorLogic> actuators_;
   std::unique_ptr<World> world_;
-  control::MasterTelegram mdt_;
-  control::AmplifierTelegram at_;
-  MachineInputs inputs_;
-  ProbeWiring probes_;
-  StylusContacts styluses_;
-  std::vector<double> probe_positions_;  ///< per drive, unquantised (ActualPositions)
   std::vector<double> q_before_;         ///< joint positions before the tick's motion (styluses)
   std::vector<double> torques_;          ///< load side, per drive, of the last tick
-  int64_t ticks_ = 0;
 };
 
 }  // namespace vmt::sim
