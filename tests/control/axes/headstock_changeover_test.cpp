@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tests/support/ideal_drive_bus.hpp"
+
 namespace vmt::control::axes {
 namespace {
 
@@ -30,15 +32,18 @@ HeadstockConfig ConfigOf(Kind kind) {
 
 // The headstock with a scripted PLC and drives. Each drive follows its setpoint as a drive on
 // the bus does: velocity ramped at kAccel, position reached at once, off coasts down.
-struct Rig {
+// They report no in-position bit.
+struct Rig : test_support::IdealDriveBus {
   static constexpr double kAccel = 3600;  // deg/s^2
 
   explicit Rig(Kind kind, bool rotmod_q = false, bool spmod_q = true)
-      : config(ConfigOf(kind)), hs(config) {
-    const size_t drives = kind == Kind::kServo ? 2 : 1;
-    at.feedback.resize(drives);
-    mdt.setpoints.resize(drives);
-    for (DriveFeedback& f : at.feedback) f.status = drive_status::kReady;
+      : IdealDriveBus(kind == Kind::kServo ? 2 : 1, drive_status::kReady, kDt),
+        config(ConfigOf(kind)),
+        hs(config) {
+    for (test_support::IdealDrive& d : drives) {
+      d = test_support::IdealDrive::Servo(kAccel);
+      d.in_position = false;
+    }
     plc.rotmod_q = rotmod_q;
     plc.spmod_q = spmod_q;
     hs.TakeModeFromPlc(plc);
@@ -49,21 +54,7 @@ struct Rig {
   bool Cycle() {
     const bool ok = hs.Cycle(plc, at, kDt);
     hs.WriteSetpoints(spindle_cmd, rotary_cmd, at, mdt);
-    for (size_t d = 0; d < at.feedback.size(); ++d) {
-      DriveFeedback& f = at.feedback[d];
-      const DriveSetpoint& sp = mdt.setpoints[d];
-      if (sp.mode == DriveMode::kPosition) {
-        f.velocity = (sp.value - f.position) / kDt;
-        f.position = sp.value;
-      } else {
-        const double target = sp.mode == DriveMode::kVelocity ? sp.value : 0;
-        const double step = kAccel * kDt;
-        f.velocity = std::clamp(target, f.velocity - step, f.velocity + step);
-        f.position += f.velocity * kDt;
-      }
-      f.status = drive_status::kReady;
-      if (std::abs(f.velocity) < 0.01) f.status |= drive_status::kStandstill;
-    }
+    Answer();
     return ok;
   }
   void Run(int cycles) {
@@ -94,8 +85,6 @@ struct Rig {
   HeadstockConfig config;
   HeadstockChangeover hs;
   HeadstockPlc plc;
-  AmplifierTelegram at;
-  MasterTelegram mdt;
   DriveSetpoint spindle_cmd{DriveMode::kVelocity, 0, 0};
   DriveSetpoint rotary_cmd{DriveMode::kPosition, 0, 0};
 };

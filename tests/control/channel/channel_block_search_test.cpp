@@ -47,10 +47,12 @@ constexpr const char* kSquareOneBlock =
     "N130 M30\n";
 
 /// X, Y, Z on an ideal machine (actual = setpoint), a spindle on drive 3 that ramps to its
-/// speed at 6000 deg/s^2 and reports at-speed when there.
-struct MillRig {
+/// speed at 6000 deg/s^2 and reports at-speed when there (its own answer: it reaches the
+/// command exactly, with no standstill bit and no position).
+struct MillRig : test_support::IdealDriveBus {
   explicit MillRig(const std::string& text, std::vector<double> start = {0, 0, 0},
-                   const std::function<void(ChannelConfig&)>& configure = {}) {
+                   const std::function<void(ChannelConfig&)>& configure = {})
+      : IdealDriveBus(4) {
     parsed = nc::ParseProgram(text, "t_sv_number.nc", nc::Dialect::kIsg);
     EXPECT_TRUE(parsed.ok()) << nc::Format(parsed.errors[0], parsed.program.files);
     ChannelConfig config;
@@ -59,18 +61,18 @@ struct MillRig {
     config.initial.plane = 17;
     if (configure) configure(config);
     channel = std::make_unique<Channel>(config, std::vector<const nc::Program*>{&parsed.program});
-    at.feedback.resize(4);
-    for (DriveFeedback& f : at.feedback) f.status = drive_status::kReady;
-    for (int d = 0; d < 3; ++d) at.feedback[d].position = start[d];
-    mdt.setpoints.resize(4);
+    for (int d = 0; d < 3; ++d) {
+      drives[d] = test_support::IdealDrive::Follow();
+      at.feedback[d].position = start[d];
+    }
   }
   void Tick() {
     channel->Tick(at, mdt);
     for (int d = 0; d < 3; ++d)
-      if (mdt.setpoints[d].mode == DriveMode::kPosition) {
-        if (at.feedback[d].position != mdt.setpoints[d].value) moved = true;
-        at.feedback[d].position = mdt.setpoints[d].value;
-      }
+      if (mdt.setpoints[d].mode == DriveMode::kPosition &&
+          at.feedback[d].position != mdt.setpoints[d].value)
+        moved = true;
+    Answer();
     DriveFeedback& s = at.feedback[3];
     const double want = mdt.setpoints[3].mode == DriveMode::kVelocity ? mdt.setpoints[3].value : 0;
     const double step = 6000 * 250e-6;
@@ -87,8 +89,6 @@ struct MillRig {
 
   nc::ParseResult parsed;
   std::unique_ptr<Channel> channel;
-  AmplifierTelegram at;
-  MasterTelegram mdt;
   double t = 0;
   bool moved = false;
 };

@@ -40,9 +40,9 @@ std::string ManualExample() {
   return text.str();
 }
 
-/// X, Y, Z and C on an ideal machine (actual = setpoint) in G17, no spindle.
-struct CaxMill {
-  CaxMill(const std::string& program, std::array<double, 4> start) {
+/// X, Y, Z and C on an ideal machine (the drives follow their setpoints) in G17, no spindle.
+struct CaxMill : test_support::IdealDriveBus {
+  CaxMill(const std::string& program, std::array<double, 4> start) : IdealDriveBus(4) {
     parsed = nc::ParseProgram(program, "block-search-cax-track.isg", nc::Dialect::kIsg);
     EXPECT_TRUE(parsed.ok()) << nc::Format(parsed.errors[0], parsed.program.files);
     ChannelConfig config;
@@ -52,18 +52,14 @@ struct CaxMill {
     config.spindle_drive = -1;
     config.initial.plane = 17;
     channel = std::make_unique<Channel>(config, std::vector<const nc::Program*>{&parsed.program});
-    at.feedback.resize(4);
     for (size_t d = 0; d < 4; ++d) {
-      at.feedback[d].status = drive_status::kReady;
+      drives[d] = test_support::IdealDrive::Follow();
       at.feedback[d].position = start[d];
     }
-    mdt.setpoints.resize(4);
   }
   void Tick() {
     channel->Tick(at, mdt);
-    for (int d = 0; d < 4; ++d)
-      if (mdt.setpoints[d].mode == DriveMode::kPosition)
-        at.feedback[d].position = mdt.setpoints[d].value;
+    Answer();
   }
   bool Until(const std::function<bool()>& done, const std::function<void()>& each = {}) {
     for (int i = 0; i < 800000; ++i) {
@@ -108,8 +104,6 @@ struct CaxMill {
   double C() const { return at.feedback[3].position; }
   nc::ParseResult parsed;
   std::unique_ptr<Channel> channel;
-  AmplifierTelegram at;
-  MasterTelegram mdt;
 };
 
 TEST(ChannelCaxTrack, CFollowsTheTangentInANormalRun) {

@@ -25,12 +25,11 @@ constexpr int kS2 = 3;  // drives: X 0, Z 1, S1 2, S2 3
 struct SpindleMachine : Machine {
   explicit SpindleMachine(const std::string& program)
       : Machine(program, 0, 0, [](ChannelConfig& c) { c.spindles = {{2, kS2, "S2"}}; }) {
-    at.feedback.resize(4);
-    at.feedback[kS2].status = drive_status::kReady;
-    mdt.setpoints.resize(4);
+    Resize(4);
   }
   /// The spindles ramp at 24000 deg/s^2 (S2 from 0 to 3000 rpm in 0.75 s), at speed within
-  /// 1 deg/s of their command.
+  /// 1 deg/s of their command. Their own answer, not the bus's servo: the velocity steps by the
+  /// clamped difference and no position is integrated.
   void Step() {
     Tick();
     for (int d : {2, kS2}) {

@@ -29,9 +29,11 @@ enum class Kind { kServo, kOneDrive };
 
 // X (drive 0), Z (1), main spindle S1 (2) and C: a servo on drive 3 through a clutch (section
 // 3), or S1 itself in its rotary parameter set 1 (section 2).
-struct Lathe {
+struct Lathe : test_support::IdealDriveBus {
   explicit Lathe(const std::string& program, Kind kind = Kind::kServo,
-                 HeadstockMode power_on = HeadstockMode::kSpindle) {
+                 HeadstockMode power_on = HeadstockMode::kSpindle)
+      : IdealDriveBus(kind == Kind::kServo ? 4 : 3,
+                      drive_status::kReady | drive_status::kStandstill) {
     parsed = nc::ParseProgram(program, "p.mtc", nc::Dialect::kMtc200);
     EXPECT_TRUE(parsed.ok()) << nc::Format(parsed.errors[0], parsed.program.files);
     c_drive = kind == Kind::kServo ? 3 : kS1;
@@ -48,11 +50,9 @@ struct Lathe {
     config.headstock = h;
     config.rotary_axis = kC;
     channel = std::make_unique<Channel>(config, std::vector<const nc::Program*>{&parsed.program});
-    const size_t drives = kind == Kind::kServo ? 4 : 3;
-    at.feedback.resize(drives);
-    mdt.setpoints.resize(drives);
-    for (DriveFeedback& f : at.feedback)
-      f.status = drive_status::kReady | drive_status::kStandstill;
+    // Ideal drives whose velocity ramps at 7200 deg/s^2; an ideal position loop is on its
+    // command: in position (M19's end, C-axis manual 2.3).
+    for (test_support::IdealDrive& d : drives) d = test_support::IdealDrive::Servo(7200);
     plc.rotmod_q = power_on == HeadstockMode::kRotary;
     plc.spmod_q = power_on == HeadstockMode::kSpindle;
   }
@@ -76,23 +76,7 @@ struct Lathe {
       channel->SetHeadstockPlc(plc);
     }
     channel->Tick(at, mdt);
-    for (size_t d = 0; d < at.feedback.size(); ++d) {
-      DriveFeedback& f = at.feedback[d];
-      const DriveSetpoint& sp = mdt.setpoints[d];
-      if (sp.mode == DriveMode::kPosition) {
-        f.velocity = (sp.value - f.position) / 250e-6;
-        f.position = sp.value;
-      } else {
-        const double target = sp.mode == DriveMode::kVelocity ? sp.value : 0;
-        const double step = 7200 * 250e-6;
-        f.velocity = std::clamp(target, f.velocity - step, f.velocity + step);
-        f.position += f.velocity * 250e-6;
-      }
-      f.status = drive_status::kReady;
-      if (std::abs(f.velocity) < 0.01) f.status |= drive_status::kStandstill;
-      // An ideal position loop is on its command: in position (M19's end, C-axis manual 2.3).
-      if (sp.mode == DriveMode::kPosition) f.status |= drive_status::kInPosition;
-    }
+    Answer();
     if (hs().busy()) changeover_ticks++;
     ++tick;
   }
@@ -117,8 +101,6 @@ struct Lathe {
 
   nc::ParseResult parsed;
   std::unique_ptr<Channel> channel;
-  AmplifierTelegram at;
-  MasterTelegram mdt;
   axes::HeadstockPlc plc;
   int c_drive = 3;
   bool answering = true;

@@ -37,13 +37,11 @@ struct JogOfPathMachine : Machine {
     if (!holds) jog_of_path->Tick(at, mdt);
     channel->Tick(at, mdt);
     if (holds) jog_of_path->Tick(at, mdt);
-    for (int d = 0; d < 2; ++d) {
-      if (mdt.setpoints[d].mode != DriveMode::kPosition) continue;
-      if (ticks > 1)
+    for (int d = 0; d < 2; ++d)
+      if (mdt.setpoints[d].mode == DriveMode::kPosition && ticks > 1)
         largest_step =
             std::max(largest_step, std::abs(mdt.setpoints[d].value - at.feedback[d].position));
-      at.feedback[d].position = mdt.setpoints[d].value;
-    }
+    Answer();
     t += 250e-6;
   }
   void RunFor(double s) {

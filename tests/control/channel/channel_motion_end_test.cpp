@@ -30,9 +30,10 @@ constexpr int kX = 0, kZ = 1, kC = 2, kS = 3;
 
 // X, Z and the rotary axis C on an ideal machine (actual = setpoint), the spindle on drive 3
 // turning up at 7200 deg/s^2 to its speed.
-struct Rig {
+struct Rig : test_support::IdealDriveBus {
   Rig(const std::string& program, const std::vector<double>& start, bool jerk,
-      const std::vector<double>& reference = {}) {
+      const std::vector<double>& reference = {})
+      : IdealDriveBus(4) {
     parsed = nc::ParseProgram(program, "p.mtc", nc::Dialect::kMtc200);
     EXPECT_TRUE(parsed.ok()) << program
                              << (parsed.ok() ? "" : nc::Format(parsed.errors[0], parsed.program.files));
@@ -47,30 +48,15 @@ struct Rig {
     for (size_t a = 0; a < reference.size(); ++a) config.axes[a].reference_position = reference[a];
     config.spindle_drive = kS;
     channel = std::make_unique<Channel>(config, std::vector<const nc::Program*>{&parsed.program});
-    at.feedback.resize(4);
-    mdt.setpoints.resize(4);
-    for (DriveFeedback& f : at.feedback) f.status = drive_status::kReady;
+    for (test_support::IdealDrive& d : drives) {
+      d = test_support::IdealDrive::Servo(7200);
+      d.at_speed = true;
+    }
     for (size_t a = 0; a < start.size(); ++a) at.feedback[a].position = start[a];
   }
   void Tick() {
     channel->Tick(at, mdt);
-    for (size_t d = 0; d < at.feedback.size(); ++d) {
-      DriveFeedback& f = at.feedback[d];
-      const DriveSetpoint& sp = mdt.setpoints[d];
-      if (sp.mode == DriveMode::kPosition) {
-        f.velocity = (sp.value - f.position) / kTick;
-        f.position = sp.value;
-      } else {
-        const double target = sp.mode == DriveMode::kVelocity ? sp.value : 0;
-        f.velocity = std::clamp(target, f.velocity - 7200 * kTick, f.velocity + 7200 * kTick);
-        f.position += f.velocity * kTick;
-      }
-      f.status = drive_status::kReady;
-      if (std::abs(f.velocity) < 0.01) f.status |= drive_status::kStandstill;
-      if (sp.mode == DriveMode::kPosition) f.status |= drive_status::kInPosition;
-      if (sp.mode == DriveMode::kVelocity && std::abs(f.velocity - sp.value) < 1)
-        f.status |= drive_status::kAtSpeed;
-    }
+    Answer();
   }
   /// NC cycles until the program ended or failed; -1 if it is still running after `limit`.
   long RunUntilEnd(long limit) {
@@ -85,8 +71,6 @@ struct Rig {
 
   nc::ParseResult parsed;
   std::unique_ptr<Channel> channel;
-  AmplifierTelegram at;
-  MasterTelegram mdt;
 };
 
 std::string Number(double v) {

@@ -28,19 +28,9 @@ const char* kSubroutine =
 /// The ideal machine, with a spindle that reaches its command at once.
 void Tick(Machine& m) {
   m.Tick();
-  const DriveSetpoint& sp = m.mdt.setpoints[2];
-  DriveFeedback& f = m.at.feedback[2];
-  f.status = drive_status::kReady;
-  f.velocity = sp.mode == DriveMode::kVelocity ? sp.value : 0;
-  f.status |= sp.value == 0 || sp.mode == DriveMode::kPosition ? drive_status::kStandstill
-                                                               : drive_status::kAtSpeed;
-  if (sp.mode == DriveMode::kPosition) {
-    f.position = sp.value;
-    f.status |= drive_status::kInPosition;
-  }
+  m.Answer(2, test_support::IdealDrive::InstantSpindle());
   // The tool storage axis (drive 3) of the tests that have one follows its setpoint.
-  if (m.mdt.setpoints.size() > 3 && m.mdt.setpoints[3].mode == DriveMode::kPosition)
-    m.at.feedback[3].position = m.mdt.setpoints[3].value;
+  if (m.mdt.setpoints.size() > 3) m.Answer(3, test_support::IdealDrive::Follow());
 }
 
 void RunFor(Machine& m, double s) {

@@ -31,17 +31,7 @@ const char* kProgram =
 /// The ideal machine, with a spindle that reaches its command at once (at speed, in position).
 void Tick(Machine& m) {
   m.Tick();
-  const DriveSetpoint& sp = m.mdt.setpoints[2];
-  DriveFeedback& f = m.at.feedback[2];
-  f.status = drive_status::kReady;
-  if (sp.mode == DriveMode::kVelocity) {
-    f.velocity = sp.value;
-    f.status |= sp.value == 0 ? drive_status::kStandstill : drive_status::kAtSpeed;
-  } else {
-    f.velocity = 0;
-    f.position = sp.value;
-    f.status |= drive_status::kInPosition | drive_status::kStandstill;
-  }
+  m.Answer(2, test_support::IdealDrive::InstantSpindle());
 }
 
 void RunFor(Machine& m, double s) {
@@ -581,10 +571,8 @@ TEST(ChannelRepositioning, ToolStorageAxisCountsWithBxx045) {
       c.tool_storage_drive = 3;
       c.process.reposition_tool_storage = bxx045;
     });
-    m.at.feedback.resize(4);
-    m.at.feedback[3].status = drive_status::kReady;
-    m.at.feedback[3].position = 60;  // the PLC's turret at station 3
-    m.mdt.setpoints.resize(4);
+    m.Resize(4);  // the PLC's turret: the test moves it
+    m.at.feedback[3].position = 60;  // at station 3
     InterruptAndJogAway(m);
     m.at.feedback[3].position = 90;  // the operator indexed the turret on (PxxC.MGPOS)
     Call(m, true, false);

@@ -22,17 +22,7 @@ using namespace testing;  // vmt::control::channel::testing
 /// The ideal machine, with a spindle that reaches its command at once (at speed, in position).
 void Tick(Machine& m) {
   m.Tick();
-  const DriveSetpoint& sp = m.mdt.setpoints[2];
-  DriveFeedback& f = m.at.feedback[2];
-  f.status = drive_status::kReady;
-  if (sp.mode == DriveMode::kVelocity) {
-    f.velocity = sp.value;
-    f.status |= sp.value == 0 ? drive_status::kStandstill : drive_status::kAtSpeed;
-  } else {
-    f.velocity = 0;
-    f.position = sp.value;
-    f.status |= drive_status::kInPosition | drive_status::kStandstill;
-  }
+  m.Answer(2, test_support::IdealDrive::InstantSpindle());
 }
 
 void RunFor(Machine& m, double s) {

@@ -1,6 +1,7 @@
 #pragma once
-// Shared by the channel tests (channel_*_test.cpp): the channel on an ideal machine (actual =
-// setpoint) with axes X and Z and a spindle, and a configuration with zero offsets and tools.
+// Shared by the channel tests (channel_*_test.cpp): the channel on an ideal machine (X and Z
+// follow their setpoints; the spindle's feedback is the test's) with axes X and Z and a spindle,
+// and a configuration with zero offsets and tools.
 
 #include <gtest/gtest.h>
 
@@ -12,6 +13,7 @@
 
 #include "control/channel/channel.hpp"
 #include "control/nc/parser.hpp"
+#include "tests/support/ideal_drive_bus.hpp"
 
 namespace vmt::control::channel::testing {
 
@@ -25,10 +27,11 @@ inline ChannelAxis Axis(const std::string& name, int drive, double rapid_per_s) 
   return a;
 }
 
-struct Machine {
+struct Machine : test_support::IdealDriveBus {
   explicit Machine(const std::string& program, double x = 0, double z = 0,
                    const std::function<void(ChannelConfig&)>& configure = {},
-                   nc::Dialect dialect = nc::Dialect::kMtc200) {
+                   nc::Dialect dialect = nc::Dialect::kMtc200)
+      : IdealDriveBus(3) {
     parsed = nc::ParseProgram(program, dialect == nc::Dialect::kIsg ? "p.isg" : "p.mtc", dialect);
     EXPECT_TRUE(parsed.ok()) << nc::Format(parsed.errors[0], parsed.program.files);
     ChannelConfig config;
@@ -37,11 +40,9 @@ struct Machine {
     if (configure) configure(config);
     channel = std::make_unique<Channel>(config, std::vector<const nc::Program*>{&parsed.program});
     channel_config = config;
-    at.feedback.resize(3);
-    for (DriveFeedback& f : at.feedback) f.status = drive_status::kReady;  // drives ready
+    drives[0] = drives[1] = test_support::IdealDrive::Follow();
     at.feedback[0].position = x;
     at.feedback[1].position = z;
-    mdt.setpoints.resize(3);
   }
   /// A channel whose program store holds `programs` (MTC200), the first the main program.
   explicit Machine(const std::vector<std::string>& programs) : Machine(programs.at(0)) {
@@ -54,12 +55,10 @@ struct Machine {
     }
     channel = std::make_unique<Channel>(channel_config, store);
   }
-  // One drive tick of an ideal machine: the actual position is the setpoint.
+  // One drive tick of the ideal machine.
   void Tick() {
     channel->Tick(at, mdt);
-    for (int d = 0; d < 2; ++d)
-      if (mdt.setpoints[d].mode == DriveMode::kPosition)
-        at.feedback[d].position = mdt.setpoints[d].value;
+    Answer();
     t += 250e-6;
   }
   double RunUntilEnd(double limit = 60) {
@@ -75,8 +74,6 @@ struct Machine {
   std::deque<nc::ParseResult> more;  ///< the store's other programs (stable addresses)
   ChannelConfig channel_config;
   std::unique_ptr<Channel> channel;
-  AmplifierTelegram at;
-  MasterTelegram mdt;
   double t = 0;
 };
 

@@ -25,15 +25,14 @@ using testing::Axis;
 using ::testing::HasSubstr;
 
 constexpr int kX = 0, kZ = 1, kS1 = 2, kC = 3;  // drives
-constexpr double kTick = 250e-6;
 
-struct Lathe {
+struct Lathe : test_support::IdealDriveBus {
   // X, Z and S1; with a headstock also C, a servo on drive 3 through a clutch (C-axis manual
   // section 3), whose PLC side acknowledges ROTMOD / SPMOD after a few cycles.
   explicit Lathe(const std::string& program, bool headstock = false,
                  nc::Dialect dialect = nc::Dialect::kMtc200,
                  const std::function<void(ChannelConfig&)>& configure = {})
-      : headstock_(headstock) {
+      : IdealDriveBus(headstock ? 4 : 3), headstock_(headstock) {
     parsed = nc::ParseProgram(program, dialect == nc::Dialect::kIsg ? "p.isg" : "p.mtc", dialect);
     EXPECT_TRUE(parsed.ok()) << nc::Format(parsed.errors[0], parsed.program.files);
     ChannelConfig config;
@@ -53,9 +52,10 @@ struct Lathe {
     }
     if (configure) configure(config);
     channel = std::make_unique<Channel>(config, std::vector<const nc::Program*>{&parsed.program});
-    at.feedback.resize(headstock ? 4 : 3);
-    mdt.setpoints.resize(at.feedback.size());
-    for (DriveFeedback& f : at.feedback) f.status = drive_status::kReady;
+    // Ideal drives whose velocity ramps at 7200 deg/s^2; S1's position mode orients it (M19)
+    // unless it is interpolated (G64).
+    for (test_support::IdealDrive& d : drives) d = test_support::IdealDrive::Servo(7200);
+    drives[kS1].orients = true;
     at.feedback[kZ].position = 10;
     at.feedback[kX].position = 30;
     at.feedback[kS1].position = 37.5;  // not on a zero mark
@@ -70,24 +70,7 @@ struct Lathe {
       channel->SetHeadstockPlc(plc);
     }
     channel->Tick(at, mdt);
-    for (size_t d = 0; d < at.feedback.size(); ++d) {
-      DriveFeedback& f = at.feedback[d];
-      const DriveSetpoint& sp = mdt.setpoints[d];
-      if (sp.mode == DriveMode::kPosition && (d != kS1 || sp.interpolated)) {
-        f.velocity = (sp.value - f.position) / kTick;
-        f.position = sp.value;
-      } else if (sp.mode == DriveMode::kPosition) {
-        f.velocity = 0, f.position = sp.value;  // M19
-      } else {
-        const double target = sp.mode == DriveMode::kVelocity ? sp.value : 0;
-        const double step = 7200 * kTick;
-        f.velocity = std::clamp(target, f.velocity - step, f.velocity + step);
-        f.position += f.velocity * kTick;
-      }
-      f.status = drive_status::kReady;
-      if (std::abs(f.velocity) < 0.01) f.status |= drive_status::kStandstill;
-      if (sp.mode == DriveMode::kPosition) f.status |= drive_status::kInPosition;
-    }
+    Answer();
     ++tick;
     if (observe) observe();
   }
@@ -104,8 +87,6 @@ struct Lathe {
 
   nc::ParseResult parsed;
   std::unique_ptr<Channel> channel;
-  AmplifierTelegram at;
-  MasterTelegram mdt;
   axes::HeadstockPlc plc;
   std::function<void()> observe;
   bool headstock_;

@@ -72,13 +72,7 @@ struct Guarded : NcTurretMachine {
   }
   void Step() {
     TickAll();
-    const DriveSetpoint& sp = mdt.setpoints[2];
-    DriveFeedback& f = at.feedback[2];
-    f.status = drive_status::kReady;
-    f.velocity = sp.mode == DriveMode::kVelocity ? sp.value : 0;
-    f.status |= sp.value == 0 || sp.mode == DriveMode::kPosition ? drive_status::kStandstill
-                                                                 : drive_status::kAtSpeed;
-    if (sp.mode == DriveMode::kPosition) f.position = sp.value, f.status |= drive_status::kInPosition;
+    Answer(2, test_support::IdealDrive::InstantSpindle());
   }
   void Run(double s) {
     for (int i = 0; i < s / 250e-6; ++i) Step();

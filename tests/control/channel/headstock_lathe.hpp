@@ -15,6 +15,7 @@
 
 #include "control/channel/channel.hpp"
 #include "control/nc/parser.hpp"
+#include "tests/support/ideal_drive_bus.hpp"
 
 namespace vmt::control::channel::headstock_test {
 
@@ -26,10 +27,11 @@ inline constexpr double kTick = 250e-6;
 // Drives: 0 X, 1 Z, 2 main spindle S1, 3 C servo (section 3), 4 the driven tool spindle S2 (as
 // lathe-c1's, which the REPOS subroutine of the repositioning manual's 8.3 restores). Section 2
 // (a spindle with rotary axis capability) puts C on drive 2. Channel axes: X, Z, C.
-struct Lathe {
+struct Lathe : test_support::IdealDriveBus {
   explicit Lathe(const std::string& program, bool separate_servo = false,
                  const std::function<void(ChannelConfig&)>& configure = {},
-                 HeadstockMode power_on = HeadstockMode::kSpindle) {
+                 HeadstockMode power_on = HeadstockMode::kSpindle)
+      : IdealDriveBus(5, drive_status::kReady | drive_status::kStandstill) {
     parsed = nc::ParseProgram(program, "p.mtc", nc::Dialect::kMtc200);
     EXPECT_TRUE(parsed.ok()) << nc::Format(parsed.errors[0], parsed.program.files);
     ChannelConfig config;
@@ -55,10 +57,11 @@ struct Lathe {
     config.spindles = {{2, 4, "S2"}};
     if (configure) configure(config);
     channel = std::make_unique<Channel>(config, std::vector<const nc::Program*>{&parsed.program});
-    at.feedback.resize(5);
-    for (DriveFeedback& f : at.feedback)
-      f.status = drive_status::kReady | drive_status::kStandstill;
-    mdt.setpoints.resize(5);
+    for (test_support::IdealDrive& d : drives) {
+      d = test_support::IdealDrive::Servo();  // the command at once
+      d.standstill_window = 1e-9;
+      d.at_speed = true;
+    }
     plc.spmod_q = power_on == HeadstockMode::kSpindle;
     plc.rotmod_q = power_on == HeadstockMode::kRotary;
   }
@@ -92,18 +95,7 @@ struct Lathe {
       f.velocity = 0;
       if (f.status & kTrips) return;
     }
-    f.velocity = 0;
-    if (sp.mode == DriveMode::kPosition) {
-      f.velocity = (sp.value - f.position) / kTick;
-      f.position = sp.value;
-    } else if (sp.mode == DriveMode::kVelocity) {
-      f.velocity = sp.value;
-      f.position += sp.value * kTick;
-    }
-    f.status = drive_status::kReady;
-    if (std::abs(f.velocity) < 1e-9) f.status |= drive_status::kStandstill;
-    if (sp.mode == DriveMode::kPosition) f.status |= drive_status::kInPosition;
-    if (sp.mode == DriveMode::kVelocity) f.status |= drive_status::kAtSpeed;  // at once
+    Answer(d, drives[d]);
   }
   void Trip(int d, uint32_t bits, bool persist = false) {
     at.feedback[d].status = bits;  // kReady and kEnabled clear
@@ -135,8 +127,6 @@ struct Lathe {
 
   nc::ParseResult parsed;
   std::unique_ptr<Channel> channel;
-  AmplifierTelegram at;
-  MasterTelegram mdt;
   axes::HeadstockPlc plc;
   bool acknowledge = true;
   bool persisting[5] = {false, false, false, false, false};

@@ -35,15 +35,13 @@ struct NcTurretMachine : Machine {
           NcTurret(c, bxx045);
           if (configure) configure(c);
         }) {
-    at.feedback.resize(4);
-    at.feedback[3].status = drive_status::kReady;
+    Resize(4);  // the turret answers only in TickAll: Tick() holds it back
     at.feedback[3].position = turret;
-    mdt.setpoints.resize(4);
   }
   /// One drive tick; the turret follows its setpoint.
   void TickAll() {
     Tick();
-    if (mdt.setpoints[3].mode == DriveMode::kPosition) at.feedback[3].position = mdt.setpoints[3].value;
+    Answer(3, test_support::IdealDrive::Follow());
   }
   void RunFor(double s) {
     for (int i = 0; i < s / 250e-6; ++i) TickAll();

@@ -170,7 +170,7 @@ TEST(ChannelGatewayBlockSearch, JogOfPathThroughItsSignals) {
         if (!holds) jop.Tick(r.at, r.mdt);
         r.ch->Tick(r.at, r.mdt);
         if (holds) jop.Tick(r.at, r.mdt);
-        for (int d = 0; d < 2; ++d) r.at.feedback[d].position = r.mdt.setpoints[d].value;
+        for (int d = 0; d < 2; ++d) r.Answer(d, r.drives[d]);  // X and Z; the spindle stands
       }
       r.gateway->WriteStatus(*r.ch, r.at);
       r.gateway->WriteJogOfPath(jop);

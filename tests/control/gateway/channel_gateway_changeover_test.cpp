@@ -11,22 +11,22 @@
 #include "control/nc/parser.hpp"
 #include "tests/control/gateway/lathe_channel.hpp"
 #include "tests/control/gateway/lathe_layout.hpp"
+#include "tests/support/ideal_drive_bus.hpp"
 
 namespace vmt::control::gateway {
 namespace {
 
-struct Rig {
-  explicit Rig(const std::string& program) : image(BuildSignalTable(testing::LatheLayout())) {
+struct Rig : test_support::IdealDriveBus {
+  explicit Rig(const std::string& program)
+      : IdealDriveBus(4, drive_status::kReady | drive_status::kStandstill),
+        image(BuildSignalTable(testing::LatheLayout())) {
     parsed = nc::ParseProgram(program, "p.mtc", nc::Dialect::kMtc200);
     EXPECT_TRUE(parsed.ok());
     const channel::ChannelConfig config = testing::LatheChannel();
     ch = std::make_unique<channel::Channel>(config,
                                             std::vector<const nc::Program*>{&parsed.program});
     gateway = std::make_unique<ChannelGateway>(image, 0, std::vector<int>{1, 2, 4}, 3, 2, 4);
-    at.feedback.resize(4);
-    for (DriveFeedback& f : at.feedback)
-      f.status = drive_status::kReady | drive_status::kStandstill;
-    mdt.setpoints.resize(4);
+    for (test_support::IdealDrive& d : drives) d = test_support::IdealDrive::Follow();
   }
   // One NC cycle (4 drive ticks) on an ideal machine.
   void Cycle(int n = 1) {
@@ -34,11 +34,7 @@ struct Rig {
       gateway->ReadControls(*ch);
       for (int i = 0; i < 4; ++i) {
         ch->Tick(at, mdt);
-        for (int d = 0; d < 4; ++d) {
-          const DriveSetpoint& sp = mdt.setpoints[d];
-          if (sp.mode == DriveMode::kPosition) at.feedback[d].position = sp.value;
-          if (sp.mode == DriveMode::kVelocity) at.feedback[d].position += sp.value * 250e-6;
-        }
+        Answer();
       }
       gateway->WriteStatus(*ch, at);
     }
@@ -52,8 +48,6 @@ struct Rig {
   SignalImage image;
   std::unique_ptr<channel::Channel> ch;
   std::unique_ptr<ChannelGateway> gateway;
-  AmplifierTelegram at;
-  MasterTelegram mdt;
 };
 
 TEST(ChannelGatewayChangeover, ChangeoverThroughTheSignals) {

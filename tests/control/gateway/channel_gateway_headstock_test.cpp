@@ -14,12 +14,13 @@
 #include "control/nc/parser.hpp"
 #include "tests/control/gateway/lathe_channel.hpp"
 #include "tests/control/gateway/lathe_layout.hpp"
+#include "tests/support/ideal_drive_bus.hpp"
 
 namespace vmt::control::gateway {
 namespace {
 
-struct HeadstockRig {
-  HeadstockRig() : image(BuildSignalTable(testing::LatheLayout())) {
+struct HeadstockRig : test_support::IdealDriveBus {
+  HeadstockRig() : IdealDriveBus(4, 0), image(BuildSignalTable(testing::LatheLayout())) {
     parsed = nc::ParseProgram("N1 RET\n", "p.mtc", nc::Dialect::kMtc200);
     EXPECT_TRUE(parsed.ok());
     channel::ChannelConfig config = testing::LatheChannel();
@@ -30,8 +31,14 @@ struct HeadstockRig {
     ch = std::make_unique<channel::Channel>(config,
                                             std::vector<const nc::Program*>{&parsed.program});
     gateway = std::make_unique<ChannelGateway>(image, 0, std::vector<int>{1, 2, 4}, 3, 2, 4);
-    at.feedback.resize(4);
-    mdt.setpoints.resize(4);
+    // Ideal drives at their command at once, reporting their enable; standing on a position
+    // command they report no velocity.
+    for (test_support::IdealDrive& d : drives) {
+      d = test_support::IdealDrive::Servo();
+      d.standstill_window = 1e-9;
+      d.enabled = true;
+      d.orients = true;
+    }
     Set("A03.SPMOD_Q", true);  // the PLC: spindle mode, both drives enabled
     Set("A03C.READY", true);
     Set("A04C.READY", true);
@@ -47,17 +54,7 @@ struct HeadstockRig {
       gateway->ReadControls(*ch);
       for (int i = 0; i < 4; ++i) {
         ch->Tick(at, mdt);
-        for (int d = 0; d < 4; ++d) {
-          DriveFeedback& f = at.feedback[d];
-          const DriveSetpoint& sp = mdt.setpoints[d];
-          f.velocity = sp.mode == DriveMode::kVelocity ? sp.value : 0;
-          if (sp.mode == DriveMode::kPosition) f.position = sp.value;
-          if (sp.mode == DriveMode::kVelocity) f.position += sp.value * 250e-6;
-          f.status = drive_status::kReady;
-          if (sp.mode != DriveMode::kOff) f.status |= drive_status::kEnabled;
-          if (std::abs(f.velocity) < 1e-9) f.status |= drive_status::kStandstill;
-          if (sp.mode == DriveMode::kPosition) f.status |= drive_status::kInPosition;
-        }
+        Answer();
       }
       gateway->WriteStatus(*ch, at);
     }
@@ -75,8 +72,6 @@ struct HeadstockRig {
   SignalImage image;
   std::unique_ptr<channel::Channel> ch;
   std::unique_ptr<ChannelGateway> gateway;
-  AmplifierTelegram at;
-  MasterTelegram mdt;
 };
 
 TEST(ChannelGatewayHeadstock, SpindleKeysOverrideAndReference) {

@@ -1,6 +1,6 @@
 #pragma once
 // Shared by the gateway tests of the lathe's X/Z channel: the channel through the gateway on an
-// ideal machine (actual = setpoint), NC cycle by NC cycle, its signals by name.
+// ideal machine (X and Z follow their setpoints), NC cycle by NC cycle, its signals by name.
 
 #include <gtest/gtest.h>
 
@@ -13,17 +13,18 @@
 #include "control/gateway/channel_gateway.hpp"
 #include "control/nc/parser.hpp"
 #include "tests/control/gateway/lathe_layout.hpp"
+#include "tests/support/ideal_drive_bus.hpp"
 
 namespace vmt::control::gateway::testing {
 
-struct GatewayRig {
+struct GatewayRig : test_support::IdealDriveBus {
   /// X A01 (drive 0), Z A02 (drive 1), main spindle A03 (drive 2). `spindle_at_speed`: the
   /// spindle reaches its commanded speed at once and says so (at speed / standstill).
   /// `configure` may change the channel's parameters before the channel is built.
   explicit GatewayRig(const std::string& program, bool handshake = false,
                       bool spindle_at_speed = false,
                       const std::function<void(channel::ChannelConfig&)>& configure = {})
-      : image(BuildSignalTable(LatheLayout())), spindle_at_speed_(spindle_at_speed) {
+      : IdealDriveBus(3), image(BuildSignalTable(LatheLayout())) {
     parsed = nc::ParseProgram(program, "p.mtc", nc::Dialect::kMtc200);
     EXPECT_TRUE(parsed.ok());
     channel::ChannelConfig config;
@@ -45,9 +46,8 @@ struct GatewayRig {
     ChannelGateway* gw = gateway.get();
     ch->SetEventSource([gw](int n) { return gw->Event(n); });
     ch->SetEventSink([gw](int n, bool v) { gw->SetEvent(n, v); });
-    at.feedback.resize(3);
-    for (DriveFeedback& f : at.feedback) f.status = drive_status::kReady;  // drives ready
-    mdt.setpoints.resize(3);
+    drives[0] = drives[1] = test_support::IdealDrive::Follow();
+    if (spindle_at_speed) drives[2] = test_support::IdealDrive::InstantSpindle();
   }
   // One NC cycle (4 drive ticks).
   void Cycle(int n = 1) {
@@ -55,12 +55,7 @@ struct GatewayRig {
       gateway->ReadControls(*ch);
       for (int i = 0; i < 4; ++i) {
         ch->Tick(at, mdt);
-        for (int d = 0; d < 2; ++d) at.feedback[d].position = mdt.setpoints[d].value;
-        if (!spindle_at_speed_) continue;
-        DriveFeedback& s = at.feedback[2];
-        s.velocity = mdt.setpoints[2].mode == DriveMode::kVelocity ? mdt.setpoints[2].value : 0;
-        s.status = drive_status::kReady |
-                   (s.velocity != 0 ? drive_status::kAtSpeed : drive_status::kStandstill);
+        Answer();
       }
       gateway->WriteStatus(*ch, at);
     }
@@ -79,11 +74,6 @@ struct GatewayRig {
   SignalImage image;
   std::unique_ptr<channel::Channel> ch;
   std::unique_ptr<ChannelGateway> gateway;
-  AmplifierTelegram at;
-  MasterTelegram mdt;
-
- private:
-  bool spindle_at_speed_;
 };
 
 }  // namespace vmt::control::gateway::testing
