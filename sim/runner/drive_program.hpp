@@ -9,34 +9,9 @@
 #include "control/drive_bus.hpp"
 #include "control/gateway/signal_image.hpp"
 #include "sim/scene/scene.hpp"
+#include "sim/scene/steps/timeline_play.hpp"
 
 namespace vmt::sim {
-
-struct ProgramEvent {
-  double t_s;
-  std::string kind;  ///< step | step_done | timeout
-  std::string text;
-};
-
-/// A point-to-point profile: trapezoidal velocity, acceleration-limited.
-struct TrapezoidProfile {
-  double start = 0, end = 0, speed = 0, accel = 0, t0_s = 0;
-  double Duration() const;
-  double At(double t_s) const;
-};
-
-/// Faults the timeline has injected and not cleared (TimelineStep::Fault); the runner applies
-/// them between the machine and the control.
-struct InjectedFaults {
-  std::vector<int8_t> sensor;    ///< per I/O point: -1 none, else the level it is stuck at
-  std::vector<int8_t> valve;     ///< per I/O point: -1 none, else the level it stays at
-  std::vector<bool> drive;       ///< per drive: power stage off, not ready
-  int64_t plc_missed_scans = 0;  ///< scans the PLC is yet to miss (set by an overrun fault)
-  /// client_gone steps so far: from the first on the PLC's link is gone for good (embedded: it
-  /// misses every scan; vmt serve drops its Modbus clients once per step).
-  int plc_client_gone = 0;
-  bool any = false;
-};
 
 class DriveProgram {
  public:
@@ -55,36 +30,15 @@ class DriveProgram {
             std::vector<ProgramEvent>& events);
 
   bool finished() const { return next_ >= scene_->timeline.size(); }
-  InjectedFaults& faults() { return faults_; }
+  InjectedFaults& faults() { return play_.faults; }
   /// Steps that did not complete (wait_until timeouts), as messages.
-  const std::vector<std::string>& failures() const { return failures_; }
+  const std::vector<std::string>& failures() const { return play_.failures; }
 
  private:
-  bool Execute(const TimelineStep& step, double t_s, const control::AmplifierTelegram& at,
-               const std::vector<ClutchState>& clutches, std::vector<ProgramEvent>& events);
-
   const Scene* scene_;
-  control::channel::Channel* channel_;
-  control::gateway::SignalImage* image_;
-  std::vector<control::DriveSetpoint> setpoints_;
-  std::vector<TrapezoidProfile> profiles_;
-  std::vector<bool> profiling_;
-  std::vector<uint8_t> outputs_;
+  TimelinePlay play_;
   size_t next_ = 0;
   double step_since_s_ = -1;  ///< when the current blocking step began
-  std::vector<std::string> failures_;
-  InjectedFaults faults_;
 };
-
-/// Evaluates a condition on the machine's feedback (and the channel and the gateway signals,
-/// if there are).
-bool Holds(const Condition& c, const control::AmplifierTelegram& at,
-           const std::vector<ClutchState>& clutches, const control::channel::Channel* channel,
-           const control::gateway::SignalImage* image);
-
-/// A signal's value as a number (BOOL 0/1; STRING 0).
-double SignalNumber(const control::gateway::SignalImage& image, int id);
-/// Writes a number into a signal of any numeric type (BOOL: != 0).
-void SetSignalNumber(control::gateway::SignalImage& image, int id, double value);
 
 }  // namespace vmt::sim
