@@ -1,7 +1,8 @@
 #pragma once
-// The drive-level test program: until the NC kernel drives the machine, a scene's timeline
-// commands the drives directly (move an axis along a trapezoidal profile, run a spindle, orient
-// it, switch a controller enable off, set a valve, wait for a time or a signal).
+// The timeline player: plays a scene's timeline of operator and test actions in time, one step
+// after the other (steps/: each kind's effect), a step that waits holding the ones after it. It
+// writes the setpoints of the drives its steps command directly and the valves, and hands the
+// NC steps to the channel and the signal steps to the gateway's image.
 
 #include <string>
 #include <vector>
@@ -13,13 +14,13 @@
 
 namespace vmt::sim {
 
-class DriveProgram {
+class TimelinePlayer {
  public:
   /// `feedback` gives the state at t = 0: servos hold their position, spindles stand at 0.
   /// `channel` (may be null) receives the timeline's NC steps.
   /// `image` (may be null): the gateway signals the timeline's `signal:` steps write, as the
   /// default PLC passing panel keys to the NC would.
-  DriveProgram(const Scene& scene, const control::AmplifierTelegram& feedback,
+  TimelinePlayer(const Scene& scene, const control::AmplifierTelegram& feedback,
                control::channel::Channel* channel = nullptr,
                control::gateway::SignalImage* image = nullptr);
 

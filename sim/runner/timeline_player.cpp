@@ -1,4 +1,4 @@
-#include "sim/runner/drive_program.hpp"
+#include "sim/runner/timeline_player.hpp"
 
 #include "sim/scene/steps/step_kind.hpp"
 
@@ -6,7 +6,7 @@ namespace vmt::sim {
 
 using control::DriveMode;
 
-DriveProgram::DriveProgram(const Scene& scene, const control::AmplifierTelegram& feedback,
+TimelinePlayer::TimelinePlayer(const Scene& scene, const control::AmplifierTelegram& feedback,
                            control::channel::Channel* channel, control::gateway::SignalImage* image)
     : scene_(&scene) {
   const MachineModel& m = *scene.model;
@@ -28,7 +28,7 @@ DriveProgram::DriveProgram(const Scene& scene, const control::AmplifierTelegram&
   }
 }
 
-void DriveProgram::Tick(double t_s, const control::AmplifierTelegram& at,
+void TimelinePlayer::Tick(double t_s, const control::AmplifierTelegram& at,
                         const std::vector<ClutchState>& clutches, control::MasterTelegram& mdt,
                         std::vector<ProgramEvent>& events) {
   while (next_ < scene_->timeline.size()) {
