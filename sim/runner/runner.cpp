@@ -20,11 +20,11 @@
 #include "sim/collision/stock_cutter.hpp"
 #include "sim/model/gateway_layout.hpp"
 #include "sim/runner/channel_events.hpp"
-#include "sim/runner/timeline_player.hpp"
 #include "sim/runner/event_snapshots.hpp"
 #include "sim/runner/probe_glue.hpp"
 #include "sim/runner/runner_state.hpp"
 #include "sim/runner/scene_renderer.hpp"
+#include "sim/runner/timeline_player.hpp"
 
 namespace vmt::sim {
 namespace {

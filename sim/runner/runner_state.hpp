@@ -19,10 +19,10 @@
 #include "sim/collision/machine_path_guard.hpp"
 #include "sim/collision/spindle_sweep.hpp"
 #include "sim/collision/stock_cutter.hpp"
-#include "sim/runner/timeline_player.hpp"
 #include "sim/runner/probe_glue.hpp"
 #include "sim/runner/runner.hpp"
 #include "sim/runner/scene_renderer.hpp"
+#include "sim/runner/timeline_player.hpp"
 
 namespace vmt::sim {
 
