@@ -20,11 +20,11 @@
 #include "sim/collision/stock_cutter.hpp"
 #include "sim/model/gateway_layout.hpp"
 #include "sim/runner/channel_events.hpp"
-#include "sim/runner/drive_program.hpp"
 #include "sim/runner/event_snapshots.hpp"
 #include "sim/runner/probe_glue.hpp"
 #include "sim/runner/runner_state.hpp"
 #include "sim/runner/scene_renderer.hpp"
+#include "sim/runner/timeline_player.hpp"
 
 namespace vmt::sim {
 namespace {
@@ -266,7 +266,7 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     if (default_headstock_plc && channel->headstock()->config().separate_servo())
       StartHeadstockPlc();
   }
-  program = std::make_unique<DriveProgram>(scene, backend->Read(), channel.get(), image.get());
+  timeline = std::make_unique<TimelinePlayer>(scene, backend->Read(), channel.get(), image.get());
   if (field_bus) ReadFieldBus();
 
   last_tick = std::llround(options.until_s.value_or(scene.duration_s) / kDriveTickS);
@@ -300,10 +300,10 @@ void SceneRun::State::Step() {
   if (probe_glue) probe_glue->ReadStatus(at);
   if (plc && tick % plc_every == 0) ScanPlc(t);
   events.clear();
-  program->Tick(t, at, clutches, mdt, events);
+  timeline->Tick(t, at, clutches, mdt, events);
   // An external PLC's client is gone: vmt serve drops the connections (an embedded PLC misses
   // its scans instead, ScanPlc).
-  for (InjectedFaults& f = program->faults(); plc_client_gone_told < f.plc_client_gone;) {
+  for (InjectedFaults& f = timeline->faults(); plc_client_gone_told < f.plc_client_gone;) {
     ++plc_client_gone_told;
     if (options.external_plc && options.on_plc_client_gone) options.on_plc_client_gone();
   }
@@ -473,7 +473,7 @@ RunResult SceneRun::State::Finish() {
     if (!checks[i].passed)
       result.failures.push_back(checks[i].text + " (" + checks[i].detail + ")");
   }
-  for (const std::string& f : program->failures()) result.failures.push_back(f);
+  for (const std::string& f : timeline->failures()) result.failures.push_back(f);
   // An NC error fails the run unless the scene expects it.
   if (channel && !channel->error().empty()) {
     bool expected = false;

@@ -58,7 +58,7 @@ void SceneRun::State::AcknowledgeHeadstock() {
 // Faults between the machine and the control (timeline `fault:` steps): a stuck sensor reads
 // its stuck level, a faulted drive reports itself not ready.
 const control::AmplifierTelegram& SceneRun::State::Faulted(const control::AmplifierTelegram& raw) {
-  InjectedFaults& f = program->faults();
+  InjectedFaults& f = timeline->faults();
   if (!f.any) return raw;
   faulted_at = raw;
   for (size_t i = 0; i < f.sensor.size(); ++i)
@@ -73,7 +73,7 @@ const control::AmplifierTelegram& SceneRun::State::Faulted(const control::Amplif
 // A stuck valve stays where it is whatever the PLC commands; a faulted drive's power stage is
 // off, so its axis coasts.
 void SceneRun::State::ApplyOutputFaults() {
-  InjectedFaults& f = program->faults();
+  InjectedFaults& f = timeline->faults();
   if (!f.any) return;
   for (size_t i = 0; i < f.valve.size(); ++i)
     if (f.valve[i] >= 0) mdt.outputs[i] = static_cast<uint8_t>(f.valve[i]);
@@ -84,7 +84,7 @@ void SceneRun::State::ApplyOutputFaults() {
 // The PLC scans unless an overrun makes it miss its cycles or its link is gone; after two missed
 // cycles its watchdog stops it (its outputs drop) and the NC stops with "PLC not running".
 void SceneRun::State::ScanPlc(double t) {
-  InjectedFaults& f = program->faults();
+  InjectedFaults& f = timeline->faults();
   if (plc->stopped()) return;
   if (f.plc_missed_scans > 0 || f.plc_client_gone > 0) {
     if (f.plc_missed_scans > 0) --f.plc_missed_scans;

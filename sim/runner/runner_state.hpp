@@ -19,10 +19,10 @@
 #include "sim/collision/machine_path_guard.hpp"
 #include "sim/collision/spindle_sweep.hpp"
 #include "sim/collision/stock_cutter.hpp"
-#include "sim/runner/drive_program.hpp"
 #include "sim/runner/probe_glue.hpp"
 #include "sim/runner/runner.hpp"
 #include "sim/runner/scene_renderer.hpp"
+#include "sim/runner/timeline_player.hpp"
 
 namespace vmt::sim {
 
@@ -106,7 +106,7 @@ struct SceneRun::State {
   int64_t plc_every = 16;  ///< drive ticks per PLC cycle
   std::vector<std::pair<int, int>> plc_inputs, plc_outputs;  // I/O point, signal id
   std::unique_ptr<ProbeGlue> probe_glue;  ///< the SERCOS side of the PLC's probe block
-  std::unique_ptr<DriveProgram> program;
+  std::unique_ptr<TimelinePlayer> timeline;
   std::vector<double> last_signals;
   std::vector<int64_t> last_cells;  ///< the image's cells when last_signals was taken
   control::channel::ChannelState nc_state = control::channel::ChannelState::kIdle;

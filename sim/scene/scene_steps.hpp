@@ -1,6 +1,7 @@
 #pragma once
-// The parts of a scene file that act over time: timeline steps (with their wait conditions) and
-// expectations. LoadScene reads the rest; these throw ModelError with the YAML path like it.
+// The parts of a scene file that act over time: timeline steps (each kind in steps/) and
+// expectations, and the look-ups of names they share. LoadScene reads the rest; these throw
+// ModelError with the YAML path like it.
 
 #include <string>
 #include <vector>
@@ -23,6 +24,17 @@ std::string Fmt(double v);
 int RequireSignal(const NcSetup& nc, const YamlNode& n);
 /// A signal value as written in a scene: true/false for BOOL, a number otherwise.
 double SignalValue(const NcSetup& nc, int id, const YamlNode& n);
+
+/// The index of an NC channel axis named by its drive or NC axis name.
+int RequireChannelAxis(const MachineModel& m, const NcSetup& nc, const YamlNode& n);
+/// The axis of a jog or handwheel step: a channel axis (`s.axis`, `s.drive`), or X1 / Y1, the
+/// fictive axes of the G31 face transformation (`s.fictive`).
+void RequireJogAxis(const MachineModel& m, const NcSetup& nc, const YamlNode& n,
+                    TimelineStep& s);
+/// An I/O point of the machine by its name.
+int RequireIo(const MachineModel& m, const YamlNode& n);
+ClutchState ParseClutchState(const YamlNode& n);
+control::channel::ChannelState ParseNcState(const YamlNode& n);
 
 /// Timeline step `i`; with `plc` the timeline may only press keys.
 TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const NcSetup& nc,

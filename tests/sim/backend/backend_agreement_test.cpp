@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "sim/runner/drive_program.hpp"
+#include "sim/runner/timeline_player.hpp"
 #include "../sim_test_support.hpp"
 
 namespace vmt::sim {

@@ -1,6 +1,6 @@
 // The timeline player at drive level: its trapezoid profile, and the order in which it plays the
 // steps of a scene (each step once, blocking steps holding the ones after them).
-#include "sim/runner/drive_program.hpp"
+#include "sim/runner/timeline_player.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@
 namespace vmt::sim {
 namespace {
 
-TEST(DriveProgramTest, ATrapezoidReachesItsSpeedAndEndsAtRest) {
+TEST(TimelinePlayerTest, ATrapezoidReachesItsSpeedAndEndsAtRest) {
   // 100 mm at 50 mm/s and 500 mm/s^2: 0.1 s up, 1.9 s at speed, 0.1 s down.
   const TrapezoidProfile p{20, 120, 50, 500, 1.0};
   EXPECT_NEAR(p.Duration(), 2.1, 1e-12);
@@ -35,7 +35,7 @@ TEST(DriveProgramTest, ATrapezoidReachesItsSpeedAndEndsAtRest) {
   }
 }
 
-TEST(DriveProgramTest, AShortMoveIsATriangleAndBackwardsIsTheMirror) {
+TEST(TimelinePlayerTest, AShortMoveIsATriangleAndBackwardsIsTheMirror) {
   // 2 mm at 50 mm/s and 500 mm/s^2: the speed is never reached (peak sqrt(d a) = 31.6 mm/s).
   const TrapezoidProfile fwd{0, 2, 50, 500, 0};
   EXPECT_NEAR(fwd.Duration(), 2 * std::sqrt(2.0 / 500), 1e-12);
@@ -49,14 +49,14 @@ TEST(DriveProgramTest, AShortMoveIsATriangleAndBackwardsIsTheMirror) {
   EXPECT_EQ(none.At(0.1), 5);
 }
 
-// An ideal machine under the program: every servo stands where it is commanded.
+// An ideal machine under the player: every servo stands where it is commanded.
 struct Player {
   Scene scene;
   control::AmplifierTelegram at;
   control::MasterTelegram mdt;
   std::vector<ClutchState> clutches;
   std::vector<ProgramEvent> events;
-  DriveProgram program;
+  TimelinePlayer player;
   double t = 0;
   static control::AmplifierTelegram Initial(const Scene& s) {
     control::AmplifierTelegram at;
@@ -65,15 +65,15 @@ struct Player {
     return at;
   }
   explicit Player(const std::string& timeline)
-      : scene(LoadScene(testing::WriteLatheScene("drive_program", "player",
+      : scene(LoadScene(testing::WriteLatheScene("timeline_player", "player",
                                                  "backend: kinematic\nduration: 5\n"
                                                  "timeline:\n" +
                                                      timeline))),
         at(Initial(scene)),
         clutches(scene.model->clutches.size(), ClutchState::kReleased),
-        program(scene, at) {}
+        player(scene, at) {}
   void Tick() {
-    program.Tick(t, at, clutches, mdt, events);
+    player.Tick(t, at, clutches, mdt, events);
     for (size_t d = 0; d < mdt.setpoints.size(); ++d)
       if (mdt.setpoints[d].mode == control::DriveMode::kPosition)
         at.feedback[d].position = mdt.setpoints[d].value;
@@ -89,7 +89,7 @@ struct Player {
   }
 };
 
-TEST(DriveProgramTest, StepsPlayInOrderAndAWaitHoldsTheNext) {
+TEST(TimelinePlayerTest, StepsPlayInOrderAndAWaitHoldsTheNext) {
   Player p(
       "  - move: {axis: Z, to: 150, feed: 3000}\n"
       "  - wait: 0.5\n"
@@ -111,22 +111,22 @@ TEST(DriveProgramTest, StepsPlayInOrderAndAWaitHoldsTheNext) {
   EXPECT_NEAR(p.events[2].t_s, 0.5, kDriveTickS / 2);  // X's move began when the wait ended
   EXPECT_NE(p.at.feedback[x].position, x0);
   p.RunTo(5);
-  EXPECT_TRUE(p.program.finished());
+  EXPECT_TRUE(p.player.finished());
   EXPECT_NEAR(p.at.feedback[z].position, 150, 1e-9);
   EXPECT_NEAR(p.at.feedback[x].position, 60, 1e-9);
-  EXPECT_TRUE(p.program.failures().empty());
+  EXPECT_TRUE(p.player.failures().empty());
 }
 
-TEST(DriveProgramTest, AWaitThatTimesOutIsAFailureAndTheRestStillRuns) {
+TEST(TimelinePlayerTest, AWaitThatTimesOutIsAFailureAndTheRestStillRuns) {
   Player p(
       "  - wait_until: {input: IROTMODE, timeout: 0.2}\n"
       "  - move: {axis: Z, to: 150, feed: 3000}\n");
   p.RunTo(0.1);
-  EXPECT_TRUE(p.program.failures().empty());
+  EXPECT_TRUE(p.player.failures().empty());
   p.RunTo(0.3);
-  ASSERT_EQ(p.program.failures().size(), 1u);
-  EXPECT_NE(p.program.failures()[0].find("timed out after 0.2"), std::string::npos)
-      << p.program.failures()[0];
+  ASSERT_EQ(p.player.failures().size(), 1u);
+  EXPECT_NE(p.player.failures()[0].find("timed out after 0.2"), std::string::npos)
+      << p.player.failures()[0];
   bool timeout = false;
   for (const ProgramEvent& e : p.events) timeout = timeout || e.kind == "timeout";
   EXPECT_TRUE(timeout);

@@ -1,0 +1,45 @@
+#pragma once
+// The timeline player: plays a scene's timeline of operator and test actions in time, one step
+// after the other (steps/: each kind's effect), a step that waits holding the ones after it. It
+// writes the setpoints of the drives its steps command directly and the valves, and hands the
+// NC steps to the channel and the signal steps to the gateway's image.
+
+#include <string>
+#include <vector>
+
+#include "control/drive_bus.hpp"
+#include "control/gateway/signal_image.hpp"
+#include "sim/scene/scene.hpp"
+#include "sim/scene/steps/timeline_play.hpp"
+
+namespace vmt::sim {
+
+class TimelinePlayer {
+ public:
+  /// `feedback` gives the state at t = 0: servos hold their position, spindles stand at 0.
+  /// `channel` (may be null) receives the timeline's NC steps.
+  /// `image` (may be null): the gateway signals the timeline's `signal:` steps write, as the
+  /// default PLC passing panel keys to the NC would.
+  TimelinePlayer(const Scene& scene, const control::AmplifierTelegram& feedback,
+               control::channel::Channel* channel = nullptr,
+               control::gateway::SignalImage* image = nullptr);
+
+  /// One drive tick at time t: advances the timeline on the feedback of the last tick and fills
+  /// the MDT to write. Events are appended to `events`.
+  void Tick(double t_s, const control::AmplifierTelegram& at,
+            const std::vector<ClutchState>& clutches, control::MasterTelegram& mdt,
+            std::vector<ProgramEvent>& events);
+
+  bool finished() const { return next_ >= scene_->timeline.size(); }
+  InjectedFaults& faults() { return play_.faults; }
+  /// Steps that did not complete (wait_until timeouts), as messages.
+  const std::vector<std::string>& failures() const { return play_.failures; }
+
+ private:
+  const Scene* scene_;
+  TimelinePlay play_;
+  size_t next_ = 0;
+  double step_since_s_ = -1;  ///< when the current blocking step began
+};
+
+}  // namespace vmt::sim
