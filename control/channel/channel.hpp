@@ -26,6 +26,7 @@
 #include "control/channel/channel_types.hpp"
 #include "control/channel/operator_messages.hpp"
 #include "control/channel/look_ahead.hpp"
+#include "control/channel/nc_cycle_owner.hpp"
 #include "control/channel/path_memory.hpp"
 #include "control/channel/path_profile.hpp"
 #include "control/channel/programmed_stop.hpp"
@@ -365,6 +366,12 @@ class Channel {
   /// TLD(...) the tool list, OTD(...) the zero offsets, MTD(...) the machine data pages
   /// (SetMeasuringPages; null: MTD is an error), for the interpreters (channel_data_access.cpp).
   nc::DataAccess MakeDataAccess();
+  /// Who owns this NC cycle: the first that applies, in the order of NcCycleOwner
+  /// (channel_cycle.cpp); ProgramCycleOwner is its part within a running or held program.
+  NcCycleOwner CycleOwner() const;
+  NcCycleOwner ProgramCycleOwner() const;
+  /// The program's NC cycle: what `owner` does, then the block in work's motion.
+  void ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, double dt);
   bool NextBlock(const AmplifierTelegram& at);
   bool RunBlock(const AmplifierTelegram& at);
   bool NextCompensated(const AmplifierTelegram& at);
