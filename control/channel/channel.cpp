@@ -7,34 +7,6 @@
 
 namespace vmt::control::channel {
 
-const char* ToString(ChannelState s) {
-  switch (s) {
-    case ChannelState::kIdle:
-      return "idle";
-    case ChannelState::kRunning:
-      return "running";
-    case ChannelState::kHold:
-      return "hold";
-    case ChannelState::kEnded:
-      return "ended";
-    case ChannelState::kError:
-      return "error";
-  }
-  return "?";
-}
-
-const char* ToString(ChannelMode m) {
-  switch (m) {
-    case ChannelMode::kAutomatic:
-      return "automatic";
-    case ChannelMode::kManual:
-      return "manual";
-    case ChannelMode::kMdi:
-      return "mdi";
-  }
-  return "?";
-}
-
 Channel::Channel(ChannelConfig config, std::vector<const nc::Program*> programs)
     : config_(std::move(config)), programs_(std::move(programs)) {
   const size_t n = config_.axes.size();
@@ -284,91 +256,30 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
     for (size_t d = 0; d < at.feedback.size(); ++d) drive_positions_[d] = at.feedback[d].position;
     ToolStorageCycle(dt);
     if (ToolStorageArrived()) tool_storage_wait_ = false;
-    if (output_suspended_) {
-      SearchCycle(at);  // 4.2.1: the search decodes on while the axes are lent; the rest waits
-    } else if (mode_ == ChannelMode::kManual) {
-      Jogging(dt);
-    } else if (JogsMoving()) {
-      Jogging(dt);  // a jog left for this mode brakes to rest first; a start waits for it
-      if (!JogsMoving() && std::exchange(start_deferred_, false)) Start();
-    } else if (replay_.away) {
-      ReplayCycle(dt);  // backward travel owns the cycle until it is back at the interruption
-    } else if (state_ == ChannelState::kRunning || state_ == ChannelState::kHold) {
-      bool finished = false;
+    NcCycleOwner owner = CycleOwner();
+    if (owner >= NcCycleOwner::kBlockSearch) {
       WatchProbeCollision(at);  // fast measurement 6.1: a collision fails the channel here
-      if (SearchCycle(at)) {
-        // Block search owns the cycle: decoding without motion, its handshakes and holds (a
-        // return move interpolates below).
-      } else if (!aux_output_.empty()) {
-        // The block waits for the PLC's acknowledgement of its auxiliary functions.
-      } else if (waiting_for_ != axes::HeadstockMode::kNone) {
-        // Block preparation and execution wait until the changeover ends (C-axis manual 1.2).
-        if (headstock_->mode() == waiting_for_)
-          finished = RunBlock(at) && !active_ && dwell_left_s_ <= 0 && !orienting_ &&
-                     waiting_for_ == axes::HeadstockMode::kNone;
-        else if (state_ == ChannelState::kRunning)
-          headstock_->Request(waiting_for_);  // again, if a jog key turned the changeover round
-      } else if (tool_storage_wait_) {
-        // MRY: the block waits for the NC's tool storage axis (REPOS manual 4.2).
-      } else if (pending_motion_) {
-        pending_motion_ = false;
-        if (StartMotion(at)) finished = !active_ && dwell_left_s_ <= 0 && !homing_ && !orienting_;
-      } else if (dwell_left_s_ > 0) {
-        if (state_ == ChannelState::kRunning) dwell_left_s_ -= dt;
-        finished = dwell_left_s_ <= 0;
-      } else if (orienting_) {
-        // M19 ends when the spindle reports itself in position, G77 Sj=0 when its spindles
-        // are at speed.
-        orienting_ = false;
-        if (config_.spindle_drive >= 0) {
-          const uint32_t status = at.feedback[config_.spindle_drive].status;
-          orienting_ = spindle_.mode == DriveMode::kPosition
-                           ? !(status & drive_status::kInPosition)
-                           : spindle_.value != 0 && !(status & drive_status::kAtSpeed);
-        }
-        if (further_restoring_) further_restoring_ = FurtherSpindlesRamping(at);
-        orienting_ |= further_restoring_;
-        finished = !orienting_;
-      } else if (measuring_ && !active_) {
-        finished = MeasuringCycle(at);
-      } else if (!active_ && state_ == ChannelState::kRunning && programmed_stop_.Finish()) {
-        // M00 / M01: the block before is done, its motion and the acknowledgement of its
-        // functions included; the channel holds before the next one.
-        state_ = ChannelState::kHold;
-      } else if (!active_ && state_ == ChannelState::kRunning) {
-        finished = NextBlock(at) && !active_ && dwell_left_s_ <= 0 && !orienting_ &&
-                   waiting_for_ == axes::HeadstockMode::kNone;
-        if (finished && measuring_) finished = MeasuringCycle(at);
-      }
-      // A block interrupted and jogged away from stays where the program left it until the
-      // axes are repositioned (REPOS manual 2.1): interpolating it would take them back.
-      const bool frozen = state_ == ChannelState::kHold && interruption_ &&
-                          interruption_->left_contour && !repos_run_;
-      if (active_ && !frozen) {
-        if (sync_.phase != SyncPhase::kNone)
-          SynchronousCycle(at, dt);
-        else
-          Interpolate(dt);
-        WatchMeasuringMove(at);
-        finished = !active_;
-        if (finished && breakpoint_pending_) {
-          HoldAtBreakpoint();
-          finished = false;
-        }
-        // A measuring instruction's move has ended: its next step follows at once.
-        if (finished && measuring_) finished = MeasuringCycle(at);
-        if (finished && homing_) finished = !NextHomingStage();
-        // C is aligned (#CAX TRACK): the block's own motion follows as one unit with it.
-        if (finished && std::exchange(cax_aligning_, false))
-          finished = StartMotion(at) && !active_ && !orienting_;
-        if (finished && carry_speed_ > 0) {
-          // Blended: the next block runs on from here in the same cycle.
-          finished = NextBlock(at) && !active_ && !orienting_;
-          carry_speed_ = carry_accel_ = carry_leftover_ = 0;
-        }
-      }
-      if (finished && single_block_ && state_ == ChannelState::kRunning)
-        state_ = ChannelState::kHold;
+      owner = ProgramCycleOwner();  // ... and has ended the move and the dwell
+    }
+    switch (owner) {
+      case NcCycleOwner::kNone:
+        break;
+      case NcCycleOwner::kAxesLent:
+        SearchCycle(at);  // 4.2.1: the search decodes on while the axes are lent; the rest waits
+        break;
+      case NcCycleOwner::kJog:
+        Jogging(dt);
+        break;
+      case NcCycleOwner::kJogBraking:
+        Jogging(dt);
+        if (!JogsMoving() && std::exchange(start_deferred_, false)) Start();
+        break;
+      case NcCycleOwner::kBackward:
+        ReplayCycle(dt);
+        break;
+      default:
+        ProgramCycle(owner, at, dt);
+        break;
     }
     ReposCycle(at);
     if (state_ == ChannelState::kEnded && !search_offset_.empty()) RemoveSearchOffset();

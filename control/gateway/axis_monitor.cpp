@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <string>
 
+#include "control/channel/channel.hpp"
+
 namespace vmt::control::gateway {
 namespace {
 

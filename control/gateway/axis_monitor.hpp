@@ -8,7 +8,7 @@
 #include <array>
 #include <vector>
 
-#include "control/channel/channel.hpp"
+#include "control/channel/channel_types.hpp"
 #include "control/drive_bus.hpp"
 #include "control/gateway/signal_image.hpp"
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "control/channel/channel.hpp"
+
 namespace vmt::control::gateway {
 namespace {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "control/channel/channel.hpp"
+#include "control/channel/channel_types.hpp"
 #include "control/drive_bus.hpp"
 #include "control/gateway/axis_monitor.hpp"
 #include "control/gateway/signal_image.hpp"

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "control/channel/channel.hpp"
+
 namespace vmt::sim {
 namespace {
 

@@ -5,7 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "control/channel/channel.hpp"
+#include "control/channel/channel_types.hpp"
+#include "control/channel/repositioning.hpp"
 #include "sim/backend/stylus_contacts.hpp"
 #include "sim/model/machine_model.hpp"
 

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "control/channel/channel.hpp"
 #include "control/gateway/channel_gateway.hpp"
 #include "control/plc/plc_runtime.hpp"
 #include "sim/collision/machine_path_guard.hpp"

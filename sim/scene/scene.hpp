@@ -7,9 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "control/channel/channel.hpp"
+#include "control/channel/channel_types.hpp"
 #include "control/gateway/signal_table.hpp"
 #include "control/measure/measuring_pages.hpp"
+#include "control/nc/interpreter.hpp"
 #include "control/nc/program.hpp"
 #include "sim/backend/machine_backend.hpp"
 #include "sim/model/machine_model.hpp"

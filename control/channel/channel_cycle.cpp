@@ -1,0 +1,119 @@
+// Who owns the NC cycle, and the program's part of it: the block in work waits for what it
+// waits for, the next block is read, the block's motion is interpolated.
+
+#include "control/channel/channel.hpp"
+
+namespace vmt::control::channel {
+
+NcCycleOwner Channel::CycleOwner() const {
+  if (output_suspended_) return NcCycleOwner::kAxesLent;
+  if (mode_ == ChannelMode::kManual) return NcCycleOwner::kJog;
+  if (JogsMoving()) return NcCycleOwner::kJogBraking;
+  if (replay_.away) return NcCycleOwner::kBackward;
+  if (state_ == ChannelState::kRunning || state_ == ChannelState::kHold)
+    return ProgramCycleOwner();
+  return NcCycleOwner::kNone;
+}
+
+NcCycleOwner Channel::ProgramCycleOwner() const {
+  // Block search owns the cycle while it is under way, its return to the contour included.
+  if (search_ && bs_state_ != BlockSearchState::kInactive) return NcCycleOwner::kBlockSearch;
+  if (!aux_output_.empty()) return NcCycleOwner::kAuxAcknowledge;
+  if (waiting_for_ != axes::HeadstockMode::kNone) return NcCycleOwner::kChangeover;
+  if (tool_storage_wait_) return NcCycleOwner::kToolStorage;
+  if (pending_motion_) return NcCycleOwner::kMotionStart;
+  if (dwell_left_s_ > 0) return NcCycleOwner::kDwell;
+  if (orienting_) return NcCycleOwner::kSpindle;
+  if (measuring_ && !active_) return NcCycleOwner::kMeasuring;
+  if (!active_ && state_ == ChannelState::kRunning) return NcCycleOwner::kNextBlock;
+  return NcCycleOwner::kBlockInWork;
+}
+
+void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, double dt) {
+  bool finished = false;
+  switch (owner) {
+    case NcCycleOwner::kBlockSearch:
+      // Decoding without motion, its handshakes and holds (a return move interpolates below).
+      SearchCycle(at);
+      break;
+    case NcCycleOwner::kChangeover:
+      // Block preparation and execution wait until the changeover ends (C-axis manual 1.2).
+      if (headstock_->mode() == waiting_for_)
+        finished = RunBlock(at) && !active_ && dwell_left_s_ <= 0 && !orienting_ &&
+                   waiting_for_ == axes::HeadstockMode::kNone;
+      else if (state_ == ChannelState::kRunning)
+        headstock_->Request(waiting_for_);  // again, if a jog key turned the changeover round
+      break;
+    case NcCycleOwner::kMotionStart:
+      pending_motion_ = false;
+      if (StartMotion(at)) finished = !active_ && dwell_left_s_ <= 0 && !homing_ && !orienting_;
+      break;
+    case NcCycleOwner::kDwell:
+      if (state_ == ChannelState::kRunning) dwell_left_s_ -= dt;
+      finished = dwell_left_s_ <= 0;
+      break;
+    case NcCycleOwner::kSpindle:
+      // M19 ends when the spindle reports itself in position, G77 Sj=0 when its spindles
+      // are at speed.
+      orienting_ = false;
+      if (config_.spindle_drive >= 0) {
+        const uint32_t status = at.feedback[config_.spindle_drive].status;
+        orienting_ = spindle_.mode == DriveMode::kPosition
+                         ? !(status & drive_status::kInPosition)
+                         : spindle_.value != 0 && !(status & drive_status::kAtSpeed);
+      }
+      if (further_restoring_) further_restoring_ = FurtherSpindlesRamping(at);
+      orienting_ |= further_restoring_;
+      finished = !orienting_;
+      break;
+    case NcCycleOwner::kMeasuring:
+      finished = MeasuringCycle(at);
+      break;
+    case NcCycleOwner::kNextBlock:
+      if (programmed_stop_.Finish()) {
+        // M00 / M01: the block before is done, its motion and the acknowledgement of its
+        // functions included; the channel holds before the next one.
+        state_ = ChannelState::kHold;
+        break;
+      }
+      finished = NextBlock(at) && !active_ && dwell_left_s_ <= 0 && !orienting_ &&
+                 waiting_for_ == axes::HeadstockMode::kNone;
+      if (finished && measuring_) finished = MeasuringCycle(at);
+      break;
+    default:
+      // The PLC's acknowledgement, MRY's tool storage axis (REPOS manual 4.2): the block
+      // waits. The block in work: its motion runs below.
+      break;
+  }
+  // A block interrupted and jogged away from stays where the program left it until the
+  // axes are repositioned (REPOS manual 2.1): interpolating it would take them back.
+  const bool frozen = state_ == ChannelState::kHold && interruption_ &&
+                      interruption_->left_contour && !repos_run_;
+  if (active_ && !frozen) {
+    if (sync_.phase != SyncPhase::kNone)
+      SynchronousCycle(at, dt);
+    else
+      Interpolate(dt);
+    WatchMeasuringMove(at);
+    finished = !active_;
+    if (finished && breakpoint_pending_) {
+      HoldAtBreakpoint();
+      finished = false;
+    }
+    // A measuring instruction's move has ended: its next step follows at once.
+    if (finished && measuring_) finished = MeasuringCycle(at);
+    if (finished && homing_) finished = !NextHomingStage();
+    // C is aligned (#CAX TRACK): the block's own motion follows as one unit with it.
+    if (finished && std::exchange(cax_aligning_, false))
+      finished = StartMotion(at) && !active_ && !orienting_;
+    if (finished && carry_speed_ > 0) {
+      // Blended: the next block runs on from here in the same cycle.
+      finished = NextBlock(at) && !active_ && !orienting_;
+      carry_speed_ = carry_accel_ = carry_leftover_ = 0;
+    }
+  }
+  if (finished && single_block_ && state_ == ChannelState::kRunning)
+    state_ = ChannelState::kHold;
+}
+
+}  // namespace vmt::control::channel
