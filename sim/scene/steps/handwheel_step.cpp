@@ -1,5 +1,6 @@
 // `handwheel: {axis, counts}`: the handwheel of a channel axis (or of X1 / Y1 of G31) turned by
 // a number of counts.
+#include "control/channel/channel.hpp"
 #include "sim/model/yaml_reader.hpp"
 #include "sim/scene/scene_steps.hpp"
 #include "sim/scene/steps/step_kind.hpp"

@@ -2,6 +2,7 @@
 // time; `jog: {axis, to}` jogs an axis to a position by one increment.
 #include <cmath>
 
+#include "control/channel/channel.hpp"
 #include "sim/model/yaml_reader.hpp"
 #include "sim/scene/scene_steps.hpp"
 #include "sim/scene/steps/step_kind.hpp"

@@ -3,6 +3,7 @@
 // and the edits of zero offsets and tool lengths while a program is interrupted.
 #include <filesystem>
 
+#include "control/channel/channel.hpp"
 #include "sim/model/yaml_reader.hpp"
 #include "sim/scene/scene_steps.hpp"
 #include "sim/scene/steps/step_kind.hpp"

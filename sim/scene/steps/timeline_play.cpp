@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "control/channel/channel.hpp"
+
 namespace vmt::sim {
 
 double TrapezoidProfile::Duration() const {
