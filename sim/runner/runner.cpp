@@ -21,6 +21,7 @@
 #include "sim/model/gateway_layout.hpp"
 #include "sim/runner/channel_events.hpp"
 #include "sim/runner/event_snapshots.hpp"
+#include "sim/runner/make_backend.hpp"
 #include "sim/runner/probe_glue.hpp"
 #include "sim/runner/runner_state.hpp"
 #include "sim/runner/scene_renderer.hpp"

@@ -220,7 +220,4 @@ struct Scene {
 /// Loads a scene and its model. Throws ModelError naming the file and the YAML path.
 Scene LoadScene(const std::string& path);
 
-std::unique_ptr<MachineBackend> MakeBackend(BackendKind kind, const MachineModel& model,
-                                            const InitialState& init);
-
 }  // namespace vmt::sim

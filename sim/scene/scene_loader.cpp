@@ -11,12 +11,10 @@
 #include "common/mapped_file.hpp"
 #include "control/nc/parser.hpp"
 #include "control/plc/plc_programs.hpp"
-#include "sim/kinematic/kinematic_backend.hpp"
 #include "sim/model/gateway_layout.hpp"
 #include "sim/model/model_error.hpp"
 #include "sim/model/nc_machine_data.hpp"
 #include "sim/model/yaml_reader.hpp"
-#include "sim/physics/physics_backend.hpp"
 #include "sim/scene/measuring_pages_loader.hpp"
 #include "sim/scene/scene.hpp"
 #include "sim/scene/scene_steps.hpp"
@@ -313,12 +311,6 @@ Scene LoadScene(const std::string& path) {
   }
   if (root.Has("snapshots")) s.snapshots = ReadSnapshots(root["snapshots"], s);
   return s;
-}
-
-std::unique_ptr<MachineBackend> MakeBackend(BackendKind kind, const MachineModel& model,
-                                            const InitialState& init) {
-  if (kind == BackendKind::kPhysics) return std::make_unique<PhysicsBackend>(model, init);
-  return std::make_unique<KinematicBackend>(model, init);
 }
 
 std::string AddSignalPreset(NcSetup& nc, const std::string& name, const std::string& value) {

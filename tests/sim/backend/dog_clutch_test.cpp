@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "sim/runner/make_backend.hpp"
 #include "sim/scene/scene.hpp"
 #include "../sim_test_support.hpp"
 

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "sim/runner/make_backend.hpp"
 #include "../sim_test_support.hpp"
 
 namespace vmt::sim {

@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "sim/runner/make_backend.hpp"
 #include "sim/runner/runner.hpp"
 #include "../sim_test_support.hpp"
 

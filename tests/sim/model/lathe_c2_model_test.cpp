@@ -11,6 +11,7 @@
 #include "sim/backend/drive_controller.hpp"
 #include "sim/model/gateway_layout.hpp"
 #include "sim/model/model_error.hpp"
+#include "sim/runner/make_backend.hpp"
 #include "../sim_test_support.hpp"
 
 namespace vmt::sim {

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "control/channel/channel_messages.hpp"
+#include "sim/runner/make_backend.hpp"
 #include "sim/runner/runner.hpp"
 #include "sim/scene/scene.hpp"
 #include "../sim_test_support.hpp"
