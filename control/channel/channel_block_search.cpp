@@ -203,7 +203,8 @@ bool Channel::NextSearchBlock() {
   if (!compensating_) {
     if (headstock_) s.rotary_start = interpreter_->position()[config_.rotary_axis];
     if (!ReadSource(block_)) return text_ended();
-    if (block_.modal.compensation == 40 || block_.motion == nc::Motion::kNone) return true;
+    if (block_.modal.compensation == nc::Compensation::kOff || block_.motion == nc::Motion::kNone)
+      return true;
     // G41/G42: the search reads ahead through the compensation as the run does
     // (NextBlock), so that the tip path it simulates is the one the run machines, and the
     // run takes over the compensation's state at the continue position.

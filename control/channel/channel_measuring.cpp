@@ -186,7 +186,7 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
       step.kind == measure::MeasuringStep::Kind::kRapid ? nc::Motion::kRapid : nc::Motion::kLinear;
   b.modal.incremental = false;
   b.modal.feed_per_revolution = false;
-  b.modal.compensation = 40;
+  b.modal.compensation = nc::Compensation::kOff;
   b.modal.diameter = false;
   b.modal.feed = step.feed;
   b.modal.motion = b.motion;

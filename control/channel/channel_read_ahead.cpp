@@ -20,7 +20,7 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
       state_ = ChannelState::kEnded, reversing_ = false;
     return false;
   }
-  if (block_.modal.compensation != 40 && block_.motion != nc::Motion::kNone) {
+  if (block_.modal.compensation != nc::Compensation::kOff && block_.motion != nc::Motion::kNone) {
     // G41/G42: from here the channel reads ahead, so that each block's path can be offset
     // with its successor in view.
     if (axis_z_ < 0 || axis_x_ < 0) {
@@ -58,15 +58,15 @@ bool Channel::PushAhead(const nc::PreparedBlock& b) {
   e.start = contour_point_;
   e.end = e.start;
   e.rapid = b.motion == nc::Motion::kRapid;
-  e.side = b.modal.compensation == 41   ? CompensationSide::kLeft
-           : b.modal.compensation == 42 ? CompensationSide::kRight
-                                        : CompensationSide::kOff;
+  e.side = b.modal.compensation == nc::Compensation::kLeft    ? CompensationSide::kLeft
+           : b.modal.compensation == nc::Compensation::kRight ? CompensationSide::kRight
+                                                              : CompensationSide::kOff;
   if (e.side != CompensationSide::kOff) {
     const auto edge = config_.tools.Find(b.modal.tool, b.modal.correction);
     if (!edge && b.modal.correction != 0) {
       Fail(program, b.block,
            "T" + std::to_string(b.modal.tool) + " D" + std::to_string(b.modal.correction) +
-               " is not in the tool list (G" + std::to_string(b.modal.compensation) + ")",
+               " is not in the tool list (G" + std::to_string(nc::GCode(b.modal.compensation)) + ")",
            kMsgToolNotInList);
       return false;
     }
@@ -282,7 +282,7 @@ bool Channel::PeekCompensated(size_t k, nc::PreparedBlock& out) {
     out.aux.clear(), out.events.clear(), out.instructions.clear();
     out.dwell_s = 0;
   }
-  out.modal.compensation = 40;  // the tip path itself is not offset again
+  out.modal.compensation = nc::Compensation::kOff;  // the tip path itself is not offset again
   return true;
 }
 
@@ -337,7 +337,7 @@ void Channel::LookAhead(const AmplifierTelegram& at) {
     const nc::ModalState &m0 = block_.modal, &m1 = n.modal;
     if (!feed_move(n.motion) || !n.aux.empty() || !n.events.empty() || !n.instructions.empty() ||
         n.dwell_s != 0 || n.homing || n.set_position || n.repos || n.measuring || n.end ||
-        n.returned || m1.compensation != 40 || m1.zero_offset != m0.zero_offset ||
+        n.returned || m1.compensation != nc::Compensation::kOff || m1.zero_offset != m0.zero_offset ||
         m1.tool_length != m0.tool_length || m1.tool != m0.tool || m1.correction != m0.correction)
       break;
     // A block that needs a spindle / rotary axis changeover is reached at rest.

@@ -288,7 +288,7 @@ ReposStatus Channel::repos_status(const AmplifierTelegram* at) const {
                                                              : -1;
   if (motion >= 0) s.g_codes.push_back(motion);
   s.g_codes.push_back(m.plane);
-  s.g_codes.push_back(m.compensation);
+  s.g_codes.push_back(nc::GCode(m.compensation));
   s.g_codes.push_back(m.tool_length);
   s.g_codes.push_back(m.zero_offset);
   s.g_codes.push_back(m.incremental ? 91 : 90);
@@ -470,7 +470,7 @@ bool Channel::StartReposMotion(const AmplifierTelegram& at) {
   nc::PreparedBlock b = block_;
   b.motion = repos_closing_ ? nc::Motion::kRapid : nc::Motion::kLinear;
   b.modal.feed_per_revolution = false;
-  b.modal.compensation = 40;
+  b.modal.compensation = nc::Compensation::kOff;
   b.has_centre = false;
   b.radius = 0;
   b.has_effective_distance = 0;

@@ -20,7 +20,7 @@ bool Channel::StartSynchronous(const AmplifierTelegram& at) {
   const char* g = block_.motion == nc::Motion::kThread    ? "G33"
                   : block_.motion == nc::Motion::kTapping ? "G63"
                                                           : "G64";
-  if (block_.modal.compensation != 40)
+  if (block_.modal.compensation != nc::Compensation::kOff)
     return fail(std::string(g) + " with tool nose radius compensation: program G40 first",
                 kMsgNotAvailable);
   if (config_.spindle_drive < 0)

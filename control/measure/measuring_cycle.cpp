@@ -175,8 +175,8 @@ bool NeedSetting(const MeasuringContext& context, Arguments& args) {
 
 // 4.1 Tool Path and Length Correction: G40 before MOVE and PROBE.
 bool NeedG40(const MeasuringContext& context, Arguments& args) {
-  if (context.compensation != 40)
-    args.Fail("tool path correction G" + std::to_string(context.compensation) +
+  if (context.compensation != nc::Compensation::kOff)
+    args.Fail("tool path correction G" + std::to_string(nc::GCode(context.compensation)) +
                   " is active; program G40 before MOVE and PROBE",
               "4.1 Tool Path and Length Correction");
   return args.error.empty();

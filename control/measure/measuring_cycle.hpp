@@ -76,7 +76,7 @@ struct MeasuringContext {
   std::optional<MeasuringSetting> setting;  ///< none before the first SETTING
   bool turning = true;       ///< a lathe: G16 allowed in SETTING (4.1)
   bool tool_list = true;     ///< a tool list exists: G48 may be set (4.1)
-  int compensation = 40;     ///< G40 / G41 / G42 active (4.1: MOVE and PROBE need G40)
+  nc::Compensation compensation = nc::Compensation::kOff;  ///< 4.1: MOVE and PROBE need G40
   /// The sphere centre now, workpiece coordinates per SETTING axis (radius values).
   std::array<double, 3> position{};
   /// The modal G groups 1, 2, 3, 5, 6, 7, 13 now, as G(n) reads them (ZWISCHENSPEICHERPAGE 3..9).

@@ -62,7 +62,7 @@ int ModalGroupValue(const ModalState& m, char letter, int group, bool& known) {
       case 6:
         return m.zero_offset;
       case 7:
-        return m.compensation;
+        return GCode(m.compensation);
       case 8:
         return m.tool_length;
       case 9:

@@ -41,6 +41,11 @@ inline bool SpindleSynchronous(Motion m) {
   return m == Motion::kThread || m == Motion::kTapping || m == Motion::kRigidTapping;
 }
 
+/// G group 7, tool nose radius compensation: off, tool left or right of the contour. The value
+/// is the G number, which G(7) reads and the REPOS screen shows.
+enum class Compensation : uint8_t { kOff = 40, kLeft = 41, kRight = 42 };
+inline int GCode(Compensation c) { return static_cast<int>(c); }
+
 /// Modal state as programs set it. Group numbers for G(n) reads are ModalGroup.
 struct ModalState {
   Motion motion = Motion::kRapid;    ///< G00 G01 G02 G03 G33 G63 G64
@@ -49,7 +54,7 @@ struct ModalState {
   bool feed_per_revolution = false;  ///< G95 | G94
   bool diameter = false;             ///< G16 diameter | G15 radius programming of X (MTC200)
   int zero_offset = 53;              ///< G53 .. G59
-  int compensation = 40;             ///< G40 G41 G42
+  Compensation compensation = Compensation::kOff;  ///< G40 G41 G42
   int tool_length = 47;              ///< G47 off | G48 tool length | G49 negative tool length
   bool low_lag = false;              ///< G06 (MTC200)
   /// G group 17, coordinate transformation (control/nc/coordinate_transformation.hpp):

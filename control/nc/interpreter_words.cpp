@@ -177,7 +177,7 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
           case 40:
           case 41:
           case 42:
-            modal_.compensation = g;
+            modal_.compensation = static_cast<Compensation>(g);
             break;
           case 47:
           case 48:

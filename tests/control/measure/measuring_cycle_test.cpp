@@ -157,9 +157,9 @@ TEST_F(Lathe, RestoreBeforeSaveIsAnError) {
 // 4.1: G40 before MOVE and PROBE.
 TEST_F(Lathe, CutterCompensationBeforeMoveOrProbeIsAnError) {
   Setting();
-  context.compensation = 41;
+  context.compensation = nc::Compensation::kLeft;
   EXPECT_THAT(Plan("MOVE(50,20,,1,0)").error, HasSubstr("G41 is active; program G40"));
-  context.compensation = 42;
+  context.compensation = nc::Compensation::kRight;
   EXPECT_THAT(Plan("PROBE(1,1,64,35,,X,-2,100,1,3,0)").error,
               HasSubstr("G42 is active; program G40"));
 }
