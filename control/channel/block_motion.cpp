@@ -12,10 +12,11 @@ namespace {
 
 // Plane axes (first, second) by address: G17 X-Y, G18 Z-X, G19 Y-Z; the arc turns
 // counter-clockwise from first to second.
-void PlaneAxes(int plane, const char*& first, const char*& second, char& i_first, char& i_second) {
-  if (plane == 17)
+void PlaneAxes(nc::Plane plane, const char*& first, const char*& second, char& i_first,
+               char& i_second) {
+  if (plane == nc::Plane::kXY)
     first = "X", second = "Y", i_first = 'I', i_second = 'J';
-  else if (plane == 19)
+  else if (plane == nc::Plane::kYZ)
     first = "Y", second = "Z", i_first = 'J', i_second = 'K';
   else
     first = "Z", second = "X", i_first = 'K', i_second = 'I';
@@ -213,7 +214,7 @@ std::optional<MotionError> PlanBlockMotion(const nc::PreparedBlock& block,
     max_delta = std::max(max_delta, std::abs(delta[a] = out.end[a] - start[a]));
   const bool arc = block.motion == nc::Motion::kArcCw || block.motion == nc::Motion::kArcCcw;
   if (max_delta < 1e-12 && !arc) return std::nullopt;
-  if (block.fictive && block.modal.transformation == 31)
+  if (block.fictive && block.modal.transformation == nc::Transformation::kFace)
     return PlanFaceMotion(block, start, translation, axes, out, follow_up);
 
   // Per-axis limits on du/dt and d2u/dt2 for a straight move in axis space.
@@ -295,7 +296,7 @@ std::optional<MotionError> PlanBlockMotion(const nc::PreparedBlock& block,
       if (axes[a].name == second) out.arc_axes[1] = static_cast<int>(a);
     }
     if (out.arc_axes[0] < 0 || out.arc_axes[1] < 0)
-      return MotionError{std::string("the arc plane G") + std::to_string(block.modal.plane) +
+      return MotionError{std::string("the arc plane G") + std::to_string(nc::GCode(block.modal.plane)) +
                              " needs axes " + first + " and " + second,
                          kMsgArcPlane};
     const int a0 = out.arc_axes[0], a1 = out.arc_axes[1];

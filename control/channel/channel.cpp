@@ -354,7 +354,7 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
     // do not select it (coordinate_transformation.hpp).
     if (block_.fictive && headstock_->mode() != axes::HeadstockMode::kRotary) {
       Fail(program, block_.block,
-           "X1/Y1 of G" + std::to_string(block_.modal.transformation) +
+           "X1/Y1 of G" + std::to_string(nc::GCode(block_.modal.transformation)) +
                " need the headstock in rotary axis mode: select it (G00 " +
                config_.axes[config_.rotary_axis].name + "..) first",
            kMsgTransformation);
@@ -506,18 +506,18 @@ bool Channel::UpdateTranslation(const nc::ModalState& modal, const nc::Program& 
   // Tool length: G48 adds the edge's lengths, G49 subtracts them, G47 ignores the tool list.
   const axes::ToolEdge* edge = nullptr;
   std::optional<axes::ToolEdge> found;
-  if (modal.tool_length != 47 && modal.correction != 0) {
+  if (modal.tool_length != nc::ToolLength::kOff && modal.correction != 0) {
     found = config_.tools.Find(modal.tool, modal.correction);
     if (!found) {
       Fail(program, block,
            "T" + std::to_string(modal.tool) + " D" + std::to_string(modal.correction) +
-               " is not in the tool list (G" + std::to_string(modal.tool_length) + ")",
+               " is not in the tool list (G" + std::to_string(nc::GCode(modal.tool_length)) + ")",
            kMsgToolNotInList);
       return false;
     }
     edge = &*found;
   }
-  const double sign = modal.tool_length == 49 ? -1 : 1;
+  const double sign = modal.tool_length == nc::ToolLength::kSubtract ? -1 : 1;
   for (size_t a = 0; a < translation_.size(); ++a) {
     const double length = edge ? edge->Length(a, config_.axes[a].name) : 0;
     translation_[a] = config_.zero_offsets.Offset(modal.zero_offset, a) + shift_[a] - sign * length;

@@ -451,7 +451,7 @@ bool Channel::FoundContinuePosition(const nc::PreparedBlock& b, const BlockMotio
   BlockSearchRun& s = *search_;
   const double length = distance_on_ ? DistanceOf(motion, config_.axes) : 0;
   if (!BreakpointAfter(distance_ + u * length, b)) return false;
-  s.face_return = b.modal.transformation == 31;
+  s.face_return = b.modal.transformation == nc::Transformation::kFace;
   s.restart_motion = motion;
   s.restart_u = u;
   s.restart_distance = distance_;

@@ -79,11 +79,11 @@ bool Channel::TrackC(nc::PreparedBlock& b, const std::vector<double>& from, doub
       if (config_.axes[a].name == name) return static_cast<int>(a);
     return -1;
   };
-  const int plane = b.modal.plane;
-  const int p0 = axis(plane == 17 ? "X" : plane == 18 ? "Z" : "Y");
-  const int p1 = axis(plane == 17 ? "Y" : plane == 18 ? "X" : "Z");
+  const nc::Plane plane = b.modal.plane;
+  const int p0 = axis(plane == nc::Plane::kXY ? "X" : plane == nc::Plane::kZX ? "Z" : "Y");
+  const int p1 = axis(plane == nc::Plane::kXY ? "Y" : plane == nc::Plane::kZX ? "X" : "Z");
   if (p0 < 0 || p1 < 0) {
-    Fail(program, b.block, "#CAX TRACK needs both axes of the plane G" + std::to_string(plane),
+    Fail(program, b.block, "#CAX TRACK needs both axes of the plane G" + std::to_string(nc::GCode(plane)),
          kMsgNotAvailable);
     return false;
   }

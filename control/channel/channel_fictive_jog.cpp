@@ -26,9 +26,9 @@ namespace vmt::control::channel {
 
 bool Channel::FictiveJogAxes(int& x, int& c) const {
   x = c = -1;
-  const int transformation =
+  const nc::Transformation transformation =
       interruption_ ? interruption_->modal.transformation : modal().transformation;
-  if (transformation != 31) return false;
+  if (transformation != nc::Transformation::kFace) return false;
   if (headstock_ && headstock_->mode() != axes::HeadstockMode::kRotary) return false;
   for (size_t a = 0; a < config_.axes.size(); ++a) {
     if (config_.axes[a].name == "X") x = static_cast<int>(a);

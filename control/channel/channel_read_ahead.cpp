@@ -74,7 +74,7 @@ bool Channel::PushAhead(const nc::PreparedBlock& b) {
     e.edge_position = edge ? edge->edge_position : 0;
   }
   if (b.motion != nc::Motion::kNone) {
-    if (b.modal.plane != 18) {
+    if (b.modal.plane != nc::Plane::kZX) {
       Fail(program, b.block, "tool nose radius compensation G41/G42 works in the plane G18",
            kMsgNotAvailable);
       return false;

@@ -30,9 +30,9 @@ bool OutOfItsMode(const axes::HeadstockChangeover* headstock, int rotary_axis, s
 
 std::vector<double> Channel::TranslationOf(const nc::ModalState& modal) const {
   std::optional<axes::ToolEdge> edge;
-  if (modal.tool_length != 47 && modal.correction != 0)
+  if (modal.tool_length != nc::ToolLength::kOff && modal.correction != 0)
     edge = config_.tools.Find(modal.tool, modal.correction);
-  const double sign = modal.tool_length == 49 ? -1 : 1;
+  const double sign = modal.tool_length == nc::ToolLength::kSubtract ? -1 : 1;
   std::vector<double> t(config_.axes.size());
   for (size_t a = 0; a < t.size(); ++a) {
     const double length = edge ? edge->Length(a, config_.axes[a].name) : 0;
@@ -74,7 +74,8 @@ void Channel::CaptureInterruption() {
 
 bool Channel::FictiveRepos(int& x, int& c) const {
   x = c = -1;
-  if (!interruption_ || interruption_->modal.transformation != 31) return false;
+  if (!interruption_ || interruption_->modal.transformation != nc::Transformation::kFace)
+    return false;
   for (size_t a = 0; a < config_.axes.size(); ++a) {
     if (config_.axes[a].name == "X") x = static_cast<int>(a);
     if (config_.axes[a].name == "C") c = static_cast<int>(a);
@@ -287,13 +288,14 @@ ReposStatus Channel::repos_status(const AmplifierTelegram* at) const {
                      : m.motion == nc::Motion::kRigidTapping ? 64
                                                              : -1;
   if (motion >= 0) s.g_codes.push_back(motion);
-  s.g_codes.push_back(m.plane);
+  s.g_codes.push_back(nc::GCode(m.plane));
   s.g_codes.push_back(nc::GCode(m.compensation));
-  s.g_codes.push_back(m.tool_length);
+  s.g_codes.push_back(nc::GCode(m.tool_length));
   s.g_codes.push_back(m.zero_offset);
   s.g_codes.push_back(m.incremental ? 91 : 90);
   s.g_codes.push_back(m.feed_per_revolution ? 95 : 94);
-  if (m.transformation != 30) s.g_codes.push_back(m.transformation);  // G31 / G32 (5.2)
+  if (m.transformation != nc::Transformation::kOff)
+    s.g_codes.push_back(nc::GCode(m.transformation));  // G31 / G32 (5.2)
   return s;
 }
 

@@ -62,7 +62,7 @@ bool Channel::StartReturnMove(const std::vector<double>& to, const std::string& 
     nc::PreparedBlock b;
     b.motion = nc::Motion::kRapid;
     b.fictive = true;
-    b.modal.transformation = 31;
+    b.modal.transformation = nc::Transformation::kFace;
     b.target.resize(to.size());
     for (size_t a = 0; a < to.size(); ++a) b.target[a] = to[a] - translation_[a];
     if (const auto error = PlanBlockMotion(b, commanded_, translation_, config_.axes, 0, motion_,

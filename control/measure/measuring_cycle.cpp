@@ -285,8 +285,8 @@ MeasuringPlan PlanSetting(Arguments& args, const MeasuringContext& context,
                 kSection);
   }
   if (!args.error.empty() || !ValidProcess(context, pages, args)) return Failed(args.error);
-  s.plane = *plane;
-  s.tool_length = *length;
+  s.plane = static_cast<nc::Plane>(*plane);  // 17..19, checked above
+  s.tool_length = static_cast<nc::ToolLength>(*length);  // 47 or 48, checked above
   s.diameter = *radius == 16;
 
   // 3.1 BASISMESSPAGE 6..10 for the PLC's measuring block, which reads them on Q9992 (6.1).

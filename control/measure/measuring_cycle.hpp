@@ -33,8 +33,8 @@ inline bool IsMeasuringInstruction(const std::string& name) { return nc::IsMeasu
 /// (Control-Reset clears it).
 struct MeasuringSetting {
   std::array<char, 3> axis{};  ///< 'X', 'Y', 'Z' or 0 (empty place), SETTING A..C
-  int plane = 18;              ///< D: 17, 18, 19
-  int tool_length = 48;        ///< E: 47, 48
+  nc::Plane plane = nc::Plane::kZX;  ///< D: G17, G18, G19
+  nc::ToolLength tool_length = nc::ToolLength::kAdd;  ///< E: G47, G48
   bool diameter = false;       ///< F: G16
   int stylus = 1;              ///< G: 1..4, TASTWERKZEUGPAGE LV1
   /// What the last SAVE(A, B, C) kept: variables, axis positions, F (RESTORE writes back only

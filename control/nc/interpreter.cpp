@@ -52,7 +52,7 @@ int ModalGroupValue(const ModalState& m, char letter, int group, bool& known) {
             return static_cast<int>(m.motion) - 1;  // 0..3
         }
       case 2:
-        return m.plane;
+        return GCode(m.plane);
       case 3:
         return m.incremental ? 91 : 90;
       case 4:
@@ -64,11 +64,11 @@ int ModalGroupValue(const ModalState& m, char letter, int group, bool& known) {
       case 7:
         return GCode(m.compensation);
       case 8:
-        return m.tool_length;
+        return GCode(m.tool_length);
       case 9:
         return m.low_lag ? 6 : 5;
       case 17:
-        return m.transformation;
+        return GCode(m.transformation);
     }
   } else if (letter == 'M') {
     switch (group) {

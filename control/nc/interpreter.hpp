@@ -41,25 +41,35 @@ inline bool SpindleSynchronous(Motion m) {
   return m == Motion::kThread || m == Motion::kTapping || m == Motion::kRigidTapping;
 }
 
-/// G group 7, tool nose radius compensation: off, tool left or right of the contour. The value
-/// is the G number, which G(7) reads and the REPOS screen shows.
+// The modal G groups. Each value is its G number, which G(n) reads and the REPOS screen shows.
+
+/// G group 2, the plane of arcs and of the tool nose radius compensation (a lathe works in G18).
+enum class Plane : uint8_t { kXY = 17, kZX = 18, kYZ = 19 };
+/// G group 7, tool nose radius compensation: off, tool left or right of the contour.
 enum class Compensation : uint8_t { kOff = 40, kLeft = 41, kRight = 42 };
+/// G group 8, tool length correction: off, added, subtracted.
+enum class ToolLength : uint8_t { kOff = 47, kAdd = 48, kSubtract = 49 };
+/// G group 17, coordinate transformation (control/nc/coordinate_transformation.hpp): off, the end
+/// face (X1/Y1 in the face), the cylinder surface (Y1 the arc length).
+enum class Transformation : uint8_t { kOff = 30, kFace = 31, kCylinder = 32 };
+
+inline int GCode(Plane p) { return static_cast<int>(p); }
 inline int GCode(Compensation c) { return static_cast<int>(c); }
+inline int GCode(ToolLength t) { return static_cast<int>(t); }
+inline int GCode(Transformation t) { return static_cast<int>(t); }
 
 /// Modal state as programs set it. Group numbers for G(n) reads are ModalGroup.
 struct ModalState {
   Motion motion = Motion::kRapid;    ///< G00 G01 G02 G03 G33 G63 G64
-  int plane = 18;                    ///< G17 G18 G19 (a lathe starts in G18)
+  Plane plane = Plane::kZX;          ///< G17 G18 G19
   bool incremental = false;          ///< G91 | G90
   bool feed_per_revolution = false;  ///< G95 | G94
   bool diameter = false;             ///< G16 diameter | G15 radius programming of X (MTC200)
   int zero_offset = 53;              ///< G53 .. G59
   Compensation compensation = Compensation::kOff;  ///< G40 G41 G42
-  int tool_length = 47;              ///< G47 off | G48 tool length | G49 negative tool length
+  ToolLength tool_length = ToolLength::kOff;  ///< G47 G48 G49
   bool low_lag = false;              ///< G06 (MTC200)
-  /// G group 17, coordinate transformation (control/nc/coordinate_transformation.hpp):
-  /// G30 off, G31 face (X1/Y1 in the end face), G32 cylinder surface (Y1 arc length).
-  int transformation = 30;
+  Transformation transformation = Transformation::kOff;  ///< G30 G31 G32
   double cylinder_radius = 0;  ///< G32: X (radius, mm) when G32 became active
   int spindle = 5;                   ///< M3 M4 M5 M19
   int coolant = 9;                   ///< M7 M8 M9

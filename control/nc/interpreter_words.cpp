@@ -85,7 +85,7 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
         if (name != "X1" && name != "Y1") continue;
         const double v = w.value == kNoExpr ? w.number : Eval(w.value);
         if (eval_failed_) return Fail(eval_fail_offset_, eval_fail_message_);
-        if (modal_.transformation == 30)
+        if (modal_.transformation == Transformation::kOff)
           return Fail(w.offset, "axis " + name +
                                     " is a fictive axis of a coordinate transformation: it needs "
                                     "G31 or G32 active");
@@ -151,10 +151,10 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
           case 17:
           case 18:
           case 19:
-            modal_.plane = g;
+            modal_.plane = static_cast<Plane>(g);
             break;
           case 30:
-            modal_.transformation = 30;
+            modal_.transformation = Transformation::kOff;
             break;
           case 31:
           case 32: {
@@ -164,14 +164,14 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
                                         " (coordinate transformation) needs the axes X and C in "
                                         "this channel");
             // G32 unrolls the cylinder at the radius X has now (before the block's moves).
-            if (g == 32 && modal_.transformation != 32) {
+            if (g == 32 && modal_.transformation != Transformation::kCylinder) {
               if (!(std::abs(position_[x]) >= 1e-3))
                 return Fail(w.offset, "G32 (cylinder surface transformation) at X " +
                                           std::to_string(position_[x]) +
                                           ": the cylinder needs a radius; position X first");
               modal_.cylinder_radius = std::abs(position_[x]);
             }
-            modal_.transformation = g;
+            modal_.transformation = static_cast<Transformation>(g);
             break;
           }
           case 40:
@@ -182,7 +182,7 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
           case 47:
           case 48:
           case 49:
-            modal_.tool_length = g;
+            modal_.tool_length = static_cast<ToolLength>(g);
             break;
           case 53:
           case 54:
@@ -322,7 +322,7 @@ bool Interpreter::FictiveWords(const double fictive[2], uint32_t offset, uint8_t
   };
   // The block starts where the program has X and C (a word of X or C in the same block is
   // overruled: the fictive axes carry the move).
-  if (modal_.transformation == 31) {
+  if (modal_.transformation == Transformation::kFace) {
     const FictivePoint start = MachineToFace(position_[x], position_[c]);
     const FictivePoint end{word(0, start.x1), word(1, start.y1)};
     double radius = 0, angle = 0;

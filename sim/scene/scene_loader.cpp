@@ -213,7 +213,7 @@ Scene LoadScene(const std::string& path) {
             g == "G59")
           ms.zero_offset = std::stoi(g.substr(1));
         else if (g == "G47" || g == "G48" || g == "G49")
-          ms.tool_length = std::stoi(g.substr(1));
+          ms.tool_length = static_cast<control::nc::ToolLength>(std::stoi(g.substr(1)));
         else if (g == "G15" || g == "G16")
           ms.diameter = g == "G16";
         else if (g == "G94" || g == "G95")

@@ -157,7 +157,7 @@ TEST(BlockMotion, ArcsThatDoNotFitAreErrors) {
   EXPECT_NE(e->text.find("needs a centre (I/J/K) or a radius R"), std::string::npos);
   // G17 needs Y, which the lathe has not.
   nc::PreparedBlock g17 = Block(nc::Motion::kArcCw, {20, 120, 0}, 600);
-  g17.modal.plane = 17;
+  g17.modal.plane = nc::Plane::kXY;
   g17.radius = 10;
   e = PlanBlockMotion(g17, {20, 100, 0}, {0, 0, 0}, Axes(), 0, m);
   ASSERT_TRUE(e);

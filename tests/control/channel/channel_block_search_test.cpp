@@ -58,7 +58,7 @@ struct MillRig : test_support::IdealDriveBus {
     ChannelConfig config;
     config.axes = {Axis("X", 0, 100), Axis("Y", 1, 100), Axis("Z", 2, 100)};
     config.spindle_drive = 3;
-    config.initial.plane = 17;
+    config.initial.plane = nc::Plane::kXY;
     if (configure) configure(config);
     channel = std::make_unique<Channel>(config, std::vector<const nc::Program*>{&parsed.program});
     for (int d = 0; d < 3; ++d) {

@@ -50,7 +50,7 @@ struct CaxMill : test_support::IdealDriveBus {
                    testing::Axis("Z", 2, 400), testing::Axis("C", 3, 3600)};
     config.axes[3].rotary = true;
     config.spindle_drive = -1;
-    config.initial.plane = 17;
+    config.initial.plane = nc::Plane::kXY;
     channel = std::make_unique<Channel>(config, std::vector<const nc::Program*>{&parsed.program});
     for (size_t d = 0; d < 4; ++d) {
       drives[d] = test_support::IdealDrive::Follow();

@@ -35,8 +35,8 @@ TEST_F(Lathe, SettingWritesTheBasePageAndIssuesQ9992) {
   EXPECT_EQ(plan.setting->axis[0], 'X');
   EXPECT_EQ(plan.setting->axis[1], 'Z');
   EXPECT_EQ(plan.setting->axis[2], 0);
-  EXPECT_EQ(plan.setting->plane, 18);
-  EXPECT_EQ(plan.setting->tool_length, 48);
+  EXPECT_EQ(plan.setting->plane, nc::Plane::kZX);
+  EXPECT_EQ(plan.setting->tool_length, nc::ToolLength::kAdd);
   EXPECT_TRUE(plan.setting->diameter);
   EXPECT_EQ(plan.setting->stylus, 1);  // T number 25 is stylus 1
   const BasisMessPage& b = pages.basis[0];
