@@ -1,5 +1,9 @@
 #include "control/gateway/signal_types.hpp"
 
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
 #include "common/demand.hpp"
 
 namespace vmt::control::gateway {
@@ -136,6 +140,32 @@ int64_t MaxValue(SignalType type) {
     default:
       return 0;  // not an integer type: refused above
   }
+}
+
+std::string ValueError(SignalType type, double value) {
+  if (!std::isfinite(value)) return "a signal value must be a finite number";
+  if (type == SignalType::kString) return "a STRING signal holds text, not a number";
+  if (type == SignalType::kBool)
+    return value == 0 || value == 1 ? "" : "BOOL holds 0 or 1 (true or false)";
+  if (!IsInteger(type)) {
+    // REAL is binary32: a larger magnitude would become infinity on the gateway.
+    if (type == SignalType::kReal && std::abs(value) > std::numeric_limits<float>::max())
+      return "outside REAL's range";
+    return "";
+  }
+  char text[160];
+  if (value != std::floor(value)) {
+    std::snprintf(text, sizeof text, "%.17g is not an integer: %s", value, ToString(type));
+    return text;
+  }
+  const int64_t lo = MinValue(type);
+  const int64_t hi = MaxValue(type);
+  if (value < static_cast<double>(lo) || value > static_cast<double>(hi)) {
+    std::snprintf(text, sizeof text, "%.17g is outside %s's range %lld..%lld", value,
+                  ToString(type), static_cast<long long>(lo), static_cast<long long>(hi));
+    return text;
+  }
+  return "";
 }
 
 }  // namespace vmt::control::gateway

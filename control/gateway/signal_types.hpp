@@ -3,6 +3,7 @@
 // how many instances of a signal family a machine has.
 
 #include <cstdint>
+#include <string>
 
 namespace vmt::control::gateway {
 
@@ -66,5 +67,11 @@ bool IsInteger(SignalType type);
 /// Range of an integer type; aborts for the other types.
 int64_t MinValue(SignalType type);
 int64_t MaxValue(SignalType type);
+
+/// Why a signal of `type` cannot hold `value` ("1.5 is not an integer: INT", "40000 is outside
+/// INT's range -32768..32767"), or empty if it can. Every path that writes a value the user
+/// gave (scene presets, PLC constants, timeline steps, --set) asks this before writing, so
+/// that a wrong value is refused with its place instead of aborting the gateway.
+std::string ValueError(SignalType type, double value);
 
 }  // namespace vmt::control::gateway

@@ -9,6 +9,7 @@
 // Pure geometry without the channel: the fictive words are converted here, so that the
 // program's position, incremental words and block search know X and C.
 #include "control/nc/coordinate_transformation.hpp"
+#include "control/nc/modal_g_codes.hpp"
 
 namespace vmt::control::nc {
 
@@ -136,26 +137,6 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
           case 4:
             out.dwell_s = -1;
             break;  // the dwell time follows as F or X
-          case 5:
-            modal_.low_lag = false;
-            break;
-          case 6:
-            modal_.low_lag = true;
-            break;
-          case 15:
-            modal_.diameter = false;
-            break;
-          case 16:
-            modal_.diameter = true;
-            break;
-          case 17:
-          case 18:
-          case 19:
-            modal_.plane = static_cast<Plane>(g);
-            break;
-          case 30:
-            modal_.transformation = Transformation::kOff;
-            break;
           case 31:
           case 32: {
             const int x = NamedAxis("X"), c = NamedAxis("C");
@@ -174,51 +155,21 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
             modal_.transformation = static_cast<Transformation>(g);
             break;
           }
-          case 40:
-          case 41:
-          case 42:
-            modal_.compensation = static_cast<Compensation>(g);
-            break;
-          case 47:
-          case 48:
-          case 49:
-            modal_.tool_length = static_cast<ToolLength>(g);
-            break;
-          case 53:
-          case 54:
-          case 55:
-          case 56:
-          case 57:
-          case 58:
-          case 59:
-            modal_.zero_offset = g;
-            break;
           case 74:
             out.homing = true;
             break;
           case 77:
             out.repos = true;
             break;
-          case 90:
-            modal_.incremental = false;
-            break;
-          case 91:
-            modal_.incremental = true;
-            break;
           case 92:
             out.set_position = true;
-            break;
-          case 94:
-            modal_.feed_per_revolution = false;
-            break;
-          case 95:
-            modal_.feed_per_revolution = true;
             break;
           case 100:
             out.measuring = true;
             break;
           default:
-            return Fail(w.offset, "G" + std::to_string(g) + " is not supported");
+            if (!SetModalG(g, modal_))
+              return Fail(w.offset, "G" + std::to_string(g) + " is not supported");
         }
         continue;
       }

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "common/mapped_file.hpp"
+#include "control/nc/modal_g_codes.hpp"
 #include "control/nc/parser.hpp"
 #include "control/plc/plc_programs.hpp"
 #include "sim/model/gateway_layout.hpp"
@@ -207,25 +208,8 @@ Scene LoadScene(const std::string& path) {
       // Start-up G codes of the channel: the zero offset and tool length a program expects.
       const YamlNode init = nc["initial"];
       for (size_t i = 0; i < init.size(); ++i) {
-        const std::string g = init[i].String();
-        control::nc::ModalState& ms = s.nc.initial;
-        if (g == "G53" || g == "G54" || g == "G55" || g == "G56" || g == "G57" || g == "G58" ||
-            g == "G59")
-          ms.zero_offset = std::stoi(g.substr(1));
-        else if (g == "G47" || g == "G48" || g == "G49")
-          ms.tool_length = static_cast<control::nc::ToolLength>(std::stoi(g.substr(1)));
-        else if (g == "G15" || g == "G16")
-          ms.diameter = g == "G16";
-        else if (g == "G94" || g == "G95")
-          ms.feed_per_revolution = g == "G95";
-        else if (g == "G05" || g == "G06")
-          ms.low_lag = g == "G06";
-        else if (g[0] == 'T' && g.size() > 1 && std::isdigit(static_cast<unsigned char>(g[1])))
-          ms.tool = std::stoi(g.substr(1));
-        else if (g[0] == 'D' && g.size() > 1 && std::isdigit(static_cast<unsigned char>(g[1])))
-          ms.correction = std::stoi(g.substr(1));
-        else
-          init[i].Fail("expected G53..G59, G47..G49, G15/G16, G94/G95, G05/G06, Tn or Dn");
+        const std::string error = control::nc::ApplyInitialWord(init[i].String(), s.nc.initial);
+        if (!error.empty()) init[i].Fail(error);
       }
     }
     s.nc.aux_handshake = nc.Bool("aux_handshake", false);
@@ -338,19 +322,8 @@ std::string AddSignalPreset(NcSetup& nc, const std::string& name, const std::str
     preset.number = std::strtod(value.c_str(), &end);
     if (value.empty() || *end != '\0' || !std::isfinite(preset.number))
       return "'" + name + "' expects a number, not '" + value + "'";
-    const bool integer = sig.type != SignalType::kReal && sig.type != SignalType::kLreal;
-    if (integer && preset.number != std::floor(preset.number))
-      return "'" + name + "' is an integer signal: '" + value + "' is not an integer";
-    const std::pair<double, double> range =
-        sig.type == SignalType::kInt     ? std::pair{-32768.0, 32767.0}
-        : sig.type == SignalType::kUint  ? std::pair{0.0, 65535.0}
-        : sig.type == SignalType::kWord  ? std::pair{0.0, 65535.0}
-        : sig.type == SignalType::kDint  ? std::pair{-2147483648.0, 2147483647.0}
-        : sig.type == SignalType::kUdint ? std::pair{0.0, 4294967295.0}
-        : sig.type == SignalType::kDword ? std::pair{0.0, 4294967295.0}
-                                         : std::pair{-1e308, 1e308};
-    if (preset.number < range.first || preset.number > range.second)
-      return "'" + name + "': " + value + " is outside its type's range";
+    const std::string error = control::gateway::ValueError(sig.type, preset.number);
+    if (!error.empty()) return "'" + name + "': " + error;
   }
   for (NcSetup::SignalPreset& p : nc.presets)
     if (p.id == id) {

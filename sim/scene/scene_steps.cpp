@@ -76,7 +76,10 @@ double SignalValue(const NcSetup& nc, int id, const YamlNode& n) {
   if ((*nc.signals)[id].type == control::gateway::SignalType::kBool) return n.Bool() ? 1 : 0;
   if ((*nc.signals)[id].type == control::gateway::SignalType::kString)
     n.Fail("STRING signals cannot be set from a scene");
-  return n.Double();
+  const double value = n.Double();
+  const std::string error = control::gateway::ValueError((*nc.signals)[id].type, value);
+  if (!error.empty()) n.Fail((*nc.signals)[id].name + ": " + error);
+  return value;
 }
 
 int RequireIo(const MachineModel& m, const YamlNode& n) {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -398,6 +399,21 @@ TEST(SignalCatalog, PatternsMatchScopes) {
       EXPECT_LE(f.preset, MaxValue(f.type)) << f.pattern;
     }
   }
+}
+
+TEST(SignalTypes, ValueErrorNamesWhatDoesNotFit) {
+  EXPECT_EQ(ValueError(SignalType::kInt, -32768), "");
+  EXPECT_EQ(ValueError(SignalType::kInt, 32767), "");
+  EXPECT_EQ(ValueError(SignalType::kInt, 32768), "32768 is outside INT's range -32768..32767");
+  EXPECT_EQ(ValueError(SignalType::kUint, -1), "-1 is outside UINT's range 0..65535");
+  EXPECT_EQ(ValueError(SignalType::kUdint, 4294967295.0), "");
+  EXPECT_EQ(ValueError(SignalType::kDint, 2.5), "2.5 is not an integer: DINT");
+  EXPECT_EQ(ValueError(SignalType::kBool, 1), "");
+  EXPECT_EQ(ValueError(SignalType::kBool, 2), "BOOL holds 0 or 1 (true or false)");
+  EXPECT_EQ(ValueError(SignalType::kLreal, 1e300), "");
+  EXPECT_EQ(ValueError(SignalType::kReal, 1e300), "outside REAL's range");
+  EXPECT_EQ(ValueError(SignalType::kLreal, std::nan("")), "a signal value must be a finite number");
+  EXPECT_NE(ValueError(SignalType::kString, 0), "");
 }
 
 TEST(SignalCatalog, ValuesBelongToFamiliesAndAreUnique) {

@@ -100,6 +100,24 @@ TEST(SceneSteps, ATimelineSignalIsOneAPlcWrites) {
   EXPECT_EQ(s.timeline[0].target, 1);
 }
 
+TEST(SceneSteps, AValueMustFitTheSignalsType) {
+  // QMFB1A00.ACHS_NR_1 is an INT: the gateway could not hold these, so the scene says where.
+  EXPECT_THAT(
+      Error("signal_range", kNc + "timeline:\n  - signal: {name: QMFB1A00.ACHS_NR_1, value: 40000}\n"),
+      HasSubstr("timeline[0].signal.value: QMFB1A00.ACHS_NR_1: 40000 is outside INT's range "
+                "-32768..32767"));
+  EXPECT_THAT(
+      Error("signal_fraction", kNc + "timeline:\n  - signal: {name: QMFB1A00.ACHS_NR_1, value: 1.5}\n"),
+      HasSubstr("timeline[0].signal.value: QMFB1A00.ACHS_NR_1: 1.5 is not an integer: INT"));
+  EXPECT_THAT(Error("constant_range", kNc + "plc:\n  program: probe_block\n"
+                                            "  constants: {QMFB1A00.ACHS_NR_1: -40000}\n"),
+              HasSubstr("plc.constants.QMFB1A00.ACHS_NR_1: QMFB1A00.ACHS_NR_1: -40000 is outside "
+                        "INT's range"));
+  const Scene s = Load("signal_fits", kNc + "timeline:\n  - signal: {name: QMFB1A00.ACHS_NR_1, value: -32768}\n");
+  ASSERT_EQ(s.timeline.size(), 1u);
+  EXPECT_EQ(s.timeline[0].target, -32768);
+}
+
 TEST(SceneSteps, NumbersInMessagesAreShort) {
   EXPECT_EQ(Fmt(400), "400");
   EXPECT_EQ(Fmt(0.25), "0.25");
