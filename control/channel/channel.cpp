@@ -374,7 +374,8 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
     }
   }
   auto unsupported = [&](const std::string& what) {
-    Fail(program, block_.block, what + " is not available in the channel yet", kMsgNotAvailable);
+    Fail(program, block_.block, what + " is not supported by vmt (docs/conformance.md)",
+         kMsgNotAvailable);
     return false;
   };
   if (block_.measuring) return unsupported("G100 measuring");
@@ -434,7 +435,7 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
     if (nc::IsMeasuringCall(name)) name.clear();  // StartMeasuring below
     if (!name.empty()) {
       Fail(nc::Format({st.pos, "instruction " + name.substr(0, name.find(' ')) +
-                                   " is not available in the channel yet"},
+                                   " is not supported by vmt (docs/conformance.md)"},
                       program.files),
            kMsgNotAvailable);
       return false;

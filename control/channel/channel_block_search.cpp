@@ -315,7 +315,7 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
     return fail("instruction " +
                     (st.kind == nc::Statement::Kind::kHashCommand ? "#" + program.texts[st.text]
                                                                    : program.symbols.Name(st.name)) +
-                    " is not available in block search yet",
+                    " is not supported in block search by vmt (docs/conformance.md)",
                 kMsgNotAvailable);
   }
   for (const auto& [n, set] : b.events) {

@@ -125,6 +125,8 @@ nlohmann::ordered_json SpindleStatusJson(const control::channel::Channel& ch,
 
 SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     : scene(scene_), options(options_), m(*scene_.model) {
+  recorder.AddObserver([this](const nlohmann::ordered_json& e) { NoteSnapshotEvent(e); });
+  if (options.on_event) recorder.AddObserver(options.on_event);
   backend = MakeBackend(options.backend.value_or(scene.backend), m, scene.initial);
   if (scene.workpiece.present) backend->SetWorkpiece(scene.workpiece.part);
   backend->SetProbeSamplingPhase(scene.probe_sampling);
@@ -272,16 +274,8 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
 
   last_tick = std::llround(options.until_s.value_or(scene.duration_s) / kDriveTickS);
   trace_every = std::max<int64_t>(1, std::llround(scene.trace_period_s / kDriveTickS));
-  writing = !options.out_dir.empty();
-
-  if (writing) {
-    std::filesystem::create_directories(options.out_dir);
-    trace_file.open(options.out_dir + "/trace.csv", std::ios::binary);
-    events_file.open(options.out_dir + "/events.jsonl", std::ios::binary);
-    if (!trace_file || !events_file)
-      throw std::runtime_error("cannot write to output folder " + options.out_dir);
-  }
-  emit_trace(TraceHeader(m, channel != nullptr));
+  if (!options.out_dir.empty()) recorder.Open(options.out_dir);
+  recorder.Trace(TraceHeader(m, channel != nullptr));
 
   snapped.assign(scene.snapshots.size(), false);
   event_shots.assign(scene.snapshots.size(), 0);
@@ -312,7 +306,7 @@ void SceneRun::State::Step() {
     for (const auto& [io, id] : plc_outputs) mdt.outputs[io] = image->Bool(id) ? 1 : 0;
   if (channel) StepChannel(t, at);
   for (const ProgramEvent& e : events)
-    emit_event({{"t", e.t_s}, {"event", e.kind}, {"text", e.text}});
+    recorder.Event({{"t", e.t_s}, {"event", e.kind}, {"text", e.text}});
   if (image) {
     // Every change of a gateway signal, either direction, as the PLC engineer traces it.
     // Only the cells that changed are read through their type: a study case runs this every
@@ -327,7 +321,7 @@ void SceneRun::State::Step() {
       const double v = SignalNumber(*image, id);
       if (v != last_signals[id] && !(std::isnan(v) && std::isnan(last_signals[id]))) {
         if (!std::isnan(last_signals[id]) || v != 0)
-          emit_event(
+          recorder.Event(
               {{"t", t}, {"event", "signal"}, {"name", image->table()[id].name}, {"value", v}});
         last_signals[id] = v;
       }
@@ -335,7 +329,7 @@ void SceneRun::State::Step() {
   }
   for (size_t k = 0; k < clutches.size(); ++k)
     if (last_clutches.empty() || clutches[k] != last_clutches[k])
-      emit_event({{"t", t},
+      recorder.Event({{"t", t},
                   {"event", "clutch"},
                   {"name", m.clutches[k].name},
                   {"state", ToString(clutches[k])}});
@@ -346,7 +340,7 @@ void SceneRun::State::Step() {
     const DogClutchLogic& logic = backend->ClutchLogic(static_cast<int>(k));
     if (logic.clashes == last_clashes[k]) continue;
     last_clashes[k] = logic.clashes;
-    emit_event({{"t", t},
+    recorder.Event({{"t", t},
                 {"event", "clutch"},
                 {"name", m.clutches[k].name},
                 {"state", "clash"},
@@ -357,7 +351,7 @@ void SceneRun::State::Step() {
   for (size_t i = 0; i < at.inputs.size(); ++i)
     if (!m.io[i].is_output && !m.io[i].key &&
         (last_inputs.empty() || at.inputs[i] != last_inputs[i]))
-      emit_event({{"t", t}, {"event", "input"}, {"name", m.io[i].name}, {"value", at.inputs[i]}});
+      recorder.Event({{"t", t}, {"event", "input"}, {"name", m.io[i].name}, {"value", at.inputs[i]}});
   // A drive's trips (overload, overspeed, missing parameter set) as they come and go.
   using namespace control::drive_status;
   last_faults.resize(at.feedback.size(), 0);
@@ -366,7 +360,7 @@ void SceneRun::State::Step() {
     // The drive's current parameter set as it changes (S-0-0254).
     if (at.feedback[d].parameter_set != last_sets[d]) {
       last_sets[d] = at.feedback[d].parameter_set;
-      emit_event({{"t", t},
+      recorder.Event({{"t", t},
                   {"event", "drive"},
                   {"name", m.drives[d].info.name},
                   {"parameter_set", last_sets[d]}});
@@ -377,7 +371,7 @@ void SceneRun::State::Step() {
     e["overload"] = (faults & kOverload) != 0;
     e["overspeed"] = (faults & kOverspeed) != 0;
     e["parameter_set_error"] = (faults & kParameterSetError) != 0;
-    emit_event(e);
+    recorder.Event(e);
     last_faults[d] = faults;
   }
   // Probe latches as the drives fill them (7.3): latched value beside the exact contact.
@@ -391,7 +385,7 @@ void SceneRun::State::Step() {
       if (latches[k]->latched) now |= static_cast<uint8_t>(1u << k);
     for (int k = 0; k < 4; ++k)
       if ((now >> k & 1) && !(last_latches[d] >> k & 1))
-        emit_event(ProbeLatchEvent(t, m.drives[d].info.name, k < 2 ? 4 : 5, k % 2 == 0,
+        recorder.Event(ProbeLatchEvent(t, m.drives[d].info.name, k < 2 ? 4 : 5, k % 2 == 0,
                                    *latches[k]));
     last_latches[d] = now;
   }
@@ -417,7 +411,7 @@ void SceneRun::State::Step() {
       Append(row, static_cast<int>(channel->state()));
       Append(row, channel->line());
     }
-    emit_trace(row + "\n");
+    recorder.Trace(row + "\n");
   }
 
   for (size_t i = 0; i < scene.expectations.size(); ++i) {
@@ -426,7 +420,7 @@ void SceneRun::State::Step() {
     if (checked[i] || !due) continue;
     checked[i] = true;
     checks[i] = Check(e, at, clutches, channel.get(), image.get());
-    emit_event({{"t", t},
+    recorder.Event({{"t", t},
                 {"event", "expectation"},
                 {"text", e.text},
                 {"passed", checks[i].passed},
@@ -456,7 +450,7 @@ void SceneRun::State::Step() {
   backend->Write(mdt);
   backend->Step();
   for (const StylusOverTravel& o : backend->TakeStylusOverTravels())
-    emit_event(StylusOverTravelEvent(o));
+    recorder.Event(StylusOverTravelEvent(o));
   ++tick;
   if (field_bus && tick % plc_every == 0) ReadFieldBus();
 }
@@ -466,7 +460,7 @@ RunResult SceneRun::State::Finish() {
   // A run stopped early (vmt serve) has simulated only up to where it stopped.
   result.simulated_s = (finished ? last_tick : tick) * kDriveTickS;
   result.final_joint_positions = backend->JointPositions();
-  result.trace_digest = digest.Hex();
+  result.trace_digest = recorder.DigestHex();
   for (size_t i = 0; i < checks.size(); ++i) {
     if (!checked[i]) {
       checks[i] = {scene.expectations[i].text, false, "not reached: the run ended first"};
@@ -487,10 +481,9 @@ RunResult SceneRun::State::Finish() {
   result.wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   // The files are complete now, whether or not the run object lives on.
-  trace_file.flush();
-  events_file.flush();
+  recorder.Flush();
 
-  if (writing) {
+  if (recorder.writing()) {
     nlohmann::ordered_json summary;
     summary["scene"] = scene.name;
     summary["backend"] = ToString(options.backend.value_or(scene.backend));
@@ -536,7 +529,7 @@ control::plc::AxdWrStatus SceneRun::AxdWrite(int axis, int ident, int64_t value)
 double SceneRun::time_s() const { return state_->tick * kDriveTickS; }
 void SceneRun::PlcLost(const std::string& reason) { state_->StopPlc(time_s(), reason, reason); }
 void SceneRun::PlcRunning() {
-  state_->emit_event({{"t", time_s()}, {"event", "plc"}, {"state", "running"}});
+  state_->recorder.Event({{"t", time_s()}, {"event", "plc"}, {"state", "running"}});
 }
 
 RunResult RunScene(const Scene& scene, const RunOptions& options) {

@@ -41,7 +41,7 @@ void SceneRun::State::StepChannel(double t, const control::AmplifierTelegram& at
     // The operator's display: the axis designation of the mode (S1 <-> C, 2.3 position
     // indication) once the changeover is complete.
     headstock_target = hs->target();
-    emit_event({{"t", t},
+    recorder.Event({{"t", t},
                 {"event", "headstock"},
                 {"mode", ToString(hs->mode())},
                 {"target", ToString(hs->target())}});
@@ -52,26 +52,26 @@ void SceneRun::State::StepChannel(double t, const control::AmplifierTelegram& at
     // changeover, with the drives at standstill (4.2), starts the external one.
     rotmod = hs->rotmod();
     spmod = hs->spmod();
-    emit_event({{"t", t}, {"event", "headstock"}, {"rotmod", rotmod}, {"spmod", spmod}});
+    recorder.Event({{"t", t}, {"event", "headstock"}, {"rotmod", rotmod}, {"spmod", spmod}});
   }
   if (const auto* hs = channel->headstock(); hs && hs->mode() != headstock_mode) {
     headstock_mode = hs->mode();
     // The status indication switches with it: speeds in spindle mode, lines in rotary mode.
-    emit_event({{"t", t},
+    recorder.Event({{"t", t},
                 {"event", "headstock"},
                 {"mode", ToString(headstock_mode)},
                 {"axis", channel->HeadstockAxisName()},
                 {"speeds", channel->spindle_status().speeds_shown ? "shown" : "lines"}});
   }
   for (const control::channel::GuardRecord& r : channel->TakeGuardRecords())
-    emit_event(GuardEvent(t, r, m));
+    recorder.Event(GuardEvent(t, r, m));
   for (const std::string& w : channel->TakeMeasuringWarnings())
-    emit_event({{"t", t}, {"event", "measuring"}, {"warning", w}});
+    recorder.Event({{"t", t}, {"event", "measuring"}, {"warning", w}});
   if (jog_of_path) {
     for (const control::channel::GuardRecord& r : jog_of_path->TakeGuardRecords()) {
       nlohmann::ordered_json e = GuardEvent(t, r, m);
       e["channel"] = "jog_of_path";
-      emit_event(e);
+      recorder.Event(e);
     }
     if (jog_of_path->state() != jog_of_path_state) {
       jog_of_path_state = jog_of_path->state();
@@ -80,7 +80,7 @@ void SceneRun::State::StepChannel(double t, const control::AmplifierTelegram& at
                                   {"channel", "jog_of_path"},
                                   {"state", ToString(jog_of_path_state)}};
       if (!jog_of_path->error().empty()) e["error"] = jog_of_path->error();
-      emit_event(e);
+      recorder.Event(e);
     }
   }
   if (nc_cycle) {
@@ -89,7 +89,7 @@ void SceneRun::State::StepChannel(double t, const control::AmplifierTelegram& at
     const control::channel::ReposStatus rs = channel->repos_status(&at);
     std::string key = ReposEventKey(rs);
     if (key != repos_key) {
-      if (!repos_key.empty() || rs.allowed) emit_event(ReposEvent(t, rs));
+      if (!repos_key.empty() || rs.allowed) recorder.Event(ReposEvent(t, rs));
       repos_key = std::move(key);
     }
   }
@@ -98,18 +98,18 @@ void SceneRun::State::StepChannel(double t, const control::AmplifierTelegram& at
     const control::channel::BlockSearchStatus& bs = channel->block_search();
     if (bs.state != block_search_state) {
       block_search_state = bs.state;
-      emit_event(BlockSearchEvent(t, *channel));
+      recorder.Event(BlockSearchEvent(t, *channel));
     }
     if (bs.warnings.size() < block_search_warnings) block_search_warnings = 0;  // a new run
     for (; block_search_warnings < bs.warnings.size(); ++block_search_warnings)
-      emit_event(BlockSearchEvent(t, *channel, bs.warnings[block_search_warnings]));
+      recorder.Event(BlockSearchEvent(t, *channel, bs.warnings[block_search_warnings]));
   }
   if (nc_cycle) NoteMessages(t);
   if (channel->state() != nc_state) {
     nc_state = channel->state();
     nlohmann::ordered_json e = {{"t", t}, {"event", "nc"}, {"state", ToString(nc_state)}};
     if (!channel->error().empty()) e["error"] = channel->error();
-    emit_event(e);
+    recorder.Event(e);
   }
 }
 
@@ -127,7 +127,7 @@ void SceneRun::State::NoteMessages(double t) {
   };
   for (const OperatorMessage& m : messages) {
     if (contains(now, m)) continue;
-    emit_event({{"t", t},
+    recorder.Event({{"t", t},
                 {"event", "message"},
                 {"source", ToString(m.source)},
                 {"number", m.number},
@@ -147,7 +147,7 @@ void SceneRun::State::NoteMessages(double t) {
     e["text"] = m.source == OperatorMessage::Source::kPlc
                     ? control::plc::PlcMessageText(m.number, m.parameter)
                     : m.text;
-    emit_event(e);
+    recorder.Event(e);
     nlohmann::ordered_json seen = e;
     seen.erase("event");
     messages_seen.push_back(seen);

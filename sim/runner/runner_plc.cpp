@@ -106,7 +106,7 @@ void SceneRun::State::StopPlc(double t, const std::string& reason, const std::st
   else if (image)
     control::plc::DropPlcOutputs(*image);
   if (channel) channel->MachineFault(nc_text, control::channel::kMsgPlcFault);
-  emit_event({{"t", t}, {"event", "plc"}, {"state", "stopped"}, {"reason", reason}});
+  recorder.Event({{"t", t}, {"event", "plc"}, {"state", "stopped"}, {"reason", reason}});
 }
 
 void SceneRun::State::ReadFieldBus() {

@@ -23,12 +23,12 @@ void SceneRun::State::TakeSnapshot(const SnapshotSpec& s, const std::string& fil
   PendingSnapshot shot{backend->JointPositions(), &s, options.out_dir + "/" + file};
   if (!options.snapshots_after_run)
     RenderSnapshot(shot);
-  else if (writing)
+  else if (recorder.writing())
     pending_snapshots.push_back(std::move(shot));
-  if (!writing) return;
+  if (!recorder.writing()) return;
   result.snapshot_files.push_back(options.out_dir + "/" + file);
   event["file"] = file;
-  emit_event(std::move(event));
+  recorder.Event(std::move(event));
 }
 
 void SceneRun::State::RenderSnapshot(const PendingSnapshot& shot) {
@@ -36,7 +36,7 @@ void SceneRun::State::RenderSnapshot(const PendingSnapshot& shot) {
   const SnapshotSpec& s = *shot.spec;
   const render::Image picture =
       renderer->Render(shot.joints, *scene.Camera(s.camera), s.width, s.height);
-  if (writing) render::WritePng(shot.path, picture);
+  if (recorder.writing()) render::WritePng(shot.path, picture);
 }
 
 void SceneRun::State::RenderPendingSnapshots() {

@@ -6,8 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
-#include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -21,27 +19,12 @@
 #include "sim/collision/spindle_sweep.hpp"
 #include "sim/collision/stock_cutter.hpp"
 #include "sim/runner/probe_glue.hpp"
+#include "sim/runner/run_recorder.hpp"
 #include "sim/runner/runner.hpp"
 #include "sim/runner/scene_renderer.hpp"
 #include "sim/runner/timeline_player.hpp"
 
 namespace vmt::sim {
-
-/// The trace's digest: same scene, same bytes, same digest.
-class Fnv1a64 {
- public:
-  void Add(const std::string& s) {
-    for (unsigned char c : s) hash_ = (hash_ ^ c) * 0x100000001b3ull;
-  }
-  std::string Hex() const {
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(hash_));
-    return buf;
-  }
-
- private:
-  uint64_t hash_ = 0xcbf29ce484222325ull;
-};
 
 // Everything a run holds between ticks.
 struct SceneRun::State {
@@ -56,17 +39,6 @@ struct SceneRun::State {
   void StepChannel(double t, const control::AmplifierTelegram& at);
   void StopPlc(double t, const std::string& reason, const std::string& nc_text);
 
-  void emit_trace(const std::string& row) {
-    digest.Add(row);
-    if (writing) trace_file << row;
-  }
-  void emit_event(nlohmann::ordered_json event) {
-    // Times on the tick grid, without binary noise (3.4995, not 3.4995000000000003).
-    event["t"] = std::round(event["t"].get<double>() * 1e6) / 1e6;
-    if (writing) events_file << event.dump() << '\n';
-    NoteSnapshotEvent(event);
-    if (options.on_event) options.on_event(event);
-  }
   void NoteSnapshotEvent(const nlohmann::ordered_json& event);
   void TakeSnapshot(const SnapshotSpec& s, const std::string& file, nlohmann::ordered_json event);
   /// A picture as taken: the joint positions of its tick, what to render, where it goes.
@@ -112,9 +84,9 @@ struct SceneRun::State {
   std::vector<int64_t> last_cells;  ///< the image's cells when last_signals was taken
   control::channel::ChannelState nc_state = control::channel::ChannelState::kIdle;
   int64_t tick = 0, last_tick = 0, trace_every = 1;
-  bool writing = false, finished = false;
-  std::ofstream trace_file, events_file;
-  Fnv1a64 digest;
+  bool finished = false;
+  /// Trace, events and their observers: the event snapshots first, then RunOptions::on_event.
+  RunRecorder recorder;
   RunResult result;
   std::unique_ptr<SceneRenderer> renderer;
   std::vector<bool> snapped, checked;

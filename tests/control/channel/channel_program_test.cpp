@@ -115,7 +115,7 @@ TEST(ChannelTest, ProgramEventsAndInstructionsOfLaterIssues) {
   mtp.RunUntilEnd();
   EXPECT_EQ(mtp.channel->error_number(), kMsgNotAvailable);
   EXPECT_THAT(mtp.channel->error(),
-              ::testing::HasSubstr("p.mtc:2:4: error: instruction MTP is not available"));
+              ::testing::HasSubstr("p.mtc:2:4: error: instruction MTP is not supported"));
   EXPECT_DOUBLE_EQ(mtp.X(), 5);
 }
 

@@ -240,13 +240,13 @@ TEST(ToolStorageProgram, TheOtherTurretCommandsStayUnavailable) {
     StartAndRunToEnd(m);
     EXPECT_EQ(m.channel->state(), ChannelState::kError) << name;
     EXPECT_THAT(m.channel->error(), HasSubstr(std::string("instruction ") + name +
-                                              " is not available in the channel yet"));
+                                              " is not supported by vmt (docs/conformance.md)"));
   }
   // Without stations the NC cannot know where MTP would go.
   NcTurretMachine n("N1 MTP\nN2 RET\n", 0, true,
                     [](ChannelConfig& c) { c.tool_storage_stations = 0; });
   StartAndRunToEnd(n);
-  EXPECT_THAT(n.channel->error(), HasSubstr("instruction MTP is not available"));
+  EXPECT_THAT(n.channel->error(), HasSubstr("instruction MTP is not supported"));
 }
 
 const char* kReposProgram =
@@ -378,7 +378,7 @@ TEST(ToolStorageProgram, APlcTurretIsUnchanged) {
     PlcTurretMachine n(std::string("N1 ") + name + "\nN2 RET\n");
     StartAndRunToEnd(n);
     EXPECT_THAT(n.channel->error(), HasSubstr(std::string("instruction ") + name +
-                                              " is not available in the channel yet"));
+                                              " is not supported by vmt (docs/conformance.md)"));
   }
 }
 
