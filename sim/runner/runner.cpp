@@ -132,47 +132,9 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
   backend->SetProbeSamplingPhase(scene.probe_sampling);
   // The NC channel, if the scene has one: its axes move at the drives' rapid and acceleration.
   if (scene.nc.present) {
-    control::channel::ChannelConfig config;
-    config.axes = scene.nc.data.axes;
-    config.process = scene.nc.data.process;
-    config.spindle_drive = scene.nc.data.spindle_drive;
-    config.spindle = scene.nc.data.spindle;
-    if (config.spindle_drive >= 0) {
-      // The spindle's limits bound G64's interpolation of it (its spindle set 0).
-      const DriveParams& d = m.drives[config.spindle_drive];
-      config.spindle.name = d.info.name;
-      config.spindle.rapid_per_s = d.parameter_sets.at(0).velocity_limit * kDegPerRad;
-      config.spindle.acceleration = d.parameter_sets.at(0).acceleration_limit * kDegPerRad;
-    }
-    // The further spindles (S2, S3): the machine's other spindle drives, addressed by the
-    // index of their name as the REPOS manual addresses them (G77 Sj=0, 4.2).
-    for (size_t d = 0; d < m.drives.size(); ++d) {
-      const std::string& name = m.drives[d].info.name;
-      if (!m.drives[d].spindle || static_cast<int>(d) == config.spindle_drive ||
-          name.size() != 2 || name[0] != 'S' || name[1] < '2' || name[1] > '3')
-        continue;
-      config.spindles.push_back({name[1] - '0', static_cast<int>(d), name});
-    }
-    config.zero_offsets = scene.nc.data.zero_offsets;
-    config.tools = scene.nc.data.tools;
-    config.initial = scene.nc.initial;
-    config.aux_handshake = scene.nc.aux_handshake;
-    config.tick_s = kDriveTickS;
-    if (scene.nc.data.rotary_axis >= 0 && scene.nc.data.spindle_drive >= 0) {
-      control::axes::HeadstockConfig h;
-      h.spindle_drive = scene.nc.data.spindle_drive;
-      h.rotary_drive = scene.nc.data.axes[scene.nc.data.rotary_axis].drive;
-      h.rotary_parameter_set = static_cast<uint8_t>(scene.nc.data.rotary_parameter_set);
-      config.headstock = h;
-      config.rotary_axis = scene.nc.data.rotary_axis;
-    }
+    const control::channel::ChannelConfig& config = scene.nc.channel;
     std::vector<const control::nc::Program*> programs;
     for (const auto& parsed : scene.nc.programs) programs.push_back(&parsed->program);
-    config.path_guard = scene.nc.data.path_guard;
-    config.tool_storage_drive = scene.nc.data.tool_storage_drive;
-    config.tool_storage = scene.nc.data.tool_storage;
-    config.tool_storage_stations = scene.nc.data.tool_storage_stations;
-    config.tool_storage_nc = scene.nc.tool_storage_nc;
     channel = std::make_unique<control::channel::Channel>(config, programs);
     channel->SetFeedOverride(scene.nc.override);
     if (scene.nc.jog_of_path) {

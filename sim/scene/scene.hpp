@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "control/channel/channel_config.hpp"
 #include "control/channel/channel_types.hpp"
 #include "control/gateway/signal_table.hpp"
 #include "control/measure/measuring_pages.hpp"
@@ -42,6 +43,9 @@ struct NcSetup {
   std::vector<int> axis_drives;  ///< channel axes' drives, in channel order
   double override = 1.0;
   control::nc::ModalState initial;  ///< `initial:` G codes of the scene (e.g. G54)
+  /// The channel as it runs: built from the machine and the choices above once they are read
+  /// (ChannelConfigOf); a run starts its channel from it.
+  control::channel::ChannelConfig channel;
   bool aux_handshake = false;       ///< M/H/Q/T wait for the PLC's acknowledgement
   /// `tool_storage_nc: yes`: the model's tool storage axis is NC-controlled (REPOS manual 3.4,
   /// 4.2): the channel commands its drive, PxxC.MGPOS / MGNEG jog it, MTP returns it.

@@ -17,6 +17,7 @@
 #include "sim/model/nc_machine_data.hpp"
 #include "sim/model/yaml_reader.hpp"
 #include "sim/scene/measuring_pages_loader.hpp"
+#include "sim/scene/nc_channel_config.hpp"
 #include "sim/scene/scene.hpp"
 #include "sim/scene/scene_steps.hpp"
 #include "sim/scene/snapshot_loader.hpp"
@@ -294,6 +295,7 @@ Scene LoadScene(const std::string& path) {
       s.expectations.push_back(ReadExpectation(m, e[i], i, s.nc));
   }
   if (root.Has("snapshots")) s.snapshots = ReadSnapshots(root["snapshots"], s);
+  if (s.nc.present) s.nc.channel = ChannelConfigOf(m, s.nc);
   return s;
 }
 

@@ -64,7 +64,7 @@ TEST(NcBackendAgreementTest, LowLagG06RemovesMostOfTheFollowingError) {
   options.out_dir = testing::OutputDir("nc_g05");
   RunScene(scene, options);  // cut short at 12 s: the end-of-run expectations are not the point
   const std::vector<Row> g05 = Trace(options.out_dir);
-  scene.nc.initial.low_lag = true;
+  scene.nc.channel.initial.low_lag = true;
   options.out_dir = testing::OutputDir("nc_g06");
   RunScene(scene, options);
   const std::vector<Row> g06 = Trace(options.out_dir);
