@@ -21,6 +21,15 @@ double Wrap180(double deg) {
   return d;
 }
 
+// The options of #CAX TRACK ON that vmt runs (TwinCAT block search manual 4.2.2).
+enum class CaxTrackOption : uint8_t { kNone, kAnglimit, kOffset };
+
+CaxTrackOption CaxTrackOptionOf(std::string_view name) {
+  if (name == "ANGLIMIT") return CaxTrackOption::kAnglimit;
+  if (name == "OFFSET") return CaxTrackOption::kOffset;
+  return CaxTrackOption::kNone;
+}
+
 double DegOf(double along, double across) {
   return std::atan2(across, along) * 180 / std::numbers::pi;
 }
@@ -62,7 +71,8 @@ std::optional<CaxTrackCommand> ParseCaxTrack(std::string_view original, std::str
     const size_t name_at = i;
     while (i < rest.size() && std::isalpha(static_cast<unsigned char>(rest[i]))) ++i;
     const std::string_view name = rest.substr(name_at, i - name_at);
-    if (!c.on || (name != "ANGLIMIT" && name != "OFFSET"))
+    const CaxTrackOption option = CaxTrackOptionOf(name);
+    if (!c.on || option == CaxTrackOption::kNone)
       return fail("option " + std::string(name.empty() ? rest.substr(name_at) : name) +
                   " is not available (vmt runs ANGLIMIT and OFFSET of #CAX TRACK ON)");
     while (i < rest.size() && (rest[i] == '=' || std::isspace(static_cast<unsigned char>(rest[i]))))
@@ -75,11 +85,16 @@ std::optional<CaxTrackCommand> ParseCaxTrack(std::string_view original, std::str
     if (value.empty() || ec != std::errc{} || ptr != value.data() + value.size() ||
         !std::isfinite(v))
       return fail(std::string(name) + " needs a number of degrees");
-    if (name == "ANGLIMIT") {
-      if (v < 0 || v > 180) return fail("ANGLIMIT must lie in 0 .. 180 degrees");
-      c.anglimit_deg = v;
-    } else {
-      c.offset_deg = v;
+    switch (option) {
+      case CaxTrackOption::kAnglimit:
+        if (v < 0 || v > 180) return fail("ANGLIMIT must lie in 0 .. 180 degrees");
+        c.anglimit_deg = v;
+        break;
+      case CaxTrackOption::kOffset:
+        c.offset_deg = v;
+        break;
+      case CaxTrackOption::kNone:
+        break;
     }
   }
   return c;

@@ -391,11 +391,9 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
   // a normal run.
   for (uint32_t index : block_.instructions) {
     const nc::Statement& st = program.statements[index];
-    std::string name = st.kind == nc::Statement::Kind::kHashCommand ? "#" + program.texts[st.text]
-                                                                    : program.symbols.Name(st.name);
     if (st.kind == nc::Statement::Kind::kHashCommand) {
-      if (const std::string refused = RefusedHashCommand(program.texts[st.text]);
-          !refused.empty()) {
+      const std::string& text = program.texts[st.text];
+      if (const std::string refused = RefusedHashCommand(text); !refused.empty()) {
         Fail(nc::Format({st.pos, refused}, program.files), kMsgNotAvailable);
         return false;
       }
@@ -405,41 +403,45 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
         if (!*done) return false;
         continue;
       }
-    }
-    if (st.kind == nc::Statement::Kind::kHashCommand && SteersBlockSearch(program.texts[st.text]))
-      name.clear();
-    // REPOS manual 4.2 Tool Storage Axis: in the REPOS subroutine MTP returns the tool storage
-    // axis to where it was; the PLC controls the turret, so the NC outputs the T word of the
-    // interruption again. MRY waits for the tool storage axis, which the acknowledgement of
-    // that T word already does.
-    // An NC-controlled tool storage axis the NC traverses back itself, and MRY waits for it.
-    if (repos_run_ && interruption_ && (name == "MTP" || name == "MRY")) {
-      if (name == "MTP" && ToolStorageNc()) {
-        if (!ReturnToolStorage()) return false;
-      } else if (name == "MTP") {
-        block_.aux.push_back({'T', 0, static_cast<double>(interruption_->modal.tool)});
-      } else {
-        mry = true;
-      }
-      name.clear();
-    } else if (ToolStorageNc() && (name == "MRY" || (name == "MTP" && StationOf(1)))) {
-      // In the program an NC-controlled one traverses asynchronously (4.2, "As in NC-program
-      // controlled mode"): MRY waits for its traverse as in the REPOS subroutine, and MTP
-      // ("Adjust tool turret", 8.3) brings the active tool's station back to the work, after
-      // a jog in manual mode, say. A PLC-controlled one: the PLC's business, as before.
-      if (name == "MTP" && !IndexToolStorage(block_.modal.tool, program, block_.block))
-        return false;
-      if (name == "MRY") mry = true;
-      name.clear();
-    }
-    if (nc::IsMeasuringCall(name)) name.clear();  // StartMeasuring below
-    if (!name.empty()) {
-      Fail(nc::Format({st.pos, "instruction " + name.substr(0, name.find(' ')) +
+      if (SteersBlockSearch(text)) continue;
+      Fail(nc::Format({st.pos, "instruction #" + text.substr(0, text.find(' ')) +
                                    " is not supported by vmt (docs/conformance.md)"},
                       program.files),
            kMsgNotAvailable);
       return false;
     }
+    const bool mtp = st.instruction == nc::Instruction::kMtp;
+    const bool waits = st.instruction == nc::Instruction::kMry;
+    // REPOS manual 4.2 Tool Storage Axis: in the REPOS subroutine MTP returns the tool storage
+    // axis to where it was; the PLC controls the turret, so the NC outputs the T word of the
+    // interruption again. MRY waits for the tool storage axis, which the acknowledgement of
+    // that T word already does.
+    // An NC-controlled tool storage axis the NC traverses back itself, and MRY waits for it.
+    if (repos_run_ && interruption_ && (mtp || waits)) {
+      if (mtp && ToolStorageNc()) {
+        if (!ReturnToolStorage()) return false;
+      } else if (mtp) {
+        block_.aux.push_back({'T', 0, static_cast<double>(interruption_->modal.tool)});
+      } else {
+        mry = true;
+      }
+      continue;
+    }
+    if (ToolStorageNc() && (waits || (mtp && StationOf(1)))) {
+      // In the program an NC-controlled one traverses asynchronously (4.2, "As in NC-program
+      // controlled mode"): MRY waits for its traverse as in the REPOS subroutine, and MTP
+      // ("Adjust tool turret", 8.3) brings the active tool's station back to the work, after
+      // a jog in manual mode, say. A PLC-controlled one: the PLC's business, as before.
+      if (mtp && !IndexToolStorage(block_.modal.tool, program, block_.block)) return false;
+      if (waits) mry = true;
+      continue;
+    }
+    if (nc::IsMeasuringCall(st.instruction)) continue;  // StartMeasuring below
+    Fail(nc::Format({st.pos, "instruction " + program.symbols.Name(st.name) +
+                                 " is not supported by vmt (docs/conformance.md)"},
+                    program.files),
+         kMsgNotAvailable);
+    return false;
   }
   // MRY: until the drive stands at the place, not only its command (a following error lags).
   if (mry) tool_storage_wait_ = !ToolStorageArrived();

@@ -289,7 +289,8 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
   if (!b.calls.empty()) {
     // Section 8: the search cannot measure; the continue position after the instruction can.
     if (boundary)
-      return fail("the continue position lies in measuring instruction " + b.calls.front().name +
+      return fail("the continue position lies in measuring instruction " +
+                      std::string(nc::InstructionName(b.calls.front().instruction)) +
                       ": block search cannot measure without motion (section 8); continue at "
                       "the block after it",
                   kMsgBlockSearch);

@@ -77,7 +77,8 @@ bool Channel::SimulateMeasuringInstruction(const nc::PreparedBlock& b) {
   measure::ReverseVectors reverse = reverse_vectors_;
   const measure::MeasuringPlan plan = measure::PlanInstruction(call, context, pages, reverse);
   if (!plan.error.empty()) return fail(plan.error);
-  if (call.name == "SETTING" || call.name == "SAVE" || call.name == "RESTORE") {
+  if (call.instruction == nc::Instruction::kSetting || call.instruction == nc::Instruction::kSave ||
+      call.instruction == nc::Instruction::kRestore) {
     // No motion, no measurement: as in a run (StartMeasuring).
     *measuring_pages_ = pages;
     ApplyMeasuringState(plan);
@@ -108,7 +109,7 @@ bool Channel::SimulateMeasuringInstruction(const nc::PreparedBlock& b) {
   const nc::SourcePos& at = program.blocks[static_cast<size_t>(b.block)].pos;
   bs_warnings_.push_back(program.files[at.file] + ":" + std::to_string(at.line) + ":" +
                          std::to_string(at.column) + ": warning: measuring instruction " +
-                         call.name +
+                         nc::InstructionName(call.instruction) +
                          " simulated without measuring in block search: its results keep "
                          "their former values");
   return true;

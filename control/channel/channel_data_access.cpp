@@ -53,8 +53,8 @@ constexpr int kNcMemory = 1;
 bool Omitted(const Arg& a) { return a.kind == Arg::Kind::kOmitted; }
 
 /// "TLD(1,3,,1,11,)": the address as the program computed it, for the error texts.
-std::string AddressText(const std::string& name, const std::vector<Arg>& args) {
-  std::string s = name + "(";
+std::string AddressText(nc::Instruction data, const std::vector<Arg>& args) {
+  std::string s = std::string(nc::InstructionName(data)) + "(";
   for (size_t i = 0; i < args.size(); ++i) {
     if (i) s += ",";
     if (Omitted(args[i])) continue;
@@ -85,9 +85,9 @@ std::string WholeNumber(const std::vector<Arg>& args, size_t i, const char* what
 
 nc::DataAccess Channel::MakeDataAccess() {
   // One function for both directions: `value` is read into, or written from.
-  auto access = [this](const std::string& name, const std::vector<Arg>& args, double& value,
+  auto access = [this](nc::Instruction data, const std::vector<Arg>& args, double& value,
                        bool write) -> std::string {
-    const std::string at = AddressText(name, args);
+    const std::string at = AddressText(data, args);
     auto fail = [&](const std::string& text) { return at + ": " + text; };
     std::string error;
     auto memory = [&]() -> std::string {
@@ -102,7 +102,7 @@ nc::DataAccess Channel::MakeDataAccess() {
         return fail("argument " + std::to_string(i + 1) + " is the name " + args[i].name +
                     ", not a number");
 
-    if (name == "TLD") {
+    if (data == nc::Instruction::kTld) {
       if (args.size() != 6) return fail("TLD has 6 arguments: (memory, T, , D, element, )");
       if (!(error = memory()).empty()) return fail(error);
       if (!Omitted(args[2]) || !Omitted(args[5]))
@@ -145,7 +145,7 @@ nc::DataAccess Channel::MakeDataAccess() {
                   ", which this channel does not have");
     }
 
-    if (name == "OTD") {
+    if (data == nc::Instruction::kOtd) {
       if (args.size() != 4) return fail("OTD has 4 arguments: (memory, process, table, axis)");
       if (!(error = memory()).empty()) return fail(error);
       int process = 0, table = 0, axis = 0;
@@ -183,11 +183,11 @@ nc::DataAccess Channel::MakeDataAccess() {
     return read.error;
   };
   nc::DataAccess d;
-  d.read = [access](const std::string& name, const std::vector<Arg>& args, double& value) {
-    return access(name, args, value, false);
+  d.read = [access](nc::Instruction data, const std::vector<Arg>& args, double& value) {
+    return access(data, args, value, false);
   };
-  d.write = [access](const std::string& name, const std::vector<Arg>& args, double value) {
-    return access(name, args, value, true);
+  d.write = [access](nc::Instruction data, const std::vector<Arg>& args, double value) {
+    return access(data, args, value, true);
   };
   return d;
 }

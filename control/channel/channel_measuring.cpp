@@ -72,7 +72,9 @@ measure::MeasuringContext Channel::MeasuringContextNow() const {
   int sphere = 1;
   if (!block_.calls.empty()) {
     const nc::InstructionCall& call = block_.calls.front();
-    const size_t at = call.name == "MOVE" ? 3 : call.name == "PROBE" ? 8 : call.args.size();
+    const size_t at = call.instruction == nc::Instruction::kMove    ? 3
+                      : call.instruction == nc::Instruction::kProbe ? 8
+                                                                    : call.args.size();
     if (at < call.args.size() && call.args[at].kind == nc::InstructionArg::Kind::kValue &&
         call.args[at].value >= 1 && call.args[at].value <= measure::kSpheres)
       sphere = static_cast<int>(call.args[at].value);

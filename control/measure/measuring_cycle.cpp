@@ -27,7 +27,7 @@ std::string Written(const InstructionArg& a) {
 
 // The call as the program wrote it, the prefix of every error text.
 std::string Written(const InstructionCall& call) {
-  std::string text = call.name + "(";
+  std::string text = std::string(nc::InstructionName(call.instruction)) + "(";
   for (size_t i = 0; i < call.args.size(); ++i) {
     if (i) text.push_back(',');
     text.append(Written(call.args[i]));
@@ -620,14 +620,25 @@ std::vector<ReversePoint> ReverseVectors::Reversal() const {
 MeasuringPlan PlanInstruction(const InstructionCall& call, const MeasuringContext& context,
                               MeasuringPages& pages, ReverseVectors& reverse) {
   Arguments args{call, ""};
-  if (call.name == "SETTING") return PlanSetting(args, context, pages);
-  if (call.name == "SAVE") return PlanSave(args, context, pages);
-  if (call.name == "MOVE") return PlanMove(args, context, pages, reverse);
-  if (call.name == "PROBE") return PlanProbe(args, context, pages, reverse);
-  if (call.name == "COMPARE") return PlanCompare(args, context, pages);
-  if (call.name == "CORRECTION") return PlanCorrection(args, context, pages);
-  if (call.name == "RESTORE") return PlanRestore(args, context, pages);
-  return Failed(Written(call) + ": not a measuring instruction (2)");
+  using nc::Instruction;
+  switch (call.instruction) {
+    case Instruction::kSetting:
+      return PlanSetting(args, context, pages);
+    case Instruction::kSave:
+      return PlanSave(args, context, pages);
+    case Instruction::kMove:
+      return PlanMove(args, context, pages, reverse);
+    case Instruction::kProbe:
+      return PlanProbe(args, context, pages, reverse);
+    case Instruction::kCompare:
+      return PlanCompare(args, context, pages);
+    case Instruction::kCorrection:
+      return PlanCorrection(args, context, pages);
+    case Instruction::kRestore:
+      return PlanRestore(args, context, pages);
+    default:
+      return Failed(Written(call) + ": not a measuring instruction (2)");
+  }
 }
 
 const MeasuringMessage* FinishProbe(const InstructionCall& call, const MeasuringPlan& plan,

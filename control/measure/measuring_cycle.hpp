@@ -27,7 +27,9 @@ using InstructionArg = nc::InstructionArg;
 using InstructionCall = nc::InstructionCall;
 
 /// True for the seven names above (the interpreter's nc::IsMeasuringCall).
-inline bool IsMeasuringInstruction(const std::string& name) { return nc::IsMeasuringCall(name); }
+inline bool IsMeasuringInstruction(const std::string& name) {
+  return nc::IsMeasuringCall(nc::InstructionOf(name));
+}
 
 /// What SETTING (A..G) established; kept by the channel from SETTING to the end of the program
 /// (Control-Reset clears it).

@@ -94,7 +94,7 @@ bool ExpressionParser::Arguments(LineScanner& s, SourcePos open_pos, uint32_t na
   const auto start = static_cast<uint32_t>(p_.code.size());
   Sub args;
   uint32_t count = 0;
-  if (!ArgumentsOf(s, open_pos, Op::kArgs, name, open_pos.offset, args, count)) {
+  if (!ArgumentsOf(s, open_pos, Op::kArgs, name, Function::kNone, open_pos.offset, args, count)) {
     p_.code.resize(start);
     return false;
   }
@@ -112,14 +112,17 @@ ExprId ExpressionParser::CallOf(uint32_t name, ExprId list, uint32_t offset) {
   if (list == kNoExpr) {
     const auto start = static_cast<ExprId>(code.size());
     EmitImmediate(Op::kCall, name);
-    code.insert(code.end(), {0u, offset, 0u, ExprUnit(Op::kEnd)});
+    code.insert(code.end(),
+                {CountUnit(0, FunctionOf(p_.symbols.Name(name))), offset, 0u, ExprUnit(Op::kEnd)});
     p_.max_stack = std::max(p_.max_stack, 1u);
     return start;
   }
   // The list was the last expression read: its kArgs becomes a kCall in place.
   uint32_t& unit = code[last_args_];
   unit = (unit & ~0xFFu) | static_cast<uint32_t>(Op::kCall);
-  code[last_args_ + ((unit >> 8) == kWideImmediate ? 3 : 2)] = offset;
+  const uint32_t count_at = last_args_ + ((unit >> 8) == kWideImmediate ? 2 : 1);
+  code[count_at] = CountUnit(CountOf(code[count_at]), FunctionOf(p_.symbols.Name(name)));
+  code[count_at + 1] = offset;
   return list;
 }
 
@@ -325,7 +328,8 @@ bool ExpressionParser::Primary(LineScanner& s, Sub& out) {
     s.SkipSpace();
     if (s.Accept(open_)) {
       uint32_t count;
-      return ArgumentsOf(s, pos, Op::kCall, Intern(name), pos.offset, out, count);
+      return ArgumentsOf(s, pos, Op::kCall, Intern(name), FunctionOf(name), pos.offset, out,
+                         count);
     }
     // A bare name stands for itself (axis names as measuring-instruction arguments).
     EmitImmediate(Op::kVariable, Intern(name));
@@ -339,7 +343,8 @@ bool ExpressionParser::Primary(LineScanner& s, Sub& out) {
 }
 
 bool ExpressionParser::ArgumentsOf(LineScanner& s, SourcePos open_pos, Op op, uint32_t name,
-                                   uint32_t offset, Sub& out, uint32_t& count) {
+                                   Function function, uint32_t offset, Sub& out,
+                                   uint32_t& count) {
   out = Sub{};
   out.start = static_cast<uint32_t>(p_.code.size());
   out.peak = 1;
@@ -357,7 +362,10 @@ bool ExpressionParser::ArgumentsOf(LineScanner& s, SourcePos open_pos, Op op, ui
       }
       out.peak = std::max(out.peak, count + arg.peak);
       Append(sites_, out.first_site, out.last_site, arg.first_site, arg.last_site);
-      ++count;
+      if (++count == kMaxArguments) {
+        Error(s.Pos(), "more than " + std::to_string(kMaxArguments - 1) + " arguments");
+        return false;
+      }
       s.SkipSpace();
       if (s.Accept(',')) continue;
       if (s.Accept(close_)) break;
@@ -369,7 +377,7 @@ bool ExpressionParser::ArgumentsOf(LineScanner& s, SourcePos open_pos, Op op, ui
   }
   last_args_ = static_cast<uint32_t>(p_.code.size());
   EmitImmediate(op, name);
-  p_.code.insert(p_.code.end(), {count, offset, 0u});
+  p_.code.insert(p_.code.end(), {CountUnit(count, function), offset, 0u});
   const int32_t self = AddSite();
   Append(sites_, out.first_site, out.last_site, self, self);
   return true;
@@ -469,7 +477,7 @@ std::string Program::ExprText(ExprId id) const {
         break;
       case Op::kCall:
       case Op::kArgs: {
-        const uint32_t count = code[pc];
+        const uint32_t count = CountOf(code[pc]);
         pc += 3;
         std::string args;
         for (size_t i = stack.size() - count; i < stack.size(); ++i)

@@ -59,8 +59,8 @@ class ExpressionParser {
   bool Unary(LineScanner& s, Sub& out);
   bool Primary(LineScanner& s, Sub& out);
   // The arguments of a call or an instruction, then its kCall | kArgs units.
-  bool ArgumentsOf(LineScanner& s, SourcePos open_pos, ExprOp op, uint32_t name, uint32_t offset,
-                   Sub& out, uint32_t& count);
+  bool ArgumentsOf(LineScanner& s, SourcePos open_pos, ExprOp op, uint32_t name,
+                   Function function, uint32_t offset, Sub& out, uint32_t& count);
   void Constant(double value, Sub& out);
   void Combine(ExprOp op, uint32_t offset, Sub& lhs, const Sub& rhs);
   void EmitImmediate(ExprOp op, uint32_t immediate);

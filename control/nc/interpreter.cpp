@@ -20,12 +20,26 @@ std::string Upper(std::string s) {
 // "GSP.nc" -> "GSP": programs are stored and called by name without extension.
 std::string Stem(const std::string& name) { return Upper(name.substr(0, name.find('.'))); }
 
-// MTC200's branches test the last computed @ value. Out of Statement_, on views: the tests
-// against the literals compile inline here rather than as calls of std::string's compare,
-// which Statement_'s size leaves to GCC's growth limits (nc_decode_bench branches every pass).
-[[gnu::noinline]] bool BranchTaken(std::string_view m, double r) {
-  return m == "BRA" || (m == "BEQ" && r == 0) || (m == "BNE" && r != 0) || (m == "BGT" && r > 0) ||
-         (m == "BLT" && r < 0) || (m == "BGE" && r >= 0) || (m == "BLE" && r <= 0);
+// MTC200's branches test the last computed @ value.
+bool BranchTaken(Instruction branch, double r) {
+  switch (branch) {
+    case Instruction::kBra:
+      return true;
+    case Instruction::kBeq:
+      return r == 0;
+    case Instruction::kBne:
+      return r != 0;
+    case Instruction::kBgt:
+      return r > 0;
+    case Instruction::kBlt:
+      return r < 0;
+    case Instruction::kBge:
+      return r >= 0;
+    case Instruction::kBle:
+      return r <= 0;
+    default:
+      return false;
+  }
 }
 
 bool HasEffect(const PreparedBlock& b) {
@@ -413,10 +427,10 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
       if (st.data != kNoExpr) {
         std::vector<InstructionArg> args;
         if (!EvalArguments(st.data, args)) return check();
-        const std::string& name = p.symbols.Name(st.name);
         if (!data_.write)
-          return Fail(st.pos.offset, "writing " + name + "(...) data is not available here");
-        std::string error = data_.write(name, args, v);
+          return Fail(st.pos.offset,
+                      "writing " + p.symbols.Name(st.name) + "(...) data is not available here");
+        std::string error = data_.write(st.instruction, args, v);
         if (!error.empty()) return Fail(st.pos.offset, std::move(error));
         last_result_ = v;
         return true;
@@ -426,13 +440,13 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
       return true;
     }
     case Kind::kBranch:
-      if (BranchTaken(p.symbols.Name(st.name), last_result_)) next = st.jump;
+      if (BranchTaken(st.instruction, last_result_)) next = st.jump;
       return true;
     case Kind::kEventBranch: {
       const int event = static_cast<int>(eval(st.value));
       if (!check()) return false;
       const bool set = (event_ && event_(event));
-      if ((p.symbols.Name(st.name) == "BES") == set) next = st.jump;
+      if ((st.instruction == Instruction::kBes) == set) next = st.jump;
       return true;
     }
     case Kind::kCall: {
@@ -465,7 +479,7 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
         if (subroutine_) {
           // REPOS manual 4.1: only RTS returns from a subroutine run on its own and keeps the
           // state of the program it serves; RET is a program end, which would reset that state.
-          if (p.symbols.Name(st.name) == "RET")
+          if (st.instruction == Instruction::kRet)
             return Fail(st.pos.offset,
                         "RET ends a program: a subroutine run on its own (.REPOS) ends with RTS");
           out.returned = true;  // the subroutine run on its own is over (RunSubroutine)
@@ -473,7 +487,7 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
           next = block;
           return true;
         }
-        if (p.symbols.Name(st.name) == "RTS") return Fail(st.pos.offset, "RTS without JSR");
+        if (st.instruction == Instruction::kRts) return Fail(st.pos.offset, "RTS without JSR");
         out.end = true;  // RET: end of the main program
         return true;
       }
@@ -487,21 +501,21 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
       return true;
     case Kind::kInstruction: {
       // SE n / RE n: set or reset event n (MTC200; fast-measurement 4.1: SE 30, RE 29).
-      const std::string& name = p.symbols.Name(st.name);
-      if ((name == "SE" || name == "RE") && st.value != kNoExpr) {
+      const bool set = st.instruction == Instruction::kSe;
+      if ((set || st.instruction == Instruction::kRe) && st.value != kNoExpr) {
         const double n = Eval(st.value);
         if (eval_failed_) return Fail(eval_fail_offset_, eval_fail_message_);
         if (n < 0 || n > 999 || n != std::floor(n))
-          return Fail(st.pos.offset,
-                      name + ": event number " + std::to_string(n) + " is not in 0..999");
-        out.events.emplace_back(static_cast<int>(n), name == "SE");
+          return Fail(st.pos.offset, p.symbols.Name(st.name) + ": event number " +
+                                         std::to_string(n) + " is not in 0..999");
+        out.events.emplace_back(static_cast<int>(n), set);
         return true;
       }
       const auto index = static_cast<uint32_t>(&st - p.statements.data());
       out.instructions.push_back(index);
-      if (IsMeasuringCall(name)) {
+      if (IsMeasuringCall(st.instruction)) {
         // Evaluated here, where the program's variables have the values the call sees.
-        InstructionCall call{name, {}, index};
+        InstructionCall call{st.instruction, {}, index};
         if (st.value != kNoExpr && !EvalArguments(st.value, call.args))
           return Fail(eval_fail_offset_, eval_fail_message_);
         out.calls.push_back(std::move(call));

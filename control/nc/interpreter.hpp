@@ -104,7 +104,7 @@ struct InstructionArg {
 /// stands when the interpreter executes the block (section 2: SETTING, SAVE, MOVE, PROBE,
 /// COMPARE, CORRECTION, RESTORE).
 struct InstructionCall {
-  std::string name;
+  Instruction instruction = Instruction::kNone;
   std::vector<InstructionArg> args;
   uint32_t statement = 0;  ///< Program::statements index: the source position
 };
@@ -160,18 +160,13 @@ struct PreparedBlock {
 /// read in expressions, written by assignments `TLD(...) = value`. The channel provides it. Each
 /// returns "" or an error text, which stops the program at the call.
 struct DataAccess {
-  std::function<std::string(const std::string& name, const std::vector<InstructionArg>& args,
+  std::function<std::string(Instruction data, const std::vector<InstructionArg>& args,
                             double& value)>
       read;
-  std::function<std::string(const std::string& name, const std::vector<InstructionArg>& args,
+  std::function<std::string(Instruction data, const std::vector<InstructionArg>& args,
                             double value)>
       write;
 };
-
-/// TLD, OTD, MTD.
-bool IsDataAccess(const std::string& name);
-/// The fast-measurement instructions of InstructionCall.
-bool IsMeasuringCall(const std::string& name);
 
 struct InterpreterConfig {
   std::vector<std::string> axes = {"X", "Z", "C"};  ///< the channel's axis names
@@ -303,9 +298,11 @@ class Interpreter {
   /// starts at `id`; values are filled in by the caller.
   std::vector<InstructionArg> ArgumentForms(ExprId id, size_t call) const;
   /// TLD/OTD/MTD(...) in an expression, through data_.
-  double ReadData(uint32_t name, std::vector<InstructionArg> args, std::span<const double> values,
-                  uint32_t offset, uint32_t rank);
-  double Call(uint32_t name, std::span<const double> args, uint32_t offset, uint32_t rank);
+  double ReadData(uint32_t name, Instruction instruction, std::vector<InstructionArg> args,
+                  std::span<const double> values, uint32_t offset, uint32_t rank);
+  /// A built-in function (`name` for the messages).
+  double Call(uint32_t name, Function function, std::span<const double> args, uint32_t offset,
+              uint32_t rank);
   /// A fault of the expression being evaluated; the first in tree order (lowest rank) counts.
   [[gnu::cold]] void Fault(uint32_t rank, uint32_t offset, std::string message);
   bool Fail(uint32_t offset, std::string message);

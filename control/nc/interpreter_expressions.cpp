@@ -14,15 +14,6 @@ constexpr double kRadPerDeg = std::numbers::pi / 180;
 
 }  // namespace
 
-bool IsMeasuringCall(const std::string& name) {
-  return name == "SETTING" || name == "SAVE" || name == "MOVE" || name == "PROBE" ||
-         name == "COMPARE" || name == "CORRECTION" || name == "RESTORE";
-}
-
-bool IsDataAccess(const std::string& name) {
-  return name == "TLD" || name == "OTD" || name == "MTD";
-}
-
 std::vector<InstructionArg> Interpreter::ArgumentForms(ExprId id, size_t call) const {
   // A walk of the postfix code that keeps, instead of values, what each stack entry is: an
   // omitted argument, a bare name (kVariable alone), or a computed value. Jumps of AND/OR only
@@ -81,7 +72,7 @@ std::vector<InstructionArg> Interpreter::ArgumentForms(ExprId id, size_t call) c
       case Op::kCall:
       case Op::kArgs: {
         if (wide) ++pc;
-        const uint32_t count = p.code[pc];
+        const uint32_t count = CountOf(p.code[pc]);
         if (pc - 1 - (wide ? 1 : 0) == call) {
           const size_t n = std::min<size_t>(count, stack.size());
           return {stack.end() - static_cast<std::ptrdiff_t>(n), stack.end()};
@@ -106,20 +97,20 @@ bool Interpreter::EvalArguments(ExprId id, std::vector<InstructionArg>& args) {
   return !eval_failed_;
 }
 
-double Interpreter::ReadData(uint32_t name, std::vector<InstructionArg> args,
-                             std::span<const double> values, uint32_t offset, uint32_t rank) {
+double Interpreter::ReadData(uint32_t name, Instruction instruction,
+                             std::vector<InstructionArg> args, std::span<const double> values,
+                             uint32_t offset, uint32_t rank) {
   for (size_t i = 0; i < args.size() && i < values.size(); ++i)
     if (args[i].kind != InstructionArg::Kind::kOmitted) {
       args[i].kind = InstructionArg::Kind::kValue;  // a bare name in data access is a variable
       args[i].value = values[i];
     }
-  const std::string& text = program().symbols.Name(name);
   if (!data_.read) {
-    Fault(rank, offset, text + "(...) data access is not available here");
+    Fault(rank, offset, program().symbols.Name(name) + "(...) data access is not available here");
     return 0;
   }
   double v = 0;
-  std::string error = data_.read(text, args, v);
+  std::string error = data_.read(instruction, args, v);
   if (!error.empty()) Fault(rank, offset, std::move(error));
   return v;
 }
@@ -226,7 +217,8 @@ double Interpreter::Eval(ExprId id) {
       case Op::kArgs: {
         const size_t at = static_cast<size_t>(pc - 1 - p.code.data());
         const uint32_t name = immediate(unit);
-        const uint32_t count = pc[0], offset = pc[1], rank = pc[2];
+        const uint32_t count = CountOf(pc[0]), offset = pc[1], rank = pc[2];
+        const Function function = FunctionOfUnit(pc[0]);
         pc += 3;
         sp -= count;
         const std::span<const double> values{sp, count};
@@ -238,10 +230,10 @@ double Interpreter::Eval(ExprId id) {
           *sp = 0;
         } else if (OpOf(unit) == Op::kArgs) {
           *sp = 0;
-        } else if (IsDataAccess(p.symbols.Name(name))) {
-          *sp = ReadData(name, ArgumentForms(id, at), values, offset, rank);
+        } else if (const Instruction data = DataAccessOf(function); data != Instruction::kNone) {
+          *sp = ReadData(name, data, ArgumentForms(id, at), values, offset, rank);
         } else {
-          *sp = Call(name, values, offset, rank);
+          *sp = Call(name, function, values, offset, rank);
         }
         ++sp;
         break;
@@ -250,44 +242,61 @@ double Interpreter::Eval(ExprId id) {
   }
 }
 
-double Interpreter::Call(uint32_t id, std::span<const double> args, uint32_t offset,
-                         uint32_t rank) {
-  const std::string& name = program().symbols.Name(id);
+double Interpreter::Call(uint32_t id, Function function, std::span<const double> args,
+                         uint32_t offset, uint32_t rank) {
   auto fail = [&](std::string message) {
     Fault(rank, offset, std::move(message));
     return 0.0;
   };
   auto one = [&](double (*f)(double)) {
-    if (args.size() != 1) return fail(name + " takes one argument");
+    if (args.size() != 1) return fail(program().symbols.Name(id) + " takes one argument");
     return f(args[0]);
   };
-  if ((name == "G" || name == "M") && args.size() == 1) {
-    bool known;
-    const int v = ModalGroupValue(modal_, name[0], static_cast<int>(args[0]), known);
-    if (!known)
-      return fail(name + "(" + std::to_string(static_cast<int>(args[0])) +
-                  "): no such modal group");
-    return v;
+  switch (function) {
+    case Function::kG:
+    case Function::kM: {
+      if (args.size() != 1) break;
+      const char letter = function == Function::kG ? 'G' : 'M';
+      bool known;
+      const int v = ModalGroupValue(modal_, letter, static_cast<int>(args[0]), known);
+      if (!known)
+        return fail(std::string(1, letter) + "(" + std::to_string(static_cast<int>(args[0])) +
+                    "): no such modal group");
+      return v;
+    }
+    case Function::kSin:
+      return one([](double x) { return std::sin(x * kRadPerDeg); });
+    case Function::kCos:
+      return one([](double x) { return std::cos(x * kRadPerDeg); });
+    case Function::kTan:
+      return one([](double x) { return std::tan(x * kRadPerDeg); });
+    case Function::kAsin:
+      return one([](double x) { return std::asin(x) / kRadPerDeg; });
+    case Function::kAcos:
+      return one([](double x) { return std::acos(x) / kRadPerDeg; });
+    case Function::kAtan:
+      return one([](double x) { return std::atan(x) / kRadPerDeg; });
+    case Function::kAbs:
+      return one([](double x) { return std::abs(x); });
+    case Function::kInt:
+      return one([](double x) { return std::trunc(x); });
+    case Function::kRound:
+      return one([](double x) { return std::round(x); });
+    case Function::kExp:
+      return one([](double x) { return std::exp(x); });
+    case Function::kSqrt:
+      if (args.size() == 1 && args[0] < 0) return fail("SQRT of a negative number");
+      return one([](double x) { return std::sqrt(x); });
+    case Function::kLn:
+      if (args.size() == 1 && args[0] <= 0) return fail("LN of a number <= 0");
+      return one([](double x) { return std::log(x); });
+    case Function::kNone:
+    case Function::kTld:  // Eval reads them through the data access
+    case Function::kOtd:
+    case Function::kMtd:
+      break;
   }
-  if (name == "SIN") return one([](double x) { return std::sin(x * kRadPerDeg); });
-  if (name == "COS") return one([](double x) { return std::cos(x * kRadPerDeg); });
-  if (name == "TAN") return one([](double x) { return std::tan(x * kRadPerDeg); });
-  if (name == "ASIN") return one([](double x) { return std::asin(x) / kRadPerDeg; });
-  if (name == "ACOS") return one([](double x) { return std::acos(x) / kRadPerDeg; });
-  if (name == "ATAN") return one([](double x) { return std::atan(x) / kRadPerDeg; });
-  if (name == "ABS") return one([](double x) { return std::abs(x); });
-  if (name == "INT") return one([](double x) { return std::trunc(x); });
-  if (name == "ROUND") return one([](double x) { return std::round(x); });
-  if (name == "EXP") return one([](double x) { return std::exp(x); });
-  if (name == "SQRT") {
-    if (args.size() == 1 && args[0] < 0) return fail("SQRT of a negative number");
-    return one([](double x) { return std::sqrt(x); });
-  }
-  if (name == "LN") {
-    if (args.size() == 1 && args[0] <= 0) return fail("LN of a number <= 0");
-    return one([](double x) { return std::log(x); });
-  }
-  return fail("function " + name + " is not available");
+  return fail("function " + program().symbols.Name(id) + " is not available");
 }
 
 }  // namespace vmt::control::nc

@@ -234,6 +234,7 @@ bool ParseIsgLine(std::string_view line, SourcePos start, ExpressionParser& expr
       const std::string target = s.Name();
       if (target.empty()) return expr.Error(target_pos, "expected a subprogram name after L"), true;
       st.kind = Statement::Kind::kCall;
+      st.instruction = Instruction::kL;
       st.name = p.symbols.Intern("L");
       st.target = p.symbols.Intern(target);
       p.statements.push_back(st);

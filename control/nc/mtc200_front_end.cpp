@@ -37,9 +37,15 @@ enum class WordClass {
   kAddress
 };
 
+// What a word is: its class and, for a mnemonic, the instruction it names.
+struct Classified {
+  WordClass cls = WordClass::kUnknown;
+  Instruction instruction = Instruction::kNone;
+};
+
 // One hash lookup per word instead of a string compare against every mnemonic.
-WordClass Classify(const std::string& word) {
-  static const std::unordered_map<std::string_view, WordClass> table = [] {
+Classified Classify(const std::string& word) {
+  static const std::unordered_map<std::string_view, Classified> table = [] {
     std::unordered_map<std::string_view, WordClass> t;
     for (const char* w : kBranches) t[w] = WordClass::kBranch;
     for (const char* w : kEventBranches) t[w] = WordClass::kEventBranch;
@@ -54,10 +60,13 @@ WordClass Classify(const std::string& word) {
     // (fast measurement 4.4 CAUTION). vmt reads that as the statement REV naming a jump label,
     // and takes the same form for the user's: `REV .LABEL`, like a branch.
     t["REV"] = WordClass::kReverse;
-    return t;
+    std::unordered_map<std::string_view, Classified> classified;
+    for (const auto& [w, cls] : t)
+      classified[w] = {cls, cls == WordClass::kAddress ? Instruction::kNone : InstructionOf(w)};
+    return classified;
   }();
   const auto it = table.find(word);
-  return it == table.end() ? WordClass::kUnknown : it->second;
+  return it == table.end() ? Classified{} : it->second;
 }
 
 // ".LABEL" at the scanner; returns the interned label or 0 after an error.
@@ -113,7 +122,8 @@ bool ParseMtc200Line(std::string_view line, SourcePos start, ExpressionParser& e
       return true;
     }
     const std::string word = s.Letters();
-    const WordClass cls = Classify(word);
+    const auto [cls, instruction] = Classify(word);
+    st.instruction = instruction;
     if (cls == WordClass::kBranch) {
       st.kind = Statement::Kind::kBranch;
       st.name = p.symbols.Intern(word);

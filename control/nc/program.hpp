@@ -16,6 +16,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "control/nc/instruction.hpp"
 #include "control/nc/source_pos.hpp"
 
 namespace vmt::control::nc {
@@ -81,8 +82,9 @@ enum class ExprOp : uint8_t {
   kOrSkip,  ///< as kAndSkip: a non-zero lhs gives 1
   kAnd,     ///< top = top != 0, after the rhs of AND
   kOr,
-  /// name(args): immediate = name; next units: argument count, source offset of the name, and
-  /// the failure rank: the order in which the faults of an expression would be met by
+  /// name(args): immediate = name; next units: the argument count (low 24 bits) with the
+  /// built-in function the name is (Function, top byte; kNone for kArgs), source offset of the
+  /// name, and the failure rank: the order in which the faults of an expression would be met by
   /// evaluating its tree (the divisor of / and MOD and the exponent of ^ before their left
   /// operand, as the interpreter always did); the first in that order is reported.
   kCall,
@@ -94,6 +96,15 @@ inline constexpr uint32_t ExprUnit(ExprOp op, uint32_t immediate = 0) {
   return static_cast<uint32_t>(op) | immediate << 8;
 }
 inline constexpr ExprOp OpOf(uint32_t unit) { return static_cast<ExprOp>(unit & 0xFF); }
+/// The count unit after kCall / kArgs: the number of arguments and the function called.
+inline constexpr uint32_t kMaxArguments = 0xFFFFFF;
+inline constexpr uint32_t CountUnit(uint32_t count, Function f) {
+  return count | static_cast<uint32_t>(f) << 24;
+}
+inline constexpr uint32_t CountOf(uint32_t count_unit) { return count_unit & kMaxArguments; }
+inline constexpr Function FunctionOfUnit(uint32_t count_unit) {
+  return static_cast<Function>(count_unit >> 24);
+}
 
 /// The binary operators kAdd .. kMod on values (a divisor is not 0). One definition for the
 /// interpreter and the parser's constant folding, so that both compute the same bits.
@@ -166,6 +177,9 @@ struct Statement {
     kReverse,
   };
   Kind kind = Kind::kInstruction;
+  /// The mnemonic or instruction `name` is, resolved by the front end (kBranch .. kInstruction,
+  /// kReverse, and kAssign to a data location: TLD, OTD, MTD); kNone for the other kinds.
+  Instruction instruction = Instruction::kNone;
   uint32_t name = 0;       ///< mnemonic, variable or instruction name
   uint32_t target = 0;     ///< label or subprogram name
   ExprId value = kNoExpr;  ///< assigned value, condition, event, or argument list (kArgs)

@@ -50,7 +50,7 @@ void CheckProgram(Program& p, std::vector<Diagnostic>& errors) {
     bool reverse_vectors = false;
     for (const Statement& st : p.statements)
       if (st.kind == Kind::kInstruction &&
-          (p.symbols.Name(st.name) == "MOVE" || p.symbols.Name(st.name) == "PROBE"))
+          (st.instruction == Instruction::kMove || st.instruction == Instruction::kProbe))
         reverse_vectors = true;
     for (size_t b = 0; b < p.blocks.size() && reverse_vectors; ++b) {
       const Block& block = p.blocks[b];

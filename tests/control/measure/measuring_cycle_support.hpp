@@ -25,7 +25,7 @@ constexpr double kTol = 1e-9;
 inline InstructionCall Call(const std::string& text) {
   InstructionCall call;
   const size_t open = text.find('(');
-  call.name = text.substr(0, open);
+  call.instruction = nc::InstructionOf(text.substr(0, open));
   const std::string inside = text.substr(open + 1, text.rfind(')') - open - 1);
   if (inside.empty()) return call;
   size_t from = 0;

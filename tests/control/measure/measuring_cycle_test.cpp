@@ -120,7 +120,7 @@ TEST_F(Lathe, OddArgumentsGiveErrorsNotCrashes) {
         const MeasuringPlan plan = PlanInstruction(call, c, pages, reverse);
         if (!plan.error.empty()) {
           ++errors;
-          EXPECT_THAT(plan.error, StartsWith(call.name + "(")) << text << " arg " << i;
+          EXPECT_THAT(plan.error, StartsWith(std::string(nc::InstructionName(call.instruction)) + "(")) << text << " arg " << i;
           EXPECT_TRUE(plan.steps.empty()) << plan.error;
         }
       }

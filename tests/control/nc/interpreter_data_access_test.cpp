@@ -33,17 +33,17 @@ struct FakeData {
   }
   DataAccess Access() {
     DataAccess d;
-    d.read = [this](const std::string& name, const std::vector<InstructionArg>& args,
+    d.read = [this](Instruction data, const std::vector<InstructionArg>& args,
                     double& value) -> std::string {
-      const std::string k = Key(name, args);
+      const std::string k = Key(InstructionName(data), args);
       reads.push_back(k);
       if (refuse.count(k)) return refuse[k];
       value = store[k];
       return "";
     };
-    d.write = [this](const std::string& name, const std::vector<InstructionArg>& args,
+    d.write = [this](Instruction data, const std::vector<InstructionArg>& args,
                      double value) -> std::string {
-      const std::string k = Key(name, args);
+      const std::string k = Key(InstructionName(data), args);
       writes.push_back(k);
       if (refuse.count(k)) return refuse[k];
       store[k] = value;

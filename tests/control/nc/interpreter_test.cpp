@@ -313,7 +313,7 @@ TEST(InterpreterTest, MeasuringInstructionsCarryTheirArgumentsAsWritten) {
   using Kind = InstructionArg::Kind;
   ASSERT_EQ(r.blocks[0].calls.size(), 1u);
   const InstructionCall& setting = r.blocks[0].calls[0];
-  EXPECT_EQ(setting.name, "SETTING");
+  EXPECT_EQ(setting.instruction, Instruction::kSetting);
   ASSERT_EQ(setting.args.size(), 7u);
   EXPECT_EQ(setting.args[0].kind, Kind::kName);
   EXPECT_EQ(setting.args[0].name, "X");
@@ -331,7 +331,7 @@ TEST(InterpreterTest, MeasuringInstructionsCarryTheirArgumentsAsWritten) {
   EXPECT_EQ(probe.args[5].kind, Kind::kName);
   EXPECT_EQ(probe.args[5].name, "Z");
   EXPECT_EQ(probe.args[6].value, -1);
-  EXPECT_EQ(r.blocks[2].calls[0].name, "RESTORE");
+  EXPECT_EQ(r.blocks[2].calls[0].instruction, Instruction::kRestore);
   EXPECT_TRUE(r.blocks[2].calls[0].args.empty());
 }
 
@@ -349,15 +349,15 @@ TEST(InterpreterTest, DataAccessReachesTheChannelWithOmittedPlacesKept) {
                                     "a.mtc", Dialect::kMtc200));
   ASSERT_TRUE(run.parsed[0].ok());
   Interpreter in({&run.parsed[0].program}, {});
-  in.SetDataAccess({[&](const std::string& name, const std::vector<InstructionArg>& args,
+  in.SetDataAccess({[&](Instruction data, const std::vector<InstructionArg>& args,
                         double& value) {
-                      reads.emplace_back(name, args);
-                      value = name == "TLD" ? 0.5 : args[2].value == 3 ? 2 : 0.25;
+                      reads.emplace_back(InstructionName(data), args);
+                      value = data == Instruction::kTld ? 0.5 : args[2].value == 3 ? 2 : 0.25;
                       return std::string();
                     },
-                    [&](const std::string& name, const std::vector<InstructionArg>& args,
+                    [&](Instruction data, const std::vector<InstructionArg>& args,
                         double value) {
-                      writes.emplace_back(name, args);
+                      writes.emplace_back(InstructionName(data), args);
                       written.push_back(value);
                       return std::string();
                     }});
@@ -389,7 +389,7 @@ TEST(InterpreterTest, DataAccessErrorsStopAtTheCall) {
       ParseProgram("N1 @100 = 1\nN2 @101 = 2 + MTD(999,,1,13)\nN3 RET\n", "a.mtc",
                    Dialect::kMtc200));
   Interpreter in({&run.parsed[0].program}, {});
-  in.SetDataAccess({[](const std::string&, const std::vector<InstructionArg>&, double&) {
+  in.SetDataAccess({[](Instruction, const std::vector<InstructionArg>&, double&) {
                       return std::string("MTD: no page 999");
                     },
                     {}});
