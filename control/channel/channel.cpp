@@ -29,16 +29,16 @@ Channel::Channel(ChannelConfig config, std::vector<const nc::Program*> programs)
 }
 
 void Channel::DropLookahead() {
-  peeked_.clear();
-  unpushed_.reset();
-  source_returned_false_ = false;
-  continuation_ready_ = false;
+  work_.peeked.clear();
+  work_.unpushed.reset();
+  work_.source_returned_false = false;
+  work_.continuation_ready = false;
   carry_speed_ = carry_accel_ = carry_leftover_ = 0;
-  compensating_ = false;
-  source_done_ = false;
-  trc_.Reset();
-  ahead_.clear();
-  ready_.clear();
+  work_.compensating = false;
+  work_.source_done = false;
+  work_.trc.Reset();
+  work_.ahead.clear();
+  work_.ready.clear();
 }
 
 const nc::Program* Channel::ProgramOf(uint32_t index) const {
@@ -48,7 +48,7 @@ const nc::Program* Channel::ProgramOf(uint32_t index) const {
 }
 
 const nc::ModalState& Channel::modal() const {
-  return interpreter_ ? interpreter_->modal() : last_modal_;
+  return work_.interpreter ? work_.interpreter->modal() : last_modal_;
 }
 
 std::unique_ptr<nc::Interpreter> Channel::MakeInterpreter() {
@@ -81,8 +81,8 @@ std::unique_ptr<nc::Interpreter> Channel::MakeInterpreter() {
 }
 
 void Channel::ForgetEndedProgram() {
-  if (interpreter_) last_modal_ = interpreter_->modal();
-  interpreter_.reset();
+  if (work_.interpreter) last_modal_ = work_.interpreter->modal();
+  work_.interpreter.reset();
   parked_ = ProgramInWork{};
   ClearRepos();
   measuring_setting_.reset();  // SETTING holds for one run of the program
@@ -95,7 +95,7 @@ bool Channel::SelectProgram(size_t index) {
   if (index >= programs_.size()) return false;
   if (state_ == ChannelState::kEnded)
     ForgetEndedProgram();
-  else if (state_ != ChannelState::kIdle || interpreter_)
+  else if (state_ != ChannelState::kIdle || work_.interpreter)
     return false;
   std::rotate(programs_.begin(), programs_.begin() + static_cast<std::ptrdiff_t>(index),
               programs_.begin() + static_cast<std::ptrdiff_t>(index) + 1);
@@ -120,16 +120,16 @@ bool Channel::Reverse() {
   // from its label before `.HOME`. During the REPOS subroutine that is the subroutine's own
   // (4.1): it starts where the operator left the axes, away from the contour the interrupted
   // program's reverse vector was written for, so without a REV of its own it has none.
-  const nc::ReverseLabel label = interpreter_ && block_.block >= 0 ? block_.reverse
-                                                                   : nc::ReverseLabel{};
+  const nc::ReverseLabel label =
+      work_.interpreter && work_.block.block >= 0 ? work_.block.reverse : nc::ReverseLabel{};
   if (repos_run_) {  // the REPOS subroutine is given up (4.1); its variables are the program's
     HandBackVariables();
     SwapProgramInWork();
   }
   parked_ = ProgramInWork{};
   ClearRepos();
-  if (!interpreter_) interpreter_ = MakeInterpreter();
-  if (!interpreter_->Reverse(label)) {
+  if (!work_.interpreter) work_.interpreter = MakeInterpreter();
+  if (!work_.interpreter->Reverse(label)) {
     Fail(programs_[0]->files[0] + ": error: the program has no reverse program .HOME",
          kMsgNoHomeLabel);
     return false;
@@ -151,9 +151,9 @@ bool Channel::Reverse() {
   if (headstock_) headstock_->Abandon();
   waiting_for_ = axes::HeadstockMode::kNone;
   DropLookahead();
-  active_ = false;
-  homing_ = false;
-  dwell_left_s_ = 0;
+  work_.active = false;
+  work_.homing = false;
+  work_.dwell_left_s = 0;
   orienting_ = further_restoring_ = false;
   // Fast measurement 6.1 / 7.2 network 9: the PLC acknowledges Q9999 once the reverse program
   // is active; the reverse program waits for that before its first block.
@@ -164,7 +164,7 @@ bool Channel::Reverse() {
   error_number_ = 0;
   std::vector<double> position(commanded_.size());
   for (size_t a = 0; a < position.size(); ++a) position[a] = commanded_[a] - translation_[a];
-  interpreter_->SetPosition(position);
+  work_.interpreter->SetPosition(position);
   reversing_ = true;
   programmed_stop_.Leave();
   state_ = ChannelState::kRunning;
@@ -174,17 +174,17 @@ bool Channel::Reverse() {
 }
 
 uint32_t Channel::line() const {
-  if (!active_ && state_ != ChannelState::kError) return 0;
-  if (block_.block < 0) return 0;
-  return ProgramOf(block_.program)->blocks[block_.block].pos.line;
+  if (!work_.active && state_ != ChannelState::kError) return 0;
+  if (work_.block.block < 0) return 0;
+  return ProgramOf(work_.block.program)->blocks[work_.block.block].pos.line;
 }
 
 void Channel::Fail(const std::string& message, int number) {
   state_ = ChannelState::kError;
   error_ = message;
   error_number_ = number;
-  active_ = false;
-  homing_ = false;
+  work_.active = false;
+  work_.homing = false;
 }
 
 std::vector<OperatorMessage> Channel::messages() const {
@@ -212,7 +212,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
     output_suspended_ = suspend;
     // A held program whose axes go to the other channel is left as in manual mode (REPOS 2.1):
     // where it was interrupted is the contour to come back to. Block search has no contour yet.
-    if (suspend && state_ == ChannelState::kHold && interpreter_ && !interruption_ &&
+    if (suspend && state_ == ChannelState::kHold && work_.interpreter && !interruption_ &&
         !repos_run_ && bs_state_ == BlockSearchState::kInactive)
       CaptureInterruption();
   }
@@ -233,9 +233,9 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
       previous_ = commanded_;
       holding_positions_ = true;
     }
-    if (!interpreter_) {
+    if (!work_.interpreter) {
       path_memory_.Clear();
-      interpreter_ = MakeInterpreter();
+      work_.interpreter = MakeInterpreter();
       BeginBlockSearch();
     }
   }
@@ -291,7 +291,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
   // the axes do not lag the spindle by their following error.
   const double cycle_s = config_.tick_s * config_.ticks_per_cycle;
   const bool low_lag = mode_ != ChannelMode::kManual &&
-                       (block_.modal.low_lag || InSynchronousBlock()) &&
+                       (work_.block.modal.low_lag || InSynchronousBlock()) &&
                        (state_ == ChannelState::kRunning || state_ == ChannelState::kHold);
   for (size_t a = 0; a < config_.axes.size(); ++a) {
     DriveSetpoint& sp = mdt.setpoints[config_.axes[a].drive];
@@ -314,7 +314,7 @@ DriveSetpoint Channel::SpindleSetpoint() const {
   // never the feed override. M19's positioning speed is the drive's own.
   // G63 holds the spindle override at 100 % (the compensating chuck takes up the rest).
   DriveSetpoint sp = spindle_;
-  const bool tapping = InSynchronousBlock() && block_.motion == nc::Motion::kTapping;
+  const bool tapping = InSynchronousBlock() && work_.block.motion == nc::Motion::kTapping;
   if (sp.mode == DriveMode::kVelocity && !tapping) sp.value *= spindle_override_;
   // G64 interpolates the spindle: fine interpolation to the drive tick as for the axes.
   if (sp.mode == DriveMode::kPosition && sp.interpolated) {
@@ -336,12 +336,12 @@ uint64_t Channel::FollowUpAxes(const nc::PreparedBlock& b) const {
 }
 
 bool Channel::RunBlock(const AmplifierTelegram& at) {
-  const nc::Program& program = *ProgramOf(block_.program);
+  const nc::Program& program = *ProgramOf(work_.block.program);
   // G77 (REPOS manual 4.2) is refused at the start of its block, before any changeover.
-  if (block_.repos && waiting_for_ == axes::HeadstockMode::kNone && !CheckReposBlock())
+  if (work_.block.repos && waiting_for_ == axes::HeadstockMode::kNone && !CheckReposBlock())
     return false;
   if (headstock_) {
-    const axes::HeadstockMode need = ModeNeeded(block_);
+    const axes::HeadstockMode need = ModeNeeded(work_.block);
     if (need != axes::HeadstockMode::kNone && headstock_->mode() != need) {
       headstock_->Request(need);
       manual_changeover_ = false;
@@ -352,9 +352,9 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
     waiting_for_ = axes::HeadstockMode::kNone;
     // X1/Y1 of G31/G32 position C, which the NC does only in rotary axis mode; unlike C they
     // do not select it (coordinate_transformation.hpp).
-    if (block_.fictive && headstock_->mode() != axes::HeadstockMode::kRotary) {
-      Fail(program, block_.block,
-           "X1/Y1 of G" + std::to_string(nc::GCode(block_.modal.transformation)) +
+    if (work_.block.fictive && headstock_->mode() != axes::HeadstockMode::kRotary) {
+      Fail(program, work_.block.block,
+           "X1/Y1 of G" + std::to_string(nc::GCode(work_.block.modal.transformation)) +
                " need the headstock in rotary axis mode: select it (G00 " +
                config_.axes[config_.rotary_axis].name + "..) first",
            kMsgTransformation);
@@ -364,9 +364,9 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
     // The manual is silent on G92 C in spindle mode; a control refuses it rather than shift an
     // axis it does not position.
     const size_t r = static_cast<size_t>(config_.rotary_axis);
-    if (block_.set_position && (block_.programmed >> r & 1) &&
+    if (work_.block.set_position && (work_.block.programmed >> r & 1) &&
         headstock_->mode() != axes::HeadstockMode::kRotary) {
-      Fail(program, block_.block,
+      Fail(program, work_.block.block,
            "G92 of " + config_.axes[r].name + " outside rotary axis mode: program " +
                config_.axes[r].name + " in a G00/G01 block first",
            kMsgOffsetInSpindleMode);
@@ -374,22 +374,22 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
     }
   }
   auto unsupported = [&](const std::string& what) {
-    Fail(program, block_.block, what + " is not supported by vmt (docs/conformance.md)",
+    Fail(program, work_.block.block, what + " is not supported by vmt (docs/conformance.md)",
          kMsgNotAvailable);
     return false;
   };
-  if (block_.measuring) return unsupported("G100 measuring");
-  if (block_.has_centre && block_.motion != nc::Motion::kArcCw &&
-      block_.motion != nc::Motion::kArcCcw)
+  if (work_.block.measuring) return unsupported("G100 measuring");
+  if (work_.block.has_centre && work_.block.motion != nc::Motion::kArcCw &&
+      work_.block.motion != nc::Motion::kArcCcw)
     return unsupported("I/J/K outside G02/G03");
 
   // The T word indexes an NC-controlled turret before MTP / MRY of its block act on it.
-  if (!IndexToolStorage(block_, program)) return false;
+  if (!IndexToolStorage(work_.block, program)) return false;
   bool mry = false;
   // Instructions of later issues stop the program rather than pass unnoticed. The
   // #-commands that only steer block search (and its return to the contour) have no effect on
   // a normal run.
-  for (uint32_t index : block_.instructions) {
+  for (uint32_t index : work_.block.instructions) {
     const nc::Statement& st = program.statements[index];
     if (st.kind == nc::Statement::Kind::kHashCommand) {
       const std::string& text = program.texts[st.text];
@@ -398,7 +398,7 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
         return false;
       }
       const int c = TrackedAxis();
-      if (const auto done = CaxTrackInstruction(program, st, block_,
+      if (const auto done = CaxTrackInstruction(program, st, work_.block,
                                                 c < 0 ? 0 : commanded_[static_cast<size_t>(c)])) {
         if (!*done) return false;
         continue;
@@ -421,7 +421,7 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
       if (mtp && ToolStorageNc()) {
         if (!ReturnToolStorage()) return false;
       } else if (mtp) {
-        block_.aux.push_back({'T', 0, static_cast<double>(interruption_->modal.tool)});
+        work_.block.aux.push_back({'T', 0, static_cast<double>(interruption_->modal.tool)});
       } else {
         mry = true;
       }
@@ -432,7 +432,8 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
       // controlled mode"): MRY waits for its traverse as in the REPOS subroutine, and MTP
       // ("Adjust tool turret", 8.3) brings the active tool's station back to the work, after
       // a jog in manual mode, say. A PLC-controlled one: the PLC's business, as before.
-      if (mtp && !IndexToolStorage(block_.modal.tool, program, block_.block)) return false;
+      if (mtp && !IndexToolStorage(work_.block.modal.tool, program, work_.block.block))
+        return false;
       if (waits) mry = true;
       continue;
     }
@@ -445,32 +446,33 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
   }
   // MRY: until the drive stands at the place, not only its command (a following error lags).
   if (mry) tool_storage_wait_ = !ToolStorageArrived();
-  DistanceCommand(block_);
-  if (!block_.calls.empty()) {
+  DistanceCommand(work_.block);
+  if (!work_.block.calls.empty()) {
     PathBarrier();  // a probing move is no path to travel back along
     return StartMeasuring(at);
   }
-  for (const auto& [n, set] : block_.events) {
+  for (const auto& [n, set] : work_.block.events) {
     own_events_[n] = set;
     if (event_sink_) event_sink_(n, set);
   }
 
   const std::vector<double> before = translation_;
-  if (!UpdateTranslation(block_.modal, program, block_.block)) return false;
-  if (block_.set_position) {
+  if (!UpdateTranslation(work_.block.modal, program, work_.block.block)) return false;
+  if (work_.block.set_position) {
     // G92: the programmed values become the current position of those axes (a shift that
     // stays until Control-Reset).
     for (size_t a = 0; a < commanded_.size(); ++a)
-      if (block_.programmed >> a & 1) {
-        shift_[a] += commanded_[a] - (block_.target[a] + translation_[a]);
-        translation_[a] = commanded_[a] - block_.target[a];
+      if (work_.block.programmed >> a & 1) {
+        shift_[a] += commanded_[a] - (work_.block.target[a] + translation_[a]);
+        translation_[a] = commanded_[a] - work_.block.target[a];
         if (headstock_ && static_cast<int>(a) == config_.rotary_axis)
           rotary_translation_ = translation_[a];
       }
   }
-  const bool arc = block_.motion == nc::Motion::kArcCw || block_.motion == nc::Motion::kArcCcw;
+  const bool arc =
+      work_.block.motion == nc::Motion::kArcCw || work_.block.motion == nc::Motion::kArcCcw;
   if (arc && translation_ != before) {
-    Fail(program, block_.block,
+    Fail(program, work_.block.block,
          "zero offset or tool correction changes in an arc block: program it in a straight block",
          kMsgTranslationInArc);
     return false;
@@ -478,27 +480,29 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
 
   // Spindle: M3/M4 with S (rpm), M5, M19 (orient to 0 deg); a start is checked by PathGuard.
   DriveSetpoint spindle = spindle_;
-  const bool orient = SpindleFunctions(block_, spindle);
+  const bool orient = SpindleFunctions(work_.block, spindle);
   if (!GuardSpindleStart("spindle start", spindle)) return false;
   // Sj= / Mj= of the further spindles (G77 Sj=0 restores them instead, StartReposMotion).
-  if (!block_.repos && !FurtherSpindleWords(program, block_, further_spindles_)) return false;
+  if (!work_.block.repos && !FurtherSpindleWords(program, work_.block, further_spindles_))
+    return false;
   spindle_ = spindle;
   if (orient) spindle_referencing_ = orienting_ = true;
 
   // M, H, Q and T go to the PLC; the block goes on when it has acknowledged them.
   if (config_.aux_handshake) {
-    for (const nc::AuxFunction& f : block_.aux)
+    for (const nc::AuxFunction& f : work_.block.aux)
       if (f.letter == 'M' || f.letter == 'H' || f.letter == 'Q' || f.letter == 'T')
         aux_output_.push_back(f);
     if (!aux_output_.empty()) ++aux_strobe_;
   }
 
-  programmed_stop_.Prepare(block_);
-  dwell_left_s_ = block_.dwell_s;
-  if (block_.end) state_ = ChannelState::kEnded, reversing_ = false;
-  if (block_.motion == nc::Motion::kNone && !block_.homing && !block_.repos) return true;
+  programmed_stop_.Prepare(work_.block);
+  work_.dwell_left_s = work_.block.dwell_s;
+  if (work_.block.end) state_ = ChannelState::kEnded, reversing_ = false;
+  if (work_.block.motion == nc::Motion::kNone && !work_.block.homing && !work_.block.repos)
+    return true;
   if (!aux_output_.empty() || tool_storage_wait_) {
-    pending_motion_ = true;
+    work_.pending_motion = true;
     return true;
   }
   return StartMotion(at);
@@ -538,27 +542,27 @@ bool Channel::UpdateTranslation(const nc::ModalState& modal, const nc::Program& 
 bool Channel::NextHomingStage() {
   // G74: the programmed axes travel to their reference points, in the order of the values
   // (ISG: G74 X1 Z2 homes X first); equal values home together.
-  if (homing_stages_.empty()) {
-    homing_ = false;
+  if (work_.homing_stages.empty()) {
+    work_.homing = false;
     // The program continues from the reference points, in its own coordinates.
     std::vector<double> position(commanded_.size());
     for (size_t a = 0; a < position.size(); ++a) position[a] = commanded_[a] - translation_[a];
-    interpreter_->SetPosition(position);
+    work_.interpreter->SetPosition(position);
     return false;
   }
-  const uint64_t bits = homing_stages_.front().second;
-  homing_stages_.erase(homing_stages_.begin());
-  motion_ = BlockMotion{};
-  motion_.start = commanded_;
-  motion_.end = commanded_;
+  const uint64_t bits = work_.homing_stages.front().second;
+  work_.homing_stages.erase(work_.homing_stages.begin());
+  work_.motion = BlockMotion{};
+  work_.motion.start = commanded_;
+  work_.motion.end = commanded_;
   double rate = std::numeric_limits<double>::infinity();
   double accel = rate;
   for (size_t a = 0; a < commanded_.size(); ++a) {
     if (!(bits >> a & 1)) continue;
     const ChannelAxis& axis = config_.axes[a];
-    motion_.end[a] = axis.reference_position;
+    work_.motion.end[a] = axis.reference_position;
     homed_[a] = true;
-    const double distance = std::abs(motion_.end[a] - motion_.start[a]);
+    const double distance = std::abs(work_.motion.end[a] - work_.motion.start[a]);
     if (distance < 1e-12) continue;
     const double speed = axis.homing_per_s > 0 ? axis.homing_per_s
                          : axis.jog_per_s > 0  ? axis.jog_per_s
@@ -566,42 +570,42 @@ bool Channel::NextHomingStage() {
     rate = std::min(rate, speed / distance);
     accel = std::min(accel, axis.acceleration / distance);
   }
-  profile_ = PathProfile{};
-  continuation_ready_ = false;
+  work_.profile = PathProfile{};
+  work_.continuation_ready = false;
   if (!std::isfinite(rate)) return NextHomingStage();
-  motion_.moves = true;
-  profile_.max_rate = rate;
-  profile_.max_accel = accel;
-  active_ = true;
+  work_.motion.moves = true;
+  work_.profile.max_rate = rate;
+  work_.profile.max_accel = accel;
+  work_.active = true;
   return true;
 }
 
 bool Channel::StartMotion(const AmplifierTelegram& at) {
-  const nc::Program& program = *ProgramOf(block_.program);
-  if (block_.repos) return StartReposMotion(at);
-  if (block_.homing) {
-    homing_stages_.clear();
+  const nc::Program& program = *ProgramOf(work_.block.program);
+  if (work_.block.repos) return StartReposMotion(at);
+  if (work_.block.homing) {
+    work_.homing_stages.clear();
     for (size_t a = 0; a < commanded_.size(); ++a) {
-      if (!(block_.programmed >> a & 1)) continue;
+      if (!(work_.block.programmed >> a & 1)) continue;
       // The value orders the axes in ISG; in MTC200 it is a placeholder (G74 X0, like G77).
       const int order = program.dialect == nc::Dialect::kIsg
-                            ? static_cast<int>(std::lround(block_.target[a]))
+                            ? static_cast<int>(std::lround(work_.block.target[a]))
                             : 0;
-      auto it = std::find_if(homing_stages_.begin(), homing_stages_.end(),
+      auto it = std::find_if(work_.homing_stages.begin(), work_.homing_stages.end(),
                              [&](const auto& s) { return s.first == order; });
-      if (it == homing_stages_.end())
-        homing_stages_.emplace_back(order, uint64_t{1} << a);
+      if (it == work_.homing_stages.end())
+        work_.homing_stages.emplace_back(order, uint64_t{1} << a);
       else
         it->second |= uint64_t{1} << a;
     }
-    std::sort(homing_stages_.begin(), homing_stages_.end());
-    homing_ = true;
+    std::sort(work_.homing_stages.begin(), work_.homing_stages.end());
+    work_.homing = true;
     if (!repos_run_) PathBarrier();
     return NextHomingStage();
   }
   for (size_t a = 0; a < commanded_.size(); ++a)
-    if (!homed_[a] && (block_.programmed >> a & 1)) {
-      Fail(program, block_.block,
+    if (!homed_[a] && (work_.block.programmed >> a & 1)) {
+      Fail(program, work_.block.block,
            "axis " + config_.axes[a].name + " has no reference: home it first (G74)", kMsgNotHomed);
       return false;
     }
@@ -609,9 +613,9 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
   // #CAX TRACK: C's target from the path's tangent; a turn beyond ANGLIMIT runs first on its
   // own, and the block starts when it ends (Tick).
   nc::PreparedBlock tracked;
-  const nc::PreparedBlock* planned = &block_;
+  const nc::PreparedBlock* planned = &work_.block;
   if (cax_track_) {
-    tracked = block_;
+    tracked = work_.block;
     std::optional<double> align;
     if (!TrackC(tracked, commanded_, SpindleRevPerS(at), align)) return false;
     if (align) {
@@ -620,19 +624,20 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
     }
     planned = &tracked;
   }
-  if (nc::SpindleSynchronous(block_.motion)) {
+  if (nc::SpindleSynchronous(work_.block.motion)) {
     if (!repos_run_) PathBarrier();  // the spindle cannot be turned back in step
     return StartSynchronous(at);
   }
   sync_.phase = SyncPhase::kNone;
-  if (const auto error = PlanBlockMotion(*planned, commanded_, translation_, config_.axes,
-                                         SpindleRevPerS(at), motion_, FollowUpAxes(block_))) {
-    Fail(program, block_.block, error->text, error->number);
+  if (const auto error =
+          PlanBlockMotion(*planned, commanded_, translation_, config_.axes, SpindleRevPerS(at),
+                          work_.motion, FollowUpAxes(work_.block))) {
+    Fail(program, work_.block.block, error->text, error->number);
     return false;
   }
   CountDistance();
-  profile_ = PathProfile{};
-  if (!motion_.moves) {
+  work_.profile = PathProfile{};
+  if (!work_.motion.moves) {
     if (breakpoint_pending_) HoldAtBreakpoint();  // at the very start of the block
     return true;
   }
@@ -642,22 +647,22 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
   if ((repos_run_ || config_.approach_program) &&
       !GuardBlockMove(repos_run_ ? "REPOS subroutine" : "JogOfPath"))
     return false;
-  profile_.max_rate = motion_.max_rate;
-  profile_.max_accel = motion_.max_accel;
-  profile_.max_jerk = motion_.max_jerk;
-  active_ = true;
-  if (!repos_run_) RecordPath(motion_, block_.motion == nc::Motion::kRapid);
+  work_.profile.max_rate = work_.motion.max_rate;
+  work_.profile.max_accel = work_.motion.max_accel;
+  work_.profile.max_jerk = work_.motion.max_jerk;
+  work_.active = true;
+  if (!repos_run_) RecordPath(work_.motion, work_.block.motion == nc::Motion::kRapid);
   if (carry_speed_ > 0) {
     // Continuing at speed from the block before (look-ahead): same path speed and
     // acceleration, from where the last cycle's remainder takes it.
-    profile_.rate = carry_speed_ / motion_.length;
-    profile_.accel = carry_accel_ / motion_.length;
-    profile_.u = std::min(0.5, carry_leftover_ / motion_.length);
+    work_.profile.rate = carry_speed_ / work_.motion.length;
+    work_.profile.accel = carry_accel_ / work_.motion.length;
+    work_.profile.u = std::min(0.5, carry_leftover_ / work_.motion.length);
     carry_speed_ = carry_accel_ = carry_leftover_ = 0;
-    motion_.PointAt(profile_.u, commanded_);
+    work_.motion.PointAt(work_.profile.u, commanded_);
   }
   LookAhead(at);
-  if (breakpoint_pending_) continuation_ready_ = false;  // stop at the breakpoint
+  if (breakpoint_pending_) work_.continuation_ready = false;  // stop at the breakpoint
   return true;
 }
 
@@ -667,28 +672,29 @@ double Channel::SpindleRevPerS(const AmplifierTelegram& at) const {
 }
 
 void Channel::Interpolate(double dt) {
-  const double u_before = profile_.u;
+  const double u_before = work_.profile.u;
   const double override = state_ == ChannelState::kHold ? 0.0 : override_;
-  profile_.ahead = {};
-  if (continuation_ready_) {
-    ProfileTargets(targets_, motion_.length, override, profile_targets_);
-    profile_.ahead = profile_targets_;
+  work_.profile.ahead = {};
+  if (work_.continuation_ready) {
+    ProfileTargets(work_.targets, work_.motion.length, override, profile_targets_);
+    work_.profile.ahead = profile_targets_;
   }
-  profile_.Advance(dt, override);
-  motion_.PointAt(profile_.u, commanded_);
-  if (profile_.done()) {
-    commanded_ = motion_.end;  // exactly the programmed point
-    active_ = false;
+  work_.profile.Advance(dt, override);
+  work_.motion.PointAt(work_.profile.u, commanded_);
+  if (work_.profile.done()) {
+    commanded_ = work_.motion.end;  // exactly the programmed point
+    work_.active = false;
     // Ended at speed (look-ahead): the next block takes the speed over at once, with what
     // this cycle had left of its distance.
-    if (profile_.rate > 0 && continuation_ready_) {
-      carry_speed_ = profile_.rate * motion_.length;
-      carry_accel_ = profile_.accel * motion_.length;
+    if (work_.profile.rate > 0 && work_.continuation_ready) {
+      carry_speed_ = work_.profile.rate * work_.motion.length;
+      carry_accel_ = work_.profile.accel * work_.motion.length;
       // Passed the end at speed: the cycle went on by u - 1; arrived at it: the rest of the
       // cycle at the end speed.
-      carry_leftover_ = profile_.u > 1
-                            ? (profile_.u - 1) * motion_.length
-                            : std::max(0.0, carry_speed_ * dt - (1 - u_before) * motion_.length);
+      carry_leftover_ =
+          work_.profile.u > 1
+              ? (work_.profile.u - 1) * work_.motion.length
+              : std::max(0.0, carry_speed_ * dt - (1 - u_before) * work_.motion.length);
     }
   }
 }

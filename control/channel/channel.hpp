@@ -21,19 +21,26 @@
 #include "control/axes/zero_offsets.hpp"
 #include "control/channel/block_motion.hpp"
 #include "control/channel/block_search.hpp"
+#include "control/channel/block_search_run.hpp"
 #include "control/channel/cax_track.hpp"
 #include "control/channel/channel_config.hpp"
 #include "control/channel/channel_messages.hpp"
 #include "control/channel/channel_types.hpp"
-#include "control/channel/operator_messages.hpp"
+#include "control/channel/jog_state.hpp"
 #include "control/channel/look_ahead.hpp"
+#include "control/channel/measuring_run.hpp"
 #include "control/channel/nc_cycle_owner.hpp"
+#include "control/channel/operator_messages.hpp"
 #include "control/channel/path_memory.hpp"
 #include "control/channel/path_profile.hpp"
+#include "control/channel/path_replay.hpp"
+#include "control/channel/program_in_work.hpp"
 #include "control/channel/programmed_stop.hpp"
 #include "control/channel/repositioning.hpp"
 #include "control/channel/spindle_synchronous_motion.hpp"
+#include "control/channel/synchronous_block.hpp"
 #include "control/channel/tool_radius_compensation.hpp"
+#include "control/channel/tool_storage_state.hpp"
 #include "control/drive_bus.hpp"
 #include "control/measure/measuring_cycle.hpp"
 #include "control/measure/measuring_pages.hpp"
@@ -323,10 +330,11 @@ class Channel {
   bool NextCompensated(const AmplifierTelegram& at);
   /// Under G41/G42, reads on (through ReadNext, or straight from the interpreter while
   /// `searching`) until the compensation has a final piece ready (kPiece), has given out all it
-  /// read (kDrained: compensating_ is off, source_done_ says whether the text ended) or failed.
+  /// read (kDrained: work_.compensating is off, work_.source_done says whether the text ended) or
+  /// failed.
   enum class Compensated { kPiece, kDrained, kFailed };
   Compensated FillReadyPiece(bool searching);
-  /// The next ready piece of the tip path into block_, built on its block.
+  /// The next ready piece of the tip path into work_.block, built on its block.
   ContourElement TakeReadyPiece();
   bool PushAhead(const nc::PreparedBlock& b);
   void DropLookahead();
@@ -355,7 +363,9 @@ class Channel {
 
   ChannelConfig config_;
   std::vector<const nc::Program*> programs_;
-  std::unique_ptr<nc::Interpreter> interpreter_;
+  /// The program the channel runs: its interpreter, the block in work, look-ahead and tool
+  /// radius compensation (program_in_work.hpp).
+  ProgramInWork work_;
   std::function<bool(int)> events_;
   std::function<void(int, bool)> event_sink_;
   std::map<int, bool> own_events_;
@@ -364,13 +374,6 @@ class Channel {
   double override_ = 1.0;
   bool single_block_ = false;
   ProgrammedStop programmed_stop_;  ///< M00 / M01
-
-  // The block in work.
-  bool active_ = false;
-  nc::PreparedBlock block_;
-  BlockMotion motion_;
-  PathProfile profile_;
-  double dwell_left_s_ = 0;
 
   // Positions: commanded at the last two NC cycles, for fine interpolation.
   std::vector<double> commanded_, previous_;
@@ -391,14 +394,6 @@ class Channel {
   /// The handwheel's counts start afresh from where each jogged axis (X1/Y1 too) comes to rest.
   void RestartHandwheel();
   // Jogging X1/Y1 under G31 (channel_fictive_jog.cpp).
-  struct FictiveJog {
-    int key = 0;
-    double velocity = 0;  ///< mm/s along the fictive axis
-    bool stepping = false;
-    double target = 0;            ///< the increment's end
-    bool handwheel = false;       ///< kHandwheel: counts given, the point not there yet
-    double handwheel_target = 0;  ///< kHandwheel: where the counts want the fictive axis
-  };
   FictiveJog fictive_jog_[2];
   // The jog mode's rule for every jogged axis (channel_jog.cpp): feed axes, X1/Y1 and the tool
   // storage axis (REPOS manual 3.4: "as it would in jog mode").
@@ -422,49 +417,22 @@ class Channel {
   int error_number_ = 0;
   std::vector<double> translation_, shift_;  ///< per axis; shift_: G92
   std::vector<bool> homed_;
-  std::vector<std::pair<int, uint64_t>> homing_stages_;  ///< G74: order, axes bits
-  bool homing_ = false;
   std::vector<nc::AuxFunction> aux_output_;
   uint32_t aux_strobe_ = 0;
   bool reversing_ = false;
-  bool pending_motion_ = false;  ///< the block's motion waits for the aux acknowledgement
   bool running_mdi_ = false;
 
   // Look-ahead between feed moves: the next blocks read early, the speed carried into them.
-  std::deque<nc::PreparedBlock> peeked_;        ///< read from the interpreter, not run yet
   std::vector<LookAheadLeg> legs_;              ///< the blocks read ahead (scratch)
-  std::vector<SpeedTarget> targets_;            ///< speed limits ahead of the block in work
   std::vector<ProfileTarget> profile_targets_;  ///< the same in the profile's u
-  bool continuation_ready_ = false;             ///< this block ends at speed into the next
-  std::optional<nc::PreparedBlock> unpushed_;   ///< read ahead under G41/G42, not taken yet
-  bool source_returned_false_ = false;          ///< the read-ahead met the end or an error
   bool planning_only_ = false, plan_failed_ = false;
   double carry_speed_ = 0, carry_accel_ = 0, carry_leftover_ = 0;
 
   // Tool nose radius compensation (G41/G42): blocks read ahead and the tip path made of them.
-  ToolRadiusCompensation trc_;
-  bool compensating_ = false;
-  bool source_done_ = false;             ///< the program's end has been read ahead
-  std::deque<nc::PreparedBlock> ahead_;  ///< blocks read ahead; ahead_[0] has tag first_tag_
-  std::deque<ContourElement> ready_;     ///< tip path elements ready to run
-  int64_t first_tag_ = 0, next_tag_ = 0, last_run_tag_ = -1;
-  Vec2 contour_point_;             ///< end of the last programmed element pushed (program coords)
-  bool inserted_piece_ = false;    ///< block_ is a corner the compensation inserted before it
+  bool inserted_piece_ = false;    ///< work_.block is a corner the compensation inserted before it
   int axis_z_ = -1, axis_x_ = -1;  ///< channel axes of the G18 plane
   std::shared_ptr<nc::ParseResult> mdi_;
   nc::ModalState last_modal_;
-  struct JogAxis {
-    int key = 0;            ///< key held: +1, -1, 0
-    double velocity = 0;    ///< continuous jog
-    PathProfile increment;  ///< incremental jog in progress when rate or u < 1
-    double from = 0, to = 0;
-    bool stepping = false;
-    double handwheel_target = 0;  ///< kHandwheel: where the counts want the axis
-    bool handwheel = false;
-    int blocked = 0;  ///< PathGuard stopped the key in this direction: until it is released
-    bool home_requested = false;  ///< AxxC.HOME: homing starts once the axis can move
-    bool homing = false;          ///< the increment under way is homing (to the reference)
-  };
   std::vector<JogAxis> jog_;
   /// A feed axis or X1/Y1 still jogs: braking after a mode change, or an increment under way.
   bool JogsMoving() const;
@@ -472,7 +440,7 @@ class Channel {
   void GuardJog(double dt);
   /// An increment of `axis` to `to_position`, checked whole before it starts: false if stopped.
   bool GuardIncrement(size_t axis, double to_position);
-  /// The block motion about to start (motion_), checked whole (or up to `end`, per channel
+  /// The block motion about to start (work_.motion), checked whole (or up to `end`, per channel
   /// axis): false if stopped. `measuring_path`: a probe's, on which the ruby may touch the part.
   bool GuardBlockMove(const std::string& move, const std::vector<double>* end = nullptr,
                       bool measuring_path = false);
@@ -532,42 +500,8 @@ class Channel {
   /// Stopped during the REPOS subroutine and manual mode entered: the next start runs it again
   /// from `.REPOS` (the operator may have jogged; the interruption point stays the target).
   bool repos_rerun_ = false;
-  /// The interrupted program while the REPOS subroutine runs in its place.
-  struct ProgramInWork {
-    std::unique_ptr<nc::Interpreter> interpreter;
-    nc::PreparedBlock block;
-    BlockMotion motion;
-    PathProfile profile;
-    bool active = false, pending_motion = false, homing = false;
-    double dwell_left_s = 0;
-    std::vector<std::pair<int, uint64_t>> homing_stages;
-    std::deque<nc::PreparedBlock> peeked;
-    std::vector<SpeedTarget> targets;
-    bool continuation_ready = false, source_returned_false = false;
-    std::optional<nc::PreparedBlock> unpushed;
-    ToolRadiusCompensation trc;
-    bool compensating = false, source_done = false;
-    std::deque<nc::PreparedBlock> ahead;
-    std::deque<ContourElement> ready;
-    int64_t first_tag = 0, next_tag = 0, last_run_tag = -1;
-    Vec2 contour_point;
-    double rotary_start = 0, rotary_next_start = 0;
-  };
   // Backward travel (channel_backward.cpp).
   PathMemory path_memory_;
-  struct PathReplay {
-    bool backward_requested = false;  ///< SetBackward
-    bool away = false;          ///< off the interruption point, on the path behind it
-    std::vector<double> home;   ///< the interruption point
-    size_t index = 0;           ///< the path memory's step the axes stand on
-    double u = 1;               ///< where on it (its own parameter)
-    double home_u = 1;          ///< the interruption point on the last step
-    int direction = 0;          ///< a leg in work: -1 back, +1 forward; 0 standing
-    bool stopping = false;      ///< feed hold: the leg brakes to rest on the path
-    double leg_from = 0, leg_to = 0;  ///< the leg on the step (u)
-    BlockMotion leg;
-    PathProfile profile;
-  };
   PathReplay replay_;
   /// A block's motion starts: remembered for backward travel (`rapid`: G00).
   void RecordPath(const BlockMotion& motion, bool rapid);
@@ -578,6 +512,7 @@ class Channel {
   bool StartReplayLeg();
   void ReplayCycle(double dt);
   void RefuseBackward(const std::string& why);
+  /// The interrupted program while the REPOS subroutine runs in its place (in work_).
   ProgramInWork parked_;
   void SwapProgramInWork();
   void CaptureInterruption();
@@ -596,21 +531,6 @@ class Channel {
   bool ToolStorageRestored() const;
   // An NC-controlled tool storage axis (channel_tool_storage.cpp): its command, jogging and
   // MTP's return to the interruption's position.
-  struct ToolStorageAxis {
-    bool taken = false;  ///< its command taken from the feedback at the first NC cycle
-    double command = 0, previous = 0;
-    int key = 0;
-    double velocity = 0;
-    /// A program traverse to `target` at the jogging rapid, asynchronous to the other axes:
-    /// a T word's indexing, MTP (REPOS manual 4.2).
-    bool positioning = false;
-    /// The last traverse was the program's (T, MTP): MRY waits until the drive stands at
-    /// `target`, after the command got there too. A jog since has made `target` a jog's.
-    bool programmed = false;
-    bool stepping = false;     ///< an increment of a jog key press: to `target`
-    double target = 0;
-    int blocked = 0;  ///< PathGuard stopped the jog key in this direction: until released
-  };
   ToolStorageAxis tool_storage_;
   /// MRY: the block waits until the program's traverse (T, MTP) has ended and the axis stands
   /// at its place.
@@ -647,21 +567,6 @@ class Channel {
   /// The REPOS subroutine's @ variables back to the interrupted program (one set, 8.3).
   void HandBackVariables();
   // Fast measurement (channel_measuring.cpp): a measuring instruction's block runs its plan.
-  struct MeasuringRun {
-    nc::PreparedBlock block;  ///< the instruction's block (block_ holds the generated moves)
-    measure::InstructionCall call;
-    measure::MeasuringContext context;
-    measure::MeasuringPlan plan;
-    size_t step = 0;
-    bool moving = false;            ///< the move of step `step - 1` is in work
-    bool measuring_move = false;    ///< ... and it is the measuring path
-    std::optional<double> contact;  ///< the sphere centre when the probe switched
-    bool reversal = false;          ///< the reverse vectors, before `.HOME` runs
-    /// The recorded reverse vectors this instruction's stylus has reached: the plan records its
-    /// way in before it moves (measure::ReverseVectors), the reversal may only retrace it.
-    size_t reached = 0;
-    const measure::MeasuringMessage* message = nullptr;  ///< issued when the steps are done
-  };
   std::optional<MeasuringRun> measuring_;
   std::optional<measure::MeasuringSetting> measuring_setting_;
   measure::ReverseVectors reverse_vectors_;
@@ -695,39 +600,6 @@ class Channel {
   /// Reverse: the stylus travels its reverse vectors back before `.HOME` runs (4.4).
   void StartReversal();
   // Block search (channel_block_search.cpp).
-  struct BlockSearchRun {
-    explicit BlockSearchRun(const BlockSearchParameters& p) : matcher(p) {}
-    ContinueMatcher matcher;
-    std::vector<double> position;  ///< where the program has the axes, machine coordinates
-    DriveSetpoint spindle{DriveMode::kVelocity, 0, 0};  ///< the spindle as the program left it
-    bool found = false;            ///< the block boundary of the continue position (phase 1)
-    bool by_distance = false;      ///< phase 2: searching on for the distance from program start
-    bool ends_program = false;     ///< the search ends the program (type 5, position not found)
-    bool start_requested = false;  ///< a start while the search holds
-    std::vector<double> restart;   ///< the continue position, machine coordinates
-    /// The continue block's motion from its start, and where in it machining goes on; no
-    /// motion: the program goes on with the next block.
-    BlockMotion restart_motion;
-    double restart_u = 0;
-    double restart_distance = 0;  ///< distance from program start at the block's start
-    double restart_length = 0;    ///< the block's length for that distance
-    int64_t blocks = 0;           ///< blocks decoded in search mode
-    /// Under G41/G42 the search runs the tip path, as a run does: block_ is a piece of it, a
-    /// further piece of a block already simulated, or a corner the compensation inserted
-    /// before its block. The per mille lies in the block's own piece: found at an inserted
-    /// corner, the search runs it and takes the own piece that follows.
-    bool further_piece = false, inserted_piece = false, await_own_piece = false;
-    /// Type 1's end position was read (3.1): the program ends before its block.
-    bool end_reached = false;
-    bool return_rest = false;  ///< C is being aligned; the other axes' return follows (4.2.2)
-    /// G31 at the continue position: the return runs on the face's line, as G77 X1/Y1 does.
-    bool face_return = false;
-    /// The block in work waited for a spindle / rotary axis changeover, which has ended: it
-    /// is simulated again from there (channel_block_search_technology.cpp).
-    bool changed_over = false;
-    /// Where the interpreter had the rotary axis before the block in work (RebaseRotaryAxis).
-    double rotary_start = 0;
-  };
   std::optional<BlockSearchRun> search_;
   // #CAX TRACK (cax_track.hpp, channel_cax_track.cpp): on with its options, in a run and in
   // the search alike; a C-only move of a turn beyond ANGLIMIT runs before the block.
@@ -767,7 +639,7 @@ class Channel {
   bool SimulateBlocks();
   /// False while technology waits (PLC acknowledgement, a changeover) or the search ended.
   bool SearchGoesOn() const;
-  /// The search's next block into block_: from the interpreter, or under G41/G42 the next
+  /// The search's next block into work_.block: from the interpreter, or under G41/G42 the next
   /// piece of the tip path. False on an error.
   bool NextSearchBlock();
   bool SimulateBlock(nc::PreparedBlock& b);
@@ -798,8 +670,8 @@ class Channel {
   bool StartBlockSearchHold();
   /// Distance bookkeeping and the breakpoint cut, when a block's motion starts (StartMotion).
   void CountDistance();
-  /// The breakpoint's cut of motion_ if it lies in the block from `from_u` on (0: its start;
-  /// the continue position's u after block search): motion_ ends there, its rest is kept.
+  /// The breakpoint's cut of work_.motion if it lies in the block from `from_u` on (0: its start;
+  /// the continue position's u after block search): work_.motion ends there, its rest is kept.
   void CutAtBreakpoint(double from_u);
   void DistanceCommand(const nc::PreparedBlock& b);
   void RemoveSearchOffset();
@@ -834,23 +706,11 @@ class Channel {
   void AcknowledgeDriveTrips(MasterTelegram& mdt);
   DriveSetpoint SpindleSetpoint() const;
   // Spindle-synchronous block in work (G33/G63/G64, channel_spindle_synchronous.cpp).
-  enum class SyncPhase : uint8_t { kNone, kWaitForSpeed, kStopSpindle, kRunning };
-  struct Synchronous {
-    SyncPhase phase = SyncPhase::kNone;
-    SynchronousPath path;
-    ThreadLaw law;             ///< G33
-    double zero_mark_deg = 0;  ///< G33: phi_sync, unwrapped spindle degrees
-    double spindle_deg = 0;    ///< G33: the spindle's actual position, unwrapped
-    double spindle_last_deg = 0;
-    int direction = 1;             ///< spindle rotation: +1 M3, -1 M4
-    double spindle_start_deg = 0;  ///< G64: phi0, where the spindle's interpolation starts
-    double max_override = 1;       ///< G64: spindle override within the axes' and spindle's limits
-  };
   Synchronous sync_;
   double spindle_previous_deg_ = 0;  ///< G64: the spindle's command at the last NC cycle
   bool StartSynchronous(const AmplifierTelegram& at);
   void SynchronousCycle(const AmplifierTelegram& at, double dt);
-  bool InSynchronousBlock() const { return active_ && sync_.phase != SyncPhase::kNone; }
+  bool InSynchronousBlock() const { return work_.active && sync_.phase != SyncPhase::kNone; }
   std::optional<axes::HeadstockChangeover> headstock_;
   axes::HeadstockPlc headstock_plc_;
   PlcMessage plc_message_;
@@ -860,8 +720,6 @@ class Channel {
   /// The mode whose designation the user interface shows (the last completed changeover's).
   axes::HeadstockMode shown_mode_ = axes::HeadstockMode::kSpindle;
   double rotary_translation_ = 0;  ///< the rotary axis' translation in rotary axis mode
-  /// The interpreter's rotary axis position before the block last read (ReadNext), and after it.
-  double rotary_start_ = 0, rotary_next_start_ = 0;
   /// A changeover to rotary axis mode has ended: the block in work and the interpreter take
   /// the rotary axis' actual position.
   void RebaseRotaryAxis();

@@ -78,15 +78,15 @@ bool Channel::StartReplay() {
       RefuseBackward("block search has not returned to the contour yet");
       return true;
     }
-    if (active_ && profile_.rate != 0) {
+    if (work_.active && work_.profile.rate != 0) {
       RefuseBackward("the axes are still braking");
       return true;
     }
     double u = -1;
     if (!path_memory_.empty()) {
       const BlockMotion& last = path_memory_.back().motion;
-      if (active_ && SameMotion(last, motion_))
-        u = profile_.u;
+      if (work_.active && SameMotion(last, work_.motion))
+        u = work_.profile.u;
       else if (search_ && bs_state_ == BlockSearchState::kWaitForContinueContour &&
                SameMotion(last, search_->restart_motion))
         u = search_->restart_u;

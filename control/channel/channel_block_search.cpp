@@ -71,14 +71,14 @@ void Channel::BeginBlockSearch() {
   breakpoint_pending_ = false;
   breakpoint_ = 0;
   RemoveSearchOffset();
-  if (mode_ != ChannelMode::kAutomatic || !interpreter_) return;
+  if (mode_ != ChannelMode::kAutomatic || !work_.interpreter) return;
   if (const std::string e = CheckBlockSearch(bs_started_); !e.empty()) {
     Fail("block search: " + e, kMsgBlockSearch);
     return;
   }
   breakpoint_ = bs_started_.breakpoint_position * 1e-4;
   if (bs_started_.file_offset > 0 &&
-      !interpreter_->StartAt(static_cast<uint32_t>(bs_started_.file_offset))) {
+      !work_.interpreter->StartAt(static_cast<uint32_t>(bs_started_.file_offset))) {
     Fail(programs_[0]->files[0] + ": error: the entry point mc_command_file_offset_w " +
              std::to_string(bs_started_.file_offset) + " lies beyond the program's last block",
          kMsgBlockSearch);
@@ -88,7 +88,7 @@ void Channel::BeginBlockSearch() {
   search_.emplace(bs_started_);
   search_->position = commanded_;
   search_->spindle = spindle_;
-  interpreter_->SetEveryBlock(true);
+  work_.interpreter->SetEveryBlock(true);
   bs_state_ = BlockSearchState::kWaitForPlcOn;
   bs_command_ = true;
 }
@@ -114,8 +114,8 @@ bool Channel::SearchCycle(const AmplifierTelegram& at) {
       if (waiting_for_ != axes::HeadstockMode::kNone) {
         // The block waits for its changeover as in a run (channel_block_search_technology.cpp).
         if (headstock_->mode() != waiting_for_) return true;
-        EndSearchChangeover(block_);
-        if (!SimulateBlock(block_) || !SearchGoesOn()) return true;
+        EndSearchChangeover(work_.block);
+        if (!SimulateBlock(work_.block) || !SearchGoesOn()) return true;
       }
       SimulateBlocks();
       return true;
@@ -144,7 +144,7 @@ bool Channel::SearchCycle(const AmplifierTelegram& at) {
       if (ApplySearchOffset()) ContinueAfterSearch();
       return true;
     case BlockSearchState::kReturningToContour:
-      if (active_) return true;  // the return move interpolates in Tick
+      if (work_.active) return true;  // the return move interpolates in Tick
       if (s.return_rest) {
         // 4.2.2: C is aligned; now the straight return of the other axes.
         s.return_rest = false;
@@ -173,7 +173,7 @@ bool Channel::SimulateBlocks() {
   for (int n = 0; n < kSearchBlocksPerCycle; ++n) {
     if (!NextSearchBlock()) return false;
     ++search_->blocks;
-    if (!SimulateBlock(block_)) return false;
+    if (!SimulateBlock(work_.block)) return false;
     if (!SearchGoesOn()) return true;
   }
   return true;
@@ -190,47 +190,49 @@ bool Channel::NextSearchBlock() {
   s.further_piece = s.inserted_piece = false;
   inserted_piece_ = false;
   const auto text_ended = [&] {
-    if (interpreter_->error()) {
-      Fail(nc::Format(*interpreter_->error(), {interpreter_->ErrorFile()}), kMsgProgramError);
+    if (work_.interpreter->error()) {
+      Fail(nc::Format(*work_.interpreter->error(), {work_.interpreter->ErrorFile()}),
+           kMsgProgramError);
       return false;
     }
-    block_ = nc::PreparedBlock{};
-    block_.end = true;  // the text ended without M30: its end all the same
-    block_.motion = nc::Motion::kNone;
-    block_.block = -1;
+    work_.block = nc::PreparedBlock{};
+    work_.block.end = true;  // the text ended without M30: its end all the same
+    work_.block.motion = nc::Motion::kNone;
+    work_.block.block = -1;
     return true;
   };
-  if (!compensating_) {
-    if (headstock_) s.rotary_start = interpreter_->position()[config_.rotary_axis];
-    if (!ReadSource(block_)) return text_ended();
-    if (block_.modal.compensation == nc::Compensation::kOff || block_.motion == nc::Motion::kNone)
+  if (!work_.compensating) {
+    if (headstock_) s.rotary_start = work_.interpreter->position()[config_.rotary_axis];
+    if (!ReadSource(work_.block)) return text_ended();
+    if (work_.block.modal.compensation == nc::Compensation::kOff ||
+        work_.block.motion == nc::Motion::kNone)
       return true;
     // G41/G42: the search reads ahead through the compensation as the run does
     // (NextBlock), so that the tip path it simulates is the one the run machines, and the
     // run takes over the compensation's state at the continue position.
     if (axis_z_ < 0 || axis_x_ < 0) {
-      Fail(*ProgramOf(block_.program), block_.block,
+      Fail(*ProgramOf(work_.block.program), work_.block.block,
            "tool nose radius compensation G41/G42 needs the axes Z and X", kMsgNotAvailable);
       return false;
     }
-    compensating_ = true;
-    source_done_ = false;
-    trc_.Reset();
-    ahead_.clear();
-    ready_.clear();
-    first_tag_ = next_tag_ = 0;
-    last_run_tag_ = -1;
+    work_.compensating = true;
+    work_.source_done = false;
+    work_.trc.Reset();
+    work_.ahead.clear();
+    work_.ready.clear();
+    work_.first_tag = work_.next_tag = 0;
+    work_.last_run_tag = -1;
     // Where the program has the axes: the search moves none.
-    contour_point_ = {s.position[axis_z_] - translation_[axis_z_],
-                      s.position[axis_x_] - translation_[axis_x_]};
-    if (!PushAhead(block_)) return false;
+    work_.contour_point = {s.position[axis_z_] - translation_[axis_z_],
+                           s.position[axis_x_] - translation_[axis_x_]};
+    if (!PushAhead(work_.block)) return false;
   }
   switch (FillReadyPiece(true)) {
     case Compensated::kFailed:
       return false;
     case Compensated::kDrained:
-      if (source_done_) {
-        source_done_ = false;
+      if (work_.source_done) {
+        work_.source_done = false;
         return text_ended();
       }
       return NextSearchBlock();
@@ -238,9 +240,9 @@ bool Channel::NextSearchBlock() {
       break;
   }
   const ContourElement e = TakeReadyPiece();
-  s.further_piece = e.tag == last_run_tag_;
+  s.further_piece = e.tag == work_.last_run_tag;
   s.inserted_piece = inserted_piece_ = e.inserted;
-  last_run_tag_ = e.tag;
+  work_.last_run_tag = e.tag;
   return true;
 }
 
@@ -378,7 +380,8 @@ bool Channel::SimulateMotion(nc::PreparedBlock& b, bool boundary) {
     // had them (8), and the blocks after it count from there, as after a run's G74 they count
     // from the reference points (NextHomingStage).
     for (size_t a = 0; a < s.position.size(); ++a)
-      if (b.programmed >> a & 1) interpreter_->SetAxisPosition(a, s.position[a] - translation_[a]);
+      if (b.programmed >> a & 1)
+        work_.interpreter->SetAxisPosition(a, s.position[a] - translation_[a]);
   }
   const double length = distance_on_ ? DistanceOf(motion, config_.axes) : 0;
   const double permille = bs_started_.covered_distance / 1000;
@@ -471,8 +474,8 @@ bool Channel::FoundContinuePosition(const nc::PreparedBlock& b, const BlockMotio
 void Channel::EndSearchMode() {
   BlockSearchRun& s = *search_;
   // Type 1 with an end position watches the blocks of the real run too (NextBlock).
-  interpreter_->SetEveryBlock(bs_started_.type == BlockSearchType::kFileOffset &&
-                              bs_started_.end.offset >= 0);
+  work_.interpreter->SetEveryBlock(bs_started_.type == BlockSearchType::kFileOffset &&
+                                   bs_started_.end.offset >= 0);
   if (s.ends_program) {
     // 3.4, 10: the whole program ran in block search mode.
     bs_state_ = BlockSearchState::kInactive;
@@ -504,7 +507,7 @@ void Channel::DistanceCommand(const nc::PreparedBlock& b) {
 
 void Channel::CountDistance() {
   block_distance_start_ = distance_;
-  block_distance_ = distance_on_ ? DistanceOf(motion_, config_.axes) : 0;
+  block_distance_ = distance_on_ ? DistanceOf(work_.motion, config_.axes) : 0;
   distance_ += block_distance_;
   breakpoint_rest_.reset();
   CutAtBreakpoint(0);
@@ -521,8 +524,8 @@ void Channel::CutAtBreakpoint(double from_u) {
   breakpoint_pending_ = true;
   breakpoint_u_ = u;
   if (u < 1 - 1e-12) {
-    breakpoint_rest_ = motion_;
-    motion_ = Truncated(motion_, u);
+    breakpoint_rest_ = work_.motion;
+    work_.motion = Truncated(work_.motion, u);
   }
 }
 
@@ -556,19 +559,19 @@ void Channel::UpdateBlockSearchStatus() {
   BlockSearchStatus& st = bs_status_;
   st.state = bs_state_;
   st.command = bs_command_;
-  const bool moving = motion_.moves && (active_ || breakpoint_hold_);
+  const bool moving = work_.motion.moves && (work_.active || breakpoint_hold_);
   // A corner the compensation inserted before its block is not yet the block's own path: the
   // per mille the search takes is measured in that (SimulateMotion); nor is the C-only turn of
   // #CAX TRACK before its block, which has not started counting its distance yet.
   const bool aside = inserted_piece_ || cax_aligning_;
-  double u = moving && !aside ? std::clamp(profile_.u, 0.0, 1.0) : 0;
+  double u = moving && !aside ? std::clamp(work_.profile.u, 0.0, 1.0) : 0;
   // The breakpoint cut the block: its profile runs over the first part only.
   if (moving && breakpoint_rest_) u *= breakpoint_u_;
   st.covered_distance = u * 1000;
-  st.dist_prog_start = (active_ || breakpoint_hold_) && !cax_aligning_
+  st.dist_prog_start = (work_.active || breakpoint_hold_) && !cax_aligning_
                            ? block_distance_start_ + u * block_distance_
                            : distance_;
-  st.block_count = block_.block_count;
+  st.block_count = work_.block.block_count;
   st.path_deviation = 0;
   st.continue_position.clear();
   if (search_ && !search_->restart.empty() && !breakpoint_hold_ &&
@@ -610,7 +613,8 @@ void Channel::UpdateBlockSearchStatus() {
   // for the tool storage axis, block preparation delivers nothing: the interpolator's input
   // is empty.
   if (waiting_for_ != axes::HeadstockMode::kNone) sc |= kWaitTechnoAck;
-  if (running && !active_ && (waiting_for_ != axes::HeadstockMode::kNone || tool_storage_wait_))
+  if (running && !work_.active &&
+      (waiting_for_ != axes::HeadstockMode::kNone || tool_storage_wait_))
     sc |= kIpoInputEmpty;
   // Block search 4.2.1: the axes change hands at standstill only; until then the channel
   // waits for the exchange it asked for. While its output is suspended a program (not a
@@ -618,9 +622,9 @@ void Channel::UpdateBlockSearchStatus() {
   if ((suspend_requested_ || axes_elsewhere_) != output_suspended_) sc |= kWaitForAxes;
   if (output_suspended_ && (running || hold) && bs_state_ == BlockSearchState::kInactive)
     sc |= kIpoInputDisabled;
-  if (running && active_ && override_ == 0)
-    sc |= block_.motion == nc::Motion::kRapid ? kOverrideRapidZero : kOverrideZero;
-  if (dwell_left_s_ > 0) sc |= kDelayTime;
+  if (running && work_.active && override_ == 0)
+    sc |= work_.block.motion == nc::Motion::kRapid ? kOverrideRapidZero : kOverrideZero;
+  if (work_.dwell_left_s > 0) sc |= kDelayTime;
   if (state_ == ChannelState::kError) sc |= kChannelError;
   // PathGuard stops a move before a contact with an NC error (kMsgCollision): the motion
   // stands after a detected collision until Control-Reset.

@@ -49,10 +49,10 @@ void Channel::EndSearchChangeover(nc::PreparedBlock& b) {
   s.position[r] = commanded_[r];
   // RebaseRotaryAxis: an increment counts from here; the interpreter goes on from the block's
   // corrected end. Under G41/G42 the blocks ahead are prepared already, as in a run.
-  if (compensating_ || b.homing) return;
+  if (work_.compensating || b.homing) return;
   const double actual = commanded_[r] - translation_[r];
   if (b.modal.incremental && (b.programmed >> r & 1)) b.target[r] += actual - s.rotary_start;
-  interpreter_->SetAxisPosition(r, b.target[r]);
+  work_.interpreter->SetAxisPosition(r, b.target[r]);
 }
 
 bool Channel::SimulateMeasuringInstruction(const nc::PreparedBlock& b) {

@@ -39,7 +39,7 @@ std::optional<bool> Channel::CaxTrackInstruction(const nc::Program& program,
   // The program goes on from where tracking left C: the interpreter still has the C the
   // program last wrote, which the blocks after OFF would otherwise go back to.
   const auto ci = static_cast<size_t>(c);
-  interpreter_->SetAxisPosition(ci, c_machine - translation_[ci]);
+  work_.interpreter->SetAxisPosition(ci, c_machine - translation_[ci]);
   if (!(b.programmed >> c & 1)) b.target[ci] = c_machine - translation_[ci];
   return true;
 }
@@ -103,24 +103,24 @@ bool Channel::TrackC(nc::PreparedBlock& b, const std::vector<double>& from, doub
 bool Channel::StartCaxAlignment(double to) {
   // The C-only move of a turn beyond ANGLIMIT, at C's rapid limits, the path standing.
   const auto ci = static_cast<size_t>(TrackedAxis());
-  motion_ = BlockMotion{};
-  motion_.start = commanded_;
-  motion_.end = commanded_;
-  motion_.end[ci] = to;
+  work_.motion = BlockMotion{};
+  work_.motion.start = commanded_;
+  work_.motion.end = commanded_;
+  work_.motion.end[ci] = to;
   const double distance = std::abs(to - commanded_[ci]);
-  profile_ = PathProfile{};
-  continuation_ready_ = false;
+  work_.profile = PathProfile{};
+  work_.continuation_ready = false;
   carry_speed_ = carry_accel_ = carry_leftover_ = 0;
   if (distance < 1e-12) return true;
   const ChannelAxis& axis = config_.axes[ci];
-  motion_.moves = true;
-  motion_.length = distance;
-  motion_.max_rate = axis.rapid_per_s / distance;
-  motion_.max_accel = axis.acceleration / distance;
-  profile_.max_rate = motion_.max_rate;
-  profile_.max_accel = motion_.max_accel;
-  if (!repos_run_) RecordPath(motion_, true);
-  active_ = true;
+  work_.motion.moves = true;
+  work_.motion.length = distance;
+  work_.motion.max_rate = axis.rapid_per_s / distance;
+  work_.motion.max_accel = axis.acceleration / distance;
+  work_.profile.max_rate = work_.motion.max_rate;
+  work_.profile.max_accel = work_.motion.max_accel;
+  if (!repos_run_) RecordPath(work_.motion, true);
+  work_.active = true;
   return true;
 }
 

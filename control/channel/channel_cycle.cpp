@@ -21,11 +21,11 @@ NcCycleOwner Channel::ProgramCycleOwner() const {
   if (!aux_output_.empty()) return NcCycleOwner::kAuxAcknowledge;
   if (waiting_for_ != axes::HeadstockMode::kNone) return NcCycleOwner::kChangeover;
   if (tool_storage_wait_) return NcCycleOwner::kToolStorage;
-  if (pending_motion_) return NcCycleOwner::kMotionStart;
-  if (dwell_left_s_ > 0) return NcCycleOwner::kDwell;
+  if (work_.pending_motion) return NcCycleOwner::kMotionStart;
+  if (work_.dwell_left_s > 0) return NcCycleOwner::kDwell;
   if (orienting_) return NcCycleOwner::kSpindle;
-  if (measuring_ && !active_) return NcCycleOwner::kMeasuring;
-  if (!active_ && state_ == ChannelState::kRunning) return NcCycleOwner::kNextBlock;
+  if (measuring_ && !work_.active) return NcCycleOwner::kMeasuring;
+  if (!work_.active && state_ == ChannelState::kRunning) return NcCycleOwner::kNextBlock;
   return NcCycleOwner::kBlockInWork;
 }
 
@@ -39,18 +39,19 @@ void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, doub
     case NcCycleOwner::kChangeover:
       // Block preparation and execution wait until the changeover ends (C-axis manual 1.2).
       if (headstock_->mode() == waiting_for_)
-        finished = RunBlock(at) && !active_ && dwell_left_s_ <= 0 && !orienting_ &&
+        finished = RunBlock(at) && !work_.active && work_.dwell_left_s <= 0 && !orienting_ &&
                    waiting_for_ == axes::HeadstockMode::kNone;
       else if (state_ == ChannelState::kRunning)
         headstock_->Request(waiting_for_);  // again, if a jog key turned the changeover round
       break;
     case NcCycleOwner::kMotionStart:
-      pending_motion_ = false;
-      if (StartMotion(at)) finished = !active_ && dwell_left_s_ <= 0 && !homing_ && !orienting_;
+      work_.pending_motion = false;
+      if (StartMotion(at))
+        finished = !work_.active && work_.dwell_left_s <= 0 && !work_.homing && !orienting_;
       break;
     case NcCycleOwner::kDwell:
-      if (state_ == ChannelState::kRunning) dwell_left_s_ -= dt;
-      finished = dwell_left_s_ <= 0;
+      if (state_ == ChannelState::kRunning) work_.dwell_left_s -= dt;
+      finished = work_.dwell_left_s <= 0;
       break;
     case NcCycleOwner::kSpindle:
       // M19 ends when the spindle reports itself in position, G77 Sj=0 when its spindles
@@ -76,7 +77,7 @@ void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, doub
         state_ = ChannelState::kHold;
         break;
       }
-      finished = NextBlock(at) && !active_ && dwell_left_s_ <= 0 && !orienting_ &&
+      finished = NextBlock(at) && !work_.active && work_.dwell_left_s <= 0 && !orienting_ &&
                  waiting_for_ == axes::HeadstockMode::kNone;
       if (finished && measuring_) finished = MeasuringCycle(at);
       break;
@@ -89,26 +90,26 @@ void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, doub
   // axes are repositioned (REPOS manual 2.1): interpolating it would take them back.
   const bool frozen = state_ == ChannelState::kHold && interruption_ &&
                       interruption_->left_contour && !repos_run_;
-  if (active_ && !frozen) {
+  if (work_.active && !frozen) {
     if (sync_.phase != SyncPhase::kNone)
       SynchronousCycle(at, dt);
     else
       Interpolate(dt);
     WatchMeasuringMove(at);
-    finished = !active_;
+    finished = !work_.active;
     if (finished && breakpoint_pending_) {
       HoldAtBreakpoint();
       finished = false;
     }
     // A measuring instruction's move has ended: its next step follows at once.
     if (finished && measuring_) finished = MeasuringCycle(at);
-    if (finished && homing_) finished = !NextHomingStage();
+    if (finished && work_.homing) finished = !NextHomingStage();
     // C is aligned (#CAX TRACK): the block's own motion follows as one unit with it.
     if (finished && std::exchange(cax_aligning_, false))
-      finished = StartMotion(at) && !active_ && !orienting_;
+      finished = StartMotion(at) && !work_.active && !orienting_;
     if (finished && carry_speed_ > 0) {
       // Blended: the next block runs on from here in the same cycle.
-      finished = NextBlock(at) && !active_ && !orienting_;
+      finished = NextBlock(at) && !work_.active && !orienting_;
       carry_speed_ = carry_accel_ = carry_leftover_ = 0;
     }
   }

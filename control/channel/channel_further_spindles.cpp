@@ -70,7 +70,7 @@ bool Channel::CheckReposFurtherSpindles(const nc::Program& program) {
   // 4.2: 'G77 Sj 0' restores spindle j's most recent speed. A further spindle has no rotary
   // axis mode, so the mode rule of 4.2's instruction does not concern it. Mj= has no meaning
   // in a G77 block: its spindle takes its former direction.
-  for (const nc::AuxFunction& f : block_.aux) {
+  for (const nc::AuxFunction& f : work_.block.aux) {
     if (!IsSpindleWord(f)) continue;
     bool known = false;
     for (const ChannelSpindle& s : config_.spindles) known |= s.index == f.index;
@@ -81,7 +81,7 @@ bool Channel::CheckReposFurtherSpindles(const nc::Program& program) {
       text = "G77 restores spindle S" + std::to_string(f.index) +
              "'s direction itself: program G77 S" + std::to_string(f.index) + "=0";
     if (text.empty()) continue;
-    Fail(nc::Format({WordPos(program, block_, Address(f)), WordText(f) + ": " + text},
+    Fail(nc::Format({WordPos(program, work_.block, Address(f)), WordText(f) + ": " + text},
                     program.files),
          kMsgNotAvailable);
     return false;
@@ -91,7 +91,7 @@ bool Channel::CheckReposFurtherSpindles(const nc::Program& program) {
 
 void Channel::RestoreFurtherSpindles(const AmplifierTelegram& at) {
   bool changed = false, named = false;
-  for (const nc::AuxFunction& f : block_.aux) {
+  for (const nc::AuxFunction& f : work_.block.aux) {
     if (f.letter != 'S' || SpindleIndex(f.index) < 2) continue;
     for (size_t k = 0; k < config_.spindles.size(); ++k)
       if (config_.spindles[k].index == f.index && k < interruption_->further_spindles.size()) {

@@ -45,7 +45,7 @@ bool Channel::EventSet(int n) const {
 }
 
 std::vector<double> Channel::StylusTranslation(int sphere) const {
-  nc::ModalState m = block_.modal;
+  nc::ModalState m = work_.block.modal;
   if (measuring_setting_ && measuring_pages_) {
     const int stylus = measuring_setting_->stylus;
     m.tool = measuring_pages_->stylus[static_cast<size_t>(stylus - 1)].tool_number;
@@ -66,12 +66,12 @@ measure::MeasuringContext Channel::MeasuringContextNow() const {
   }
   c.turning = x && z && !y;
   c.tool_list = !config_.tools.edges.empty();
-  const nc::ModalState& m = measuring_ ? measuring_->block.modal : block_.modal;
+  const nc::ModalState& m = measuring_ ? measuring_->block.modal : work_.block.modal;
   c.compensation = m.compensation;
   // The sphere the instruction names (MOVE D, PROBE I): the position is its centre's.
   int sphere = 1;
-  if (!block_.calls.empty()) {
-    const nc::InstructionCall& call = block_.calls.front();
+  if (!work_.block.calls.empty()) {
+    const nc::InstructionCall& call = work_.block.calls.front();
     const size_t at = call.instruction == nc::Instruction::kMove    ? 3
                       : call.instruction == nc::Instruction::kProbe ? 8
                                                                     : call.args.size();
@@ -90,7 +90,8 @@ measure::MeasuringContext Channel::MeasuringContextNow() const {
         static_cast<int16_t>(nc::ModalGroupValue(m, 'G', measure::kSavedGGroups[i], known));
   }
   for (size_t i = 0; i < c.variables.size(); ++i)
-    c.variables[i] = interpreter_ ? interpreter_->Variable("@" + std::to_string(100 + i)) : 0;
+    c.variables[i] =
+        work_.interpreter ? work_.interpreter->Variable("@" + std::to_string(100 + i)) : 0;
   c.feed = m.feed;
   return c;
 }
@@ -100,47 +101,47 @@ void Channel::ApplyMeasuringState(const measure::MeasuringPlan& plan) {
     // SETTING: its G codes are modal in the program from here (2.1: "Activating the G
     // functions"), as in the blocks the real control generates.
     measuring_setting_ = plan.setting;
-    nc::ModalState m = interpreter_->modal();
+    nc::ModalState m = work_.interpreter->modal();
     m.plane = plan.setting->plane;
     m.tool_length = plan.setting->tool_length;
     m.diameter = plan.setting->diameter;
-    interpreter_->SetModal(m);
+    work_.interpreter->SetModal(m);
   }
   if (plan.restore_variables)
     for (size_t i = 0; i < plan.restore_variables->size(); ++i)
-      interpreter_->SetVariable("@" + std::to_string(100 + i), (*plan.restore_variables)[i]);
+      work_.interpreter->SetVariable("@" + std::to_string(100 + i), (*plan.restore_variables)[i]);
   if (plan.restore_feed) {
-    nc::ModalState m = interpreter_->modal();
+    nc::ModalState m = work_.interpreter->modal();
     m.feed = *plan.restore_feed;
-    interpreter_->SetModal(m);
+    work_.interpreter->SetModal(m);
   }
 }
 
 bool Channel::StartMeasuring(const AmplifierTelegram& at) {
   (void)at;
-  const nc::Program& program = *ProgramOf(block_.program);
+  const nc::Program& program = *ProgramOf(work_.block.program);
   auto fail = [&](const std::string& text) {
-    Fail(program, block_.block, text, kMsgMeasuringInstruction);
+    Fail(program, work_.block.block, text, kMsgMeasuringInstruction);
     return false;
   };
   // 4.1 Entering the NC Instructions: one instruction per block, nothing else in it, and not a
   // skippable block: the instruction becomes several blocks of its own.
-  if (block_.calls.size() > 1)
+  if (work_.block.calls.size() > 1)
     return fail("only one measuring instruction may be programmed in a block (4.1)");
-  if (block_.instructions.size() > 1 || block_.programmed != 0 || !block_.aux.empty() ||
-      !block_.events.empty() || block_.dwell_s > 0 || block_.homing || block_.repos ||
-      block_.set_position)
+  if (work_.block.instructions.size() > 1 || work_.block.programmed != 0 ||
+      !work_.block.aux.empty() || !work_.block.events.empty() || work_.block.dwell_s > 0 ||
+      work_.block.homing || work_.block.repos || work_.block.set_position)
     return fail("a block with a measuring instruction may hold no other NC syntax (4.1)");
-  if (program.blocks[static_cast<size_t>(block_.block)].skippable)
+  if (program.blocks[static_cast<size_t>(work_.block.block)].skippable)
     return fail("a block with a measuring instruction may not be a skipped block (4.1)");
   if (!measuring_pages_) return fail("fast measurement needs its machine data pages (7.1)");
 
   MeasuringRun run;
-  run.block = block_;
-  run.call = block_.calls.front();
+  run.block = work_.block;
+  run.call = work_.block.calls.front();
   measuring_.emplace(std::move(run));
   measuring_->context = MeasuringContextNow();
-  measuring_->context.compensation = block_.modal.compensation;
+  measuring_->context.compensation = work_.block.modal.compensation;
   const measure::ReverseVectors before = reverse_vectors_;
   measuring_->plan = measure::PlanInstruction(measuring_->call, measuring_->context,
                                               *measuring_pages_, reverse_vectors_);
@@ -158,7 +159,7 @@ bool Channel::StartMeasuring(const AmplifierTelegram& at) {
   }
   const measure::MeasuringPlan& plan = measuring_->plan;
   if (!plan.warning.empty()) {
-    const nc::SourcePos& pos = program.blocks[static_cast<size_t>(block_.block)].pos;
+    const nc::SourcePos& pos = program.blocks[static_cast<size_t>(work_.block.block)].pos;
     measuring_warnings_.push_back(
         (pos.file < program.files.size() ? program.files[pos.file] : "<input>") + ":" +
         std::to_string(pos.line) + ":" + std::to_string(pos.column) +
@@ -167,7 +168,7 @@ bool Channel::StartMeasuring(const AmplifierTelegram& at) {
   ApplyMeasuringState(plan);
   // The blocks generated for the instruction run in the setting's G codes (a plan that sets
   // has nothing to restore: the modal state now is the setting's).
-  if (plan.setting) measuring_->block.modal = interpreter_->modal();
+  if (plan.setting) measuring_->block.modal = work_.interpreter->modal();
   if (plan.message) {
     // CORRECTION: the Q function goes to the PLC first, the program stops when it has
     // acknowledged it (6.1).
@@ -209,7 +210,7 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
     b.target[static_cast<size_t>(a)] = step.target[static_cast<size_t>(n)];
     b.programmed |= uint64_t{1} << a;
   }
-  block_ = b;
+  work_.block = b;
   for (size_t a = 0; a < commanded_.size(); ++a)
     if (!homed_[a] && (b.programmed >> a & 1)) {
       Fail(program, b.block,
@@ -217,15 +218,15 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
       return false;
     }
   sync_.phase = SyncPhase::kNone;
-  if (const auto error = PlanBlockMotion(block_, commanded_, translation_, config_.axes, 0, motion_,
-                                         FollowUpAxes(block_))) {
+  if (const auto error = PlanBlockMotion(work_.block, commanded_, translation_, config_.axes, 0,
+                                         work_.motion, FollowUpAxes(work_.block))) {
     Fail(program, b.block, error->text, error->number);
     return false;
   }
-  profile_ = PathProfile{};
-  continuation_ready_ = false;
+  work_.profile = PathProfile{};
+  work_.continuation_ready = false;
   carry_speed_ = carry_accel_ = carry_leftover_ = 0;
-  if (!motion_.moves) return true;
+  if (!work_.motion.moves) return true;
   // The approach moves are checked before they start, as G77's: the ruby touching
   // the part on them is a collision. The measuring path is checked up to where the sphere
   // meets the nominal surface (there PathGuard lets the ruby touch the part): beyond it, on the
@@ -234,7 +235,7 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
   if (step.kind == measure::MeasuringStep::Kind::kRapid) {
     if (!GuardBlockMove("probe approach")) return false;
   } else {
-    std::vector<double> end = motion_.end;
+    std::vector<double> end = work_.motion.end;
     const int axis = SettingAxis(measuring_->plan.measuring_axis);
     if (axis >= 0 && measuring_setting_) {
       const auto a = static_cast<size_t>(axis);
@@ -245,16 +246,16 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
           measuring_->plan.command - measuring_->plan.direction * r + translation_[a];
       const double dir = measuring_->plan.direction;
       // Not beyond the move's end, nor back behind its start.
-      end[a] = dir * (touch - motion_.start[a]) <= 0 ? motion_.start[a]
-               : dir * (touch - motion_.end[a]) >= 0 ? motion_.end[a]
-                                                     : touch;
+      end[a] = dir * (touch - work_.motion.start[a]) <= 0 ? work_.motion.start[a]
+               : dir * (touch - work_.motion.end[a]) >= 0 ? work_.motion.end[a]
+                                                          : touch;
     }
     if (!GuardBlockMove("measuring path", &end, true)) return false;
   }
-  profile_.max_rate = motion_.max_rate;
-  profile_.max_accel = motion_.max_accel;
-  profile_.max_jerk = motion_.max_jerk;
-  active_ = true;
+  work_.profile.max_rate = work_.motion.max_rate;
+  work_.profile.max_accel = work_.motion.max_accel;
+  work_.profile.max_jerk = work_.motion.max_jerk;
+  work_.active = true;
   measuring_->moving = true;
   measuring_->measuring_move = step.kind == measure::MeasuringStep::Kind::kMeasure;
   return true;
@@ -296,10 +297,10 @@ void Channel::WatchProbeCollision(const AmplifierTelegram& at) {
   // vmt's reading of the NC's reaction: the move in work ends at once (as the latch ends a
   // measuring path) and Q9999 goes to the PLC with the message; fault category 1 leaves only
   // the reverse program, which takes the stylus back the way it came (4.4).
-  active_ = false;
-  dwell_left_s_ = 0;
-  int32_t block = block_.block;
-  uint32_t program_index = block_.program;
+  work_.active = false;
+  work_.dwell_left_s = 0;
+  int32_t block = work_.block.block;
+  uint32_t program_index = work_.block.program;
   if (measuring_) {
     measuring_->moving = false;
     measuring_->measuring_move = false;
@@ -320,7 +321,7 @@ void Channel::WatchProbeCollision(const AmplifierTelegram& at) {
 }
 
 void Channel::WatchMeasuringMove(const AmplifierTelegram& at) {
-  if (!measuring_ || !measuring_->moving || !active_) return;
+  if (!measuring_ || !measuring_->moving || !work_.active) return;
   // Outside the measuring path the probe is watched for collisions (WatchProbeCollision).
   if (!measuring_->measuring_move) return;
   // The measuring path: the drive of the measuring axis latched its position at the probe's
@@ -336,7 +337,7 @@ void Channel::WatchMeasuringMove(const AmplifierTelegram& at) {
       Latched(stylus.pin5 ? probe.probe2 : probe.probe1, stylus.normally_closed);
   if (!latch) return;
   measuring_->contact = latch->measured_value - translation_[static_cast<size_t>(axis)];
-  active_ = false;  // the axes stop where they are this cycle
+  work_.active = false;  // the axes stop where they are this cycle
 }
 
 bool Channel::MeasuringCycle(const AmplifierTelegram& at) {
@@ -409,7 +410,7 @@ bool Channel::MeasuringCycle(const AmplifierTelegram& at) {
         ++run.step;
         run.contact.reset();
         if (!StartMeasuringMove(s)) return false;
-        if (active_) return false;
+        if (work_.active) return false;
         run.moving = false, run.measuring_move = false;
         if (!run.reversal) TrackReverseVectors();
         break;
@@ -468,14 +469,14 @@ void Channel::EndMeasuring() {
   if (!measuring_) return;
   const nc::PreparedBlock block = measuring_->block;
   measuring_.reset();
-  block_ = block;
-  const nc::ModalState m = interpreter_ ? interpreter_->modal() : block.modal;
+  work_.block = block;
+  const nc::ModalState m = work_.interpreter ? work_.interpreter->modal() : block.modal;
   UpdateTranslation(m, *ProgramOf(block.program), block.block);
-  if (!interpreter_) return;
+  if (!work_.interpreter) return;
   // The program goes on from where the stylus stands (its next block's unprogrammed axes stay).
   std::vector<double> position(commanded_.size());
   for (size_t a = 0; a < position.size(); ++a) position[a] = commanded_[a] - translation_[a];
-  interpreter_->SetPosition(position);
+  work_.interpreter->SetPosition(position);
 }
 
 void Channel::StartReversal() {
@@ -491,7 +492,7 @@ void Channel::StartReversal() {
     return;
   }
   MeasuringRun run;
-  run.block = block_;
+  run.block = work_.block;
   run.reversal = true;
   uint8_t axes = 0;
   for (int n = 0; n < 3; ++n)

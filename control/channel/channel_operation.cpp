@@ -29,7 +29,7 @@ bool Channel::SetMode(ChannelMode mode) {
   // MDI and an interrupted automatic program do not share the interpreter: MDI needs the
   // program ended or reset first, and an interrupted MDI sequence ("execute in manual mode",
   // REPOS manual 2.1) goes on in MDI, not in automatic.
-  const bool interrupted = state_ == ChannelState::kHold && interpreter_;
+  const bool interrupted = state_ == ChannelState::kHold && work_.interpreter;
   if (interrupted && mode != ChannelMode::kManual &&
       (mode == ChannelMode::kMdi) != running_mdi_)
     return false;
@@ -55,8 +55,8 @@ bool Channel::SetMode(ChannelMode mode) {
       repos_rerun_ = true;
     // REPOS manual 2.1: interrupted MDI blocks keep their interpreter through manual mode.
     if ((mode == ChannelMode::kMdi || mode_ == ChannelMode::kMdi) && !interrupted) {
-      if (interpreter_) last_modal_ = interpreter_->modal();
-      interpreter_.reset();
+      if (work_.interpreter) last_modal_ = work_.interpreter->modal();
+      work_.interpreter.reset();
       if (state_ == ChannelState::kEnded) state_ = ChannelState::kIdle;
     }
   }
@@ -151,10 +151,10 @@ void Channel::Reset() {
   error_.clear();
   error_number_ = 0;
   start_deferred_ = false;
-  active_ = false;
-  homing_ = false;
+  work_.active = false;
+  work_.homing = false;
   reversing_ = false;
-  dwell_left_s_ = 0;
+  work_.dwell_left_s = 0;
   orienting_ = further_restoring_ = false;
   aux_output_.clear();
   programmed_stop_.Leave();
@@ -181,8 +181,8 @@ void Channel::Reset() {
   const bool backward = replay_.backward_requested;
   replay_ = PathReplay{};
   replay_.backward_requested = backward;
-  if (interpreter_) last_modal_ = interpreter_->modal();
-  interpreter_.reset();
+  if (work_.interpreter) last_modal_ = work_.interpreter->modal();
+  work_.interpreter.reset();
   DropLookahead();
   previous_ = commanded_;
   spindle_ = {DriveMode::kVelocity, 0, 0};

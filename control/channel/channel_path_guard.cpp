@@ -68,13 +68,13 @@ bool Channel::GuardIncrement(size_t axis, double to_position) {
 bool Channel::GuardBlockMove(const std::string& move, const std::vector<double>* end,
                              bool measuring_path) {
   if (!guard_ || config_.path_guard == GuardReaction::kOff) return true;
-  if (!end && (motion_.face_axes[0] >= 0 || motion_.arc_axes[0] >= 0))
+  if (!end && (work_.motion.face_axes[0] >= 0 || work_.motion.arc_axes[0] >= 0))
     return GuardCurvedMove(move);
   const std::vector<double> from = GuardFrom();
   std::vector<double> to = from;
   for (size_t a = 0; a < config_.axes.size(); ++a)
     if (static_cast<size_t>(config_.axes[a].drive) < to.size())
-      to[config_.axes[a].drive] = end ? (*end)[a] : motion_.end[a];
+      to[config_.axes[a].drive] = end ? (*end)[a] : work_.motion.end[a];
   const PathCheck c = GuardCheck(from, to, measuring_path);
   if (c.clear) {
     guard_records_.push_back({move, from, to, c, 1, false});
@@ -89,22 +89,22 @@ bool Channel::GuardCurvedMove(const std::string& move) {
   // r (1 - cos(t/2)) inside it. G31's line (or arc) of the face plane is a curve of X and C:
   // nc::FaceChordStep proves its bound.
   double chords = 1;
-  if (motion_.face_axes[0] >= 0) {
-    const nc::FaceLine line = motion_.FaceBounds();
+  if (work_.motion.face_axes[0] >= 0) {
+    const nc::FaceLine line = work_.motion.FaceBounds();
     chords = std::ceil(line.length / std::max(nc::FaceChordStep(line, kChordTolerance), 1e-9));
-  } else if (motion_.arc_radius > kChordTolerance) {
-    const double angle = 2 * std::acos(1 - kChordTolerance / motion_.arc_radius);
-    chords = std::ceil(std::abs(motion_.arc_sweep) / angle);
+  } else if (work_.motion.arc_radius > kChordTolerance) {
+    const double angle = 2 * std::acos(1 - kChordTolerance / work_.motion.arc_radius);
+    chords = std::ceil(std::abs(work_.motion.arc_sweep) / angle);
   }
   const int n = static_cast<int>(std::clamp(chords, 1.0, static_cast<double>(kMaxChords)));
   const std::vector<double> from = GuardFrom();
   std::vector<double> to = from, a = from, b = from, point;
   for (size_t k = 0; k < config_.axes.size(); ++k)
     if (static_cast<size_t>(config_.axes[k].drive) < to.size())
-      to[config_.axes[k].drive] = motion_.end[k];
+      to[config_.axes[k].drive] = work_.motion.end[k];
   GuardRecord record{move, from, to, PathCheck{}, 0, false};
   for (int i = 1; i <= n; ++i) {
-    motion_.PointAt(static_cast<double>(i) / n, point);
+    work_.motion.PointAt(static_cast<double>(i) / n, point);
     for (size_t k = 0; k < config_.axes.size(); ++k)
       if (static_cast<size_t>(config_.axes[k].drive) < b.size())
         b[config_.axes[k].drive] = point[k];

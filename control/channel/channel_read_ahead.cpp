@@ -10,34 +10,37 @@ namespace vmt::control::channel {
 
 bool Channel::NextBlock(const AmplifierTelegram& at) {
   // The REPOS subroutine has returned (or there is none): close in and continue the program.
-  if (repos_run_ && (repos_finish_ || repos_closing_ || block_.returned)) return FinishReposRun(at);
-  if (compensating_) return NextCompensated(at);
-  const bool read = ReadNext(block_);
+  if (repos_run_ && (repos_finish_ || repos_closing_ || work_.block.returned))
+    return FinishReposRun(at);
+  if (work_.compensating) return NextCompensated(at);
+  const bool read = ReadNext(work_.block);
   if (!read) {
-    if (interpreter_->error())
-      Fail(nc::Format(*interpreter_->error(), {interpreter_->ErrorFile()}), kMsgProgramError);
+    if (work_.interpreter->error())
+      Fail(nc::Format(*work_.interpreter->error(), {work_.interpreter->ErrorFile()}),
+           kMsgProgramError);
     else
       state_ = ChannelState::kEnded, reversing_ = false;
     return false;
   }
-  if (block_.modal.compensation != nc::Compensation::kOff && block_.motion != nc::Motion::kNone) {
+  if (work_.block.modal.compensation != nc::Compensation::kOff &&
+      work_.block.motion != nc::Motion::kNone) {
     // G41/G42: from here the channel reads ahead, so that each block's path can be offset
     // with its successor in view.
     if (axis_z_ < 0 || axis_x_ < 0) {
-      Fail(*ProgramOf(block_.program), block_.block,
+      Fail(*ProgramOf(work_.block.program), work_.block.block,
            "tool nose radius compensation G41/G42 needs the axes Z and X", kMsgNotAvailable);
       return false;
     }
-    compensating_ = true;
-    source_done_ = false;
-    trc_.Reset();
-    ahead_.clear();
-    ready_.clear();
-    first_tag_ = next_tag_ = 0;
-    last_run_tag_ = -1;
-    contour_point_ = {commanded_[axis_z_] - translation_[axis_z_],
-                      commanded_[axis_x_] - translation_[axis_x_]};
-    if (!PushAhead(block_)) return false;
+    work_.compensating = true;
+    work_.source_done = false;
+    work_.trc.Reset();
+    work_.ahead.clear();
+    work_.ready.clear();
+    work_.first_tag = work_.next_tag = 0;
+    work_.last_run_tag = -1;
+    work_.contour_point = {commanded_[axis_z_] - translation_[axis_z_],
+                           commanded_[axis_x_] - translation_[axis_x_]};
+    if (!PushAhead(work_.block)) return false;
     return NextCompensated(at);
   }
   inserted_piece_ = false;
@@ -54,8 +57,8 @@ bool Channel::PushAhead(const nc::PreparedBlock& b) {
     return false;
   }
   ContourElement e;
-  e.tag = next_tag_;
-  e.start = contour_point_;
+  e.tag = work_.next_tag;
+  e.start = work_.contour_point;
   e.end = e.start;
   e.rapid = b.motion == nc::Motion::kRapid;
   e.side = b.modal.compensation == nc::Compensation::kLeft    ? CompensationSide::kLeft
@@ -102,50 +105,51 @@ bool Channel::PushAhead(const nc::PreparedBlock& b) {
       }
     }
   }
-  ++next_tag_;
-  contour_point_ = e.end;
-  ahead_.push_back(b);
-  trc_.Push(e);
+  ++work_.next_tag;
+  work_.contour_point = e.end;
+  work_.ahead.push_back(b);
+  work_.trc.Push(e);
   return true;
 }
 
 Channel::Compensated Channel::FillReadyPiece(bool searching) {
   ContourElement e;
-  while (ready_.empty()) {
-    while (trc_.Pop(e)) ready_.push_back(e);
-    if (!ready_.empty()) break;
-    if (const auto& err = trc_.error()) {
-      const nc::PreparedBlock& b = ahead_[static_cast<size_t>(err->tag - first_tag_)];
+  while (work_.ready.empty()) {
+    while (work_.trc.Pop(e)) work_.ready.push_back(e);
+    if (!work_.ready.empty()) break;
+    if (const auto& err = work_.trc.error()) {
+      const nc::PreparedBlock& b = work_.ahead[static_cast<size_t>(err->tag - work_.first_tag)];
       Fail(*ProgramOf(b.program), b.block, err->message, kMsgGouge);
       return Compensated::kFailed;
     }
-    if (source_done_ || (!trc_.active() && !trc_.pending())) {
+    if (work_.source_done || (!work_.trc.active() && !work_.trc.pending())) {
       // Everything read ahead is given out: back to block by block.
-      compensating_ = false;
-      ahead_.clear();
+      work_.compensating = false;
+      work_.ahead.clear();
       return Compensated::kDrained;
     }
     nc::PreparedBlock b;
     if (!(searching ? ReadSource(b) : ReadNext(b))) {
-      if (interpreter_->error()) {
-        Fail(nc::Format(*interpreter_->error(), {interpreter_->ErrorFile()}), kMsgProgramError);
+      if (work_.interpreter->error()) {
+        Fail(nc::Format(*work_.interpreter->error(), {work_.interpreter->ErrorFile()}),
+             kMsgProgramError);
         return Compensated::kFailed;
       }
-      source_done_ = true;
-      trc_.Flush();
+      work_.source_done = true;
+      work_.trc.Flush();
       continue;
     }
     if (!PushAhead(b)) return Compensated::kFailed;
-    if (b.end) source_done_ = true, trc_.Flush();
+    if (b.end) work_.source_done = true, work_.trc.Flush();
   }
   return Compensated::kPiece;
 }
 
 ContourElement Channel::TakeReadyPiece() {
-  const ContourElement e = ready_.front();
-  ready_.pop_front();
-  while (first_tag_ < e.tag) ahead_.pop_front(), ++first_tag_;
-  block_ = ElementBlock(e, ahead_.front());
+  const ContourElement e = work_.ready.front();
+  work_.ready.pop_front();
+  while (work_.first_tag < e.tag) work_.ahead.pop_front(), ++work_.first_tag;
+  work_.block = ElementBlock(e, work_.ahead.front());
   return e;
 }
 
@@ -154,7 +158,7 @@ bool Channel::NextCompensated(const AmplifierTelegram& at) {
     case Compensated::kFailed:
       return false;
     case Compensated::kDrained:
-      if (source_done_) {
+      if (work_.source_done) {
         state_ = ChannelState::kEnded, reversing_ = false;
         return false;
       }
@@ -164,8 +168,8 @@ bool Channel::NextCompensated(const AmplifierTelegram& at) {
   }
   const ContourElement e = TakeReadyPiece();
   inserted_piece_ = e.inserted;
-  if (e.tag != last_run_tag_) {
-    last_run_tag_ = e.tag;
+  if (e.tag != work_.last_run_tag) {
+    work_.last_run_tag = e.tag;
     return RunBlock(at);
   }
   return StartMotion(at);
@@ -174,29 +178,29 @@ bool Channel::NextCompensated(const AmplifierTelegram& at) {
 bool Channel::ReadNext(nc::PreparedBlock& b) {
   // Blocks the look-ahead has read, a block it read but could not take (its error comes now),
   // or the end it met.
-  if (!peeked_.empty()) {
-    b = std::move(peeked_.front());
-    peeked_.pop_front();
-  } else if (unpushed_) {
-    b = *unpushed_;
-    unpushed_.reset();
+  if (!work_.peeked.empty()) {
+    b = std::move(work_.peeked.front());
+    work_.peeked.pop_front();
+  } else if (work_.unpushed) {
+    b = *work_.unpushed;
+    work_.unpushed.reset();
   } else {
-    if (source_returned_false_) return false;
-    if (headstock_) rotary_next_start_ = interpreter_->position()[config_.rotary_axis];
+    if (work_.source_returned_false) return false;
+    if (headstock_) work_.rotary_next_start = work_.interpreter->position()[config_.rotary_axis];
     if (!ReadSource(b)) return false;
   }
   // Blocks leave here in the interpreter's order: each starts, for the interpreter, where the
   // one before ended (an increment of the rotary axis adds to this; see RebaseRotaryAxis).
   if (headstock_) {
-    rotary_start_ = rotary_next_start_;
-    rotary_next_start_ = b.target[config_.rotary_axis];
+    work_.rotary_start = work_.rotary_next_start;
+    work_.rotary_next_start = b.target[config_.rotary_axis];
   }
   return true;
 }
 
 bool Channel::ReadSource(nc::PreparedBlock& b) {
   if (search_ && search_->end_reached) return false;
-  if (!interpreter_->Next(b)) return false;
+  if (!work_.interpreter->Next(b)) return false;
   // Block search type 1 (3.1): machining ends at the end position, before its block runs.
   // Tested where the blocks leave the interpreter, in their order and each once (the pass
   // count), so that it holds whatever path the channel makes of them afterwards: block by
@@ -217,25 +221,25 @@ void Channel::RebaseRotaryAxis() {
   // coordinates, with the rotary axis' zero offsets back, 2.3), so an increment counts from
   // here, and the interpreter prepares the next blocks from the block's corrected end. Under
   // G41/G42 the blocks ahead are already prepared: they keep the program's values.
-  if (compensating_ || !peeked_.empty() || block_.homing) return;
+  if (work_.compensating || !work_.peeked.empty() || work_.block.homing) return;
   const size_t r = static_cast<size_t>(config_.rotary_axis);
   const double actual = commanded_[r] - translation_[r];
-  if (block_.modal.incremental && (block_.programmed >> r & 1))
-    block_.target[r] += actual - rotary_start_;
-  interpreter_->SetAxisPosition(r, block_.target[r]);
-  rotary_next_start_ = block_.target[r];
+  if (work_.block.modal.incremental && (work_.block.programmed >> r & 1))
+    work_.block.target[r] += actual - work_.rotary_start;
+  work_.interpreter->SetAxisPosition(r, work_.block.target[r]);
+  work_.rotary_next_start = work_.block.target[r];
 }
 
 bool Channel::Peek(size_t k) {
   // Reads on from the interpreter until block k after the one in work is there.
-  while (peeked_.size() <= k) {
-    if (unpushed_ || source_returned_false_) return false;
+  while (work_.peeked.size() <= k) {
+    if (work_.unpushed || work_.source_returned_false) return false;
     nc::PreparedBlock b;
     if (!ReadSource(b)) {
-      source_returned_false_ = true;
+      work_.source_returned_false = true;
       return false;
     }
-    peeked_.push_back(std::move(b));
+    work_.peeked.push_back(std::move(b));
   }
   return true;
 }
@@ -244,16 +248,16 @@ void Channel::FillCompensated(size_t elements) {
   // Reads ahead under G41/G42 until the compensation has `elements` final pieces; errors are
   // left for NextCompensated to report when the channel gets there.
   ContourElement e;
-  for (size_t reads = 0; reads < elements + 4 && ready_.size() < elements; ++reads) {
-    if (source_done_ || trc_.error() || (!trc_.active() && !trc_.pending()) || unpushed_ ||
-        source_returned_false_)
+  for (size_t reads = 0; reads < elements + 4 && work_.ready.size() < elements; ++reads) {
+    if (work_.source_done || work_.trc.error() || (!work_.trc.active() && !work_.trc.pending()) ||
+        work_.unpushed || work_.source_returned_false)
       return;
     nc::PreparedBlock b;
-    if (!peeked_.empty()) {
-      b = std::move(peeked_.front());
-      peeked_.pop_front();
+    if (!work_.peeked.empty()) {
+      b = std::move(work_.peeked.front());
+      work_.peeked.pop_front();
     } else if (!ReadSource(b)) {
-      source_returned_false_ = true;
+      work_.source_returned_false = true;
       return;
     }
     planning_only_ = true;
@@ -261,23 +265,23 @@ void Channel::FillCompensated(size_t elements) {
     const bool pushed = PushAhead(b) && !plan_failed_;
     planning_only_ = false;
     if (!pushed) {
-      unpushed_ = b;
+      work_.unpushed = b;
       return;
     }
-    if (b.end) source_done_ = true, trc_.Flush();
-    while (trc_.Pop(e)) ready_.push_back(e);
+    if (b.end) work_.source_done = true, work_.trc.Flush();
+    while (work_.trc.Pop(e)) work_.ready.push_back(e);
   }
 }
 
 bool Channel::PeekCompensated(size_t k, nc::PreparedBlock& out) {
   // Piece k after the one in work of the tip path, as a block of its own.
   FillCompensated(k + 1);
-  if (ready_.size() <= k) return false;
-  const ContourElement& e = ready_[k];
-  const auto index = static_cast<size_t>(e.tag - first_tag_);
-  if (e.tag < first_tag_ || index >= ahead_.size()) return false;
-  out = ElementBlock(e, ahead_[index]);
-  if (e.tag == (k == 0 ? last_run_tag_ : ready_[k - 1].tag)) {
+  if (work_.ready.size() <= k) return false;
+  const ContourElement& e = work_.ready[k];
+  const auto index = static_cast<size_t>(e.tag - work_.first_tag);
+  if (e.tag < work_.first_tag || index >= work_.ahead.size()) return false;
+  out = ElementBlock(e, work_.ahead[index]);
+  if (e.tag == (k == 0 ? work_.last_run_tag : work_.ready[k - 1].tag)) {
     // A further piece of a block already started: its functions have run already.
     out.aux.clear(), out.events.clear(), out.instructions.clear();
     out.dwell_s = 0;
@@ -312,29 +316,29 @@ void Channel::LookAhead(const AmplifierTelegram& at) {
   const auto feed_move = [](nc::Motion m) {
     return m == nc::Motion::kLinear || m == nc::Motion::kArcCw || m == nc::Motion::kArcCcw;
   };
-  continuation_ready_ = false;
-  targets_.clear();
+  work_.continuation_ready = false;
+  work_.targets.clear();
   // The blocks of approach moves start at rest: PathGuard may refuse each before it moves.
   // A block with M00 / M01 ends at rest: the stop is decided at its end.
   if (single_block_ || programmed_stop_.pending != ProgrammedStop::Kind::kNone ||
-      state_ != ChannelState::kRunning || !feed_move(block_.motion) ||
-      block_.end || homing_ || !motion_.moves || repos_run_ || config_.approach_program ||
+      state_ != ChannelState::kRunning || !feed_move(work_.block.motion) || work_.block.end ||
+      work_.homing || !work_.motion.moves || repos_run_ || config_.approach_program ||
       cax_track_)  // tracking sets each block's C as it starts: the look-ahead cannot know it
     return;
   const double cycle_s = config_.tick_s * config_.ticks_per_cycle;
-  const double speed = motion_.max_rate * motion_.length;
-  const double accel = motion_.max_accel * motion_.length;
+  const double speed = work_.motion.max_rate * work_.motion.length;
+  const double accel = work_.motion.max_accel * work_.motion.length;
   const double spindle_rev_per_s = SpindleRevPerS(at);
   legs_.clear();
-  std::vector<double> direction = motion_.Direction(1);
-  std::vector<double> from = motion_.end;
+  std::vector<double> direction = work_.motion.Direction(1);
+  std::vector<double> from = work_.motion.end;
   double reach = 0, top_speed = speed, least_accel = accel, least_jerk = HUGE_VAL;
   nc::PreparedBlock next;
   BlockMotion m;
   for (size_t k = 0; k < kLookAheadBlocks; ++k) {
-    if (compensating_ ? !PeekCompensated(k, next) : !Peek(k)) break;
-    const nc::PreparedBlock& n = compensating_ ? next : peeked_[k];
-    const nc::ModalState &m0 = block_.modal, &m1 = n.modal;
+    if (work_.compensating ? !PeekCompensated(k, next) : !Peek(k)) break;
+    const nc::PreparedBlock& n = work_.compensating ? next : work_.peeked[k];
+    const nc::ModalState &m0 = work_.block.modal, &m1 = n.modal;
     if (!feed_move(n.motion) || !n.aux.empty() || !n.events.empty() || !n.instructions.empty() ||
         n.dwell_s != 0 || n.homing || n.set_position || n.repos || n.measuring || n.end ||
         n.returned || m1.compensation != nc::Compensation::kOff || m1.zero_offset != m0.zero_offset ||
@@ -379,8 +383,9 @@ void Channel::LookAhead(const AmplifierTelegram& at) {
       break;
   }
   if (legs_.empty()) return;
-  PlanTargets(motion_.length, speed, accel, motion_.max_jerk * motion_.length, legs_, targets_);
-  continuation_ready_ = std::min(targets_[0].corner, targets_[0].feed) > 1e-9;
-  if (!continuation_ready_) targets_.clear();
+  PlanTargets(work_.motion.length, speed, accel, work_.motion.max_jerk * work_.motion.length, legs_,
+              work_.targets);
+  work_.continuation_ready = std::min(work_.targets[0].corner, work_.targets[0].feed) > 1e-9;
+  if (!work_.continuation_ready) work_.targets.clear();
 }
 }  // namespace vmt::control::channel

@@ -44,10 +44,10 @@ std::vector<double> Channel::TranslationOf(const nc::ModalState& modal) const {
 void Channel::CaptureInterruption() {
   Interruption i;
   i.point = commanded_;
-  i.block_start = active_ ? motion_.start : commanded_;
-  i.modal = block_.block >= 0 ? block_.modal : modal();
+  i.block_start = work_.active ? work_.motion.start : commanded_;
+  i.modal = work_.block.block >= 0 ? work_.block.modal : modal();
   i.translation = TranslationOf(i.modal);
-  i.program = block_.program;
+  i.program = work_.block.program;
   i.line = line();
   i.spindle = spindle_;
   i.spindle_m = SpindleM(spindle_);
@@ -318,38 +318,11 @@ bool Channel::SetToolLength(int tool, int edge, size_t axis, double value) {
   return false;
 }
 
-void Channel::SwapProgramInWork() {
-  ProgramInWork& p = parked_;
-  std::swap(interpreter_, p.interpreter);
-  std::swap(block_, p.block);
-  std::swap(motion_, p.motion);
-  std::swap(profile_, p.profile);
-  std::swap(active_, p.active);
-  std::swap(pending_motion_, p.pending_motion);
-  std::swap(homing_, p.homing);
-  std::swap(dwell_left_s_, p.dwell_left_s);
-  std::swap(homing_stages_, p.homing_stages);
-  std::swap(peeked_, p.peeked);
-  std::swap(targets_, p.targets);
-  std::swap(continuation_ready_, p.continuation_ready);
-  std::swap(source_returned_false_, p.source_returned_false);
-  std::swap(unpushed_, p.unpushed);
-  std::swap(trc_, p.trc);
-  std::swap(compensating_, p.compensating);
-  std::swap(source_done_, p.source_done);
-  std::swap(ahead_, p.ahead);
-  std::swap(ready_, p.ready);
-  std::swap(first_tag_, p.first_tag);
-  std::swap(next_tag_, p.next_tag);
-  std::swap(last_run_tag_, p.last_run_tag);
-  std::swap(contour_point_, p.contour_point);
-  std::swap(rotary_start_, p.rotary_start);
-  std::swap(rotary_next_start_, p.rotary_next_start);
-}
+void Channel::SwapProgramInWork() { std::swap(work_, parked_); }
 
 void Channel::StartReposRun() {
   // 4.1: the REPOS subroutine in the current program, in program 99 or in the cycle memory.
-  const int program = interpreter_ ? interpreter_->FindSubroutine("REPOS") : -1;
+  const int program = work_.interpreter ? work_.interpreter->FindSubroutine("REPOS") : -1;
   if (program < 0 && !crest_) {
     Fail(programs_[0]->files[0] +
              ": error: the state before the interruption is not restored and no program has a "
@@ -360,7 +333,8 @@ void Channel::StartReposRun() {
   // The process' @ variables are one set (8.3): the subroutine starts with the program's (or,
   // run again, with its own) and hands them back at its RTS.
   std::map<std::string, double> variables;
-  if (const nc::Interpreter* owner = interpreter_ ? interpreter_.get() : parked_.interpreter.get())
+  if (const nc::Interpreter* owner =
+          work_.interpreter ? work_.interpreter.get() : parked_.interpreter.get())
     variables = owner->variables();
   // The interrupted program waits, its block in work and what was read ahead, while the
   // subroutine runs in its place with its modal state (G(2), M(5) read the interrupted state).
@@ -369,12 +343,12 @@ void Channel::StartReposRun() {
   if (!repos_run_) SwapProgramInWork();
   repos_rerun_ = false;
   orienting_ = further_restoring_ = false;
-  active_ = pending_motion_ = homing_ = false;
-  dwell_left_s_ = 0;
+  work_.active = work_.pending_motion = work_.homing = false;
+  work_.dwell_left_s = 0;
   DropLookahead();
-  block_ = nc::PreparedBlock{};
-  block_.program = parked_.block.program;
-  block_.modal = interruption_->modal;
+  work_.block = nc::PreparedBlock{};
+  work_.block.program = parked_.block.program;
+  work_.block.modal = interruption_->modal;
   repos_run_ = true;
   repos_closing_ = false;
   repos_finish_ = program < 0;
@@ -385,43 +359,43 @@ void Channel::StartReposRun() {
     ic.initial = interruption_->modal;
     std::vector<const nc::Program*> programs = programs_;
     if (running_mdi_) programs.insert(programs.begin(), &mdi_->program);
-    interpreter_ = std::make_unique<nc::Interpreter>(std::move(programs), ic);
+    work_.interpreter = std::make_unique<nc::Interpreter>(std::move(programs), ic);
     std::vector<double> position(commanded_.size());
     for (size_t a = 0; a < position.size(); ++a) position[a] = commanded_[a] - translation_[a];
-    interpreter_->SetPosition(position);
-    interpreter_->SetEventSource([this](int n) {
+    work_.interpreter->SetPosition(position);
+    work_.interpreter->SetEventSource([this](int n) {
       if (events_) return events_(n);
       auto it = own_events_.find(n);
       return it != own_events_.end() && it->second;
     });
-    interpreter_->SetDataAccess(MakeDataAccess());
-    interpreter_->SetVariables(std::move(variables));
-    interpreter_->RunSubroutine(static_cast<uint32_t>(program), "REPOS");
+    work_.interpreter->SetDataAccess(MakeDataAccess());
+    work_.interpreter->SetVariables(std::move(variables));
+    work_.interpreter->RunSubroutine(static_cast<uint32_t>(program), "REPOS");
   }
   state_ = ChannelState::kRunning;
 }
 
 bool Channel::CheckReposBlock() {
-  const nc::Program& program = *ProgramOf(block_.program);
+  const nc::Program& program = *ProgramOf(work_.block.program);
   // 7.1: G77 while the PLC has withdrawn the function interrupts the program.
   if (repos_function_ == ReposFunction::kNone || !interruption_) {
-    Fail(program, block_.block,
+    Fail(program, work_.block.block,
          "G77 without repositioning or NC-block restart (PxxC.REPOS / PxxC.RESTA is 0)",
          kMsgReposNotActive);
     return false;
   }
-  const uint64_t feed_axes = block_.programmed;
-  if (feed_axes && !block_.feed_programmed) {
-    Fail(program, block_.block, "G77 of a feed axis needs an F value in its block",
+  const uint64_t feed_axes = work_.block.programmed;
+  if (feed_axes && !work_.block.feed_programmed) {
+    Fail(program, work_.block.block, "G77 of a feed axis needs an F value in its block",
          kMsgReposNoFeed);
     return false;
   }
   if (!CheckReposFurtherSpindles(program)) return false;
   // 4.2: G77 S1=0 (or S=0) restores the main spindle: a channel without one has none to restore.
-  for (const nc::AuxFunction& f : block_.aux)
+  for (const nc::AuxFunction& f : work_.block.aux)
     if (f.letter == 'S' && f.index <= 1 && config_.spindle_drive < 0) {
       const std::string word = f.index == 0 ? "S0" : "S" + std::to_string(f.index) + "=0";
-      Fail(program, block_.block, "G77 " + word + ": the channel has no spindle S1 to restore",
+      Fail(program, work_.block.block, "G77 " + word + ": the channel has no spindle S1 to restore",
            kMsgNotAvailable);
       return false;
     }
@@ -432,16 +406,16 @@ bool Channel::CheckReposBlock() {
     const bool rotary_before = interruption_->headstock_mode == axes::HeadstockMode::kRotary;
     const size_t r = static_cast<size_t>(config_.rotary_axis);
     if ((feed_axes >> r & 1) && !rotary_before) {
-      Fail(program, block_.block,
+      Fail(program, work_.block.block,
            "G77 " + config_.axes[r].name +
                ": the spindle was in spindle mode before the "
                "interruption: restore it with G77 S1=0",
            kMsgReposMode);
       return false;
     }
-    for (const nc::AuxFunction& f : block_.aux)
+    for (const nc::AuxFunction& f : work_.block.aux)
       if (f.letter == 'S' && f.index <= 1 && rotary_before) {
-        Fail(program, block_.block,
+        Fail(program, work_.block.block,
              "G77 S1=0: the spindle was in rotary axis mode before the interruption: restore " +
                  config_.axes[r].name + " with G77 " + config_.axes[r].name + "0",
              kMsgReposMode);
@@ -452,10 +426,10 @@ bool Channel::CheckReposBlock() {
 }
 
 bool Channel::StartReposMotion(const AmplifierTelegram& at) {
-  const nc::Program& program = *ProgramOf(block_.program);
+  const nc::Program& program = *ProgramOf(work_.block.program);
   // 4.2 Spindles: G77 S1=0 restores the main spindle's speed or position; the block waits until
   // it has reached it. Spindles the channel does not command have nothing to restore.
-  for (const nc::AuxFunction& f : block_.aux)
+  for (const nc::AuxFunction& f : work_.block.aux)
     if (f.letter == 'S' && f.index <= 1 && config_.spindle_drive >= 0) {
       if (!GuardSpindleStart("spindle start G77 S1", interruption_->spindle)) return false;
       spindle_ = interruption_->spindle;
@@ -469,7 +443,7 @@ bool Channel::StartReposMotion(const AmplifierTelegram& at) {
   // reach the target together) at F, without the G functions of interpolation and without tool
   // radius compensation.
   const std::vector<double> target = ReposTarget();
-  nc::PreparedBlock b = block_;
+  nc::PreparedBlock b = work_.block;
   b.motion = repos_closing_ ? nc::Motion::kRapid : nc::Motion::kLinear;
   b.modal.feed_per_revolution = false;
   b.modal.compensation = nc::Compensation::kOff;
@@ -477,24 +451,25 @@ bool Channel::StartReposMotion(const AmplifierTelegram& at) {
   b.radius = 0;
   b.has_effective_distance = 0;
   for (size_t a = 0; a < commanded_.size(); ++a) {
-    const bool to_target = (block_.programmed >> a & 1) && !std::isnan(target[a]);
+    const bool to_target = (work_.block.programmed >> a & 1) && !std::isnan(target[a]);
     b.target[a] = (to_target ? target[a] : commanded_[a]) - translation_[a];
   }
-  if (const auto error =
-          PlanBlockMotion(b, commanded_, translation_, config_.axes, 0, motion_, FollowUpAxes(b))) {
-    Fail(program, block_.block, error->text, error->number);
+  if (const auto error = PlanBlockMotion(b, commanded_, translation_, config_.axes, 0, work_.motion,
+                                         FollowUpAxes(b))) {
+    Fail(program, work_.block.block, error->text, error->number);
     return false;
   }
   // The subroutine's next blocks count from the targets.
   for (size_t a = 0; a < commanded_.size(); ++a)
-    if ((block_.programmed >> a & 1) && interpreter_) interpreter_->SetAxisPosition(a, b.target[a]);
-  profile_ = PathProfile{};
-  if (!motion_.moves) return true;
+    if ((work_.block.programmed >> a & 1) && work_.interpreter)
+      work_.interpreter->SetAxisPosition(a, b.target[a]);
+  work_.profile = PathProfile{};
+  if (!work_.motion.moves) return true;
   if (!GuardBlockMove(repos_closing_ ? "repositioning" : "G77")) return false;
-  profile_.max_rate = motion_.max_rate;
-  profile_.max_accel = motion_.max_accel;
-  profile_.max_jerk = motion_.max_jerk;
-  active_ = true;
+  work_.profile.max_rate = work_.motion.max_rate;
+  work_.profile.max_accel = work_.motion.max_accel;
+  work_.profile.max_jerk = work_.motion.max_jerk;
+  work_.active = true;
   return true;
 }
 
@@ -509,14 +484,14 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
       if (!std::isnan(target[a]) && std::abs(commanded_[a] - target[a]) > 1e-9)
         bits |= uint64_t{1} << a;
     if (SpindleRelevant() && !SpindleRestored(at)) {
-      Fail(ProgramOf(block_.program)->files[0] +
+      Fail(ProgramOf(work_.block.program)->files[0] +
                ": error: the REPOS subroutine has returned with the spindle not in its state "
                "before the interruption (G77 S1=0)",
            kMsgReposNotRestored);
       return false;
     }
     if (!FurtherSpindlesRestored(at)) {
-      Fail(ProgramOf(block_.program)->files[0] +
+      Fail(ProgramOf(work_.block.program)->files[0] +
                ": error: the REPOS subroutine has returned with a further spindle not in its "
                "state before the interruption (G77 Sj=0)",
            kMsgReposNotRestored);
@@ -525,7 +500,7 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
     // The closing move and the interrupted block position the rotary axis: not in spindle mode.
     const int r = config_.rotary_axis;
     if (r >= 0 && !std::isnan(target[r]) && OutOfItsMode(headstock(), r, r)) {
-      Fail(ProgramOf(block_.program)->files[0] +
+      Fail(ProgramOf(work_.block.program)->files[0] +
                ": error: the REPOS subroutine has returned with " + config_.axes[r].name +
                " not in rotary axis mode (G77 " + config_.axes[r].name + "0)",
            kMsgReposNotRestored);
@@ -533,7 +508,7 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
     }
     repos_closing_ = true;
     if (bits) {
-      nc::PreparedBlock closing = block_;
+      nc::PreparedBlock closing = work_.block;
       closing.repos = true;
       closing.returned = false;
       closing.programmed = bits;
@@ -542,9 +517,9 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
       closing.events.clear();
       closing.target.assign(commanded_.size(), 0);
       closing.fictive = false;  // within the windows: straight in the axes
-      block_ = closing;
+      work_.block = closing;
       if (!StartReposMotion(at)) return false;
-      if (active_) return true;
+      if (work_.active) return true;
     }
   }
   // Back to the interrupted program: it continues at the interruption point, or its block
@@ -560,25 +535,27 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
   SwapProgramInWork();
   parked_ = ProgramInWork{};
   ClearRepos();
-  if (active_) {
+  if (work_.active) {
     for (size_t a = 0; a < shift.size(); ++a) {
-      motion_.start[a] += shift[a];
-      motion_.end[a] += shift[a];
+      work_.motion.start[a] += shift[a];
+      work_.motion.end[a] += shift[a];
     }
     for (int k = 0; k < 2; ++k)
-      if (motion_.arc_axes[k] >= 0) motion_.arc_centre[k] += shift[motion_.arc_axes[k]];
+      if (work_.motion.arc_axes[k] >= 0)
+        work_.motion.arc_centre[k] += shift[work_.motion.arc_axes[k]];
     for (int k = 0; k < 2; ++k)
-      if (motion_.face_axes[k] >= 0) motion_.face_shift[k] += shift[motion_.face_axes[k]];
+      if (work_.motion.face_axes[k] >= 0)
+        work_.motion.face_shift[k] += shift[work_.motion.face_axes[k]];
     if (function == ReposFunction::kRestart) {
       PathProfile fresh;
-      fresh.max_rate = profile_.max_rate;
-      fresh.max_accel = profile_.max_accel;
-      fresh.max_jerk = profile_.max_jerk;
-      profile_ = fresh;
+      fresh.max_rate = work_.profile.max_rate;
+      fresh.max_accel = work_.profile.max_accel;
+      fresh.max_jerk = work_.profile.max_jerk;
+      work_.profile = fresh;
     }
   }
-  if (block_.block >= 0 &&
-      !UpdateTranslation(block_.modal, *ProgramOf(block_.program), block_.block))
+  if (work_.block.block >= 0 &&
+      !UpdateTranslation(work_.block.modal, *ProgramOf(work_.block.program), work_.block.block))
     return false;
   state_ = ChannelState::kRunning;
   return true;
@@ -586,8 +563,8 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
 
 void Channel::HandBackVariables() {
   // 8.3: what the subroutine wrote the program reads after RTS (one set per process).
-  if (repos_run_ && interpreter_ && parked_.interpreter)
-    parked_.interpreter->SetVariables(interpreter_->variables());
+  if (repos_run_ && work_.interpreter && parked_.interpreter)
+    parked_.interpreter->SetVariables(work_.interpreter->variables());
 }
 
 void Channel::ClearRepos() {

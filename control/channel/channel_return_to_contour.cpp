@@ -46,8 +46,8 @@ bool Channel::StartReturnToContour() {
 }
 
 bool Channel::StartReturnMove(const std::vector<double>& to, const std::string& move) {
-  profile_ = PathProfile{};
-  continuation_ready_ = false;
+  work_.profile = PathProfile{};
+  work_.continuation_ready = false;
   carry_speed_ = carry_accel_ = carry_leftover_ = 0;
   // Under G31 (rotary axis mode) the return is a line of the face, as the programmed moves
   // around it are and as G77 X1=0 Y1=0 returns (REPOS manual 5.2): straight in X and C it
@@ -65,42 +65,42 @@ bool Channel::StartReturnMove(const std::vector<double>& to, const std::string& 
     b.modal.transformation = nc::Transformation::kFace;
     b.target.resize(to.size());
     for (size_t a = 0; a < to.size(); ++a) b.target[a] = to[a] - translation_[a];
-    if (const auto error = PlanBlockMotion(b, commanded_, translation_, config_.axes, 0, motion_,
-                                           FollowUpAxes(b))) {
+    if (const auto error = PlanBlockMotion(b, commanded_, translation_, config_.axes, 0,
+                                           work_.motion, FollowUpAxes(b))) {
       Fail("block search: return to contour: " + error->text, error->number);
       return false;
     }
-    if (!motion_.moves) return true;
+    if (!work_.motion.moves) return true;
     if (!GuardBlockMove(move)) return false;
-    profile_.max_rate = motion_.max_rate;
-    profile_.max_accel = motion_.max_accel;
-    profile_.max_jerk = motion_.max_jerk;
-    active_ = true;
+    work_.profile.max_rate = work_.motion.max_rate;
+    work_.profile.max_accel = work_.motion.max_accel;
+    work_.profile.max_jerk = work_.motion.max_jerk;
+    work_.active = true;
     return true;
   }
   // 4.2: one straight move at the rapid limits, every axis ending together.
-  motion_ = BlockMotion{};
-  motion_.start = commanded_;
-  motion_.end = to;
+  work_.motion = BlockMotion{};
+  work_.motion.start = commanded_;
+  work_.motion.end = to;
   double rate = std::numeric_limits<double>::infinity(), accel = rate;
   for (size_t a = 0; a < commanded_.size(); ++a) {
-    const double distance = std::abs(motion_.end[a] - motion_.start[a]);
+    const double distance = std::abs(work_.motion.end[a] - work_.motion.start[a]);
     if (distance < 1e-12) continue;
     const ChannelAxis& axis = config_.axes[a];
     rate = std::min(rate, axis.rapid_per_s / distance);
     accel = std::min(accel, axis.acceleration / distance);
   }
   if (!std::isfinite(rate)) return true;  // already there
-  motion_.moves = true;
-  motion_.length = 0;
+  work_.motion.moves = true;
+  work_.motion.length = 0;
   for (size_t a = 0; a < commanded_.size(); ++a)
-    motion_.length += std::pow(motion_.end[a] - motion_.start[a], 2);
-  motion_.length = std::sqrt(motion_.length);
+    work_.motion.length += std::pow(work_.motion.end[a] - work_.motion.start[a], 2);
+  work_.motion.length = std::sqrt(work_.motion.length);
   // The manual leaves obstacles on this line to the operator (8); vmt asks PathGuard first.
   if (!GuardBlockMove(move)) return false;
-  profile_.max_rate = rate;
-  profile_.max_accel = accel;
-  active_ = true;
+  work_.profile.max_rate = rate;
+  work_.profile.max_accel = accel;
+  work_.active = true;
   return true;
 }
 
@@ -142,7 +142,7 @@ void Channel::ContinueAfterSearch() {
   if (spindle_.mode == DriveMode::kPosition) spindle_referencing_ = true;
   if (!s.restart_motion.moves) return;  // the next block starts the real run
   // The rest of the continue block, from the continue position on.
-  motion_ = s.restart_motion;
+  work_.motion = s.restart_motion;
   block_distance_start_ = s.restart_distance;
   block_distance_ = s.restart_length;
   distance_ = s.restart_distance + block_distance_;
@@ -152,10 +152,10 @@ void Channel::ContinueAfterSearch() {
   CutAtBreakpoint(s.restart_u);
   double u = s.restart_u;
   if (breakpoint_rest_) u = breakpoint_u_ > 1e-12 ? s.restart_u / breakpoint_u_ : 1;
-  profile_ = ProfileFrom(motion_, u);
-  continuation_ready_ = false;
+  work_.profile = ProfileFrom(work_.motion, u);
+  work_.continuation_ready = false;
   carry_speed_ = carry_accel_ = carry_leftover_ = 0;
-  active_ = true;
+  work_.active = true;
 }
 
 bool Channel::StartBlockSearchHold() {
@@ -166,10 +166,10 @@ bool Channel::StartBlockSearchHold() {
       bs_state_ = BlockSearchState::kInactive;
     state_ = ChannelState::kRunning;
     if (breakpoint_rest_) {
-      motion_ = *breakpoint_rest_;
+      work_.motion = *breakpoint_rest_;
       breakpoint_rest_.reset();
-      profile_ = ProfileFrom(motion_, breakpoint_u_);
-      active_ = true;
+      work_.profile = ProfileFrom(work_.motion, breakpoint_u_);
+      work_.active = true;
     }
     breakpoint_u_ = 0;
     return true;

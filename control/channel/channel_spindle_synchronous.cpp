@@ -11,65 +11,66 @@
 namespace vmt::control::channel {
 
 bool Channel::StartSynchronous(const AmplifierTelegram& at) {
-  const nc::Program& program = *ProgramOf(block_.program);
+  const nc::Program& program = *ProgramOf(work_.block.program);
   sync_ = Synchronous{};
   auto fail = [&](const std::string& text, int number) {
-    Fail(program, block_.block, text, number);
+    Fail(program, work_.block.block, text, number);
     return false;
   };
-  const char* g = block_.motion == nc::Motion::kThread    ? "G33"
-                  : block_.motion == nc::Motion::kTapping ? "G63"
-                                                          : "G64";
-  if (block_.modal.compensation != nc::Compensation::kOff)
+  const char* g = work_.block.motion == nc::Motion::kThread    ? "G33"
+                  : work_.block.motion == nc::Motion::kTapping ? "G63"
+                                                               : "G64";
+  if (work_.block.modal.compensation != nc::Compensation::kOff)
     return fail(std::string(g) + " with tool nose radius compensation: program G40 first",
                 kMsgNotAvailable);
   if (config_.spindle_drive < 0)
     return fail(std::string(g) + " needs a main spindle", kMsgSpindleStill);
   // G33 and G63 need the spindle turning (M3/M4 with S); G64 takes the spindle into position
   // control and needs the direction and speed M3/M4 and S give it.
-  const bool rigid = block_.motion == nc::Motion::kRigidTapping;
-  const bool turning = rigid ? (block_.modal.spindle == 3 || block_.modal.spindle == 4) &&
-                                   block_.modal.spindle_speed > 0
+  const bool rigid = work_.block.motion == nc::Motion::kRigidTapping;
+  const bool turning = rigid ? (work_.block.modal.spindle == 3 || work_.block.modal.spindle == 4) &&
+                                   work_.block.modal.spindle_speed > 0
                              : spindle_.mode == DriveMode::kVelocity && spindle_.value != 0;
   if (!turning)
     return fail(std::string("spindle not turning for ") + g + ": program M3 or M4 with S first",
                 kMsgSpindleStill);
-  if (const auto error = PlanSynchronousPath(block_, commanded_, translation_, config_.axes,
-                                             FollowUpAxes(block_), sync_.path))
+  if (const auto error = PlanSynchronousPath(work_.block, commanded_, translation_, config_.axes,
+                                             FollowUpAxes(work_.block), sync_.path))
     return fail(error->text, error->number);
-  profile_ = PathProfile{};
-  continuation_ready_ = false;
-  targets_.clear();
+  work_.profile = PathProfile{};
+  work_.continuation_ready = false;
+  work_.targets.clear();
   if (!sync_.path.line.moves) return true;
-  motion_ = sync_.path.line;
+  work_.motion = sync_.path.line;
   const double k = sync_.path.mm_per_deg;
   const DriveFeedback& spindle = at.feedback[config_.spindle_drive];
-  if (block_.motion == nc::Motion::kThread) {
+  if (work_.block.motion == nc::Motion::kThread) {
     sync_.phase = SyncPhase::kWaitForSpeed;
     sync_.spindle_deg = sync_.spindle_last_deg = spindle.position;
-  } else if (block_.motion == nc::Motion::kTapping) {
+  } else if (work_.block.motion == nc::Motion::kTapping) {
     // lead x S along the dominant axis, whatever the spindle actually does.
-    const double speed = k * std::abs(block_.modal.spindle_speed) * 6;
+    const double speed = k * std::abs(work_.block.modal.spindle_speed) * 6;
     if (speed > sync_.path.max_speed * (1 + 1e-9)) {
       char text[160];
       std::snprintf(text, sizeof text, "G63 at %.3f mm/s is faster than the axes' %.3f mm/s", speed,
                     sync_.path.max_speed);
       return fail(text, kMsgLeadTooFast);
     }
-    profile_.max_rate = speed / motion_.length;
-    profile_.max_accel = sync_.path.max_accel / motion_.length;
-    profile_.max_jerk = sync_.path.max_jerk / motion_.length;
+    work_.profile.max_rate = speed / work_.motion.length;
+    work_.profile.max_accel = sync_.path.max_accel / work_.motion.length;
+    work_.profile.max_jerk = sync_.path.max_jerk / work_.motion.length;
     sync_.phase = SyncPhase::kRunning;
   } else {
-    sync_.direction = block_.modal.spindle == 4 ? -1 : 1;
-    RigidTappingLimits(sync_.path, block_.modal.spindle_speed, config_.spindle.rapid_per_s,
-                       config_.spindle.acceleration, profile_);
+    sync_.direction = work_.block.modal.spindle == 4 ? -1 : 1;
+    RigidTappingLimits(sync_.path, work_.block.modal.spindle_speed, config_.spindle.rapid_per_s,
+                       config_.spindle.acceleration, work_.profile);
     // lead x S, within the axes' and the spindle's limits; the spindle override may raise the
     // speed only as far as they allow.
-    const double limit = profile_.max_rate;
-    const double programmed = k * std::abs(block_.modal.spindle_speed) * 6 / motion_.length;
-    profile_.max_rate = std::min(limit, programmed);
-    sync_.max_override = limit / profile_.max_rate;
+    const double limit = work_.profile.max_rate;
+    const double programmed =
+        k * std::abs(work_.block.modal.spindle_speed) * 6 / work_.motion.length;
+    work_.profile.max_rate = std::min(limit, programmed);
+    sync_.max_override = limit / work_.profile.max_rate;
     sync_.phase = SyncPhase::kStopSpindle;
     spindle_.velocity_feedforward = 0;
     if (!(spindle_.mode == DriveMode::kPosition && spindle_.interpolated)) {
@@ -77,20 +78,20 @@ bool Channel::StartSynchronous(const AmplifierTelegram& at) {
       spindle_.value = 0;
     }
   }
-  active_ = true;
+  work_.active = true;
   return true;
 }
 
 void Channel::SynchronousCycle(const AmplifierTelegram& at, double dt) {
   const DriveFeedback& spindle = at.feedback[config_.spindle_drive];
   const double k = sync_.path.mm_per_deg;
-  const double length = motion_.length;
+  const double length = work_.motion.length;
   auto finish = [&] {
-    commanded_ = motion_.end;  // exactly the programmed point
-    active_ = false;
+    commanded_ = work_.motion.end;  // exactly the programmed point
+    work_.active = false;
     sync_.phase = SyncPhase::kNone;
   };
-  if (block_.motion == nc::Motion::kThread) {
+  if (work_.block.motion == nc::Motion::kThread) {
     // The spindle's actual position, unwrapped (a modulo encoder reports 0..360).
     double step = spindle.position - sync_.spindle_last_deg;
     step -= 360 * std::round(step / 360);
@@ -101,7 +102,7 @@ void Channel::SynchronousCycle(const AmplifierTelegram& at, double dt) {
       // The thread starts once the spindle runs at its commanded speed (override included).
       const double target = SpindleSetpoint().value;
       if (spindle_.mode != DriveMode::kVelocity || spindle_.value == 0) {
-        Fail(*ProgramOf(block_.program), block_.block, "spindle not turning for G33",
+        Fail(*ProgramOf(work_.block.program), work_.block.block, "spindle not turning for G33",
              kMsgSpindleStill);
         return;
       }
@@ -111,7 +112,7 @@ void Channel::SynchronousCycle(const AmplifierTelegram& at, double dt) {
         char text[160];
         std::snprintf(text, sizeof text, "G33 at %.3f mm/s is faster than the axes' %.3f mm/s",
                       k * std::abs(w), sync_.path.max_speed);
-        Fail(*ProgramOf(block_.program), block_.block, text, kMsgLeadTooFast);
+        Fail(*ProgramOf(work_.block.program), work_.block.block, text, kMsgLeadTooFast);
         return;
       }
       sync_.direction = w < 0 ? -1 : 1;
@@ -124,7 +125,7 @@ void Channel::SynchronousCycle(const AmplifierTelegram& at, double dt) {
                       "G33 thread %.3f mm is shorter than its ramp-in and run-out (%.3f mm) at "
                       "this spindle speed",
                       length, 2 * k * sync_.law.ramp_in_deg);
-        Fail(*ProgramOf(block_.program), block_.block, text, kMsgLeadTooFast);
+        Fail(*ProgramOf(work_.block.program), work_.block.block, text, kMsgLeadTooFast);
         return;
       }
       // Dead time: the axes reach this cycle's command one NC cycle later (fine
@@ -138,16 +139,16 @@ void Channel::SynchronousCycle(const AmplifierTelegram& at, double dt) {
         psi >= sync_.law.LawEndDeg() - ThreadLaw::RampDeg(k, w, sync_.path.max_accel))
       sync_.law.BeginRunOut(std::max(psi, sync_.law.ramp_in_deg));
     const double s = sync_.law.PathAt(psi);
-    profile_.u = s / length;
-    motion_.PointAt(profile_.u, commanded_);
+    work_.profile.u = s / length;
+    work_.motion.PointAt(work_.profile.u, commanded_);
     if (sync_.law.running_out() && psi >= sync_.law.run_out_end_deg) finish();
     return;
   }
-  if (block_.motion == nc::Motion::kTapping) {
+  if (work_.block.motion == nc::Motion::kTapping) {
     // Feed override held at 100 %, feed hold after the block.
-    profile_.Advance(dt, 1.0);
-    motion_.PointAt(profile_.u, commanded_);
-    if (profile_.done()) finish();
+    work_.profile.Advance(dt, 1.0);
+    work_.motion.PointAt(work_.profile.u, commanded_);
+    if (work_.profile.done()) finish();
     return;
   }
   // G64: brake a turning spindle, then position control where it stands.
@@ -162,12 +163,12 @@ void Channel::SynchronousCycle(const AmplifierTelegram& at, double dt) {
     sync_.spindle_start_deg = spindle_previous_deg_ = spindle_.value;
     sync_.phase = SyncPhase::kRunning;
   }
-  profile_.Advance(dt, std::min(spindle_override_, sync_.max_override));
-  motion_.PointAt(profile_.u, commanded_);
-  const double u = std::min(profile_.u, 1.0);
+  work_.profile.Advance(dt, std::min(spindle_override_, sync_.max_override));
+  work_.motion.PointAt(work_.profile.u, commanded_);
+  const double u = std::min(work_.profile.u, 1.0);
   spindle_.value = sync_.spindle_start_deg + sync_.direction * u * length / k;
-  spindle_.velocity_feedforward = sync_.direction * profile_.rate * length / k;
-  if (profile_.done()) {
+  spindle_.velocity_feedforward = sync_.direction * work_.profile.rate * length / k;
+  if (work_.profile.done()) {
     spindle_.velocity_feedforward = 0;
     finish();  // the spindle stands in position control at its end position
   }

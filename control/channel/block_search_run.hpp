@@ -1,0 +1,49 @@
+#pragma once
+// One block search from program start to the continue position (block search 3, 4): the
+// position the program has the axes at, the continue block and where in it machining goes on,
+// and the search's phases.
+
+#include <cstdint>
+#include <vector>
+
+#include "control/channel/block_motion.hpp"
+#include "control/channel/block_search.hpp"
+#include "control/drive_bus.hpp"
+
+namespace vmt::control::channel {
+
+struct BlockSearchRun {
+  explicit BlockSearchRun(const BlockSearchParameters& p) : matcher(p) {}
+  ContinueMatcher matcher;
+  std::vector<double> position;  ///< where the program has the axes, machine coordinates
+  DriveSetpoint spindle{DriveMode::kVelocity, 0, 0};  ///< the spindle as the program left it
+  bool found = false;            ///< the block boundary of the continue position (phase 1)
+  bool by_distance = false;      ///< phase 2: searching on for the distance from program start
+  bool ends_program = false;     ///< the search ends the program (type 5, position not found)
+  bool start_requested = false;  ///< a start while the search holds
+  std::vector<double> restart;   ///< the continue position, machine coordinates
+  /// The continue block's motion from its start, and where in it machining goes on; no
+  /// motion: the program goes on with the next block.
+  BlockMotion restart_motion;
+  double restart_u = 0;
+  double restart_distance = 0;  ///< distance from program start at the block's start
+  double restart_length = 0;    ///< the block's length for that distance
+  int64_t blocks = 0;           ///< blocks decoded in search mode
+  /// Under G41/G42 the search runs the tip path, as a run does: block_ is a piece of it, a
+  /// further piece of a block already simulated, or a corner the compensation inserted
+  /// before its block. The per mille lies in the block's own piece: found at an inserted
+  /// corner, the search runs it and takes the own piece that follows.
+  bool further_piece = false, inserted_piece = false, await_own_piece = false;
+  /// Type 1's end position was read (3.1): the program ends before its block.
+  bool end_reached = false;
+  bool return_rest = false;  ///< C is being aligned; the other axes' return follows (4.2.2)
+  /// G31 at the continue position: the return runs on the face's line, as G77 X1/Y1 does.
+  bool face_return = false;
+  /// The block in work waited for a spindle / rotary axis changeover, which has ended: it
+  /// is simulated again from there (channel_block_search_technology.cpp).
+  bool changed_over = false;
+  /// Where the interpreter had the rotary axis before the block in work (RebaseRotaryAxis).
+  double rotary_start = 0;
+};
+
+}  // namespace vmt::control::channel

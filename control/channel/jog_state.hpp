@@ -1,0 +1,32 @@
+#pragma once
+// What a jog key press leaves between NC cycles: per channel axis (continuous, increment,
+// handwheel, homing by AxxC.HOME, PathGuard's block of a direction) and per fictive axis X1/Y1
+// under G31. Jogging's functions are Channel's (channel_jog.cpp, channel_fictive_jog.cpp).
+
+#include "control/channel/path_profile.hpp"
+
+namespace vmt::control::channel {
+
+struct JogAxis {
+  int key = 0;            ///< key held: +1, -1, 0
+  double velocity = 0;    ///< continuous jog
+  PathProfile increment;  ///< incremental jog in progress when rate or u < 1
+  double from = 0, to = 0;
+  bool stepping = false;
+  double handwheel_target = 0;  ///< kHandwheel: where the counts want the axis
+  bool handwheel = false;
+  int blocked = 0;  ///< PathGuard stopped the key in this direction: until it is released
+  bool home_requested = false;  ///< AxxC.HOME: homing starts once the axis can move
+  bool homing = false;          ///< the increment under way is homing (to the reference)
+};
+
+struct FictiveJog {
+  int key = 0;
+  double velocity = 0;  ///< mm/s along the fictive axis
+  bool stepping = false;
+  double target = 0;            ///< the increment's end
+  bool handwheel = false;       ///< kHandwheel: counts given, the point not there yet
+  double handwheel_target = 0;  ///< kHandwheel: where the counts want the fictive axis
+};
+
+}  // namespace vmt::control::channel
