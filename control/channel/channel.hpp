@@ -336,6 +336,10 @@ class Channel {
   Compensated FillReadyPiece(bool searching);
   /// The next ready piece of the tip path into work_.block, built on its block.
   ContourElement TakeReadyPiece();
+  /// G41/G42 begins with work_.block: from here on the channel reads ahead, so that each
+  /// block's path is offset with its successor in view. `position`: where the program has the
+  /// axes (machine coordinates), the start of the contour.
+  bool StartCompensation(const std::vector<double>& position);
   bool PushAhead(const nc::PreparedBlock& b);
   void DropLookahead();
   bool StartMotion(const AmplifierTelegram& at);

@@ -210,22 +210,8 @@ bool Channel::NextSearchBlock() {
     // G41/G42: the search reads ahead through the compensation as the run does
     // (NextBlock), so that the tip path it simulates is the one the run machines, and the
     // run takes over the compensation's state at the continue position.
-    if (axis_z_ < 0 || axis_x_ < 0) {
-      Fail(*ProgramOf(work_.block.program), work_.block.block,
-           "tool nose radius compensation G41/G42 needs the axes Z and X", kMsgNotAvailable);
-      return false;
-    }
-    work_.compensating = true;
-    work_.source_done = false;
-    work_.trc.Reset();
-    work_.ahead.clear();
-    work_.ready.clear();
-    work_.first_tag = work_.next_tag = 0;
-    work_.last_run_tag = -1;
     // Where the program has the axes: the search moves none.
-    work_.contour_point = {s.position[axis_z_] - translation_[axis_z_],
-                           s.position[axis_x_] - translation_[axis_x_]};
-    if (!PushAhead(work_.block)) return false;
+    if (!StartCompensation(s.position)) return false;
   }
   switch (FillReadyPiece(true)) {
     case Compensated::kFailed:

@@ -24,27 +24,29 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
   }
   if (work_.block.modal.compensation != nc::Compensation::kOff &&
       work_.block.motion != nc::Motion::kNone) {
-    // G41/G42: from here the channel reads ahead, so that each block's path can be offset
-    // with its successor in view.
-    if (axis_z_ < 0 || axis_x_ < 0) {
-      Fail(*ProgramOf(work_.block.program), work_.block.block,
-           "tool nose radius compensation G41/G42 needs the axes Z and X", kMsgNotAvailable);
-      return false;
-    }
-    work_.compensating = true;
-    work_.source_done = false;
-    work_.trc.Reset();
-    work_.ahead.clear();
-    work_.ready.clear();
-    work_.first_tag = work_.next_tag = 0;
-    work_.last_run_tag = -1;
-    work_.contour_point = {commanded_[axis_z_] - translation_[axis_z_],
-                           commanded_[axis_x_] - translation_[axis_x_]};
-    if (!PushAhead(work_.block)) return false;
+    if (!StartCompensation(commanded_)) return false;
     return NextCompensated(at);
   }
   inserted_piece_ = false;
   return RunBlock(at);
+}
+
+bool Channel::StartCompensation(const std::vector<double>& position) {
+  if (axis_z_ < 0 || axis_x_ < 0) {
+    Fail(*ProgramOf(work_.block.program), work_.block.block,
+         "tool nose radius compensation G41/G42 needs the axes Z and X", kMsgNotAvailable);
+    return false;
+  }
+  work_.compensating = true;
+  work_.source_done = false;
+  work_.trc.Reset();
+  work_.ahead.clear();
+  work_.ready.clear();
+  work_.first_tag = work_.next_tag = 0;
+  work_.last_run_tag = -1;
+  work_.contour_point = {position[axis_z_] - translation_[axis_z_],
+                         position[axis_x_] - translation_[axis_x_]};
+  return PushAhead(work_.block);
 }
 
 bool Channel::PushAhead(const nc::PreparedBlock& b) {

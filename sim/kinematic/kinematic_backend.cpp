@@ -112,7 +112,9 @@ void KinematicBackend::Step() {
   SampleProbes([this](int j) { return q_[j]; });
 }
 
-void KinematicBackend::UpdateFeedback() {
+// Flattened: left to itself, GCC's link-time inliner keeps DriveController::Feedback out of line
+// here, which costs the kinematic step 2-3 % (docs/performance-log.md).
+[[gnu::flatten]] void KinematicBackend::UpdateFeedback() {
   for (size_t d = 0; d < controllers_.size(); ++d) {
     const DriveParams& p = model_->drives[d];
     controllers_[d].Feedback(EncoderPosition(p, [this](int j) { return q_[j]; }),
