@@ -4,6 +4,8 @@
 // and the search's phases.
 
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "control/channel/block_motion.hpp"
@@ -44,6 +46,30 @@ struct BlockSearchRun {
   bool changed_over = false;
   /// Where the interpreter had the rotary axis before the block in work (RebaseRotaryAxis).
   double rotary_start = 0;
+};
+
+/// What block search keeps across program starts and while the program runs (block search 3.5,
+/// 4.1.2, 4.2, 5, 7): the CNC objects, the PLC's handshake, the distance from program start, the
+/// breakpoint and the manual return's offset.
+struct BlockSearchData {
+  BlockSearchParameters next;     ///< the objects as they stand (the next start takes them)
+  BlockSearchParameters started;  ///< the running program's (the _r read-backs)
+  BlockSearchState state = BlockSearchState::kInactive;
+  bool plc_enable = false, plc_state = false, command = false;  ///< the on/off handshake (7)
+  BlockSearchStatus status;                                     ///< as of the last NC cycle
+  std::vector<std::string> warnings;
+  /// Distance from program start (4.1.2): counted while #DISTANCE PROG START is ON, up to the
+  /// end of the block in work; the block in work's own start and length.
+  bool distance_on = true;
+  double distance = 0, block_distance_start = 0, block_distance = 0;
+  /// The breakpoint (3.5): the rest of the block it cut, held until the start.
+  double breakpoint = 0;  ///< mm from program start; 0: none or passed
+  std::optional<BlockMotion> breakpoint_rest;
+  double breakpoint_u = 0;
+  bool breakpoint_hold = false;
+  bool breakpoint_pending = false;  ///< the block in work ends at the breakpoint
+  /// Manual return (4.2): actual minus continue position, kept until the program ends.
+  std::vector<double> offset;
 };
 
 }  // namespace vmt::control::channel

@@ -18,7 +18,6 @@ Channel::Channel(ChannelConfig config, std::vector<const nc::Program*> programs)
   homed_.resize(n);
   for (size_t a = 0; a < n; ++a) homed_[a] = config_.axes[a].homed_at_start;
   spindle_ = {DriveMode::kVelocity, 0, 0};
-  further_spindles_.assign(config_.spindles.size(), FurtherSpindleState{});
   if (config_.headstock) headstock_.emplace(*config_.headstock);
   spindle_homed_ = config_.spindle.homed_at_start;
   last_modal_ = config_.initial;
@@ -85,8 +84,8 @@ void Channel::ForgetEndedProgram() {
   work_.interpreter.reset();
   parked_ = ProgramInWork{};
   ClearRepos();
-  measuring_setting_.reset();  // SETTING holds for one run of the program
-  reverse_vectors_ = {};
+  meas_.setting.reset();  // SETTING holds for one run of the program
+  meas_.reverse_vectors = {};
 }
 
 bool Channel::SelectProgram(size_t index) {
@@ -122,7 +121,7 @@ bool Channel::Reverse() {
   // program's reverse vector was written for, so without a REV of its own it has none.
   const nc::ReverseLabel label =
       work_.interpreter && work_.block.block >= 0 ? work_.block.reverse : nc::ReverseLabel{};
-  if (repos_run_) {  // the REPOS subroutine is given up (4.1); its variables are the program's
+  if (repos_.run) {  // the REPOS subroutine is given up (4.1); its variables are the program's
     HandBackVariables();
     SwapProgramInWork();
   }
@@ -138,13 +137,13 @@ bool Channel::Reverse() {
   // or at it) is given up, as Control-Reset gives it up: the block search manual knows no
   // reverse program, and vmt's reading is that the search has rebuilt an interrupted program
   // whose reverse program runs from where the axes stand.
-  if (bs_state_ != BlockSearchState::kInactive) {
+  if (bs_.state != BlockSearchState::kInactive) {
     search_.reset();
-    bs_state_ = BlockSearchState::kInactive;
-    bs_command_ = false;
+    bs_.state = BlockSearchState::kInactive;
+    bs_.command = false;
     cax_aligning_ = false;
-    breakpoint_rest_.reset();
-    breakpoint_hold_ = breakpoint_pending_ = false;
+    bs_.breakpoint_rest.reset();
+    bs_.breakpoint_hold = bs_.breakpoint_pending = false;
   }
   // The interrupted block is abandoned where the axes stand; the reverse program starts there.
   // A changeover in progress is given up and the original mode restored (C-axis manual 2.3).
@@ -154,7 +153,8 @@ bool Channel::Reverse() {
   work_.active = false;
   work_.homing = false;
   work_.dwell_left_s = 0;
-  orienting_ = further_restoring_ = false;
+  orienting_ = false;
+  further_.StopRestoring();
   // Fast measurement 6.1 / 7.2 network 9: the PLC acknowledges Q9999 once the reverse program
   // is active; the reverse program waits for that before its first block.
   std::erase_if(aux_output_, [](const nc::AuxFunction& f) {
@@ -212,8 +212,8 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
     output_suspended_ = suspend;
     // A held program whose axes go to the other channel is left as in manual mode (REPOS 2.1):
     // where it was interrupted is the contour to come back to. Block search has no contour yet.
-    if (suspend && state_ == ChannelState::kHold && work_.interpreter && !interruption_ &&
-        !repos_run_ && bs_state_ == BlockSearchState::kInactive)
+    if (suspend && state_ == ChannelState::kHold && work_.interpreter && !repos_.interruption &&
+        !repos_.run && bs_.state == BlockSearchState::kInactive)
       CaptureInterruption();
   }
   if (headstock_ && !headstock_known_) HeadstockPowerOn();
@@ -282,7 +282,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
         break;
     }
     ReposCycle(at);
-    if (state_ == ChannelState::kEnded && !search_offset_.empty()) RemoveSearchOffset();
+    if (state_ == ChannelState::kEnded && !bs_.offset.empty()) RemoveSearchOffset();
     UpdateBlockSearchStatus();
   }
   // Fine interpolation: the drives get a straight line between the last two NC cycle points.
@@ -304,7 +304,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
   const DriveSetpoint spindle = SpindleSetpoint();
   if (config_.spindle_drive >= 0) mdt.setpoints[config_.spindle_drive] = spindle;
   if (headstock_) headstock_->WriteSetpoints(spindle, rotary, at, mdt);
-  WriteFurtherSpindles(mdt);
+  further_.WriteSetpoints(mdt);
   WriteToolStorage(mdt);
   AcknowledgeDriveTrips(mdt);
 }
@@ -333,179 +333,6 @@ uint64_t Channel::FollowUpAxes(const nc::PreparedBlock& b) const {
   const uint64_t bit = uint64_t{1} << config_.rotary_axis;
   // X1/Y1 program C but position it only in rotary axis mode (coordinate_transformation.hpp).
   return b.programmed & bit && !b.fictive ? 0 : bit;
-}
-
-bool Channel::RunBlock(const AmplifierTelegram& at) {
-  const nc::Program& program = *ProgramOf(work_.block.program);
-  // G77 (REPOS manual 4.2) is refused at the start of its block, before any changeover.
-  if (work_.block.repos && waiting_for_ == axes::HeadstockMode::kNone && !CheckReposBlock())
-    return false;
-  if (headstock_) {
-    const axes::HeadstockMode need = ModeNeeded(work_.block);
-    if (need != axes::HeadstockMode::kNone && headstock_->mode() != need) {
-      headstock_->Request(need);
-      manual_changeover_ = false;
-      waiting_for_ = need;
-      return true;
-    }
-    if (waiting_for_ == axes::HeadstockMode::kRotary) RebaseRotaryAxis();
-    waiting_for_ = axes::HeadstockMode::kNone;
-    // X1/Y1 of G31/G32 position C, which the NC does only in rotary axis mode; unlike C they
-    // do not select it (coordinate_transformation.hpp).
-    if (work_.block.fictive && headstock_->mode() != axes::HeadstockMode::kRotary) {
-      Fail(program, work_.block.block,
-           "X1/Y1 of G" + std::to_string(nc::GCode(work_.block.modal.transformation)) +
-               " need the headstock in rotary axis mode: select it (G00 " +
-               config_.axes[config_.rotary_axis].name + "..) first",
-           kMsgTransformation);
-      return false;
-    }
-    // C-axis manual 2.3: offsets of the rotary axis are programmed only in rotary axis mode.
-    // The manual is silent on G92 C in spindle mode; a control refuses it rather than shift an
-    // axis it does not position.
-    const size_t r = static_cast<size_t>(config_.rotary_axis);
-    if (work_.block.set_position && (work_.block.programmed >> r & 1) &&
-        headstock_->mode() != axes::HeadstockMode::kRotary) {
-      Fail(program, work_.block.block,
-           "G92 of " + config_.axes[r].name + " outside rotary axis mode: program " +
-               config_.axes[r].name + " in a G00/G01 block first",
-           kMsgOffsetInSpindleMode);
-      return false;
-    }
-  }
-  auto unsupported = [&](const std::string& what) {
-    Fail(program, work_.block.block, what + " is not supported by vmt (docs/conformance.md)",
-         kMsgNotAvailable);
-    return false;
-  };
-  if (work_.block.measuring) return unsupported("G100 measuring");
-  if (work_.block.has_centre && work_.block.motion != nc::Motion::kArcCw &&
-      work_.block.motion != nc::Motion::kArcCcw)
-    return unsupported("I/J/K outside G02/G03");
-
-  // The T word indexes an NC-controlled turret before MTP / MRY of its block act on it.
-  if (!IndexToolStorage(work_.block, program)) return false;
-  bool mry = false;
-  // Instructions of later issues stop the program rather than pass unnoticed. The
-  // #-commands that only steer block search (and its return to the contour) have no effect on
-  // a normal run.
-  for (uint32_t index : work_.block.instructions) {
-    const nc::Statement& st = program.statements[index];
-    if (st.kind == nc::Statement::Kind::kHashCommand) {
-      const std::string& text = program.texts[st.text];
-      if (const std::string refused = RefusedHashCommand(text); !refused.empty()) {
-        Fail(nc::Format({st.pos, refused}, program.files), kMsgNotAvailable);
-        return false;
-      }
-      const int c = TrackedAxis();
-      if (const auto done = CaxTrackInstruction(program, st, work_.block,
-                                                c < 0 ? 0 : commanded_[static_cast<size_t>(c)])) {
-        if (!*done) return false;
-        continue;
-      }
-      if (SteersBlockSearch(text)) continue;
-      Fail(nc::Format({st.pos, "instruction #" + text.substr(0, text.find(' ')) +
-                                   " is not supported by vmt (docs/conformance.md)"},
-                      program.files),
-           kMsgNotAvailable);
-      return false;
-    }
-    const bool mtp = st.instruction == nc::Instruction::kMtp;
-    const bool waits = st.instruction == nc::Instruction::kMry;
-    // REPOS manual 4.2 Tool Storage Axis: in the REPOS subroutine MTP returns the tool storage
-    // axis to where it was; the PLC controls the turret, so the NC outputs the T word of the
-    // interruption again. MRY waits for the tool storage axis, which the acknowledgement of
-    // that T word already does.
-    // An NC-controlled tool storage axis the NC traverses back itself, and MRY waits for it.
-    if (repos_run_ && interruption_ && (mtp || waits)) {
-      if (mtp && ToolStorageNc()) {
-        if (!ReturnToolStorage()) return false;
-      } else if (mtp) {
-        work_.block.aux.push_back({'T', 0, static_cast<double>(interruption_->modal.tool)});
-      } else {
-        mry = true;
-      }
-      continue;
-    }
-    if (ToolStorageNc() && (waits || (mtp && StationOf(1)))) {
-      // In the program an NC-controlled one traverses asynchronously (4.2, "As in NC-program
-      // controlled mode"): MRY waits for its traverse as in the REPOS subroutine, and MTP
-      // ("Adjust tool turret", 8.3) brings the active tool's station back to the work, after
-      // a jog in manual mode, say. A PLC-controlled one: the PLC's business, as before.
-      if (mtp && !IndexToolStorage(work_.block.modal.tool, program, work_.block.block))
-        return false;
-      if (waits) mry = true;
-      continue;
-    }
-    if (nc::IsMeasuringCall(st.instruction)) continue;  // StartMeasuring below
-    Fail(nc::Format({st.pos, "instruction " + program.symbols.Name(st.name) +
-                                 " is not supported by vmt (docs/conformance.md)"},
-                    program.files),
-         kMsgNotAvailable);
-    return false;
-  }
-  // MRY: until the drive stands at the place, not only its command (a following error lags).
-  if (mry) tool_storage_wait_ = !ToolStorageArrived();
-  DistanceCommand(work_.block);
-  if (!work_.block.calls.empty()) {
-    PathBarrier();  // a probing move is no path to travel back along
-    return StartMeasuring(at);
-  }
-  for (const auto& [n, set] : work_.block.events) {
-    own_events_[n] = set;
-    if (event_sink_) event_sink_(n, set);
-  }
-
-  const std::vector<double> before = translation_;
-  if (!UpdateTranslation(work_.block.modal, program, work_.block.block)) return false;
-  if (work_.block.set_position) {
-    // G92: the programmed values become the current position of those axes (a shift that
-    // stays until Control-Reset).
-    for (size_t a = 0; a < commanded_.size(); ++a)
-      if (work_.block.programmed >> a & 1) {
-        shift_[a] += commanded_[a] - (work_.block.target[a] + translation_[a]);
-        translation_[a] = commanded_[a] - work_.block.target[a];
-        if (headstock_ && static_cast<int>(a) == config_.rotary_axis)
-          rotary_translation_ = translation_[a];
-      }
-  }
-  const bool arc =
-      work_.block.motion == nc::Motion::kArcCw || work_.block.motion == nc::Motion::kArcCcw;
-  if (arc && translation_ != before) {
-    Fail(program, work_.block.block,
-         "zero offset or tool correction changes in an arc block: program it in a straight block",
-         kMsgTranslationInArc);
-    return false;
-  }
-
-  // Spindle: M3/M4 with S (rpm), M5, M19 (orient to 0 deg); a start is checked by PathGuard.
-  DriveSetpoint spindle = spindle_;
-  const bool orient = SpindleFunctions(work_.block, spindle);
-  if (!GuardSpindleStart("spindle start", spindle)) return false;
-  // Sj= / Mj= of the further spindles (G77 Sj=0 restores them instead, StartReposMotion).
-  if (!work_.block.repos && !FurtherSpindleWords(program, work_.block, further_spindles_))
-    return false;
-  spindle_ = spindle;
-  if (orient) spindle_referencing_ = orienting_ = true;
-
-  // M, H, Q and T go to the PLC; the block goes on when it has acknowledged them.
-  if (config_.aux_handshake) {
-    for (const nc::AuxFunction& f : work_.block.aux)
-      if (f.letter == 'M' || f.letter == 'H' || f.letter == 'Q' || f.letter == 'T')
-        aux_output_.push_back(f);
-    if (!aux_output_.empty()) ++aux_strobe_;
-  }
-
-  programmed_stop_.Prepare(work_.block);
-  work_.dwell_left_s = work_.block.dwell_s;
-  if (work_.block.end) state_ = ChannelState::kEnded, reversing_ = false;
-  if (work_.block.motion == nc::Motion::kNone && !work_.block.homing && !work_.block.repos)
-    return true;
-  if (!aux_output_.empty() || tool_storage_wait_) {
-    work_.pending_motion = true;
-    return true;
-  }
-  return StartMotion(at);
 }
 
 bool Channel::UpdateTranslation(const nc::ModalState& modal, const nc::Program& program,
@@ -600,7 +427,7 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
     }
     std::sort(work_.homing_stages.begin(), work_.homing_stages.end());
     work_.homing = true;
-    if (!repos_run_) PathBarrier();
+    if (!repos_.run) PathBarrier();
     return NextHomingStage();
   }
   for (size_t a = 0; a < commanded_.size(); ++a)
@@ -625,7 +452,7 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
     planned = &tracked;
   }
   if (nc::SpindleSynchronous(work_.block.motion)) {
-    if (!repos_run_) PathBarrier();  // the spindle cannot be turned back in step
+    if (!repos_.run) PathBarrier();  // the spindle cannot be turned back in step
     return StartSynchronous(at);
   }
   sync_.phase = SyncPhase::kNone;
@@ -638,20 +465,20 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
   CountDistance();
   work_.profile = PathProfile{};
   if (!work_.motion.moves) {
-    if (breakpoint_pending_) HoldAtBreakpoint();  // at the very start of the block
+    if (bs_.breakpoint_pending) HoldAtBreakpoint();  // at the very start of the block
     return true;
   }
   // Issue 6: the REPOS subroutine's moves are approach moves, checked whole before they start
   // as G77's are (its blocks are reached at rest for that: LookAhead), and so are a JogOfPath
   // channel's. The program's own cuts are not: the stock is theirs to cut.
-  if ((repos_run_ || config_.approach_program) &&
-      !GuardBlockMove(repos_run_ ? "REPOS subroutine" : "JogOfPath"))
+  if ((repos_.run || config_.approach_program) &&
+      !GuardBlockMove(repos_.run ? "REPOS subroutine" : "JogOfPath"))
     return false;
   work_.profile.max_rate = work_.motion.max_rate;
   work_.profile.max_accel = work_.motion.max_accel;
   work_.profile.max_jerk = work_.motion.max_jerk;
   work_.active = true;
-  if (!repos_run_) RecordPath(work_.motion, work_.block.motion == nc::Motion::kRapid);
+  if (!repos_.run) RecordPath(work_.motion, work_.block.motion == nc::Motion::kRapid);
   if (carry_speed_ > 0) {
     // Continuing at speed from the block before (look-ahead): same path speed and
     // acceleration, from where the last cycle's remainder takes it.
@@ -662,7 +489,7 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
     work_.motion.PointAt(work_.profile.u, commanded_);
   }
   LookAhead(at);
-  if (breakpoint_pending_) work_.continuation_ready = false;  // stop at the breakpoint
+  if (bs_.breakpoint_pending) work_.continuation_ready = false;  // stop at the breakpoint
   return true;
 }
 

@@ -26,6 +26,8 @@
 #include "control/channel/channel_config.hpp"
 #include "control/channel/channel_messages.hpp"
 #include "control/channel/channel_types.hpp"
+#include "control/channel/further_spindle_control.hpp"
+#include "control/channel/guarded_moves.hpp"
 #include "control/channel/jog_state.hpp"
 #include "control/channel/look_ahead.hpp"
 #include "control/channel/measuring_run.hpp"
@@ -98,10 +100,7 @@ class Channel {
   /// Drive ticks per NC cycle: the gateway is served once per cycle.
   int ticks_per_cycle() const { return config_.ticks_per_cycle; }
   /// Jog increment in mm | deg; 0 jogs continuously while the key is held.
-  void SetJogIncrement(double increment) {
-    jog_increment_ = std::abs(increment);
-    jog_mode_ = JogMode::kContinuous;
-  }
+  void SetJogIncrement(double increment);
   /// Jog key of a fictive axis of the active G31 transformation: `axis` 0 X1, 1 Y1 (REPOS
   /// manual 5.2: X and C move as a Cartesian jog). False, and nothing moves, outside manual
   /// mode or without G31 and rotary axis mode.
@@ -181,37 +180,31 @@ class Channel {
 
   /// The machine data pages of fast measurement (MTD, the measuring instructions); null: none.
   /// They must outlive the channel.
-  void SetMeasuringPages(measure::MeasuringPages* pages) { measuring_pages_ = pages; }
+  void SetMeasuringPages(measure::MeasuringPages* pages) { meas_.pages = pages; }
   /// The measuring setting of SETTING( ), until the program ends or Control-Reset.
   const std::optional<measure::MeasuringSetting>& measuring_setting() const {
-    return measuring_setting_;
+    return meas_.setting;
   }
   /// The stylus' way back for the reverse program (fast-measurement manual 4.4).
-  const measure::ReverseVectors& reverse_vectors() const { return reverse_vectors_; }
+  const measure::ReverseVectors& reverse_vectors() const { return meas_.reverse_vectors; }
 
   /// The machine geometry's check of approach moves (ChannelConfig::path_guard says what a
   /// contact does); null: none. It must outlive the channel.
-  void SetPathGuard(PathGuard* guard) { guard_ = guard; }
+  void SetPathGuard(PathGuard* guard) { guarded_.guard = guard; }
   /// The checks made since the last call, oldest first.
-  std::vector<GuardRecord> TakeGuardRecords() { return std::exchange(guard_records_, {}); }
+  std::vector<GuardRecord> TakeGuardRecords() { return std::exchange(guarded_.records, {}); }
   /// Warnings of the measuring instructions since the last call ("file:line:col: warning: ...").
-  std::vector<std::string> TakeMeasuringWarnings() {
-    return std::exchange(measuring_warnings_, {});
-  }
+  std::vector<std::string> TakeMeasuringWarnings() { return std::exchange(meas_.warnings, {}); }
 
   /// Repositioning and NC-block restart (REPOS manual): the PLC's PxxC.REPOS and PxxC.RESTA,
   /// levels given every NC cycle. They count only while the program is interrupted and an axis
   /// has been jogged off the contour (2.1, 7.1); both at once ask for neither.
-  void SetReposition(bool repositioning, bool restart) {
-    repos_request_ = repositioning && !restart   ? ReposFunction::kRepositioning
-                     : restart && !repositioning ? ReposFunction::kRestart
-                                                 : ReposFunction::kNone;
-  }
+  void SetReposition(bool repositioning, bool restart);
   /// PxxS.REPOS (7.2): the program is interrupted, until it resumes or Control-Reset.
-  bool repos_allowed() const { return state_ == ChannelState::kHold || repos_run_; }
+  bool repos_allowed() const { return state_ == ChannelState::kHold || repos_.run; }
   /// PxxS.CREST (7.3), as of the last NC cycle.
-  bool conditions_restored() const { return crest_; }
-  ReposFunction repos_function() const { return repos_function_; }
+  bool conditions_restored() const { return repos_.crest; }
+  ReposFunction repos_function() const { return repos_.function; }
   /// The REPOS screen's data (2.2); empty axes when nothing is interrupted.
   ReposStatus repos_status(const AmplifierTelegram* at = nullptr) const;
   /// Operator edits during an interruption (2.5): a zero offset G54..G59 of a channel axis, and
@@ -225,15 +218,15 @@ class Channel {
   /// program). False, with the error in `text`, if they are out of range.
   bool SetBlockSearch(const BlockSearchParameters& p, std::string* text = nullptr);
   /// The parameters the running program was started with (the _r read-backs).
-  const BlockSearchParameters& block_search_parameters() const { return bs_started_; }
+  const BlockSearchParameters& block_search_parameters() const { return bs_.started; }
   /// The PLC's side of the on/off handshake (7): enable_w (it wants to be told) and its
   /// acknowledgement, the PLC's signal of bahn_lc_control.block_search.
   void SetBlockSearchPlc(bool enable, bool acknowledged) {
-    bs_plc_enable_ = enable;
-    bs_plc_state_ = acknowledged;
+    bs_.plc_enable = enable;
+    bs_.plc_state = acknowledged;
   }
   /// State and status data of block search and path (5.5, 5.6), as of the last NC cycle.
-  const BlockSearchStatus& block_search() const { return bs_status_; }
+  const BlockSearchStatus& block_search() const { return bs_.status; }
 
   /// Backward travel (block search manual 4.3): the direction the next start takes while the
   /// program is held. Backward, the NC travels the path of the blocks it ran - or, after block
@@ -326,7 +319,17 @@ class Channel {
   /// The program's NC cycle: what `owner` does, then the block in work's motion.
   void ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, double dt);
   bool NextBlock(const AmplifierTelegram& at);
+  /// The block in work starts (channel_run_block.cpp): false if it failed the channel.
   bool RunBlock(const AmplifierTelegram& at);
+  /// The headstock mode the block needs: a changeover requested (true: the block waits), a
+  /// block the mode forbids (false, failed); nullopt: it goes on.
+  std::optional<bool> HeadstockBlockStart(const nc::Program& program);
+  /// Its instructions (MTP, MRY, #-commands ...); `mry`: it waits for the tool storage axis.
+  bool BlockInstructions(const nc::Program& program, bool& mry);
+  /// Its zero offset, tool length and G92 shift.
+  bool BlockOffsets(const nc::Program& program);
+  /// Its functions of the main and further spindles.
+  bool BlockSpindles(const nc::Program& program);
   bool NextCompensated(const AmplifierTelegram& at);
   /// Under G41/G42, reads on (through ReadNext, or straight from the interpreter while
   /// `searching`) until the compensation has a final piece ready (kPiece), has given out all it
@@ -409,7 +412,6 @@ class Channel {
   /// One key press' distance in the jog mode: Cxx.022 in kParametric, the fixed increment in
   /// kIncrement1..1000; 0 where a key jogs continuously (or, kHandwheel, not at all).
   double JogIncrement(const ChannelAxis& axis) const;
-  int fictive_guard_countdown_ = 0;
   static constexpr double kFictiveJogCentre = 0.1;  ///< mm: the jog stops this far from the centre
   bool FictiveJogAxes(int& x, int& c) const;
   void FictiveJogging(double dt);
@@ -468,42 +470,11 @@ class Channel {
   /// The main spindle about to take setpoint `sp`: a start sweeps what turns with it. False
   /// if stopped.
   bool GuardSpindleStart(const std::string& move, const DriveSetpoint& sp);
-  // Further spindles (channel_further_spindles.cpp).
-  /// Sj= / Mj= of spindle j >= 2 in a block: false (an error at the word) for a spindle the
-  /// channel does not have or a function it cannot give one; else `states` takes them.
-  bool FurtherSpindleWords(const nc::Program& program, const nc::PreparedBlock& b,
-                           std::vector<FurtherSpindleState>& states);
-  /// G77 Sj=0 for j >= 2 (REPOS manual 4.2): checks its words, then restores the spindles'
-  /// states from before the interruption. False on an error (the channel has failed).
-  bool CheckReposFurtherSpindles(const nc::Program& program);
-  void RestoreFurtherSpindles(const AmplifierTelegram& at);
-  /// Each further spindle at its command of before the interruption, at speed (7.3).
-  bool FurtherSpindlesRestored(const AmplifierTelegram& at) const;
-  bool FurtherSpindleRestored(size_t k, const AmplifierTelegram* at) const;
-  /// A further spindle restored by G77 still ramps to its speed: the block waits.
-  bool FurtherSpindlesRamping(const AmplifierTelegram& at) const;
-  void WriteFurtherSpindles(MasterTelegram& mdt) const;
-  std::vector<FurtherSpindleState> further_spindles_;  ///< per config_.spindles
-  bool further_restoring_ = false;  ///< a G77 Sj=0 (j >= 2) block waits for their speed
-  std::optional<GuardRecord> guarded_turret_jog_;
-  int turret_guard_countdown_ = 0;
-  PathGuard* guard_ = nullptr;
-  std::vector<GuardRecord> guard_records_;
-  std::optional<GuardRecord> guarded_jog_;  ///< the continuous jog being checked, summed up
-  int guard_countdown_ = 0;
+  FurtherSpindleControl further_{config_.spindles};  ///< spindles j >= 2
+  GuardedMoves guarded_;
   std::vector<double> drive_positions_;  ///< every drive's actual position, this NC cycle
   // Repositioning and NC-block restart (channel_repositioning.cpp).
-  std::optional<Interruption> interruption_;
-  ReposFunction repos_request_ = ReposFunction::kNone;   ///< what the PLC asks for
-  ReposFunction repos_function_ = ReposFunction::kNone;  ///< what the NC does (7.1)
-  std::vector<double> repos_start_;  ///< where each axis stood when the function was called
-  bool crest_ = false;
-  bool repos_run_ = false;      ///< the REPOS subroutine or the closing move runs (4.1)
-  bool repos_closing_ = false;  ///< the closing move to the exact target runs
-  bool repos_finish_ = false;   ///< no subroutine: close and continue
-  /// Stopped during the REPOS subroutine and manual mode entered: the next start runs it again
-  /// from `.REPOS` (the operator may have jogged; the interruption point stays the target).
-  bool repos_rerun_ = false;
+  ReposData repos_;
   // Backward travel (channel_backward.cpp).
   PathMemory path_memory_;
   PathReplay replay_;
@@ -571,11 +542,7 @@ class Channel {
   /// The REPOS subroutine's @ variables back to the interrupted program (one set, 8.3).
   void HandBackVariables();
   // Fast measurement (channel_measuring.cpp): a measuring instruction's block runs its plan.
-  std::optional<MeasuringRun> measuring_;
-  std::optional<measure::MeasuringSetting> measuring_setting_;
-  measure::ReverseVectors reverse_vectors_;
-  measure::MeasuringPages* measuring_pages_ = nullptr;
-  std::vector<std::string> measuring_warnings_;
+  MeasuringData meas_;
   /// The block's measuring instruction: check it, plan it, start its steps. False on an error.
   bool StartMeasuring(const AmplifierTelegram& at);
   /// What `plan` leaves as state, in a run and in block search alike: SETTING's setting and its
@@ -588,8 +555,6 @@ class Channel {
   /// While event 29 (collision monitoring) is set in a program that has run SETTING: a probe
   /// displaced outside the measuring path stops the axes, outputs Q9999 and fails (6.1).
   void WatchProbeCollision(const AmplifierTelegram& at);
-  /// Bit n: SETTING axis n+1's drive has shown the probe free since event 29 was set.
-  uint8_t probe_free_seen_ = 0;
   bool StartMeasuringMove(const measure::MeasuringStep& step);
   /// After a move of the instruction: the reverse vectors reached, and a way back to a point
   /// already recorded (the escape) ends the record there.
@@ -619,23 +584,7 @@ class Channel {
   bool TrackC(nc::PreparedBlock& b, const std::vector<double>& from, double rev_per_s,
               std::optional<double>& align_to);
   bool StartCaxAlignment(double to);
-  BlockSearchParameters bs_next_, bs_started_;
-  BlockSearchState bs_state_ = BlockSearchState::kInactive;
-  bool bs_plc_enable_ = false, bs_plc_state_ = false, bs_command_ = false;
-  BlockSearchStatus bs_status_;
-  std::vector<std::string> bs_warnings_;
-  /// Distance from program start (4.1.2): counted while #DISTANCE PROG START is ON, up to the
-  /// end of the block in work; the block in work's own start and length.
-  bool distance_on_ = true;
-  double distance_ = 0, block_distance_start_ = 0, block_distance_ = 0;
-  /// The breakpoint (3.5): the rest of the block it cut, held until the start.
-  double breakpoint_ = 0;  ///< mm from program start; 0: none or passed
-  std::optional<BlockMotion> breakpoint_rest_;
-  double breakpoint_u_ = 0;
-  bool breakpoint_hold_ = false;
-  bool breakpoint_pending_ = false;  ///< the block in work ends at the breakpoint
-  /// Manual return (4.2): actual minus continue position, kept until the program ends.
-  std::vector<double> search_offset_;
+  BlockSearchData bs_;
   /// A program start: block search, breakpoint and entry point as the parameters say.
   void BeginBlockSearch();
   /// The search's part of an NC cycle; true while it owns the cycle (no normal block flow).

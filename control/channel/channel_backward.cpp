@@ -38,8 +38,8 @@ bool Near(const std::vector<double>& a, const std::vector<double>& b) {
 void Channel::RecordPath(const BlockMotion& motion, bool rapid) {
   if (!motion.moves) return;
   if (!Retraceable(motion)) return PathBarrier();
-  // Block search decodes without motion (bs_state_ kActive): its blocks were never travelled.
-  path_memory_.Push(motion, rapid, bs_state_ == BlockSearchState::kActive);
+  // Block search decodes without motion (bs_.state kActive): its blocks were never travelled.
+  path_memory_.Push(motion, rapid, bs_.state == BlockSearchState::kActive);
 }
 
 void Channel::RefuseBackward(const std::string& why) {
@@ -63,18 +63,18 @@ bool Channel::StartReplay() {
   if (!r.away) {
     // Where on the path the axes stand: inside the block in work, inside the continue block of
     // a block search, or at the end of the last block.
-    if (repos_run_ || (interruption_ && interruption_->left_contour)) {
+    if (repos_.run || (repos_.interruption && repos_.interruption->left_contour)) {
       RefuseBackward("the axes are being repositioned; return them to the contour first");
       return true;
     }
-    for (double offset : search_offset_)
+    for (double offset : bs_.offset)
       if (offset != 0) {
         // 4.2: "Bei einem Offset > 0 ist Rückwärtsfahren nicht möglich!"
         RefuseBackward("not possible with the offset of a manual return to the contour");
         return true;
       }
-    if (search_ && bs_state_ != BlockSearchState::kInactive &&
-        bs_state_ != BlockSearchState::kWaitForContinueContour) {
+    if (search_ && bs_.state != BlockSearchState::kInactive &&
+        bs_.state != BlockSearchState::kWaitForContinueContour) {
       RefuseBackward("block search has not returned to the contour yet");
       return true;
     }
@@ -87,7 +87,7 @@ bool Channel::StartReplay() {
       const BlockMotion& last = path_memory_.back().motion;
       if (work_.active && SameMotion(last, work_.motion))
         u = work_.profile.u;
-      else if (search_ && bs_state_ == BlockSearchState::kWaitForContinueContour &&
+      else if (search_ && bs_.state == BlockSearchState::kWaitForContinueContour &&
                SameMotion(last, search_->restart_motion))
         u = search_->restart_u;
       else if (Near(commanded_, last.end))
@@ -99,7 +99,7 @@ bool Channel::StartReplay() {
       return true;
     }
     // Not jogged off: the interruption of a visit to manual mode is over.
-    if (interruption_) ClearRepos();
+    if (repos_.interruption) ClearRepos();
     r.away = true;
     r.home = commanded_;
     r.index = path_memory_.size() - 1;
@@ -146,16 +146,16 @@ bool Channel::StartReplayLeg() {
       r.u = to;
       continue;
     }
-    if (step.rapid && step.decoded && guard_ && config_.path_guard != GuardReaction::kOff) {
+    if (step.rapid && step.decoded && guarded_.guard && config_.path_guard != GuardReaction::kOff) {
       const std::string move = r.direction < 0 ? "backward travel" : "forward travel";
       const std::vector<double> from = GuardFrom();
       std::vector<double> to_drives = from;
       for (size_t a = 0; a < config_.axes.size(); ++a)
         if (static_cast<size_t>(config_.axes[a].drive) < to_drives.size())
           to_drives[config_.axes[a].drive] = r.leg.end[a];
-      const PathCheck c = guard_->CheckMove(from, to_drives);
+      const PathCheck c = guarded_.guard->CheckMove(from, to_drives);
       if (c.clear) {
-        guard_records_.push_back({move, from, to_drives, c, 1, false});
+        guarded_.records.push_back({move, from, to_drives, c, 1, false});
       } else if (GuardStops(move, from, to_drives, c)) {
         r.direction = 0;
         return true;

@@ -50,64 +50,64 @@ constexpr const char* kNotFound =
 
 bool Channel::SetBlockSearch(const BlockSearchParameters& p, std::string* text) {
   // Kept even when wrong: the program start reports it, where the operator looks.
-  bs_next_ = p;
+  bs_.next = p;
   const std::string error = CheckBlockSearch(p);
   if (text) *text = error;
   return error.empty();
 }
 
 void Channel::BeginBlockSearch() {
-  bs_started_ = bs_next_;
+  bs_.started = bs_.next;
   search_.reset();
-  bs_state_ = BlockSearchState::kInactive;
-  bs_command_ = false;
-  bs_warnings_.clear();
-  distance_on_ = true;  // 4.1.2: ON and CLEAR are the state at program start
+  bs_.state = BlockSearchState::kInactive;
+  bs_.command = false;
+  bs_.warnings.clear();
+  bs_.distance_on = true;  // 4.1.2: ON and CLEAR are the state at program start
   cax_track_.reset();
   cax_aligning_ = false;
-  distance_ = block_distance_start_ = block_distance_ = 0;
-  breakpoint_rest_.reset();
-  breakpoint_hold_ = false;
-  breakpoint_pending_ = false;
-  breakpoint_ = 0;
+  bs_.distance = bs_.block_distance_start = bs_.block_distance = 0;
+  bs_.breakpoint_rest.reset();
+  bs_.breakpoint_hold = false;
+  bs_.breakpoint_pending = false;
+  bs_.breakpoint = 0;
   RemoveSearchOffset();
   if (mode_ != ChannelMode::kAutomatic || !work_.interpreter) return;
-  if (const std::string e = CheckBlockSearch(bs_started_); !e.empty()) {
+  if (const std::string e = CheckBlockSearch(bs_.started); !e.empty()) {
     Fail("block search: " + e, kMsgBlockSearch);
     return;
   }
-  breakpoint_ = bs_started_.breakpoint_position * 1e-4;
-  if (bs_started_.file_offset > 0 &&
-      !work_.interpreter->StartAt(static_cast<uint32_t>(bs_started_.file_offset))) {
+  bs_.breakpoint = bs_.started.breakpoint_position * 1e-4;
+  if (bs_.started.file_offset > 0 &&
+      !work_.interpreter->StartAt(static_cast<uint32_t>(bs_.started.file_offset))) {
     Fail(programs_[0]->files[0] + ": error: the entry point mc_command_file_offset_w " +
-             std::to_string(bs_started_.file_offset) + " lies beyond the program's last block",
+             std::to_string(bs_.started.file_offset) + " lies beyond the program's last block",
          kMsgBlockSearch);
     return;
   }
-  if (!bs_started_.searches()) return;
-  search_.emplace(bs_started_);
+  if (!bs_.started.searches()) return;
+  search_.emplace(bs_.started);
   search_->position = commanded_;
   search_->spindle = spindle_;
   work_.interpreter->SetEveryBlock(true);
-  bs_state_ = BlockSearchState::kWaitForPlcOn;
-  bs_command_ = true;
+  bs_.state = BlockSearchState::kWaitForPlcOn;
+  bs_.command = true;
 }
 
 bool Channel::SearchCycle(const AmplifierTelegram& at) {
-  if (!search_ || bs_state_ == BlockSearchState::kInactive) return false;
+  if (!search_ || bs_.state == BlockSearchState::kInactive) return false;
   BlockSearchRun& s = *search_;
   // Technology functions of the search wait for the PLC as in a normal run (2, 7).
   if (!aux_output_.empty()) return true;
   // 4.2.1: from the return on the search moves axes; lent to the JogOfPath channel, they must
   // come back first ("Vor dem Weiterfahren des Satzvorlaufkanals wird die Kanal-Ausgabe wieder
   // auf den Satzvorlaufkanal umgeschaltet").
-  if (output_suspended_ && bs_state_ >= BlockSearchState::kWaitReturnToContour) return true;
-  switch (bs_state_) {
+  if (output_suspended_ && bs_.state >= BlockSearchState::kWaitReturnToContour) return true;
+  switch (bs_.state) {
     case BlockSearchState::kWaitForPlcOn:
       // 7: with enable_w the NC asks and waits for the PLC's acknowledgement.
-      bs_command_ = true;
-      if (bs_plc_enable_ && !bs_plc_state_) return true;
-      bs_state_ = BlockSearchState::kActive;
+      bs_.command = true;
+      if (bs_.plc_enable && !bs_.plc_state) return true;
+      bs_.state = BlockSearchState::kActive;
       [[fallthrough]];
     case BlockSearchState::kActive:
       if (state_ != ChannelState::kRunning) return true;
@@ -120,8 +120,8 @@ bool Channel::SearchCycle(const AmplifierTelegram& at) {
       SimulateBlocks();
       return true;
     case BlockSearchState::kWaitForPlcOff:
-      bs_command_ = false;
-      if (bs_plc_enable_ && bs_plc_state_) return true;
+      bs_.command = false;
+      if (bs_.plc_enable && bs_.plc_state) return true;
       EndSearchMode();
       return true;
     case BlockSearchState::kWaitReturnToContour:
@@ -137,8 +137,8 @@ bool Channel::SearchCycle(const AmplifierTelegram& at) {
           !SpindleReady(at))
         return true;
       s.start_requested = false;
-      if (bs_started_.auto_return) {
-        if (StartReturnToContour()) bs_state_ = BlockSearchState::kReturningToContour;
+      if (bs_.started.auto_return) {
+        if (StartReturnToContour()) bs_.state = BlockSearchState::kReturningToContour;
         return true;
       }
       if (ApplySearchOffset()) ContinueAfterSearch();
@@ -151,16 +151,17 @@ bool Channel::SearchCycle(const AmplifierTelegram& at) {
         StartReturnMove(s.restart, "return to contour");
         return true;
       }
-      if (bs_started_.no_hold_at_restart) {
+      if (bs_.started.no_hold_at_restart) {
         ContinueAfterSearch();
         return true;
       }
       state_ = ChannelState::kHold;
       s.start_requested = false;
-      bs_state_ = BlockSearchState::kWaitForContinueContour;
+      bs_.state = BlockSearchState::kWaitForContinueContour;
       return true;
     case BlockSearchState::kWaitForContinueContour:
-      if (breakpoint_hold_ || !s.start_requested || state_ != ChannelState::kRunning) return true;
+      if (bs_.breakpoint_hold || !s.start_requested || state_ != ChannelState::kRunning)
+        return true;
       ContinueAfterSearch();
       return true;
     case BlockSearchState::kInactive:
@@ -181,7 +182,7 @@ bool Channel::SimulateBlocks() {
 
 bool Channel::SearchGoesOn() const {
   // Technology waits for the PLC: its acknowledgement, or the end of a changeover.
-  return bs_state_ == BlockSearchState::kActive && aux_output_.empty() &&
+  return bs_.state == BlockSearchState::kActive && aux_output_.empty() &&
          waiting_for_ == axes::HeadstockMode::kNone && state_ == ChannelState::kRunning;
 }
 
@@ -237,11 +238,11 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
   if (b.block < 0) {  // the end of the text, or type 1's end position (ReadSource)
     if (s.end_reached)
       // Type 1's end position before its continue position: nothing is left to machine.
-      bs_warnings_.push_back("the end position came before the continue position");
-    else if (bs_started_.type != BlockSearchType::kProgramEnd)
-      bs_warnings_.push_back(kNotFound);
+      bs_.warnings.push_back("the end position came before the continue position");
+    else if (bs_.started.type != BlockSearchType::kProgramEnd)
+      bs_.warnings.push_back(kNotFound);
     s.ends_program = true;
-    bs_state_ = BlockSearchState::kWaitForPlcOff;
+    bs_.state = BlockSearchState::kWaitForPlcOff;
     return true;
   }
   const nc::Program& program = *ProgramOf(b.program);
@@ -369,8 +370,8 @@ bool Channel::SimulateMotion(nc::PreparedBlock& b, bool boundary) {
       if (b.programmed >> a & 1)
         work_.interpreter->SetAxisPosition(a, s.position[a] - translation_[a]);
   }
-  const double length = distance_on_ ? DistanceOf(motion, config_.axes) : 0;
-  const double permille = bs_started_.covered_distance / 1000;
+  const double length = bs_.distance_on ? DistanceOf(motion, config_.axes) : 0;
+  const double permille = bs_.started.covered_distance / 1000;
   if (s.await_own_piece && !s.inserted_piece) {
     // The continue block's own piece after the corner the compensation inserted before it.
     s.await_own_piece = false;
@@ -378,7 +379,7 @@ bool Channel::SimulateMotion(nc::PreparedBlock& b, bool boundary) {
   }
   if (boundary) {
     s.found = true;
-    const double wanted = bs_started_.distance_prog_start * 1e-4;
+    const double wanted = bs_.started.distance_prog_start * 1e-4;
     if (wanted <= 0 && s.inserted_piece) {
       // The per mille measures the block's own piece of the tip path, not the corner arc
       // before it: the same point whatever the nose radius (4.1.1, note to figure 10).
@@ -386,37 +387,36 @@ bool Channel::SimulateMotion(nc::PreparedBlock& b, bool boundary) {
     } else if (wanted <= 0) {
       // 4.1.1 / 10: the covered distance splits a motion block; a block without motion is not.
       return FoundContinuePosition(b, motion, motion.moves ? permille : 0);
-    } else if (wanted < distance_ - 1e-9) {
+    } else if (wanted < bs_.distance - 1e-9) {
       // 4.1.2, figure 18: never back into blocks the search has passed.
-      bs_warnings_.push_back("the distance from program start " + Mm(wanted) +
+      bs_.warnings.push_back("the distance from program start " + Mm(wanted) +
                              " mm lies before the block of the continue position (" +
-                             Mm(distance_) + " mm): machining continues at its start");
+                             Mm(bs_.distance) + " mm): machining continues at its start");
       return FoundContinuePosition(b, motion, 0);
     } else {
       s.by_distance = true;
     }
   }
   if (s.by_distance && motion.moves && length > 0) {
-    const double wanted = bs_started_.distance_prog_start * 1e-4;
-    if (wanted <= distance_ + length + 1e-9) {
+    const double wanted = bs_.started.distance_prog_start * 1e-4;
+    if (wanted <= bs_.distance + length + 1e-9) {
       return FoundContinuePosition(b, motion,
-                                   std::clamp((wanted - distance_) / length, 0.0, 1.0));
+                                   std::clamp((wanted - bs_.distance) / length, 0.0, 1.0));
     }
   }
   if (motion.moves) s.position = motion.end;
-  distance_ += length;
-  if (!BreakpointAfter(distance_, b)) return false;
+  bs_.distance += length;
+  if (!BreakpointAfter(bs_.distance, b)) return false;
   // The decoded path, for backward travel from the continue position (4.3); not to the
   // program's end (type 5), where the program ends in search mode.
   if (b.homing || b.measuring || nc::SpindleSynchronous(b.motion))
     PathBarrier();
-  else if (bs_started_.type != BlockSearchType::kProgramEnd)
+  else if (bs_.started.type != BlockSearchType::kProgramEnd)
     RecordPath(motion, b.motion == nc::Motion::kRapid);
   if (b.end) {
-    if (bs_started_.type != BlockSearchType::kProgramEnd)
-      bs_warnings_.push_back(kNotFound);
+    if (bs_.started.type != BlockSearchType::kProgramEnd) bs_.warnings.push_back(kNotFound);
     s.ends_program = true;
-    bs_state_ = BlockSearchState::kWaitForPlcOff;
+    bs_.state = BlockSearchState::kWaitForPlcOff;
   }
   return true;
 }
@@ -427,9 +427,9 @@ bool Channel::BreakpointAfter(double continue_mm, const nc::PreparedBlock& b) {
   // for a stop and machining must not run on without it. The search stops with an error where
   // it meets the breakpoint, before any axis moves; a breakpoint at the continue position
   // itself holds as soon as machining goes on there (ContinueAfterSearch).
-  if (breakpoint_ <= 0 || breakpoint_ >= continue_mm - 1e-9) return true;
+  if (bs_.breakpoint <= 0 || bs_.breakpoint >= continue_mm - 1e-9) return true;
   Fail(*ProgramOf(b.program), b.block,
-       "the breakpoint mc_cmd_bs_breakpoint_position_w at " + Mm(breakpoint_) +
+       "the breakpoint mc_cmd_bs_breakpoint_position_w at " + Mm(bs_.breakpoint) +
            " mm from program start lies before the continue position of block search (" +
            Mm(continue_mm) + " mm and on): it must lie after it (block search 3.5)",
        kMsgBlockSearch);
@@ -439,12 +439,12 @@ bool Channel::BreakpointAfter(double continue_mm, const nc::PreparedBlock& b) {
 bool Channel::FoundContinuePosition(const nc::PreparedBlock& b, const BlockMotion& motion,
                                     double u) {
   BlockSearchRun& s = *search_;
-  const double length = distance_on_ ? DistanceOf(motion, config_.axes) : 0;
-  if (!BreakpointAfter(distance_ + u * length, b)) return false;
+  const double length = bs_.distance_on ? DistanceOf(motion, config_.axes) : 0;
+  if (!BreakpointAfter(bs_.distance + u * length, b)) return false;
   s.face_return = b.modal.transformation == nc::Transformation::kFace;
   s.restart_motion = motion;
   s.restart_u = u;
-  s.restart_distance = distance_;
+  s.restart_distance = bs_.distance;
   s.restart_length = length;
   s.restart = s.position;
   if (motion.moves) motion.PointAt(u, s.restart);
@@ -453,23 +453,23 @@ bool Channel::FoundContinuePosition(const nc::PreparedBlock& b, const BlockMotio
   else
     RecordPath(motion, b.motion == nc::Motion::kRapid);
   s.position = s.restart;
-  bs_state_ = BlockSearchState::kWaitForPlcOff;
+  bs_.state = BlockSearchState::kWaitForPlcOff;
   return true;
 }
 
 void Channel::EndSearchMode() {
   BlockSearchRun& s = *search_;
   // Type 1 with an end position watches the blocks of the real run too (NextBlock).
-  work_.interpreter->SetEveryBlock(bs_started_.type == BlockSearchType::kFileOffset &&
-                                   bs_started_.end.offset >= 0);
+  work_.interpreter->SetEveryBlock(bs_.started.type == BlockSearchType::kFileOffset &&
+                                   bs_.started.end.offset >= 0);
   if (s.ends_program) {
     // 3.4, 10: the whole program ran in block search mode.
-    bs_state_ = BlockSearchState::kInactive;
+    bs_.state = BlockSearchState::kInactive;
     state_ = ChannelState::kEnded;
     reversing_ = false;
     return;
   }
-  bs_state_ = BlockSearchState::kWaitReturnToContour;
+  bs_.state = BlockSearchState::kWaitReturnToContour;
   state_ = ChannelState::kHold;
   s.start_requested = false;
 }
@@ -477,14 +477,14 @@ void Channel::EndSearchMode() {
 void Channel::DistanceCommand(const nc::PreparedBlock& b) {
   switch (b.distance_command) {
     case nc::DistanceCommand::kOn:
-      distance_on_ = true;
+      bs_.distance_on = true;
       break;
     case nc::DistanceCommand::kOff:
-      distance_on_ = false;
+      bs_.distance_on = false;
       break;
     case nc::DistanceCommand::kClear:
-      distance_ = block_distance_start_ = 0;
-      block_distance_ = 0;
+      bs_.distance = bs_.block_distance_start = 0;
+      bs_.block_distance = 0;
       break;
     case nc::DistanceCommand::kNone:
       break;
@@ -492,34 +492,34 @@ void Channel::DistanceCommand(const nc::PreparedBlock& b) {
 }
 
 void Channel::CountDistance() {
-  block_distance_start_ = distance_;
-  block_distance_ = distance_on_ ? DistanceOf(work_.motion, config_.axes) : 0;
-  distance_ += block_distance_;
-  breakpoint_rest_.reset();
+  bs_.block_distance_start = bs_.distance;
+  bs_.block_distance = bs_.distance_on ? DistanceOf(work_.motion, config_.axes) : 0;
+  bs_.distance += bs_.block_distance;
+  bs_.breakpoint_rest.reset();
   CutAtBreakpoint(0);
 }
 
 void Channel::CutAtBreakpoint(double from_u) {
   // 3.5: the breakpoint stops the first time the path reaches it going forward.
-  if (breakpoint_ <= 0 || block_distance_ <= 0 || breakpoint_ > distance_ + 1e-9 ||
-      breakpoint_ < block_distance_start_ + from_u * block_distance_ - 1e-9)
+  if (bs_.breakpoint <= 0 || bs_.block_distance <= 0 || bs_.breakpoint > bs_.distance + 1e-9 ||
+      bs_.breakpoint < bs_.block_distance_start + from_u * bs_.block_distance - 1e-9)
     return;
   const double u =
-      std::clamp((breakpoint_ - block_distance_start_) / block_distance_, from_u, 1.0);
-  breakpoint_ = 0;
-  breakpoint_pending_ = true;
-  breakpoint_u_ = u;
+      std::clamp((bs_.breakpoint - bs_.block_distance_start) / bs_.block_distance, from_u, 1.0);
+  bs_.breakpoint = 0;
+  bs_.breakpoint_pending = true;
+  bs_.breakpoint_u = u;
   if (u < 1 - 1e-12) {
-    breakpoint_rest_ = work_.motion;
+    bs_.breakpoint_rest = work_.motion;
     work_.motion = Truncated(work_.motion, u);
   }
 }
 
 void Channel::HoldAtBreakpoint() {
-  breakpoint_pending_ = false;
-  breakpoint_hold_ = true;
+  bs_.breakpoint_pending = false;
+  bs_.breakpoint_hold = true;
   state_ = ChannelState::kHold;
-  bs_state_ = BlockSearchState::kWaitForContinueContour;
+  bs_.state = BlockSearchState::kWaitForContinueContour;
 }
 
 bool Channel::SpindleFunctions(const nc::PreparedBlock& b, DriveSetpoint& sp) const {
@@ -542,29 +542,29 @@ bool Channel::SpindleFunctions(const nc::PreparedBlock& b, DriveSetpoint& sp) co
 }
 
 void Channel::UpdateBlockSearchStatus() {
-  BlockSearchStatus& st = bs_status_;
-  st.state = bs_state_;
-  st.command = bs_command_;
-  const bool moving = work_.motion.moves && (work_.active || breakpoint_hold_);
+  BlockSearchStatus& st = bs_.status;
+  st.state = bs_.state;
+  st.command = bs_.command;
+  const bool moving = work_.motion.moves && (work_.active || bs_.breakpoint_hold);
   // A corner the compensation inserted before its block is not yet the block's own path: the
   // per mille the search takes is measured in that (SimulateMotion); nor is the C-only turn of
   // #CAX TRACK before its block, which has not started counting its distance yet.
   const bool aside = inserted_piece_ || cax_aligning_;
   double u = moving && !aside ? std::clamp(work_.profile.u, 0.0, 1.0) : 0;
   // The breakpoint cut the block: its profile runs over the first part only.
-  if (moving && breakpoint_rest_) u *= breakpoint_u_;
+  if (moving && bs_.breakpoint_rest) u *= bs_.breakpoint_u;
   st.covered_distance = u * 1000;
-  st.dist_prog_start = (work_.active || breakpoint_hold_) && !cax_aligning_
-                           ? block_distance_start_ + u * block_distance_
-                           : distance_;
+  st.dist_prog_start = (work_.active || bs_.breakpoint_hold) && !cax_aligning_
+                           ? bs_.block_distance_start + u * bs_.block_distance
+                           : bs_.distance;
   st.block_count = work_.block.block_count;
   st.path_deviation = 0;
   st.continue_position.clear();
-  if (search_ && !search_->restart.empty() && !breakpoint_hold_ &&
-      (bs_state_ == BlockSearchState::kWaitForPlcOff ||
-       bs_state_ == BlockSearchState::kWaitReturnToContour ||
-       bs_state_ == BlockSearchState::kReturningToContour ||
-       bs_state_ == BlockSearchState::kWaitForContinueContour)) {
+  if (search_ && !search_->restart.empty() && !bs_.breakpoint_hold &&
+      (bs_.state == BlockSearchState::kWaitForPlcOff ||
+       bs_.state == BlockSearchState::kWaitReturnToContour ||
+       bs_.state == BlockSearchState::kReturningToContour ||
+       bs_.state == BlockSearchState::kWaitForContinueContour)) {
     double d2 = 0;
     for (size_t a = 0; a < commanded_.size(); ++a)
       if (MainAxis(config_.axes[a].name)) d2 += std::pow(commanded_[a] - search_->restart[a], 2);
@@ -576,7 +576,7 @@ void Channel::UpdateBlockSearchStatus() {
   using namespace stop_condition;
   const bool running = state_ == ChannelState::kRunning;
   const bool hold = state_ == ChannelState::kHold;
-  if (breakpoint_hold_) sc |= kBreakpointStop;
+  if (bs_.breakpoint_hold) sc |= kBreakpointStop;
   if (hold && single_block_) sc |= kSingleBlock;
   // M00 / M01 (programmed_stop.hpp). STOP_REVERSIBLE: at an M00 the program may still be
   // travelled back (channel_backward.cpp) while the path memory holds a path to take.
@@ -588,9 +588,9 @@ void Channel::UpdateBlockSearchStatus() {
   // error in the channel that a new start acknowledges, not a feed hold.
   const bool measuring_fault = hold && error_number_ == kMsgMeasuringContinuable;
   if (measuring_fault) sc |= kChannelError;
-  const bool search_hold = bs_state_ == BlockSearchState::kWaitReturnToContour ||
-                           bs_state_ == BlockSearchState::kWaitForContinueContour;
-  if (hold && !breakpoint_hold_ && !single_block_ && !search_hold &&
+  const bool search_hold = bs_.state == BlockSearchState::kWaitReturnToContour ||
+                           bs_.state == BlockSearchState::kWaitForContinueContour;
+  if (hold && !bs_.breakpoint_hold && !single_block_ && !search_hold &&
       programmed == ProgrammedStop::Kind::kNone && !measuring_fault)
     sc |= kFeedhold;
   if (!aux_output_.empty()) sc |= kPlcAcknowledge | kWaitTechnoAck;
@@ -606,7 +606,7 @@ void Channel::UpdateBlockSearchStatus() {
   // waits for the exchange it asked for. While its output is suspended a program (not a
   // search, which decodes on) reads no blocks.
   if ((suspend_requested_ || axes_elsewhere_) != output_suspended_) sc |= kWaitForAxes;
-  if (output_suspended_ && (running || hold) && bs_state_ == BlockSearchState::kInactive)
+  if (output_suspended_ && (running || hold) && bs_.state == BlockSearchState::kInactive)
     sc |= kIpoInputDisabled;
   if (running && work_.active && override_ == 0)
     sc |= work_.block.motion == nc::Motion::kRapid ? kOverrideRapidZero : kOverrideZero;
@@ -617,7 +617,7 @@ void Channel::UpdateBlockSearchStatus() {
   if (state_ == ChannelState::kError && error_number_ == kMsgCollision)
     sc |= kWaitContinueAfterCollision;
   st.stop_conditions = sc;
-  st.warnings = bs_warnings_;
+  st.warnings = bs_.warnings;
 }
 
 }  // namespace vmt::control::channel

@@ -64,7 +64,7 @@ bool Channel::SimulateMeasuringInstruction(const nc::PreparedBlock& b) {
   };
   if (b.calls.size() > 1)
     return fail("only one measuring instruction may be programmed in a block (4.1)");
-  if (!measuring_pages_) return fail("fast measurement needs its machine data pages (7.1)");
+  if (!meas_.pages) return fail("fast measurement needs its machine data pages (7.1)");
   const nc::InstructionCall& call = b.calls.front();
   // The context where the program has the stylus, not where it stands (the search moves none).
   measure::MeasuringContext context = MeasuringContextNow();
@@ -73,14 +73,14 @@ bool Channel::SimulateMeasuringInstruction(const nc::PreparedBlock& b) {
     if (const int a = SettingAxis(n); a >= 0)
       context.position[n] += s.position[static_cast<size_t>(a)] - commanded_[static_cast<size_t>(a)];
   // Planned on copies: only what the instruction sets as state is taken over below.
-  measure::MeasuringPages pages = *measuring_pages_;
-  measure::ReverseVectors reverse = reverse_vectors_;
+  measure::MeasuringPages pages = *meas_.pages;
+  measure::ReverseVectors reverse = meas_.reverse_vectors;
   const measure::MeasuringPlan plan = measure::PlanInstruction(call, context, pages, reverse);
   if (!plan.error.empty()) return fail(plan.error);
   if (call.instruction == nc::Instruction::kSetting || call.instruction == nc::Instruction::kSave ||
       call.instruction == nc::Instruction::kRestore) {
     // No motion, no measurement: as in a run (StartMeasuring).
-    *measuring_pages_ = pages;
+    *meas_.pages = pages;
     ApplyMeasuringState(plan);
     // Their Q functions (SETTING's Q9992, 6.1) go to the PLC and wait for it, as in a run.
     if (config_.aux_handshake) {
@@ -107,7 +107,7 @@ bool Channel::SimulateMeasuringInstruction(const nc::PreparedBlock& b) {
   }
   // Section 8: the operator has to know that nothing was measured.
   const nc::SourcePos& at = program.blocks[static_cast<size_t>(b.block)].pos;
-  bs_warnings_.push_back(program.files[at.file] + ":" + std::to_string(at.line) + ":" +
+  bs_.warnings.push_back(program.files[at.file] + ":" + std::to_string(at.line) + ":" +
                          std::to_string(at.column) + ": warning: measuring instruction " +
                          nc::InstructionName(call.instruction) +
                          " simulated without measuring in block search: its results keep "

@@ -69,7 +69,7 @@ bool Channel::TrackC(nc::PreparedBlock& b, const std::vector<double>& from, doub
     return false;
   }
   // In a run C must be a positioned axis; in the search the headstock's mode is the program's.
-  if (headstock_ && bs_state_ == BlockSearchState::kInactive &&
+  if (headstock_ && bs_.state == BlockSearchState::kInactive &&
       headstock_->mode() != axes::HeadstockMode::kRotary) {
     Fail(program, b.block, "#CAX TRACK needs C in rotary axis mode", kMsgNotAvailable);
     return false;
@@ -119,7 +119,7 @@ bool Channel::StartCaxAlignment(double to) {
   work_.motion.max_accel = axis.acceleration / distance;
   work_.profile.max_rate = work_.motion.max_rate;
   work_.profile.max_accel = work_.motion.max_accel;
-  if (!repos_run_) RecordPath(work_.motion, true);
+  if (!repos_.run) RecordPath(work_.motion, true);
   work_.active = true;
   return true;
 }

@@ -17,14 +17,14 @@ NcCycleOwner Channel::CycleOwner() const {
 
 NcCycleOwner Channel::ProgramCycleOwner() const {
   // Block search owns the cycle while it is under way, its return to the contour included.
-  if (search_ && bs_state_ != BlockSearchState::kInactive) return NcCycleOwner::kBlockSearch;
+  if (search_ && bs_.state != BlockSearchState::kInactive) return NcCycleOwner::kBlockSearch;
   if (!aux_output_.empty()) return NcCycleOwner::kAuxAcknowledge;
   if (waiting_for_ != axes::HeadstockMode::kNone) return NcCycleOwner::kChangeover;
   if (tool_storage_wait_) return NcCycleOwner::kToolStorage;
   if (work_.pending_motion) return NcCycleOwner::kMotionStart;
   if (work_.dwell_left_s > 0) return NcCycleOwner::kDwell;
   if (orienting_) return NcCycleOwner::kSpindle;
-  if (measuring_ && !work_.active) return NcCycleOwner::kMeasuring;
+  if (meas_.run && !work_.active) return NcCycleOwner::kMeasuring;
   if (!work_.active && state_ == ChannelState::kRunning) return NcCycleOwner::kNextBlock;
   return NcCycleOwner::kBlockInWork;
 }
@@ -63,8 +63,7 @@ void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, doub
                          ? !(status & drive_status::kInPosition)
                          : spindle_.value != 0 && !(status & drive_status::kAtSpeed);
       }
-      if (further_restoring_) further_restoring_ = FurtherSpindlesRamping(at);
-      orienting_ |= further_restoring_;
+      orienting_ |= further_.UpdateRestoring(at);
       finished = !orienting_;
       break;
     case NcCycleOwner::kMeasuring:
@@ -79,7 +78,7 @@ void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, doub
       }
       finished = NextBlock(at) && !work_.active && work_.dwell_left_s <= 0 && !orienting_ &&
                  waiting_for_ == axes::HeadstockMode::kNone;
-      if (finished && measuring_) finished = MeasuringCycle(at);
+      if (finished && meas_.run) finished = MeasuringCycle(at);
       break;
     default:
       // The PLC's acknowledgement, MRY's tool storage axis (REPOS manual 4.2): the block
@@ -88,8 +87,8 @@ void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, doub
   }
   // A block interrupted and jogged away from stays where the program left it until the
   // axes are repositioned (REPOS manual 2.1): interpolating it would take them back.
-  const bool frozen = state_ == ChannelState::kHold && interruption_ &&
-                      interruption_->left_contour && !repos_run_;
+  const bool frozen = state_ == ChannelState::kHold && repos_.interruption &&
+                      repos_.interruption->left_contour && !repos_.run;
   if (work_.active && !frozen) {
     if (sync_.phase != SyncPhase::kNone)
       SynchronousCycle(at, dt);
@@ -97,12 +96,12 @@ void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, doub
       Interpolate(dt);
     WatchMeasuringMove(at);
     finished = !work_.active;
-    if (finished && breakpoint_pending_) {
+    if (finished && bs_.breakpoint_pending) {
       HoldAtBreakpoint();
       finished = false;
     }
     // A measuring instruction's move has ended: its next step follows at once.
-    if (finished && measuring_) finished = MeasuringCycle(at);
+    if (finished && meas_.run) finished = MeasuringCycle(at);
     if (finished && work_.homing) finished = !NextHomingStage();
     // C is aligned (#CAX TRACK): the block's own motion follows as one unit with it.
     if (finished && std::exchange(cax_aligning_, false))

@@ -27,7 +27,7 @@ namespace vmt::control::channel {
 bool Channel::FictiveJogAxes(int& x, int& c) const {
   x = c = -1;
   const nc::Transformation transformation =
-      interruption_ ? interruption_->modal.transformation : modal().transformation;
+      repos_.interruption ? repos_.interruption->modal.transformation : modal().transformation;
   if (transformation != nc::Transformation::kFace) return false;
   if (headstock_ && headstock_->mode() != axes::HeadstockMode::kRotary) return false;
   for (size_t a = 0; a < config_.axes.size(); ++a) {
@@ -87,9 +87,9 @@ void Channel::FictiveJogging(double dt) {
   // 3.2: the zone of each fictive axis while a REPOS function is called.
   double low[2] = {-HUGE_VAL, -HUGE_VAL}, high[2] = {HUGE_VAL, HUGE_VAL};
   int rx = -1, rc = -1;
-  if (repos_function_ != ReposFunction::kNone && FictiveRepos(rx, rc)) {
+  if (repos_.function != ReposFunction::kNone && FictiveRepos(rx, rc)) {
     const nc::FictivePoint target = FictiveOf(ReposTarget(), rx, rc);
-    const nc::FictivePoint start = FictiveOf(repos_start_, rx, rc);
+    const nc::FictivePoint start = FictiveOf(repos_.start, rx, rc);
     const double now[2] = {p.x1, p.y1}, to[2] = {target.x1, target.y1},
                  from[2] = {start.x1, start.y1};
     for (int k = 0; k < 2; ++k) {
@@ -164,9 +164,9 @@ void Channel::FictiveJogging(double dt) {
 }
 
 bool Channel::GuardFictiveJog(int x, int c, nc::FictivePoint next) {
-  if (!guard_ || config_.path_guard == GuardReaction::kOff) return true;
-  if (--fictive_guard_countdown_ > 0) return true;
-  fictive_guard_countdown_ = config_.path_guard_every;
+  if (!guarded_.guard || config_.path_guard == GuardReaction::kOff) return true;
+  if (--guarded_.fictive_jog_countdown > 0) return true;
+  guarded_.fictive_jog_countdown = config_.path_guard_every;
   // Where the jog could stop: the next point plus the braking distance and one check interval
   // at the present velocity, along the jog's direction.
   const double dt = config_.tick_s * config_.ticks_per_cycle;
@@ -205,14 +205,14 @@ bool Channel::GuardFictiveJog(int x, int c, nc::FictivePoint next) {
     const nc::FictivePoint q{p.x1 + (s.x1 - p.x1) * u, p.y1 + (s.y1 - p.y1) * u};
     b[config_.axes[x].drive] = std::hypot(q.x1, q.y1) + translation_[x];
     b[config_.axes[c].drive] = commanded_[c] + nc::SweepDeg(p, q);
-    const PathCheck check = guard_->CheckMove(at, b);
+    const PathCheck check = guarded_.guard->CheckMove(at, b);
     if (!check.clear) return !GuardStops(move, from, to, check);
     if (record.checks == 0 || check.min_clearance < record.check.min_clearance)
       record.check = check;
     ++record.checks;
     at = b;
   }
-  guard_records_.push_back(record);
+  guarded_.records.push_back(record);
   return true;
 }
 

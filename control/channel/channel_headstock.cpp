@@ -100,10 +100,10 @@ void Channel::ManualSpindle(int m) {
   if (headstock_) ManualChangeover(axes::HeadstockMode::kSpindle);
   // REPOS manual 3.3: during repositioning or NC-block restart the key of the table restores
   // the spindle's state before the interruption (M03 / M04 at the programmed speed, M05, M19).
-  if (repos_function_ != ReposFunction::kNone && SpindleRelevant() &&
-      KeyRestoresSpindle(interruption_->spindle_m, m)) {
-    if (!GuardSpindleStart("spindle start", interruption_->spindle)) return;
-    spindle_ = interruption_->spindle;
+  if (repos_.function != ReposFunction::kNone && SpindleRelevant() &&
+      KeyRestoresSpindle(repos_.interruption->spindle_m, m)) {
+    if (!GuardSpindleStart("spindle start", repos_.interruption->spindle)) return;
+    spindle_ = repos_.interruption->spindle;
     spindle_referencing_ = m == 19;
     take_over_pending_ = true;
     return;

@@ -7,6 +7,11 @@
 
 namespace vmt::control::channel {
 
+void Channel::SetJogIncrement(double increment) {
+  jog_increment_ = std::abs(increment);
+  jog_mode_ = JogMode::kContinuous;
+}
+
 void Channel::SetJogMode(int code) {
   jog_mode_ = static_cast<JogMode>(std::clamp(code, 0, 7));
   switch (jog_mode_) {
@@ -119,7 +124,7 @@ void Channel::Jogging(double dt) {
   // (an endless rotary axis excepted). An axis outside that zone (a zero offset edit moved its
   // target) may only come back towards it.
   const std::vector<double> repos_target =
-      repos_function_ != ReposFunction::kNone ? ReposTarget() : std::vector<double>{};
+      repos_.function != ReposFunction::kNone ? ReposTarget() : std::vector<double>{};
   for (size_t a = 0; a < jog_.size(); ++a) {
     JogAxis& j = jog_[a];
     // Outside rotary axis mode the rotary axis follows the spindle: it has no jog to go on with.
@@ -136,7 +141,7 @@ void Channel::Jogging(double dt) {
     bool limited = axis.travel_max > axis.travel_min;
     double low = axis.travel_min, high = axis.travel_max;
     if (!repos_target.empty()) {
-      const ReposZone zone = ZoneOf(axis, repos_target[a], repos_start_[a]);
+      const ReposZone zone = ZoneOf(axis, repos_target[a], repos_.start[a]);
       if (zone.limited) {
         const double zone_low = std::min(zone.low, commanded_[a]);
         const double zone_high = std::max(zone.high, commanded_[a]);

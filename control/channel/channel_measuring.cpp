@@ -31,8 +31,8 @@ const ProbeEdgeLatch* Latched(const ProbeInputStatus& input, bool normally_close
 }  // namespace
 
 int Channel::SettingAxis(int n) const {
-  if (!measuring_setting_ || n < 0 || n > 2 || measuring_setting_->axis[n] == 0) return -1;
-  const std::string name(1, measuring_setting_->axis[n]);
+  if (!meas_.setting || n < 0 || n > 2 || meas_.setting->axis[n] == 0) return -1;
+  const std::string name(1, meas_.setting->axis[n]);
   for (size_t a = 0; a < config_.axes.size(); ++a)
     if (config_.axes[a].name == name) return static_cast<int>(a);
   return -1;
@@ -46,18 +46,18 @@ bool Channel::EventSet(int n) const {
 
 std::vector<double> Channel::StylusTranslation(int sphere) const {
   nc::ModalState m = work_.block.modal;
-  if (measuring_setting_ && measuring_pages_) {
-    const int stylus = measuring_setting_->stylus;
-    m.tool = measuring_pages_->stylus[static_cast<size_t>(stylus - 1)].tool_number;
+  if (meas_.setting && meas_.pages) {
+    const int stylus = meas_.setting->stylus;
+    m.tool = meas_.pages->stylus[static_cast<size_t>(stylus - 1)].tool_number;
     m.correction = sphere;
-    m.tool_length = measuring_setting_->tool_length;
+    m.tool_length = meas_.setting->tool_length;
   }
   return TranslationOf(m);
 }
 
 measure::MeasuringContext Channel::MeasuringContextNow() const {
   measure::MeasuringContext c;
-  c.setting = measuring_setting_;
+  c.setting = meas_.setting;
   bool x = false, y = false, z = false;
   for (const ChannelAxis& a : config_.axes) {
     x |= a.name == "X";
@@ -66,7 +66,7 @@ measure::MeasuringContext Channel::MeasuringContextNow() const {
   }
   c.turning = x && z && !y;
   c.tool_list = !config_.tools.edges.empty();
-  const nc::ModalState& m = measuring_ ? measuring_->block.modal : work_.block.modal;
+  const nc::ModalState& m = meas_.run ? meas_.run->block.modal : work_.block.modal;
   c.compensation = m.compensation;
   // The sphere the instruction names (MOVE D, PROBE I): the position is its centre's.
   int sphere = 1;
@@ -100,7 +100,7 @@ void Channel::ApplyMeasuringState(const measure::MeasuringPlan& plan) {
   if (plan.setting) {
     // SETTING: its G codes are modal in the program from here (2.1: "Activating the G
     // functions"), as in the blocks the real control generates.
-    measuring_setting_ = plan.setting;
+    meas_.setting = plan.setting;
     nc::ModalState m = work_.interpreter->modal();
     m.plane = plan.setting->plane;
     m.tool_length = plan.setting->tool_length;
@@ -134,47 +134,46 @@ bool Channel::StartMeasuring(const AmplifierTelegram& at) {
     return fail("a block with a measuring instruction may hold no other NC syntax (4.1)");
   if (program.blocks[static_cast<size_t>(work_.block.block)].skippable)
     return fail("a block with a measuring instruction may not be a skipped block (4.1)");
-  if (!measuring_pages_) return fail("fast measurement needs its machine data pages (7.1)");
+  if (!meas_.pages) return fail("fast measurement needs its machine data pages (7.1)");
 
   MeasuringRun run;
   run.block = work_.block;
   run.call = work_.block.calls.front();
-  measuring_.emplace(std::move(run));
-  measuring_->context = MeasuringContextNow();
-  measuring_->context.compensation = work_.block.modal.compensation;
-  const measure::ReverseVectors before = reverse_vectors_;
-  measuring_->plan = measure::PlanInstruction(measuring_->call, measuring_->context,
-                                              *measuring_pages_, reverse_vectors_);
+  meas_.run.emplace(std::move(run));
+  meas_.run->context = MeasuringContextNow();
+  meas_.run->context.compensation = work_.block.modal.compensation;
+  const measure::ReverseVectors before = meas_.reverse_vectors;
+  meas_.run->plan = measure::PlanInstruction(meas_.run->call, meas_.run->context, *meas_.pages,
+                                             meas_.reverse_vectors);
   // Which of the recorded points the stylus already stands at or has passed: the start of a
   // new record, or the whole record a linear path sequence continues.
-  const int variant = reverse_vectors_.active;
+  const int variant = meas_.reverse_vectors.active;
   const auto& list_before =
       variant == 0 ? before.single_point : before.sequence[static_cast<size_t>(variant - 1)];
   const bool continued = variant != 0 && before.active == variant && !list_before.empty();
-  measuring_->reached = continued ? list_before.size() : 1;
-  if (!measuring_->plan.error.empty()) {
-    const std::string error = measuring_->plan.error;
-    measuring_.reset();
+  meas_.run->reached = continued ? list_before.size() : 1;
+  if (!meas_.run->plan.error.empty()) {
+    const std::string error = meas_.run->plan.error;
+    meas_.run.reset();
     return fail(error);
   }
-  const measure::MeasuringPlan& plan = measuring_->plan;
+  const measure::MeasuringPlan& plan = meas_.run->plan;
   if (!plan.warning.empty()) {
     const nc::SourcePos& pos = program.blocks[static_cast<size_t>(work_.block.block)].pos;
-    measuring_warnings_.push_back(
+    meas_.warnings.push_back(
         (pos.file < program.files.size() ? program.files[pos.file] : "<input>") + ":" +
-        std::to_string(pos.line) + ":" + std::to_string(pos.column) +
-        ": warning: " + plan.warning);
+        std::to_string(pos.line) + ":" + std::to_string(pos.column) + ": warning: " + plan.warning);
   }
   ApplyMeasuringState(plan);
   // The blocks generated for the instruction run in the setting's G codes (a plan that sets
   // has nothing to restore: the modal state now is the setting's).
-  if (plan.setting) measuring_->block.modal = work_.interpreter->modal();
+  if (plan.setting) meas_.run->block.modal = work_.interpreter->modal();
   if (plan.message) {
     // CORRECTION: the Q function goes to the PLC first, the program stops when it has
     // acknowledged it (6.1).
-    measuring_->plan.steps.push_back(
+    meas_.run->plan.steps.push_back(
         {measure::MeasuringStep::Kind::kAux, 0, false, plan.message->q_function});
-    measuring_->message = plan.message;
+    meas_.run->message = plan.message;
   }
   return true;
 }
@@ -182,7 +181,7 @@ bool Channel::StartMeasuring(const AmplifierTelegram& at) {
 bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
   // A generated block: G90 G94 G40, G00 or G01 at the measuring feed, the stylus' sphere as the
   // tool edge, the targets the sphere centre's (radius values: the plan halved diameters).
-  nc::PreparedBlock b = measuring_->block;
+  nc::PreparedBlock b = meas_.run->block;
   b.calls.clear();
   b.instructions.clear();
   b.motion =
@@ -193,11 +192,10 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
   b.modal.diameter = false;
   b.modal.feed = step.feed;
   b.modal.motion = b.motion;
-  if (measuring_setting_ && measuring_pages_) {
-    b.modal.tool =
-        measuring_pages_->stylus[static_cast<size_t>(measuring_setting_->stylus - 1)].tool_number;
+  if (meas_.setting && meas_.pages) {
+    b.modal.tool = meas_.pages->stylus[static_cast<size_t>(meas_.setting->stylus - 1)].tool_number;
     b.modal.correction = step.sphere;
-    b.modal.tool_length = measuring_setting_->tool_length;
+    b.modal.tool_length = meas_.setting->tool_length;
   }
   const nc::Program& program = *ProgramOf(b.program);
   if (!UpdateTranslation(b.modal, program, b.block)) return false;
@@ -236,15 +234,15 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
     if (!GuardBlockMove("probe approach")) return false;
   } else {
     std::vector<double> end = work_.motion.end;
-    const int axis = SettingAxis(measuring_->plan.measuring_axis);
-    if (axis >= 0 && measuring_setting_) {
+    const int axis = SettingAxis(meas_.run->plan.measuring_axis);
+    if (axis >= 0 && meas_.setting) {
       const auto a = static_cast<size_t>(axis);
-      const double r = measuring_pages_->stylus[static_cast<size_t>(measuring_setting_->stylus - 1)]
+      const double r = meas_.pages->stylus[static_cast<size_t>(meas_.setting->stylus - 1)]
                            .sphere_radius[static_cast<size_t>(
                                std::clamp(step.sphere, 1, measure::kSpheres) - 1)];
       const double touch =
-          measuring_->plan.command - measuring_->plan.direction * r + translation_[a];
-      const double dir = measuring_->plan.direction;
+          meas_.run->plan.command - meas_.run->plan.direction * r + translation_[a];
+      const double dir = meas_.run->plan.direction;
       // Not beyond the move's end, nor back behind its start.
       end[a] = dir * (touch - work_.motion.start[a]) <= 0 ? work_.motion.start[a]
                : dir * (touch - work_.motion.end[a]) >= 0 ? work_.motion.end[a]
@@ -256,8 +254,8 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
   work_.profile.max_accel = work_.motion.max_accel;
   work_.profile.max_jerk = work_.motion.max_jerk;
   work_.active = true;
-  measuring_->moving = true;
-  measuring_->measuring_move = step.kind == measure::MeasuringStep::Kind::kMeasure;
+  meas_.run->moving = true;
+  meas_.run->measuring_move = step.kind == measure::MeasuringStep::Kind::kMeasure;
   return true;
 }
 
@@ -267,12 +265,12 @@ void Channel::WatchProbeCollision(const AmplifierTelegram& at) {
   // leaves it set: the stylus travels on, watched, to the next instruction). After the
   // measuring path the PLC has switched the probe off, and the reverse program takes a
   // deflected stylus away unwatched (network 7 suppresses the PLC's monitoring as well).
-  if (!measuring_setting_ || !measuring_pages_ || reversing_ || !EventSet(kCollisionEvent)) {
-    probe_free_seen_ = 0;
+  if (!meas_.setting || !meas_.pages || reversing_ || !EventSet(kCollisionEvent)) {
+    meas_.probe_free_seen = 0;
     return;
   }
   const measure::TastwerkzeugPage& stylus =
-      measuring_pages_->stylus[static_cast<size_t>(measuring_setting_->stylus - 1)];
+      meas_.pages->stylus[static_cast<size_t>(meas_.setting->stylus - 1)];
   bool displaced = false;
   for (int n = 0; n < 3; ++n) {
     const int axis = SettingAxis(n);
@@ -287,13 +285,13 @@ void Channel::WatchProbeCollision(const AmplifierTelegram& at) {
     // escapes the NC with such a contact; the PLC's block reports it (Q_MTstKol).
     const auto bit = static_cast<uint8_t>(1u << n);
     if (level == stylus.normally_closed) {
-      probe_free_seen_ |= bit;
-    } else if (probe_free_seen_ & bit) {
+      meas_.probe_free_seen |= bit;
+    } else if (meas_.probe_free_seen & bit) {
       displaced = true;
     }
   }
   if (!displaced) return;
-  probe_free_seen_ = 0;
+  meas_.probe_free_seen = 0;
   // vmt's reading of the NC's reaction: the move in work ends at once (as the latch ends a
   // measuring path) and Q9999 goes to the PLC with the message; fault category 1 leaves only
   // the reverse program, which takes the stylus back the way it came (4.4).
@@ -301,11 +299,11 @@ void Channel::WatchProbeCollision(const AmplifierTelegram& at) {
   work_.dwell_left_s = 0;
   int32_t block = work_.block.block;
   uint32_t program_index = work_.block.program;
-  if (measuring_) {
-    measuring_->moving = false;
-    measuring_->measuring_move = false;
-    block = measuring_->block.block;
-    program_index = measuring_->block.program;
+  if (meas_.run) {
+    meas_.run->moving = false;
+    meas_.run->measuring_move = false;
+    block = meas_.run->block.block;
+    program_index = meas_.run->block.program;
   }
   const measure::MeasuringMessage& message = measure::kProbeDisplacedOutsidePath;
   if (config_.aux_handshake) {
@@ -321,22 +319,22 @@ void Channel::WatchProbeCollision(const AmplifierTelegram& at) {
 }
 
 void Channel::WatchMeasuringMove(const AmplifierTelegram& at) {
-  if (!measuring_ || !measuring_->moving || !work_.active) return;
+  if (!meas_.run || !meas_.run->moving || !work_.active) return;
   // Outside the measuring path the probe is watched for collisions (WatchProbeCollision).
-  if (!measuring_->measuring_move) return;
+  if (!meas_.run->measuring_move) return;
   // The measuring path: the drive of the measuring axis latched its position at the probe's
   // switching edge (7.3); that ends the move (distance to go deleted) and is the measured value.
-  const int axis = SettingAxis(measuring_->plan.measuring_axis);
-  if (axis < 0 || !measuring_setting_ || !measuring_pages_) return;
+  const int axis = SettingAxis(meas_.run->plan.measuring_axis);
+  if (axis < 0 || !meas_.setting || !meas_.pages) return;
   const measure::TastwerkzeugPage& stylus =
-      measuring_pages_->stylus[static_cast<size_t>(measuring_setting_->stylus - 1)];
+      meas_.pages->stylus[static_cast<size_t>(meas_.setting->stylus - 1)];
   const int drive = config_.axes[static_cast<size_t>(axis)].drive;
   if (drive < 0 || static_cast<size_t>(drive) >= at.feedback.size()) return;
   const ProbeStatus& probe = at.feedback[static_cast<size_t>(drive)].probe;
   const ProbeEdgeLatch* latch =
       Latched(stylus.pin5 ? probe.probe2 : probe.probe1, stylus.normally_closed);
   if (!latch) return;
-  measuring_->contact = latch->measured_value - translation_[static_cast<size_t>(axis)];
+  meas_.run->contact = latch->measured_value - translation_[static_cast<size_t>(axis)];
   work_.active = false;  // the axes stop where they are this cycle
 }
 
@@ -344,7 +342,7 @@ bool Channel::MeasuringCycle(const AmplifierTelegram& at) {
   (void)at;
   // Stopped by a probe collision: the instruction stays interrupted where the stylus stands.
   if (state_ == ChannelState::kError) return false;
-  MeasuringRun& run = *measuring_;
+  MeasuringRun& run = *meas_.run;
   const nc::Program& program = *ProgramOf(run.block.program);
   if (run.moving) {
     run.moving = false;
@@ -352,7 +350,7 @@ bool Channel::MeasuringCycle(const AmplifierTelegram& at) {
     if (run.measuring_move) {
       run.measuring_move = false;
       const measure::MeasuringMessage* message =
-          measure::FinishProbe(run.call, run.plan, run.context, *measuring_pages_, run.contact);
+          measure::FinishProbe(run.call, run.plan, run.context, *meas_.pages, run.contact);
       if (!message && run.contact) {
         // 6.2 event 7: the measuring path ends with the PLC's report of the contact, so its
         // block sees the latch while event 30 is still set (else it would take the path for
@@ -440,8 +438,8 @@ bool Channel::MeasuringCycle(const AmplifierTelegram& at) {
 }
 
 void Channel::TrackReverseVectors() {
-  if (!measuring_ || !measuring_setting_) return;
-  std::vector<measure::ReversePoint>& list = reverse_vectors_.Active();
+  if (!meas_.run || !meas_.setting) return;
+  std::vector<measure::ReversePoint>& list = meas_.reverse_vectors.Active();
   // A point is where the axes stood with its own sphere as the tool edge: compare axis positions,
   // not sphere centres, since the record may change spheres.
   auto at = [&](const measure::ReversePoint& p) {
@@ -454,7 +452,7 @@ void Channel::TrackReverseVectors() {
     }
     return true;
   };
-  size_t& reached = measuring_->reached;
+  size_t& reached = meas_.run->reached;
   // Back at a point passed before (the escape): the way out beyond it is not needed any more.
   for (size_t j = 0; j < reached && j < list.size(); ++j)
     if (at(list[j])) {
@@ -466,9 +464,9 @@ void Channel::TrackReverseVectors() {
 }
 
 void Channel::EndMeasuring() {
-  if (!measuring_) return;
-  const nc::PreparedBlock block = measuring_->block;
-  measuring_.reset();
+  if (!meas_.run) return;
+  const nc::PreparedBlock block = meas_.run->block;
+  meas_.run.reset();
   work_.block = block;
   const nc::ModalState m = work_.interpreter ? work_.interpreter->modal() : block.modal;
   UpdateTranslation(m, *ProgramOf(block.program), block.block);
@@ -480,15 +478,15 @@ void Channel::EndMeasuring() {
 }
 
 void Channel::StartReversal() {
-  if (measuring_ && !measuring_->reversal) {
+  if (meas_.run && !meas_.run->reversal) {
     // Interrupted on its way: the points it has not reached are not part of the way back.
-    std::vector<measure::ReversePoint>& list = reverse_vectors_.Active();
-    if (measuring_->reached < list.size()) list.resize(measuring_->reached);
+    std::vector<measure::ReversePoint>& list = meas_.reverse_vectors.Active();
+    if (meas_.run->reached < list.size()) list.resize(meas_.run->reached);
   }
-  measuring_.reset();
-  const auto points = reverse_vectors_.Reversal();
-  if (points.empty() || !measuring_setting_ || !measuring_pages_) {
-    measuring_.reset();
+  meas_.run.reset();
+  const auto points = meas_.reverse_vectors.Reversal();
+  if (points.empty() || !meas_.setting || !meas_.pages) {
+    meas_.run.reset();
     return;
   }
   MeasuringRun run;
@@ -505,8 +503,8 @@ void Channel::StartReversal() {
     s.sphere = p.sphere;
     run.plan.steps.push_back(s);
   }
-  measuring_.emplace(std::move(run));
-  reverse_vectors_ = {};
+  meas_.run.emplace(std::move(run));
+  meas_.reverse_vectors = {};
 }
 
 }  // namespace vmt::control::channel

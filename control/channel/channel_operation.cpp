@@ -41,18 +41,18 @@ bool Channel::SetMode(ChannelMode mode) {
     for (FictiveJog& f : fictive_jog_) f.key = 0;
     tool_storage_.key = 0;
     // Where the program was interrupted: the contour the axes must come back to (REPOS 2.1).
-    if (mode == ChannelMode::kManual && !interruption_ && state_ == ChannelState::kHold &&
-        !repos_run_)
+    if (mode == ChannelMode::kManual && !repos_.interruption && state_ == ChannelState::kHold &&
+        !repos_.run)
       CaptureInterruption();
     // Travelled back: the program was interrupted at the point the travel started from, and
     // the way back to it is now repositioning's (the axes have left it).
     if (replay_.away) {
-      if (interruption_) interruption_->point = replay_.home;
+      if (repos_.interruption) repos_.interruption->point = replay_.home;
       replay_.away = false;
     }
     // Manual mode during the REPOS subroutine's hold: the next start runs it again.
-    if (mode == ChannelMode::kManual && repos_run_ && state_ == ChannelState::kHold)
-      repos_rerun_ = true;
+    if (mode == ChannelMode::kManual && repos_.run && state_ == ChannelState::kHold)
+      repos_.rerun = true;
     // REPOS manual 2.1: interrupted MDI blocks keep their interpreter through manual mode.
     if ((mode == ChannelMode::kMdi || mode_ == ChannelMode::kMdi) && !interrupted) {
       if (work_.interpreter) last_modal_ = work_.interpreter->modal();
@@ -80,30 +80,30 @@ void Channel::Start() {
     if (StartBlockSearchHold()) return;
     // Fast measurement 6.1, Q9998: the new start acknowledges OVERSIZE / UNDERSIZE.
     if (error_number_ == kMsgMeasuringContinuable) error_.clear(), error_number_ = 0;
-    if (repos_run_ && repos_rerun_) {
+    if (repos_.run && repos_.rerun) {
       // Stopped during the REPOS subroutine and left for manual mode (jogged, perhaps): its
       // G77 in work no longer starts where the axes stand. It runs again from `.REPOS`, to
       // the same interruption point; the subroutine's progress is no new interruption.
       StartReposRun();
       return;
     }
-    if (repos_run_) {  // the REPOS subroutine was held: it goes on
+    if (repos_.run) {  // the REPOS subroutine was held: it goes on
       state_ = ChannelState::kRunning;
       return;
     }
     // Repositioning or NC-block restart called: the REPOS subroutine returns the axes (4.1).
-    if (interruption_ && repos_function_ != ReposFunction::kNone) {
+    if (repos_.interruption && repos_.function != ReposFunction::kNone) {
       StartReposRun();
       return;
     }
     // Continuing from off the contour would jump back to the path: the axes must first be
     // repositioned to the interruption point.
-    for (size_t a = 0; a < commanded_.size() && interruption_; ++a) {
+    for (size_t a = 0; a < commanded_.size() && repos_.interruption; ++a) {
       // The rotary axis outside rotary axis mode follows the spindle: no contour to leave.
       if (headstock_ && static_cast<int>(a) == config_.rotary_axis &&
           headstock_->mode() != axes::HeadstockMode::kRotary)
         continue;
-      const double point = interruption_->point[a];
+      const double point = repos_.interruption->point[a];
       if (std::isnan(point)) continue;  // not on the contour (CaptureInterruption)
       if (std::abs(commanded_[a] - point) > 1e-6) {
         Fail("axis " + config_.axes[a].name +
@@ -123,7 +123,7 @@ void Channel::Start() {
   // manual mode if need be, and Start acknowledges the error and runs the subroutine again from
   // `.REPOS`. Faults of the machine (drives, PLC, a changeover acknowledgement) and the measuring
   // faults only the reverse program leaves still need Control-Reset (or the reverse program).
-  if (state_ == ChannelState::kError && repos_run_ && ReposErrorInterrupts(error_number_)) {
+  if (state_ == ChannelState::kError && repos_.run && ReposErrorInterrupts(error_number_)) {
     error_.clear();
     error_number_ = 0;
     StartReposRun();
@@ -155,28 +155,29 @@ void Channel::Reset() {
   work_.homing = false;
   reversing_ = false;
   work_.dwell_left_s = 0;
-  orienting_ = further_restoring_ = false;
+  orienting_ = false;
+  further_.StopRestoring();
   aux_output_.clear();
   programmed_stop_.Leave();
   tool_storage_.positioning = tool_storage_.programmed = tool_storage_wait_ = false;
-  if (repos_run_) SwapProgramInWork();
+  if (repos_.run) SwapProgramInWork();
   parked_ = ProgramInWork{};
   ClearRepos();
-  measuring_.reset();
-  measuring_setting_.reset();
-  reverse_vectors_ = {};
+  meas_.run.reset();
+  meas_.setting.reset();
+  meas_.reverse_vectors = {};
   // Block search 7: a reset leaves block search without the handshake.
   search_.reset();
-  bs_state_ = BlockSearchState::kInactive;
-  bs_command_ = false;
+  bs_.state = BlockSearchState::kInactive;
+  bs_.command = false;
   // 7: a CNC reset clears the CNC's and the PLC's signal of the handshake alike, so the next
   // search waits for the PLC's TRUE again.
-  bs_plc_state_ = false;
+  bs_.plc_state = false;
   cax_track_.reset();
   cax_aligning_ = false;
-  breakpoint_rest_.reset();
-  breakpoint_hold_ = breakpoint_pending_ = false;
-  search_offset_.clear();  // the G92 shift goes below
+  bs_.breakpoint_rest.reset();
+  bs_.breakpoint_hold = bs_.breakpoint_pending = false;
+  bs_.offset.clear();  // the G92 shift goes below
   path_memory_.Clear();
   const bool backward = replay_.backward_requested;
   replay_ = PathReplay{};
@@ -186,7 +187,7 @@ void Channel::Reset() {
   DropLookahead();
   previous_ = commanded_;
   spindle_ = {DriveMode::kVelocity, 0, 0};
-  further_spindles_.assign(config_.spindles.size(), FurtherSpindleState{});
+  further_.Reset();
   spindle_referencing_ = false;
   manual_changeover_ = false;
   // A real control acknowledges its drives' errors with Control-Reset: the drives that tripped

@@ -24,7 +24,7 @@ std::vector<double> Channel::GuardFrom() const {
 bool Channel::GuardStops(const std::string& move, const std::vector<double>& from,
                          const std::vector<double>& to, const PathCheck& check) {
   const bool stop = config_.path_guard == GuardReaction::kStop;
-  guard_records_.push_back({move, from, to, check, 1, stop});
+  guarded_.records.push_back({move, from, to, check, 1, stop});
   if (!stop) return false;
   std::string where;
   for (const ChannelAxis& axis : config_.axes) {
@@ -53,13 +53,13 @@ bool Channel::GuardStops(const std::string& move, const std::vector<double>& fro
 }
 
 bool Channel::GuardIncrement(size_t axis, double to_position) {
-  if (!guard_ || config_.path_guard == GuardReaction::kOff) return true;
+  if (!guarded_.guard || config_.path_guard == GuardReaction::kOff) return true;
   const std::vector<double> from = GuardFrom();
   std::vector<double> to = from;
   to[config_.axes[axis].drive] = to_position;
   const PathCheck c = GuardCheck(from, to);
   if (c.clear) {
-    guard_records_.push_back({"jog", from, to, c, 1, false});
+    guarded_.records.push_back({"jog", from, to, c, 1, false});
     return true;
   }
   return !GuardStops("jog", from, to, c);
@@ -67,7 +67,7 @@ bool Channel::GuardIncrement(size_t axis, double to_position) {
 
 bool Channel::GuardBlockMove(const std::string& move, const std::vector<double>* end,
                              bool measuring_path) {
-  if (!guard_ || config_.path_guard == GuardReaction::kOff) return true;
+  if (!guarded_.guard || config_.path_guard == GuardReaction::kOff) return true;
   if (!end && (work_.motion.face_axes[0] >= 0 || work_.motion.arc_axes[0] >= 0))
     return GuardCurvedMove(move);
   const std::vector<double> from = GuardFrom();
@@ -77,7 +77,7 @@ bool Channel::GuardBlockMove(const std::string& move, const std::vector<double>*
       to[config_.axes[a].drive] = end ? (*end)[a] : work_.motion.end[a];
   const PathCheck c = GuardCheck(from, to, measuring_path);
   if (c.clear) {
-    guard_records_.push_back({move, from, to, c, 1, false});
+    guarded_.records.push_back({move, from, to, c, 1, false});
     return true;
   }
   return !GuardStops(move, from, to, c);
@@ -114,12 +114,12 @@ bool Channel::GuardCurvedMove(const std::string& move) {
     ++record.checks;
     a = b;
   }
-  guard_records_.push_back(record);
+  guarded_.records.push_back(record);
   return true;
 }
 
 void Channel::GuardJog(double dt) {
-  if (!guard_ || config_.path_guard == GuardReaction::kOff) return;
+  if (!guarded_.guard || config_.path_guard == GuardReaction::kOff) return;
   // A stopped key stays stopped until it is released (or the other way is pressed).
   for (JogAxis& j : jog_)
     if (j.blocked != 0 && j.key != j.blocked) j.blocked = 0;
@@ -160,25 +160,25 @@ void Channel::GuardJog(double dt) {
     moving = true;
   }
   if (!moving) {
-    if (guarded_jog_) guard_records_.push_back(*guarded_jog_), guarded_jog_.reset();
-    guard_countdown_ = 0;
+    if (guarded_.jog) guarded_.records.push_back(*guarded_.jog), guarded_.jog.reset();
+    guarded_.jog_countdown = 0;
     return;
   }
-  if (guarded_jog_ && --guard_countdown_ > 0) return;  // checked at the start, then every n
-  guard_countdown_ = config_.path_guard_every;
+  if (guarded_.jog && --guarded_.jog_countdown > 0) return;  // checked at the start, then every n
+  guarded_.jog_countdown = config_.path_guard_every;
   const PathCheck c = GuardCheck(from, to);
   if (c.clear) {
-    if (!guarded_jog_) {
-      guarded_jog_ = GuardRecord{"jog", from, to, c, 1, false};
+    if (!guarded_.jog) {
+      guarded_.jog = GuardRecord{"jog", from, to, c, 1, false};
     } else {
-      GuardRecord& r = *guarded_jog_;
+      GuardRecord& r = *guarded_.jog;
       r.to = to;
       ++r.checks;
       if (c.min_clearance < r.check.min_clearance) r.check = c;
     }
     return;
   }
-  if (guarded_jog_) guard_records_.push_back(*guarded_jog_), guarded_jog_.reset();
+  if (guarded_.jog) guarded_.records.push_back(*guarded_.jog), guarded_.jog.reset();
   if (!GuardStops("jog", from, to, c)) return;
   // Brake every moving axis: its key is held off, a handwheel's target becomes where the axis
   // can stop.

@@ -51,7 +51,7 @@ void Channel::CaptureInterruption() {
   i.line = line();
   i.spindle = spindle_;
   i.spindle_m = SpindleM(spindle_);
-  i.further_spindles = further_spindles_;
+  i.further_spindles = further_.states();
   if (headstock_) {
     i.headstock_mode = headstock_->mode();
     // Outside rotary axis mode (a changeover included) the NC does not position the rotary
@@ -68,34 +68,35 @@ void Channel::CaptureInterruption() {
   // its drive still settles - not the place the turret has got to. A jog since (manual mode
   // before the program) leaves the turret where the operator put it.
   if (ToolStorageNc() && tool_storage_.programmed) i.tool_storage = tool_storage_.target;
-  interruption_ = std::move(i);
-  repos_start_ = commanded_;
+  repos_.interruption = std::move(i);
+  repos_.start = commanded_;
 }
 
 bool Channel::FictiveRepos(int& x, int& c) const {
   x = c = -1;
-  if (!interruption_ || interruption_->modal.transformation != nc::Transformation::kFace)
+  if (!repos_.interruption ||
+      repos_.interruption->modal.transformation != nc::Transformation::kFace)
     return false;
   for (size_t a = 0; a < config_.axes.size(); ++a) {
     if (config_.axes[a].name == "X") x = static_cast<int>(a);
     if (config_.axes[a].name == "C") c = static_cast<int>(a);
   }
-  return x >= 0 && c >= 0 && !std::isnan(interruption_->point[x]) &&
-         !std::isnan(interruption_->point[c]);
+  return x >= 0 && c >= 0 && !std::isnan(repos_.interruption->point[x]) &&
+         !std::isnan(repos_.interruption->point[c]);
 }
 
 nc::FictivePoint Channel::FictiveOf(const std::vector<double>& position, int x, int c) const {
   // Program coordinates of the interrupted block's frame, as its X1/Y1 were programmed.
-  const std::vector<double> t = TranslationOf(interruption_->modal);
+  const std::vector<double> t = TranslationOf(repos_.interruption->modal);
   return nc::MachineToFace(position[x] - t[x], position[c] - t[c]);
 }
 
 std::vector<double> Channel::ReposTarget() const {
   std::vector<double> target(config_.axes.size(), std::nan(""));
-  if (!interruption_) return target;
-  const Interruption& i = *interruption_;
+  if (!repos_.interruption) return target;
+  const Interruption& i = *repos_.interruption;
   const std::vector<double>& base =
-      repos_function_ == ReposFunction::kRestart ? i.block_start : i.point;
+      repos_.function == ReposFunction::kRestart ? i.block_start : i.point;
   // 2.5: zero offset and tool edits during the interruption move the interruption point and
   // the block start with the contour.
   const std::vector<double> now = TranslationOf(i.modal);
@@ -110,22 +111,22 @@ bool Channel::ToolStorageKnown() const {
 
 bool Channel::ToolStorageRestored() const {
   // 6.2 / 7.3: only with Bxx.045 'Reposition Tool Storage Axis' = yes.
-  if (!config_.process.reposition_tool_storage || !ToolStorageKnown() || !interruption_)
+  if (!config_.process.reposition_tool_storage || !ToolStorageKnown() || !repos_.interruption)
     return true;
   // 3.4: an endless one compares the short way round, however often it has turned.
-  return std::abs(ReposDistanceToGo(config_.tool_storage, interruption_->tool_storage,
+  return std::abs(ReposDistanceToGo(config_.tool_storage, repos_.interruption->tool_storage,
                                     drive_positions_[config_.tool_storage_drive])) <=
          kToolStorageWindow;
 }
 
 bool Channel::SpindleRelevant() const {
   // 7.3: all spindles; a spindle with rotary axis capability if it was in spindle mode.
-  if (config_.spindle_drive < 0 || !interruption_) return false;
-  return !headstock_ || interruption_->headstock_mode != axes::HeadstockMode::kRotary;
+  if (config_.spindle_drive < 0 || !repos_.interruption) return false;
+  return !headstock_ || repos_.interruption->headstock_mode != axes::HeadstockMode::kRotary;
 }
 
 bool Channel::SpindleRestored(const AmplifierTelegram& at) const {
-  const DriveSetpoint& before = interruption_->spindle;
+  const DriveSetpoint& before = repos_.interruption->spindle;
   if (headstock_ && headstock_->mode() != axes::HeadstockMode::kSpindle) return false;
   if (spindle_.mode != before.mode || std::abs(spindle_.value - before.value) > 1e-9) return false;
   const uint32_t status = static_cast<size_t>(config_.spindle_drive) < at.feedback.size()
@@ -140,36 +141,36 @@ bool Channel::SpindleRestored(const AmplifierTelegram& at) const {
 }
 
 void Channel::ReposCycle(const AmplifierTelegram& at) {
-  if (!interruption_) {
-    repos_function_ = ReposFunction::kNone;
-    crest_ = false;
+  if (!repos_.interruption) {
+    repos_.function = ReposFunction::kNone;
+    repos_.crest = false;
     return;
   }
-  Interruption& i = *interruption_;
+  Interruption& i = *repos_.interruption;
   for (size_t a = 0; a < commanded_.size() && !i.left_contour; ++a)
     if (!std::isnan(i.point[a]) && std::abs(commanded_[a] - i.point[a]) > 1e-6)
       i.left_contour = true;
   // 7.1: the signals count only in the situation of 2.1 (interrupted, left by jogging, no
   // Control-Reset), and only if the program may be continued other than by the reverse
   // program (Bxx.032, 6.1).
-  const bool evaluated = (state_ == ChannelState::kHold || repos_run_) && i.left_contour &&
+  const bool evaluated = (state_ == ChannelState::kHold || repos_.run) && i.left_contour &&
                          !config_.process.reverse_program_required;
-  const ReposFunction function = evaluated ? repos_request_ : ReposFunction::kNone;
+  const ReposFunction function = evaluated ? repos_.request : ReposFunction::kNone;
   // 7.3: updated only while a function is called; the relevant axes within their windows, the
   // spindle in its former state. Withdrawing the function drops it at once.
-  crest_ = false;
+  repos_.crest = false;
   // 7.1 instruction: withdrawn in manual mode, repositioning ends once the motion under way has
   // ended: a jog still moving, or its key still held, keeps its zone and stops at the target;
   // the next press is a plain jog.
   bool key_held = false;
   for (const JogAxis& j : jog_) key_held |= j.key != 0;
   for (const FictiveJog& f : fictive_jog_) key_held |= f.key != 0;
-  if (evaluated && function == ReposFunction::kNone && repos_function_ != ReposFunction::kNone &&
+  if (evaluated && function == ReposFunction::kNone && repos_.function != ReposFunction::kNone &&
       mode_ == ChannelMode::kManual && (key_held || JogsMoving()))
     return;
-  if (function != repos_function_ && function != ReposFunction::kNone) repos_start_ = commanded_;
-  repos_function_ = function;
-  if (repos_function_ == ReposFunction::kNone) return;
+  if (function != repos_.function && function != ReposFunction::kNone) repos_.start = commanded_;
+  repos_.function = function;
+  if (repos_.function == ReposFunction::kNone) return;
   const std::vector<double> target = ReposTarget();
   bool restored = true;
   // 6.1 instruction: under G31 X and C count as the fictive point, with X's window.
@@ -187,19 +188,20 @@ void Channel::ReposCycle(const AmplifierTelegram& at) {
                                    FictiveOf(commanded_, fx, fc)) &&
                !OutOfItsMode(headstock(), config_.rotary_axis, fc);
   if (restored && SpindleRelevant()) restored = SpindleRestored(at);
-  if (restored) restored = FurtherSpindlesRestored(at);
-  crest_ = restored && ToolStorageRestored();
+  if (restored && repos_.interruption)
+    restored = further_.AllRestored(repos_.interruption->further_spindles, at);
+  repos_.crest = restored && ToolStorageRestored();
 }
 
 ReposStatus Channel::repos_status(const AmplifierTelegram* at) const {
   ReposStatus s;
   s.allowed = repos_allowed();
-  s.function = repos_function_;
-  s.conditions_restored = crest_;
-  s.subroutine_running = repos_run_;
+  s.function = repos_.function;
+  s.conditions_restored = repos_.crest;
+  s.subroutine_running = repos_.run;
   s.feed_override = override_;
-  if (!interruption_) return s;
-  const Interruption& i = *interruption_;
+  if (!repos_.interruption) return s;
+  const Interruption& i = *repos_.interruption;
   s.left_contour = i.left_contour;
   const std::vector<double> target = ReposTarget();
   for (size_t a = 0; a < config_.axes.size(); ++a) {
@@ -254,21 +256,7 @@ ReposStatus Channel::repos_status(const AmplifierTelegram* at) const {
                           : (!headstock_ || headstock_->mode() == axes::HeadstockMode::kSpindle) &&
                                 spindle_.mode == i.spindle.mode &&
                                 std::abs(spindle_.value - i.spindle.value) < 1e-9);
-  for (size_t k = 0; k < i.further_spindles.size(); ++k) {
-    const DriveSetpoint before = i.further_spindles[k].Command();
-    ReposFurtherSpindleStatus f;
-    f.name = config_.spindles[k].name;
-    f.command_rpm = before.value / 6;
-    f.command_m = i.further_spindles[k].m;
-    f.actual_m = further_spindles_[k].m;
-    const int d = config_.spindles[k].drive;
-    if (at && d >= 0 && static_cast<size_t>(d) < at->feedback.size())
-      f.actual_rpm = at->feedback[d].velocity / 6;
-    else
-      f.actual_rpm = further_spindles_[k].Command().value / 6;
-    f.adjust = !FurtherSpindleRestored(k, at);
-    s.further_spindles.push_back(f);
-  }
+  s.further_spindles = further_.ReposStatus(i.further_spindles, at);
   s.tool_storage_relevant = config_.process.reposition_tool_storage && ToolStorageKnown();
   s.tool_storage_adjust = !ToolStorageRestored();
   s.programmed_feed = i.modal.feed;
@@ -299,6 +287,12 @@ ReposStatus Channel::repos_status(const AmplifierTelegram* at) const {
   return s;
 }
 
+void Channel::SetReposition(bool repositioning, bool restart) {
+  repos_.request = repositioning && !restart   ? ReposFunction::kRepositioning
+                   : restart && !repositioning ? ReposFunction::kRestart
+                                               : ReposFunction::kNone;
+}
+
 bool Channel::SetZeroOffset(int g, size_t axis, double value) {
   if (g < 54 || g > 59 || axis >= config_.axes.size()) return false;
   std::vector<double>& table = config_.zero_offsets.g54_to_g59[g - 54];
@@ -323,7 +317,7 @@ void Channel::SwapProgramInWork() { std::swap(work_, parked_); }
 void Channel::StartReposRun() {
   // 4.1: the REPOS subroutine in the current program, in program 99 or in the cycle memory.
   const int program = work_.interpreter ? work_.interpreter->FindSubroutine("REPOS") : -1;
-  if (program < 0 && !crest_) {
+  if (program < 0 && !repos_.crest) {
     Fail(programs_[0]->files[0] +
              ": error: the state before the interruption is not restored and no program has a "
              "REPOS subroutine (.REPOS)",
@@ -340,23 +334,24 @@ void Channel::StartReposRun() {
   // subroutine runs in its place with its modal state (G(2), M(5) read the interrupted state).
   // Run again after a stop and manual mode during it, the subroutine's progress is dropped:
   // the interrupted program stays parked and the targets stay the interruption's.
-  if (!repos_run_) SwapProgramInWork();
-  repos_rerun_ = false;
-  orienting_ = further_restoring_ = false;
+  if (!repos_.run) SwapProgramInWork();
+  repos_.rerun = false;
+  orienting_ = false;
+  further_.StopRestoring();
   work_.active = work_.pending_motion = work_.homing = false;
   work_.dwell_left_s = 0;
   DropLookahead();
   work_.block = nc::PreparedBlock{};
   work_.block.program = parked_.block.program;
-  work_.block.modal = interruption_->modal;
-  repos_run_ = true;
-  repos_closing_ = false;
-  repos_finish_ = program < 0;
+  work_.block.modal = repos_.interruption->modal;
+  repos_.run = true;
+  repos_.closing = false;
+  repos_.finish = program < 0;
   if (program >= 0) {
     nc::InterpreterConfig ic;
     ic.axes.clear();
     for (const ChannelAxis& a : config_.axes) ic.axes.push_back(a.name);
-    ic.initial = interruption_->modal;
+    ic.initial = repos_.interruption->modal;
     std::vector<const nc::Program*> programs = programs_;
     if (running_mdi_) programs.insert(programs.begin(), &mdi_->program);
     work_.interpreter = std::make_unique<nc::Interpreter>(std::move(programs), ic);
@@ -378,7 +373,7 @@ void Channel::StartReposRun() {
 bool Channel::CheckReposBlock() {
   const nc::Program& program = *ProgramOf(work_.block.program);
   // 7.1: G77 while the PLC has withdrawn the function interrupts the program.
-  if (repos_function_ == ReposFunction::kNone || !interruption_) {
+  if (repos_.function == ReposFunction::kNone || !repos_.interruption) {
     Fail(program, work_.block.block,
          "G77 without repositioning or NC-block restart (PxxC.REPOS / PxxC.RESTA is 0)",
          kMsgReposNotActive);
@@ -390,7 +385,8 @@ bool Channel::CheckReposBlock() {
          kMsgReposNoFeed);
     return false;
   }
-  if (!CheckReposFurtherSpindles(program)) return false;
+  if (const std::string error = further_.CheckRepos(program, work_.block); !error.empty())
+    return Fail(error, kMsgNotAvailable), false;
   // 4.2: G77 S1=0 (or S=0) restores the main spindle: a channel without one has none to restore.
   for (const nc::AuxFunction& f : work_.block.aux)
     if (f.letter == 'S' && f.index <= 1 && config_.spindle_drive < 0) {
@@ -403,7 +399,7 @@ bool Channel::CheckReposBlock() {
   // sentence names the modes the other way round; its own example, 8.3, tests rotary axis
   // mode to choose G77 C0).
   if (headstock_) {
-    const bool rotary_before = interruption_->headstock_mode == axes::HeadstockMode::kRotary;
+    const bool rotary_before = repos_.interruption->headstock_mode == axes::HeadstockMode::kRotary;
     const size_t r = static_cast<size_t>(config_.rotary_axis);
     if ((feed_axes >> r & 1) && !rotary_before) {
       Fail(program, work_.block.block,
@@ -431,20 +427,20 @@ bool Channel::StartReposMotion(const AmplifierTelegram& at) {
   // it has reached it. Spindles the channel does not command have nothing to restore.
   for (const nc::AuxFunction& f : work_.block.aux)
     if (f.letter == 'S' && f.index <= 1 && config_.spindle_drive >= 0) {
-      if (!GuardSpindleStart("spindle start G77 S1", interruption_->spindle)) return false;
-      spindle_ = interruption_->spindle;
+      if (!GuardSpindleStart("spindle start G77 S1", repos_.interruption->spindle)) return false;
+      spindle_ = repos_.interruption->spindle;
       spindle_referencing_ = spindle_.mode == DriveMode::kPosition;
       orienting_ = true;
     }
   // The further spindles have no rotary axis mode and no PathGuard sweep (channel_turret_guard).
-  RestoreFurtherSpindles(at);
-  orienting_ |= further_restoring_;
+  further_.Restore(work_.block, repos_.interruption->further_spindles, at);
+  orienting_ |= further_.restoring();
   // 4.2 Feed axes: the distance to go between target and actual position, G00-like (all axes
   // reach the target together) at F, without the G functions of interpolation and without tool
   // radius compensation.
   const std::vector<double> target = ReposTarget();
   nc::PreparedBlock b = work_.block;
-  b.motion = repos_closing_ ? nc::Motion::kRapid : nc::Motion::kLinear;
+  b.motion = repos_.closing ? nc::Motion::kRapid : nc::Motion::kLinear;
   b.modal.feed_per_revolution = false;
   b.modal.compensation = nc::Compensation::kOff;
   b.has_centre = false;
@@ -465,7 +461,7 @@ bool Channel::StartReposMotion(const AmplifierTelegram& at) {
       work_.interpreter->SetAxisPosition(a, b.target[a]);
   work_.profile = PathProfile{};
   if (!work_.motion.moves) return true;
-  if (!GuardBlockMove(repos_closing_ ? "repositioning" : "G77")) return false;
+  if (!GuardBlockMove(repos_.closing ? "repositioning" : "G77")) return false;
   work_.profile.max_rate = work_.motion.max_rate;
   work_.profile.max_accel = work_.motion.max_accel;
   work_.profile.max_jerk = work_.motion.max_jerk;
@@ -475,7 +471,7 @@ bool Channel::StartReposMotion(const AmplifierTelegram& at) {
 
 bool Channel::FinishReposRun(const AmplifierTelegram& at) {
   const std::vector<double> target = ReposTarget();
-  if (!repos_closing_) {
+  if (!repos_.closing) {
     // The subroutine (or the operator) has left the axes within their windows, or has not
     // returned some at all (Cxx.086 = 0): a closing move takes every axis to its exact target,
     // so that the program goes on from the point it left, checked like every approach move.
@@ -490,7 +486,7 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
            kMsgReposNotRestored);
       return false;
     }
-    if (!FurtherSpindlesRestored(at)) {
+    if (repos_.interruption && !further_.AllRestored(repos_.interruption->further_spindles, at)) {
       Fail(ProgramOf(work_.block.program)->files[0] +
                ": error: the REPOS subroutine has returned with a further spindle not in its "
                "state before the interruption (G77 Sj=0)",
@@ -506,7 +502,7 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
            kMsgReposNotRestored);
       return false;
     }
-    repos_closing_ = true;
+    repos_.closing = true;
     if (bits) {
       nc::PreparedBlock closing = work_.block;
       closing.repos = true;
@@ -524,11 +520,11 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
   }
   // Back to the interrupted program: it continues at the interruption point, or its block
   // starts again (restart), shifted with the contour by any offset or tool edit (2.5).
-  const ReposFunction function = repos_function_;
+  const ReposFunction function = repos_.function;
   const std::vector<double> shift = [&] {
     std::vector<double> d(target.size(), 0.0);
-    const std::vector<double> now = TranslationOf(interruption_->modal);
-    for (size_t a = 0; a < d.size(); ++a) d[a] = now[a] - interruption_->translation[a];
+    const std::vector<double> now = TranslationOf(repos_.interruption->modal);
+    for (size_t a = 0; a < d.size(); ++a) d[a] = now[a] - repos_.interruption->translation[a];
     return d;
   }();
   HandBackVariables();
@@ -563,15 +559,15 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
 
 void Channel::HandBackVariables() {
   // 8.3: what the subroutine wrote the program reads after RTS (one set per process).
-  if (repos_run_ && work_.interpreter && parked_.interpreter)
+  if (repos_.run && work_.interpreter && parked_.interpreter)
     parked_.interpreter->SetVariables(work_.interpreter->variables());
 }
 
 void Channel::ClearRepos() {
-  interruption_.reset();
-  repos_function_ = ReposFunction::kNone;
-  crest_ = false;
-  repos_run_ = repos_closing_ = repos_finish_ = repos_rerun_ = false;
+  repos_.interruption.reset();
+  repos_.function = ReposFunction::kNone;
+  repos_.crest = false;
+  repos_.run = repos_.closing = repos_.finish = repos_.rerun = false;
 }
 
 }  // namespace vmt::control::channel

@@ -110,7 +110,7 @@ bool Channel::ApplySearchOffset() {
   for (size_t a = 0; a < commanded_.size(); ++a)
     if (MainAxis(config_.axes[a].name)) deviation2 += std::pow(commanded_[a] - s.restart[a], 2);
   const double deviation = std::sqrt(deviation2);
-  const double allowed = static_cast<double>(bs_started_.deviation_max) * 1e-4;
+  const double allowed = static_cast<double>(bs_.started.deviation_max) * 1e-4;
   if (deviation > allowed + 1e-9) {
     Fail("block search: the axes stand " + Mm(deviation) +
              " mm from the continue position, more than mc_cmd_bs_deviation_max_w allows (" +
@@ -119,10 +119,10 @@ bool Channel::ApplySearchOffset() {
     return false;
   }
   // 4.2, 8: the program goes on offset by where the axes stand, until its end or a reset.
-  search_offset_.assign(commanded_.size(), 0.0);
+  bs_.offset.assign(commanded_.size(), 0.0);
   for (size_t a = 0; a < commanded_.size(); ++a) {
     const double offset = commanded_[a] - s.restart[a];
-    search_offset_[a] = offset;
+    bs_.offset[a] = offset;
     shift_[a] += offset;
     translation_[a] += offset;
     s.restart_motion.start[a] += offset;
@@ -130,28 +130,28 @@ bool Channel::ApplySearchOffset() {
   }
   for (int k = 0; k < 2; ++k)
     if (const int axis = s.restart_motion.arc_axes[k]; axis >= 0)
-      s.restart_motion.arc_centre[k] += search_offset_[static_cast<size_t>(axis)];
+      s.restart_motion.arc_centre[k] += bs_.offset[static_cast<size_t>(axis)];
   return true;
 }
 
 void Channel::ContinueAfterSearch() {
   BlockSearchRun& s = *search_;
-  bs_state_ = BlockSearchState::kInactive;
+  bs_.state = BlockSearchState::kInactive;
   state_ = ChannelState::kRunning;
   s.start_requested = false;
   if (spindle_.mode == DriveMode::kPosition) spindle_referencing_ = true;
   if (!s.restart_motion.moves) return;  // the next block starts the real run
   // The rest of the continue block, from the continue position on.
   work_.motion = s.restart_motion;
-  block_distance_start_ = s.restart_distance;
-  block_distance_ = s.restart_length;
-  distance_ = s.restart_distance + block_distance_;
+  bs_.block_distance_start = s.restart_distance;
+  bs_.block_distance = s.restart_length;
+  bs_.distance = s.restart_distance + bs_.block_distance;
   if (s.restart_u >= 1) return;
   // A breakpoint in the rest of the continue block cuts it as it would cut the block whole.
-  breakpoint_rest_.reset();
+  bs_.breakpoint_rest.reset();
   CutAtBreakpoint(s.restart_u);
   double u = s.restart_u;
-  if (breakpoint_rest_) u = breakpoint_u_ > 1e-12 ? s.restart_u / breakpoint_u_ : 1;
+  if (bs_.breakpoint_rest) u = bs_.breakpoint_u > 1e-12 ? s.restart_u / bs_.breakpoint_u : 1;
   work_.profile = ProfileFrom(work_.motion, u);
   work_.continuation_ready = false;
   carry_speed_ = carry_accel_ = carry_leftover_ = 0;
@@ -159,35 +159,35 @@ void Channel::ContinueAfterSearch() {
 }
 
 bool Channel::StartBlockSearchHold() {
-  if (breakpoint_hold_) {
+  if (bs_.breakpoint_hold) {
     // 3.5: after the breakpoint the rest of its block runs on.
-    breakpoint_hold_ = false;
-    if (bs_state_ == BlockSearchState::kWaitForContinueContour)
-      bs_state_ = BlockSearchState::kInactive;
+    bs_.breakpoint_hold = false;
+    if (bs_.state == BlockSearchState::kWaitForContinueContour)
+      bs_.state = BlockSearchState::kInactive;
     state_ = ChannelState::kRunning;
-    if (breakpoint_rest_) {
-      work_.motion = *breakpoint_rest_;
-      breakpoint_rest_.reset();
-      work_.profile = ProfileFrom(work_.motion, breakpoint_u_);
+    if (bs_.breakpoint_rest) {
+      work_.motion = *bs_.breakpoint_rest;
+      bs_.breakpoint_rest.reset();
+      work_.profile = ProfileFrom(work_.motion, bs_.breakpoint_u);
       work_.active = true;
     }
-    breakpoint_u_ = 0;
+    bs_.breakpoint_u = 0;
     return true;
   }
-  if (!search_ || bs_state_ == BlockSearchState::kInactive) return false;
-  if (bs_state_ == BlockSearchState::kWaitReturnToContour ||
-      bs_state_ == BlockSearchState::kWaitForContinueContour)
+  if (!search_ || bs_.state == BlockSearchState::kInactive) return false;
+  if (bs_.state == BlockSearchState::kWaitReturnToContour ||
+      bs_.state == BlockSearchState::kWaitForContinueContour)
     search_->start_requested = true;
   state_ = ChannelState::kRunning;  // a feed hold during the search or the return ends
   return true;
 }
 
 void Channel::RemoveSearchOffset() {
-  for (size_t a = 0; a < search_offset_.size() && a < shift_.size(); ++a) {
-    shift_[a] -= search_offset_[a];
-    translation_[a] -= search_offset_[a];
+  for (size_t a = 0; a < bs_.offset.size() && a < shift_.size(); ++a) {
+    shift_[a] -= bs_.offset[a];
+    translation_[a] -= bs_.offset[a];
   }
-  search_offset_.clear();
+  bs_.offset.clear();
 }
 
 }  // namespace vmt::control::channel

@@ -33,8 +33,8 @@ double Channel::tool_storage_command() const {
 }
 
 bool Channel::ReturnToolStorage() {
-  if (!ToolStorageNc() || !interruption_) return true;
-  return TraverseToolStorageTo(interruption_->tool_storage, "turret index MTP");
+  if (!ToolStorageNc() || !repos_.interruption) return true;
+  return TraverseToolStorageTo(repos_.interruption->tool_storage, "turret index MTP");
 }
 
 bool Channel::TraverseToolStorageTo(double position, const std::string& move) {

@@ -15,7 +15,8 @@ namespace vmt::control::channel {
 PathCheck Channel::GuardCheck(const std::vector<double>& from, const std::vector<double>& to,
                               bool measuring_path) {
   auto check = [&](const std::vector<double>& a, const std::vector<double>& b) {
-    return measuring_path ? guard_->CheckMeasuringPath(a, b) : guard_->CheckMove(a, b);
+    return measuring_path ? guarded_.guard->CheckMeasuringPath(a, b)
+                          : guarded_.guard->CheckMove(a, b);
   };
   const size_t t = static_cast<size_t>(config_.tool_storage_drive);
   const ToolStorageAxis& ts = tool_storage_;
@@ -36,9 +37,8 @@ PathCheck Channel::GuardCheck(const std::vector<double>& from, const std::vector
   sweep_end_to[t] = ts.target;
   PathCheck best = check(a, b);
   if (!best.clear) return best;
-  for (const PathCheck& c :
-       {check(from, to), guard_->CheckMove(sweep_from, sweep_to),
-        guard_->CheckMove(sweep_end_from, sweep_end_to)}) {
+  for (const PathCheck& c : {check(from, to), guarded_.guard->CheckMove(sweep_from, sweep_to),
+                             guarded_.guard->CheckMove(sweep_end_from, sweep_end_to)}) {
     if (!c.clear) return c;
     if (c.min_clearance < best.min_clearance) best = c;
   }
@@ -46,7 +46,7 @@ PathCheck Channel::GuardCheck(const std::vector<double>& from, const std::vector
 }
 
 bool Channel::GuardTurretIndex(const std::string& move, double target) {
-  if (!guard_ || config_.path_guard == GuardReaction::kOff) return true;
+  if (!guarded_.guard || config_.path_guard == GuardReaction::kOff) return true;
   const size_t t = static_cast<size_t>(config_.tool_storage_drive);
   std::vector<double> from = GuardFrom();
   if (t >= from.size()) return true;
@@ -57,9 +57,9 @@ bool Channel::GuardTurretIndex(const std::string& move, double target) {
   std::vector<double> to = from;
   to[t] = target;
   if (from[t] == to[t]) return true;
-  const PathCheck c = guard_->CheckMove(from, to);
+  const PathCheck c = guarded_.guard->CheckMove(from, to);
   if (c.clear) {
-    guard_records_.push_back({move, from, to, c, 1, false});
+    guarded_.records.push_back({move, from, to, c, 1, false});
     return true;
   }
   return !GuardStops(move, from, to, c);
@@ -69,17 +69,17 @@ void Channel::GuardTurretJog(int key, double dt) {
   ToolStorageAxis& t = tool_storage_;
   // A stopped key stays stopped until it is released (or the other way is pressed).
   if (t.blocked != 0 && key != t.blocked) t.blocked = 0;
-  if (!guard_ || config_.path_guard == GuardReaction::kOff) return;
+  if (!guarded_.guard || config_.path_guard == GuardReaction::kOff) return;
   const int pressed = key != t.blocked ? key : 0;
   const int dir = pressed != 0 ? pressed : t.velocity > 0 ? 1 : t.velocity < 0 ? -1 : 0;
   if (dir == 0) {
-    if (guarded_turret_jog_) guard_records_.push_back(*guarded_turret_jog_);
-    guarded_turret_jog_.reset();
-    turret_guard_countdown_ = 0;
+    if (guarded_.turret_jog) guarded_.records.push_back(*guarded_.turret_jog);
+    guarded_.turret_jog.reset();
+    guarded_.turret_jog_countdown = 0;
     return;
   }
-  if (guarded_turret_jog_ && --turret_guard_countdown_ > 0) return;
-  turret_guard_countdown_ = config_.path_guard_every;
+  if (guarded_.turret_jog && --guarded_.turret_jog_countdown > 0) return;
+  guarded_.turret_jog_countdown = config_.path_guard_every;
   // As GuardJog: where the turret would stand if it braked at the next check, having run on
   // (and sped up) for one check interval first while the key is held.
   const axes::AxisParameters& axis = config_.tool_storage;
@@ -95,26 +95,26 @@ void Channel::GuardTurretJog(int key, double dt) {
   std::vector<double> to = from;
   to[d] = t.command + dir * (v * v / (2 * accel) + v * (pressed == 0 ? dt : interval));
   const std::string move = dir > 0 ? "turret index MGPOS" : "turret index MGNEG";
-  const PathCheck c = guard_->CheckMove(from, to);
+  const PathCheck c = guarded_.guard->CheckMove(from, to);
   if (c.clear) {
-    if (!guarded_turret_jog_) {
-      guarded_turret_jog_ = GuardRecord{move, from, to, c, 1, false};
+    if (!guarded_.turret_jog) {
+      guarded_.turret_jog = GuardRecord{move, from, to, c, 1, false};
     } else {
-      GuardRecord& r = *guarded_turret_jog_;
+      GuardRecord& r = *guarded_.turret_jog;
       r.to = to;
       ++r.checks;
       if (c.min_clearance < r.check.min_clearance) r.check = c;
     }
     return;
   }
-  if (guarded_turret_jog_) guard_records_.push_back(*guarded_turret_jog_);
-  guarded_turret_jog_.reset();
+  if (guarded_.turret_jog) guarded_.records.push_back(*guarded_.turret_jog);
+  guarded_.turret_jog.reset();
   if (!GuardStops(move, from, to, c)) return;
   t.blocked = pressed != 0 ? pressed : dir;
 }
 
 bool Channel::GuardSpindleStart(const std::string& move, const DriveSetpoint& sp) {
-  if (!guard_ || config_.path_guard == GuardReaction::kOff || config_.spindle_drive < 0)
+  if (!guarded_.guard || config_.path_guard == GuardReaction::kOff || config_.spindle_drive < 0)
     return true;
   // A spindle already turning sweeps its chuck now: the moves are checked against that. One
   // standing starts to turn on a speed, or on a position other than the one it holds (M19).
@@ -124,9 +124,9 @@ bool Channel::GuardSpindleStart(const std::string& move, const DriveSetpoint& sp
                           : !(spindle_.mode == DriveMode::kPosition && spindle_.value == sp.value);
   if (turning || !starts) return true;
   const std::vector<double> at = GuardFrom();
-  const PathCheck c = guard_->CheckSpindleStart(at, config_.spindle_drive);
+  const PathCheck c = guarded_.guard->CheckSpindleStart(at, config_.spindle_drive);
   if (c.clear) {
-    guard_records_.push_back({move, at, at, c, 1, false});
+    guarded_.records.push_back({move, at, at, c, 1, false});
     return true;
   }
   return !GuardStops(move, at, at, c);

@@ -5,14 +5,15 @@
 // axis may be jogged in (3.2), the spindle keys that restore a spindle (3.3).
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "control/axes/axis_parameters.hpp"
 #include "control/axes/headstock_changeover.hpp"
 #include "control/channel/further_spindles.hpp"
-#include "control/nc/coordinate_transformation.hpp"
 #include "control/drive_bus.hpp"
+#include "control/nc/coordinate_transformation.hpp"
 #include "control/nc/interpreter.hpp"
 
 namespace vmt::control::channel {
@@ -115,6 +116,22 @@ struct ReposStatus {
   int tool = 0, correction = 0;
   int spindle_m = 5, coolant = 9;
   std::vector<int> g_codes;  ///< the interrupted block's modal G functions
+};
+
+/// The channel's repositioning and NC-block restart: the interruption, what the PLC asks for
+/// and what the NC does.
+struct ReposData {
+  std::optional<Interruption> interruption;
+  ReposFunction request = ReposFunction::kNone;   ///< what the PLC asks for
+  ReposFunction function = ReposFunction::kNone;  ///< what the NC does (7.1)
+  std::vector<double> start;  ///< where each axis stood when the function was called
+  bool crest = false;         ///< PxxS.CREST (7.3)
+  bool run = false;           ///< the REPOS subroutine or the closing move runs (4.1)
+  bool closing = false;       ///< the closing move to the exact target runs
+  bool finish = false;        ///< no subroutine: close and continue
+  /// Stopped during the REPOS subroutine and manual mode entered: the next start runs it again
+  /// from `.REPOS` (the operator may have jogged; the interruption point stays the target).
+  bool rerun = false;
 };
 
 }  // namespace vmt::control::channel

@@ -2,21 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "control/channel/channel.hpp"
 
 namespace vmt::control::gateway {
-namespace {
-
-std::string Number2(int n) {
-  char buf[8];
-  std::snprintf(buf, sizeof buf, "%02d", n);
-  return buf;
-}
-
-}  // namespace
-
 bool ChannelGateway::Edge::Rising(const SignalImage& image) {
   if (id < 0) return false;
   const bool now = image.Bool(id);
@@ -25,171 +14,187 @@ bool ChannelGateway::Edge::Rising(const SignalImage& image) {
   return rising;
 }
 
+void ChannelGateway::Bind(int number,
+                          std::initializer_list<std::pair<std::string_view, int*>> table) {
+  for (const auto& [pattern, id] : table) {
+    *id = image_->Find(InstanceName(pattern, number));
+    bindings_.push_back({std::string(pattern), number, *id});
+  }
+}
+
 ChannelGateway::ChannelGateway(SignalImage& image, int process,
                                const std::vector<int>& axis_numbers, int spindle_number,
                                int spindle_drive, int rotary_number)
     : image_(&image),
       spindle_drive_(spindle_drive),
       axis_monitor_(image, axis_numbers, spindle_number) {
-  prefix_ = "P" + Number2(process);
-  const std::string c = prefix_ + "C.", s = prefix_ + "S.";
-  auto_.id = Id(c + "AUTO");
-  manu_.id = Id(c + "MANU");
-  mdi_.id = Id(c + "MDI");
-  start_.id = Id(c + "START");
-  reset_.id = Id(c + "RESET");
-  rev_.id = Id(c + "REV");
-  auxack_.id = Id(c + "AUXACK");
-  stop_ = Id(c + "STOP");
-  sbl_ = Id(c + "SBL");
-  opstp_ = Id(c + "OPSTP");
-  fovr_ = Id(c + "FOVR");
-  if (fovr_ >= 0) last_fovr_ = image.Int(fovr_);  // only changes act (see ReadControls)
-  enabl_ = Id(c + "ENABL");
+  prefix_ = InstanceName("Pxx", process);
+  Bind(process,
+       {
+           // Operator panel and process signals (repositioning 7, c-axis 2.3 and 4.2, vmt's panel).
+           {"PxxC.AUTO", &auto_.id},
+           {"PxxC.MANU", &manu_.id},
+           {"PxxC.MDI", &mdi_.id},
+           {"PxxC.START", &start_.id},
+           {"PxxC.RESET", &reset_.id},
+           {"PxxC.REV", &rev_.id},
+           {"PxxC.AUXACK", &auxack_.id},
+           {"PxxC.STOP", &stop_},
+           {"PxxC.SBL", &sbl_},
+           {"PxxC.OPSTP", &opstp_},
+           {"PxxC.FOVR", &fovr_},
+           {"PxxC.ENABL", &enabl_},
+           {"PxxC.JOGM0", &jogm_[0]},
+           {"PxxC.JOGM1", &jogm_[1]},
+           {"PxxC.JOGM2", &jogm_[2]},
+           {"PxxC.REPOS", &repos_},
+           {"PxxC.RESTA", &resta_},
+           {"PxxC.MGPOS", &mgpos_},
+           {"PxxC.MGNEG", &mgneg_},
+           {"PxxS.AUTO", &s_auto_},
+           {"PxxS.MANU", &s_manu_},
+           {"PxxS.MDI", &s_mdi_},
+           {"PxxS.RUN", &s_run_},
+           {"PxxS.STOP", &s_stop_},
+           {"PxxS.REPOS", &s_repos_},
+           {"PxxS.CREST", &s_crest_},
+           {"PxxS.REV", &s_rev_},
+           {"PxxS.ERROR", &s_error_},
+           {"PxxS.ERRNR", &s_errnr_},
+           {"PxxS.AUXSTB", &s_auxstb_},
+           {"PxxS.MFUNC", &s_mfunc_},
+           {"PxxS.HFUNC", &s_hfunc_},
+           {"PxxS.TFUNC", &s_tfunc_},
+           {"Pxx.MSG_WR", &msg_wr_},
+           {"Pxx.MSG_WR_N", &msg_wr_n_},
+           // Block search of the ISG kernel (block search 5, 7): the CNC objects, the HLI status,
+           // the on/off handshake, and vmt's objects of backward travel and JogOfPath.
+           {"Pxx.mc_cmd_bs_type_w", &bs_.type_w},
+           {"Pxx.mc_cmd_bs_auto_return_w", &bs_.auto_return_w},
+           {"Pxx.mc_cmd_bs_no_hold_at_restart_w", &bs_.no_hold_w},
+           {"Pxx.mc_cmd_bs_deviation_max_w", &bs_.deviation_max_w},
+           {"Pxx.mc_cmd_bs_breakpoint_position_w", &bs_.breakpoint_w},
+           {"Pxx.mc_cmd_bs_distance_prog_start_w", &bs_.distance_w},
+           {"Pxx.mc_cmd_bs_covered_distance_w", &bs_.covered_w},
+           {"Pxx.mc_cmd_bs_pos_start_offset_w", &bs_.start_offset_w},
+           {"Pxx.mc_cmd_bs_pos_start_name_w", &bs_.start_name_w},
+           {"Pxx.mc_cmd_bs_pos_start_type_w", &bs_.start_type_w},
+           {"Pxx.mc_cmd_bs_pos_start_count_w", &bs_.start_count_w},
+           {"Pxx.mc_cmd_bs_pos_end_offset_w", &bs_.end_offset_w},
+           {"Pxx.mc_cmd_bs_pos_end_name_w", &bs_.end_name_w},
+           {"Pxx.mc_cmd_bs_pos_end_type_w", &bs_.end_type_w},
+           {"Pxx.mc_cmd_bs_pos_end_count_w", &bs_.end_count_w},
+           {"Pxx.mc_cmd_bs_intern_block_count_w", &bs_.block_count_w},
+           {"Pxx.mc_cmd_bs_block_number_w", &bs_.block_number_w},
+           {"Pxx.mc_cmd_bs_block_number_pass_w", &bs_.pass_w},
+           {"Pxx.mc_cmd_bs_block_nbr_prog_name_w", &bs_.prog_name_w},
+           {"Pxx.mc_cmd_bs_type_r", &bs_.type_r},
+           {"Pxx.mc_cmd_bs_auto_return_r", &bs_.auto_return_r},
+           {"Pxx.mc_cmd_bs_no_hold_at_restart_r", &bs_.no_hold_r},
+           {"Pxx.mc_cmd_bs_deviation_max_r", &bs_.deviation_max_r},
+           {"Pxx.mc_cmd_bs_breakpoint_position_r", &bs_.breakpoint_r},
+           {"Pxx.mc_cmd_bs_distance_prog_start_r", &bs_.distance_r},
+           {"Pxx.mc_cmd_bs_covered_distance_r", &bs_.covered_r},
+           {"Pxx.mc_cmd_bs_pos_start_offset_r", &bs_.start_offset_r},
+           {"Pxx.mc_cmd_bs_pos_start_name_r", &bs_.start_name_r},
+           {"Pxx.mc_cmd_bs_pos_start_type_r", &bs_.start_type_r},
+           {"Pxx.mc_cmd_bs_pos_start_count_r", &bs_.start_count_r},
+           {"Pxx.mc_cmd_bs_pos_end_offset_r", &bs_.end_offset_r},
+           {"Pxx.mc_cmd_bs_pos_end_name_r", &bs_.end_name_r},
+           {"Pxx.mc_cmd_bs_pos_end_type_r", &bs_.end_type_r},
+           {"Pxx.mc_cmd_bs_pos_end_count_r", &bs_.end_count_r},
+           {"Pxx.mc_cmd_bs_intern_block_count_r", &bs_.block_count_r},
+           {"Pxx.mc_cmd_bs_block_number_r", &bs_.block_number_r},
+           {"Pxx.mc_cmd_bs_block_number_pass_r", &bs_.pass_r},
+           {"Pxx.mc_cmd_bs_block_nbr_prog_name_r", &bs_.prog_name_r},
+           {"Pxx.mc_command_file_offset_w", &bs_.file_offset_w},
+           {"Pxx.bahn_state.block_search_active_r", &bs_.active},
+           {"Pxx.bahn_state.block_search_state_r", &bs_.state},
+           {"Pxx.bahn_state.covered_distance_r", &bs_.covered_distance},
+           {"Pxx.bahn_state.dist_prog_start", &bs_.dist_prog_start},
+           {"Pxx.bahn_state.block_count_r", &bs_.line_count},
+           {"Pxx.bahn_state.block_search_path_deviation_r", &bs_.path_deviation},
+           {"Pxx.bahn_state.stop_conditions_r", &bs_.stop_conditions},
+           {"Pxx.distance_from_program_start", &bs_.distance_object},
+           {"Pxx.bahn_lc_control.block_search.command_r", &bs_.command},
+           {"Pxx.bahn_lc_control.block_search.state_r", &bs_.plc_state},
+           {"Pxx.bahn_lc_control.block_search.enable_w", &bs_.enable},
+           {"Pxx.backward_motion_w", &bs_.backward_w},
+           {"Pxx.bahn_state.backward_motion_r", &bs_.backward_r},
+           {"Pxx.suspend_axis_output_w", &bs_.suspend_w},
+           {"Pxx.bahn_state.axis_output_suspended_r", &bs_.suspended_r},
+           {"Pxx.jog_of_path.start_w", &bs_.jop_start_w},
+           {"Pxx.jog_of_path.stop_w", &bs_.jop_stop_w},
+           {"Pxx.jog_of_path.state_r", &bs_.jop_state_r},
+           {"Pxx.jog_of_path.axis_output_r", &bs_.jop_output_r},
+       });
+  // Only changes of these levels act (ReadControls): the preset is the last value seen.
+  if (fovr_ >= 0) last_fovr_ = image.Int(fovr_);
   if (enabl_ >= 0) last_enabl_ = image.Bool(enabl_);
-  for (int k = 0; k < 3; ++k) jogm_[k] = Id(c + "JOGM" + std::to_string(k));
-  repos_ = Id(c + "REPOS");
-  resta_ = Id(c + "RESTA");
-  mgpos_ = Id(c + "MGPOS");
-  mgneg_ = Id(c + "MGNEG");
-  s_auto_ = Id(s + "AUTO");
-  s_manu_ = Id(s + "MANU");
-  s_mdi_ = Id(s + "MDI");
-  s_run_ = Id(s + "RUN");
-  s_stop_ = Id(s + "STOP");
-  s_repos_ = Id(s + "REPOS");
-  s_crest_ = Id(s + "CREST");
-  s_rev_ = Id(s + "REV");
-  s_error_ = Id(s + "ERROR");
-  s_errnr_ = Id(s + "ERRNR");
-  s_auxstb_ = Id(s + "AUXSTB");
-  s_mfunc_ = Id(s + "MFUNC");
-  s_hfunc_ = Id(s + "HFUNC");
-  s_tfunc_ = Id(s + "TFUNC");
-  msg_wr_ = Id(prefix_ + ".MSG_WR");
-  msg_wr_n_ = Id(prefix_ + ".MSG_WR_N");
-  for (int number : axis_numbers) {
-    const std::string a = "A" + Number2(number);
-    AxisSignals sig;
-    sig.jgpos = Id(a + "C.JGPOS");
-    sig.jgneg = Id(a + "C.JGNEG");
-    sig.mvpos = Id(a + "S.MVPOS");
-    sig.mvneg = Id(a + "S.MVNEG");
-    sig.homed = Id(a + "S.HOMED");
-    sig.enabl = Id(a + "C.ENABL");
-    if (sig.enabl >= 0) sig.last_enabl = image.Bool(sig.enabl);  // only changes act
-    sig.rf = Id(a + "S.RF");
-    sig.bbdig = Id(a + "S.BBDIG");
-    sig.home.id = Id(a + "C.HOME");
+  axes_.resize(axis_numbers.size());
+  for (size_t k = 0; k < axis_numbers.size(); ++k) {
+    AxisSignals& sig = axes_[k];
+    Bind(axis_numbers[k], {
+                              {"AxxC.JGPOS", &sig.jgpos},
+                              {"AxxC.JGNEG", &sig.jgneg},
+                              {"AxxS.MVPOS", &sig.mvpos},
+                              {"AxxS.MVNEG", &sig.mvneg},
+                              {"AxxS.HOMED", &sig.homed},
+                              {"AxxC.ENABL", &sig.enabl},
+                              {"AxxS.RF", &sig.rf},
+                              {"AxxS.BBDIG", &sig.bbdig},
+                              {"AxxC.HOME", &sig.home.id},
+                          });
+    if (sig.enabl >= 0) sig.last_enabl = image.Bool(sig.enabl);
     if (sig.home.id >= 0) sig.home.last = image.Bool(sig.home.id);
-    axes_.push_back(sig);
   }
   if (spindle_number > 0) {
-    const std::string a = "A" + Number2(spindle_number) + "S.";
-    const std::string ac = "A" + Number2(spindle_number) + "C.";
-    const char* keys[4] = {"M3", "M4", "M5", "M19"};
-    for (int k = 0; k < 4; ++k) spindle_m_[k].id = Id(ac + keys[k]);
-    // One axis with rotary axis capability (section 2): its HOME is the rotary axis' key.
+    Bind(spindle_number, {
+                             {"AxxC.M3", &spindle_m_[0].id},
+                             {"AxxC.M4", &spindle_m_[1].id},
+                             {"AxxC.M5", &spindle_m_[2].id},
+                             {"AxxC.M19", &spindle_m_[3].id},
+                             {"AxxC.JGPOS", &spindle_jgpos_},
+                             {"AxxC.JGNEG", &spindle_jgneg_},
+                             {"AxxC.ENABL", &spindle_enabl_},
+                             {"AxxC.SOVR", &sovr_},
+                             {"AxxS.RF", &spindle_rf_},
+                             {"AxxS.BBDIG", &spindle_bbdig_},
+                             {"AxxS.NC_NMAX", &nc_nmax_},
+                             {"AxxS.HOMED", &spindle_homed_},
+                             {"AxxS.N_NCMD", &n_ncmd_},
+                             {"AxxS.N_NMIN", &n_nmin_},
+                             {"AxxS.INPOS", &inpos_},
+                             {"AxxS.MD_MDX", &md_mdx_},
+                             {"AxxS.P_PX", &p_px_},
+                             {"AxxS.LOAD90", &load90_},
+                         });
+    // One axis with rotary axis capability (c-axis 2): its HOME is the rotary axis' key.
     if (std::find(axis_numbers.begin(), axis_numbers.end(), spindle_number) == axis_numbers.end())
-      spindle_home_.id = Id(ac + "HOME");
-    spindle_jgpos_ = Id(ac + "JGPOS");
-    spindle_jgneg_ = Id(ac + "JGNEG");
-    spindle_enabl_ = Id(ac + "ENABL");
+      Bind(spindle_number, {{"AxxC.HOME", &spindle_home_.id}});
     if (spindle_enabl_ >= 0) last_spindle_enabl_ = image.Bool(spindle_enabl_);
-    spindle_rf_ = Id(a + "RF");
-    spindle_bbdig_ = Id(a + "BBDIG");
-    nc_nmax_ = Id(a + "NC_NMAX");
-    sovr_ = Id(ac + "SOVR");
     if (sovr_ >= 0) last_sovr_ = image.Int(sovr_);
-    spindle_homed_ = Id(a + "HOMED");
-    n_ncmd_ = Id(a + "N_NCMD");
-    n_nmin_ = Id(a + "N_NMIN");
-    inpos_ = Id(a + "INPOS");
-    md_mdx_ = Id(a + "MD_MDX");
-    p_px_ = Id(a + "P_PX");
-    load90_ = Id(a + "LOAD90");
   }
   if (spindle_number > 0 && rotary_number > 0) {
-    const std::string sp = "A" + Number2(spindle_number), rot = "A" + Number2(rotary_number);
     Headstock& h = headstock_;
-    h.rotmod = Id(sp + ".ROTMOD");
-    h.spmod = Id(sp + ".SPMOD");
-    h.rotmod_q = Id(sp + ".ROTMOD_Q");
-    h.spmod_q = Id(sp + ".SPMOD_Q");
-    h.spindle_ready = Id(sp + "C.READY");
-    h.rotary_ready = Id(rot + "C.READY");
-    for (int k = 0; k < 4; ++k) {
-      h.spindle_axd[k] = Id(sp + ".AXD." + std::to_string(65012 + k));
-      h.rotary_axd[k] = Id(rot + ".AXD." + std::to_string(65012 + k));
-    }
-  }
-  {
-    const std::string o = prefix_ + ".mc_cmd_bs_";
-    BlockSearch& b = bs_;
-    const std::pair<int*, const char*> objects[] = {
-        {&b.type_w, "type_w"},
-        {&b.auto_return_w, "auto_return_w"},
-        {&b.no_hold_w, "no_hold_at_restart_w"},
-        {&b.deviation_max_w, "deviation_max_w"},
-        {&b.breakpoint_w, "breakpoint_position_w"},
-        {&b.distance_w, "distance_prog_start_w"},
-        {&b.covered_w, "covered_distance_w"},
-        {&b.start_offset_w, "pos_start_offset_w"},
-        {&b.start_name_w, "pos_start_name_w"},
-        {&b.start_type_w, "pos_start_type_w"},
-        {&b.start_count_w, "pos_start_count_w"},
-        {&b.end_offset_w, "pos_end_offset_w"},
-        {&b.end_name_w, "pos_end_name_w"},
-        {&b.end_type_w, "pos_end_type_w"},
-        {&b.end_count_w, "pos_end_count_w"},
-        {&b.block_count_w, "intern_block_count_w"},
-        {&b.block_number_w, "block_number_w"},
-        {&b.pass_w, "block_number_pass_w"},
-        {&b.prog_name_w, "block_nbr_prog_name_w"},
-        {&b.type_r, "type_r"},
-        {&b.auto_return_r, "auto_return_r"},
-        {&b.no_hold_r, "no_hold_at_restart_r"},
-        {&b.deviation_max_r, "deviation_max_r"},
-        {&b.breakpoint_r, "breakpoint_position_r"},
-        {&b.distance_r, "distance_prog_start_r"},
-        {&b.covered_r, "covered_distance_r"},
-        {&b.start_offset_r, "pos_start_offset_r"},
-        {&b.start_name_r, "pos_start_name_r"},
-        {&b.start_type_r, "pos_start_type_r"},
-        {&b.start_count_r, "pos_start_count_r"},
-        {&b.end_offset_r, "pos_end_offset_r"},
-        {&b.end_name_r, "pos_end_name_r"},
-        {&b.end_type_r, "pos_end_type_r"},
-        {&b.end_count_r, "pos_end_count_r"},
-        {&b.block_count_r, "intern_block_count_r"},
-        {&b.block_number_r, "block_number_r"},
-        {&b.pass_r, "block_number_pass_r"},
-        {&b.prog_name_r, "block_nbr_prog_name_r"},
-    };
-    for (const auto& [id, name] : objects) *id = Id(o + name);
-    b.file_offset_w = Id(prefix_ + ".mc_command_file_offset_w");
-    const std::string st = prefix_ + ".bahn_state.";
-    b.active = Id(st + "block_search_active_r");
-    b.state = Id(st + "block_search_state_r");
-    b.covered_distance = Id(st + "covered_distance_r");
-    b.dist_prog_start = Id(st + "dist_prog_start");
-    b.line_count = Id(st + "block_count_r");
-    b.path_deviation = Id(st + "block_search_path_deviation_r");
-    b.stop_conditions = Id(st + "stop_conditions_r");
-    b.distance_object = Id(prefix_ + ".distance_from_program_start");
-    const std::string lc = prefix_ + ".bahn_lc_control.block_search.";
-    b.command = Id(lc + "command_r");
-    b.plc_state = Id(lc + "state_r");
-    b.enable = Id(lc + "enable_w");
-    b.backward_w = Id(prefix_ + ".backward_motion_w");
-    b.backward_r = Id(st + "backward_motion_r");
-    b.suspend_w = Id(prefix_ + ".suspend_axis_output_w");
-    b.suspended_r = Id(st + "axis_output_suspended_r");
-    const std::string jop = prefix_ + ".jog_of_path.";
-    b.jop_start_w = Id(jop + "start_w");
-    b.jop_stop_w = Id(jop + "stop_w");
-    b.jop_state_r = Id(jop + "state_r");
-    b.jop_output_r = Id(jop + "axis_output_r");
+    Bind(spindle_number, {
+                             {"Axx.ROTMOD", &h.rotmod},
+                             {"Axx.SPMOD", &h.spmod},
+                             {"Axx.ROTMOD_Q", &h.rotmod_q},
+                             {"Axx.SPMOD_Q", &h.spmod_q},
+                             {"AxxC.READY", &h.spindle_ready},
+                             {"Axx.AXD.65012", &h.spindle_axd[0]},
+                             {"Axx.AXD.65013", &h.spindle_axd[1]},
+                             {"Axx.AXD.65014", &h.spindle_axd[2]},
+                             {"Axx.AXD.65015", &h.spindle_axd[3]},
+                         });
+    Bind(rotary_number, {
+                            {"AxxC.READY", &h.rotary_ready},
+                            {"Axx.AXD.65012", &h.rotary_axd[0]},
+                            {"Axx.AXD.65013", &h.rotary_axd[1]},
+                            {"Axx.AXD.65014", &h.rotary_axd[2]},
+                            {"Axx.AXD.65015", &h.rotary_axd[3]},
+                        });
   }
   // Q functions the table knows: Pxx.Qnnnn out, Pxx.Qnnnn_Q acknowledgement.
   const std::string q = prefix_ + ".Q";

@@ -6,8 +6,11 @@
 // reference, spindle status), as the MTC200's NC/PLC interface does.
 
 #include <cstdint>
+#include <initializer_list>
 #include <map>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "control/channel/channel_types.hpp"
@@ -16,6 +19,14 @@
 #include "control/gateway/signal_image.hpp"
 
 namespace vmt::control::gateway {
+
+/// A signal the gateway reads or writes: a signal catalog family (SignalFamily::pattern) for
+/// process or axis `number`, and its id in the image (-1: the machine lacks it).
+struct SignalBinding {
+  std::string pattern;
+  int number;
+  int id;
+};
 
 class ChannelGateway {
  public:
@@ -41,6 +52,10 @@ class ChannelGateway {
   bool Event(int n) const;
   void SetEvent(int n, bool value);
 
+  /// Every catalog signal the gateway serves, in binding order (the Q functions and events it
+  /// finds by number are not among them).
+  const std::vector<SignalBinding>& bindings() const { return bindings_; }
+
  private:
   struct Edge {
     int id = -1;
@@ -48,6 +63,9 @@ class ChannelGateway {
     bool Rising(const SignalImage& image);
   };
   int Id(const std::string& name) const { return image_->Find(name); }
+  /// Each pattern's instance for process or axis `number` into its id field: the binding
+  /// table, in the catalog's spelling.
+  void Bind(int number, std::initializer_list<std::pair<std::string_view, int*>> table);
 
   SignalImage* image_;
   Edge auto_, manu_, mdi_, start_, reset_, rev_, auxack_;
@@ -127,6 +145,7 @@ class ChannelGateway {
   };
   std::vector<QSignal> q_;
   std::string prefix_;  ///< "P00"
+  std::vector<SignalBinding> bindings_;
   std::map<int, bool> hidden_events_;
 };
 

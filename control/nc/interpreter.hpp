@@ -282,6 +282,8 @@ class Interpreter {
   bool Execute(const Block& block, PreparedBlock& out, int32_t& next);
   bool Statement_(const Statement& st, int32_t block, PreparedBlock& out, int32_t& next);
   bool Words(const Block& block, PreparedBlock& out);
+  /// A G word of value `v` at `offset`: its modal group, or the block's G04/G74/G77/G92/G100.
+  bool GWord(double v, uint32_t offset, PreparedBlock& out);
   /// X1/Y1 of G31/G32 (values in `fictive`, NaN: not programmed) into the targets of X and C.
   bool FictiveWords(const double fictive[2], uint32_t offset, uint8_t ijk,
                     const uint32_t ijk_offset[3], PreparedBlock& out);

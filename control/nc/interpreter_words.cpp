@@ -62,6 +62,70 @@ bool Interpreter::Lead(Dialect dialect, std::optional<double> f_word, uint32_t f
   return true;
 }
 
+bool Interpreter::GWord(double v, uint32_t offset, PreparedBlock& out) {
+  const int g = static_cast<int>(std::lround(v));
+  if (std::abs(v - g) > 1e-9) return Fail(offset, "G" + std::to_string(v) + " is not a G code");
+  switch (g) {
+    case 0:
+      modal_.motion = Motion::kRapid;
+      break;
+    case 1:
+      modal_.motion = Motion::kLinear;
+      break;
+    case 2:
+      modal_.motion = Motion::kArcCw;
+      break;
+    case 3:
+      modal_.motion = Motion::kArcCcw;
+      break;
+    case 33:
+      modal_.motion = Motion::kThread;
+      break;
+    case 63:
+      modal_.motion = Motion::kTapping;
+      break;
+    case 64:
+      modal_.motion = Motion::kRigidTapping;
+      break;
+    case 4:
+      out.dwell_s = -1;
+      break;  // the dwell time follows as F or X
+    case 31:
+    case 32: {
+      const int x = NamedAxis("X"), c = NamedAxis("C");
+      if (x < 0 || c < 0)
+        return Fail(offset, "G" + std::to_string(g) +
+                                " (coordinate transformation) needs the axes X and C in "
+                                "this channel");
+      // G32 unrolls the cylinder at the radius X has now (before the block's moves).
+      if (g == 32 && modal_.transformation != Transformation::kCylinder) {
+        if (!(std::abs(position_[x]) >= 1e-3))
+          return Fail(offset, "G32 (cylinder surface transformation) at X " +
+                                  std::to_string(position_[x]) +
+                                  ": the cylinder needs a radius; position X first");
+        modal_.cylinder_radius = std::abs(position_[x]);
+      }
+      modal_.transformation = static_cast<Transformation>(g);
+      break;
+    }
+    case 74:
+      out.homing = true;
+      break;
+    case 77:
+      out.repos = true;
+      break;
+    case 92:
+      out.set_position = true;
+      break;
+    case 100:
+      out.measuring = true;
+      break;
+    default:
+      if (!SetModalG(g, modal_)) return Fail(offset, "G" + std::to_string(g) + " is not supported");
+  }
+  return true;
+}
+
 bool Interpreter::Words(const Block& block, PreparedBlock& out) {
   const Program& p = program();
   eval_failed_ = false;
@@ -109,68 +173,7 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
         continue;
       }
       if (address == "G") {
-        const int g = static_cast<int>(std::lround(v));
-        if (std::abs(v - g) > 1e-9)
-          return Fail(w.offset, "G" + std::to_string(v) + " is not a G code");
-        switch (g) {
-          case 0:
-            modal_.motion = Motion::kRapid;
-            break;
-          case 1:
-            modal_.motion = Motion::kLinear;
-            break;
-          case 2:
-            modal_.motion = Motion::kArcCw;
-            break;
-          case 3:
-            modal_.motion = Motion::kArcCcw;
-            break;
-          case 33:
-            modal_.motion = Motion::kThread;
-            break;
-          case 63:
-            modal_.motion = Motion::kTapping;
-            break;
-          case 64:
-            modal_.motion = Motion::kRigidTapping;
-            break;
-          case 4:
-            out.dwell_s = -1;
-            break;  // the dwell time follows as F or X
-          case 31:
-          case 32: {
-            const int x = NamedAxis("X"), c = NamedAxis("C");
-            if (x < 0 || c < 0)
-              return Fail(w.offset, "G" + std::to_string(g) +
-                                        " (coordinate transformation) needs the axes X and C in "
-                                        "this channel");
-            // G32 unrolls the cylinder at the radius X has now (before the block's moves).
-            if (g == 32 && modal_.transformation != Transformation::kCylinder) {
-              if (!(std::abs(position_[x]) >= 1e-3))
-                return Fail(w.offset, "G32 (cylinder surface transformation) at X " +
-                                          std::to_string(position_[x]) +
-                                          ": the cylinder needs a radius; position X first");
-              modal_.cylinder_radius = std::abs(position_[x]);
-            }
-            modal_.transformation = static_cast<Transformation>(g);
-            break;
-          }
-          case 74:
-            out.homing = true;
-            break;
-          case 77:
-            out.repos = true;
-            break;
-          case 92:
-            out.set_position = true;
-            break;
-          case 100:
-            out.measuring = true;
-            break;
-          default:
-            if (!SetModalG(g, modal_))
-              return Fail(w.offset, "G" + std::to_string(g) + " is not supported");
-        }
+        if (!GWord(v, w.offset, out)) return false;
         continue;
       }
       switch (letter) {

@@ -8,7 +8,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <thread>
 
@@ -160,74 +162,129 @@ int Check(const std::string& file, const std::string& dialect_name) {
   return r.ok() ? 0 : 1;
 }
 
-}  // namespace
+int ImgDiff(const std::string& a, const std::string& b, const std::string& diff,
+            int channel_tolerance, double tolerance_fraction) {
+  const render::Image ia = render::ReadPng(a), ib = render::ReadPng(b);
+  render::CompareOptions opt;
+  opt.channel_tolerance = channel_tolerance;
+  opt.allowed_fraction = tolerance_fraction;
+  const render::CompareResult r = render::CompareImages(ia, ib, opt);
+  if (r.equal) {
+    std::printf("equal (%d pixels beyond tolerance %d)\n", r.differing_pixels, channel_tolerance);
+    return 0;
+  }
+  if (r.size_mismatch)
+    std::printf("different sizes: %dx%d vs %dx%d\n", ia.width, ia.height, ib.width, ib.height);
+  else
+    std::printf("different: %d pixels (%.4f%%) beyond tolerance %d, max channel delta %d\n",
+                r.differing_pixels, 100 * r.differing_fraction, channel_tolerance,
+                r.max_channel_delta);
+  if (!diff.empty() && !r.size_mismatch) {
+    render::WritePng(diff, r.diff);
+    std::printf("diff picture: %s\n", diff.c_str());
+  }
+  return 1;
+}
 
-int main(int argc, char** argv) {
-  // Keep freed memory in the process instead of returning it to the kernel: first touches of
-  // fresh pages cost ~20 us each on the project's VMs, and vmt allocates large program and
-  // trace arenas repeatedly (studies, reloads).
-  mallopt(M_MMAP_THRESHOLD, 1 << 30);
-  mallopt(M_TRIM_THRESHOLD, 1 << 30);
-  CLI::App app{"vmt: a virtual machine tool (CNC kernel + simulated lathe)"};
-  app.require_subcommand(1);
+/// A subcommand: its CLI11 node and what it does once the command line is parsed (2: bad input).
+struct Command {
+  CLI::App* app;
+  std::function<int()> action;
+};
 
-  std::string scene, backend, out = "out", camera = "iso", a, b, diff;
-  double until = 0, at = 0, tolerance_fraction = 0;
-  int width = 640, height = 480, channel_tolerance = 2;
-
+Command AddRun(CLI::App& app) {
+  struct Args {
+    std::string scene, backend, out = "out";
+    double until = 0;
+    std::vector<std::string> sets;
+  };
+  auto o = std::make_shared<Args>();
   CLI::App* run = app.add_subcommand(
       "run", "Run a scene; writes trace.csv, events.jsonl, summary.json and snapshots");
-  run->add_option("scene", scene, "Scene file (YAML)")->required();
-  run->add_option("--backend", backend, "physics or kinematic (default: the scene's)")
+  run->add_option("scene", o->scene, "Scene file (YAML)")->required();
+  run->add_option("--backend", o->backend, "physics or kinematic (default: the scene's)")
       ->check(CLI::IsMember({"physics", "kinematic"}));
-  run->add_option("--until", until, "Stop at this simulated time, seconds")
+  run->add_option("--until", o->until, "Stop at this simulated time, seconds")
       ->check(CLI::PositiveNumber);
-  run->add_option("--out", out, "Output folder")->capture_default_str();
-  std::vector<std::string> sets;
-  run->add_option("--set", sets,
+  run->add_option("--out", o->out, "Output folder")->capture_default_str();
+  run->add_option("--set", o->sets,
                   "NAME=VALUE: a gateway signal the PLC writes, set at t = 0 (repeatable), e.g. "
                   "P00.mc_cmd_bs_type_w=4 P00.mc_cmd_bs_block_number_w=100");
+  return {run, [o] { return Run(o->scene, o->backend, o->until, o->out, o->sets); }};
+}
 
+Command AddSnapshot(CLI::App& app) {
+  struct Args {
+    std::string scene, camera = "iso", out;
+    double at = 0;
+    int width = 640, height = 480;
+  };
+  auto o = std::make_shared<Args>();
   CLI::App* snap = app.add_subcommand("snapshot", "Render the scene's machine at a time to a PNG");
-  snap->add_option("scene", scene, "Scene file (YAML)")->required();
-  snap->add_option("--at", at, "Simulated time, seconds")
+  snap->add_option("scene", o->scene, "Scene file (YAML)")->required();
+  snap->add_option("--at", o->at, "Simulated time, seconds")
       ->required()
       ->check(CLI::NonNegativeNumber);
-  snap->add_option("--camera", camera, "Camera name (model or scene)")->capture_default_str();
-  snap->add_option("--out", out, "PNG file to write")->required();
-  snap->add_option("--width", width, "Picture width")
+  snap->add_option("--camera", o->camera, "Camera name (model or scene)")->capture_default_str();
+  snap->add_option("--out", o->out, "PNG file to write")->required();
+  snap->add_option("--width", o->width, "Picture width")
       ->check(CLI::Range(16, 4096))
       ->capture_default_str();
-  snap->add_option("--height", height, "Picture height")
+  snap->add_option("--height", o->height, "Picture height")
       ->check(CLI::Range(16, 4096))
       ->capture_default_str();
+  return {snap, [o] { return Snapshot(o->scene, o->at, o->camera, o->out, o->width, o->height); }};
+}
 
-  std::string dialect;
+Command AddCheck(CLI::App& app) {
+  struct Args {
+    std::string file, dialect;
+  };
+  auto o = std::make_shared<Args>();
   CLI::App* check = app.add_subcommand(
       "check", "Check an NC program: every error as file:line:column: error: text");
-  check->add_option("file", scene, "NC program file")->required();
-  check->add_option("--dialect", dialect, "mtc200 or isg (default: from the file)")
+  check->add_option("file", o->file, "NC program file")->required();
+  check->add_option("--dialect", o->dialect, "mtc200 or isg (default: from the file)")
       ->check(CLI::IsMember({"mtc200", "isg"}));
+  return {check, [o] { return Check(o->file, o->dialect); }};
+}
 
-  std::string format = "csv";
+Command AddSignals(CLI::App& app) {
+  struct Args {
+    std::string model, format = "csv";
+  };
+  auto o = std::make_shared<Args>();
   CLI::App* signals = app.add_subcommand(
       "signals", "List the NC<->PLC signals and machine I/O of a model for the PLC engineer");
-  signals->add_option("model", scene, "Machine model (machine.yaml)")->required();
-  signals->add_option("--format", format, "csv or json")
+  signals->add_option("model", o->model, "Machine model (machine.yaml)")->required();
+  signals->add_option("--format", o->format, "csv or json")
       ->check(CLI::IsMember({"csv", "json"}))
       ->capture_default_str();
+  return {signals, [o] {
+            const sim::MachineModel model = sim::LoadMachineModel(o->model);
+            const auto table = control::gateway::BuildSignalTable(sim::GatewayLayoutOf(model));
+            const std::string text = o->format == "json" ? control::gateway::FormatJson(table)
+                                                         : control::gateway::FormatCsv(table);
+            std::fwrite(text.data(), 1, text.size(), stdout);
+            return 0;
+          }};
+}
 
-  sim::ServeOptions serve_options;
-  bool realtime = false;
+Command AddServe(CLI::App& app) {
+  struct Args {
+    sim::ServeOptions options;
+    bool realtime = false, lockstep = false;
+  };
+  auto o = std::make_shared<Args>();
+  sim::ServeOptions& serve_options = o->options;
   CLI::App* serve = app.add_subcommand(
       "serve", "Run a scene with its PLC outside, over Modbus TCP (lockstep or real time)");
   serve->add_option("scene", serve_options.scene, "Scene file (YAML)")->required();
   serve->add_option("--modbus", serve_options.endpoint, "HOST:PORT to listen on (port 0: any)")
       ->capture_default_str();
-  bool lockstep = false;
-  serve->add_flag("--lockstep", lockstep,
+  serve->add_flag("--lockstep", o->lockstep,
                   "The PLC steps the simulation a cycle at a time (default)");
-  serve->add_flag("--realtime", realtime, "Run against the wall clock; report cycle lateness");
+  serve->add_flag("--realtime", o->realtime, "Run against the wall clock; report cycle lateness");
   serve->add_option("--until", serve_options.until_s, "Stop at this simulated time, seconds")
       ->check(CLI::PositiveNumber);
   serve->add_option("--out", serve_options.out_dir, "Output folder")->capture_default_str();
@@ -246,14 +303,31 @@ int main(int argc, char** argv) {
   serve->footer(
       "Exit status: 0 the scene ended and passed, 1 it ended with failures, 2 bad input, 3 "
       "stopped early (lockstep idle timeout, SIGINT or SIGTERM); serve.json says why.");
+  return {serve, [o] {
+            if (o->realtime && o->lockstep) {
+              std::fprintf(stderr, "vmt: error: --lockstep and --realtime exclude each other\n");
+              return 2;
+            }
+            o->options.lockstep = !o->realtime;
+            return sim::Serve(o->options);
+          }};
+}
 
+/// `vmt study repos` and `vmt study merge`.
+std::vector<Command> AddStudy(CLI::App& app) {
+  struct Args {
+    sim::study::StudyOptions options;
+    std::string shard, per_mille, bench_json;
+    double every_ms = 0;
+    size_t max_cases = 0;
+    bool no_fork = false;
+    std::vector<std::string> merge_dirs;
+    std::string merge_out;
+  };
+  auto o = std::make_shared<Args>();
+  sim::study::StudyOptions& study_options = o->options;
   CLI::App* study = app.add_subcommand("study", "Collision studies of REPOS subroutines");
   study->require_subcommand(1);
-  sim::study::StudyOptions study_options;
-  std::string shard, per_mille, bench_json;
-  double every_ms = 0;
-  size_t max_cases = 0;
-  bool no_fork = false;
   CLI::App* repos = study->add_subcommand(
       "repos",
       "Run the cases of a scene's study: plan (interruptions x retracts x modes x REPOS "
@@ -264,103 +338,91 @@ int main(int argc, char** argv) {
   repos->add_option("--jobs", study_options.jobs, "Worker processes")
       ->check(CLI::Range(1, 256))
       ->capture_default_str();
-  repos->add_option("--shard", shard, "K/N: this process runs shard K of N (every N-th group)");
-  repos->add_option("--every-ms", every_ms, "Interrupt every T ms of the program's run")
+  repos->add_option("--shard", o->shard, "K/N: this process runs shard K of N (every N-th group)");
+  repos->add_option("--every-ms", o->every_ms, "Interrupt every T ms of the program's run")
       ->check(CLI::Range(1.0, 1e7));
-  repos->add_option("--per-mille", per_mille,
+  repos->add_option("--per-mille", o->per_mille,
                     "Interrupt every motion block at these points, e.g. 250,750");
-  repos->add_option("--max-cases", max_cases, "Only the first N cases (of this shard)");
-  repos->add_flag("--no-fork", no_fork,
+  repos->add_option("--max-cases", o->max_cases, "Only the first N cases (of this shard)");
+  repos->add_flag("--no-fork", o->no_fork,
                   "Run every case from the program's start (slow; checks the forked run-ups)");
-  repos->add_option("--bench-json", bench_json, "Also write the speed here as JSON");
+  repos->add_option("--bench-json", o->bench_json, "Also write the speed here as JSON");
   repos
       ->add_option("--snapshots", study_options.snapshots,
                    "Pictures of the worst cases per subroutine: this many collisions and the "
                    "tightest clear case (0: none)")
       ->check(CLI::Range(0, 100))
       ->capture_default_str();
-  std::vector<std::string> merge_dirs;
-  std::string merge_out;
   CLI::App* merge =
       study->add_subcommand("merge", "Join study folders (shards) into one, one result per case");
-  merge->add_option("dirs", merge_dirs, "Study folders")->required();
-  merge->add_option("--out", merge_out, "The joined study folder")->required();
+  merge->add_option("dirs", o->merge_dirs, "Study folders")->required();
+  merge->add_option("--out", o->merge_out, "The joined study folder")->required();
+  Command run_repos{repos, [o] {
+                      sim::study::StudyOptions options = o->options;
+                      if (o->every_ms > 0) options.every_ms = o->every_ms;
+                      if (o->max_cases > 0) options.max_cases = o->max_cases;
+                      options.fork_cases = !o->no_fork;
+                      options.progress = true;
+                      return StudyRepos(options, o->shard, o->per_mille, o->bench_json);
+                    }};
+  Command run_merge{merge, [o] {
+                      const size_t n = sim::study::MergeStudies(o->merge_dirs, o->merge_out);
+                      std::printf("%s: %zu cases; output: %s/{cases.jsonl,cases.csv,report.html}\n",
+                                  o->merge_out.c_str(), n, o->merge_out.c_str());
+                      return 0;
+                    }};
+  return {run_repos, run_merge};
+}
 
+Command AddImgdiff(CLI::App& app) {
+  struct Args {
+    std::string a, b, diff;
+    double tolerance_fraction = 0;
+    int channel_tolerance = 2;
+  };
+  auto o = std::make_shared<Args>();
   CLI::App* imgdiff = app.add_subcommand(
       "imgdiff", "Compare two PNG pictures: exit 0 equal, 1 different, 2 bad input");
-  imgdiff->add_option("a", a, "First PNG")->required();
-  imgdiff->add_option("b", b, "Second PNG")->required();
-  imgdiff->add_option("--diff", diff, "Write a diff picture here when they differ");
-  imgdiff->add_option("--tolerance", channel_tolerance, "Per-channel tolerance 0..255")
+  imgdiff->add_option("a", o->a, "First PNG")->required();
+  imgdiff->add_option("b", o->b, "Second PNG")->required();
+  imgdiff->add_option("--diff", o->diff, "Write a diff picture here when they differ");
+  imgdiff->add_option("--tolerance", o->channel_tolerance, "Per-channel tolerance 0..255")
       ->check(CLI::Range(0, 255))
       ->capture_default_str();
   imgdiff
-      ->add_option("--allowed-fraction", tolerance_fraction, "Fraction of pixels allowed to differ")
+      ->add_option("--allowed-fraction", o->tolerance_fraction,
+                   "Fraction of pixels allowed to differ")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  return {imgdiff, [o] {
+            return ImgDiff(o->a, o->b, o->diff, o->channel_tolerance, o->tolerance_fraction);
+          }};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Keep freed memory in the process instead of returning it to the kernel: first touches of
+  // fresh pages cost ~20 us each on the project's VMs, and vmt allocates large program and
+  // trace arenas repeatedly (studies, reloads).
+  mallopt(M_MMAP_THRESHOLD, 1 << 30);
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+  CLI::App app{"vmt: a virtual machine tool (CNC kernel + simulated lathe)"};
+  app.require_subcommand(1);
+
+  std::vector<Command> commands = {AddRun(app), AddSnapshot(app), AddCheck(app), AddSignals(app),
+                                   AddServe(app)};
+  for (Command& c : AddStudy(app)) commands.push_back(std::move(c));
+  commands.push_back(AddImgdiff(app));
 
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
-
   try {
-    if (*run) return Run(scene, backend, until, out, sets);
-    if (*snap) return Snapshot(scene, at, camera, out, width, height);
-    if (*check) return Check(scene, dialect);
-    if (*repos) {
-      if (every_ms > 0) study_options.every_ms = every_ms;
-      if (max_cases > 0) study_options.max_cases = max_cases;
-      study_options.fork_cases = !no_fork;
-      study_options.progress = true;
-      return StudyRepos(study_options, shard, per_mille, bench_json);
-    }
-    if (*merge) {
-      const size_t n = sim::study::MergeStudies(merge_dirs, merge_out);
-      std::printf("%s: %zu cases; output: %s/{cases.jsonl,cases.csv,report.html}\n",
-                  merge_out.c_str(), n, merge_out.c_str());
-      return 0;
-    }
-    if (*serve) {
-      if (realtime && lockstep) {
-        std::fprintf(stderr, "vmt: error: --lockstep and --realtime exclude each other\n");
-        return 2;
-      }
-      serve_options.lockstep = !realtime;
-      return sim::Serve(serve_options);
-    }
-    if (*signals) {
-      const sim::MachineModel model = sim::LoadMachineModel(scene);
-      const auto table = control::gateway::BuildSignalTable(sim::GatewayLayoutOf(model));
-      const std::string text = format == "json" ? control::gateway::FormatJson(table)
-                                                : control::gateway::FormatCsv(table);
-      std::fwrite(text.data(), 1, text.size(), stdout);
-      return 0;
-    }
-    if (*imgdiff) {
-      const render::Image ia = render::ReadPng(a), ib = render::ReadPng(b);
-      render::CompareOptions opt;
-      opt.channel_tolerance = channel_tolerance;
-      opt.allowed_fraction = tolerance_fraction;
-      const render::CompareResult r = render::CompareImages(ia, ib, opt);
-      if (r.equal) {
-        std::printf("equal (%d pixels beyond tolerance %d)\n", r.differing_pixels,
-                    channel_tolerance);
-        return 0;
-      }
-      if (r.size_mismatch)
-        std::printf("different sizes: %dx%d vs %dx%d\n", ia.width, ia.height, ib.width, ib.height);
-      else
-        std::printf("different: %d pixels (%.4f%%) beyond tolerance %d, max channel delta %d\n",
-                    r.differing_pixels, 100 * r.differing_fraction, channel_tolerance,
-                    r.max_channel_delta);
-      if (!diff.empty() && !r.size_mismatch) {
-        render::WritePng(diff, r.diff);
-        std::printf("diff picture: %s\n", diff.c_str());
-      }
-      return 1;
-    }
+    for (const Command& c : commands)
+      if (*c.app) return c.action();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "vmt: error: %s\n", e.what());
     return 2;

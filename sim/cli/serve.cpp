@@ -7,6 +7,7 @@
 #include <csignal>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -48,21 +49,101 @@ struct PlcLinkWatch {
   int losses = 0;
 };
 
+/// --modbus HOST:PORT as the server's host and port.
+control::plc::ModbusServerOptions EndpointOptions(const std::string& endpoint) {
+  const size_t colon = endpoint.rfind(':');
+  if (colon == std::string::npos || colon + 1 == endpoint.size())
+    throw std::invalid_argument("--modbus " + endpoint + ": expected HOST:PORT");
+  control::plc::ModbusServerOptions mb;
+  mb.host = endpoint.substr(0, colon);
+  try {
+    size_t used = 0;
+    mb.port = std::stoi(endpoint.substr(colon + 1), &used);
+    if (used != endpoint.size() - colon - 1) throw std::invalid_argument("");
+  } catch (const std::exception&) {
+    throw std::invalid_argument("--modbus " + endpoint + ": the port is not a number");
+  }
+  return mb;
+}
+
+/// Lockstep: the client is the clock, each cycle it writes runs one PLC cycle inside Poll.
+/// There is no link watchdog, but a client that vanished must not keep serve waiting for ever.
+/// Returns why it stopped.
+std::string ServeLockstep(const ServeOptions& o, SceneRun& run, control::plc::ModbusServer& server,
+                          const std::function<void()>& drop_if_asked) {
+  using Clock = std::chrono::steady_clock;
+  const auto idle =
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.idle_timeout_s));
+  const int poll_ms = static_cast<int>(std::clamp(o.idle_timeout_s * 1000, 1.0, 100.0));
+  uint64_t cycles = 0;
+  auto cycle_at = Clock::now();
+  while (!run.done()) {
+    if (g_stop) return "signal";
+    server.Poll(poll_ms);
+    drop_if_asked();
+    const auto now = Clock::now();
+    if (server.stats().cycles != cycles) {
+      cycles = server.stats().cycles;
+      cycle_at = now;
+    } else if (now - cycle_at >= idle) {
+      return "idle timeout: no cycle written for " + Fmt(o.idle_timeout_s) + " s";
+    }
+  }
+  return "end of scene";
+}
+
+/// Real time: each PLC cycle starts at its wall-clock time; between cycles the server answers
+/// the PLC. `lateness_ms` gets how long after its time each cycle started; `link` watches the
+/// PLC's requests. Returns why it stopped.
+std::string ServeRealtime(const ServeOptions& o, SceneRun& run, control::plc::ModbusServer& server,
+                          const std::function<void()>& cycle,
+                          const std::function<void()>& drop_if_asked,
+                          std::vector<double>& lateness_ms, PlcLinkWatch& link) {
+  using Clock = std::chrono::steady_clock;
+  const auto period = std::chrono::microseconds(run.ticks_per_plc_cycle() * 250);
+  const int64_t timeout_us = std::llround(o.plc_timeout_ms * 1000);
+  link.timeout_cycles = std::max<int64_t>(1, (timeout_us + period.count() - 1) / period.count());
+  link.timeout = std::chrono::microseconds(timeout_us);
+  const std::string lost =
+      "Modbus: no request for " + Fmt(o.plc_timeout_ms) + " ms, the PLC link is lost";
+  const auto start = Clock::now();
+  link.heard_at = start;
+  for (int64_t n = 0; !run.done(); ++n) {
+    if (g_stop) return "signal";
+    const auto due = start + n * period;
+    for (auto now = Clock::now(); now < due; now = Clock::now())
+      server.Poll(static_cast<int>(std::max<int64_t>(
+          0, std::chrono::duration_cast<std::chrono::milliseconds>(due - now).count())));
+    const auto now = Clock::now();
+    lateness_ms.push_back(std::chrono::duration<double, std::milli>(now - due).count());
+    // The link watchdog looks at the start of the cycle, where the embedded PLC's scans.
+    if (server.stats().requests() != link.seen_requests) {
+      link.seen_requests = server.stats().requests();
+      link.heard_cycle = n;
+      link.heard_at = now;
+      if (link.lost) {
+        link.lost = false;
+        run.PlcRunning();
+        std::fprintf(stderr, "vmt serve: %.4f s: the PLC answers again\n", run.time_s());
+      }
+    } else if (!link.lost && n - link.heard_cycle >= link.timeout_cycles &&
+               now - link.heard_at >= link.timeout) {
+      link.lost = true;
+      ++link.losses;
+      run.PlcLost(lost);
+      std::fprintf(stderr, "vmt serve: %.4f s: %s\n", run.time_s(), lost.c_str());
+    }
+    cycle();
+    drop_if_asked();
+    server.Poll(0);
+  }
+  return "end of scene";
+}
+
 }  // namespace
 
 int Serve(const ServeOptions& o) {
-  const size_t colon = o.endpoint.rfind(':');
-  if (colon == std::string::npos || colon + 1 == o.endpoint.size())
-    throw std::invalid_argument("--modbus " + o.endpoint + ": expected HOST:PORT");
-  control::plc::ModbusServerOptions mb;
-  mb.host = o.endpoint.substr(0, colon);
-  try {
-    size_t used = 0;
-    mb.port = std::stoi(o.endpoint.substr(colon + 1), &used);
-    if (used != o.endpoint.size() - colon - 1) throw std::invalid_argument("");
-  } catch (const std::exception&) {
-    throw std::invalid_argument("--modbus " + o.endpoint + ": the port is not a number");
-  }
+  control::plc::ModbusServerOptions mb = EndpointOptions(o.endpoint);
 
   if (!(o.plc_timeout_ms > 0) || o.plc_timeout_ms > 3.6e6)
     throw std::invalid_argument("--plc-timeout " + Fmt(o.plc_timeout_ms) +
@@ -87,7 +168,7 @@ int Serve(const ServeOptions& o) {
   if (!image)
     throw std::invalid_argument(o.scene + ": vmt serve needs a scene with an nc: section");
   const int64_t ticks = run.ticks_per_plc_cycle();
-  const auto cycle = [&] {
+  const std::function<void()> cycle = [&] {
     for (int64_t k = 0; k < ticks && !run.done(); ++k) run.Step();
   };
   if (o.lockstep) {
@@ -112,84 +193,17 @@ int Serve(const ServeOptions& o) {
 
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
-  using Clock = std::chrono::steady_clock;
-  const auto drop_if_asked = [&] {
+  const std::function<void()> drop_if_asked = [&] {
     if (!drop_clients) return;
     drop_clients = false;
     server.DropClients();
     std::fprintf(stderr, "vmt serve: %.4f s: fault: every Modbus client dropped\n", run.time_s());
   };
-  std::string stop_reason = "end of scene";
   std::vector<double> lateness_ms;
   PlcLinkWatch link;
-  if (o.lockstep) {
-    // The client is the clock: no link watchdog, but a client that vanished must not keep
-    // serve waiting for ever.
-    const auto idle = std::chrono::duration_cast<Clock::duration>(
-        std::chrono::duration<double>(o.idle_timeout_s));
-    const int poll_ms = static_cast<int>(std::clamp(o.idle_timeout_s * 1000, 1.0, 100.0));
-    uint64_t cycles = 0;
-    auto cycle_at = Clock::now();
-    while (!run.done()) {
-      if (g_stop) {
-        stop_reason = "signal";
-        break;
-      }
-      server.Poll(poll_ms);
-      drop_if_asked();
-      const auto now = Clock::now();
-      if (server.stats().cycles != cycles) {
-        cycles = server.stats().cycles;
-        cycle_at = now;
-      } else if (now - cycle_at >= idle) {
-        stop_reason = "idle timeout: no cycle written for " + Fmt(o.idle_timeout_s) + " s";
-        break;
-      }
-    }
-  } else {
-    // Real time: each PLC cycle starts at its wall-clock time; between cycles the server
-    // answers the PLC. Lateness = how long after its time a cycle started.
-    const auto period = std::chrono::microseconds(ticks * 250);
-    const int64_t timeout_us = std::llround(o.plc_timeout_ms * 1000);
-    link.timeout_cycles = std::max<int64_t>(1, (timeout_us + period.count() - 1) / period.count());
-    link.timeout = std::chrono::microseconds(timeout_us);
-    const std::string lost =
-        "Modbus: no request for " + Fmt(o.plc_timeout_ms) + " ms, the PLC link is lost";
-    const auto start = Clock::now();
-    link.heard_at = start;
-    for (int64_t n = 0; !run.done(); ++n) {
-      if (g_stop) {
-        stop_reason = "signal";
-        break;
-      }
-      const auto due = start + n * period;
-      for (auto now = Clock::now(); now < due; now = Clock::now())
-        server.Poll(static_cast<int>(std::max<int64_t>(
-            0, std::chrono::duration_cast<std::chrono::milliseconds>(due - now).count())));
-      const auto now = Clock::now();
-      lateness_ms.push_back(std::chrono::duration<double, std::milli>(now - due).count());
-      // The link watchdog looks at the start of the cycle, where the embedded PLC's scans.
-      if (server.stats().requests() != link.seen_requests) {
-        link.seen_requests = server.stats().requests();
-        link.heard_cycle = n;
-        link.heard_at = now;
-        if (link.lost) {
-          link.lost = false;
-          run.PlcRunning();
-          std::fprintf(stderr, "vmt serve: %.4f s: the PLC answers again\n", run.time_s());
-        }
-      } else if (!link.lost && n - link.heard_cycle >= link.timeout_cycles &&
-                 now - link.heard_at >= link.timeout) {
-        link.lost = true;
-        ++link.losses;
-        run.PlcLost(lost);
-        std::fprintf(stderr, "vmt serve: %.4f s: %s\n", run.time_s(), lost.c_str());
-      }
-      cycle();
-      drop_if_asked();
-      server.Poll(0);
-    }
-  }
+  const std::string stop_reason =
+      o.lockstep ? ServeLockstep(o, run, server, drop_if_asked)
+                 : ServeRealtime(o, run, server, cycle, drop_if_asked, lateness_ms, link);
   const RunResult r = run.Finish();
   const auto& st = server.stats();
   nlohmann::ordered_json serve = {{"scene", scene.name},

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <span>
 #include <nlohmann/json.hpp>
+#include <span>
 #include <utility>
 
 #include "control/channel/jog_of_path.hpp"
@@ -26,6 +26,7 @@
 #include "sim/runner/runner_state.hpp"
 #include "sim/runner/scene_renderer.hpp"
 #include "sim/runner/timeline_player.hpp"
+#include "sim/runner/trace_rows.hpp"
 
 namespace vmt::sim {
 namespace {
@@ -33,26 +34,6 @@ namespace {
 /// Turned stock slices whose radii differ by less make one cylinder for PathGuard: well below
 /// the cut's allowance, so a merged run never stands above a tool in its cut.
 constexpr double kStockTolerance = 2e-6;
-
-// Fixed formatting: the trace bytes, and so the digest, depend only on the simulation.
-void Append(std::string& row, double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, ",%.6f", v == 0 ? 0.0 : v);  // no "-0.000000"
-  row += buf;
-}
-
-std::string TraceHeader(const MachineModel& m, bool nc) {
-  std::string h = "t";
-  for (const DriveParams& d : m.drives) {
-    const std::string& n = d.info.name;
-    h += "," + n + ".cmd," + n + ".pos," + n + ".vel";
-    if (d.spindle || d.info.kind == control::AxisKind::kRotary) h += "," + n + ".rpm";
-    if (d.parameter_sets.size() > 1) h += "," + n + ".set";  // S-0-0254, current set
-  }
-  for (const DogClutch& k : m.clutches) h += "," + k.name + ".state";
-  if (nc) h += ",nc.state,nc.line";
-  return h + "\n";
-}
 
 double Measured(const Expectation& e, const control::AmplifierTelegram& at,
                 const std::vector<ClutchState>& clutches,
@@ -269,113 +250,26 @@ void SceneRun::State::Step() {
   if (channel) StepChannel(t, at);
   for (const ProgramEvent& e : events)
     recorder.Event({{"t", e.t_s}, {"event", e.kind}, {"text", e.text}});
-  if (image) {
-    // Every change of a gateway signal, either direction, as the PLC engineer traces it.
-    // Only the cells that changed are read through their type: a study case runs this every
-    // tick over thousands of signals, of which a handful change.
-    const std::span<const int64_t> cells = image->cells();
-    const bool first = last_cells.empty();
-    last_signals.resize(image->size(), std::nan(""));
-    last_cells.resize(cells.size());
-    for (int id = 0; id < image->size(); ++id) {
-      if (!first && cells[id] == last_cells[id]) continue;
-      last_cells[id] = cells[id];
-      const double v = SignalNumber(*image, id);
-      if (v != last_signals[id] && !(std::isnan(v) && std::isnan(last_signals[id]))) {
-        if (!std::isnan(last_signals[id]) || v != 0)
-          recorder.Event(
-              {{"t", t}, {"event", "signal"}, {"name", image->table()[id].name}, {"value", v}});
-        last_signals[id] = v;
-      }
-    }
-  }
-  for (size_t k = 0; k < clutches.size(); ++k)
-    if (last_clutches.empty() || clutches[k] != last_clutches[k])
-      recorder.Event({{"t", t},
-                  {"event", "clutch"},
-                  {"name", m.clutches[k].name},
-                  {"state", ToString(clutches[k])}});
-  // A clash: the dogs pushed in while the halves turn against each other too fast (the clutch
-  // refuses and ratchets), with that relative speed, deg/s on the load side.
-  last_clashes.resize(clutches.size(), 0);
-  for (size_t k = 0; k < clutches.size(); ++k) {
-    const DogClutchLogic& logic = backend->ClutchLogic(static_cast<int>(k));
-    if (logic.clashes == last_clashes[k]) continue;
-    last_clashes[k] = logic.clashes;
-    recorder.Event({{"t", t},
-                {"event", "clutch"},
-                {"name", m.clutches[k].name},
-                {"state", "clash"},
-                {"relative_speed", std::round(logic.clash_slip_rad_s * kDegPerRad * 1e3) / 1e3},
-                {"max_relative_speed",
-                 std::round(m.clutches[k].max_relative_speed_rad_s * kDegPerRad * 1e3) / 1e3}});
-  }
-  for (size_t i = 0; i < at.inputs.size(); ++i)
-    if (!m.io[i].is_output && !m.io[i].key &&
-        (last_inputs.empty() || at.inputs[i] != last_inputs[i]))
-      recorder.Event({{"t", t}, {"event", "input"}, {"name", m.io[i].name}, {"value", at.inputs[i]}});
-  // A drive's trips (overload, overspeed, missing parameter set) as they come and go.
-  using namespace control::drive_status;
-  last_faults.resize(at.feedback.size(), 0);
-  last_sets.resize(at.feedback.size(), 0);
-  for (size_t d = 0; d < at.feedback.size(); ++d) {
-    // The drive's current parameter set as it changes (S-0-0254).
-    if (at.feedback[d].parameter_set != last_sets[d]) {
-      last_sets[d] = at.feedback[d].parameter_set;
-      recorder.Event({{"t", t},
-                  {"event", "drive"},
-                  {"name", m.drives[d].info.name},
-                  {"parameter_set", last_sets[d]}});
-    }
-    const uint32_t faults = at.feedback[d].status & (kOverload | kOverspeed | kParameterSetError);
-    if (faults == last_faults[d]) continue;
-    nlohmann::ordered_json e = {{"t", t}, {"event", "drive"}, {"name", m.drives[d].info.name}};
-    e["overload"] = (faults & kOverload) != 0;
-    e["overspeed"] = (faults & kOverspeed) != 0;
-    e["parameter_set_error"] = (faults & kParameterSetError) != 0;
-    recorder.Event(e);
-    last_faults[d] = faults;
-  }
-  // Probe latches as the drives fill them (7.3): latched value beside the exact contact.
-  last_latches.resize(at.feedback.size(), 0);
-  for (size_t d = 0; d < at.feedback.size(); ++d) {
-    const control::ProbeStatus& p = at.feedback[d].probe;
-    const control::ProbeEdgeLatch* latches[4] = {&p.probe1.positive, &p.probe1.negative,
-                                                 &p.probe2.positive, &p.probe2.negative};
-    uint8_t now = 0;
-    for (int k = 0; k < 4; ++k)
-      if (latches[k]->latched) now |= static_cast<uint8_t>(1u << k);
-    for (int k = 0; k < 4; ++k)
-      if ((now >> k & 1) && !(last_latches[d] >> k & 1))
-        recorder.Event(ProbeLatchEvent(t, m.drives[d].info.name, k < 2 ? 4 : 5, k % 2 == 0,
-                                   *latches[k]));
-    last_latches[d] = now;
-  }
-  last_clutches = clutches;
-  last_inputs = at.inputs;
+  machine_events.Watch(t, at, clutches, *backend, image.get(), recorder);
+  if (tick % trace_every == 0 || tick == last_tick)
+    recorder.Trace(TraceRow(t, m, at, mdt, clutches, channel.get()));
+  CheckExpectations(t, at);
+  TakeDueSnapshots(t);
 
-  if (tick % trace_every == 0 || tick == last_tick) {
-    std::string row;
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.6f", t);
-    row = buf;
-    for (size_t d = 0; d < m.drives.size(); ++d) {
-      const control::DriveFeedback& fb = at.feedback[d];
-      Append(row, mdt.setpoints[d].mode == control::DriveMode::kOff ? 0.0 : mdt.setpoints[d].value);
-      Append(row, fb.position);
-      Append(row, fb.velocity);
-      if (m.drives[d].spindle || m.drives[d].info.kind == control::AxisKind::kRotary)
-        Append(row, fb.velocity / 6.0);
-      if (m.drives[d].parameter_sets.size() > 1) Append(row, fb.parameter_set);
-    }
-    for (ClutchState c : clutches) Append(row, static_cast<int>(c));
-    if (channel) {
-      Append(row, static_cast<int>(channel->state()));
-      Append(row, channel->line());
-    }
-    recorder.Trace(row + "\n");
+  if (tick == last_tick) {
+    finished = true;
+    return;
   }
+  ApplyOutputFaults();
+  backend->Write(mdt);
+  backend->Step();
+  for (const StylusOverTravel& o : backend->TakeStylusOverTravels())
+    recorder.Event(StylusOverTravelEvent(o));
+  ++tick;
+  if (field_bus && tick % plc_every == 0) ReadFieldBus();
+}
 
+void SceneRun::State::CheckExpectations(double t, const control::AmplifierTelegram& at) {
   for (size_t i = 0; i < scene.expectations.size(); ++i) {
     const Expectation& e = scene.expectations[i];
     const bool due = e.at_s < 0 ? tick == last_tick : t >= e.at_s - 1e-9;
@@ -383,12 +277,14 @@ void SceneRun::State::Step() {
     checked[i] = true;
     checks[i] = Check(e, at, clutches, channel.get(), image.get());
     recorder.Event({{"t", t},
-                {"event", "expectation"},
-                {"text", e.text},
-                {"passed", checks[i].passed},
-                {"detail", checks[i].detail}});
+                    {"event", "expectation"},
+                    {"text", e.text},
+                    {"passed", checks[i].passed},
+                    {"detail", checks[i].detail}});
   }
+}
 
+void SceneRun::State::TakeDueSnapshots(double t) {
   for (size_t i = 0; i < scene.snapshots.size(); ++i) {
     const SnapshotSpec& s = scene.snapshots[i];
     if (s.on != SnapshotEvent::kNone || snapped[i] || t < s.at_s - 1e-9) continue;
@@ -403,18 +299,6 @@ void SceneRun::State::Step() {
                  {{"t", t}, {"event", "snapshot"}, {"on", ToString(s.on)}, {"n", n},
                   {"camera", s.camera}});
   }
-
-  if (tick == last_tick) {
-    finished = true;
-    return;
-  }
-  ApplyOutputFaults();
-  backend->Write(mdt);
-  backend->Step();
-  for (const StylusOverTravel& o : backend->TakeStylusOverTravels())
-    recorder.Event(StylusOverTravelEvent(o));
-  ++tick;
-  if (field_bus && tick % plc_every == 0) ReadFieldBus();
 }
 
 RunResult SceneRun::State::Finish() {

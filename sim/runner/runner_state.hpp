@@ -18,6 +18,7 @@
 #include "sim/collision/machine_path_guard.hpp"
 #include "sim/collision/spindle_sweep.hpp"
 #include "sim/collision/stock_cutter.hpp"
+#include "sim/runner/machine_events.hpp"
 #include "sim/runner/probe_glue.hpp"
 #include "sim/runner/run_recorder.hpp"
 #include "sim/runner/runner.hpp"
@@ -38,6 +39,10 @@ struct SceneRun::State {
   /// The channel's NC cycle work of a tick: gateway, PathGuard's stock, the channel, events.
   void StepChannel(double t, const control::AmplifierTelegram& at);
   void StopPlc(double t, const std::string& reason, const std::string& nc_text);
+  /// The scene's expectations due at `t`, checked and recorded.
+  void CheckExpectations(double t, const control::AmplifierTelegram& at);
+  /// The pictures due at `t`: timed ones, then those of this tick's events.
+  void TakeDueSnapshots(double t);
 
   void NoteSnapshotEvent(const nlohmann::ordered_json& event);
   void TakeSnapshot(const SnapshotSpec& s, const std::string& file, nlohmann::ordered_json event);
@@ -80,8 +85,8 @@ struct SceneRun::State {
   std::vector<std::pair<int, int>> plc_inputs, plc_outputs;  // I/O point, signal id
   std::unique_ptr<ProbeGlue> probe_glue;  ///< the SERCOS side of the PLC's probe block
   std::unique_ptr<TimelinePlayer> timeline;
-  std::vector<double> last_signals;
-  std::vector<int64_t> last_cells;  ///< the image's cells when last_signals was taken
+  /// The machine's changes (signals, clutches, inputs, drives, probe latches) as events.
+  MachineEventWatch machine_events{m};
   control::channel::ChannelState nc_state = control::channel::ChannelState::kIdle;
   int64_t tick = 0, last_tick = 0, trace_every = 1;
   bool finished = false;
@@ -94,12 +99,7 @@ struct SceneRun::State {
   /// Event snapshots due at this tick's pictures: snapshot index and occurrence (1, 2, ...).
   std::vector<std::pair<size_t, int>> pending_shots;
   std::vector<ExpectationResult> checks;
-  std::vector<ClutchState> clutches, last_clutches;
-  std::vector<int> last_clashes;  ///< clashes of each clutch reported so far
-  std::vector<uint8_t> last_inputs;
-  std::vector<uint32_t> last_faults;  ///< per drive: its fault bits at the last tick
-  std::vector<uint8_t> last_sets;     ///< per drive: its current parameter set at the last tick
-  std::vector<uint8_t> last_latches;  ///< per drive: its probe latched flags at the last tick
+  std::vector<ClutchState> clutches;  ///< the backend's, this tick
   control::MasterTelegram mdt;
   std::vector<ProgramEvent> events;
   control::AmplifierTelegram faulted_at;  ///< the machine as the control sees it, faults applied

@@ -82,6 +82,19 @@ CAxisChangeover::CAxisChangeover(const gateway::SignalImage& image, const Config
 }
 
 void CAxisChangeover::operator()(PlcScan& s) {
+  Initialize(s);
+  // vmt: no changeover before the drives know their hunting values.
+  if (!READY) return;
+  const bool IROT = s.Bool(IROTMODE), ISP = s.Bool(ISPMODE);
+  // 2.3 / 3.3 Immediate Stop: movements the SPS causes in the changeover phase (the hunting)
+  // stop at once while PxxSSTOP is 1, and resume with it (the NC keeps the changeover pending).
+  const bool STOP = s.Bool(PxxS_STOP);
+  ToRotaryAxisMode(s, IROT, IROT && !ISP, STOP);
+  ToSpindleMode(s, ISP, ISP && !IROT, STOP);
+  WriteMessage(s);
+}
+
+void CAxisChangeover::Initialize(PlcScan& s) {
   // ---- Initializing the main spindle (4.4, "simple solution" without safety request) -------
   // INIT is the cold start: the program's first scan. Each AXD_WR starts when the previous one
   // is done, as the manual chains them; a write here is done within the scan, so all three
@@ -104,15 +117,9 @@ void CAxisChangeover::operator()(PlcScan& s) {
     s.SetInt(ROT_65015, config.rotary_pos);
     READY = true;
   }
-  // vmt: no changeover before the drives know their hunting values.
-  if (!READY) return;
+}
 
-  const bool IROT = s.Bool(IROTMODE), ISP = s.Bool(ISPMODE);
-  const bool clutch_engaged = IROT && !ISP, clutch_released = ISP && !IROT;
-  // 2.3 / 3.3 Immediate Stop: movements the SPS causes in the changeover phase (the hunting)
-  // stop at once while PxxSSTOP is 1, and resume with it (the NC keeps the changeover pending).
-  const bool STOP = s.Bool(PxxS_STOP);
-
+void CAxisChangeover::ToRotaryAxisMode(PlcScan& s, bool IROT, bool clutch_engaged, bool STOP) {
   // ---- Rotary axis mode / spindle mode changeover --------------------------------------------
   // Networks 1-2: changeover to rotary axis mode: ROTMOD(ACTIVE := 1, AXIS := ISP_NR). The
   // pre-selection is a level for as long as rotary axis mode is selected (4.1), so the networks
@@ -166,7 +173,9 @@ void CAxisChangeover::operator()(PlcScan& s) {
   // and power-on as well); MPENDOR makes it drop in the scan after the NC asks for spindle mode
   // (network 12 resets it), before the clutch has moved.
   s.SetBool(ROTMOD_Q, config.acknowledge_before_clutch ? M_ROTAC : clutch_engaged && MPENDOR);
+}
 
+void CAxisChangeover::ToSpindleMode(PlcScan& s, bool ISP, bool clutch_released, bool STOP) {
   // Networks 12-13: changeover to spindle mode: SPMOD(ACTIVE := 1, AXIS := ISP_NR).
   M_SPLAC = s.Bool(SPMOD);
   if (M_SPLAC) {
@@ -211,7 +220,9 @@ void CAxisChangeover::operator()(PlcScan& s) {
   // power-on the NC takes spindle mode from the SPS (2.3 / 3.3 Power-On State); it drops when
   // the clutch leaves the released position.
   s.SetBool(SPMOD_Q, clutch_released);
+}
 
+void CAxisChangeover::WriteMessage(PlcScan& s) {
   // vmt: the messages to the NC (MSG_WR, fast-measurement 6.3), written only when they change,
   // and cleared only if the number is still ours.
   const int msg = M_ROTERR ? config.MSG_ROTERR : M_SPERR ? config.MSG_SPERR : 0;

@@ -53,6 +53,13 @@ struct CAxisChangeover {
   explicit CAxisChangeover(const gateway::SignalImage& image);
   CAxisChangeover(const gateway::SignalImage& image, const Config& config);
   void operator()(PlcScan& scan);
+  /// The scan's parts: the spindle's initialisation (4.4: the AXD idents of hunting), the
+  /// changeover to rotary axis mode and to spindle mode (networks 1-11 and 12-21, each with its
+  /// switch, whether the clutch has got there, and the immediate stop), the NC message.
+  void Initialize(PlcScan& s);
+  void ToRotaryAxisMode(PlcScan& s, bool IROT, bool clutch_engaged, bool STOP);
+  void ToSpindleMode(PlcScan& s, bool ISP, bool clutch_released, bool STOP);
+  void WriteMessage(PlcScan& s);
 
   Config config;
   int ISP_NR, IROT_NR;

@@ -371,7 +371,28 @@ ProbeBlockProgram::ProbeBlockProgram(const gateway::SignalImage& image)
   }
 }
 
+int ProbeBlockProgram::InProcess(const std::map<int, int>& ids) const {
+  const auto it = ids.find(Measuring.MessProc);
+  return it == ids.end() ? -1 : it->second;
+}
+
+bool ProbeBlockProgram::ReadInProcess(const PlcScan& s, const std::map<int, int>& ids) const {
+  const int id = InProcess(ids);
+  return id >= 0 && s.Bool(id);
+}
+
 void ProbeBlockProgram::operator()(PlcScan& s) {
+  const std::array<int, 3> axes = ReadPins(s);
+  CallBlock(s, axes);
+  WriteQdds(s, axes);
+  const bool reversing = ReadInProcess(s, reverse_running_);
+  AcknowledgeQFunctions(s, reversing);
+  TrackQFunctionFlags(s, reversing);
+  LockProcess(s, reversing);
+  WritePins(s);
+}
+
+std::array<int, 3> ProbeBlockProgram::ReadPins(PlcScan& s) {
   QMFB1Axx& m = Measuring;
   const auto int16 = [&s](int id) { return static_cast<int16_t>(s.Int(id)); };
   m.ENABLE = s.Bool(ENABLE);
@@ -410,7 +431,11 @@ void ProbeBlockProgram::operator()(PlcScan& s) {
   m.IDDS_1 = idds[0];
   m.IDDS_2 = idds[1];
   m.IDDS_3 = idds[2];
+  return axes;
+}
 
+void ProbeBlockProgram::CallBlock(PlcScan& s, const std::array<int, 3>& axes) {
+  QMFB1Axx& m = Measuring;
   // NC side. An event or Q function the machine does not have reads FALSE and is not written.
   const int q = Lookup(q_functions_, m.MessProc, m.Q_Nummer);
   const int koll = Lookup(events_, m.MessProc, m.Koll_EV);
@@ -443,7 +468,10 @@ void ProbeBlockProgram::operator()(PlcScan& s) {
   if (q_ack_ >= 0 && q_ack_ != ack) s.SetBool(q_ack_, false);
   if (ack >= 0) s.SetBool(ack, m.Q_FKT_Q);
   q_ack_ = ack;
+}
 
+void ProbeBlockProgram::WriteQdds(PlcScan& s, const std::array<int, 3>& axes) {
+  const QMFB1Axx& m = Measuring;
   // QDDS_n -> AxxC.QDDS of the axis ACHS_NR_n names; an axis no longer named is released.
   const std::array<bool, 3> qdds = {m.QDDS_1, m.QDDS_2, m.QDDS_3};
   std::vector<int> named;
@@ -460,17 +488,10 @@ void ProbeBlockProgram::operator()(PlcScan& s) {
     s.SetBool(axis_qdds_[axis], on);
   }
   qdds_axes_ = std::move(named);
+}
 
-  const auto at = [&](const std::map<int, int>& ids) {
-    const auto it = ids.find(m.MessProc);
-    return it == ids.end() ? -1 : it->second;
-  };
-  const auto read = [&](const std::map<int, int>& ids) {
-    const int id = at(ids);
-    return id >= 0 && s.Bool(id);
-  };
-  const bool reversing = read(reverse_running_);
-
+void ProbeBlockProgram::AcknowledgeQFunctions(PlcScan& s, bool reversing) {
+  const QMFB1Axx& m = Measuring;
   // Typical application, networks 9 and 11 (6.1): Q9999 is acknowledged when the reverse
   // program has become active; Q9998 at once, vmt's program having no error-clear key to wait
   // for (the NC holds with OVERSIZE / UNDERSIZE and a new start continues).
@@ -480,7 +501,10 @@ void ProbeBlockProgram::operator()(PlcScan& s) {
     if (qf < 0 || qa < 0) continue;
     s.SetBool(qa, s.Bool(qf) && (number == measure::kQ9998 || reversing));
   }
+}
 
+void ProbeBlockProgram::TrackQFunctionFlags(PlcScan& s, bool reversing) {
+  const QMFB1Axx& m = Measuring;
   // Typical application, networks 5, 6, 10 and 12: the Q function the NC outputs sets the
   // program's flag (on its rising edge: the output stays until acknowledged, the fault stays
   // until cleared). Q9999's flag clears when the reverse program is started (network 10) or
@@ -488,24 +512,25 @@ void ProbeBlockProgram::operator()(PlcScan& s) {
   // the manual's program keeps it, leaving nothing to reverse from). Q9998's flag clears with
   // the reverse program or Control-Reset (network 12) and, vmt having no error-clear key, when
   // the program it stopped is no longer stopped (the new start that acknowledges the message).
-  {
-    const int q9999 = Lookup(q_functions_, m.MessProc, measure::kQ9999);
-    const int q9998 = Lookup(q_functions_, m.MessProc, measure::kQ9998);
-    const bool out9999 = q9999 >= 0 && s.Bool(q9999);
-    const bool out9998 = q9998 >= 0 && s.Bool(q9998);
-    const bool reset = read(control_reset_) || !m.ENABLE;
-    const bool stopped = read(program_stopped_);
-    if (out9999 && !q9999_before_) M_Q9999 = true;
-    // An output withdrawn: acknowledged (in the reverse program) or dropped by Control-Reset.
-    const bool withdrawn = !out9999 && q9999_before_;
-    if (reset || reversing || withdrawn || read(reverse_start_)) M_Q9999 = false;
-    if (out9998 && !q9998_before_) M_Q9998 = true, q9998_stopped_ = false;
-    if (M_Q9998 && stopped) q9998_stopped_ = true;
-    if (reset || reversing || (q9998_stopped_ && !stopped)) M_Q9998 = false;
-    q9999_before_ = out9999;
-    q9998_before_ = out9998;
-  }
+  const int q9999 = Lookup(q_functions_, m.MessProc, measure::kQ9999);
+  const int q9998 = Lookup(q_functions_, m.MessProc, measure::kQ9998);
+  const bool out9999 = q9999 >= 0 && s.Bool(q9999);
+  const bool out9998 = q9998 >= 0 && s.Bool(q9998);
+  const bool reset = ReadInProcess(s, control_reset_) || !m.ENABLE;
+  const bool stopped = ReadInProcess(s, program_stopped_);
+  if (out9999 && !q9999_before_) M_Q9999 = true;
+  // An output withdrawn: acknowledged (in the reverse program) or dropped by Control-Reset.
+  const bool withdrawn = !out9999 && q9999_before_;
+  if (reset || reversing || withdrawn || ReadInProcess(s, reverse_start_)) M_Q9999 = false;
+  if (out9998 && !q9998_before_) M_Q9998 = true, q9998_stopped_ = false;
+  if (M_Q9998 && stopped) q9998_stopped_ = true;
+  if (reset || reversing || (q9998_stopped_ && !stopped)) M_Q9998 = false;
+  q9999_before_ = out9999;
+  q9998_before_ = out9998;
+}
 
+void ProbeBlockProgram::LockProcess(PlcScan& s, bool reversing) {
+  const QMFB1Axx& m = Measuring;
   // Typical application, networks 7, 8, 13, 14, 18 to 20 and 24 (what reaches the NC): a probe
   // collision, an error of the block or the NC's Q9999 (fault category 1) locks the process (no
   // process enable: the NC stops at once), with message 203 / 202 (probe monitoring 1 / 2), 206
@@ -515,23 +540,25 @@ void ProbeBlockProgram::operator()(PlcScan& s) {
   // process enable alone: the NC itself holds the program until the next start (vmt's reading,
   // as its program has no error-clear key that would lift a lock). One message number shows at
   // a time: the probe's own (collision, block error) before the NC's Q functions.
-  {
-    const bool collision = m.Q_MTstKol && !reversing;
-    const bool fault = m.FEHLER && !reversing;
-    const measure::QFunctionDefinition& type1 = *measure::QFunction(measure::kQ9999);
-    const measure::QFunctionDefinition& type2 = *measure::QFunction(measure::kQ9998);
-    // 6.1 fault category 1: process stop and advance inhibit until the reverse program.
-    const bool locked = collision || fault || (M_Q9999 && type1.fault_category == 1);
-    if (const int id = at(process_enable_); id >= 0) s.SetBool(id, !locked);
-    const int message = collision ? (m.page().PIN_DDS ? 202 : 203)
-                        : fault   ? (m.FEHLER_NR <= 13 ? 206 : 207)
-                        : M_Q9999 ? type1.plc_message
-                        : M_Q9998 ? type2.plc_message
-                                  : 0;
-    if (const int id = at(message_); id >= 0) s.SetInt(id, message);
-    if (const int id = at(message_n_); id >= 0) s.SetInt(id, collision || !fault ? 0 : m.FEHLER_NR);
-  }
+  const bool collision = m.Q_MTstKol && !reversing;
+  const bool fault = m.FEHLER && !reversing;
+  const measure::QFunctionDefinition& type1 = *measure::QFunction(measure::kQ9999);
+  const measure::QFunctionDefinition& type2 = *measure::QFunction(measure::kQ9998);
+  // 6.1 fault category 1: process stop and advance inhibit until the reverse program.
+  const bool locked = collision || fault || (M_Q9999 && type1.fault_category == 1);
+  if (const int id = InProcess(process_enable_); id >= 0) s.SetBool(id, !locked);
+  const int message = collision ? (m.page().PIN_DDS ? 202 : 203)
+                      : fault   ? (m.FEHLER_NR <= 13 ? 206 : 207)
+                      : M_Q9999 ? type1.plc_message
+                      : M_Q9998 ? type2.plc_message
+                                : 0;
+  if (const int id = InProcess(message_); id >= 0) s.SetInt(id, message);
+  if (const int id = InProcess(message_n_); id >= 0) s.SetInt(id, collision || !fault ? 0 : m.FEHLER_NR);
+}
 
+void ProbeBlockProgram::WritePins(PlcScan& s) {
+  const QMFB1Axx& m = Measuring;
+  const std::array<bool, 3> qdds = {m.QDDS_1, m.QDDS_2, m.QDDS_3};
   const auto out = [&s](int pin, bool v) { s.SetBool(pin, v); };
   const std::array<bool, 3> init_ok = {m.Init_OK_1, m.Init_OK_2, m.Init_OK_3};
   for (int n = 0; n < 3; ++n) {

@@ -161,6 +161,20 @@ struct ProbeBlockProgram {
   bool M_Q9998 = false;
 
  private:
+  /// The typical application's networks in scan order: the pins into the block (returns the
+  /// axes ACHS_NR_n name), the NC side and the call, AxxC.QDDS, the Q functions'
+  /// acknowledgements and flags, the process lock and messages, the output pins.
+  std::array<int, 3> ReadPins(PlcScan& s);
+  void CallBlock(PlcScan& s, const std::array<int, 3>& axes);
+  void WriteQdds(PlcScan& s, const std::array<int, 3>& axes);
+  void AcknowledgeQFunctions(PlcScan& s, bool reversing);
+  void TrackQFunctionFlags(PlcScan& s, bool reversing);
+  void LockProcess(PlcScan& s, bool reversing);
+  void WritePins(PlcScan& s);
+  /// The signal of process MessProc in `ids` (-1: none), and its value (false: none).
+  int InProcess(const std::map<int, int>& ids) const;
+  bool ReadInProcess(const PlcScan& s, const std::map<int, int>& ids) const;
+
   // Input pins.
   int ENABLE, RESET, Q_Nummer, Koll_EV, Mess_EV, Touch_EV, BasisPage, MessProc;
   std::array<int, 3> ACHS_NR;

@@ -5,13 +5,36 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+#include <string_view>
+
+#include "control/gateway/signal_catalog.hpp"
 #include "control/nc/parser.hpp"
 #include "tests/control/gateway/gateway_rig.hpp"
+#include "tests/control/gateway/lathe_layout.hpp"
 
 namespace vmt::control::gateway {
 namespace {
 
 using Rig = testing::GatewayRig;
+
+// The binding table speaks the catalog's language: a misspelt pattern would leave a signal
+// silently unserved (-1) on every machine.
+TEST(ChannelGateway, EverySignalItBindsIsInTheCatalogAndOnTheLathe) {
+  SignalImage image(BuildSignalTable(testing::LatheLayout()));
+  // Process 0; channel axes X, Z, C (1, 2, 4); spindle S1 (3) on drive 2; C its rotary axis.
+  const ChannelGateway gateway(image, 0, {1, 2, 4}, 3, 2, 4);
+  std::set<std::string_view> families;
+  for (const SignalFamily& f : SignalFamilies()) families.insert(f.pattern);
+  ASSERT_GT(gateway.bindings().size(), 150u);
+  std::set<std::string> names;
+  for (const SignalBinding& b : gateway.bindings()) {
+    const std::string name = InstanceName(b.pattern, b.number);
+    EXPECT_TRUE(families.count(b.pattern)) << b.pattern << " is no catalog family";
+    EXPECT_GE(b.id, 0) << name << " is not on the lathe";
+    EXPECT_TRUE(names.insert(name).second) << name << " is bound twice";
+  }
+}
 
 TEST(ChannelGateway, StartStopAndStatus) {
   Rig r("N1 G01 X100 F3000\nN2 RET\n");

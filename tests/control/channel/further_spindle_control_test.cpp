@@ -24,7 +24,9 @@ constexpr int kS2 = 3;  // drives: X 0, Z 1, S1 2, S2 3
 /// The channel of channel_test_support with the driven tool S2 on drive 3.
 struct SpindleMachine : Machine {
   explicit SpindleMachine(const std::string& program)
-      : Machine(program, 0, 0, [](ChannelConfig& c) { c.spindles = {{2, kS2, "S2"}}; }) {
+      : Machine(program, 0, 0, [](ChannelConfig& c) {
+          c.spindles = {{2, kS2, "S2"}};
+        }) {
     Resize(4);
   }
   /// The spindles ramp at 24000 deg/s^2 (S2 from 0 to 3000 rpm in 0.75 s), at speed within
@@ -73,8 +75,9 @@ struct SpindleMachine : Machine {
 // Sj= gives spindle j's speed, Mj=3 / 4 / 5 its direction; the main spindle's M3 and S are
 // not touched by them, nor they by the main spindle's.
 TEST(FurtherSpindles, SjAndMjCommandTheirSpindleOnly) {
-  SpindleMachine m("N1 M3 S1000\nN2 S2=2000 M2=4\nN3 G04 F1\nN4 S2=500\nN5 G04 F1\n"
-                   "N6 M2=3\nN7 G04 F1\nN8 M2=5\nN9 G04 F1\nN10 RET\n");
+  SpindleMachine m(
+      "N1 M3 S1000\nN2 S2=2000 M2=4\nN3 G04 F1\nN4 S2=500\nN5 G04 F1\n"
+      "N6 M2=3\nN7 G04 F1\nN8 M2=5\nN9 G04 F1\nN10 RET\n");
   m.channel->Start();
   m.RunFor(0.5);
   EXPECT_DOUBLE_EQ(m.mdt.setpoints[2].value, 6000);  // S1 at 1000 rpm
@@ -97,8 +100,9 @@ TEST(FurtherSpindles, WordsTheChannelCannotDoAreErrorsAtTheWord) {
     std::string program, error;
   };
   for (const Case& c : std::vector<Case>{
-           {"N1 G01 X10 F600\nN2 M3 S3=1000\n", "p.mtc:2:7: error: S3=1000: the channel has no "
-                                                "spindle S3"},
+           {"N1 G01 X10 F600\nN2 M3 S3=1000\n",
+            "p.mtc:2:7: error: S3=1000: the channel has no "
+            "spindle S3"},
            {"N1 M2=19\n", "p.mtc:1:4: error: M2=19: spindle S2 has no position control (M19)"},
            {"N1 M2=8\n", "p.mtc:1:4: error: M2=8: only the spindle functions 3, 4 and 5"},
        }) {
@@ -151,8 +155,9 @@ TEST(FurtherSpindles, G77S2RestoresTheDrivenToolSpindle) {
 // 7.3: PxxS.CREST counts every spindle: with S2 stopped it stays 0 though the axes and S1 are
 // back; G77 S2=0 makes it 1.
 TEST(FurtherSpindles, ConditionsRestoredNeedsEverySpindle) {
-  SpindleMachine m(kMain + ".REPOS\nN10 M2=5\nN11 G77 Z0 F3000\nN12 G04 F1\nN13 G77 S2=0\n"
-                           "N14 G04 F1\nN15 G77 X0 F3000 RTS\n");
+  SpindleMachine m(kMain +
+                   ".REPOS\nN10 M2=5\nN11 G77 Z0 F3000\nN12 G04 F1\nN13 G77 S2=0\n"
+                   "N14 G04 F1\nN15 G77 X0 F3000 RTS\n");
   m.InterruptAndCall();
   m.channel->Start();
   m.RunFor(1.0);  // Z back, S2 stopped
@@ -187,10 +192,12 @@ TEST(FurtherSpindles, G77OfAnUnknownSpindleIsAnErrorAtItsWord) {
     std::string subroutine, error;
   };
   for (const Case& c : std::vector<Case>{
-           {".REPOS\nN10 G77 S1=0 S3=0\n", "p.mtc:7:14: error: S3=0: G77: the channel has no "
-                                             "spindle S3 to restore"},
-           {".REPOS\nN10 G77 S2=0 M2=3\n", "p.mtc:7:14: error: M2=3: G77 restores spindle S2's "
-                                             "direction itself"},
+           {".REPOS\nN10 G77 S1=0 S3=0\n",
+            "p.mtc:7:14: error: S3=0: G77: the channel has no "
+            "spindle S3 to restore"},
+           {".REPOS\nN10 G77 S2=0 M2=3\n",
+            "p.mtc:7:14: error: M2=3: G77 restores spindle S2's "
+            "direction itself"},
        }) {
     SpindleMachine m(kMain + c.subroutine + "N11 G77 Z0 F3000\nN12 G77 X0 F3000 RTS\n");
     m.InterruptAndCall();

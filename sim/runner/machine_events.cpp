@@ -1,0 +1,116 @@
+#include "sim/runner/machine_events.hpp"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <span>
+
+#include "sim/runner/channel_events.hpp"
+#include "sim/scene/steps/timeline_play.hpp"
+
+namespace vmt::sim {
+
+void MachineEventWatch::Watch(double t, const control::AmplifierTelegram& at,
+                              const std::vector<ClutchState>& clutches,
+                              const MachineBackend& backend,
+                              const control::gateway::SignalImage* image, RunRecorder& recorder) {
+  if (image) WatchSignals(t, *image, recorder);
+  WatchClutches(t, clutches, backend, recorder);
+  for (size_t i = 0; i < at.inputs.size(); ++i)
+    if (!m_->io[i].is_output && !m_->io[i].key &&
+        (last_inputs_.empty() || at.inputs[i] != last_inputs_[i]))
+      recorder.Event(
+          {{"t", t}, {"event", "input"}, {"name", m_->io[i].name}, {"value", at.inputs[i]}});
+  WatchDrives(t, at, recorder);
+  last_clutches_ = clutches;
+  last_inputs_ = at.inputs;
+}
+
+void MachineEventWatch::WatchSignals(double t, const control::gateway::SignalImage& image,
+                                     RunRecorder& recorder) {
+  // Only the cells that changed are read through their type: a study case runs this every
+  // tick over thousands of signals, of which a handful change.
+  const std::span<const int64_t> cells = image.cells();
+  const bool first = last_cells_.empty();
+  last_signals_.resize(image.size(), std::nan(""));
+  last_cells_.resize(cells.size());
+  for (int id = 0; id < image.size(); ++id) {
+    if (!first && cells[id] == last_cells_[id]) continue;
+    last_cells_[id] = cells[id];
+    const double v = SignalNumber(image, id);
+    if (v != last_signals_[id] && !(std::isnan(v) && std::isnan(last_signals_[id]))) {
+      if (!std::isnan(last_signals_[id]) || v != 0)
+        recorder.Event(
+            {{"t", t}, {"event", "signal"}, {"name", image.table()[id].name}, {"value", v}});
+      last_signals_[id] = v;
+    }
+  }
+}
+
+void MachineEventWatch::WatchClutches(double t, const std::vector<ClutchState>& clutches,
+                                      const MachineBackend& backend, RunRecorder& recorder) {
+  for (size_t k = 0; k < clutches.size(); ++k)
+    if (last_clutches_.empty() || clutches[k] != last_clutches_[k])
+      recorder.Event({{"t", t},
+                      {"event", "clutch"},
+                      {"name", m_->clutches[k].name},
+                      {"state", ToString(clutches[k])}});
+  // A clash: the dogs pushed in while the halves turn against each other too fast (the clutch
+  // refuses and ratchets), with that relative speed, deg/s on the load side.
+  last_clashes_.resize(clutches.size(), 0);
+  for (size_t k = 0; k < clutches.size(); ++k) {
+    const DogClutchLogic& logic = backend.ClutchLogic(static_cast<int>(k));
+    if (logic.clashes == last_clashes_[k]) continue;
+    last_clashes_[k] = logic.clashes;
+    recorder.Event(
+        {{"t", t},
+         {"event", "clutch"},
+         {"name", m_->clutches[k].name},
+         {"state", "clash"},
+         {"relative_speed", std::round(logic.clash_slip_rad_s * kDegPerRad * 1e3) / 1e3},
+         {"max_relative_speed",
+          std::round(m_->clutches[k].max_relative_speed_rad_s * kDegPerRad * 1e3) / 1e3}});
+  }
+}
+
+void MachineEventWatch::WatchDrives(double t, const control::AmplifierTelegram& at,
+                                    RunRecorder& recorder) {
+  // A drive's trips (overload, overspeed, missing parameter set) as they come and go.
+  using namespace control::drive_status;
+  last_faults_.resize(at.feedback.size(), 0);
+  last_sets_.resize(at.feedback.size(), 0);
+  for (size_t d = 0; d < at.feedback.size(); ++d) {
+    // The drive's current parameter set as it changes (S-0-0254).
+    if (at.feedback[d].parameter_set != last_sets_[d]) {
+      last_sets_[d] = at.feedback[d].parameter_set;
+      recorder.Event({{"t", t},
+                      {"event", "drive"},
+                      {"name", m_->drives[d].info.name},
+                      {"parameter_set", last_sets_[d]}});
+    }
+    const uint32_t faults = at.feedback[d].status & (kOverload | kOverspeed | kParameterSetError);
+    if (faults == last_faults_[d]) continue;
+    nlohmann::ordered_json e = {{"t", t}, {"event", "drive"}, {"name", m_->drives[d].info.name}};
+    e["overload"] = (faults & kOverload) != 0;
+    e["overspeed"] = (faults & kOverspeed) != 0;
+    e["parameter_set_error"] = (faults & kParameterSetError) != 0;
+    recorder.Event(e);
+    last_faults_[d] = faults;
+  }
+  // Probe latches as the drives fill them (7.3): latched value beside the exact contact.
+  last_latches_.resize(at.feedback.size(), 0);
+  for (size_t d = 0; d < at.feedback.size(); ++d) {
+    const control::ProbeStatus& p = at.feedback[d].probe;
+    const control::ProbeEdgeLatch* latches[4] = {&p.probe1.positive, &p.probe1.negative,
+                                                 &p.probe2.positive, &p.probe2.negative};
+    uint8_t now = 0;
+    for (int k = 0; k < 4; ++k)
+      if (latches[k]->latched) now |= static_cast<uint8_t>(1u << k);
+    for (int k = 0; k < 4; ++k)
+      if ((now >> k & 1) && !(last_latches_[d] >> k & 1))
+        recorder.Event(
+            ProbeLatchEvent(t, m_->drives[d].info.name, k < 2 ? 4 : 5, k % 2 == 0, *latches[k]));
+    last_latches_[d] = now;
+  }
+}
+
+}  // namespace vmt::sim
