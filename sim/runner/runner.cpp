@@ -348,7 +348,7 @@ RunResult SceneRun::State::Finish() {
     summary["failures"] = result.failures;
     summary["snapshots"] = result.snapshot_files;
     // The NC's message list over the run (NC errors, PLC messages MSG_WR): the operator's log.
-    summary["messages"] = messages_seen;
+    summary["messages"] = channel_events.messages_seen();
     if (channel && scene.nc.data.spindle_drive >= 0)
       summary["spindle_status"] =
           SpindleStatusJson(*channel, m.drives[scene.nc.data.spindle_drive].info.name);

@@ -18,6 +18,7 @@
 #include "sim/collision/machine_path_guard.hpp"
 #include "sim/collision/spindle_sweep.hpp"
 #include "sim/collision/stock_cutter.hpp"
+#include "sim/runner/channel_event_watch.hpp"
 #include "sim/runner/machine_events.hpp"
 #include "sim/runner/probe_glue.hpp"
 #include "sim/runner/run_recorder.hpp"
@@ -76,7 +77,6 @@ struct SceneRun::State {
   /// The JogOfPath channel of `nc: jog_of_path:` (block search 4.2.1): on the channel's feed
   /// axes while the PLC lends them; its events are the channel's, tagged "jog_of_path".
   std::unique_ptr<control::channel::Channel> jog_of_path;
-  control::channel::ChannelState jog_of_path_state = control::channel::ChannelState::kIdle;
   std::unique_ptr<control::gateway::SignalImage> image;
   std::unique_ptr<control::gateway::ChannelGateway> gateway;
   std::unique_ptr<control::plc::PlcRuntime> plc;
@@ -87,7 +87,8 @@ struct SceneRun::State {
   std::unique_ptr<TimelinePlayer> timeline;
   /// The machine's changes (signals, clutches, inputs, drives, probe latches) as events.
   MachineEventWatch machine_events{m};
-  control::channel::ChannelState nc_state = control::channel::ChannelState::kIdle;
+  /// The channel's changes (headstock, PathGuard, REPOS screen, block search, messages, state).
+  ChannelEventWatch channel_events{m};
   int64_t tick = 0, last_tick = 0, trace_every = 1;
   bool finished = false;
   /// Trace, events and their observers: the event snapshots first, then RunOptions::on_event.
@@ -111,19 +112,7 @@ struct SceneRun::State {
   bool default_headstock_plc = false;
   void AcknowledgeHeadstock();
   void StartHeadstockPlc();
-  control::axes::HeadstockMode headstock_mode = control::axes::HeadstockMode::kNone;
-  control::axes::HeadstockMode headstock_target = control::axes::HeadstockMode::kNone;
-  bool rotmod = false, spmod = false;  ///< the pre-selections the PLC was last shown
-  std::string repos_key;  ///< the REPOS screen last emitted (ReposEventKey)
-  control::channel::BlockSearchState block_search_state =
-      control::channel::BlockSearchState::kInactive;
-  size_t block_search_warnings = 0;  ///< warnings of the block search already emitted
-  int plc_client_gone_told = 0;      ///< client_gone steps passed to the callback
-  /// The NC's message list as last emitted, and every message of the run for summary.json
-  /// (with when it came and, once gone, when it went).
-  std::vector<control::channel::OperatorMessage> messages;
-  nlohmann::ordered_json messages_seen = nlohmann::ordered_json::array();
-  void NoteMessages(double t);
+  int plc_client_gone_told = 0;  ///< client_gone steps passed to the callback
 };
 
 }  // namespace vmt::sim
