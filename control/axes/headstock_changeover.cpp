@@ -162,9 +162,7 @@ void HeadstockChangeover::RunFunction(Function& f, const std::array<int64_t, 4>&
 }
 
 void HeadstockChangeover::WriteSetpoints(const DriveSetpoint& spindle,
-                                         const DriveSetpoint& rotary, const AmplifierTelegram& at,
-                                         MasterTelegram& mdt) const {
-  (void)at;
+                                         const DriveSetpoint& rotary, MasterTelegram& mdt) const {
   const DriveSetpoint off{DriveMode::kOff, 0, 0};
   const DriveSetpoint still{DriveMode::kVelocity, 0, 0};
   if (!config_.separate_servo()) {

@@ -100,7 +100,7 @@ class HeadstockChangeover {
   /// `rotary` (the interpolated rotary axis) for the rotary drive in rotary mode; a drive
   /// without its enable is off, the other drive holds still.
   void WriteSetpoints(const DriveSetpoint& spindle, const DriveSetpoint& rotary,
-                      const AmplifierTelegram& at, MasterTelegram& mdt) const;
+                      MasterTelegram& mdt) const;
 
   HeadstockMode mode() const { return mode_; }
   /// The mode the changeover in progress goes to (mode() when none is).

@@ -293,17 +293,23 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
   const bool low_lag = mode_ != ChannelMode::kManual &&
                        (work_.block.modal.low_lag || InSynchronousBlock()) &&
                        (state_ == ChannelState::kRunning || state_ == ChannelState::kHold);
-  for (size_t a = 0; a < config_.axes.size(); ++a) {
-    DriveSetpoint& sp = mdt.setpoints[config_.axes[a].drive];
-    sp = {DriveMode::kPosition, previous_[a] + (commanded_[a] - previous_[a]) * f, 0};
+  const auto axis_setpoint = [&](size_t a) {
+    DriveSetpoint sp{DriveMode::kPosition, previous_[a] + (commanded_[a] - previous_[a]) * f, 0};
     if (low_lag) sp.velocity_feedforward = (commanded_[a] - previous_[a]) / cycle_s;
-  }
-  // The rotary axis' setpoint before the spindle's: one drive for both in section 2.
-  const DriveSetpoint rotary =
-      headstock_ ? mdt.setpoints[config_.axes[config_.rotary_axis].drive] : DriveSetpoint{};
+    return sp;
+  };
+  // Each drive of the channel gets its setpoint once: the feed axes', then the main spindle's
+  // - through a headstock, whose changeover decides what its drives get, the rotary axis' too
+  // (one drive for both in section 2) -, the further spindles' and the tool storage axis'.
+  // Control-Reset's acknowledgement of a drive's trip then holds that drive off.
+  for (size_t a = 0; a < config_.axes.size(); ++a)
+    if (!headstock_ || static_cast<int>(a) != config_.rotary_axis)
+      mdt.setpoints[config_.axes[a].drive] = axis_setpoint(a);
   const DriveSetpoint spindle = SpindleSetpoint();
-  if (config_.spindle_drive >= 0) mdt.setpoints[config_.spindle_drive] = spindle;
-  if (headstock_) headstock_->WriteSetpoints(spindle, rotary, at, mdt);
+  if (headstock_)
+    headstock_->WriteSetpoints(spindle, axis_setpoint(config_.rotary_axis), mdt);
+  else if (config_.spindle_drive >= 0)
+    mdt.setpoints[config_.spindle_drive] = spindle;
   further_.WriteSetpoints(mdt);
   WriteToolStorage(mdt);
   AcknowledgeDriveTrips(mdt);

@@ -53,7 +53,7 @@ struct Rig : test_support::IdealDriveBus {
   // One NC cycle: the sequence, the setpoints, and the drives' answer.
   bool Cycle() {
     const bool ok = hs.Cycle(plc, at, kDt);
-    hs.WriteSetpoints(spindle_cmd, rotary_cmd, at, mdt);
+    hs.WriteSetpoints(spindle_cmd, rotary_cmd, mdt);
     Answer();
     return ok;
   }
@@ -268,7 +268,7 @@ TEST(HeadstockChangeoverTest, OneDriveWithoutARotaryParameterSetKeepsSetZero) {
   plc.rotmod_q = true;
   ASSERT_TRUE(hs.Cycle(plc, at, kDt));
   ASSERT_EQ(hs.mode(), HeadstockMode::kRotary);
-  hs.WriteSetpoints({DriveMode::kVelocity, 0, 0}, {DriveMode::kPosition, 10, 0}, at, mdt);
+  hs.WriteSetpoints({DriveMode::kVelocity, 0, 0}, {DriveMode::kPosition, 10, 0}, mdt);
   EXPECT_EQ(mdt.setpoints[0].mode, DriveMode::kPosition);
   EXPECT_EQ(mdt.setpoints[0].value, 10);
   EXPECT_EQ(mdt.setpoints[0].parameter_set, 0);
