@@ -17,9 +17,9 @@ Channel::Channel(ChannelConfig config, std::vector<const nc::Program*> programs)
   shift_.assign(n, 0.0);
   homed_.resize(n);
   for (size_t a = 0; a < n; ++a) homed_[a] = config_.axes[a].homed_at_start;
-  spindle_ = {DriveMode::kVelocity, 0, 0};
+  sp_.command = {DriveMode::kVelocity, 0, 0};
   if (config_.headstock) headstock_.emplace(*config_.headstock);
-  spindle_homed_ = config_.spindle.homed_at_start;
+  sp_.homed = config_.spindle.homed_at_start;
   last_modal_ = config_.initial;
   for (size_t a = 0; a < n; ++a) {
     if (config_.axes[a].name == "Z") axis_z_ = static_cast<int>(a);
@@ -32,7 +32,7 @@ void Channel::DropLookahead() {
   work_.unpushed.reset();
   work_.source_returned_false = false;
   work_.continuation_ready = false;
-  carry_speed_ = carry_accel_ = carry_leftover_ = 0;
+  look_.carry_speed = look_.carry_accel = look_.carry_leftover = 0;
   work_.compensating = false;
   work_.source_done = false;
   work_.trc.Reset();
@@ -153,7 +153,7 @@ bool Channel::Reverse() {
   work_.active = false;
   work_.homing = false;
   work_.dwell_left_s = 0;
-  orienting_ = false;
+  sp_.orienting = false;
   further_.StopRestoring();
   // Fast measurement 6.1 / 7.2 network 9: the PLC acknowledges Q9999 once the reverse program
   // is active; the reverse program waits for that before its first block.
@@ -198,8 +198,8 @@ std::vector<OperatorMessage> Channel::messages() const {
 }
 
 void Channel::Fail(const nc::Program& program, int32_t block, const std::string& text, int number) {
-  if (planning_only_) {
-    plan_failed_ = true;  // read ahead under G41/G42: the block's error comes in its turn
+  if (look_.planning_only) {
+    look_.plan_failed = true;  // read ahead under G41/G42: the block's error comes in its turn
     return;
   }
   Fail(nc::Format({program.blocks[block].pos, text}, program.files), number);
@@ -217,7 +217,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
       CaptureInterruption();
   }
   if (headstock_ && !headstock_known_) HeadstockPowerOn();
-  if (trip_reset_pending_) CollectTrips(at);
+  if (drives_.trip_reset_pending) CollectTrips(at);
   if (take_over_pending_ && !holding_positions_) {
     for (size_t a = 0; a < config_.axes.size(); ++a)
       commanded_[a] = at.feedback[config_.axes[a].drive].position;
@@ -248,7 +248,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
   if (++tick_in_cycle_ >= config_.ticks_per_cycle) {
     tick_in_cycle_ = 0;
     previous_ = commanded_;
-    spindle_previous_deg_ = spindle_.value;
+    sp_.previous_deg = sp_.command.value;
     const double dt = config_.tick_s * config_.ticks_per_cycle;
     TrackReferences(at, dt);
     if (headstock_) HeadstockCycle(at, dt);
@@ -319,13 +319,13 @@ DriveSetpoint Channel::SpindleSetpoint() const {
   // C-axis manual 2.3: under M3/M4 (and M19) only the spindle override acts on the spindle,
   // never the feed override. M19's positioning speed is the drive's own.
   // G63 holds the spindle override at 100 % (the compensating chuck takes up the rest).
-  DriveSetpoint sp = spindle_;
+  DriveSetpoint sp = sp_.command;
   const bool tapping = InSynchronousBlock() && work_.block.motion == nc::Motion::kTapping;
-  if (sp.mode == DriveMode::kVelocity && !tapping) sp.value *= spindle_override_;
+  if (sp.mode == DriveMode::kVelocity && !tapping) sp.value *= sp_.override;
   // G64 interpolates the spindle: fine interpolation to the drive tick as for the axes.
   if (sp.mode == DriveMode::kPosition && sp.interpolated) {
     const double f = static_cast<double>(tick_in_cycle_ + 1) / config_.ticks_per_cycle;
-    sp.value = spindle_previous_deg_ + (sp.value - spindle_previous_deg_) * f;
+    sp.value = sp_.previous_deg + (sp.value - sp_.previous_deg) * f;
   }
   return sp;
 }
@@ -485,13 +485,13 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
   work_.profile.max_jerk = work_.motion.max_jerk;
   work_.active = true;
   if (!repos_.run) RecordPath(work_.motion, work_.block.motion == nc::Motion::kRapid);
-  if (carry_speed_ > 0) {
+  if (look_.carry_speed > 0) {
     // Continuing at speed from the block before (look-ahead): same path speed and
     // acceleration, from where the last cycle's remainder takes it.
-    work_.profile.rate = carry_speed_ / work_.motion.length;
-    work_.profile.accel = carry_accel_ / work_.motion.length;
-    work_.profile.u = std::min(0.5, carry_leftover_ / work_.motion.length);
-    carry_speed_ = carry_accel_ = carry_leftover_ = 0;
+    work_.profile.rate = look_.carry_speed / work_.motion.length;
+    work_.profile.accel = look_.carry_accel / work_.motion.length;
+    work_.profile.u = std::min(0.5, look_.carry_leftover / work_.motion.length);
+    look_.carry_speed = look_.carry_accel = look_.carry_leftover = 0;
     work_.motion.PointAt(work_.profile.u, commanded_);
   }
   LookAhead(at);
@@ -509,8 +509,8 @@ void Channel::Interpolate(double dt) {
   const double override = state_ == ChannelState::kHold ? 0.0 : override_;
   work_.profile.ahead = {};
   if (work_.continuation_ready) {
-    ProfileTargets(work_.targets, work_.motion.length, override, profile_targets_);
-    work_.profile.ahead = profile_targets_;
+    ProfileTargets(work_.targets, work_.motion.length, override, look_.profile_targets);
+    work_.profile.ahead = look_.profile_targets;
   }
   work_.profile.Advance(dt, override);
   work_.motion.PointAt(work_.profile.u, commanded_);
@@ -520,14 +520,14 @@ void Channel::Interpolate(double dt) {
     // Ended at speed (look-ahead): the next block takes the speed over at once, with what
     // this cycle had left of its distance.
     if (work_.profile.rate > 0 && work_.continuation_ready) {
-      carry_speed_ = work_.profile.rate * work_.motion.length;
-      carry_accel_ = work_.profile.accel * work_.motion.length;
+      look_.carry_speed = work_.profile.rate * work_.motion.length;
+      look_.carry_accel = work_.profile.accel * work_.motion.length;
       // Passed the end at speed: the cycle went on by u - 1; arrived at it: the rest of the
       // cycle at the end speed.
-      carry_leftover_ =
+      look_.carry_leftover =
           work_.profile.u > 1
               ? (work_.profile.u - 1) * work_.motion.length
-              : std::max(0.0, carry_speed_ * dt - (1 - u_before) * work_.motion.length);
+              : std::max(0.0, look_.carry_speed * dt - (1 - u_before) * work_.motion.length);
     }
   }
 }

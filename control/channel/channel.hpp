@@ -30,6 +30,7 @@
 #include "control/channel/guarded_moves.hpp"
 #include "control/channel/jog_state.hpp"
 #include "control/channel/look_ahead.hpp"
+#include "control/channel/main_spindle_state.hpp"
 #include "control/channel/measuring_run.hpp"
 #include "control/channel/nc_cycle_owner.hpp"
 #include "control/channel/operator_messages.hpp"
@@ -63,7 +64,7 @@ class Channel {
   /// Feed override: the axes of the path, the rotary axis too (C-axis manual 2.3, 3.3).
   void SetFeedOverride(double fraction) { override_ = std::clamp(fraction, 0.0, 2.0); }
   /// Spindle override (AxxC.SOVR): the spindle's speed under M3/M4, never the feed axes.
-  void SetSpindleOverride(double fraction) { spindle_override_ = std::clamp(fraction, 0.0, 2.0); }
+  void SetSpindleOverride(double fraction) { sp_.override = std::clamp(fraction, 0.0, 2.0); }
   /// Process enabling signal (PxxC.ENABL). Removed: immediate stop (a running program holds, a
   /// changeover halts, jogging axes brake) and no start until it is back (C-axis manual 2.3).
   void SetProcessEnable(bool on);
@@ -429,10 +430,6 @@ class Channel {
   bool running_mdi_ = false;
 
   // Look-ahead between feed moves: the next blocks read early, the speed carried into them.
-  std::vector<LookAheadLeg> legs_;              ///< the blocks read ahead (scratch)
-  std::vector<ProfileTarget> profile_targets_;  ///< the same in the profile's u
-  bool planning_only_ = false, plan_failed_ = false;
-  double carry_speed_ = 0, carry_accel_ = 0, carry_leftover_ = 0;
 
   // Tool nose radius compensation (G41/G42): blocks read ahead and the tip path made of them.
   bool inserted_piece_ = false;    ///< work_.block is a corner the compensation inserted before it
@@ -633,7 +630,6 @@ class Channel {
   void UpdateBlockSearchStatus();
   /// M3/M4/M5/M19 and S of `b` on the spindle setpoint `sp`; true if M19 (orientation) came.
   bool SpindleFunctions(const nc::PreparedBlock& b, DriveSetpoint& sp) const;
-  DriveSetpoint spindle_;
   // Headstock changeover: the mode a block needs, the one the block in work waits for.
   axes::HeadstockMode ModeNeeded(const nc::PreparedBlock& b) const;
   /// The rotary axis as a PlanBlockMotion follow_up bit while the NC does not position it.
@@ -660,7 +656,6 @@ class Channel {
   DriveSetpoint SpindleSetpoint() const;
   // Spindle-synchronous block in work (G33/G63/G64, channel_spindle_synchronous.cpp).
   Synchronous sync_;
-  double spindle_previous_deg_ = 0;  ///< G64: the spindle's command at the last NC cycle
   bool StartSynchronous(const AmplifierTelegram& at);
   void SynchronousCycle(const AmplifierTelegram& at, double dt);
   bool InSynchronousBlock() const { return work_.active && sync_.phase != SyncPhase::kNone; }
@@ -676,21 +671,11 @@ class Channel {
   /// A changeover to rotary axis mode has ended: the block in work and the interpreter take
   /// the rotary axis' actual position.
   void RebaseRotaryAxis();
-  double spindle_override_ = 1.0;
   bool process_enable_ = true;
-  bool spindle_homed_ = true;         ///< a separate spindle's reference (section 3)
-  bool spindle_referencing_ = false;  ///< M19 runs: the reference comes when it is in position
-  bool spindle_jogging_ = false;      ///< the spindle turns because a jog key is held
   std::vector<bool> axis_enable_;     ///< AxxC.ENABL per channel axis (empty: all enabled)
-  bool spindle_enable_ = true;        ///< AxxC.ENABL of the main spindle
-  /// The block waits for the spindle: M19's positioning to end, G77 S1=0's speed to be reached.
-  bool orienting_ = false;
-  double spindle_position_ = 0;       ///< the spindle's actual position at the last NC cycle
-  double spindle_rpm_ = 0;            ///< and its actual speed
-  std::vector<double> encoder_last_;  ///< per drive: position at the last NC cycle
-  bool trip_reset_pending_ = false;   ///< Control-Reset: acknowledge the drives' trips
-  std::vector<int> trip_reset_drives_;
-  int trip_reset_ticks_ = 0;
+  MainSpindleState sp_;  ///< the main spindle: command, override, keys, reference, feedback
+  DriveWatch drives_;    ///< encoder positions and Control-Reset's trip acknowledgement
+  LookAheadState look_;  ///< the blocks read ahead and the speed carried into the next block
 };
 
 }  // namespace vmt::control::channel

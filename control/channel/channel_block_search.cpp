@@ -87,7 +87,7 @@ void Channel::BeginBlockSearch() {
   if (!bs_.started.searches()) return;
   search_.emplace(bs_.started);
   search_->position = commanded_;
-  search_->spindle = spindle_;
+  search_->spindle = sp_.command;
   work_.interpreter->SetEveryBlock(true);
   bs_.state = BlockSearchState::kWaitForPlcOn;
   bs_.command = true;
@@ -128,8 +128,8 @@ bool Channel::SearchCycle(const AmplifierTelegram& at) {
       if (!s.start_requested || state_ != ChannelState::kRunning) return true;
       // The spindle gets its last commanded speed back first (2: "gleichzeitig müssen auch die
       // Spindeln ... erreicht haben").
-      if (spindle_.mode != s.spindle.mode || spindle_.value != s.spindle.value) {
-        spindle_ = s.spindle;
+      if (sp_.command.mode != s.spindle.mode || sp_.command.value != s.spindle.value) {
+        sp_.command = s.spindle;
         return true;  // the drive's at-speed answers the new command from the next cycle on
       }
       // In rotary axis mode the headstock holds the spindle still whatever its command.

@@ -110,7 +110,7 @@ bool Channel::StartCaxAlignment(double to) {
   const double distance = std::abs(to - commanded_[ci]);
   work_.profile = PathProfile{};
   work_.continuation_ready = false;
-  carry_speed_ = carry_accel_ = carry_leftover_ = 0;
+  look_.carry_speed = look_.carry_accel = look_.carry_leftover = 0;
   if (distance < 1e-12) return true;
   const ChannelAxis& axis = config_.axes[ci];
   work_.motion.moves = true;

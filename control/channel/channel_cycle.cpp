@@ -23,7 +23,7 @@ NcCycleOwner Channel::ProgramCycleOwner() const {
   if (tool_storage_wait_) return NcCycleOwner::kToolStorage;
   if (work_.pending_motion) return NcCycleOwner::kMotionStart;
   if (work_.dwell_left_s > 0) return NcCycleOwner::kDwell;
-  if (orienting_) return NcCycleOwner::kSpindle;
+  if (sp_.orienting) return NcCycleOwner::kSpindle;
   if (meas_.run && !work_.active) return NcCycleOwner::kMeasuring;
   if (!work_.active && state_ == ChannelState::kRunning) return NcCycleOwner::kNextBlock;
   return NcCycleOwner::kBlockInWork;
@@ -39,7 +39,7 @@ void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, doub
     case NcCycleOwner::kChangeover:
       // Block preparation and execution wait until the changeover ends (C-axis manual 1.2).
       if (headstock_->mode() == waiting_for_)
-        finished = RunBlock(at) && !work_.active && work_.dwell_left_s <= 0 && !orienting_ &&
+        finished = RunBlock(at) && !work_.active && work_.dwell_left_s <= 0 && !sp_.orienting &&
                    waiting_for_ == axes::HeadstockMode::kNone;
       else if (state_ == ChannelState::kRunning)
         headstock_->Request(waiting_for_);  // again, if a jog key turned the changeover round
@@ -47,7 +47,7 @@ void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, doub
     case NcCycleOwner::kMotionStart:
       work_.pending_motion = false;
       if (StartMotion(at))
-        finished = !work_.active && work_.dwell_left_s <= 0 && !work_.homing && !orienting_;
+        finished = !work_.active && work_.dwell_left_s <= 0 && !work_.homing && !sp_.orienting;
       break;
     case NcCycleOwner::kDwell:
       if (state_ == ChannelState::kRunning) work_.dwell_left_s -= dt;
@@ -56,15 +56,15 @@ void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, doub
     case NcCycleOwner::kSpindle:
       // M19 ends when the spindle reports itself in position, G77 Sj=0 when its spindles
       // are at speed.
-      orienting_ = false;
+      sp_.orienting = false;
       if (config_.spindle_drive >= 0) {
         const uint32_t status = at.feedback[config_.spindle_drive].status;
-        orienting_ = spindle_.mode == DriveMode::kPosition
-                         ? !(status & drive_status::kInPosition)
-                         : spindle_.value != 0 && !(status & drive_status::kAtSpeed);
+        sp_.orienting = sp_.command.mode == DriveMode::kPosition
+                            ? !(status & drive_status::kInPosition)
+                            : sp_.command.value != 0 && !(status & drive_status::kAtSpeed);
       }
-      orienting_ |= further_.UpdateRestoring(at);
-      finished = !orienting_;
+      sp_.orienting |= further_.UpdateRestoring(at);
+      finished = !sp_.orienting;
       break;
     case NcCycleOwner::kMeasuring:
       finished = MeasuringCycle(at);
@@ -76,7 +76,7 @@ void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, doub
         state_ = ChannelState::kHold;
         break;
       }
-      finished = NextBlock(at) && !work_.active && work_.dwell_left_s <= 0 && !orienting_ &&
+      finished = NextBlock(at) && !work_.active && work_.dwell_left_s <= 0 && !sp_.orienting &&
                  waiting_for_ == axes::HeadstockMode::kNone;
       if (finished && meas_.run) finished = MeasuringCycle(at);
       break;
@@ -105,11 +105,11 @@ void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, doub
     if (finished && work_.homing) finished = !NextHomingStage();
     // C is aligned (#CAX TRACK): the block's own motion follows as one unit with it.
     if (finished && std::exchange(cax_aligning_, false))
-      finished = StartMotion(at) && !work_.active && !orienting_;
-    if (finished && carry_speed_ > 0) {
+      finished = StartMotion(at) && !work_.active && !sp_.orienting;
+    if (finished && look_.carry_speed > 0) {
       // Blended: the next block runs on from here in the same cycle.
-      finished = NextBlock(at) && !work_.active && !orienting_;
-      carry_speed_ = carry_accel_ = carry_leftover_ = 0;
+      finished = NextBlock(at) && !work_.active && !sp_.orienting;
+      look_.carry_speed = look_.carry_accel = look_.carry_leftover = 0;
     }
   }
   if (finished && single_block_ && state_ == ChannelState::kRunning)

@@ -20,8 +20,8 @@ void Channel::SafetyStop(const std::string& text, int number) {
   for (JogAxis& j : jog_)
     j.velocity = 0, j.stepping = j.handwheel = j.homing = j.home_requested = false, j.key = 0;
   for (FictiveJog& f : fictive_jog_) f.velocity = 0, f.stepping = f.handwheel = false, f.key = 0;
-  if (config_.spindle_drive >= 0) spindle_ = {DriveMode::kVelocity, 0, 0};
-  spindle_jogging_ = spindle_referencing_ = orienting_ = false;
+  if (config_.spindle_drive >= 0) sp_.command = {DriveMode::kVelocity, 0, 0};
+  sp_.jogging = sp_.referencing = sp_.orienting = false;
   if (state_ != ChannelState::kError) Fail(text, number);
 }
 
@@ -37,8 +37,9 @@ void Channel::CheckDrives(const AmplifierTelegram& at) {
     return causes.empty() ? "drive not ready (drive fault)" : "drive error: " + causes;
   };
   auto acknowledging = [&](int drive) {
-    return trip_reset_ticks_ > 0 && std::find(trip_reset_drives_.begin(), trip_reset_drives_.end(),
-                                              drive) != trip_reset_drives_.end();
+    return drives_.trip_reset_ticks > 0 &&
+           std::find(drives_.trip_reset.begin(), drives_.trip_reset.end(), drive) !=
+               drives_.trip_reset.end();
   };
   // A drive without power (tripped, not ready) is in follow-up: the NC takes its actual
   // position as command value (C-axis manual 4.2: "In a powerless state, the NC corrects the
@@ -76,7 +77,7 @@ void Channel::CheckDrives(const AmplifierTelegram& at) {
     }
     const int s = config_.spindle_drive;
     if (s >= 0 && !acknowledging(s) && !(at.feedback[s].status & drive_status::kReady)) {
-      spindle_ = {DriveMode::kVelocity, 0, 0};
+      sp_.command = {DriveMode::kVelocity, 0, 0};
       Fail("spindle: " + tripped_text(at.feedback[s].status), kMsgDriveFault);
       return s;
     }
@@ -104,13 +105,13 @@ void Channel::CheckAxisReady() {
   if (!headstock_ || headstock_->config().separate_servo() || RotaryReady()) return;
   const size_t r = static_cast<size_t>(config_.rotary_axis);
   const JogAxis& jog = jog_[r];
-  const bool spindle_commanded = spindle_.mode == DriveMode::kPosition || spindle_.value != 0;
+  const bool spindle_commanded = sp_.command.mode == DriveMode::kPosition || sp_.command.value != 0;
   const bool jogged = jog.key != 0 || jog.stepping || jog.velocity != 0;
   const bool changing = headstock_->busy();
   if (state_ != ChannelState::kRunning && !spindle_commanded && !jogged && !changing) return;
   char signal[16];
   std::snprintf(signal, sizeof signal, "A%02dC.READY", config_.axes[r].number);
-  spindle_ = {DriveMode::kVelocity, 0, 0};
+  sp_.command = {DriveMode::kVelocity, 0, 0};
   Fail("axis " + HeadstockAxisName() + ": not ready (" + signal + " removed)", kMsgDriveFault);
   // 2.3 Errors: during a changeover the NC proceeds as at power-on.
   if (changing) {
@@ -124,25 +125,25 @@ void Channel::CollectTrips(const AmplifierTelegram& at) {
   // gets its controller enable removed (kOff, the drive's fault reset) for one NC cycle, then
   // the channel's setpoints again (AcknowledgeDriveTrips). Meanwhile it is not reported; a
   // cause still present trips it again, and CheckDrives reports it after that cycle.
-  trip_reset_pending_ = false;
-  trip_reset_drives_.clear();
+  drives_.trip_reset_pending = false;
+  drives_.trip_reset.clear();
   auto collect = [&](int d) {
     if (d >= 0 && d < static_cast<int>(at.feedback.size()) && (at.feedback[d].status & kTrips) &&
-        std::find(trip_reset_drives_.begin(), trip_reset_drives_.end(), d) ==
-            trip_reset_drives_.end())
-      trip_reset_drives_.push_back(d);
+        std::find(drives_.trip_reset.begin(), drives_.trip_reset.end(), d) ==
+            drives_.trip_reset.end())
+      drives_.trip_reset.push_back(d);
   };
   for (const ChannelAxis& a : config_.axes) collect(a.drive);
   collect(config_.spindle_drive);
   if (headstock_) collect(headstock_->config().rotary_drive);
-  trip_reset_ticks_ = trip_reset_drives_.empty() ? 0 : config_.ticks_per_cycle;
+  drives_.trip_reset_ticks = drives_.trip_reset.empty() ? 0 : config_.ticks_per_cycle;
 }
 
 void Channel::AcknowledgeDriveTrips(MasterTelegram& mdt) {
-  if (trip_reset_ticks_ <= 0) return;
-  for (int d : trip_reset_drives_)
+  if (drives_.trip_reset_ticks <= 0) return;
+  for (int d : drives_.trip_reset)
     if (d < static_cast<int>(mdt.setpoints.size())) mdt.setpoints[d] = {DriveMode::kOff, 0, 0};
-  if (--trip_reset_ticks_ == 0) trip_reset_drives_.clear();
+  if (--drives_.trip_reset_ticks == 0) drives_.trip_reset.clear();
 }
 
 }  // namespace vmt::control::channel

@@ -94,7 +94,7 @@ void Channel::ManualSpindle(int m) {
   if (m != 3 && m != 4 && m != 5 && m != 19) return;
   // Without the process enabling signal or the spindle's axis enabling signal (4.2) nothing
   // starts; a stop is always taken.
-  if (m != 5 && (!process_enable_ || !spindle_enable_)) return;
+  if (m != 5 && (!process_enable_ || !sp_.enable)) return;
   // 4.2: "The NC automatically switches over to main spindle mode if rotary axis mode is active
   // when one of these commands is started"; the command acts once spindle mode is there.
   if (headstock_) ManualChangeover(axes::HeadstockMode::kSpindle);
@@ -103,8 +103,8 @@ void Channel::ManualSpindle(int m) {
   if (repos_.function != ReposFunction::kNone && SpindleRelevant() &&
       KeyRestoresSpindle(repos_.interruption->spindle_m, m)) {
     if (!GuardSpindleStart("spindle start", repos_.interruption->spindle)) return;
-    spindle_ = repos_.interruption->spindle;
-    spindle_referencing_ = m == 19;
+    sp_.command = repos_.interruption->spindle;
+    sp_.referencing = m == 19;
     take_over_pending_ = true;
     return;
   }
@@ -115,22 +115,22 @@ void Channel::ManualSpindle(int m) {
                               : DriveSetpoint{DriveMode::kPosition,
                                               config_.spindle.jog_spindle_position, 0};
   if (!GuardSpindleStart("spindle start", sp)) return;
-  spindle_ = sp;
-  if (m == 19) spindle_referencing_ = true;
-  spindle_referencing_ = spindle_referencing_ && m == 19;
-  spindle_jogging_ = false;
+  sp_.command = sp;
+  if (m == 19) sp_.referencing = true;
+  sp_.referencing = sp_.referencing && m == 19;
+  sp_.jogging = false;
   take_over_pending_ = true;
 }
 
 void Channel::HomeSpindle() {
   if (mode_ != ChannelMode::kManual || config_.spindle_drive < 0) return;
-  if (!process_enable_ || !spindle_enable_) return;
+  if (!process_enable_ || !sp_.enable) return;
   if (headstock_) ManualChangeover(axes::HeadstockMode::kSpindle);
   const DriveSetpoint sp{DriveMode::kPosition, config_.spindle.reference_position, 0};
   if (!GuardSpindleStart("spindle start", sp)) return;
-  spindle_ = sp;
-  spindle_referencing_ = true;  // TrackReferences: homed once in position
-  spindle_jogging_ = false;
+  sp_.command = sp;
+  sp_.referencing = true;  // TrackReferences: homed once in position
+  sp_.jogging = false;
   take_over_pending_ = true;
 }
 
@@ -138,12 +138,12 @@ void Channel::JogSpindle(int direction) {
   if (mode_ != ChannelMode::kManual || config_.spindle_drive < 0) return;
   if (direction == 0) {
     // Released: a spindle the key turned brakes; an increment runs to its end.
-    if (spindle_jogging_) spindle_ = {DriveMode::kVelocity, 0, 0};
-    spindle_jogging_ = false;
+    if (sp_.jogging) sp_.command = {DriveMode::kVelocity, 0, 0};
+    sp_.jogging = false;
     take_over_pending_ = true;
     return;
   }
-  if (!process_enable_ || !spindle_enable_) return;
+  if (!process_enable_ || !sp_.enable) return;
   // 4.4: jogging the main spindle initiates the changeover to spindle mode; 2.3 / 3.3 Jogging
   // Movements: its jog keys abort a changeover an immediate stop interrupted. The motion acts
   // once spindle mode is there.
@@ -158,19 +158,19 @@ void Channel::JogSpindle(int direction) {
   switch (jog_mode_) {
     case JogMode::kContinuous:
     case JogMode::kRapid:
-      spindle_ = {DriveMode::kVelocity,
-                  direction * (jog_mode_ == JogMode::kRapid ? rapid : p.jog_per_s), 0};
-      spindle_jogging_ = true;
+      sp_.command = {DriveMode::kVelocity,
+                     direction * (jog_mode_ == JogMode::kRapid ? rapid : p.jog_per_s), 0};
+      sp_.jogging = true;
       break;
     case JogMode::kHandwheel:
       return;
     default: {
       const double step = jog_mode_ == JogMode::kParametric ? p.jog_distance : jog_increment_;
-      spindle_ = {DriveMode::kPosition, spindle_position_ + direction * step, 0};
-      spindle_jogging_ = false;
+      sp_.command = {DriveMode::kPosition, sp_.position + direction * step, 0};
+      sp_.jogging = false;
     }
   }
-  spindle_referencing_ = false;
+  sp_.referencing = false;
   take_over_pending_ = true;
 }
 
@@ -181,22 +181,22 @@ void Channel::SetAxisEnable(size_t axis, bool on) {
 }
 
 void Channel::SetSpindleEnable(bool on) {
-  spindle_enable_ = on;
+  sp_.enable = on;
   // 4.2: without the axis enabling signal the spindle cannot be moved in manual mode: a jog
   // key's turning stops. (A spindle turning by M3 from the program or AxxC.M3 keeps its
   // command: vmt's reading, as the signal gates motion the keys start.)
-  if (!on && spindle_jogging_) {
-    spindle_ = {DriveMode::kVelocity, 0, 0};
-    spindle_jogging_ = false;
+  if (!on && sp_.jogging) {
+    sp_.command = {DriveMode::kVelocity, 0, 0};
+    sp_.jogging = false;
     take_over_pending_ = true;
   }
 }
 
 bool Channel::SpindleAtSpeedLimit() const {
   const double limit = config_.spindle.max_spindle_rpm;
-  if (config_.spindle_drive < 0 || limit <= 0 || spindle_.mode != DriveMode::kVelocity)
+  if (config_.spindle_drive < 0 || limit <= 0 || sp_.command.mode != DriveMode::kVelocity)
     return false;
-  return std::abs(spindle_.value / 6 * spindle_override_) >= limit * (1 - 1e-9);
+  return std::abs(sp_.command.value / 6 * sp_.override) >= limit * (1 - 1e-9);
 }
 
 void Channel::SetProcessEnable(bool on) {
@@ -223,11 +223,11 @@ void Channel::TrackReferences(const AmplifierTelegram& at, double dt) {
   // stays within the limit frequency of its interface; beyond it counts are lost.
   const int spindle = config_.spindle_drive;
   const int rotary = headstock_ ? config_.axes[config_.rotary_axis].drive : -1;
-  encoder_last_.resize(at.feedback.size(), std::nan(""));
+  drives_.encoder_last.resize(at.feedback.size(), std::nan(""));
   auto too_fast = [&](int drive, const axes::AxisParameters& p) {
-    const double last = encoder_last_[drive];
+    const double last = drives_.encoder_last[drive];
     const double position = at.feedback[drive].position;
-    encoder_last_[drive] = position;
+    drives_.encoder_last[drive] = position;
     if (p.encoder_limit_hz <= 0 || p.encoder_periods_per_rev <= 0 || std::isnan(last)) return false;
     // The shorter way: a modulo encoder (0..360) wraps every turn. A cycle's step stays far
     // below half a turn (180 deg per 1 ms NC cycle is 30000 rpm).
@@ -237,27 +237,26 @@ void Channel::TrackReferences(const AmplifierTelegram& at, double dt) {
   if (rotary >= 0 && too_fast(rotary, config_.axes[config_.rotary_axis]))
     homed_[config_.rotary_axis] = false;
   // Section 2: spindle and rotary axis are one drive with one encoder and one reference.
-  if (spindle >= 0 && spindle != rotary && too_fast(spindle, config_.spindle))
-    spindle_homed_ = false;
+  if (spindle >= 0 && spindle != rotary && too_fast(spindle, config_.spindle)) sp_.homed = false;
   if (spindle < 0) return;
-  spindle_position_ = at.feedback[spindle].position;
-  spindle_rpm_ = at.feedback[spindle].velocity / 6;
+  sp_.position = at.feedback[spindle].position;
+  sp_.rpm = at.feedback[spindle].velocity / 6;
   // M19 establishes the reference (2.3: "by crossing the related zero impulse", then it
   // moves to the command position): it is there when the spindle reports itself in position.
   // It needs spindle mode on a headstock: in rotary mode M19 waits for its changeover.
   const bool spindle_mode = !headstock_ || headstock_->mode() == axes::HeadstockMode::kSpindle;
-  if (spindle_referencing_ && spindle_mode && spindle_.mode == DriveMode::kPosition &&
+  if (sp_.referencing && spindle_mode && sp_.command.mode == DriveMode::kPosition &&
       (at.feedback[spindle].status & drive_status::kInPosition)) {
-    spindle_referencing_ = false;
-    spindle_homed_ = true;
+    sp_.referencing = false;
+    sp_.homed = true;
     if (spindle == rotary) homed_[config_.rotary_axis] = true;
   }
-  if (spindle_.mode != DriveMode::kPosition) spindle_referencing_ = false;
+  if (sp_.command.mode != DriveMode::kPosition) sp_.referencing = false;
 }
 
 bool Channel::spindle_homed() const {
   if (headstock_ && !headstock_->config().separate_servo()) return homed_[config_.rotary_axis];
-  return spindle_homed_;
+  return sp_.homed;
 }
 
 std::string Channel::HeadstockAxisName() const {
@@ -271,15 +270,15 @@ double Channel::HeadstockPosition() const {
   // 2.3 Position Indication: the representation usual for a rotary axis, 0..360 deg, though
   // the program's C runs on past a turn (C-270, the manual's 1.2).
   const size_t r = static_cast<size_t>(config_.rotary_axis);
-  const double shown = shown_mode_ == axes::HeadstockMode::kRotary ? commanded_[r] - translation_[r]
-                                                                   : spindle_position_;
+  const double shown =
+      shown_mode_ == axes::HeadstockMode::kRotary ? commanded_[r] - translation_[r] : sp_.position;
   const double a = std::fmod(shown, 360.0);
   return a < 0 ? a + 360 : a;
 }
 
 SpindleStatus Channel::spindle_status() const {
   SpindleStatus st;
-  st.spindle_override = spindle_override_;
+  st.spindle_override = sp_.override;
   st.feed_override = override_;
   // 2.3 / 3.3 Status Indication: lines instead of the speeds while the display shows the rotary
   // axis (the same switch as the position indication's designation).
@@ -289,8 +288,8 @@ SpindleStatus Channel::spindle_status() const {
   // Programmed: what M3 / M4 and S (or the manual keys' jogging speed) command, before the
   // spindle override; a spindle that positions (M19) has no speed programmed. Not in spindle
   // mode yet (a changeover to it in progress): the command that waits for it.
-  if (spindle_.mode == DriveMode::kVelocity) st.programmed_rpm = spindle_.value / 6;
-  st.actual_rpm = spindle_rpm_;
+  if (sp_.command.mode == DriveMode::kVelocity) st.programmed_rpm = sp_.command.value / 6;
+  st.actual_rpm = sp_.rpm;
   st.max_rpm = config_.spindle.max_spindle_rpm;
   return st;
 }

@@ -223,7 +223,7 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
   }
   work_.profile = PathProfile{};
   work_.continuation_ready = false;
-  carry_speed_ = carry_accel_ = carry_leftover_ = 0;
+  look_.carry_speed = look_.carry_accel = look_.carry_leftover = 0;
   if (!work_.motion.moves) return true;
   // The approach moves are checked before they start, as G77's: the ruby touching
   // the part on them is a collision. The measuring path is checked up to where the sphere

@@ -155,7 +155,7 @@ void Channel::Reset() {
   work_.homing = false;
   reversing_ = false;
   work_.dwell_left_s = 0;
-  orienting_ = false;
+  sp_.orienting = false;
   further_.StopRestoring();
   aux_output_.clear();
   programmed_stop_.Leave();
@@ -186,13 +186,13 @@ void Channel::Reset() {
   work_.interpreter.reset();
   DropLookahead();
   previous_ = commanded_;
-  spindle_ = {DriveMode::kVelocity, 0, 0};
+  sp_.command = {DriveMode::kVelocity, 0, 0};
   further_.Reset();
-  spindle_referencing_ = false;
+  sp_.referencing = false;
   manual_changeover_ = false;
   // A real control acknowledges its drives' errors with Control-Reset: the drives that tripped
   // get their controller enable removed for a cycle (the drive's fault reset), see Tick.
-  trip_reset_pending_ = true;
+  drives_.trip_reset_pending = true;
   // Control-Reset drops the G92 shift and returns to the initial modal state (offsets too).
   std::fill(shift_.begin(), shift_.end(), 0.0);
   last_modal_ = config_.initial;

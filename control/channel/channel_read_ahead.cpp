@@ -262,10 +262,10 @@ void Channel::FillCompensated(size_t elements) {
       work_.source_returned_false = true;
       return;
     }
-    planning_only_ = true;
-    plan_failed_ = false;
-    const bool pushed = PushAhead(b) && !plan_failed_;
-    planning_only_ = false;
+    look_.planning_only = true;
+    look_.plan_failed = false;
+    const bool pushed = PushAhead(b) && !look_.plan_failed;
+    look_.planning_only = false;
     if (!pushed) {
       work_.unpushed = b;
       return;
@@ -331,7 +331,7 @@ void Channel::LookAhead(const AmplifierTelegram& at) {
   const double speed = work_.motion.max_rate * work_.motion.length;
   const double accel = work_.motion.max_accel * work_.motion.length;
   const double spindle_rev_per_s = SpindleRevPerS(at);
-  legs_.clear();
+  look_.legs.clear();
   std::vector<double> direction = work_.motion.Direction(1);
   std::vector<double> from = work_.motion.end;
   double reach = 0, top_speed = speed, least_accel = accel, least_jerk = HUGE_VAL;
@@ -372,7 +372,7 @@ void Channel::LookAhead(const AmplifierTelegram& at) {
     leg.jerk = m.max_jerk * m.length;
     leg.length = m.length;
     leg.cos_turn = std::clamp(dot / std::sqrt(n1 * n2), -1.0, 1.0);
-    legs_.push_back(leg);
+    look_.legs.push_back(leg);
     direction = m.Direction(1);
     from = m.end;
     // Enough known once the path so far could stop from the fastest speed in it.
@@ -384,9 +384,9 @@ void Channel::LookAhead(const AmplifierTelegram& at) {
                                  std::isfinite(least_jerk) ? least_jerk : 0, cycle_s))
       break;
   }
-  if (legs_.empty()) return;
-  PlanTargets(work_.motion.length, speed, accel, work_.motion.max_jerk * work_.motion.length, legs_,
-              work_.targets);
+  if (look_.legs.empty()) return;
+  PlanTargets(work_.motion.length, speed, accel, work_.motion.max_jerk * work_.motion.length,
+              look_.legs, work_.targets);
   work_.continuation_ready = std::min(work_.targets[0].corner, work_.targets[0].feed) > 1e-9;
   if (!work_.continuation_ready) work_.targets.clear();
 }

@@ -49,8 +49,8 @@ void Channel::CaptureInterruption() {
   i.translation = TranslationOf(i.modal);
   i.program = work_.block.program;
   i.line = line();
-  i.spindle = spindle_;
-  i.spindle_m = SpindleM(spindle_);
+  i.spindle = sp_.command;
+  i.spindle_m = SpindleM(sp_.command);
   i.further_spindles = further_.states();
   if (headstock_) {
     i.headstock_mode = headstock_->mode();
@@ -128,14 +128,15 @@ bool Channel::SpindleRelevant() const {
 bool Channel::SpindleRestored(const AmplifierTelegram& at) const {
   const DriveSetpoint& before = repos_.interruption->spindle;
   if (headstock_ && headstock_->mode() != axes::HeadstockMode::kSpindle) return false;
-  if (spindle_.mode != before.mode || std::abs(spindle_.value - before.value) > 1e-9) return false;
+  if (sp_.command.mode != before.mode || std::abs(sp_.command.value - before.value) > 1e-9)
+    return false;
   const uint32_t status = static_cast<size_t>(config_.spindle_drive) < at.feedback.size()
                               ? at.feedback[config_.spindle_drive].status
                               : 0;
   if (before.mode == DriveMode::kPosition) return status & drive_status::kInPosition;
   // The status bit of the last tick may still answer the command before this cycle's.
   const double actual = at.feedback[config_.spindle_drive].velocity;
-  const double command = before.value * spindle_override_;
+  const double command = before.value * sp_.override;
   if (std::abs(actual - command) > std::max(6.0, 0.02 * std::abs(command))) return false;
   return before.value == 0 || (status & drive_status::kAtSpeed);
 }
@@ -242,20 +243,20 @@ ReposStatus Channel::repos_status(const AmplifierTelegram* at) const {
   }
   ReposSpindleStatus& sp = s.spindle;
   sp.relevant = SpindleRelevant();
-  sp.override = spindle_override_;
-  sp.actual_m = SpindleM(spindle_);
+  sp.override = sp_.override;
+  sp.actual_m = SpindleM(sp_.command);
   sp.command_m = i.spindle_m;
   sp.command_rpm = i.spindle.mode == DriveMode::kVelocity ? i.spindle.value / 6 : 0;
   if (at && static_cast<size_t>(config_.spindle_drive) < at->feedback.size())
     sp.actual_rpm = at->feedback[config_.spindle_drive].velocity / 6;
   else
-    sp.actual_rpm = spindle_rpm_;
+    sp.actual_rpm = sp_.rpm;
   // Without the drives' feedback: the command restored, in spindle mode.
   sp.adjust =
       sp.relevant && !(at ? SpindleRestored(*at)
                           : (!headstock_ || headstock_->mode() == axes::HeadstockMode::kSpindle) &&
-                                spindle_.mode == i.spindle.mode &&
-                                std::abs(spindle_.value - i.spindle.value) < 1e-9);
+                                sp_.command.mode == i.spindle.mode &&
+                                std::abs(sp_.command.value - i.spindle.value) < 1e-9);
   s.further_spindles = further_.ReposStatus(i.further_spindles, at);
   s.tool_storage_relevant = config_.process.reposition_tool_storage && ToolStorageKnown();
   s.tool_storage_adjust = !ToolStorageRestored();
@@ -336,7 +337,7 @@ void Channel::StartReposRun() {
   // the interrupted program stays parked and the targets stay the interruption's.
   if (!repos_.run) SwapProgramInWork();
   repos_.rerun = false;
-  orienting_ = false;
+  sp_.orienting = false;
   further_.StopRestoring();
   work_.active = work_.pending_motion = work_.homing = false;
   work_.dwell_left_s = 0;
@@ -428,13 +429,13 @@ bool Channel::StartReposMotion(const AmplifierTelegram& at) {
   for (const nc::AuxFunction& f : work_.block.aux)
     if (f.letter == 'S' && f.index <= 1 && config_.spindle_drive >= 0) {
       if (!GuardSpindleStart("spindle start G77 S1", repos_.interruption->spindle)) return false;
-      spindle_ = repos_.interruption->spindle;
-      spindle_referencing_ = spindle_.mode == DriveMode::kPosition;
-      orienting_ = true;
+      sp_.command = repos_.interruption->spindle;
+      sp_.referencing = sp_.command.mode == DriveMode::kPosition;
+      sp_.orienting = true;
     }
   // The further spindles have no rotary axis mode and no PathGuard sweep (channel_turret_guard).
   further_.Restore(work_.block, repos_.interruption->further_spindles, at);
-  orienting_ |= further_.restoring();
+  sp_.orienting |= further_.restoring();
   // 4.2 Feed axes: the distance to go between target and actual position, G00-like (all axes
   // reach the target together) at F, without the G functions of interpolation and without tool
   // radius compensation.

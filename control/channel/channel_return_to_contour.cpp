@@ -18,8 +18,8 @@ bool Channel::SpindleReady(const AmplifierTelegram& at) const {
   if (config_.spindle_drive < 0 || at.feedback.size() <= static_cast<size_t>(config_.spindle_drive))
     return true;
   const uint32_t status = at.feedback[config_.spindle_drive].status;
-  if (spindle_.mode == DriveMode::kPosition) return status & drive_status::kInPosition;
-  return spindle_.value == 0 || (status & drive_status::kAtSpeed);
+  if (sp_.command.mode == DriveMode::kPosition) return status & drive_status::kInPosition;
+  return sp_.command.value == 0 || (status & drive_status::kAtSpeed);
 }
 
 bool Channel::StartReturnToContour() {
@@ -48,7 +48,7 @@ bool Channel::StartReturnToContour() {
 bool Channel::StartReturnMove(const std::vector<double>& to, const std::string& move) {
   work_.profile = PathProfile{};
   work_.continuation_ready = false;
-  carry_speed_ = carry_accel_ = carry_leftover_ = 0;
+  look_.carry_speed = look_.carry_accel = look_.carry_leftover = 0;
   // Under G31 (rotary axis mode) the return is a line of the face, as the programmed moves
   // around it are and as G77 X1=0 Y1=0 returns (REPOS manual 5.2): straight in X and C it
   // would sweep a spiral across the face. A line through the centre, where C is undefined,
@@ -139,7 +139,7 @@ void Channel::ContinueAfterSearch() {
   bs_.state = BlockSearchState::kInactive;
   state_ = ChannelState::kRunning;
   s.start_requested = false;
-  if (spindle_.mode == DriveMode::kPosition) spindle_referencing_ = true;
+  if (sp_.command.mode == DriveMode::kPosition) sp_.referencing = true;
   if (!s.restart_motion.moves) return;  // the next block starts the real run
   // The rest of the continue block, from the continue position on.
   work_.motion = s.restart_motion;
@@ -154,7 +154,7 @@ void Channel::ContinueAfterSearch() {
   if (bs_.breakpoint_rest) u = bs_.breakpoint_u > 1e-12 ? s.restart_u / bs_.breakpoint_u : 1;
   work_.profile = ProfileFrom(work_.motion, u);
   work_.continuation_ready = false;
-  carry_speed_ = carry_accel_ = carry_leftover_ = 0;
+  look_.carry_speed = look_.carry_accel = look_.carry_leftover = 0;
   work_.active = true;
 }
 

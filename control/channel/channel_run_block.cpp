@@ -186,7 +186,7 @@ bool Channel::BlockOffsets(const nc::Program& program) {
 
 bool Channel::BlockSpindles(const nc::Program& program) {
   // M3/M4 with S (rpm), M5, M19 (orient to 0 deg); a start is checked by PathGuard.
-  DriveSetpoint spindle = spindle_;
+  DriveSetpoint spindle = sp_.command;
   const bool orient = SpindleFunctions(work_.block, spindle);
   if (!GuardSpindleStart("spindle start", spindle)) return false;
   // Sj= / Mj= of the further spindles (G77 Sj=0 restores them instead, StartReposMotion).
@@ -197,8 +197,8 @@ bool Channel::BlockSpindles(const nc::Program& program) {
       return false;
     }
   }
-  spindle_ = spindle;
-  if (orient) spindle_referencing_ = orienting_ = true;
+  sp_.command = spindle;
+  if (orient) sp_.referencing = sp_.orienting = true;
   return true;
 }
 

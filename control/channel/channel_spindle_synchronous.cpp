@@ -30,7 +30,7 @@ bool Channel::StartSynchronous(const AmplifierTelegram& at) {
   const bool rigid = work_.block.motion == nc::Motion::kRigidTapping;
   const bool turning = rigid ? (work_.block.modal.spindle == 3 || work_.block.modal.spindle == 4) &&
                                    work_.block.modal.spindle_speed > 0
-                             : spindle_.mode == DriveMode::kVelocity && spindle_.value != 0;
+                             : sp_.command.mode == DriveMode::kVelocity && sp_.command.value != 0;
   if (!turning)
     return fail(std::string("spindle not turning for ") + g + ": program M3 or M4 with S first",
                 kMsgSpindleStill);
@@ -72,10 +72,10 @@ bool Channel::StartSynchronous(const AmplifierTelegram& at) {
     work_.profile.max_rate = std::min(limit, programmed);
     sync_.max_override = limit / work_.profile.max_rate;
     sync_.phase = SyncPhase::kStopSpindle;
-    spindle_.velocity_feedforward = 0;
-    if (!(spindle_.mode == DriveMode::kPosition && spindle_.interpolated)) {
-      spindle_.mode = DriveMode::kVelocity;  // brake first; SynchronousCycle takes it over
-      spindle_.value = 0;
+    sp_.command.velocity_feedforward = 0;
+    if (!(sp_.command.mode == DriveMode::kPosition && sp_.command.interpolated)) {
+      sp_.command.mode = DriveMode::kVelocity;  // brake first; SynchronousCycle takes it over
+      sp_.command.value = 0;
     }
   }
   work_.active = true;
@@ -101,7 +101,7 @@ void Channel::SynchronousCycle(const AmplifierTelegram& at, double dt) {
     if (sync_.phase == SyncPhase::kWaitForSpeed) {
       // The thread starts once the spindle runs at its commanded speed (override included).
       const double target = SpindleSetpoint().value;
-      if (spindle_.mode != DriveMode::kVelocity || spindle_.value == 0) {
+      if (sp_.command.mode != DriveMode::kVelocity || sp_.command.value == 0) {
         Fail(*ProgramOf(work_.block.program), work_.block.block, "spindle not turning for G33",
              kMsgSpindleStill);
         return;
@@ -153,23 +153,23 @@ void Channel::SynchronousCycle(const AmplifierTelegram& at, double dt) {
   }
   // G64: brake a turning spindle, then position control where it stands.
   if (sync_.phase == SyncPhase::kStopSpindle) {
-    if (spindle_.mode == DriveMode::kVelocity) {
+    if (sp_.command.mode == DriveMode::kVelocity) {
       const bool still =
           (spindle.status & drive_status::kStandstill) || std::abs(spindle.velocity) < 0.1;
       if (!still) return;
-      spindle_ = {DriveMode::kPosition, spindle.position, 0};
-      spindle_.interpolated = true;
+      sp_.command = {DriveMode::kPosition, spindle.position, 0};
+      sp_.command.interpolated = true;
     }
-    sync_.spindle_start_deg = spindle_previous_deg_ = spindle_.value;
+    sync_.spindle_start_deg = sp_.previous_deg = sp_.command.value;
     sync_.phase = SyncPhase::kRunning;
   }
-  work_.profile.Advance(dt, std::min(spindle_override_, sync_.max_override));
+  work_.profile.Advance(dt, std::min(sp_.override, sync_.max_override));
   work_.motion.PointAt(work_.profile.u, commanded_);
   const double u = std::min(work_.profile.u, 1.0);
-  spindle_.value = sync_.spindle_start_deg + sync_.direction * u * length / k;
-  spindle_.velocity_feedforward = sync_.direction * work_.profile.rate * length / k;
+  sp_.command.value = sync_.spindle_start_deg + sync_.direction * u * length / k;
+  sp_.command.velocity_feedforward = sync_.direction * work_.profile.rate * length / k;
   if (work_.profile.done()) {
-    spindle_.velocity_feedforward = 0;
+    sp_.command.velocity_feedforward = 0;
     finish();  // the spindle stands in position control at its end position
   }
 }

@@ -118,10 +118,11 @@ bool Channel::GuardSpindleStart(const std::string& move, const DriveSetpoint& sp
     return true;
   // A spindle already turning sweeps its chuck now: the moves are checked against that. One
   // standing starts to turn on a speed, or on a position other than the one it holds (M19).
-  const bool turning = spindle_.mode == DriveMode::kVelocity && spindle_.value != 0;
-  const bool starts = sp.mode == DriveMode::kVelocity
-                          ? sp.value != 0
-                          : !(spindle_.mode == DriveMode::kPosition && spindle_.value == sp.value);
+  const bool turning = sp_.command.mode == DriveMode::kVelocity && sp_.command.value != 0;
+  const bool starts =
+      sp.mode == DriveMode::kVelocity
+          ? sp.value != 0
+          : !(sp_.command.mode == DriveMode::kPosition && sp_.command.value == sp.value);
   if (turning || !starts) return true;
   const std::vector<double> at = GuardFrom();
   const PathCheck c = guarded_.guard->CheckSpindleStart(at, config_.spindle_drive);
