@@ -10,7 +10,7 @@ namespace vmt::control::channel {
 Channel::Channel(ChannelConfig config, std::vector<const nc::Program*> programs)
     : config_(std::move(config)), programs_(std::move(programs)) {
   const size_t n = config_.axes.size();
-  jog_.resize(n);
+  jog_.axes.resize(n);
   commanded_.assign(n, 0.0);
   previous_ = commanded_;
   translation_.assign(n, 0.0);
@@ -148,7 +148,7 @@ bool Channel::Reverse() {
   // The interrupted block is abandoned where the axes stand; the reverse program starts there.
   // A changeover in progress is given up and the original mode restored (C-axis manual 2.3).
   if (headstock_) headstock_->Abandon();
-  waiting_for_ = axes::HeadstockMode::kNone;
+  hs_.waiting_for = axes::HeadstockMode::kNone;
   DropLookahead();
   work_.active = false;
   work_.homing = false;
@@ -216,7 +216,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
         !repos_.run && bs_.state == BlockSearchState::kInactive)
       CaptureInterruption();
   }
-  if (headstock_ && !headstock_known_) HeadstockPowerOn();
+  if (headstock_ && !hs_.known) HeadstockPowerOn();
   if (drives_.trip_reset_pending) CollectTrips(at);
   if (take_over_pending_ && !holding_positions_) {
     for (size_t a = 0; a < config_.axes.size(); ++a)
@@ -366,7 +366,7 @@ bool Channel::UpdateTranslation(const nc::ModalState& modal, const nc::Program& 
     // The rotary axis' offsets act in rotary axis mode only (C-axis manual 2.3 Zero Point
     // Shifts); they stay selected meanwhile and come back with it (see RotaryOffsetsActive).
     const size_t r = static_cast<size_t>(config_.rotary_axis);
-    rotary_translation_ = translation_[r];
+    hs_.rotary_translation = translation_[r];
     if (!RotaryOffsetsActive()) translation_[r] = 0;
   }
   return true;

@@ -28,6 +28,7 @@
 #include "control/channel/channel_types.hpp"
 #include "control/channel/further_spindle_control.hpp"
 #include "control/channel/guarded_moves.hpp"
+#include "control/channel/headstock_link.hpp"
 #include "control/channel/jog_state.hpp"
 #include "control/channel/look_ahead.hpp"
 #include "control/channel/main_spindle_state.hpp"
@@ -112,7 +113,7 @@ class Channel {
   bool HandwheelFictive(int axis, int counts);
   /// Jog mode from the JOGM0..2 code (0..7).
   void SetJogMode(int code);
-  JogMode jog_mode() const { return jog_mode_; }
+  JogMode jog_mode() const { return jog_.mode; }
   /// Handwheel counts for a channel axis (JogMode::kHandwheel): the axis follows at most at
   /// its jogging rapid speed.
   void Handwheel(size_t axis, int counts);
@@ -169,7 +170,7 @@ class Channel {
   void SafetyStop(const std::string& text, int number);
   /// The PLC's side of the headstock changeover (ROTMOD_Q, SPMOD_Q, enables, AXD idents),
   /// given by the gateway every NC cycle.
-  void SetHeadstockPlc(const axes::HeadstockPlc& plc) { headstock_plc_ = plc; }
+  void SetHeadstockPlc(const axes::HeadstockPlc& plc) { hs_.plc = plc; }
   /// The headstock changeover, null without one.
   const axes::HeadstockChangeover* headstock() const { return headstock_ ? &*headstock_ : nullptr; }
   /// Direction the axis is commanded to move this NC cycle: +1, -1 or 0 (MVPOS / MVNEG).
@@ -402,7 +403,6 @@ class Channel {
   /// The handwheel's counts start afresh from where each jogged axis (X1/Y1 too) comes to rest.
   void RestartHandwheel();
   // Jogging X1/Y1 under G31 (channel_fictive_jog.cpp).
-  FictiveJog fictive_jog_[2];
   // The jog mode's rule for every jogged axis (channel_jog.cpp): feed axes, X1/Y1 and the tool
   // storage axis (REPOS manual 3.4: "as it would in jog mode").
   /// Cxx.020 jogging speed (Cxx.021 in kRapid) of `axis`, each defaulting to a share of its
@@ -419,8 +419,6 @@ class Channel {
   bool GuardFictiveJog(int x, int c, nc::FictivePoint next);
 
   ChannelMode mode_ = ChannelMode::kAutomatic;
-  JogMode jog_mode_ = JogMode::kContinuous;
-  double jog_increment_ = 0;
   int error_number_ = 0;
   std::vector<double> translation_, shift_;  ///< per axis; shift_: G92
   std::vector<bool> homed_;
@@ -436,7 +434,6 @@ class Channel {
   int axis_z_ = -1, axis_x_ = -1;  ///< channel axes of the G18 plane
   std::shared_ptr<nc::ParseResult> mdi_;
   nc::ModalState last_modal_;
-  std::vector<JogAxis> jog_;
   /// A feed axis or X1/Y1 still jogs: braking after a mode change, or an increment under way.
   bool JogsMoving() const;
   // PathGuard of the jog moves (channel_path_guard.cpp).
@@ -660,14 +657,7 @@ class Channel {
   void SynchronousCycle(const AmplifierTelegram& at, double dt);
   bool InSynchronousBlock() const { return work_.active && sync_.phase != SyncPhase::kNone; }
   std::optional<axes::HeadstockChangeover> headstock_;
-  axes::HeadstockPlc headstock_plc_;
   PlcMessage plc_message_;
-  bool headstock_known_ = false;  ///< the power-on mode has been taken from the PLC
-  axes::HeadstockMode waiting_for_ = axes::HeadstockMode::kNone;
-  bool manual_changeover_ = false;  ///< the changeover in progress was commanded by a key
-  /// The mode whose designation the user interface shows (the last completed changeover's).
-  axes::HeadstockMode shown_mode_ = axes::HeadstockMode::kSpindle;
-  double rotary_translation_ = 0;  ///< the rotary axis' translation in rotary axis mode
   /// A changeover to rotary axis mode has ended: the block in work and the interpreter take
   /// the rotary axis' actual position.
   void RebaseRotaryAxis();
@@ -676,6 +666,8 @@ class Channel {
   MainSpindleState sp_;  ///< the main spindle: command, override, keys, reference, feedback
   DriveWatch drives_;    ///< encoder positions and Control-Reset's trip acknowledgement
   LookAheadState look_;  ///< the blocks read ahead and the speed carried into the next block
+  JogData jog_;          ///< the jog keys, the handwheel, X1/Y1, the jog mode
+  HeadstockLink hs_;     ///< the channel's side of the headstock changeover (headstock_)
 };
 
 }  // namespace vmt::control::channel

@@ -111,9 +111,9 @@ bool Channel::SearchCycle(const AmplifierTelegram& at) {
       [[fallthrough]];
     case BlockSearchState::kActive:
       if (state_ != ChannelState::kRunning) return true;
-      if (waiting_for_ != axes::HeadstockMode::kNone) {
+      if (hs_.waiting_for != axes::HeadstockMode::kNone) {
         // The block waits for its changeover as in a run (channel_block_search_technology.cpp).
-        if (headstock_->mode() != waiting_for_) return true;
+        if (headstock_->mode() != hs_.waiting_for) return true;
         EndSearchChangeover(work_.block);
         if (!SimulateBlock(work_.block) || !SearchGoesOn()) return true;
       }
@@ -183,7 +183,7 @@ bool Channel::SimulateBlocks() {
 bool Channel::SearchGoesOn() const {
   // Technology waits for the PLC: its acknowledgement, or the end of a changeover.
   return bs_.state == BlockSearchState::kActive && aux_output_.empty() &&
-         waiting_for_ == axes::HeadstockMode::kNone && state_ == ChannelState::kRunning;
+         hs_.waiting_for == axes::HeadstockMode::kNone && state_ == ChannelState::kRunning;
 }
 
 bool Channel::NextSearchBlock() {
@@ -320,7 +320,7 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
         shift_[a] += s.position[a] - (b.target[a] + translation_[a]);
         translation_[a] = s.position[a] - b.target[a];
         if (headstock_ && static_cast<int>(a) == config_.rotary_axis)
-          rotary_translation_ = translation_[a];
+          hs_.rotary_translation = translation_[a];
       }
   SpindleFunctions(b, s.spindle);
   // An NC-controlled turret is technology too: the T word indexes it now, as in a run.
@@ -598,9 +598,9 @@ void Channel::UpdateBlockSearchStatus() {
   // search as in a run: a technology function's acknowledgement. Meanwhile, as while MRY waits
   // for the tool storage axis, block preparation delivers nothing: the interpolator's input
   // is empty.
-  if (waiting_for_ != axes::HeadstockMode::kNone) sc |= kWaitTechnoAck;
+  if (hs_.waiting_for != axes::HeadstockMode::kNone) sc |= kWaitTechnoAck;
   if (running && !work_.active &&
-      (waiting_for_ != axes::HeadstockMode::kNone || tool_storage_wait_))
+      (hs_.waiting_for != axes::HeadstockMode::kNone || tool_storage_wait_))
     sc |= kIpoInputEmpty;
   // Block search 4.2.1: the axes change hands at standstill only; until then the channel
   // waits for the exchange it asked for. While its output is suspended a program (not a

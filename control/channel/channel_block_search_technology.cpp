@@ -32,15 +32,15 @@ bool Channel::SearchChangeover(const nc::PreparedBlock& b) {
   // C-axis manual 1.2: block preparation waits until the changeover ends; the PLC's sequence
   // runs as in normal running (HeadstockCycle repeats the request if a key turned it round).
   headstock_->Request(need);
-  manual_changeover_ = false;
-  waiting_for_ = need;
+  hs_.manual = false;
+  hs_.waiting_for = need;
   return false;
 }
 
 void Channel::EndSearchChangeover(nc::PreparedBlock& b) {
   BlockSearchRun& s = *search_;
-  const axes::HeadstockMode mode = waiting_for_;
-  waiting_for_ = axes::HeadstockMode::kNone;
+  const axes::HeadstockMode mode = hs_.waiting_for;
+  hs_.waiting_for = axes::HeadstockMode::kNone;
   s.changed_over = true;
   if (mode != axes::HeadstockMode::kRotary) return;
   // Rotary axis mode starts where C stands (HeadstockCycle keeps its command value on the

@@ -17,9 +17,9 @@ constexpr uint32_t kTrips =
 void Channel::SafetyStop(const std::string& text, int number) {
   // The axes stand where they are commanded this cycle: a program's path, a jog or an
   // increment under way end at once, and a held key moves nothing until it is pressed again.
-  for (JogAxis& j : jog_)
+  for (JogAxis& j : jog_.axes)
     j.velocity = 0, j.stepping = j.handwheel = j.homing = j.home_requested = false, j.key = 0;
-  for (FictiveJog& f : fictive_jog_) f.velocity = 0, f.stepping = f.handwheel = false, f.key = 0;
+  for (FictiveJog& f : jog_.fictive) f.velocity = 0, f.stepping = f.handwheel = false, f.key = 0;
   if (config_.spindle_drive >= 0) sp_.command = {DriveMode::kVelocity, 0, 0};
   sp_.jogging = sp_.referencing = sp_.orienting = false;
   if (state_ != ChannelState::kError) Fail(text, number);
@@ -88,8 +88,8 @@ void Channel::CheckDrives(const AmplifierTelegram& at) {
   if (failed_drive >= 0 && headstock_ && headstock_->busy() &&
       (failed_drive == headstock_->config().spindle_drive ||
        failed_drive == headstock_->config().rotary_drive)) {
-    headstock_->TakeModeFromPlc(headstock_plc_);
-    waiting_for_ = axes::HeadstockMode::kNone;
+    headstock_->TakeModeFromPlc(hs_.plc);
+    hs_.waiting_for = axes::HeadstockMode::kNone;
   }
 }
 
@@ -104,7 +104,7 @@ void Channel::CheckAxisReady() {
   // enables (4.3): removing one puts that drive in follow-up, without a message.
   if (!headstock_ || headstock_->config().separate_servo() || RotaryReady()) return;
   const size_t r = static_cast<size_t>(config_.rotary_axis);
-  const JogAxis& jog = jog_[r];
+  const JogAxis& jog = jog_.axes[r];
   const bool spindle_commanded = sp_.command.mode == DriveMode::kPosition || sp_.command.value != 0;
   const bool jogged = jog.key != 0 || jog.stepping || jog.velocity != 0;
   const bool changing = headstock_->busy();
@@ -115,8 +115,8 @@ void Channel::CheckAxisReady() {
   Fail("axis " + HeadstockAxisName() + ": not ready (" + signal + " removed)", kMsgDriveFault);
   // 2.3 Errors: during a changeover the NC proceeds as at power-on.
   if (changing) {
-    headstock_->TakeModeFromPlc(headstock_plc_);
-    waiting_for_ = axes::HeadstockMode::kNone;
+    headstock_->TakeModeFromPlc(hs_.plc);
+    hs_.waiting_for = axes::HeadstockMode::kNone;
   }
 }
 

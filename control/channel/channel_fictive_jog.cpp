@@ -42,18 +42,18 @@ bool Channel::JogFictive(int axis, int direction) {
   if (mode_ != ChannelMode::kManual || axis < 0 || axis > 1 || !FictiveJogAxes(x, c)) return false;
   if (direction != 0 && config_.process.jogging_causes_reset && state_ == ChannelState::kHold)
     Reset();
-  fictive_jog_[axis].key = direction > 0 ? 1 : direction < 0 ? -1 : 0;
+  jog_.fictive[axis].key = direction > 0 ? 1 : direction < 0 ? -1 : 0;
   take_over_pending_ = true;
   return true;
 }
 
 bool Channel::HandwheelFictive(int axis, int counts) {
   int x = -1, c = -1;
-  if (mode_ != ChannelMode::kManual || jog_mode_ != JogMode::kHandwheel || axis < 0 || axis > 1 ||
+  if (mode_ != ChannelMode::kManual || jog_.mode != JogMode::kHandwheel || axis < 0 || axis > 1 ||
       !process_enable_ || !FictiveJogAxes(x, c) || !axis_enabled(x) || !axis_enabled(c))
     return false;
   take_over_pending_ = true;
-  FictiveJog& j = fictive_jog_[axis];
+  FictiveJog& j = jog_.fictive[axis];
   if (!j.handwheel) {
     const nc::FictivePoint p =
         nc::MachineToFace(commanded_[x] - translation_[x], commanded_[c] - translation_[c]);
@@ -66,7 +66,7 @@ bool Channel::HandwheelFictive(int axis, int counts) {
 
 void Channel::FictiveJogging(double dt) {
   int x = -1, c = -1;
-  FictiveJog* jogs = fictive_jog_;
+  FictiveJog* jogs = jog_.fictive;
   if (!FictiveJogAxes(x, c)) {
     for (int k = 0; k < 2; ++k) jogs[k] = FictiveJog{};
     return;
@@ -105,10 +105,10 @@ void Channel::FictiveJogging(double dt) {
   for (int k = 0; k < 2; ++k) {
     FictiveJog& j = jogs[k];
     const auto within = [&](double v) { return std::clamp(v, low[k], high[k]); };
-    if (jog_mode_ == JogMode::kHandwheel) j.key = 0;
+    if (jog_.mode == JogMode::kHandwheel) j.key = 0;
     // An increment under way runs to its end at the jogging speed (below), the handwheel then
     // on from its end (SetJogMode made that its target).
-    if (jog_mode_ == JogMode::kHandwheel && !j.stepping) {
+    if (jog_.mode == JogMode::kHandwheel && !j.stepping) {
       if (!j.handwheel) {
         j.velocity = 0;
         continue;
@@ -120,7 +120,7 @@ void Channel::FictiveJogging(double dt) {
       moved = true;
       continue;
     }
-    if (jog_mode_ != JogMode::kHandwheel) j.handwheel = false;
+    if (jog_.mode != JogMode::kHandwheel) j.handwheel = false;
     if (JogStepping(j.stepping, increment, j.velocity)) {
       if (!j.stepping && j.key != 0 && enabled) {
         j.stepping = true;
@@ -159,8 +159,8 @@ void Channel::FictiveJogging(double dt) {
     return;
   }
   commanded_ = to;
-  jog_[x].handwheel_target = commanded_[x];
-  jog_[c].handwheel_target = commanded_[c];
+  jog_.axes[x].handwheel_target = commanded_[x];
+  jog_.axes[c].handwheel_target = commanded_[c];
 }
 
 bool Channel::GuardFictiveJog(int x, int c, nc::FictivePoint next) {
@@ -175,8 +175,8 @@ bool Channel::GuardFictiveJog(int x, int c, nc::FictivePoint next) {
   // The handwheel's: its target (it brakes to be there), as for the real axes.
   double stop[2] = {next.x1, next.y1};
   for (int k = 0; k < 2; ++k) {
-    const FictiveJog& j = fictive_jog_[k];
-    if (jog_mode_ == JogMode::kHandwheel) {
+    const FictiveJog& j = jog_.fictive[k];
+    if (jog_.mode == JogMode::kHandwheel) {
       if (j.handwheel) stop[k] = j.handwheel_target;
       continue;
     }
@@ -185,7 +185,7 @@ bool Channel::GuardFictiveJog(int x, int c, nc::FictivePoint next) {
   const nc::FictivePoint p =
       nc::MachineToFace(commanded_[x] - translation_[x], commanded_[c] - translation_[c]);
   const nc::FictivePoint s{stop[0], stop[1]};
-  const std::string move = jog_mode_ == JogMode::kHandwheel ? "handwheel X1/Y1" : "jog X1/Y1";
+  const std::string move = jog_.mode == JogMode::kHandwheel ? "handwheel X1/Y1" : "jog X1/Y1";
   // Chords of the line p-s, straight in the drives, within kChordTolerance of it (a
   // handwheel's target may be far; the line may bend much in X and C near the centre).
   const nc::FaceLine line = nc::FaceLineOf(p, s);

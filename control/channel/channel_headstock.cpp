@@ -12,14 +12,13 @@ void Channel::HeadstockPowerOn() {
   // axes over yet, the NC assumes the mode the PLC presents by ROTMOD_Q / SPMOD_Q and makes its
   // drive parameter set the one in force (HeadstockChangeover). Neither (or both) presented:
   // no mode, and a changeover at the next occasion that needs one.
-  headstock_->TakeModeFromPlc(headstock_plc_);
-  headstock_known_ = true;
-  if (headstock_->mode() != axes::HeadstockMode::kNone) shown_mode_ = headstock_->mode();
+  headstock_->TakeModeFromPlc(hs_.plc);
+  hs_.known = true;
+  if (headstock_->mode() != axes::HeadstockMode::kNone) hs_.shown_mode = headstock_->mode();
 }
 
 bool Channel::RotaryReady() const {
-  return headstock_->config().separate_servo() ? headstock_plc_.rotary_ready
-                                               : headstock_plc_.spindle_ready;
+  return headstock_->config().separate_servo() ? hs_.plc.rotary_ready : hs_.plc.spindle_ready;
 }
 
 void Channel::HeadstockCycle(const AmplifierTelegram& at, double dt) {
@@ -27,23 +26,23 @@ void Channel::HeadstockCycle(const AmplifierTelegram& at, double dt) {
   // while the program is stopped, an error is pending or the process enabling signal is
   // missing. A changeover a manual key commanded after the program was interrupted is manual
   // mode's own and runs.
-  axes::HeadstockPlc plc = headstock_plc_;
+  axes::HeadstockPlc plc = hs_.plc;
   // Section 2: one axis, one AxxC.READY (4.2), whichever signal a caller filled in.
   plc.rotary_ready = RotaryReady();
-  const bool interrupted = state_ == ChannelState::kHold && !manual_changeover_;
+  const bool interrupted = state_ == ChannelState::kHold && !hs_.manual;
   plc.stop = plc.stop || interrupted || state_ == ChannelState::kError || !process_enable_;
   if (!headstock_->Cycle(plc, at, dt) && state_ != ChannelState::kError)
     Fail(headstock_->error(), kMsgChangeoverAck);
-  if (!headstock_->busy()) manual_changeover_ = false;
+  if (!headstock_->busy()) hs_.manual = false;
   // A key may have left the other mode, or neither (2.3 Jogging Movements): the block that
   // waits commands its changeover again at the next opportunity.
-  if (waiting_for_ != axes::HeadstockMode::kNone && state_ == ChannelState::kRunning &&
-      !headstock_->busy() && headstock_->mode() != waiting_for_)
-    headstock_->Request(waiting_for_);
+  if (hs_.waiting_for != axes::HeadstockMode::kNone && state_ == ChannelState::kRunning &&
+      !headstock_->busy() && headstock_->mode() != hs_.waiting_for)
+    headstock_->Request(hs_.waiting_for);
   // Position indication (2.3): the designation of the new mode once the changeover is done.
-  if (headstock_->mode() != axes::HeadstockMode::kNone) shown_mode_ = headstock_->mode();
+  if (headstock_->mode() != axes::HeadstockMode::kNone) hs_.shown_mode = headstock_->mode();
   const size_t r = static_cast<size_t>(config_.rotary_axis);
-  translation_[r] = RotaryOffsetsActive() ? rotary_translation_ : 0;
+  translation_[r] = RotaryOffsetsActive() ? hs_.rotary_translation : 0;
   // The rotary axis follows its actual position wherever the NC does not position it: its
   // command value is up to date when rotary axis mode begins (5).
   const bool positioned =
@@ -51,7 +50,7 @@ void Channel::HeadstockCycle(const AmplifierTelegram& at, double dt) {
       (headstock_->config().separate_servo() && !headstock_->busy() && plc.rotary_ready);
   if (headstock_->TakeOverRotary() || !positioned || !plc.rotary_ready) {
     commanded_[r] = previous_[r] = at.feedback[config_.axes[r].drive].position;
-    jog_[r].handwheel_target = commanded_[r];
+    jog_.axes[r].handwheel_target = commanded_[r];
   }
 }
 
@@ -84,9 +83,9 @@ void Channel::ManualChangeover(axes::HeadstockMode target) {
   // 2.3 / 3.3 Jogging Movements: the keys abort a changeover an immediate stop interrupted
   // before the NC commands the new one.
   const bool stopped = state_ == ChannelState::kHold || state_ == ChannelState::kError;
-  if (headstock_->busy() && !manual_changeover_ && stopped) headstock_->Abandon();
+  if (headstock_->busy() && !hs_.manual && stopped) headstock_->Abandon();
   headstock_->Request(target);
-  if (headstock_->busy()) manual_changeover_ = true;
+  if (headstock_->busy()) hs_.manual = true;
 }
 
 void Channel::ManualSpindle(int m) {
@@ -155,17 +154,17 @@ void Channel::JogSpindle(int direction) {
   // separate spindle increment). Handwheel mode: the keys move nothing, as for every axis.
   const axes::AxisParameters& p = config_.spindle;
   const double rapid = p.jog_rapid_per_s > 0 ? p.jog_rapid_per_s : p.jog_per_s;
-  switch (jog_mode_) {
+  switch (jog_.mode) {
     case JogMode::kContinuous:
     case JogMode::kRapid:
       sp_.command = {DriveMode::kVelocity,
-                     direction * (jog_mode_ == JogMode::kRapid ? rapid : p.jog_per_s), 0};
+                     direction * (jog_.mode == JogMode::kRapid ? rapid : p.jog_per_s), 0};
       sp_.jogging = true;
       break;
     case JogMode::kHandwheel:
       return;
     default: {
-      const double step = jog_mode_ == JogMode::kParametric ? p.jog_distance : jog_increment_;
+      const double step = jog_.mode == JogMode::kParametric ? p.jog_distance : jog_.increment;
       sp_.command = {DriveMode::kPosition, sp_.position + direction * step, 0};
       sp_.jogging = false;
     }
@@ -261,7 +260,7 @@ bool Channel::spindle_homed() const {
 
 std::string Channel::HeadstockAxisName() const {
   if (!headstock_) return "";
-  if (shown_mode_ == axes::HeadstockMode::kRotary) return config_.axes[config_.rotary_axis].name;
+  if (hs_.shown_mode == axes::HeadstockMode::kRotary) return config_.axes[config_.rotary_axis].name;
   return config_.spindle.name.empty() ? "S1" : config_.spindle.name;
 }
 
@@ -270,8 +269,9 @@ double Channel::HeadstockPosition() const {
   // 2.3 Position Indication: the representation usual for a rotary axis, 0..360 deg, though
   // the program's C runs on past a turn (C-270, the manual's 1.2).
   const size_t r = static_cast<size_t>(config_.rotary_axis);
-  const double shown =
-      shown_mode_ == axes::HeadstockMode::kRotary ? commanded_[r] - translation_[r] : sp_.position;
+  const double shown = hs_.shown_mode == axes::HeadstockMode::kRotary
+                           ? commanded_[r] - translation_[r]
+                           : sp_.position;
   const double a = std::fmod(shown, 360.0);
   return a < 0 ? a + 360 : a;
 }
@@ -283,7 +283,7 @@ SpindleStatus Channel::spindle_status() const {
   // 2.3 / 3.3 Status Indication: lines instead of the speeds while the display shows the rotary
   // axis (the same switch as the position indication's designation).
   st.speeds_shown =
-      config_.spindle_drive >= 0 && !(headstock_ && shown_mode_ == axes::HeadstockMode::kRotary);
+      config_.spindle_drive >= 0 && !(headstock_ && hs_.shown_mode == axes::HeadstockMode::kRotary);
   if (!st.speeds_shown) return st;
   // Programmed: what M3 / M4 and S (or the manual keys' jogging speed) command, before the
   // spindle override; a spindle that positions (M19) has no speed programmed. Not in spindle

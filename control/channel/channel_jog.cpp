@@ -8,27 +8,27 @@
 namespace vmt::control::channel {
 
 void Channel::SetJogIncrement(double increment) {
-  jog_increment_ = std::abs(increment);
-  jog_mode_ = JogMode::kContinuous;
+  jog_.increment = std::abs(increment);
+  jog_.mode = JogMode::kContinuous;
 }
 
 void Channel::SetJogMode(int code) {
-  jog_mode_ = static_cast<JogMode>(std::clamp(code, 0, 7));
-  switch (jog_mode_) {
+  jog_.mode = static_cast<JogMode>(std::clamp(code, 0, 7));
+  switch (jog_.mode) {
     case JogMode::kIncrement1:
-      jog_increment_ = 0.001;
+      jog_.increment = 0.001;
       break;
     case JogMode::kIncrement10:
-      jog_increment_ = 0.01;
+      jog_.increment = 0.01;
       break;
     case JogMode::kIncrement100:
-      jog_increment_ = 0.1;
+      jog_.increment = 0.1;
       break;
     case JogMode::kIncrement1000:
-      jog_increment_ = 1;
+      jog_.increment = 1;
       break;
     default:
-      jog_increment_ = 0;
+      jog_.increment = 0;
   }
   RestartHandwheel();
 }
@@ -37,9 +37,9 @@ void Channel::RestartHandwheel() {
   // The handwheel's counts start afresh from where the axis comes to rest: the end of an
   // increment under way (it runs to its end, below), or where a continuous jog stops braking
   // (a target where it stands would stop it dead within a cycle).
-  for (size_t a = 0; a < jog_.size(); ++a) {
-    JogAxis& j = jog_[a];
-    j.handwheel = jog_mode_ == JogMode::kHandwheel;
+  for (size_t a = 0; a < jog_.axes.size(); ++a) {
+    JogAxis& j = jog_.axes[a];
+    j.handwheel = jog_.mode == JogMode::kHandwheel;
     j.handwheel_target =
         j.stepping ? j.to : JogStopPoint(commanded_[a], j.velocity, config_.axes[a].acceleration);
   }
@@ -50,8 +50,8 @@ void Channel::RestartHandwheel() {
       nc::MachineToFace(commanded_[x] - translation_[x], commanded_[c] - translation_[c]);
   const double at[2] = {p.x1, p.y1};
   for (int k = 0; k < 2; ++k) {
-    FictiveJog& f = fictive_jog_[k];
-    f.handwheel = jog_mode_ == JogMode::kHandwheel && (f.stepping || f.velocity != 0);
+    FictiveJog& f = jog_.fictive[k];
+    f.handwheel = jog_.mode == JogMode::kHandwheel && (f.stepping || f.velocity != 0);
     if (!f.handwheel) continue;
     f.handwheel_target =
         f.stepping ? f.target : JogStopPoint(at[k], f.velocity, config_.axes[x].acceleration);
@@ -64,25 +64,25 @@ double Channel::JogRapid(const ChannelAxis& axis) {
 
 double Channel::JogSpeed(const ChannelAxis& axis) const {
   const double normal = axis.jog_per_s > 0 ? axis.jog_per_s : axis.rapid_per_s / 10;
-  return (jog_mode_ == JogMode::kRapid ? JogRapid(axis) : normal) * override_;
+  return (jog_.mode == JogMode::kRapid ? JogRapid(axis) : normal) * override_;
 }
 
 double Channel::JogIncrement(const ChannelAxis& axis) const {
-  return jog_mode_ == JogMode::kParametric ? axis.jog_distance : jog_increment_;
+  return jog_.mode == JogMode::kParametric ? axis.jog_distance : jog_.increment;
 }
 
 void Channel::Handwheel(size_t axis, int counts) {
-  if (mode_ != ChannelMode::kManual || jog_mode_ != JogMode::kHandwheel || axis >= jog_.size() ||
-      !process_enable_ || !axis_enabled(axis))
+  if (mode_ != ChannelMode::kManual || jog_.mode != JogMode::kHandwheel ||
+      axis >= jog_.axes.size() || !process_enable_ || !axis_enabled(axis))
     return;
   take_over_pending_ = true;
-  JogAxis& j = jog_[axis];
+  JogAxis& j = jog_.axes[axis];
   if (!j.handwheel) j.handwheel = true, j.handwheel_target = commanded_[axis];
   j.handwheel_target += counts * config_.handwheel_per_count;
 }
 
 void Channel::Jog(size_t axis, int direction) {
-  if (mode_ != ChannelMode::kManual || axis >= jog_.size()) return;
+  if (mode_ != ChannelMode::kManual || axis >= jog_.axes.size()) return;
   // Bxx.036 'Manual Axis Jogging causes Reset': jogging an interrupted program away ends it
   // (REPOS manual 6.1: no repositioning then).
   if (direction != 0 && config_.process.jogging_causes_reset && state_ == ChannelState::kHold)
@@ -91,23 +91,23 @@ void Channel::Jog(size_t axis, int direction) {
   if (headstock_ && static_cast<int>(axis) == config_.rotary_axis && direction != 0 &&
       process_enable_ && axis_enabled(axis))
     ManualChangeover(axes::HeadstockMode::kRotary);
-  jog_[axis].key = direction > 0 ? 1 : direction < 0 ? -1 : 0;
+  jog_.axes[axis].key = direction > 0 ? 1 : direction < 0 ? -1 : 0;
   take_over_pending_ = true;
 }
 
 void Channel::HomeAxis(size_t axis) {
-  if (mode_ != ChannelMode::kManual || axis >= jog_.size()) return;
+  if (mode_ != ChannelMode::kManual || axis >= jog_.axes.size()) return;
   if (!process_enable_ || !axis_enabled(axis)) return;
   if (headstock_ && static_cast<int>(axis) == config_.rotary_axis)
     ManualChangeover(axes::HeadstockMode::kRotary);
-  jog_[axis].home_requested = true;
+  jog_.axes[axis].home_requested = true;
   take_over_pending_ = true;
 }
 
 bool Channel::JogsMoving() const {
-  for (const JogAxis& j : jog_)
+  for (const JogAxis& j : jog_.axes)
     if (j.velocity != 0 || j.stepping) return true;
-  for (const FictiveJog& f : fictive_jog_)
+  for (const FictiveJog& f : jog_.fictive)
     if (f.velocity != 0 || f.stepping) return true;
   return false;
 }
@@ -125,8 +125,8 @@ void Channel::Jogging(double dt) {
   // target) may only come back towards it.
   const std::vector<double> repos_target =
       repos_.function != ReposFunction::kNone ? ReposTarget() : std::vector<double>{};
-  for (size_t a = 0; a < jog_.size(); ++a) {
-    JogAxis& j = jog_[a];
+  for (size_t a = 0; a < jog_.axes.size(); ++a) {
+    JogAxis& j = jog_.axes[a];
     // Outside rotary axis mode the rotary axis follows the spindle: it has no jog to go on with.
     if (headstock_ && static_cast<int>(a) == config_.rotary_axis &&
         headstock_->mode() != axes::HeadstockMode::kRotary) {
@@ -151,7 +151,7 @@ void Channel::Jogging(double dt) {
       }
     }
     auto within = [&](double x) { return limited ? std::clamp(x, low, high) : x; };
-    if (jog_mode_ == JogMode::kHandwheel && !j.stepping) {
+    if (jog_.mode == JogMode::kHandwheel && !j.stepping) {
       // Follow the counts at most at the jogging rapid, braking so as not to pass the target.
       if (!j.handwheel) j.handwheel = true, j.handwheel_target = commanded_[a];
       j.handwheel_target = within(j.handwheel_target);
@@ -204,7 +204,7 @@ void Channel::Jogging(double dt) {
 }
 
 bool Channel::HomingJog(size_t a, double dt) {
-  JogAxis& j = jog_[a];
+  JogAxis& j = jog_.axes[a];
   const ChannelAxis& axis = config_.axes[a];
   // AxxC.HOME (C-axis manual 4.2): homing as G74 homes the axis (NextHomingStage), to its
   // reference point at its homing speed; it starts once a jog or increment under way is done.

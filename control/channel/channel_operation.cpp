@@ -37,8 +37,8 @@ bool Channel::SetMode(ChannelMode mode) {
     // A jog under way is let go as at released keys: it brakes to rest in the new mode (Cycle)
     // rather than stopping dead, an increment runs to its end, and neither goes on when manual
     // mode comes back. X1/Y1 and the tool storage axis alike.
-    for (JogAxis& j : jog_) j.key = 0, j.blocked = 0;
-    for (FictiveJog& f : fictive_jog_) f.key = 0;
+    for (JogAxis& j : jog_.axes) j.key = 0, j.blocked = 0;
+    for (FictiveJog& f : jog_.fictive) f.key = 0;
     tool_storage_.key = 0;
     // Where the program was interrupted: the contour the axes must come back to (REPOS 2.1).
     if (mode == ChannelMode::kManual && !repos_.interruption && state_ == ChannelState::kHold &&
@@ -145,8 +145,8 @@ void Channel::Stop() {
 
 void Channel::Reset() {
   // Control-Reset aborts a changeover; the mode is again what the PLC acknowledges (2.3).
-  if (headstock_) headstock_->TakeModeFromPlc(headstock_plc_);
-  waiting_for_ = axes::HeadstockMode::kNone;
+  if (headstock_) headstock_->TakeModeFromPlc(hs_.plc);
+  hs_.waiting_for = axes::HeadstockMode::kNone;
   state_ = ChannelState::kIdle;
   error_.clear();
   error_number_ = 0;
@@ -189,7 +189,7 @@ void Channel::Reset() {
   sp_.command = {DriveMode::kVelocity, 0, 0};
   further_.Reset();
   sp_.referencing = false;
-  manual_changeover_ = false;
+  hs_.manual = false;
   // A real control acknowledges its drives' errors with Control-Reset: the drives that tripped
   // get their controller enable removed for a cycle (the drive's fault reset), see Tick.
   drives_.trip_reset_pending = true;
@@ -200,7 +200,7 @@ void Channel::Reset() {
     translation_[a] = config_.zero_offsets.Offset(config_.initial.zero_offset, a);
   if (headstock_) {
     const size_t r = static_cast<size_t>(config_.rotary_axis);
-    rotary_translation_ = translation_[r];
+    hs_.rotary_translation = translation_[r];
     if (!RotaryOffsetsActive()) translation_[r] = 0;
   }
 }

@@ -121,7 +121,7 @@ bool Channel::GuardCurvedMove(const std::string& move) {
 void Channel::GuardJog(double dt) {
   if (!guarded_.guard || config_.path_guard == GuardReaction::kOff) return;
   // A stopped key stays stopped until it is released (or the other way is pressed).
-  for (JogAxis& j : jog_)
+  for (JogAxis& j : jog_.axes)
     if (j.blocked != 0 && j.key != j.blocked) j.blocked = 0;
   // Where each moving axis would stand if it braked at the next check: it runs at most one
   // check interval (and this cycle) on, accelerating, then brakes.
@@ -129,14 +129,14 @@ void Channel::GuardJog(double dt) {
   std::vector<double> to = from;
   const double interval = config_.path_guard_every * dt + dt;
   bool moving = false;
-  for (size_t a = 0; a < jog_.size(); ++a) {
+  for (size_t a = 0; a < jog_.axes.size(); ++a) {
     if (headstock_ && static_cast<int>(a) == config_.rotary_axis &&
         headstock_->mode() != axes::HeadstockMode::kRotary)
       continue;
-    const JogAxis& j = jog_[a];
+    const JogAxis& j = jog_.axes[a];
     const ChannelAxis& axis = config_.axes[a];
     double stop = commanded_[a];
-    if (jog_mode_ == JogMode::kHandwheel) {
+    if (jog_.mode == JogMode::kHandwheel) {
       stop = j.handwheel ? j.handwheel_target : commanded_[a];
     } else if (!j.stepping) {
       // In incremental mode a key starts an increment, which GuardIncrement checks whole: no
@@ -182,10 +182,10 @@ void Channel::GuardJog(double dt) {
   if (!GuardStops("jog", from, to, c)) return;
   // Brake every moving axis: its key is held off, a handwheel's target becomes where the axis
   // can stop.
-  for (size_t a = 0; a < jog_.size(); ++a) {
-    JogAxis& j = jog_[a];
+  for (size_t a = 0; a < jog_.axes.size(); ++a) {
+    JogAxis& j = jog_.axes[a];
     if (to[config_.axes[a].drive] == from[config_.axes[a].drive]) continue;
-    if (jog_mode_ == JogMode::kHandwheel) {
+    if (jog_.mode == JogMode::kHandwheel) {
       j.handwheel_target =
           commanded_[a] + j.velocity * std::abs(j.velocity) / (2 * config_.axes[a].acceleration);
     } else {

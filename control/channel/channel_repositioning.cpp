@@ -164,8 +164,8 @@ void Channel::ReposCycle(const AmplifierTelegram& at) {
   // ended: a jog still moving, or its key still held, keeps its zone and stops at the target;
   // the next press is a plain jog.
   bool key_held = false;
-  for (const JogAxis& j : jog_) key_held |= j.key != 0;
-  for (const FictiveJog& f : fictive_jog_) key_held |= f.key != 0;
+  for (const JogAxis& j : jog_.axes) key_held |= j.key != 0;
+  for (const FictiveJog& f : jog_.fictive) key_held |= f.key != 0;
   if (evaluated && function == ReposFunction::kNone && repos_.function != ReposFunction::kNone &&
       mode_ == ChannelMode::kManual && (key_held || JogsMoving()))
     return;

@@ -10,7 +10,7 @@ namespace vmt::control::channel {
 bool Channel::RunBlock(const AmplifierTelegram& at) {
   const nc::Program& program = *ProgramOf(work_.block.program);
   // G77 (REPOS manual 4.2) is refused at the start of its block, before any changeover.
-  if (work_.block.repos && waiting_for_ == axes::HeadstockMode::kNone && !CheckReposBlock())
+  if (work_.block.repos && hs_.waiting_for == axes::HeadstockMode::kNone && !CheckReposBlock())
     return false;
   if (const std::optional<bool> waiting = HeadstockBlockStart(program)) return *waiting;
   auto unsupported = [&](const std::string& what) {
@@ -66,12 +66,12 @@ std::optional<bool> Channel::HeadstockBlockStart(const nc::Program& program) {
   const axes::HeadstockMode need = ModeNeeded(work_.block);
   if (need != axes::HeadstockMode::kNone && headstock_->mode() != need) {
     headstock_->Request(need);
-    manual_changeover_ = false;
-    waiting_for_ = need;
+    hs_.manual = false;
+    hs_.waiting_for = need;
     return true;
   }
-  if (waiting_for_ == axes::HeadstockMode::kRotary) RebaseRotaryAxis();
-  waiting_for_ = axes::HeadstockMode::kNone;
+  if (hs_.waiting_for == axes::HeadstockMode::kRotary) RebaseRotaryAxis();
+  hs_.waiting_for = axes::HeadstockMode::kNone;
   // X1/Y1 of G31/G32 position C, which the NC does only in rotary axis mode; unlike C they
   // do not select it (coordinate_transformation.hpp).
   if (work_.block.fictive && headstock_->mode() != axes::HeadstockMode::kRotary) {
@@ -170,7 +170,7 @@ bool Channel::BlockOffsets(const nc::Program& program) {
         shift_[a] += commanded_[a] - (work_.block.target[a] + translation_[a]);
         translation_[a] = commanded_[a] - work_.block.target[a];
         if (headstock_ && static_cast<int>(a) == config_.rotary_axis)
-          rotary_translation_ = translation_[a];
+          hs_.rotary_translation = translation_[a];
       }
   }
   const bool arc =

@@ -161,7 +161,7 @@ void Channel::ToolStorageCycle(double dt) {
   }
   // Continuous while a key is held, braking when it is released; the handwheel moves the feed
   // axes only, so there the keys do nothing.
-  const bool keys = jogging && jog_mode_ != JogMode::kHandwheel && increment == 0;
+  const bool keys = jogging && jog_.mode != JogMode::kHandwheel && increment == 0;
   const double accel = axis.acceleration > 0 ? axis.acceleration : 360;
   GuardTurretJog(keys ? t.key : 0, dt);
   const double wanted = keys && t.key != t.blocked ? t.key * speed : 0;

@@ -3,6 +3,9 @@
 // handwheel, homing by AxxC.HOME, PathGuard's block of a direction) and per fictive axis X1/Y1
 // under G31. Jogging's functions are Channel's (channel_jog.cpp, channel_fictive_jog.cpp).
 
+#include <vector>
+
+#include "control/channel/channel_types.hpp"
 #include "control/channel/path_profile.hpp"
 
 namespace vmt::control::channel {
@@ -27,6 +30,15 @@ struct FictiveJog {
   double target = 0;            ///< the increment's end
   bool handwheel = false;       ///< kHandwheel: counts given, the point not there yet
   double handwheel_target = 0;  ///< kHandwheel: where the counts want the fictive axis
+};
+
+/// The channel's jogging: every channel axis, X1/Y1 of G31, the jog mode (JOGM0..2) and the
+/// increment of the continuous mode's SetJogIncrement.
+struct JogData {
+  std::vector<JogAxis> axes;
+  FictiveJog fictive[2];
+  JogMode mode = JogMode::kContinuous;
+  double increment = 0;
 };
 
 }  // namespace vmt::control::channel
