@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "control/channel/channel.hpp"
+#include "control/channel/further_spindle_control.hpp"
+#include "control/nc/parser.hpp"
 #include "tests/control/channel/channel_test_support.hpp"
 
 namespace vmt::control::channel {
@@ -209,6 +211,72 @@ TEST(FurtherSpindles, G77OfAnUnknownSpindleIsAnErrorAtItsWord) {
     EXPECT_EQ(m.Z(), z);
     EXPECT_TRUE(m.channel->repos_allowed());
   }
+}
+
+// The function alone, with only what the channel hands it: the block, the states at the
+// interruption and the drives' feedback.
+struct FurtherSpindleControlTest : ::testing::Test {
+  FurtherSpindleControl control{{{2, kS2, "S2"}}};
+  nc::ParseResult parsed = nc::ParseProgram("N1 S2=1500 M2=4\nN2 S3=100\nN3 M2=19\n", "p.mtc",
+                                            nc::Dialect::kMtc200);
+  /// Block `index` of the program with the S/M words `aux`, as the interpreter prepares it.
+  nc::PreparedBlock Block(int32_t index, std::vector<nc::AuxFunction> aux) const {
+    nc::PreparedBlock b;
+    b.block = index;
+    b.aux = std::move(aux);
+    return b;
+  }
+  AmplifierTelegram Feedback(double velocity, bool at_speed) const {
+    AmplifierTelegram at;
+    at.feedback.resize(4);
+    at.feedback[kS2].velocity = velocity;
+    at.feedback[kS2].status = at_speed ? drive_status::kAtSpeed : 0;
+    return at;
+  }
+};
+
+TEST_F(FurtherSpindleControlTest, WordsSetSpeedAndDirectionAndTheCommand) {
+  ASSERT_TRUE(parsed.ok());
+  EXPECT_EQ(control.TakeWords(parsed.program, Block(0, {{'S', 2, 1500}, {'M', 2, 4}})), "");
+  EXPECT_EQ(control.states()[0].rpm, 1500);
+  EXPECT_EQ(control.states()[0].m, 4);
+  MasterTelegram mdt;
+  mdt.setpoints.resize(4);
+  control.WriteSetpoints(mdt);
+  EXPECT_EQ(mdt.setpoints[kS2].mode, DriveMode::kVelocity);
+  EXPECT_EQ(mdt.setpoints[kS2].value, -1500 * 6);  // M4: negative, deg/s
+  control.Reset();
+  control.WriteSetpoints(mdt);
+  EXPECT_EQ(mdt.setpoints[kS2].value, 0);
+}
+
+TEST_F(FurtherSpindleControlTest, AnErrorNamesTheWordAndItsColumn) {
+  EXPECT_EQ(control.TakeWords(parsed.program, Block(1, {{'S', 3, 100}})),
+            "p.mtc:2:4: error: S3=100: the channel has no spindle S3");
+  EXPECT_THAT(control.TakeWords(parsed.program, Block(2, {{'M', 2, 19}})),
+              HasSubstr("M2=19: spindle S2 has no position control (M19)"));
+  EXPECT_THAT(control.CheckRepos(parsed.program, Block(0, {{'M', 2, 4}})),
+              HasSubstr("G77 restores spindle S2's direction itself"));
+  EXPECT_EQ(control.CheckRepos(parsed.program, Block(0, {{'S', 2, 0}})), "");
+}
+
+TEST_F(FurtherSpindleControlTest, RestoreWaitsUntilTheSpindleRunsAtItsFormerSpeed) {
+  const std::vector<FurtherSpindleState> before = {{1000, 3}};
+  EXPECT_FALSE(control.Restored(0, before, nullptr));  // stopped, was at 1000 rpm
+  control.Restore(Block(0, {{'S', 2, 0}}), before, Feedback(0, false));
+  EXPECT_TRUE(control.restoring());
+  EXPECT_TRUE(control.Restored(0, before, nullptr));  // the command is back
+  EXPECT_TRUE(control.UpdateRestoring(Feedback(3000, false)));
+  EXPECT_FALSE(control.AllRestored(before, Feedback(3000, false)));
+  EXPECT_FALSE(control.UpdateRestoring(Feedback(6000, true)));
+  EXPECT_TRUE(control.AllRestored(before, Feedback(6000, true)));
+  const std::vector<ReposFurtherSpindleStatus> screen =
+      control.ReposStatus(before, nullptr);
+  ASSERT_EQ(screen.size(), 1u);
+  EXPECT_EQ(screen[0].name, "S2");
+  EXPECT_EQ(screen[0].command_rpm, 1000);
+  EXPECT_EQ(screen[0].actual_m, 3);
+  EXPECT_FALSE(screen[0].adjust);
 }
 
 }  // namespace
