@@ -13,7 +13,8 @@ bool SteersBlockSearch(std::string_view text) {
 std::string RefusedHashCommand(std::string_view text) {
   if (text.starts_with("VECTOR OFFSET"))
     return "#VECTOR OFFSET (path-dependent angle correction, block search 4.2.3) is not "
-           "available: vmt has no tool orientation angles (ANC, DRC) to offset";
+           "supported by vmt (docs/conformance.md): it has no tool orientation angles (ANC, DRC) "
+           "to offset";
   return "";
 }
 

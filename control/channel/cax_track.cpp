@@ -74,7 +74,8 @@ std::optional<CaxTrackCommand> ParseCaxTrack(std::string_view original, std::str
     const CaxTrackOption option = CaxTrackOptionOf(name);
     if (!c.on || option == CaxTrackOption::kNone)
       return fail("option " + std::string(name.empty() ? rest.substr(name_at) : name) +
-                  " is not available (vmt runs ANGLIMIT and OFFSET of #CAX TRACK ON)");
+                  " is not supported by vmt (docs/conformance.md: ANGLIMIT and OFFSET of #CAX "
+                  "TRACK ON)");
     while (i < rest.size() && (rest[i] == '=' || std::isspace(static_cast<unsigned char>(rest[i]))))
       ++i;
     const size_t value_at = i;

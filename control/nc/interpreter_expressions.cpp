@@ -296,7 +296,8 @@ double Interpreter::Call(uint32_t id, Function function, std::span<const double>
     case Function::kMtd:
       break;
   }
-  return fail("function " + program().symbols.Name(id) + " is not available");
+  return fail("function " + program().symbols.Name(id) +
+              " is not supported by vmt (docs/conformance.md)");
 }
 
 }  // namespace vmt::control::nc

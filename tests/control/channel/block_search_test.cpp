@@ -148,7 +148,7 @@ TEST(BlockSearch, SteeringCommands) {
   // 4.2.3: vmt has no orientation angles for #VECTOR OFFSET to correct: refused, not passed.
   EXPECT_NE(RefusedHashCommand("VECTOR OFFSET ON [ DS=20 DE=15 ANC=2 DRC=3 ]").find(
                 "#VECTOR OFFSET (path-dependent angle correction, block search 4.2.3) is not "
-                "available"),
+                "supported by vmt"),
             std::string::npos);
 }
 

@@ -285,7 +285,7 @@ TEST(ChannelBlockSearch, VectorOffsetIsRefusedAtItsWordInARunAndInASearch) {
       "N40 M30\n";
   const std::string refusal =
       "t_sv_number.nc:3:5: error: #VECTOR OFFSET (path-dependent angle correction, block "
-      "search 4.2.3) is not available";
+      "search 4.2.3) is not supported by vmt (docs/conformance.md)";
   Mill run(program);
   run.channel->Start();
   run.RunUntil([&] { return run.channel->state() != ChannelState::kRunning; });

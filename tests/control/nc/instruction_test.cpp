@@ -186,14 +186,14 @@ TEST(InstructionTest, UnknownNamesKeepTheirErrorsAndPlaces) {
     return in.error() ? Format(*in.error(), r.program.files) : std::string();
   };
   EXPECT_EQ(run(Mtc("N1 @1 = 2\nN2 @2 = 1 + FOO(@1)\nN3 RET\n")),
-            "t.mtc:2:13: error: function FOO is not available");
+            "t.mtc:2:13: error: function FOO is not supported by vmt (docs/conformance.md)");
   EXPECT_EQ(run(Isg("N10 P1 = 2\nN20 P2 = 1 + SINUS[P1]\nM30\n")),
-            "t.isg:2:14: error: function SINUS is not available");
+            "t.isg:2:14: error: function SINUS is not supported by vmt (docs/conformance.md)");
   // A known function keeps its own argument check; G and M with other than one argument are
   // no built-in function.
   EXPECT_EQ(run(Mtc("N1 @1 = COS(1, 2)\nN2 RET\n")), "t.mtc:1:9: error: COS takes one argument");
   EXPECT_EQ(run(Mtc("N1 @1 = M(1, 2)\nN2 RET\n")),
-            "t.mtc:1:9: error: function M is not available");
+            "t.mtc:1:9: error: function M is not supported by vmt (docs/conformance.md)");
 }
 
 }  // namespace

@@ -230,7 +230,7 @@ TEST(InterpreterTest, ExpressionFaultsInTreeOrder) {
   EXPECT_EQ(error("SQRT(-1) + LN(0)"), "a.mtc:2:7: error: SQRT of a negative number");
   EXPECT_EQ(error("LN(0) ^ SQRT(-1)"), "a.mtc:2:15: error: SQRT of a negative number");
   EXPECT_EQ(error("FOO(1/@2)"), "a.mtc:2:12: error: division by zero");
-  EXPECT_EQ(error("FOO(1) + G(99)"), "a.mtc:2:7: error: function FOO is not available");
+  EXPECT_EQ(error("FOO(1) + G(99)"), "a.mtc:2:7: error: function FOO is not supported by vmt (docs/conformance.md)");
   EXPECT_EQ(error("G(99)"), "a.mtc:2:7: error: G(99): no such modal group");
   EXPECT_EQ(error("5/(2-2)"), "a.mtc:2:8: error: division by zero");
   EXPECT_EQ(error("(1/@2) ^ (2 MOD @2) ^ (3/@2)"), "a.mtc:2:31: error: division by zero");
