@@ -4,14 +4,13 @@
 
 namespace vmt::control::channel {
 
-bool SteersBlockSearch(std::string_view text) {
-  for (const char* c : {"DISTANCE PROG START", "BLOCKSEARCH", "CAX TRACK", "CAXTRACK"})
-    if (text.starts_with(c)) return true;
-  return false;
+bool SteersBlockSearch(nc::HashCommand command) {
+  return command == nc::HashCommand::kDistanceProgStart ||
+         command == nc::HashCommand::kBlockSearch || command == nc::HashCommand::kCaxTrack;
 }
 
-std::string RefusedHashCommand(std::string_view text) {
-  if (text.starts_with("VECTOR OFFSET"))
+std::string RefusedHashCommand(nc::HashCommand command) {
+  if (command == nc::HashCommand::kVectorOffset)
     return "#VECTOR OFFSET (path-dependent angle correction, block search 4.2.3) is not "
            "supported by vmt (docs/conformance.md): it has no tool orientation angles (ANC, DRC) "
            "to offset";

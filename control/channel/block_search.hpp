@@ -141,15 +141,14 @@ class ContinueMatcher {
   int passes_ = 0, end_passes_ = 0;
 };
 
-/// True for the #-commands that steer block search and the return to the contour, as the ISG
-/// front end keeps their text ("CAXTRACK ON [ANGLIMIT 3, OFFSET 0]"): #DISTANCE PROG START
-/// (4.1.2), #BLOCKSEARCH (6) and #CAX TRACK (4.2.2; the manual's program spells it #CAXTRACK).
-/// A normal run passes them. #VECTOR OFFSET (4.2.3) is not one: vmt refuses it.
-bool SteersBlockSearch(std::string_view text);
+/// True for the #-commands that steer block search and the return to the contour (typed when the
+/// program is parsed, nc::HashCommandOf): #DISTANCE PROG START (4.1.2), #BLOCKSEARCH (6) and
+/// #CAX TRACK (4.2.2; the manual's program spells it #CAXTRACK). A normal run passes them.
+/// #VECTOR OFFSET (4.2.3) is not one: vmt refuses it.
+bool SteersBlockSearch(nc::HashCommand command);
 
-/// The refusal of a #-command (text as in SteersBlockSearch) that vmt does not run, naming it
-/// and why; empty for any other text.
-std::string RefusedHashCommand(std::string_view text);
+/// The refusal of a #-command that vmt does not run, naming it and why; empty for any other.
+std::string RefusedHashCommand(nc::HashCommand command);
 
 /// Path length of a block's motion for the distance from program start (4.1.2): the travel of
 /// the main axes (X, Y, Z); a block that moves none of them counts the travel of the following

@@ -288,8 +288,7 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
   for (uint32_t index : b.instructions) {
     const nc::Statement& st = program.statements[index];
     if (st.kind == nc::Statement::Kind::kHashCommand) {
-      const std::string& text = program.texts[st.text];
-      if (const std::string refused = RefusedHashCommand(text); !refused.empty()) {
+      if (const std::string refused = RefusedHashCommand(st.hash); !refused.empty()) {
         Fail(nc::Format({st.pos, refused}, program.files), kMsgNotAvailable);
         return false;
       }
@@ -300,7 +299,7 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
         if (!*done) return false;
         continue;
       }
-      if (SteersBlockSearch(text)) continue;
+      if (SteersBlockSearch(st.hash)) continue;
     }
     return fail("instruction " +
                     (st.kind == nc::Statement::Kind::kHashCommand ? "#" + program.texts[st.text]

@@ -105,7 +105,7 @@ bool Channel::BlockInstructions(const nc::Program& program, bool& mry) {
     const nc::Statement& st = program.statements[index];
     if (st.kind == nc::Statement::Kind::kHashCommand) {
       const std::string& text = program.texts[st.text];
-      if (const std::string refused = RefusedHashCommand(text); !refused.empty()) {
+      if (const std::string refused = RefusedHashCommand(st.hash); !refused.empty()) {
         Fail(nc::Format({st.pos, refused}, program.files), kMsgNotAvailable);
         return false;
       }
@@ -115,7 +115,7 @@ bool Channel::BlockInstructions(const nc::Program& program, bool& mry) {
         if (!*done) return false;
         continue;
       }
-      if (SteersBlockSearch(text)) continue;
+      if (SteersBlockSearch(st.hash)) continue;
       Fail(nc::Format({st.pos, "instruction #" + text.substr(0, text.find(' ')) +
                                    " is not supported by vmt (docs/conformance.md)"},
                       program.files),

@@ -54,6 +54,20 @@ const char* InstructionName(Instruction instruction) {
   return i == 0 || i > kInstructions.size() ? "" : kInstructions[i - 1].first.data();
 }
 
+HashCommand HashCommandOf(std::string_view text) {
+  using H = HashCommand;
+  constexpr std::pair<std::string_view, H> kCommands[] = {
+      {"DISTANCE PROG START", H::kDistanceProgStart},
+      {"BLOCKSEARCH", H::kBlockSearch},
+      {"CAX TRACK", H::kCaxTrack},
+      {"CAXTRACK", H::kCaxTrack},
+      {"VECTOR OFFSET", H::kVectorOffset},
+  };
+  for (const auto& [start, command] : kCommands)
+    if (text.starts_with(start)) return command;
+  return H::kOther;
+}
+
 Function FunctionOf(std::string_view name) {
   // Called for every call an expression writes while the program is parsed: a name longer than
   // any function's is let go at once.

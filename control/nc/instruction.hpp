@@ -55,6 +55,21 @@ enum class Instruction : uint8_t {
   kRestore,
 };
 
+/// The ISG #-commands the control acts on, by the words they begin with (the statement keeps
+/// the whole text for their options): the steering commands of block search, #CAX TRACK and
+/// #VECTOR OFFSET.
+enum class HashCommand : uint8_t {
+  kOther,              ///< any other #-command: refused when its block runs
+  kDistanceProgStart,  ///< #DISTANCE PROG START ON | OFF (block search 4.1.2)
+  kBlockSearch,        ///< #BLOCKSEARCH LOCKED | RELEASED (block search 6)
+  kCaxTrack,           ///< #CAX TRACK or #CAXTRACK (block search 4.2.2)
+  kVectorOffset,       ///< #VECTOR OFFSET (block search 4.2.3)
+};
+
+/// The command a #-command's text (upper case, single spaces, as the ISG front end keeps it)
+/// begins with.
+HashCommand HashCommandOf(std::string_view text);
+
 /// The instruction `name` (upper case, as the front ends intern it) names; kNone for any other
 /// name.
 Instruction InstructionOf(std::string_view name);

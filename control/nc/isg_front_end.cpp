@@ -169,6 +169,7 @@ bool ParseIsgLine(std::string_view line, SourcePos start, ExpressionParser& expr
         at.offset += shift;
         return expr.Error(at, c.message), true;
       }
+      st.hash = HashCommandOf(text);
       st.text = static_cast<uint32_t>(p.texts.size());
       p.texts.push_back(std::move(text));
       p.statements.push_back(st);

@@ -180,6 +180,7 @@ struct Statement {
   /// The mnemonic or instruction `name` is, resolved by the front end (kBranch .. kInstruction,
   /// kReverse, and kAssign to a data location: TLD, OTD, MTD); kNone for the other kinds.
   Instruction instruction = Instruction::kNone;
+  HashCommand hash = HashCommand::kOther;  ///< kHashCommand: what its text begins with
   uint32_t name = 0;       ///< mnemonic, variable or instruction name
   uint32_t target = 0;     ///< label or subprogram name
   ExprId value = kNoExpr;  ///< assigned value, condition, event, or argument list (kArgs)

@@ -140,15 +140,15 @@ TEST(BlockSearch, SteeringCommands) {
   // is parsed by cax_track.hpp (cax_track_test.cpp).
   for (const char* text : {"DISTANCE PROG START ON", "BLOCKSEARCH LOCKED", "CAX TRACK ON",
                            "CAXTRACK ON [ANGLIMIT 3, OFFSET 0]"}) {
-    EXPECT_TRUE(SteersBlockSearch(text)) << text;
-    EXPECT_EQ(RefusedHashCommand(text), "") << text;
+    EXPECT_TRUE(SteersBlockSearch(nc::HashCommandOf(text))) << text;
+    EXPECT_EQ(RefusedHashCommand(nc::HashCommandOf(text)), "") << text;
   }
   for (const char* text : {"CALL AX [X, 1, 1]", "CAX", "TRACK ON", "VECTOR OFFSET OFF ALL"})
-    EXPECT_FALSE(SteersBlockSearch(text)) << text;
+    EXPECT_FALSE(SteersBlockSearch(nc::HashCommandOf(text))) << text;
   // 4.2.3: vmt has no orientation angles for #VECTOR OFFSET to correct: refused, not passed.
-  EXPECT_NE(RefusedHashCommand("VECTOR OFFSET ON [ DS=20 DE=15 ANC=2 DRC=3 ]").find(
-                "#VECTOR OFFSET (path-dependent angle correction, block search 4.2.3) is not "
-                "supported by vmt"),
+  EXPECT_NE(RefusedHashCommand(nc::HashCommandOf("VECTOR OFFSET ON [ DS=20 DE=15 ANC=2 DRC=3 ]"))
+                .find("#VECTOR OFFSET (path-dependent angle correction, block search 4.2.3) is not "
+                      "supported by vmt"),
             std::string::npos);
 }
 

@@ -168,6 +168,8 @@ TEST(IsgTest, HeaderParametersStructuresAndCommands) {
   EXPECT_EQ(p.name, "EXAMPLE");
   EXPECT_EQ(p.Statements(p.blocks[1])[0].kind, Statement::Kind::kHashCommand);
   EXPECT_EQ(p.texts[p.Statements(p.blocks[1])[0].text], "DISTANCE PROG START OFF");
+  // Typed once, here: the channel switches on it (block search 4.1.2).
+  EXPECT_EQ(p.Statements(p.blocks[1])[0].hash, HashCommand::kDistanceProgStart);
   ASSERT_EQ(p.Statements(p.blocks[2]).size(), 2u);
   EXPECT_EQ(p.symbols.Name(p.Statements(p.blocks[2])[1].name), "P2");
   // $IF -> $ELSEIF -> $ELSE -> $ENDIF chain, loops close back on their heads.
