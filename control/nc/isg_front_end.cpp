@@ -124,6 +124,33 @@ SearchCommand ReadSearchCommand(std::string_view text) {
   return c;
 }
 
+namespace {
+
+/// A #-command after its '#' (at index `hash` of the line): its text, typed, as a statement of
+/// the block; a block search command with a bad value is an error at that value. Always true:
+/// the rest of the line belongs to the command.
+bool ParseHashCommand(LineScanner& s, size_t hash, ExpressionParser& expr, Statement st) {
+  Program& p = expr.program();
+  st.kind = Statement::Kind::kHashCommand;
+  std::vector<size_t> source;
+  std::string text = HashCommandText(s, source);
+  if (text.empty()) return expr.Error(st.pos, "empty #-command"), true;
+  if (const SearchCommand c = ReadSearchCommand(text); c.kind == SearchCommand::Kind::kInvalid) {
+    SourcePos at = st.pos;
+    const auto shift = static_cast<uint32_t>(source[c.at] - hash);
+    at.column += shift;
+    at.offset += shift;
+    return expr.Error(at, c.message), true;
+  }
+  st.hash = HashCommandOf(text);
+  st.text = static_cast<uint32_t>(p.texts.size());
+  p.texts.push_back(std::move(text));
+  p.statements.push_back(st);
+  return true;
+}
+
+}  // namespace
+
 bool ParseIsgLine(std::string_view line, SourcePos start, ExpressionParser& expr, Block& block) {
   LineScanner s(line, start);
   Program& p = expr.program();
@@ -156,25 +183,7 @@ bool ParseIsgLine(std::string_view line, SourcePos start, ExpressionParser& expr
     st.pos = pos;
 
     const size_t hash = s.index();
-    if (s.Accept('#')) {
-      st.kind = Statement::Kind::kHashCommand;
-      std::vector<size_t> source;
-      std::string text = HashCommandText(s, source);
-      if (text.empty()) return expr.Error(pos, "empty #-command"), true;
-      if (const SearchCommand c = ReadSearchCommand(text);
-          c.kind == SearchCommand::Kind::kInvalid) {
-        SourcePos at = pos;
-        const auto shift = static_cast<uint32_t>(source[c.at] - hash);
-        at.column += shift;
-        at.offset += shift;
-        return expr.Error(at, c.message), true;
-      }
-      st.hash = HashCommandOf(text);
-      st.text = static_cast<uint32_t>(p.texts.size());
-      p.texts.push_back(std::move(text));
-      p.statements.push_back(st);
-      return true;
-    }
+    if (s.Accept('#')) return ParseHashCommand(s, hash, expr, st);
     if (s.Accept('$')) {
       const std::string kw = s.Letters();
       using K = Statement::Kind;
