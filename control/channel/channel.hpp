@@ -26,6 +26,7 @@
 #include "control/channel/channel_config.hpp"
 #include "control/channel/channel_messages.hpp"
 #include "control/channel/channel_types.hpp"
+#include "control/channel/cycle_start.hpp"
 #include "control/channel/further_spindle_control.hpp"
 #include "control/channel/guarded_moves.hpp"
 #include "control/channel/headstock_link.hpp"
@@ -390,6 +391,10 @@ class Channel {
   bool holding_positions_ = false;  ///< once started, the channel owns its axes' setpoints
   bool start_pending_ = false;
   bool start_deferred_ = false;  ///< started while a jog left for this mode still brakes
+  /// What Start() would do now; it changes nothing.
+  CycleStart StartCase() const;
+  /// Start() while the program holds on its path: it goes on if no axis has left the contour.
+  void ContinueHeldProgram();
   bool suspend_requested_ = config_.output_suspended_at_start, axes_elsewhere_ = false;
   bool output_suspended_ = config_.output_suspended_at_start;
   /// The output is suspended and `axis` is one the JogOfPath channel takes.
@@ -476,9 +481,9 @@ class Channel {
   void RecordPath(const BlockMotion& motion, bool rapid);
   /// A block backward travel cannot take: the path before it is forgotten.
   void PathBarrier() { path_memory_.Clear(); }
-  /// Start() while held: a backward or forward leg. False when Start's other cases apply.
-  bool StartReplay();
-  bool StartReplayLeg();
+  /// Start() while held on backward travel's path: a backward or forward leg.
+  void StartReplay();
+  void StartReplayLeg();
   void ReplayCycle(double dt);
   void RefuseBackward(const std::string& why);
   /// The interrupted program while the REPOS subroutine runs in its place (in work_).
@@ -613,8 +618,8 @@ class Channel {
   bool StartReturnMove(const std::vector<double>& to, const std::string& move);
   bool ApplySearchOffset();
   void ContinueAfterSearch();
-  /// A start while the search or the breakpoint holds; true if it was theirs.
-  bool StartBlockSearchHold();
+  /// A start while the search or the breakpoint holds.
+  void StartBlockSearchHold();
   /// Distance bookkeeping and the breakpoint cut, when a block's motion starts (StartMotion).
   void CountDistance();
   /// The breakpoint's cut of work_.motion if it lies in the block from `from_u` on (0: its start;

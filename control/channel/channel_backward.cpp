@@ -48,39 +48,38 @@ void Channel::RefuseBackward(const std::string& why) {
   error_number_ = kMsgBackward;
 }
 
-bool Channel::StartReplay() {
+void Channel::StartReplay() {
   PathReplay& r = replay_;
   if (r.direction != 0) {  // a leg braking for feed hold: the start takes it up again
     r.stopping = false;
-    return true;
+    return;
   }
-  if (error_number_ == kMsgBackward) error_.clear(), error_number_ = 0;
-  if (!r.backward_requested) {
-    if (!r.away) return false;
+  if (!r.backward_requested) {  // away from the interruption point: forward, back to it
     r.direction = 1;
-    return StartReplayLeg();
+    StartReplayLeg();
+    return;
   }
   if (!r.away) {
     // Where on the path the axes stand: inside the block in work, inside the continue block of
     // a block search, or at the end of the last block.
     if (repos_.run || (repos_.interruption && repos_.interruption->left_contour)) {
       RefuseBackward("the axes are being repositioned; return them to the contour first");
-      return true;
+      return;
     }
     for (double offset : bs_.offset)
       if (offset != 0) {
         // 4.2: "Bei einem Offset > 0 ist Rückwärtsfahren nicht möglich!"
         RefuseBackward("not possible with the offset of a manual return to the contour");
-        return true;
+        return;
       }
     if (search_ && bs_.state != BlockSearchState::kInactive &&
         bs_.state != BlockSearchState::kWaitForContinueContour) {
       RefuseBackward("block search has not returned to the contour yet");
-      return true;
+      return;
     }
     if (work_.active && work_.profile.rate != 0) {
       RefuseBackward("the axes are still braking");
-      return true;
+      return;
     }
     double u = -1;
     if (!path_memory_.empty()) {
@@ -96,7 +95,7 @@ bool Channel::StartReplay() {
     if (u < 0 || (u <= 0 && path_memory_.size() < 2)) {
       RefuseBackward("no path behind the axes (the program's start, or a block backward travel "
                      "cannot take: G74, a thread, measuring, G31)");
-      return true;
+      return;
     }
     // Not jogged off: the interruption of a visit to manual mode is over.
     if (repos_.interruption) ClearRepos();
@@ -107,10 +106,10 @@ bool Channel::StartReplay() {
     r.home_u = u;
   }
   r.direction = -1;
-  return StartReplayLeg();
+  StartReplayLeg();
 }
 
-bool Channel::StartReplayLeg() {
+void Channel::StartReplayLeg() {
   PathReplay& r = replay_;
   const size_t last = path_memory_.size() - 1;
   for (;;) {
@@ -120,7 +119,7 @@ bool Channel::StartReplayLeg() {
       if (r.index == 0 ||
           !Near(path_memory_[r.index - 1].motion.end, path_memory_[r.index].motion.start)) {
         r.direction = 0;
-        return true;  // the oldest block remembered: the axes stand at its start
+        return;  // the oldest block remembered: the axes stand at its start
       }
       --r.index;
       r.u = 1;
@@ -131,7 +130,7 @@ bool Channel::StartReplayLeg() {
       r.away = false;
       r.direction = 0;
       if (!r.backward_requested) Start();
-      return true;
+      return;
     }
     if (r.direction > 0 && r.u >= 1) {
       ++r.index;
@@ -158,7 +157,7 @@ bool Channel::StartReplayLeg() {
         guarded_.records.push_back({move, from, to_drives, c, 1, false});
       } else if (GuardStops(move, from, to_drives, c)) {
         r.direction = 0;
-        return true;
+        return;
       }
     }
     r.profile = PathProfile{};
@@ -166,7 +165,7 @@ bool Channel::StartReplayLeg() {
     r.profile.max_accel = r.leg.max_accel;
     r.profile.max_jerk = r.leg.max_jerk;
     r.stopping = false;
-    return true;
+    return;
   }
 }
 

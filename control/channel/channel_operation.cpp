@@ -66,55 +66,19 @@ bool Channel::SetMode(ChannelMode mode) {
   return true;
 }
 
-void Channel::Start() {
-  if (mode_ == ChannelMode::kManual || !process_enable_) return;
-  if (mode_ == ChannelMode::kMdi && !mdi_) return;
-  // A jog left for this mode still brakes: the start is taken when the axes are at rest.
-  if (JogsMoving()) {
-    start_deferred_ = true;
-    return;
-  }
+CycleStart Channel::StartCase() const {
+  if (mode_ == ChannelMode::kManual || !process_enable_) return CycleStart::kRefused;
+  if (mode_ == ChannelMode::kMdi && !mdi_) return CycleStart::kRefused;
+  if (JogsMoving()) return CycleStart::kDeferred;
   if (state_ == ChannelState::kHold) {
-    programmed_stop_.Leave();
-    if (StartReplay()) return;
-    if (StartBlockSearchHold()) return;
-    // Fast measurement 6.1, Q9998: the new start acknowledges OVERSIZE / UNDERSIZE.
-    if (error_number_ == kMsgMeasuringContinuable) error_.clear(), error_number_ = 0;
-    if (repos_.run && repos_.rerun) {
-      // Stopped during the REPOS subroutine and left for manual mode (jogged, perhaps): its
-      // G77 in work no longer starts where the axes stand. It runs again from `.REPOS`, to
-      // the same interruption point; the subroutine's progress is no new interruption.
-      StartReposRun();
-      return;
-    }
-    if (repos_.run) {  // the REPOS subroutine was held: it goes on
-      state_ = ChannelState::kRunning;
-      return;
-    }
-    // Repositioning or NC-block restart called: the REPOS subroutine returns the axes (4.1).
-    if (repos_.interruption && repos_.function != ReposFunction::kNone) {
-      StartReposRun();
-      return;
-    }
-    // Continuing from off the contour would jump back to the path: the axes must first be
-    // repositioned to the interruption point.
-    for (size_t a = 0; a < commanded_.size() && repos_.interruption; ++a) {
-      // The rotary axis outside rotary axis mode follows the spindle: no contour to leave.
-      if (headstock_ && static_cast<int>(a) == config_.rotary_axis &&
-          headstock_->mode() != axes::HeadstockMode::kRotary)
-        continue;
-      const double point = repos_.interruption->point[a];
-      if (std::isnan(point)) continue;  // not on the contour (CaptureInterruption)
-      if (std::abs(commanded_[a] - point) > 1e-6) {
-        Fail("axis " + config_.axes[a].name +
-                 " has left the contour at the interruption point: reposition it first",
-             kMsgLeftContour);
-        return;
-      }
-    }
-    ClearRepos();
-    state_ = ChannelState::kRunning;
-    return;
+    if (replay_.direction != 0 || replay_.backward_requested || replay_.away)
+      return CycleStart::kReplay;
+    if (bs_.breakpoint_hold || (search_ && bs_.state != BlockSearchState::kInactive))
+      return CycleStart::kBlockSearchHold;
+    if (repos_.run) return repos_.rerun ? CycleStart::kReposRerun : CycleStart::kReposContinue;
+    if (repos_.interruption && repos_.function != ReposFunction::kNone)
+      return CycleStart::kReposCall;
+    return CycleStart::kContinue;
   }
   // REPOS manual 4.2 and 7.1 call the REPOS subroutine's errors (G77 without F or without the
   // function, G77 in the wrong headstock mode) a program interruption: the interrupted program
@@ -123,18 +87,86 @@ void Channel::Start() {
   // manual mode if need be, and Start acknowledges the error and runs the subroutine again from
   // `.REPOS`. Faults of the machine (drives, PLC, a changeover acknowledgement) and the measuring
   // faults only the reverse program leaves still need Control-Reset (or the reverse program).
-  if (state_ == ChannelState::kError && repos_.run && ReposErrorInterrupts(error_number_)) {
-    error_.clear();
-    error_number_ = 0;
-    StartReposRun();
+  if (state_ == ChannelState::kError && repos_.run && ReposErrorInterrupts(error_number_))
+    return CycleStart::kReposAfterError;
+  if (state_ == ChannelState::kRunning || state_ == ChannelState::kError)
+    return CycleStart::kRefused;
+  return CycleStart::kRun;
+}
+
+void Channel::Start() {
+  const CycleStart start = StartCase();
+  if (start == CycleStart::kRefused) return;
+  if (start == CycleStart::kDeferred) {
+    start_deferred_ = true;
     return;
   }
-  if (state_ == ChannelState::kRunning || state_ == ChannelState::kError) return;
-  // Start after the end runs the program again from its first block.
-  if (state_ == ChannelState::kEnded) ForgetEndedProgram();
-  programmed_stop_.Leave();
+  if (state_ == ChannelState::kHold) {
+    programmed_stop_.Leave();
+    // A start acknowledges backward travel's refusal, unless it takes up a leg that braked.
+    if (replay_.direction == 0 && error_number_ == kMsgBackward) error_.clear(), error_number_ = 0;
+    // Fast measurement 6.1, Q9998: the new start acknowledges OVERSIZE / UNDERSIZE.
+    if (start != CycleStart::kReplay && start != CycleStart::kBlockSearchHold &&
+        error_number_ == kMsgMeasuringContinuable)
+      error_.clear(), error_number_ = 0;
+  }
+  switch (start) {
+    case CycleStart::kRefused:
+    case CycleStart::kDeferred:
+      return;
+    case CycleStart::kReplay:
+      StartReplay();
+      return;
+    case CycleStart::kBlockSearchHold:
+      StartBlockSearchHold();
+      return;
+    case CycleStart::kReposRerun:
+      // Stopped during the REPOS subroutine and left for manual mode (jogged, perhaps): its
+      // G77 in work no longer starts where the axes stand. It runs again from `.REPOS`, to
+      // the same interruption point; the subroutine's progress is no new interruption.
+    case CycleStart::kReposCall:  // the REPOS subroutine returns the axes (4.1)
+      StartReposRun();
+      return;
+    case CycleStart::kReposContinue:
+      state_ = ChannelState::kRunning;
+      return;
+    case CycleStart::kContinue:
+      ContinueHeldProgram();
+      return;
+    case CycleStart::kReposAfterError:
+      error_.clear();
+      error_number_ = 0;
+      StartReposRun();
+      return;
+    case CycleStart::kRun:
+      // Start after the end runs the program again from its first block.
+      if (state_ == ChannelState::kEnded) ForgetEndedProgram();
+      programmed_stop_.Leave();
+      state_ = ChannelState::kRunning;
+      start_pending_ = true;  // positions are taken from the feedback at the next tick
+      return;
+  }
+}
+
+void Channel::ContinueHeldProgram() {
+  // Continuing from off the contour would jump back to the path: the axes must first be
+  // repositioned to the interruption point.
+  for (size_t a = 0; a < commanded_.size() && repos_.interruption; ++a) {
+    // The rotary axis outside rotary axis mode follows the spindle: no contour to leave.
+    if (headstock_ && static_cast<int>(a) == config_.rotary_axis &&
+        headstock_->mode() != axes::HeadstockMode::kRotary)
+      continue;
+    const double point = repos_.interruption->point[a];
+    if (std::isnan(point)) continue;  // not on the contour (CaptureInterruption)
+    if (std::abs(commanded_[a] - point) > 1e-6) {
+      Fail("axis " + config_.axes[a].name +
+               " has left the contour at the interruption point: reposition it first",
+           kMsgLeftContour);
+      return;
+    }
+  }
+  ClearRepos();
   state_ = ChannelState::kRunning;
-  start_pending_ = true;  // positions are taken from the feedback at the next tick
 }
 
 void Channel::Stop() {

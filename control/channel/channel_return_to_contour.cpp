@@ -158,7 +158,7 @@ void Channel::ContinueAfterSearch() {
   work_.active = true;
 }
 
-bool Channel::StartBlockSearchHold() {
+void Channel::StartBlockSearchHold() {
   if (bs_.breakpoint_hold) {
     // 3.5: after the breakpoint the rest of its block runs on.
     bs_.breakpoint_hold = false;
@@ -172,14 +172,12 @@ bool Channel::StartBlockSearchHold() {
       work_.active = true;
     }
     bs_.breakpoint_u = 0;
-    return true;
+    return;
   }
-  if (!search_ || bs_.state == BlockSearchState::kInactive) return false;
   if (bs_.state == BlockSearchState::kWaitReturnToContour ||
       bs_.state == BlockSearchState::kWaitForContinueContour)
     search_->start_requested = true;
   state_ = ChannelState::kRunning;  // a feed hold during the search or the return ends
-  return true;
 }
 
 void Channel::RemoveSearchOffset() {
