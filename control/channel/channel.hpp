@@ -174,6 +174,11 @@ class Channel {
   void SetHeadstockPlc(const axes::HeadstockPlc& plc) { hs_.plc = plc; }
   /// The headstock changeover, null without one.
   const axes::HeadstockChangeover* headstock() const { return headstock_ ? &*headstock_ : nullptr; }
+  /// The channel writes drive `d`'s setpoint at its next Tick: once started (or given the axes
+  /// of another channel) it is the one owner of its feed axes', spindles' and headstock's
+  /// drives, and of an NC-controlled tool storage axis it has taken. Before, the scene holds
+  /// them (the timeline player).
+  bool WritesDrive(size_t d) const;
   /// Direction the axis is commanded to move this NC cycle: +1, -1 or 0 (MVPOS / MVNEG).
   int AxisMotion(size_t axis) const;
   /// Events (BES/BEC) come from here; without a source, the events the program set itself.

@@ -139,6 +139,23 @@ void Channel::CollectTrips(const AmplifierTelegram& at) {
   drives_.trip_reset_ticks = drives_.trip_reset.empty() ? 0 : config_.ticks_per_cycle;
 }
 
+bool Channel::WritesDrive(size_t d) const {
+  // Tick takes the axes when a start or a hand-over is pending, before it writes.
+  if (!holding_positions_ && !start_pending_ && !take_over_pending_) return false;
+  const auto is = [d](int drive) { return drive >= 0 && static_cast<size_t>(drive) == d; };
+  // As Tick writes them: the rotary axis of a headstock and the main spindle through it.
+  for (size_t a = 0; a < config_.axes.size(); ++a)
+    if (is(config_.axes[a].drive) && (!headstock_ || static_cast<int>(a) != config_.rotary_axis))
+      return true;
+  if (headstock_ ? is(config_.headstock->spindle_drive) ||
+                       (config_.headstock->separate_servo() && is(config_.headstock->rotary_drive))
+                 : is(config_.spindle_drive))
+    return true;
+  for (const ChannelSpindle& s : config_.spindles)
+    if (is(s.drive)) return true;
+  return is(config_.tool_storage_drive) && ToolStorageNc() && tool_storage_.taken;
+}
+
 void Channel::AcknowledgeDriveTrips(MasterTelegram& mdt) {
   if (drives_.trip_reset_ticks <= 0) return;
   for (int d : drives_.trip_reset)

@@ -247,7 +247,10 @@ void SceneRun::State::Step() {
   }
   if (field_bus)
     for (const auto& [io, id] : plc_outputs) mdt.outputs[io] = image->Bool(id) ? 1 : 0;
-  if (channel) StepChannel(t, at);
+  if (channel)
+    StepChannel(t, at);
+  else
+    timeline->WriteSetpoints(mdt, [](size_t) { return false; });
   for (const ProgramEvent& e : events)
     recorder.Event({{"t", e.t_s}, {"event", e.kind}, {"text", e.text}});
   machine_events.Watch(t, at, clutches, *backend, image.get(), recorder);

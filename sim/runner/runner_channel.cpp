@@ -28,6 +28,11 @@ void SceneRun::State::StepChannel(double t, const control::AmplifierTelegram& at
   if (jog_of_path && gateway && nc_cycle) gateway->ReadJogOfPath(*jog_of_path);
   if (jog_of_path && nc_cycle) control::channel::HandOverAxes(*channel, *jog_of_path);
   if (path_guard && nc_cycle) FollowSpindle(t);
+  // Each drive has one writer: the timeline's steps for those no channel writes this tick.
+  const control::channel::Channel* lent = jog_of_path.get();
+  timeline->WriteSetpoints(mdt, [this, lent](size_t d) {
+    return channel->WritesDrive(d) || (lent && lent->WritesDrive(d));
+  });
   // The channel holding the axes writes their setpoints last; the other holds them where the
   // holder commanded them, which also covers the cycle in which both have let them go.
   const bool jog_of_path_holds = jog_of_path && !jog_of_path->output_suspended();

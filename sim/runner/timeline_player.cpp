@@ -45,7 +45,6 @@ void TimelinePlayer::Tick(double t_s, const control::AmplifierTelegram& at,
   }
   for (size_t d = 0; d < play_.setpoints.size(); ++d)
     if (play_.profiling[d]) play_.setpoints[d].value = play_.profiles[d].At(t_s);
-  mdt.setpoints = play_.setpoints;
   mdt.outputs = play_.outputs;
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 // The timeline player: plays a scene's timeline of operator and test actions in time, one step
 // after the other (steps/: each kind's effect), a step that waits holding the ones after it. It
-// writes the setpoints of the drives its steps command directly and the valves, and hands the
-// NC steps to the channel and the signal steps to the gateway's image.
+// writes the valves and the setpoints of the drives no channel owns, and hands the NC steps to
+// the channel and the signal steps to the gateway's image.
 
 #include <string>
 #include <vector>
@@ -25,10 +25,18 @@ class TimelinePlayer {
                control::gateway::SignalImage* image = nullptr);
 
   /// One drive tick at time t: advances the timeline on the feedback of the last tick and fills
-  /// the MDT to write. Events are appended to `events`.
+  /// the MDT's outputs. Events are appended to `events`.
   void Tick(double t_s, const control::AmplifierTelegram& at,
             const std::vector<ClutchState>& clutches, control::MasterTelegram& mdt,
             std::vector<ProgramEvent>& events);
+  /// The setpoints of the drives no channel writes this tick (`written_elsewhere`): where the
+  /// timeline's steps command them, else where they stood at t = 0.
+  template <typename WrittenElsewhere>
+  void WriteSetpoints(control::MasterTelegram& mdt, WrittenElsewhere written_elsewhere) const {
+    mdt.setpoints.resize(play_.setpoints.size());
+    for (size_t d = 0; d < play_.setpoints.size(); ++d)
+      if (!written_elsewhere(d)) mdt.setpoints[d] = play_.setpoints[d];
+  }
 
   bool finished() const { return next_ >= scene_->timeline.size(); }
   InjectedFaults& faults() { return play_.faults; }

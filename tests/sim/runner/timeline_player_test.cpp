@@ -74,6 +74,7 @@ struct Player {
         player(scene, at) {}
   void Tick() {
     player.Tick(t, at, clutches, mdt, events);
+    player.WriteSetpoints(mdt, [](size_t) { return false; });  // no channel
     for (size_t d = 0; d < mdt.setpoints.size(); ++d)
       if (mdt.setpoints[d].mode == control::DriveMode::kPosition)
         at.feedback[d].position = mdt.setpoints[d].value;
@@ -132,6 +133,23 @@ TEST(TimelinePlayerTest, AWaitThatTimesOutIsAFailureAndTheRestStillRuns) {
   EXPECT_TRUE(timeout);
   p.RunTo(5);
   EXPECT_NEAR(p.at.feedback[p.Drive("Z")].position, 150, 1e-9);
+}
+
+TEST(TimelinePlayerTest, ItLeavesTheDrivesAChannelWritesAlone) {
+  Player p("  - move: {axis: Z, to: 150, feed: 3000}\n");
+  const int z = p.Drive("Z"), x = p.Drive("X");
+  ASSERT_GE(z, 0);
+  ASSERT_GE(x, 0);
+  p.RunTo(0.1);
+  const control::DriveSetpoint channel_x{control::DriveMode::kPosition, 42, 0};
+  p.mdt.setpoints[x] = channel_x;
+  p.player.Tick(p.t, p.at, p.clutches, p.mdt, p.events);
+  p.player.WriteSetpoints(p.mdt, [x, z](size_t d) { return d == size_t(x) || d == size_t(z); });
+  EXPECT_EQ(p.mdt.setpoints[x].value, 42);  // the channel's, as it wrote it
+  const double z_before = p.mdt.setpoints[z].value;
+  p.player.WriteSetpoints(p.mdt, [x](size_t d) { return d == size_t(x); });
+  EXPECT_GT(p.mdt.setpoints[z].value, z_before);  // Z moves on: the timeline writes it again
+  EXPECT_EQ(p.mdt.setpoints[x].value, 42);
 }
 
 }  // namespace
