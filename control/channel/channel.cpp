@@ -311,7 +311,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
   else if (config_.spindle_drive >= 0)
     mdt.setpoints[config_.spindle_drive] = spindle;
   further_.WriteSetpoints(mdt);
-  WriteToolStorage(mdt);
+  if (ToolStorageNc()) tool_storage_.WriteSetpoint(f, mdt);
   AcknowledgeDriveTrips(mdt);
 }
 

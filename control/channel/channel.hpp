@@ -45,7 +45,7 @@
 #include "control/channel/spindle_synchronous_motion.hpp"
 #include "control/channel/synchronous_block.hpp"
 #include "control/channel/tool_radius_compensation.hpp"
-#include "control/channel/tool_storage_state.hpp"
+#include "control/channel/tool_storage_control.hpp"
 #include "control/drive_bus.hpp"
 #include "control/measure/measuring_cycle.hpp"
 #include "control/measure/measuring_pages.hpp"
@@ -418,8 +418,6 @@ class Channel {
   /// Cxx.020 jogging speed (Cxx.021 in kRapid) of `axis`, each defaulting to a share of its
   /// rapid, times the feed override.
   double JogSpeed(const ChannelAxis& axis) const;
-  /// Cxx.021 jogging speed - rapid of `axis`, half its rapid if not given.
-  static double JogRapid(const ChannelAxis& axis);
   /// One key press' distance in the jog mode: Cxx.022 in kParametric, the fixed increment in
   /// kIncrement1..1000; 0 where a key jogs continuously (or, kHandwheel, not at all).
   double JogIncrement(const ChannelAxis& axis) const;
@@ -466,11 +464,12 @@ class Channel {
   /// A straight move of the drives; while the NC turret indexes, against it as it turns on.
   PathCheck GuardCheck(const std::vector<double>& from, const std::vector<double>& to,
                        bool measuring_path = false);
-  /// The turret's index from where its command stands to `target` (deg), its sweep checked
-  /// whole before it starts: false if stopped.
-  bool GuardTurretIndex(const std::string& move, double target);
-  /// A continuous turret jog (`key` the effective MGPOS / MGNEG) checked ahead as GuardJog.
-  void GuardTurretJog(int key, double dt);
+  /// The turret's index from `from` to `to` (deg), its sweep checked whole before it starts:
+  /// false if stopped.
+  bool GuardTurretIndex(const std::string& move, double from, double to);
+  /// A continuous turret jog (`direction`) that could reach `to` checked ahead as GuardJog: true
+  /// if it stopped the jog.
+  bool GuardTurretJog(int direction, double from, double to);
   /// The main spindle about to take setpoint `sp`: a start sweeps what turns with it. False
   /// if stopped.
   bool GuardSpindleStart(const std::string& move, const DriveSetpoint& sp);
@@ -508,25 +507,19 @@ class Channel {
   bool SpindleRelevant() const;
   bool ToolStorageKnown() const;
   bool ToolStorageRestored() const;
-  // An NC-controlled tool storage axis (channel_tool_storage.cpp): its command, jogging and
-  // MTP's return to the interruption's position.
-  ToolStorageAxis tool_storage_;
+  // An NC-controlled tool storage axis (tool_storage_control.hpp); the program's side of it in
+  // channel_tool_storage.cpp.
+  ToolStorageControl tool_storage_{config_};
   /// MRY: the block waits until the program's traverse (T, MTP) has ended and the axis stands
   /// at its place.
   bool tool_storage_wait_ = false;
-  bool ToolStorageNc() const { return config_.tool_storage_nc && ToolStorageKnown(); }
+  bool ToolStorageNc() const { return tool_storage_.nc() && ToolStorageKnown(); }
+  /// PathGuard's checks of the tool storage axis' moves (channel_turret_guard.cpp).
+  TurretGuard TurretGuardOf();
   void ToolStorageCycle(double dt);
-  /// Moves the command towards `target` at most at `speed`, braking onto it; true on arrival.
-  bool TraverseToolStorage(double target, double speed, double dt);
-  void WriteToolStorage(MasterTelegram& mdt) const;
   /// MTP (4.2 Tool Storage Axis): the NC traverses it back to the interruption's position.
   /// False if PathGuard stopped it.
   bool ReturnToolStorage();
-  /// Starts the program's traverse to `position` (deg) for `move` (the word that asks for it);
-  /// an endless axis goes the short way. False if PathGuard stopped it before it started.
-  bool TraverseToolStorageTo(double position, const std::string& move);
-  /// Where tool `tool`'s station is (deg, 0 .. 360); nullopt for T0 or without stations.
-  std::optional<double> StationOf(int tool) const;
   /// An NC-controlled tool storage axis starts for tool `tool`'s station (4.2: asynchronously,
   /// the block does not wait): a T word, MTP outside the REPOS subroutine. T0 and a turret
   /// without stations stay where they are. False, with the channel in its error state at

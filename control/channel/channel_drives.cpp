@@ -153,7 +153,7 @@ bool Channel::WritesDrive(size_t d) const {
     return true;
   for (const ChannelSpindle& s : config_.spindles)
     if (is(s.drive)) return true;
-  return is(config_.tool_storage_drive) && ToolStorageNc() && tool_storage_.taken;
+  return is(config_.tool_storage_drive) && ToolStorageNc() && tool_storage_.axis().taken;
 }
 
 void Channel::AcknowledgeDriveTrips(MasterTelegram& mdt) {

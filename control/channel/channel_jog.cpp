@@ -58,10 +58,6 @@ void Channel::RestartHandwheel() {
   }
 }
 
-double Channel::JogRapid(const ChannelAxis& axis) {
-  return axis.jog_rapid_per_s > 0 ? axis.jog_rapid_per_s : axis.rapid_per_s / 2;
-}
-
 double Channel::JogSpeed(const ChannelAxis& axis) const {
   const double normal = axis.jog_per_s > 0 ? axis.jog_per_s : axis.rapid_per_s / 10;
   return (jog_.mode == JogMode::kRapid ? JogRapid(axis) : normal) * override_;

@@ -39,7 +39,7 @@ bool Channel::SetMode(ChannelMode mode) {
     // mode comes back. X1/Y1 and the tool storage axis alike.
     for (JogAxis& j : jog_.axes) j.key = 0, j.blocked = 0;
     for (FictiveJog& f : jog_.fictive) f.key = 0;
-    tool_storage_.key = 0;
+    tool_storage_.ReleaseKey();
     // Where the program was interrupted: the contour the axes must come back to (REPOS 2.1).
     if (mode == ChannelMode::kManual && !repos_.interruption && state_ == ChannelState::kHold &&
         !repos_.run)
@@ -191,7 +191,8 @@ void Channel::Reset() {
   further_.StopRestoring();
   aux_output_.clear();
   programmed_stop_.Leave();
-  tool_storage_.positioning = tool_storage_.programmed = tool_storage_wait_ = false;
+  tool_storage_.ForgetProgramTraverse();
+  tool_storage_wait_ = false;
   if (repos_.run) SwapProgramInWork();
   parked_ = ProgramInWork{};
   ClearRepos();

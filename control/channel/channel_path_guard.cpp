@@ -10,6 +10,7 @@
 #include <cstdio>
 
 #include "control/channel/channel.hpp"
+#include "control/channel/jog_follow.hpp"
 
 namespace vmt::control::channel {
 

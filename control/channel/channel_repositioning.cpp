@@ -67,7 +67,7 @@ void Channel::CaptureInterruption() {
   // after a T word's (or MTP's) traverse, its station - also while it is still on its way or
   // its drive still settles - not the place the turret has got to. A jog since (manual mode
   // before the program) leaves the turret where the operator put it.
-  if (ToolStorageNc() && tool_storage_.programmed) i.tool_storage = tool_storage_.target;
+  if (ToolStorageNc() && tool_storage_.axis().programmed) i.tool_storage = tool_storage_.axis().target;
   repos_.interruption = std::move(i);
   repos_.start = commanded_;
 }

@@ -139,7 +139,7 @@ bool Channel::BlockInstructions(const nc::Program& program, bool& mry) {
       }
       continue;
     }
-    if (ToolStorageNc() && (waits || (mtp && StationOf(1)))) {
+    if (ToolStorageNc() && (waits || (mtp && tool_storage_.StationOf(1)))) {
       // In the program an NC-controlled one traverses asynchronously (4.2, "As in NC-program
       // controlled mode"): MRY waits for its traverse as in the REPOS subroutine, and MTP
       // ("Adjust tool turret", 8.3) brings the active tool's station back to the work, after

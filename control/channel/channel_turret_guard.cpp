@@ -19,7 +19,7 @@ PathCheck Channel::GuardCheck(const std::vector<double>& from, const std::vector
                           : guarded_.guard->CheckMove(a, b);
   };
   const size_t t = static_cast<size_t>(config_.tool_storage_drive);
-  const ToolStorageAxis& ts = tool_storage_;
+  const ToolStorageAxis& ts = tool_storage_.axis();
   const bool indexing = ToolStorageNc() && (ts.positioning || ts.stepping) && t < from.size() &&
                         t < to.size() && from[t] == to[t] && ts.target != from[t];
   if (!indexing) return check(from, to);
@@ -45,7 +45,7 @@ PathCheck Channel::GuardCheck(const std::vector<double>& from, const std::vector
   return best;
 }
 
-bool Channel::GuardTurretIndex(const std::string& move, double target) {
+bool Channel::GuardTurretIndex(const std::string& move, double from_deg, double to_deg) {
   if (!guarded_.guard || config_.path_guard == GuardReaction::kOff) return true;
   const size_t t = static_cast<size_t>(config_.tool_storage_drive);
   std::vector<double> from = GuardFrom();
@@ -53,9 +53,9 @@ bool Channel::GuardTurretIndex(const std::string& move, double target) {
   // From where the command stands: an index may start while the last one is still on its way.
   // The axes stand where the channel commands them; a T word's block may move them as the
   // turret turns (asynchronously), which its own move's check (if it has one) covers.
-  from[t] = tool_storage_.command;
+  from[t] = from_deg;
   std::vector<double> to = from;
-  to[t] = target;
+  to[t] = to_deg;
   if (from[t] == to[t]) return true;
   const PathCheck c = guarded_.guard->CheckMove(from, to);
   if (c.clear) {
@@ -65,36 +65,23 @@ bool Channel::GuardTurretIndex(const std::string& move, double target) {
   return !GuardStops(move, from, to, c);
 }
 
-void Channel::GuardTurretJog(int key, double dt) {
-  ToolStorageAxis& t = tool_storage_;
-  // A stopped key stays stopped until it is released (or the other way is pressed).
-  if (t.blocked != 0 && key != t.blocked) t.blocked = 0;
-  if (!guarded_.guard || config_.path_guard == GuardReaction::kOff) return;
-  const int pressed = key != t.blocked ? key : 0;
-  const int dir = pressed != 0 ? pressed : t.velocity > 0 ? 1 : t.velocity < 0 ? -1 : 0;
-  if (dir == 0) {
+bool Channel::GuardTurretJog(int direction, double from_deg, double to_deg) {
+  if (!guarded_.guard || config_.path_guard == GuardReaction::kOff) return false;
+  if (direction == 0) {
     if (guarded_.turret_jog) guarded_.records.push_back(*guarded_.turret_jog);
     guarded_.turret_jog.reset();
     guarded_.turret_jog_countdown = 0;
-    return;
+    return false;
   }
-  if (guarded_.turret_jog && --guarded_.turret_jog_countdown > 0) return;
+  if (guarded_.turret_jog && --guarded_.turret_jog_countdown > 0) return false;
   guarded_.turret_jog_countdown = config_.path_guard_every;
-  // As GuardJog: where the turret would stand if it braked at the next check, having run on
-  // (and sped up) for one check interval first while the key is held.
-  const axes::AxisParameters& axis = config_.tool_storage;
-  const double accel = axis.acceleration > 0 ? axis.acceleration : 360;
-  const double interval = config_.path_guard_every * dt + dt;
-  const double v = pressed == 0 ? std::abs(t.velocity)
-                                : std::min(std::abs(t.velocity) + accel * interval,
-                                           std::max(JogSpeed(axis), std::abs(t.velocity)));
   const size_t d = static_cast<size_t>(config_.tool_storage_drive);
   std::vector<double> from = GuardFrom();
-  if (d >= from.size()) return;
-  from[d] = t.command;
+  if (d >= from.size()) return false;
+  from[d] = from_deg;
   std::vector<double> to = from;
-  to[d] = t.command + dir * (v * v / (2 * accel) + v * (pressed == 0 ? dt : interval));
-  const std::string move = dir > 0 ? "turret index MGPOS" : "turret index MGNEG";
+  to[d] = to_deg;
+  const std::string move = direction > 0 ? "turret index MGPOS" : "turret index MGNEG";
   const PathCheck c = guarded_.guard->CheckMove(from, to);
   if (c.clear) {
     if (!guarded_.turret_jog) {
@@ -105,12 +92,11 @@ void Channel::GuardTurretJog(int key, double dt) {
       ++r.checks;
       if (c.min_clearance < r.check.min_clearance) r.check = c;
     }
-    return;
+    return false;
   }
   if (guarded_.turret_jog) guarded_.records.push_back(*guarded_.turret_jog);
   guarded_.turret_jog.reset();
-  if (!GuardStops(move, from, to, c)) return;
-  t.blocked = pressed != 0 ? pressed : dir;
+  return GuardStops(move, from, to, c);
 }
 
 bool Channel::GuardSpindleStart(const std::string& move, const DriveSetpoint& sp) {

@@ -7,7 +7,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "control/axes/axis_parameters.hpp"
+
 namespace vmt::control::channel {
+
+/// Cxx.021 jogging speed - rapid of `axis`, half its rapid if not given.
+inline double JogRapid(const axes::AxisParameters& axis) {
+  return axis.jog_rapid_per_s > 0 ? axis.jog_rapid_per_s : axis.rapid_per_s / 2;
+}
 
 /// Whether a jogged axis runs an increment this cycle, or may start one: an increment under
 /// way runs to its end whatever the jog mode becomes, and a continuous jog (or a handwheel's
