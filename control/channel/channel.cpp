@@ -234,7 +234,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
       holding_positions_ = true;
     }
     if (!work_.interpreter) {
-      path_memory_.Clear();
+      backward_.Forget();
       work_.interpreter = MakeInterpreter();
       BeginBlockSearch();
     }

@@ -19,6 +19,7 @@
 #include "control/axes/headstock_changeover.hpp"
 #include "control/axes/tool_table.hpp"
 #include "control/axes/zero_offsets.hpp"
+#include "control/channel/backward_travel.hpp"
 #include "control/channel/block_motion.hpp"
 #include "control/channel/block_search.hpp"
 #include "control/channel/block_search_run.hpp"
@@ -36,9 +37,7 @@
 #include "control/channel/measuring_run.hpp"
 #include "control/channel/nc_cycle_owner.hpp"
 #include "control/channel/operator_messages.hpp"
-#include "control/channel/path_memory.hpp"
 #include "control/channel/path_profile.hpp"
-#include "control/channel/path_replay.hpp"
 #include "control/channel/program_in_work.hpp"
 #include "control/channel/programmed_stop.hpp"
 #include "control/channel/repositioning.hpp"
@@ -245,7 +244,7 @@ class Channel {
   /// stays held) with an offset from a manual return after block search (4.2: "Bei einem
   /// Offset > 0 ist Rückwärtsfahren nicht möglich"), during repositioning, or across a block
   /// it cannot travel back (G74, G33/G63/G64, measuring, G31: the path memory starts after it).
-  void SetBackward(bool on) { replay_.backward_requested = on; }
+  void SetBackward(bool on) { backward_.Request(on); }
   /// HLI.channel.SuspendAxisOutput (block search 4.2.1): the PLC lends the channel's feed axes
   /// to its JogOfPath channel (jog_of_path.hpp). While the output is suspended the channel
   /// follows where the other channel commands them (FollowAxesOf: its setpoints are that
@@ -264,12 +263,10 @@ class Channel {
   /// No axis of the channel moved in the last NC cycle and no jog is under way.
   bool AxesAtRest() const;
   /// The axes stand (or move) on the path behind the interruption point.
-  bool travelling_back() const { return replay_.away; }
+  bool travelling_back() const { return backward_.away(); }
   /// Blocks of the path memory behind the axes while travelling back (0 at the interruption
   /// point).
-  size_t blocks_back() const {
-    return replay_.away ? path_memory_.size() - replay_.index - 1 : 0;
-  }
+  size_t blocks_back() const { return backward_.blocks_back(); }
 
   /// One drive tick: reads the feedback, interpolates on the NC cycle, writes setpoints.
   void Tick(const AmplifierTelegram& at, MasterTelegram& mdt);
@@ -478,17 +475,18 @@ class Channel {
   std::vector<double> drive_positions_;  ///< every drive's actual position, this NC cycle
   // Repositioning and NC-block restart (channel_repositioning.cpp).
   ReposData repos_;
-  // Backward travel (channel_backward.cpp).
-  PathMemory path_memory_;
-  PathReplay replay_;
+  // Backward travel (backward_travel.hpp; the channel's side in channel_backward.cpp).
+  BackwardTravel backward_;
   /// A block's motion starts: remembered for backward travel (`rapid`: G00).
   void RecordPath(const BlockMotion& motion, bool rapid);
   /// A block backward travel cannot take: the path before it is forgotten.
-  void PathBarrier() { path_memory_.Clear(); }
+  void PathBarrier() { backward_.Forget(); }
   /// Start() while held on backward travel's path: a backward or forward leg.
   void StartReplay();
-  void StartReplayLeg();
   void ReplayCycle(double dt);
+  /// PathGuard's check of a G00 leg along a path block search decoded.
+  ReplayGuard ReplayGuardOf();
+  void ReplayArrived(ReplayStep step);
   void RefuseBackward(const std::string& why);
   /// The interrupted program while the REPOS subroutine runs in its place (in work_).
   ProgramInWork parked_;

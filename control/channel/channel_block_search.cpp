@@ -581,7 +581,7 @@ void Channel::UpdateBlockSearchStatus() {
   // travelled back (channel_backward.cpp) while the path memory holds a path to take.
   const ProgrammedStop::Kind programmed = hold ? programmed_stop_.held : ProgrammedStop::Kind::kNone;
   if (programmed == ProgrammedStop::Kind::kM00)
-    sc |= kM00OrM01 | kM0Stop | (path_memory_.empty() ? 0 : kStopReversible);
+    sc |= kM00OrM01 | kM0Stop | (backward_.empty() ? 0 : kStopReversible);
   if (programmed == ProgrammedStop::Kind::kM01) sc |= kM00OrM01 | kM1Stop;
   // Q9998 (fast measurement 6.1, fault category 2) holds the program with a fault message: an
   // error in the channel that a new start acknowledges, not a feed hold.

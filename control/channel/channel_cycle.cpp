@@ -9,7 +9,7 @@ NcCycleOwner Channel::CycleOwner() const {
   if (output_suspended_) return NcCycleOwner::kAxesLent;
   if (mode_ == ChannelMode::kManual) return NcCycleOwner::kJog;
   if (JogsMoving()) return NcCycleOwner::kJogBraking;
-  if (replay_.away) return NcCycleOwner::kBackward;
+  if (backward_.away()) return NcCycleOwner::kBackward;
   if (state_ == ChannelState::kRunning || state_ == ChannelState::kHold)
     return ProgramCycleOwner();
   return NcCycleOwner::kNone;

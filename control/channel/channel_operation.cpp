@@ -25,7 +25,7 @@ bool ReposErrorInterrupts(int number) {
 bool Channel::SetMode(ChannelMode mode) {
   // C-axis manual 2.3: a mode change during a changeover is an immediate stop.
   if (state_ == ChannelState::kRunning && headstock_ && headstock_->busy() && mode != mode_) Stop();
-  if (state_ == ChannelState::kRunning || replay_.direction != 0) return false;
+  if (state_ == ChannelState::kRunning || backward_.moving()) return false;
   // MDI and an interrupted automatic program do not share the interpreter: MDI needs the
   // program ended or reset first, and an interrupted MDI sequence ("execute in manual mode",
   // REPOS manual 2.1) goes on in MDI, not in automatic.
@@ -46,10 +46,8 @@ bool Channel::SetMode(ChannelMode mode) {
       CaptureInterruption();
     // Travelled back: the program was interrupted at the point the travel started from, and
     // the way back to it is now repositioning's (the axes have left it).
-    if (replay_.away) {
-      if (repos_.interruption) repos_.interruption->point = replay_.home;
-      replay_.away = false;
-    }
+    if (std::optional<std::vector<double>> home = backward_.Leave())
+      if (repos_.interruption) repos_.interruption->point = *home;
     // Manual mode during the REPOS subroutine's hold: the next start runs it again.
     if (mode == ChannelMode::kManual && repos_.run && state_ == ChannelState::kHold)
       repos_.rerun = true;
@@ -71,7 +69,7 @@ CycleStart Channel::StartCase() const {
   if (mode_ == ChannelMode::kMdi && !mdi_) return CycleStart::kRefused;
   if (JogsMoving()) return CycleStart::kDeferred;
   if (state_ == ChannelState::kHold) {
-    if (replay_.direction != 0 || replay_.backward_requested || replay_.away)
+    if (backward_.moving() || backward_.backward_requested() || backward_.away())
       return CycleStart::kReplay;
     if (bs_.breakpoint_hold || (search_ && bs_.state != BlockSearchState::kInactive))
       return CycleStart::kBlockSearchHold;
@@ -104,7 +102,7 @@ void Channel::Start() {
   if (state_ == ChannelState::kHold) {
     programmed_stop_.Leave();
     // A start acknowledges backward travel's refusal, unless it takes up a leg that braked.
-    if (replay_.direction == 0 && error_number_ == kMsgBackward) error_.clear(), error_number_ = 0;
+    if (!backward_.moving() && error_number_ == kMsgBackward) error_.clear(), error_number_ = 0;
     // Fast measurement 6.1, Q9998: the new start acknowledges OVERSIZE / UNDERSIZE.
     if (start != CycleStart::kReplay && start != CycleStart::kBlockSearchHold &&
         error_number_ == kMsgMeasuringContinuable)
@@ -172,7 +170,7 @@ void Channel::ContinueHeldProgram() {
 void Channel::Stop() {
   start_deferred_ = false;
   if (state_ == ChannelState::kRunning) state_ = ChannelState::kHold;
-  if (replay_.direction != 0) replay_.stopping = true;
+  backward_.Hold();
 }
 
 void Channel::Reset() {
@@ -211,10 +209,7 @@ void Channel::Reset() {
   bs_.breakpoint_rest.reset();
   bs_.breakpoint_hold = bs_.breakpoint_pending = false;
   bs_.offset.clear();  // the G92 shift goes below
-  path_memory_.Clear();
-  const bool backward = replay_.backward_requested;
-  replay_ = PathReplay{};
-  replay_.backward_requested = backward;
+  backward_.Reset();
   if (work_.interpreter) last_modal_ = work_.interpreter->modal();
   work_.interpreter.reset();
   DropLookahead();
