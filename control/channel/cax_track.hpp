@@ -35,6 +35,13 @@ struct CaxTrackCommand {
 /// The command in `text` (an ISG #-command without its '#': "CAXTRACK ON [ANGLIMIT 3, OFFSET
 /// 0]", both spellings "CAX TRACK" and "CAXTRACK", options as "NAME value" or "NAME=value").
 /// Nothing if `text` is not #CAX TRACK; an option vmt does not know or a bad value: `error` set.
+/// #CAX TRACK in a channel: on with its options, and a C-only move of a turn beyond ANGLIMIT
+/// under way before the block.
+struct CaxTrackState {
+  std::optional<CaxTrackCommand> command;
+  bool aligning = false;
+};
+
 std::optional<CaxTrackCommand> ParseCaxTrack(std::string_view text, std::string* error);
 
 /// What tracking makes of one block's motion.

@@ -11,12 +11,12 @@ Channel::Channel(ChannelConfig config, std::vector<const nc::Program*> programs)
     : config_(std::move(config)), programs_(std::move(programs)) {
   const size_t n = config_.axes.size();
   jog_.axes.resize(n);
-  commanded_.assign(n, 0.0);
-  previous_ = commanded_;
-  translation_.assign(n, 0.0);
-  shift_.assign(n, 0.0);
-  homed_.resize(n);
-  for (size_t a = 0; a < n; ++a) homed_[a] = config_.axes[a].homed_at_start;
+  out_.commanded.assign(n, 0.0);
+  out_.previous = out_.commanded;
+  frames_.translation.assign(n, 0.0);
+  frames_.shift.assign(n, 0.0);
+  frames_.homed.resize(n);
+  for (size_t a = 0; a < n; ++a) frames_.homed[a] = config_.axes[a].homed_at_start;
   sp_.command = {DriveMode::kVelocity, 0, 0};
   if (config_.headstock) headstock_.emplace(*config_.headstock);
   sp_.homed = config_.spindle.homed_at_start;
@@ -42,7 +42,7 @@ void Channel::DropLookahead() {
 
 const nc::Program* Channel::ProgramOf(uint32_t index) const {
   // MDI runs its blocks as program 0 in front of the channel's programs.
-  if (running_mdi_) return index == 0 ? &mdi_->program : programs_[index - 1];
+  if (mdi_.running) return index == 0 ? &mdi_.blocks->program : programs_[index - 1];
   return programs_[index];
 }
 
@@ -55,25 +55,25 @@ std::unique_ptr<nc::Interpreter> Channel::MakeInterpreter() {
   ic.axes.clear();
   for (const ChannelAxis& a : config_.axes) ic.axes.push_back(a.name);
   std::vector<const nc::Program*> programs = programs_;
-  if (mode_ == ChannelMode::kMdi && mdi_) {
+  if (mode_ == ChannelMode::kMdi && mdi_.blocks) {
     // MDI blocks run in the modal state the last program left; subprograms stay callable.
-    programs.insert(programs.begin(), &mdi_->program);
+    programs.insert(programs.begin(), &mdi_.blocks->program);
     ic.initial = last_modal_;
-    running_mdi_ = true;
+    mdi_.running = true;
   } else {
     ic.initial = config_.initial;
-    running_mdi_ = false;
+    mdi_.running = false;
   }
   DropLookahead();
   auto interpreter = std::make_unique<nc::Interpreter>(std::move(programs), ic);
   // Incremental moves start from where the axes stand, in program coordinates.
-  std::vector<double> position(commanded_.size());
-  for (size_t a = 0; a < position.size(); ++a) position[a] = commanded_[a] - translation_[a];
+  std::vector<double> position(out_.commanded.size());
+  for (size_t a = 0; a < position.size(); ++a) position[a] = out_.commanded[a] - frames_.translation[a];
   interpreter->SetPosition(position);
   interpreter->SetEventSource([this](int n) {
-    if (events_) return events_(n);
-    auto it = own_events_.find(n);
-    return it != own_events_.end() && it->second;
+    if (events_.source) return events_.source(n);
+    auto it = events_.own.find(n);
+    return it != events_.own.end() && it->second;
   });
   interpreter->SetDataAccess(MakeDataAccess());
   return interpreter;
@@ -108,7 +108,7 @@ bool Channel::Mdi(const std::string& text) {
     Fail(nc::Format(parsed->errors[0], parsed->program.files), kMsgMdiSyntax);
     return false;
   }
-  mdi_ = std::move(parsed);
+  mdi_.blocks = std::move(parsed);
   return true;
 }
 
@@ -141,7 +141,7 @@ bool Channel::Reverse() {
     search_.reset();
     bs_.state = BlockSearchState::kInactive;
     bs_.command = false;
-    cax_aligning_ = false;
+    cax_.aligning = false;
     bs_.breakpoint_rest.reset();
     bs_.breakpoint_hold = bs_.breakpoint_pending = false;
   }
@@ -157,13 +157,13 @@ bool Channel::Reverse() {
   further_.StopRestoring();
   // Fast measurement 6.1 / 7.2 network 9: the PLC acknowledges Q9999 once the reverse program
   // is active; the reverse program waits for that before its first block.
-  std::erase_if(aux_output_, [](const nc::AuxFunction& f) {
+  std::erase_if(aux_.functions, [](const nc::AuxFunction& f) {
     return !(f.letter == 'Q' && f.value == measure::kQ9999);
   });
   error_.clear();
   error_number_ = 0;
-  std::vector<double> position(commanded_.size());
-  for (size_t a = 0; a < position.size(); ++a) position[a] = commanded_[a] - translation_[a];
+  std::vector<double> position(out_.commanded.size());
+  for (size_t a = 0; a < position.size(); ++a) position[a] = out_.commanded[a] - frames_.translation[a];
   work_.interpreter->SetPosition(position);
   reversing_ = true;
   programmed_stop_.Leave();
@@ -207,9 +207,9 @@ void Channel::Fail(const nc::Program& program, int32_t block, const std::string&
 
 void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
   // Block search 4.2.1: the axes change hands at standstill only.
-  if (const bool suspend = suspend_requested_ || axes_elsewhere_;
-      suspend != output_suspended_ && AxesAtRest()) {
-    output_suspended_ = suspend;
+  if (const bool suspend = out_.suspend_requested || out_.axes_elsewhere;
+      suspend != out_.suspended && AxesAtRest()) {
+    out_.suspended = suspend;
     // A held program whose axes go to the other channel is left as in manual mode (REPOS 2.1):
     // where it was interrupted is the contour to come back to. Block search has no contour yet.
     if (suspend && state_ == ChannelState::kHold && work_.interpreter && !repos_.interruption &&
@@ -218,20 +218,20 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
   }
   if (headstock_ && !hs_.known) HeadstockPowerOn();
   if (drives_.trip_reset_pending) CollectTrips(at);
-  if (take_over_pending_ && !holding_positions_) {
+  if (out_.take_over_pending && !out_.holding) {
     for (size_t a = 0; a < config_.axes.size(); ++a)
-      commanded_[a] = at.feedback[config_.axes[a].drive].position;
-    previous_ = commanded_;
-    holding_positions_ = true;
+      out_.commanded[a] = at.feedback[config_.axes[a].drive].position;
+    out_.previous = out_.commanded;
+    out_.holding = true;
   }
-  take_over_pending_ = false;
-  if (start_pending_) {
-    start_pending_ = false;
-    if (!holding_positions_) {
+  out_.take_over_pending = false;
+  if (start_.program) {
+    start_.program = false;
+    if (!out_.holding) {
       for (size_t a = 0; a < config_.axes.size(); ++a)
-        commanded_[a] = at.feedback[config_.axes[a].drive].position;
-      previous_ = commanded_;
-      holding_positions_ = true;
+        out_.commanded[a] = at.feedback[config_.axes[a].drive].position;
+      out_.previous = out_.commanded;
+      out_.holding = true;
     }
     if (!work_.interpreter) {
       backward_.Forget();
@@ -239,15 +239,15 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
       BeginBlockSearch();
     }
   }
-  if (!holding_positions_) {
+  if (!out_.holding) {
     AcknowledgeDriveTrips(mdt);
     return;
   }
   CheckDrives(at);
 
-  if (++tick_in_cycle_ >= config_.ticks_per_cycle) {
-    tick_in_cycle_ = 0;
-    previous_ = commanded_;
+  if (++out_.tick_in_cycle >= config_.ticks_per_cycle) {
+    out_.tick_in_cycle = 0;
+    out_.previous = out_.commanded;
     sp_.previous_deg = sp_.command.value;
     const double dt = config_.tick_s * config_.ticks_per_cycle;
     TrackReferences(at, dt);
@@ -272,7 +272,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
         break;
       case NcCycleOwner::kJogBraking:
         Jogging(dt);
-        if (!JogsMoving() && std::exchange(start_deferred_, false)) Start();
+        if (!JogsMoving() && std::exchange(start_.deferred, false)) Start();
         break;
       case NcCycleOwner::kBackward:
         ReplayCycle(dt);
@@ -286,7 +286,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
     UpdateBlockSearchStatus();
   }
   // Fine interpolation: the drives get a straight line between the last two NC cycle points.
-  const double f = static_cast<double>(tick_in_cycle_ + 1) / config_.ticks_per_cycle;
+  const double f = static_cast<double>(out_.tick_in_cycle + 1) / config_.ticks_per_cycle;
   // G06 (low-lag): the drives get the path velocity as feed-forward; G33/G63/G64 too, so that
   // the axes do not lag the spindle by their following error.
   const double cycle_s = config_.tick_s * config_.ticks_per_cycle;
@@ -294,8 +294,8 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
                        (work_.block.modal.low_lag || InSynchronousBlock()) &&
                        (state_ == ChannelState::kRunning || state_ == ChannelState::kHold);
   const auto axis_setpoint = [&](size_t a) {
-    DriveSetpoint sp{DriveMode::kPosition, previous_[a] + (commanded_[a] - previous_[a]) * f, 0};
-    if (low_lag) sp.velocity_feedforward = (commanded_[a] - previous_[a]) / cycle_s;
+    DriveSetpoint sp{DriveMode::kPosition, out_.previous[a] + (out_.commanded[a] - out_.previous[a]) * f, 0};
+    if (low_lag) sp.velocity_feedforward = (out_.commanded[a] - out_.previous[a]) / cycle_s;
     return sp;
   };
   // Each drive of the channel gets its setpoint once: the feed axes', then the main spindle's
@@ -324,7 +324,7 @@ DriveSetpoint Channel::SpindleSetpoint() const {
   if (sp.mode == DriveMode::kVelocity && !tapping) sp.value *= sp_.override;
   // G64 interpolates the spindle: fine interpolation to the drive tick as for the axes.
   if (sp.mode == DriveMode::kPosition && sp.interpolated) {
-    const double f = static_cast<double>(tick_in_cycle_ + 1) / config_.ticks_per_cycle;
+    const double f = static_cast<double>(out_.tick_in_cycle + 1) / config_.ticks_per_cycle;
     sp.value = sp_.previous_deg + (sp.value - sp_.previous_deg) * f;
   }
   return sp;
@@ -358,16 +358,16 @@ bool Channel::UpdateTranslation(const nc::ModalState& modal, const nc::Program& 
     edge = &*found;
   }
   const double sign = modal.tool_length == nc::ToolLength::kSubtract ? -1 : 1;
-  for (size_t a = 0; a < translation_.size(); ++a) {
+  for (size_t a = 0; a < frames_.translation.size(); ++a) {
     const double length = edge ? edge->Length(a, config_.axes[a].name) : 0;
-    translation_[a] = config_.zero_offsets.Offset(modal.zero_offset, a) + shift_[a] - sign * length;
+    frames_.translation[a] = config_.zero_offsets.Offset(modal.zero_offset, a) + frames_.shift[a] - sign * length;
   }
   if (headstock_) {
     // The rotary axis' offsets act in rotary axis mode only (C-axis manual 2.3 Zero Point
     // Shifts); they stay selected meanwhile and come back with it (see RotaryOffsetsActive).
     const size_t r = static_cast<size_t>(config_.rotary_axis);
-    hs_.rotary_translation = translation_[r];
-    if (!RotaryOffsetsActive()) translation_[r] = 0;
+    hs_.rotary_translation = frames_.translation[r];
+    if (!RotaryOffsetsActive()) frames_.translation[r] = 0;
   }
   return true;
 }
@@ -378,23 +378,23 @@ bool Channel::NextHomingStage() {
   if (work_.homing_stages.empty()) {
     work_.homing = false;
     // The program continues from the reference points, in its own coordinates.
-    std::vector<double> position(commanded_.size());
-    for (size_t a = 0; a < position.size(); ++a) position[a] = commanded_[a] - translation_[a];
+    std::vector<double> position(out_.commanded.size());
+    for (size_t a = 0; a < position.size(); ++a) position[a] = out_.commanded[a] - frames_.translation[a];
     work_.interpreter->SetPosition(position);
     return false;
   }
   const uint64_t bits = work_.homing_stages.front().second;
   work_.homing_stages.erase(work_.homing_stages.begin());
   work_.motion = BlockMotion{};
-  work_.motion.start = commanded_;
-  work_.motion.end = commanded_;
+  work_.motion.start = out_.commanded;
+  work_.motion.end = out_.commanded;
   double rate = std::numeric_limits<double>::infinity();
   double accel = rate;
-  for (size_t a = 0; a < commanded_.size(); ++a) {
+  for (size_t a = 0; a < out_.commanded.size(); ++a) {
     if (!(bits >> a & 1)) continue;
     const ChannelAxis& axis = config_.axes[a];
     work_.motion.end[a] = axis.reference_position;
-    homed_[a] = true;
+    frames_.homed[a] = true;
     const double distance = std::abs(work_.motion.end[a] - work_.motion.start[a]);
     if (distance < 1e-12) continue;
     const double speed = axis.homing_per_s > 0 ? axis.homing_per_s
@@ -418,7 +418,7 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
   if (work_.block.repos) return StartReposMotion(at);
   if (work_.block.homing) {
     work_.homing_stages.clear();
-    for (size_t a = 0; a < commanded_.size(); ++a) {
+    for (size_t a = 0; a < out_.commanded.size(); ++a) {
       if (!(work_.block.programmed >> a & 1)) continue;
       // The value orders the axes in ISG; in MTC200 it is a placeholder (G74 X0, like G77).
       const int order = program.dialect == nc::Dialect::kIsg
@@ -436,8 +436,8 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
     if (!repos_.run) PathBarrier();
     return NextHomingStage();
   }
-  for (size_t a = 0; a < commanded_.size(); ++a)
-    if (!homed_[a] && (work_.block.programmed >> a & 1)) {
+  for (size_t a = 0; a < out_.commanded.size(); ++a)
+    if (!frames_.homed[a] && (work_.block.programmed >> a & 1)) {
       Fail(program, work_.block.block,
            "axis " + config_.axes[a].name + " has no reference: home it first (G74)", kMsgNotHomed);
       return false;
@@ -447,12 +447,12 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
   // own, and the block starts when it ends (Tick).
   nc::PreparedBlock tracked;
   const nc::PreparedBlock* planned = &work_.block;
-  if (cax_track_) {
+  if (cax_.command) {
     tracked = work_.block;
     std::optional<double> align;
-    if (!TrackC(tracked, commanded_, SpindleRevPerS(at), align)) return false;
+    if (!TrackC(tracked, out_.commanded, SpindleRevPerS(at), align)) return false;
     if (align) {
-      cax_aligning_ = true;
+      cax_.aligning = true;
       return StartCaxAlignment(*align);
     }
     planned = &tracked;
@@ -463,7 +463,7 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
   }
   sync_.phase = SyncPhase::kNone;
   if (const auto error =
-          PlanBlockMotion(*planned, commanded_, translation_, config_.axes, SpindleRevPerS(at),
+          PlanBlockMotion(*planned, out_.commanded, frames_.translation, config_.axes, SpindleRevPerS(at),
                           work_.motion, FollowUpAxes(work_.block))) {
     Fail(program, work_.block.block, error->text, error->number);
     return false;
@@ -492,7 +492,7 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
     work_.profile.accel = look_.carry_accel / work_.motion.length;
     work_.profile.u = std::min(0.5, look_.carry_leftover / work_.motion.length);
     look_.carry_speed = look_.carry_accel = look_.carry_leftover = 0;
-    work_.motion.PointAt(work_.profile.u, commanded_);
+    work_.motion.PointAt(work_.profile.u, out_.commanded);
   }
   LookAhead(at);
   if (bs_.breakpoint_pending) work_.continuation_ready = false;  // stop at the breakpoint
@@ -513,9 +513,9 @@ void Channel::Interpolate(double dt) {
     work_.profile.ahead = look_.profile_targets;
   }
   work_.profile.Advance(dt, override);
-  work_.motion.PointAt(work_.profile.u, commanded_);
+  work_.motion.PointAt(work_.profile.u, out_.commanded);
   if (work_.profile.done()) {
-    commanded_ = work_.motion.end;  // exactly the programmed point
+    out_.commanded = work_.motion.end;  // exactly the programmed point
     work_.active = false;
     // Ended at speed (look-ahead): the next block takes the speed over at once, with what
     // this cycle had left of its distance.

@@ -21,6 +21,8 @@
 #include "control/axes/zero_offsets.hpp"
 #include "control/channel/backward_travel.hpp"
 #include "control/channel/block_motion.hpp"
+#include "control/channel/axis_output.hpp"
+#include "control/channel/aux_output.hpp"
 #include "control/channel/block_search.hpp"
 #include "control/channel/block_search_run.hpp"
 #include "control/channel/cax_track.hpp"
@@ -28,6 +30,7 @@
 #include "control/channel/channel_messages.hpp"
 #include "control/channel/channel_types.hpp"
 #include "control/channel/cycle_start.hpp"
+#include "control/channel/enabling_signals.hpp"
 #include "control/channel/further_spindle_control.hpp"
 #include "control/channel/guarded_moves.hpp"
 #include "control/channel/headstock_link.hpp"
@@ -39,6 +42,8 @@
 #include "control/channel/operator_messages.hpp"
 #include "control/channel/path_profile.hpp"
 #include "control/channel/program_in_work.hpp"
+#include "control/channel/program_events.hpp"
+#include "control/channel/program_frames.hpp"
 #include "control/channel/programmed_stop.hpp"
 #include "control/channel/repositioning.hpp"
 #include "control/channel/spindle_synchronous_motion.hpp"
@@ -69,7 +74,7 @@ class Channel {
   /// Process enabling signal (PxxC.ENABL). Removed: immediate stop (a running program holds, a
   /// changeover halts, jogging axes brake) and no start until it is back (C-axis manual 2.3).
   void SetProcessEnable(bool on);
-  bool process_enabled() const { return process_enable_; }
+  bool process_enabled() const { return enable_.process; }
   /// The spindle keys of manual mode, AxxC.M3 / M4 / M5 / M19 (rising edges; C-axis manual
   /// 4.2): `m` = 3, 4, 5 or 19. They select spindle mode on a headstock (aborting a changeover an
   /// immediate stop interrupted), then turn the spindle at its jogging speed, stop it or position
@@ -87,7 +92,7 @@ class Channel {
   /// the process enabling signal goes). Programmed motion does not ask for it.
   void SetAxisEnable(size_t axis, bool on);
   void SetSpindleEnable(bool on);
-  bool axis_enabled(size_t axis) const { return axis >= axis_enable_.size() || axis_enable_[axis]; }
+  bool axis_enabled(size_t axis) const { return axis >= enable_.axes.size() || enable_.axes[axis]; }
   /// AxxS.NC_NMAX of the main spindle: its speed command (override applied) at the speed limit
   /// Cxx.049 or beyond.
   bool SpindleAtSpeedLimit() const;
@@ -132,10 +137,10 @@ class Channel {
   bool Reverse();
   bool reversing() const { return reversing_; }
   /// Auxiliary functions (M, H, Q, T) of the block in work that wait for the PLC.
-  const std::vector<nc::AuxFunction>& aux_output() const { return aux_output_; }
+  const std::vector<nc::AuxFunction>& aux_output() const { return aux_.functions; }
   /// Increments with every new output of auxiliary functions (the strobe).
-  uint32_t aux_strobe() const { return aux_strobe_; }
-  void AcknowledgeAux() { aux_output_.clear(); }
+  uint32_t aux_strobe() const { return aux_.strobe; }
+  void AcknowledgeAux() { aux_.functions.clear(); }
   /// Jog key of a channel axis: +1 positive, -1 negative, 0 released. Manual mode only; an
   /// increment, once started, is completed.
   void Jog(size_t axis, int direction);
@@ -181,9 +186,9 @@ class Channel {
   /// Direction the axis is commanded to move this NC cycle: +1, -1 or 0 (MVPOS / MVNEG).
   int AxisMotion(size_t axis) const;
   /// Events (BES/BEC) come from here; without a source, the events the program set itself.
-  void SetEventSource(std::function<bool(int)> source) { events_ = std::move(source); }
+  void SetEventSource(std::function<bool(int)> source) { events_.source = std::move(source); }
   /// SE n / RE n of the program go here (the gateway's Pxx.EVn); the channel also keeps them.
-  void SetEventSink(std::function<void(int, bool)> sink) { event_sink_ = std::move(sink); }
+  void SetEventSink(std::function<void(int, bool)> sink) { events_.sink = std::move(sink); }
 
   /// The machine data pages of fast measurement (MTD, the measuring instructions); null: none.
   /// They must outlive the channel.
@@ -252,11 +257,11 @@ class Channel {
   /// decodes on, and every motion of its own (the return to the contour too) waits for the axes
   /// to come back. The change is taken at standstill, both ways ("grundsätzlich im Stillstand
   /// der Achsen"). The rotary axis of a headstock rides on the spindle and is never lent.
-  void SetSuspendOutput(bool on) { suspend_requested_ = on; }
+  void SetSuspendOutput(bool on) { out_.suspend_requested = on; }
   /// Another channel still holds the axes: the output stays suspended until it gives them back.
-  void SetAxesElsewhere(bool on) { axes_elsewhere_ = on; }
-  bool suspend_output_requested() const { return suspend_requested_; }
-  bool output_suspended() const { return output_suspended_; }
+  void SetAxesElsewhere(bool on) { out_.axes_elsewhere = on; }
+  bool suspend_output_requested() const { return out_.suspend_requested; }
+  bool output_suspended() const { return out_.suspended; }
   /// While the output is suspended: the lent axes stand where `holder` commands them, and the
   /// channel goes on from there without a step when they come back.
   void FollowAxesOf(const Channel& holder);
@@ -285,7 +290,7 @@ class Channel {
   const nc::ModalState& modal() const;
   /// Axis referenced (homed): from the start, or after G74; the rotary axis of a headstock
   /// also after M19 on the same drive, and it loses it when its encoder runs too fast.
-  bool homed(size_t axis) const { return homed_[axis]; }
+  bool homed(size_t axis) const { return frames_.homed[axis]; }
   /// The main spindle's reference (AxxS.HOMED of the spindle): established by M19, lost when
   /// its encoder's frequency exceeds the limit (C-axis manual 2.3, 3.3 Homing).
   bool spindle_homed() const;
@@ -301,14 +306,14 @@ class Channel {
   SpindleStatus spindle_status() const;
   /// Translation program -> axis position of a channel axis under the current modal state:
   /// zero offset + G92 shift - tool length.
-  double Translation(size_t axis) const { return translation_[axis]; }
+  double Translation(size_t axis) const { return frames_.translation[axis]; }
   /// The program address of channel axis `axis` (X, Z, C).
   const std::string& AxisName(size_t axis) const { return config_.axes[axis].name; }
   /// Commanded position of a channel axis: the axis position the drive is commanded to (mm |
   /// deg); the program's coordinate is this less Translation(). Valid once holds_positions().
-  double position(size_t axis) const { return commanded_[axis]; }
+  double position(size_t axis) const { return out_.commanded[axis]; }
   /// The channel has taken its axes over (the first start or jog): it commands their setpoints.
-  bool holds_positions() const { return holding_positions_; }
+  bool holds_positions() const { return out_.holding; }
   const ChannelConfig& config() const { return config_; }
   /// Source line of the block in work, 0 when none.
   uint32_t line() const;
@@ -378,32 +383,25 @@ class Channel {
   /// The program the channel runs: its interpreter, the block in work, look-ahead and tool
   /// radius compensation (program_in_work.hpp).
   ProgramInWork work_;
-  std::function<bool(int)> events_;
-  std::function<void(int, bool)> event_sink_;
-  std::map<int, bool> own_events_;
+  ProgramEvents events_;  ///< BES / BEC / SE / RE: the gateway's, or the program's own
   ChannelState state_ = ChannelState::kIdle;
   std::string error_;
   double override_ = 1.0;
   bool single_block_ = false;
   ProgrammedStop programmed_stop_;  ///< M00 / M01
 
-  // Positions: commanded at the last two NC cycles, for fine interpolation.
-  std::vector<double> commanded_, previous_;
-  int tick_in_cycle_ = 0;
-  bool holding_positions_ = false;  ///< once started, the channel owns its axes' setpoints
-  bool start_pending_ = false;
-  bool start_deferred_ = false;  ///< started while a jog left for this mode still brakes
+  /// Positions commanded at the last two NC cycles and who holds the axes.
+  AxisOutput out_{.suspend_requested = config_.output_suspended_at_start,
+                  .suspended = config_.output_suspended_at_start};
+  PendingStart start_;
   /// What Start() would do now; it changes nothing.
   CycleStart StartCase() const;
   /// Start() while the program holds on its path: it goes on if no axis has left the contour.
   void ContinueHeldProgram();
-  bool suspend_requested_ = config_.output_suspended_at_start, axes_elsewhere_ = false;
-  bool output_suspended_ = config_.output_suspended_at_start;
   /// The output is suspended and `axis` is one the JogOfPath channel takes.
   bool Lent(size_t axis) const {
-    return output_suspended_ && !(headstock_ && static_cast<int>(axis) == config_.rotary_axis);
+    return out_.suspended && !(headstock_ && static_cast<int>(axis) == config_.rotary_axis);
   }
-  bool take_over_pending_ = false;  ///< own the axes' setpoints from the next tick on
   void Jogging(double dt);
   /// AxxC.HOME's homing of channel axis `a` (HomeAxis): true while it owns the axis' cycle.
   bool HomingJog(size_t a, double dt);
@@ -425,19 +423,16 @@ class Channel {
 
   ChannelMode mode_ = ChannelMode::kAutomatic;
   int error_number_ = 0;
-  std::vector<double> translation_, shift_;  ///< per axis; shift_: G92
-  std::vector<bool> homed_;
-  std::vector<nc::AuxFunction> aux_output_;
-  uint32_t aux_strobe_ = 0;
+  ProgramFrames frames_;  ///< per axis: program -> axis translation, G92 shift, reference
+  AuxOutput aux_;         ///< M, H, Q, T waiting for the PLC, and their strobe
   bool reversing_ = false;
-  bool running_mdi_ = false;
 
   // Look-ahead between feed moves: the next blocks read early, the speed carried into them.
 
   // Tool nose radius compensation (G41/G42): blocks read ahead and the tip path made of them.
   bool inserted_piece_ = false;    ///< work_.block is a corner the compensation inserted before it
   int axis_z_ = -1, axis_x_ = -1;  ///< channel axes of the G18 plane
-  std::shared_ptr<nc::ParseResult> mdi_;
+  MdiState mdi_;
   nc::ModalState last_modal_;
   /// A feed axis or X1/Y1 still jogs: braking after a mode change, or an increment under way.
   bool JogsMoving() const;
@@ -567,8 +562,7 @@ class Channel {
   std::optional<BlockSearchRun> search_;
   // #CAX TRACK (cax_track.hpp, channel_cax_track.cpp): on with its options, in a run and in
   // the search alike; a C-only move of a turn beyond ANGLIMIT runs before the block.
-  std::optional<CaxTrackCommand> cax_track_;
-  bool cax_aligning_ = false;
+  CaxTrackState cax_;
   int TrackedAxis() const;
   /// #CAX TRACK in `st` of block `b`, C standing at `c_machine`: nothing if `st` is another
   /// command, false if it failed (Fail called).
@@ -662,8 +656,7 @@ class Channel {
   /// A changeover to rotary axis mode has ended: the block in work and the interpreter take
   /// the rotary axis' actual position.
   void RebaseRotaryAxis();
-  bool process_enable_ = true;
-  std::vector<bool> axis_enable_;     ///< AxxC.ENABL per channel axis (empty: all enabled)
+  EnablingSignals enable_;  ///< PxxC.ENABL, AxxC.ENABL
   MainSpindleState sp_;  ///< the main spindle: command, override, keys, reference, feedback
   DriveWatch drives_;    ///< encoder positions and Control-Reset's trip acknowledgement
   LookAheadState look_;  ///< the blocks read ahead and the speed carried into the next block

@@ -40,7 +40,7 @@ void Channel::StartReplay() {
     return;
   }
   if (!backward_.backward_requested()) {  // away from the interruption point: forward, back to it
-    ReplayArrived(backward_.Forward(commanded_, ReplayGuardOf()));
+    ReplayArrived(backward_.Forward(out_.commanded, ReplayGuardOf()));
     return;
   }
   if (!backward_.away()) {
@@ -71,7 +71,7 @@ void Channel::StartReplay() {
     else if (search_ && bs_.state == BlockSearchState::kWaitForContinueContour &&
              backward_.LastStepIs(search_->restart_motion))
       u = search_->restart_u;
-    else if (backward_.AtLastStepEnd(commanded_))
+    else if (backward_.AtLastStepEnd(out_.commanded))
       u = 1;
     if (!backward_.CanGoBackFrom(u)) {
       RefuseBackward("no path behind the axes (the program's start, or a block backward travel "
@@ -80,13 +80,13 @@ void Channel::StartReplay() {
     }
     // Not jogged off: the interruption of a visit to manual mode is over.
     if (repos_.interruption) ClearRepos();
-    backward_.BeginAt(commanded_, u);
+    backward_.BeginAt(out_.commanded, u);
   }
-  ReplayArrived(backward_.Back(commanded_, ReplayGuardOf()));
+  ReplayArrived(backward_.Back(out_.commanded, ReplayGuardOf()));
 }
 
 void Channel::ReplayCycle(double dt) {
-  ReplayArrived(backward_.Cycle(dt, override_, state_ == ChannelState::kHold, commanded_,
+  ReplayArrived(backward_.Cycle(dt, override_, state_ == ChannelState::kHold, out_.commanded,
                                 ReplayGuardOf()));
 }
 

@@ -63,8 +63,8 @@ void Channel::BeginBlockSearch() {
   bs_.command = false;
   bs_.warnings.clear();
   bs_.distance_on = true;  // 4.1.2: ON and CLEAR are the state at program start
-  cax_track_.reset();
-  cax_aligning_ = false;
+  cax_.command.reset();
+  cax_.aligning = false;
   bs_.distance = bs_.block_distance_start = bs_.block_distance = 0;
   bs_.breakpoint_rest.reset();
   bs_.breakpoint_hold = false;
@@ -86,7 +86,7 @@ void Channel::BeginBlockSearch() {
   }
   if (!bs_.started.searches()) return;
   search_.emplace(bs_.started);
-  search_->position = commanded_;
+  search_->position = out_.commanded;
   search_->spindle = sp_.command;
   work_.interpreter->SetEveryBlock(true);
   bs_.state = BlockSearchState::kWaitForPlcOn;
@@ -97,11 +97,11 @@ bool Channel::SearchCycle(const AmplifierTelegram& at) {
   if (!search_ || bs_.state == BlockSearchState::kInactive) return false;
   BlockSearchRun& s = *search_;
   // Technology functions of the search wait for the PLC as in a normal run (2, 7).
-  if (!aux_output_.empty()) return true;
+  if (!aux_.functions.empty()) return true;
   // 4.2.1: from the return on the search moves axes; lent to the JogOfPath channel, they must
   // come back first ("Vor dem Weiterfahren des Satzvorlaufkanals wird die Kanal-Ausgabe wieder
   // auf den Satzvorlaufkanal umgeschaltet").
-  if (output_suspended_ && bs_.state >= BlockSearchState::kWaitReturnToContour) return true;
+  if (out_.suspended && bs_.state >= BlockSearchState::kWaitReturnToContour) return true;
   switch (bs_.state) {
     case BlockSearchState::kWaitForPlcOn:
       // 7: with enable_w the NC asks and waits for the PLC's acknowledgement.
@@ -182,7 +182,7 @@ bool Channel::SimulateBlocks() {
 
 bool Channel::SearchGoesOn() const {
   // Technology waits for the PLC: its acknowledgement, or the end of a changeover.
-  return bs_.state == BlockSearchState::kActive && aux_output_.empty() &&
+  return bs_.state == BlockSearchState::kActive && aux_.functions.empty() &&
          hs_.waiting_for == axes::HeadstockMode::kNone && state_ == ChannelState::kRunning;
 }
 
@@ -308,18 +308,18 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
                 kMsgNotAvailable);
   }
   for (const auto& [n, set] : b.events) {
-    own_events_[n] = set;
-    if (event_sink_) event_sink_(n, set);
+    events_.own[n] = set;
+    if (events_.sink) events_.sink(n, set);
   }
   DistanceCommand(b);
   if (!UpdateTranslation(b.modal, program, b.block)) return false;
   if (b.set_position)
     for (size_t a = 0; a < s.position.size(); ++a)
       if (b.programmed >> a & 1) {
-        shift_[a] += s.position[a] - (b.target[a] + translation_[a]);
-        translation_[a] = s.position[a] - b.target[a];
+        frames_.shift[a] += s.position[a] - (b.target[a] + frames_.translation[a]);
+        frames_.translation[a] = s.position[a] - b.target[a];
         if (headstock_ && static_cast<int>(a) == config_.rotary_axis)
-          hs_.rotary_translation = translation_[a];
+          hs_.rotary_translation = frames_.translation[a];
       }
   SpindleFunctions(b, s.spindle);
   // An NC-controlled turret is technology too: the T word indexes it now, as in a run.
@@ -328,8 +328,8 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
   if (config_.aux_handshake) {
     for (const nc::AuxFunction& f : b.aux)
       if (f.letter == 'M' || f.letter == 'H' || f.letter == 'Q' || f.letter == 'T')
-        aux_output_.push_back(f);
-    if (!aux_output_.empty()) ++aux_strobe_;
+        aux_.functions.push_back(f);
+    if (!aux_.functions.empty()) ++aux_.strobe;
   }
 
   return SimulateMotion(b, boundary);
@@ -354,7 +354,7 @@ bool Channel::SimulateMotion(nc::PreparedBlock& b, bool boundary) {
     std::optional<double> align;
     if (!TrackC(m, s.position, std::abs(rev_per_s), align)) return false;
     if (align) s.position[static_cast<size_t>(TrackedAxis())] = *align;
-    if (const auto error = PlanBlockMotion(m, s.position, translation_, config_.axes,
+    if (const auto error = PlanBlockMotion(m, s.position, frames_.translation, config_.axes,
                                            std::abs(rev_per_s), motion, FollowUpAxes(m))) {
       Fail(*ProgramOf(b.program), b.block, error->text, error->number);
       return false;
@@ -367,7 +367,7 @@ bool Channel::SimulateMotion(nc::PreparedBlock& b, bool boundary) {
     // from the reference points (NextHomingStage).
     for (size_t a = 0; a < s.position.size(); ++a)
       if (b.programmed >> a & 1)
-        work_.interpreter->SetAxisPosition(a, s.position[a] - translation_[a]);
+        work_.interpreter->SetAxisPosition(a, s.position[a] - frames_.translation[a]);
   }
   const double length = bs_.distance_on ? DistanceOf(motion, config_.axes) : 0;
   const double permille = bs_.started.covered_distance / 1000;
@@ -548,12 +548,12 @@ void Channel::UpdateBlockSearchStatus() {
   // A corner the compensation inserted before its block is not yet the block's own path: the
   // per mille the search takes is measured in that (SimulateMotion); nor is the C-only turn of
   // #CAX TRACK before its block, which has not started counting its distance yet.
-  const bool aside = inserted_piece_ || cax_aligning_;
+  const bool aside = inserted_piece_ || cax_.aligning;
   double u = moving && !aside ? std::clamp(work_.profile.u, 0.0, 1.0) : 0;
   // The breakpoint cut the block: its profile runs over the first part only.
   if (moving && bs_.breakpoint_rest) u *= bs_.breakpoint_u;
   st.covered_distance = u * 1000;
-  st.dist_prog_start = (work_.active || bs_.breakpoint_hold) && !cax_aligning_
+  st.dist_prog_start = (work_.active || bs_.breakpoint_hold) && !cax_.aligning
                            ? bs_.block_distance_start + u * bs_.block_distance
                            : bs_.distance;
   st.block_count = work_.block.block_count;
@@ -565,8 +565,8 @@ void Channel::UpdateBlockSearchStatus() {
        bs_.state == BlockSearchState::kReturningToContour ||
        bs_.state == BlockSearchState::kWaitForContinueContour)) {
     double d2 = 0;
-    for (size_t a = 0; a < commanded_.size(); ++a)
-      if (MainAxis(config_.axes[a].name)) d2 += std::pow(commanded_[a] - search_->restart[a], 2);
+    for (size_t a = 0; a < out_.commanded.size(); ++a)
+      if (MainAxis(config_.axes[a].name)) d2 += std::pow(out_.commanded[a] - search_->restart[a], 2);
     st.path_deviation = std::sqrt(d2);
     st.continue_position = search_->restart;
     st.dist_prog_start = search_->restart_distance + search_->restart_u * search_->restart_length;
@@ -592,7 +592,7 @@ void Channel::UpdateBlockSearchStatus() {
   if (hold && !bs_.breakpoint_hold && !single_block_ && !search_hold &&
       programmed == ProgrammedStop::Kind::kNone && !measuring_fault)
     sc |= kFeedhold;
-  if (!aux_output_.empty()) sc |= kPlcAcknowledge | kWaitTechnoAck;
+  if (!aux_.functions.empty()) sc |= kPlcAcknowledge | kWaitTechnoAck;
   // A changeover waits for the PLC's ROTMOD / SPMOD acknowledgement (C-axis manual 2.3), in the
   // search as in a run: a technology function's acknowledgement. Meanwhile, as while MRY waits
   // for the tool storage axis, block preparation delivers nothing: the interpolator's input
@@ -604,8 +604,8 @@ void Channel::UpdateBlockSearchStatus() {
   // Block search 4.2.1: the axes change hands at standstill only; until then the channel
   // waits for the exchange it asked for. While its output is suspended a program (not a
   // search, which decodes on) reads no blocks.
-  if ((suspend_requested_ || axes_elsewhere_) != output_suspended_) sc |= kWaitForAxes;
-  if (output_suspended_ && (running || hold) && bs_.state == BlockSearchState::kInactive)
+  if ((out_.suspend_requested || out_.axes_elsewhere) != out_.suspended) sc |= kWaitForAxes;
+  if (out_.suspended && (running || hold) && bs_.state == BlockSearchState::kInactive)
     sc |= kIpoInputDisabled;
   if (running && work_.active && override_ == 0)
     sc |= work_.block.motion == nc::Motion::kRapid ? kOverrideRapidZero : kOverrideZero;

@@ -46,11 +46,11 @@ void Channel::EndSearchChangeover(nc::PreparedBlock& b) {
   // Rotary axis mode starts where C stands (HeadstockCycle keeps its command value on the
   // actual position, with the rotary offsets back): the search's C is there too.
   const size_t r = static_cast<size_t>(config_.rotary_axis);
-  s.position[r] = commanded_[r];
+  s.position[r] = out_.commanded[r];
   // RebaseRotaryAxis: an increment counts from here; the interpreter goes on from the block's
   // corrected end. Under G41/G42 the blocks ahead are prepared already, as in a run.
   if (work_.compensating || b.homing) return;
-  const double actual = commanded_[r] - translation_[r];
+  const double actual = out_.commanded[r] - frames_.translation[r];
   if (b.modal.incremental && (b.programmed >> r & 1)) b.target[r] += actual - s.rotary_start;
   work_.interpreter->SetAxisPosition(r, b.target[r]);
 }
@@ -71,7 +71,7 @@ bool Channel::SimulateMeasuringInstruction(const nc::PreparedBlock& b) {
   context.compensation = b.modal.compensation;
   for (int n = 0; n < 3; ++n)
     if (const int a = SettingAxis(n); a >= 0)
-      context.position[n] += s.position[static_cast<size_t>(a)] - commanded_[static_cast<size_t>(a)];
+      context.position[n] += s.position[static_cast<size_t>(a)] - out_.commanded[static_cast<size_t>(a)];
   // Planned on copies: only what the instruction sets as state is taken over below.
   measure::MeasuringPages pages = *meas_.pages;
   measure::ReverseVectors reverse = meas_.reverse_vectors;
@@ -86,8 +86,8 @@ bool Channel::SimulateMeasuringInstruction(const nc::PreparedBlock& b) {
     if (config_.aux_handshake) {
       for (const measure::MeasuringStep& step : plan.steps)
         if (step.kind == measure::MeasuringStep::Kind::kAux)
-          aux_output_.push_back({'Q', 0, static_cast<double>(step.q)});
-      if (!aux_output_.empty()) ++aux_strobe_;
+          aux_.functions.push_back({'Q', 0, static_cast<double>(step.q)});
+      if (!aux_.functions.empty()) ++aux_.strobe;
     }
     return true;
   }

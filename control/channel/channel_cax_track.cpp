@@ -32,22 +32,22 @@ std::optional<bool> Channel::CaxTrackInstruction(const nc::Program& program,
   const int c = TrackedAxis();
   if (c < 0) return fail("#CAX TRACK needs a rotary axis C in the channel");
   if (command->on) {
-    cax_track_ = *command;
+    cax_.command = *command;
     return true;
   }
-  cax_track_.reset();
+  cax_.command.reset();
   // The program goes on from where tracking left C: the interpreter still has the C the
   // program last wrote, which the blocks after OFF would otherwise go back to.
   const auto ci = static_cast<size_t>(c);
-  work_.interpreter->SetAxisPosition(ci, c_machine - translation_[ci]);
-  if (!(b.programmed >> c & 1)) b.target[ci] = c_machine - translation_[ci];
+  work_.interpreter->SetAxisPosition(ci, c_machine - frames_.translation[ci]);
+  if (!(b.programmed >> c & 1)) b.target[ci] = c_machine - frames_.translation[ci];
   return true;
 }
 
 bool Channel::TrackC(nc::PreparedBlock& b, const std::vector<double>& from, double rev_per_s,
                      std::optional<double>& align_to) {
   align_to.reset();
-  if (!cax_track_ || b.motion == nc::Motion::kNone || b.homing || b.repos || b.measuring)
+  if (!cax_.command || b.motion == nc::Motion::kNone || b.homing || b.repos || b.measuring)
     return true;
   const int c = TrackedAxis();
   const auto ci = static_cast<size_t>(c);
@@ -87,14 +87,14 @@ bool Channel::TrackC(nc::PreparedBlock& b, const std::vector<double>& from, doub
          kMsgNotAvailable);
     return false;
   }
-  const double c_now = from[ci] - translation_[ci];
+  const double c_now = from[ci] - frames_.translation[ci];
   b.target[ci] = c_now;  // out of the plane C stands, whatever the interpreter last had
   BlockMotion m;
-  if (PlanBlockMotion(b, from, translation_, config_.axes, rev_per_s, m, FollowUpAxes(b)))
+  if (PlanBlockMotion(b, from, frames_.translation, config_.axes, rev_per_s, m, FollowUpAxes(b)))
     return true;  // the block's own planning reports its error
-  const CaxTrackStep step = TrackStep(m, p0, p1, c_now, *cax_track_);
+  const CaxTrackStep step = TrackStep(m, p0, p1, c_now, *cax_.command);
   if (!step.in_plane) return true;
-  if (step.align) align_to = step.start_deg + translation_[ci];
+  if (step.align) align_to = step.start_deg + frames_.translation[ci];
   b.target[ci] = step.end_deg;
   b.programmed |= uint64_t{1} << c;
   return true;
@@ -104,10 +104,10 @@ bool Channel::StartCaxAlignment(double to) {
   // The C-only move of a turn beyond ANGLIMIT, at C's rapid limits, the path standing.
   const auto ci = static_cast<size_t>(TrackedAxis());
   work_.motion = BlockMotion{};
-  work_.motion.start = commanded_;
-  work_.motion.end = commanded_;
+  work_.motion.start = out_.commanded;
+  work_.motion.end = out_.commanded;
   work_.motion.end[ci] = to;
-  const double distance = std::abs(to - commanded_[ci]);
+  const double distance = std::abs(to - out_.commanded[ci]);
   work_.profile = PathProfile{};
   work_.continuation_ready = false;
   look_.carry_speed = look_.carry_accel = look_.carry_leftover = 0;

@@ -6,7 +6,7 @@
 namespace vmt::control::channel {
 
 NcCycleOwner Channel::CycleOwner() const {
-  if (output_suspended_) return NcCycleOwner::kAxesLent;
+  if (out_.suspended) return NcCycleOwner::kAxesLent;
   if (mode_ == ChannelMode::kManual) return NcCycleOwner::kJog;
   if (JogsMoving()) return NcCycleOwner::kJogBraking;
   if (backward_.away()) return NcCycleOwner::kBackward;
@@ -18,7 +18,7 @@ NcCycleOwner Channel::CycleOwner() const {
 NcCycleOwner Channel::ProgramCycleOwner() const {
   // Block search owns the cycle while it is under way, its return to the contour included.
   if (search_ && bs_.state != BlockSearchState::kInactive) return NcCycleOwner::kBlockSearch;
-  if (!aux_output_.empty()) return NcCycleOwner::kAuxAcknowledge;
+  if (!aux_.functions.empty()) return NcCycleOwner::kAuxAcknowledge;
   if (hs_.waiting_for != axes::HeadstockMode::kNone) return NcCycleOwner::kChangeover;
   if (tool_storage_wait_) return NcCycleOwner::kToolStorage;
   if (work_.pending_motion) return NcCycleOwner::kMotionStart;
@@ -104,7 +104,7 @@ void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, doub
     if (finished && meas_.run) finished = MeasuringCycle(at);
     if (finished && work_.homing) finished = !NextHomingStage();
     // C is aligned (#CAX TRACK): the block's own motion follows as one unit with it.
-    if (finished && std::exchange(cax_aligning_, false))
+    if (finished && std::exchange(cax_.aligning, false))
       finished = StartMotion(at) && !work_.active && !sp_.orienting;
     if (finished && look_.carry_speed > 0) {
       // Blended: the next block runs on from here in the same cycle.

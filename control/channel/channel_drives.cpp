@@ -48,7 +48,7 @@ void Channel::CheckDrives(const AmplifierTelegram& at) {
   for (size_t a = 0; a < config_.axes.size(); ++a) {
     const DriveFeedback& fb = at.feedback[config_.axes[a].drive];
     if ((fb.status & kTrips) || !(fb.status & drive_status::kReady))
-      commanded_[a] = previous_[a] = fb.position;
+      out_.commanded[a] = out_.previous[a] = fb.position;
   }
   if (state_ == ChannelState::kError) return;
   CheckAxisReady();
@@ -141,7 +141,7 @@ void Channel::CollectTrips(const AmplifierTelegram& at) {
 
 bool Channel::WritesDrive(size_t d) const {
   // Tick takes the axes when a start or a hand-over is pending, before it writes.
-  if (!holding_positions_ && !start_pending_ && !take_over_pending_) return false;
+  if (!out_.holding && !start_.program && !out_.take_over_pending) return false;
   const auto is = [d](int drive) { return drive >= 0 && static_cast<size_t>(drive) == d; };
   // As Tick writes them: the rotary axis of a headstock and the main spindle through it.
   for (size_t a = 0; a < config_.axes.size(); ++a)

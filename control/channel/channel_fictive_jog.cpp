@@ -43,20 +43,20 @@ bool Channel::JogFictive(int axis, int direction) {
   if (direction != 0 && config_.process.jogging_causes_reset && state_ == ChannelState::kHold)
     Reset();
   jog_.fictive[axis].key = direction > 0 ? 1 : direction < 0 ? -1 : 0;
-  take_over_pending_ = true;
+  out_.take_over_pending = true;
   return true;
 }
 
 bool Channel::HandwheelFictive(int axis, int counts) {
   int x = -1, c = -1;
   if (mode_ != ChannelMode::kManual || jog_.mode != JogMode::kHandwheel || axis < 0 || axis > 1 ||
-      !process_enable_ || !FictiveJogAxes(x, c) || !axis_enabled(x) || !axis_enabled(c))
+      !enable_.process || !FictiveJogAxes(x, c) || !axis_enabled(x) || !axis_enabled(c))
     return false;
-  take_over_pending_ = true;
+  out_.take_over_pending = true;
   FictiveJog& j = jog_.fictive[axis];
   if (!j.handwheel) {
     const nc::FictivePoint p =
-        nc::MachineToFace(commanded_[x] - translation_[x], commanded_[c] - translation_[c]);
+        nc::MachineToFace(out_.commanded[x] - frames_.translation[x], out_.commanded[c] - frames_.translation[c]);
     j.handwheel = true;
     j.handwheel_target = axis == 0 ? p.x1 : p.y1;
   }
@@ -74,9 +74,9 @@ void Channel::FictiveJogging(double dt) {
   const ChannelAxis& ax = config_.axes[x];
   const ChannelAxis& ac = config_.axes[c];
   // A fictive axis moves X and C together: both need their axis enabling signal (C-axis 4.2).
-  const bool enabled = process_enable_ && axis_enabled(x) && axis_enabled(c);
+  const bool enabled = enable_.process && axis_enabled(x) && axis_enabled(c);
   const nc::FictivePoint p =
-      nc::MachineToFace(commanded_[x] - translation_[x], commanded_[c] - translation_[c]);
+      nc::MachineToFace(out_.commanded[x] - frames_.translation[x], out_.commanded[c] - frames_.translation[c]);
   const double radius = std::hypot(p.x1, p.y1);
   // The keys at X's jogging speed, the handwheel at X's jogging rapid (as the real axes'
   // handwheel), either slower where C would pass its own jogging rapid.
@@ -151,16 +151,16 @@ void Channel::FictiveJogging(double dt) {
     for (int k = 0; k < 2; ++k) jogs[k].velocity = 0, jogs[k].stepping = jogs[k].handwheel = false;
     return;
   }
-  std::vector<double> to = commanded_;
-  to[x] = std::hypot(q.x1, q.y1) + translation_[x];
-  to[c] = commanded_[c] + nc::SweepDeg(p, q);
+  std::vector<double> to = out_.commanded;
+  to[x] = std::hypot(q.x1, q.y1) + frames_.translation[x];
+  to[c] = out_.commanded[c] + nc::SweepDeg(p, q);
   if (!GuardFictiveJog(x, c, q)) {
     for (int k = 0; k < 2; ++k) jogs[k] = FictiveJog{};
     return;
   }
-  commanded_ = to;
-  jog_.axes[x].handwheel_target = commanded_[x];
-  jog_.axes[c].handwheel_target = commanded_[c];
+  out_.commanded = to;
+  jog_.axes[x].handwheel_target = out_.commanded[x];
+  jog_.axes[c].handwheel_target = out_.commanded[c];
 }
 
 bool Channel::GuardFictiveJog(int x, int c, nc::FictivePoint next) {
@@ -183,7 +183,7 @@ bool Channel::GuardFictiveJog(int x, int c, nc::FictivePoint next) {
     stop[k] += j.velocity * std::abs(j.velocity) / (2 * a) + j.velocity * interval;
   }
   const nc::FictivePoint p =
-      nc::MachineToFace(commanded_[x] - translation_[x], commanded_[c] - translation_[c]);
+      nc::MachineToFace(out_.commanded[x] - frames_.translation[x], out_.commanded[c] - frames_.translation[c]);
   const nc::FictivePoint s{stop[0], stop[1]};
   const std::string move = jog_.mode == JogMode::kHandwheel ? "handwheel X1/Y1" : "jog X1/Y1";
   // Chords of the line p-s, straight in the drives, within kChordTolerance of it (a
@@ -197,14 +197,14 @@ bool Channel::GuardFictiveJog(int x, int c, nc::FictivePoint next) {
                                         static_cast<double>(kMaxChords)));
   const std::vector<double> from = GuardFrom();
   std::vector<double> to = from, b = from, at = from;
-  to[config_.axes[x].drive] = std::hypot(s.x1, s.y1) + translation_[x];
-  to[config_.axes[c].drive] = commanded_[c] + nc::SweepDeg(p, s);
+  to[config_.axes[x].drive] = std::hypot(s.x1, s.y1) + frames_.translation[x];
+  to[config_.axes[c].drive] = out_.commanded[c] + nc::SweepDeg(p, s);
   GuardRecord record{move, from, to, PathCheck{}, 0, false};
   for (int i = 1; i <= chords; ++i) {
     const double u = static_cast<double>(i) / chords;
     const nc::FictivePoint q{p.x1 + (s.x1 - p.x1) * u, p.y1 + (s.y1 - p.y1) * u};
-    b[config_.axes[x].drive] = std::hypot(q.x1, q.y1) + translation_[x];
-    b[config_.axes[c].drive] = commanded_[c] + nc::SweepDeg(p, q);
+    b[config_.axes[x].drive] = std::hypot(q.x1, q.y1) + frames_.translation[x];
+    b[config_.axes[c].drive] = out_.commanded[c] + nc::SweepDeg(p, q);
     const PathCheck check = guarded_.guard->CheckMove(at, b);
     if (!check.clear) return !GuardStops(move, from, to, check);
     if (record.checks == 0 || check.min_clearance < record.check.min_clearance)

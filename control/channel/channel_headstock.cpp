@@ -30,7 +30,7 @@ void Channel::HeadstockCycle(const AmplifierTelegram& at, double dt) {
   // Section 2: one axis, one AxxC.READY (4.2), whichever signal a caller filled in.
   plc.rotary_ready = RotaryReady();
   const bool interrupted = state_ == ChannelState::kHold && !hs_.manual;
-  plc.stop = plc.stop || interrupted || state_ == ChannelState::kError || !process_enable_;
+  plc.stop = plc.stop || interrupted || state_ == ChannelState::kError || !enable_.process;
   if (!headstock_->Cycle(plc, at, dt) && state_ != ChannelState::kError)
     Fail(headstock_->error(), kMsgChangeoverAck);
   if (!headstock_->busy()) hs_.manual = false;
@@ -42,15 +42,15 @@ void Channel::HeadstockCycle(const AmplifierTelegram& at, double dt) {
   // Position indication (2.3): the designation of the new mode once the changeover is done.
   if (headstock_->mode() != axes::HeadstockMode::kNone) hs_.shown_mode = headstock_->mode();
   const size_t r = static_cast<size_t>(config_.rotary_axis);
-  translation_[r] = RotaryOffsetsActive() ? hs_.rotary_translation : 0;
+  frames_.translation[r] = RotaryOffsetsActive() ? hs_.rotary_translation : 0;
   // The rotary axis follows its actual position wherever the NC does not position it: its
   // command value is up to date when rotary axis mode begins (5).
   const bool positioned =
       headstock_->mode() == axes::HeadstockMode::kRotary ||
       (headstock_->config().separate_servo() && !headstock_->busy() && plc.rotary_ready);
   if (headstock_->TakeOverRotary() || !positioned || !plc.rotary_ready) {
-    commanded_[r] = previous_[r] = at.feedback[config_.axes[r].drive].position;
-    jog_.axes[r].handwheel_target = commanded_[r];
+    out_.commanded[r] = out_.previous[r] = at.feedback[config_.axes[r].drive].position;
+    jog_.axes[r].handwheel_target = out_.commanded[r];
   }
 }
 
@@ -93,7 +93,7 @@ void Channel::ManualSpindle(int m) {
   if (m != 3 && m != 4 && m != 5 && m != 19) return;
   // Without the process enabling signal or the spindle's axis enabling signal (4.2) nothing
   // starts; a stop is always taken.
-  if (m != 5 && (!process_enable_ || !sp_.enable)) return;
+  if (m != 5 && (!enable_.process || !sp_.enable)) return;
   // 4.2: "The NC automatically switches over to main spindle mode if rotary axis mode is active
   // when one of these commands is started"; the command acts once spindle mode is there.
   if (headstock_) ManualChangeover(axes::HeadstockMode::kSpindle);
@@ -104,7 +104,7 @@ void Channel::ManualSpindle(int m) {
     if (!GuardSpindleStart("spindle start", repos_.interruption->spindle)) return;
     sp_.command = repos_.interruption->spindle;
     sp_.referencing = m == 19;
-    take_over_pending_ = true;
+    out_.take_over_pending = true;
     return;
   }
   const double speed = config_.spindle.jog_per_s;  // main spindle "Jogging speed"
@@ -118,19 +118,19 @@ void Channel::ManualSpindle(int m) {
   if (m == 19) sp_.referencing = true;
   sp_.referencing = sp_.referencing && m == 19;
   sp_.jogging = false;
-  take_over_pending_ = true;
+  out_.take_over_pending = true;
 }
 
 void Channel::HomeSpindle() {
   if (mode_ != ChannelMode::kManual || config_.spindle_drive < 0) return;
-  if (!process_enable_ || !sp_.enable) return;
+  if (!enable_.process || !sp_.enable) return;
   if (headstock_) ManualChangeover(axes::HeadstockMode::kSpindle);
   const DriveSetpoint sp{DriveMode::kPosition, config_.spindle.reference_position, 0};
   if (!GuardSpindleStart("spindle start", sp)) return;
   sp_.command = sp;
   sp_.referencing = true;  // TrackReferences: homed once in position
   sp_.jogging = false;
-  take_over_pending_ = true;
+  out_.take_over_pending = true;
 }
 
 void Channel::JogSpindle(int direction) {
@@ -139,10 +139,10 @@ void Channel::JogSpindle(int direction) {
     // Released: a spindle the key turned brakes; an increment runs to its end.
     if (sp_.jogging) sp_.command = {DriveMode::kVelocity, 0, 0};
     sp_.jogging = false;
-    take_over_pending_ = true;
+    out_.take_over_pending = true;
     return;
   }
-  if (!process_enable_ || !sp_.enable) return;
+  if (!enable_.process || !sp_.enable) return;
   // 4.4: jogging the main spindle initiates the changeover to spindle mode; 2.3 / 3.3 Jogging
   // Movements: its jog keys abort a changeover an immediate stop interrupted. The motion acts
   // once spindle mode is there.
@@ -170,13 +170,13 @@ void Channel::JogSpindle(int direction) {
     }
   }
   sp_.referencing = false;
-  take_over_pending_ = true;
+  out_.take_over_pending = true;
 }
 
 void Channel::SetAxisEnable(size_t axis, bool on) {
   if (axis >= config_.axes.size()) return;
-  if (axis_enable_.size() != config_.axes.size()) axis_enable_.assign(config_.axes.size(), true);
-  axis_enable_[axis] = on;
+  if (enable_.axes.size() != config_.axes.size()) enable_.axes.assign(config_.axes.size(), true);
+  enable_.axes[axis] = on;
 }
 
 void Channel::SetSpindleEnable(bool on) {
@@ -187,7 +187,7 @@ void Channel::SetSpindleEnable(bool on) {
   if (!on && sp_.jogging) {
     sp_.command = {DriveMode::kVelocity, 0, 0};
     sp_.jogging = false;
-    take_over_pending_ = true;
+    out_.take_over_pending = true;
   }
 }
 
@@ -199,7 +199,7 @@ bool Channel::SpindleAtSpeedLimit() const {
 }
 
 void Channel::SetProcessEnable(bool on) {
-  process_enable_ = on;
+  enable_.process = on;
   // 2.3 Process Enabling Signal: removed, the NC initiates an immediate stop, stops program
   // execution (and so the changeover's internal sequence, HeadstockCycle) and brings the axes
   // to a standstill (Jogging brakes them). The manual describes it for a changeover; a real
@@ -234,7 +234,7 @@ void Channel::TrackReferences(const AmplifierTelegram& at, double dt) {
     return rev_per_s * p.encoder_periods_per_rev > p.encoder_limit_hz;
   };
   if (rotary >= 0 && too_fast(rotary, config_.axes[config_.rotary_axis]))
-    homed_[config_.rotary_axis] = false;
+    frames_.homed[config_.rotary_axis] = false;
   // Section 2: spindle and rotary axis are one drive with one encoder and one reference.
   if (spindle >= 0 && spindle != rotary && too_fast(spindle, config_.spindle)) sp_.homed = false;
   if (spindle < 0) return;
@@ -248,13 +248,13 @@ void Channel::TrackReferences(const AmplifierTelegram& at, double dt) {
       (at.feedback[spindle].status & drive_status::kInPosition)) {
     sp_.referencing = false;
     sp_.homed = true;
-    if (spindle == rotary) homed_[config_.rotary_axis] = true;
+    if (spindle == rotary) frames_.homed[config_.rotary_axis] = true;
   }
   if (sp_.command.mode != DriveMode::kPosition) sp_.referencing = false;
 }
 
 bool Channel::spindle_homed() const {
-  if (headstock_ && !headstock_->config().separate_servo()) return homed_[config_.rotary_axis];
+  if (headstock_ && !headstock_->config().separate_servo()) return frames_.homed[config_.rotary_axis];
   return sp_.homed;
 }
 
@@ -270,7 +270,7 @@ double Channel::HeadstockPosition() const {
   // the program's C runs on past a turn (C-270, the manual's 1.2).
   const size_t r = static_cast<size_t>(config_.rotary_axis);
   const double shown = hs_.shown_mode == axes::HeadstockMode::kRotary
-                           ? commanded_[r] - translation_[r]
+                           ? out_.commanded[r] - frames_.translation[r]
                            : sp_.position;
   const double a = std::fmod(shown, 360.0);
   return a < 0 ? a + 360 : a;

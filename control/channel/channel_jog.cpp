@@ -41,13 +41,13 @@ void Channel::RestartHandwheel() {
     JogAxis& j = jog_.axes[a];
     j.handwheel = jog_.mode == JogMode::kHandwheel;
     j.handwheel_target =
-        j.stepping ? j.to : JogStopPoint(commanded_[a], j.velocity, config_.axes[a].acceleration);
+        j.stepping ? j.to : JogStopPoint(out_.commanded[a], j.velocity, config_.axes[a].acceleration);
   }
   // The fictive axes' likewise (their handwheel target is there only while counts are to go).
   int x = -1, c = -1;
   if (!FictiveJogAxes(x, c)) return;
   const nc::FictivePoint p =
-      nc::MachineToFace(commanded_[x] - translation_[x], commanded_[c] - translation_[c]);
+      nc::MachineToFace(out_.commanded[x] - frames_.translation[x], out_.commanded[c] - frames_.translation[c]);
   const double at[2] = {p.x1, p.y1};
   for (int k = 0; k < 2; ++k) {
     FictiveJog& f = jog_.fictive[k];
@@ -69,11 +69,11 @@ double Channel::JogIncrement(const ChannelAxis& axis) const {
 
 void Channel::Handwheel(size_t axis, int counts) {
   if (mode_ != ChannelMode::kManual || jog_.mode != JogMode::kHandwheel ||
-      axis >= jog_.axes.size() || !process_enable_ || !axis_enabled(axis))
+      axis >= jog_.axes.size() || !enable_.process || !axis_enabled(axis))
     return;
-  take_over_pending_ = true;
+  out_.take_over_pending = true;
   JogAxis& j = jog_.axes[axis];
-  if (!j.handwheel) j.handwheel = true, j.handwheel_target = commanded_[axis];
+  if (!j.handwheel) j.handwheel = true, j.handwheel_target = out_.commanded[axis];
   j.handwheel_target += counts * config_.handwheel_per_count;
 }
 
@@ -85,19 +85,19 @@ void Channel::Jog(size_t axis, int direction) {
     Reset();
   // C-axis manual 4.2: jogging the rotary axis selects rotary axis mode; it moves once there.
   if (headstock_ && static_cast<int>(axis) == config_.rotary_axis && direction != 0 &&
-      process_enable_ && axis_enabled(axis))
+      enable_.process && axis_enabled(axis))
     ManualChangeover(axes::HeadstockMode::kRotary);
   jog_.axes[axis].key = direction > 0 ? 1 : direction < 0 ? -1 : 0;
-  take_over_pending_ = true;
+  out_.take_over_pending = true;
 }
 
 void Channel::HomeAxis(size_t axis) {
   if (mode_ != ChannelMode::kManual || axis >= jog_.axes.size()) return;
-  if (!process_enable_ || !axis_enabled(axis)) return;
+  if (!enable_.process || !axis_enabled(axis)) return;
   if (headstock_ && static_cast<int>(axis) == config_.rotary_axis)
     ManualChangeover(axes::HeadstockMode::kRotary);
   jog_.axes[axis].home_requested = true;
-  take_over_pending_ = true;
+  out_.take_over_pending = true;
 }
 
 bool Channel::JogsMoving() const {
@@ -109,7 +109,7 @@ bool Channel::JogsMoving() const {
 }
 
 int Channel::AxisMotion(size_t axis) const {
-  const double d = commanded_[axis] - previous_[axis];
+  const double d = out_.commanded[axis] - out_.previous[axis];
   return d > 0 ? 1 : d < 0 ? -1 : 0;
 }
 
@@ -139,8 +139,8 @@ void Channel::Jogging(double dt) {
     if (!repos_target.empty()) {
       const ReposZone zone = ZoneOf(axis, repos_target[a], repos_.start[a]);
       if (zone.limited) {
-        const double zone_low = std::min(zone.low, commanded_[a]);
-        const double zone_high = std::max(zone.high, commanded_[a]);
+        const double zone_low = std::min(zone.low, out_.commanded[a]);
+        const double zone_high = std::max(zone.high, out_.commanded[a]);
         low = limited ? std::max(low, zone_low) : zone_low;
         high = limited ? std::min(high, zone_high) : zone_high;
         limited = true;
@@ -149,19 +149,19 @@ void Channel::Jogging(double dt) {
     auto within = [&](double x) { return limited ? std::clamp(x, low, high) : x; };
     if (jog_.mode == JogMode::kHandwheel && !j.stepping) {
       // Follow the counts at most at the jogging rapid, braking so as not to pass the target.
-      if (!j.handwheel) j.handwheel = true, j.handwheel_target = commanded_[a];
+      if (!j.handwheel) j.handwheel = true, j.handwheel_target = out_.commanded[a];
       j.handwheel_target = within(j.handwheel_target);
-      FollowTarget(commanded_[a], j.velocity, j.handwheel_target, rapid * override_,
+      FollowTarget(out_.commanded[a], j.velocity, j.handwheel_target, rapid * override_,
                    axis.acceleration, dt);
       continue;
     }
     const double increment = JogIncrement(axis);
     if (JogStepping(j.stepping, increment, j.velocity)) {
       // Incremental: a key press starts one increment, which then runs to its end.
-      if (!j.stepping && j.key != 0 && process_enable_ && axis_enabled(a)) {
+      if (!j.stepping && j.key != 0 && enable_.process && axis_enabled(a)) {
         j.stepping = true;
-        j.from = commanded_[a];
-        j.to = within(commanded_[a] + j.key * increment);
+        j.from = out_.commanded[a];
+        j.to = within(out_.commanded[a] + j.key * increment);
         if (!GuardIncrement(a, j.to)) {
           j.stepping = false;
           j.key = 0;
@@ -175,8 +175,8 @@ void Channel::Jogging(double dt) {
       }
       if (j.stepping) {
         j.increment.Advance(dt, 1.0);
-        commanded_[a] = j.from + (j.to - j.from) * j.increment.u;
-        if (j.increment.done()) commanded_[a] = j.to, j.stepping = false;
+        out_.commanded[a] = j.from + (j.to - j.from) * j.increment.u;
+        if (j.increment.done()) out_.commanded[a] = j.to, j.stepping = false;
       }
       continue;
     }
@@ -184,17 +184,17 @@ void Channel::Jogging(double dt) {
     // the process enabling signal is removed (C-axis manual 2.3: axes to a standstill), or the
     // axis enabling signal (4.2).
     const int key =
-        process_enable_ && axis_enabled(a) && j.key != j.blocked && increment == 0 ? j.key : 0;
+        enable_.process && axis_enabled(a) && j.key != j.blocked && increment == 0 ? j.key : 0;
     double target = key * speed;
     const double step = axis.acceleration * dt;
     if (limited) {
-      const double room = j.key > 0 ? high - commanded_[a] : commanded_[a] - low;
+      const double room = j.key > 0 ? high - out_.commanded[a] : out_.commanded[a] - low;
       target = key * std::min(speed, std::sqrt(2 * axis.acceleration * std::max(0.0, room)));
     }
     j.velocity = std::clamp(target, j.velocity - step, j.velocity + step);
-    const double next = commanded_[a] + j.velocity * dt;
-    commanded_[a] = within(next);
-    if (commanded_[a] != next) j.velocity = 0;
+    const double next = out_.commanded[a] + j.velocity * dt;
+    out_.commanded[a] = within(next);
+    if (out_.commanded[a] != next) j.velocity = 0;
   }
   FictiveJogging(dt);
 }
@@ -207,16 +207,16 @@ bool Channel::HomingJog(size_t a, double dt) {
   if (mode_ != ChannelMode::kManual) j.home_requested = false;  // a homing begun runs to its end
   if (j.home_requested && !j.stepping && j.velocity == 0) {
     j.home_requested = false;
-    if (!process_enable_ || !axis_enabled(a) || !GuardIncrement(a, axis.reference_position))
+    if (!enable_.process || !axis_enabled(a) || !GuardIncrement(a, axis.reference_position))
       return false;
-    if (std::abs(axis.reference_position - commanded_[a]) < 1e-12) {
-      commanded_[a] = axis.reference_position;  // there already: homed without a move
-      homed_[a] = true;
+    if (std::abs(axis.reference_position - out_.commanded[a]) < 1e-12) {
+      out_.commanded[a] = axis.reference_position;  // there already: homed without a move
+      frames_.homed[a] = true;
       return true;
     }
     j.stepping = j.homing = true;
     j.handwheel = false;
-    j.from = commanded_[a];
+    j.from = out_.commanded[a];
     j.to = axis.reference_position;
     j.increment = PathProfile{};
     const double speed = axis.homing_per_s > 0 ? axis.homing_per_s
@@ -228,11 +228,11 @@ bool Channel::HomingJog(size_t a, double dt) {
   }
   if (!j.homing) return false;
   j.increment.Advance(dt, 1.0);
-  commanded_[a] = j.from + (j.to - j.from) * j.increment.u;
+  out_.commanded[a] = j.from + (j.to - j.from) * j.increment.u;
   if (j.increment.done()) {
-    commanded_[a] = j.to;
+    out_.commanded[a] = j.to;
     j.stepping = j.homing = false;
-    homed_[a] = true;
+    frames_.homed[a] = true;
   }
   return true;
 }

@@ -39,9 +39,9 @@ int Channel::SettingAxis(int n) const {
 }
 
 bool Channel::EventSet(int n) const {
-  if (events_) return events_(n);
-  auto it = own_events_.find(n);
-  return it != own_events_.end() && it->second;
+  if (events_.source) return events_.source(n);
+  auto it = events_.own.find(n);
+  return it != events_.own.end() && it->second;
 }
 
 std::vector<double> Channel::StylusTranslation(int sphere) const {
@@ -82,7 +82,7 @@ measure::MeasuringContext Channel::MeasuringContextNow() const {
   const std::vector<double> t = StylusTranslation(sphere);
   for (int n = 0; n < 3; ++n) {
     const int a = SettingAxis(n);
-    if (a >= 0) c.position[n] = commanded_[a] - t[a];
+    if (a >= 0) c.position[n] = out_.commanded[a] - t[a];
   }
   for (size_t i = 0; i < measure::kSavedGGroups.size(); ++i) {
     bool known = false;
@@ -199,9 +199,9 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
   }
   const nc::Program& program = *ProgramOf(b.program);
   if (!UpdateTranslation(b.modal, program, b.block)) return false;
-  b.target.resize(commanded_.size());
+  b.target.resize(out_.commanded.size());
   b.programmed = 0;
-  for (size_t a = 0; a < commanded_.size(); ++a) b.target[a] = commanded_[a] - translation_[a];
+  for (size_t a = 0; a < out_.commanded.size(); ++a) b.target[a] = out_.commanded[a] - frames_.translation[a];
   for (int n = 0; n < 3; ++n) {
     const int a = SettingAxis(n);
     if (a < 0 || !(step.axes >> n & 1)) continue;
@@ -209,14 +209,14 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
     b.programmed |= uint64_t{1} << a;
   }
   work_.block = b;
-  for (size_t a = 0; a < commanded_.size(); ++a)
-    if (!homed_[a] && (b.programmed >> a & 1)) {
+  for (size_t a = 0; a < out_.commanded.size(); ++a)
+    if (!frames_.homed[a] && (b.programmed >> a & 1)) {
       Fail(program, b.block,
            "axis " + config_.axes[a].name + " has no reference: home it first (G74)", kMsgNotHomed);
       return false;
     }
   sync_.phase = SyncPhase::kNone;
-  if (const auto error = PlanBlockMotion(work_.block, commanded_, translation_, config_.axes, 0,
+  if (const auto error = PlanBlockMotion(work_.block, out_.commanded, frames_.translation, config_.axes, 0,
                                          work_.motion, FollowUpAxes(work_.block))) {
     Fail(program, b.block, error->text, error->number);
     return false;
@@ -241,7 +241,7 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
                            .sphere_radius[static_cast<size_t>(
                                std::clamp(step.sphere, 1, measure::kSpheres) - 1)];
       const double touch =
-          meas_.run->plan.command - meas_.run->plan.direction * r + translation_[a];
+          meas_.run->plan.command - meas_.run->plan.direction * r + frames_.translation[a];
       const double dir = meas_.run->plan.direction;
       // Not beyond the move's end, nor back behind its start.
       end[a] = dir * (touch - work_.motion.start[a]) <= 0 ? work_.motion.start[a]
@@ -307,8 +307,8 @@ void Channel::WatchProbeCollision(const AmplifierTelegram& at) {
   }
   const measure::MeasuringMessage& message = measure::kProbeDisplacedOutsidePath;
   if (config_.aux_handshake) {
-    aux_output_.push_back({'Q', 0, static_cast<double>(message.q_function)});
-    ++aux_strobe_;
+    aux_.functions.push_back({'Q', 0, static_cast<double>(message.q_function)});
+    ++aux_.strobe;
   }
   const nc::Program& program = *ProgramOf(program_index);
   const std::string text =
@@ -334,7 +334,7 @@ void Channel::WatchMeasuringMove(const AmplifierTelegram& at) {
   const ProbeEdgeLatch* latch =
       Latched(stylus.pin5 ? probe.probe2 : probe.probe1, stylus.normally_closed);
   if (!latch) return;
-  meas_.run->contact = latch->measured_value - translation_[static_cast<size_t>(axis)];
+  meas_.run->contact = latch->measured_value - frames_.translation[static_cast<size_t>(axis)];
   work_.active = false;  // the axes stop where they are this cycle
 }
 
@@ -381,8 +381,8 @@ bool Channel::MeasuringCycle(const AmplifierTelegram& at) {
     const measure::MeasuringStep& s = run.plan.steps[run.step];
     switch (s.kind) {
       case measure::MeasuringStep::Kind::kEvent:
-        own_events_[s.event] = s.value;
-        if (event_sink_) event_sink_(s.event, s.value);
+        events_.own[s.event] = s.value;
+        if (events_.sink) events_.sink(s.event, s.value);
         ++run.step;
         break;
       case measure::MeasuringStep::Kind::kWaitEvent:
@@ -396,8 +396,8 @@ bool Channel::MeasuringCycle(const AmplifierTelegram& at) {
         const bool fatal =
             run.message && s.q == run.message->q_function && !run.message->advance_continuable();
         if (config_.aux_handshake) {
-          aux_output_.push_back({'Q', 0, static_cast<double>(s.q)});
-          ++aux_strobe_;
+          aux_.functions.push_back({'Q', 0, static_cast<double>(s.q)});
+          ++aux_.strobe;
           if (!fatal) return false;  // the cycle waits for the acknowledgement first
         }
         if (fatal) run.step = run.plan.steps.size();
@@ -446,7 +446,7 @@ void Channel::TrackReverseVectors() {
     const std::vector<double> t = StylusTranslation(p.sphere);
     for (int n = 0; n < 3; ++n) {
       const int a = SettingAxis(n);
-      if (a >= 0 && std::abs(commanded_[static_cast<size_t>(a)] - t[static_cast<size_t>(a)] -
+      if (a >= 0 && std::abs(out_.commanded[static_cast<size_t>(a)] - t[static_cast<size_t>(a)] -
                              p.centre[static_cast<size_t>(n)]) > 1e-6)
         return false;
     }
@@ -472,8 +472,8 @@ void Channel::EndMeasuring() {
   UpdateTranslation(m, *ProgramOf(block.program), block.block);
   if (!work_.interpreter) return;
   // The program goes on from where the stylus stands (its next block's unprogrammed axes stay).
-  std::vector<double> position(commanded_.size());
-  for (size_t a = 0; a < position.size(); ++a) position[a] = commanded_[a] - translation_[a];
+  std::vector<double> position(out_.commanded.size());
+  for (size_t a = 0; a < position.size(); ++a) position[a] = out_.commanded[a] - frames_.translation[a];
   work_.interpreter->SetPosition(position);
 }
 

@@ -31,7 +31,7 @@ bool Channel::SetMode(ChannelMode mode) {
   // REPOS manual 2.1) goes on in MDI, not in automatic.
   const bool interrupted = state_ == ChannelState::kHold && work_.interpreter;
   if (interrupted && mode != ChannelMode::kManual &&
-      (mode == ChannelMode::kMdi) != running_mdi_)
+      (mode == ChannelMode::kMdi) != mdi_.running)
     return false;
   if (mode != mode_) {
     // A jog under way is let go as at released keys: it brakes to rest in the new mode (Cycle)
@@ -59,14 +59,14 @@ bool Channel::SetMode(ChannelMode mode) {
     }
   }
   mode_ = mode;
-  start_deferred_ = false;
+  start_.deferred = false;
   RestartHandwheel();
   return true;
 }
 
 CycleStart Channel::StartCase() const {
-  if (mode_ == ChannelMode::kManual || !process_enable_) return CycleStart::kRefused;
-  if (mode_ == ChannelMode::kMdi && !mdi_) return CycleStart::kRefused;
+  if (mode_ == ChannelMode::kManual || !enable_.process) return CycleStart::kRefused;
+  if (mode_ == ChannelMode::kMdi && !mdi_.blocks) return CycleStart::kRefused;
   if (JogsMoving()) return CycleStart::kDeferred;
   if (state_ == ChannelState::kHold) {
     if (backward_.moving() || backward_.backward_requested() || backward_.away())
@@ -96,7 +96,7 @@ void Channel::Start() {
   const CycleStart start = StartCase();
   if (start == CycleStart::kRefused) return;
   if (start == CycleStart::kDeferred) {
-    start_deferred_ = true;
+    start_.deferred = true;
     return;
   }
   if (state_ == ChannelState::kHold) {
@@ -141,7 +141,7 @@ void Channel::Start() {
       if (state_ == ChannelState::kEnded) ForgetEndedProgram();
       programmed_stop_.Leave();
       state_ = ChannelState::kRunning;
-      start_pending_ = true;  // positions are taken from the feedback at the next tick
+      start_.program = true;  // positions are taken from the feedback at the next tick
       return;
   }
 }
@@ -149,14 +149,14 @@ void Channel::Start() {
 void Channel::ContinueHeldProgram() {
   // Continuing from off the contour would jump back to the path: the axes must first be
   // repositioned to the interruption point.
-  for (size_t a = 0; a < commanded_.size() && repos_.interruption; ++a) {
+  for (size_t a = 0; a < out_.commanded.size() && repos_.interruption; ++a) {
     // The rotary axis outside rotary axis mode follows the spindle: no contour to leave.
     if (headstock_ && static_cast<int>(a) == config_.rotary_axis &&
         headstock_->mode() != axes::HeadstockMode::kRotary)
       continue;
     const double point = repos_.interruption->point[a];
     if (std::isnan(point)) continue;  // not on the contour (CaptureInterruption)
-    if (std::abs(commanded_[a] - point) > 1e-6) {
+    if (std::abs(out_.commanded[a] - point) > 1e-6) {
       Fail("axis " + config_.axes[a].name +
                " has left the contour at the interruption point: reposition it first",
            kMsgLeftContour);
@@ -168,7 +168,7 @@ void Channel::ContinueHeldProgram() {
 }
 
 void Channel::Stop() {
-  start_deferred_ = false;
+  start_.deferred = false;
   if (state_ == ChannelState::kRunning) state_ = ChannelState::kHold;
   backward_.Hold();
 }
@@ -180,14 +180,14 @@ void Channel::Reset() {
   state_ = ChannelState::kIdle;
   error_.clear();
   error_number_ = 0;
-  start_deferred_ = false;
+  start_.deferred = false;
   work_.active = false;
   work_.homing = false;
   reversing_ = false;
   work_.dwell_left_s = 0;
   sp_.orienting = false;
   further_.StopRestoring();
-  aux_output_.clear();
+  aux_.functions.clear();
   programmed_stop_.Leave();
   tool_storage_.ForgetProgramTraverse();
   tool_storage_wait_ = false;
@@ -204,8 +204,8 @@ void Channel::Reset() {
   // 7: a CNC reset clears the CNC's and the PLC's signal of the handshake alike, so the next
   // search waits for the PLC's TRUE again.
   bs_.plc_state = false;
-  cax_track_.reset();
-  cax_aligning_ = false;
+  cax_.command.reset();
+  cax_.aligning = false;
   bs_.breakpoint_rest.reset();
   bs_.breakpoint_hold = bs_.breakpoint_pending = false;
   bs_.offset.clear();  // the G92 shift goes below
@@ -213,7 +213,7 @@ void Channel::Reset() {
   if (work_.interpreter) last_modal_ = work_.interpreter->modal();
   work_.interpreter.reset();
   DropLookahead();
-  previous_ = commanded_;
+  out_.previous = out_.commanded;
   sp_.command = {DriveMode::kVelocity, 0, 0};
   further_.Reset();
   sp_.referencing = false;
@@ -222,24 +222,24 @@ void Channel::Reset() {
   // get their controller enable removed for a cycle (the drive's fault reset), see Tick.
   drives_.trip_reset_pending = true;
   // Control-Reset drops the G92 shift and returns to the initial modal state (offsets too).
-  std::fill(shift_.begin(), shift_.end(), 0.0);
+  std::fill(frames_.shift.begin(), frames_.shift.end(), 0.0);
   last_modal_ = config_.initial;
-  for (size_t a = 0; a < translation_.size(); ++a)
-    translation_[a] = config_.zero_offsets.Offset(config_.initial.zero_offset, a);
+  for (size_t a = 0; a < frames_.translation.size(); ++a)
+    frames_.translation[a] = config_.zero_offsets.Offset(config_.initial.zero_offset, a);
   if (headstock_) {
     const size_t r = static_cast<size_t>(config_.rotary_axis);
-    hs_.rotary_translation = translation_[r];
-    if (!RotaryOffsetsActive()) translation_[r] = 0;
+    hs_.rotary_translation = frames_.translation[r];
+    if (!RotaryOffsetsActive()) frames_.translation[r] = 0;
   }
 }
 
 void Channel::FollowAxesOf(const Channel& holder) {
-  if (!output_suspended_ || !holding_positions_ || !holder.holding_positions_) return;
+  if (!out_.suspended || !out_.holding || !holder.out_.holding) return;
   for (size_t a = 0; a < config_.axes.size(); ++a) {
     if (!Lent(a)) continue;
     for (size_t h = 0; h < holder.config_.axes.size(); ++h)
       if (holder.config_.axes[h].drive == config_.axes[a].drive)
-        commanded_[a] = previous_[a] = holder.commanded_[h];
+        out_.commanded[a] = out_.previous[a] = holder.out_.commanded[h];
   }
 }
 
@@ -247,8 +247,8 @@ bool Channel::AxesAtRest() const {
   // A block held by a feed hold stands as well as one that has ended: no axis moved in the
   // last NC cycle (a jog may stand for a cycle as it turns round).
   if (JogsMoving()) return false;
-  for (size_t a = 0; a < commanded_.size(); ++a)
-    if (commanded_[a] != previous_[a]) return false;
+  for (size_t a = 0; a < out_.commanded.size(); ++a)
+    if (out_.commanded[a] != out_.previous[a]) return false;
   return true;
 }
 

@@ -18,7 +18,7 @@ std::vector<double> Channel::GuardFrom() const {
   std::vector<double> from = drive_positions_;
   for (size_t a = 0; a < config_.axes.size(); ++a)
     if (static_cast<size_t>(config_.axes[a].drive) < from.size())
-      from[config_.axes[a].drive] = commanded_[a];
+      from[config_.axes[a].drive] = out_.commanded[a];
   return from;
 }
 
@@ -136,14 +136,14 @@ void Channel::GuardJog(double dt) {
       continue;
     const JogAxis& j = jog_.axes[a];
     const ChannelAxis& axis = config_.axes[a];
-    double stop = commanded_[a];
+    double stop = out_.commanded[a];
     if (jog_.mode == JogMode::kHandwheel) {
-      stop = j.handwheel ? j.handwheel_target : commanded_[a];
+      stop = j.handwheel ? j.handwheel_target : out_.commanded[a];
     } else if (!j.stepping) {
       // In incremental mode a key starts an increment, which GuardIncrement checks whole: no
       // continuous run to predict (its braking distance could stop a short increment).
       if (JogIncrement(axis) > 0 && j.velocity == 0) continue;
-      const int key = process_enable_ && j.key != j.blocked ? j.key : 0;
+      const int key = enable_.process && j.key != j.blocked ? j.key : 0;
       const int dir = key != 0 ? key : j.velocity > 0 ? 1 : j.velocity < 0 ? -1 : 0;
       if (dir == 0) continue;
       const double rapid = JogRapid(axis);
@@ -156,7 +156,7 @@ void Channel::GuardJog(double dt) {
       if (axis.travel_max > axis.travel_min)
         stop = std::clamp(stop, axis.travel_min, axis.travel_max);
     }
-    if (std::abs(stop - commanded_[a]) < 1e-9) continue;
+    if (std::abs(stop - out_.commanded[a]) < 1e-9) continue;
     to[axis.drive] = stop;
     moving = true;
   }
@@ -188,7 +188,7 @@ void Channel::GuardJog(double dt) {
     if (to[config_.axes[a].drive] == from[config_.axes[a].drive]) continue;
     if (jog_.mode == JogMode::kHandwheel) {
       j.handwheel_target =
-          commanded_[a] + j.velocity * std::abs(j.velocity) / (2 * config_.axes[a].acceleration);
+          out_.commanded[a] + j.velocity * std::abs(j.velocity) / (2 * config_.axes[a].acceleration);
     } else {
       j.blocked = j.key != 0 ? j.key : (j.velocity > 0 ? 1 : -1);
     }

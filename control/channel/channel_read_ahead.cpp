@@ -24,7 +24,7 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
   }
   if (work_.block.modal.compensation != nc::Compensation::kOff &&
       work_.block.motion != nc::Motion::kNone) {
-    if (!StartCompensation(commanded_)) return false;
+    if (!StartCompensation(out_.commanded)) return false;
     return NextCompensated(at);
   }
   inserted_piece_ = false;
@@ -44,8 +44,8 @@ bool Channel::StartCompensation(const std::vector<double>& position) {
   work_.ready.clear();
   work_.first_tag = work_.next_tag = 0;
   work_.last_run_tag = -1;
-  work_.contour_point = {position[axis_z_] - translation_[axis_z_],
-                         position[axis_x_] - translation_[axis_x_]};
+  work_.contour_point = {position[axis_z_] - frames_.translation[axis_z_],
+                         position[axis_x_] - frames_.translation[axis_x_]};
   return PushAhead(work_.block);
 }
 
@@ -208,7 +208,7 @@ bool Channel::ReadSource(nc::PreparedBlock& b) {
   // count), so that it holds whatever path the channel makes of them afterwards: block by
   // block, blended by the look-ahead, or offset by G41/G42, whose read-ahead then meets the
   // end as it meets the text's end (the tip path closes there).
-  if (search_ && !running_mdi_ &&
+  if (search_ && !mdi_.running &&
       search_->matcher.EndMatches(b, *ProgramOf(b.program), b.program)) {
     search_->end_reached = true;
     return false;
@@ -225,7 +225,7 @@ void Channel::RebaseRotaryAxis() {
   // G41/G42 the blocks ahead are already prepared: they keep the program's values.
   if (work_.compensating || !work_.peeked.empty() || work_.block.homing) return;
   const size_t r = static_cast<size_t>(config_.rotary_axis);
-  const double actual = commanded_[r] - translation_[r];
+  const double actual = out_.commanded[r] - frames_.translation[r];
   if (work_.block.modal.incremental && (work_.block.programmed >> r & 1))
     work_.block.target[r] += actual - work_.rotary_start;
   work_.interpreter->SetAxisPosition(r, work_.block.target[r]);
@@ -325,7 +325,7 @@ void Channel::LookAhead(const AmplifierTelegram& at) {
   if (single_block_ || programmed_stop_.pending != ProgrammedStop::Kind::kNone ||
       state_ != ChannelState::kRunning || !feed_move(work_.block.motion) || work_.block.end ||
       work_.homing || !work_.motion.moves || repos_.run || config_.approach_program ||
-      cax_track_)  // tracking sets each block's C as it starts: the look-ahead cannot know it
+      cax_.command)  // tracking sets each block's C as it starts: the look-ahead cannot know it
     return;
   const double cycle_s = config_.tick_s * config_.ticks_per_cycle;
   const double speed = work_.motion.max_rate * work_.motion.length;
@@ -351,12 +351,12 @@ void Channel::LookAhead(const AmplifierTelegram& at) {
         ModeNeeded(n) != headstock_->mode())
       break;
     bool homed = true;
-    for (size_t a = 0; a < homed_.size(); ++a)
-      if (!homed_[a] && (n.programmed >> a & 1)) homed = false;
+    for (size_t a = 0; a < frames_.homed.size(); ++a)
+      if (!frames_.homed[a] && (n.programmed >> a & 1)) homed = false;
     // A block that moves nothing, or cannot be planned (its error comes in its turn), ends the
     // path known.
     if (!homed ||
-        PlanBlockMotion(n, from, translation_, config_.axes, spindle_rev_per_s, m, FollowUpAxes(n))
+        PlanBlockMotion(n, from, frames_.translation, config_.axes, spindle_rev_per_s, m, FollowUpAxes(n))
             .has_value() ||
         !m.moves)
       break;

@@ -36,15 +36,15 @@ std::vector<double> Channel::TranslationOf(const nc::ModalState& modal) const {
   std::vector<double> t(config_.axes.size());
   for (size_t a = 0; a < t.size(); ++a) {
     const double length = edge ? edge->Length(a, config_.axes[a].name) : 0;
-    t[a] = config_.zero_offsets.Offset(modal.zero_offset, a) + shift_[a] - sign * length;
+    t[a] = config_.zero_offsets.Offset(modal.zero_offset, a) + frames_.shift[a] - sign * length;
   }
   return t;
 }
 
 void Channel::CaptureInterruption() {
   Interruption i;
-  i.point = commanded_;
-  i.block_start = work_.active ? work_.motion.start : commanded_;
+  i.point = out_.commanded;
+  i.block_start = work_.active ? work_.motion.start : out_.commanded;
   i.modal = work_.block.block >= 0 ? work_.block.modal : modal();
   i.translation = TranslationOf(i.modal);
   i.program = work_.block.program;
@@ -69,7 +69,7 @@ void Channel::CaptureInterruption() {
   // before the program) leaves the turret where the operator put it.
   if (ToolStorageNc() && tool_storage_.axis().programmed) i.tool_storage = tool_storage_.axis().target;
   repos_.interruption = std::move(i);
-  repos_.start = commanded_;
+  repos_.start = out_.commanded;
 }
 
 bool Channel::FictiveRepos(int& x, int& c) const {
@@ -148,8 +148,8 @@ void Channel::ReposCycle(const AmplifierTelegram& at) {
     return;
   }
   Interruption& i = *repos_.interruption;
-  for (size_t a = 0; a < commanded_.size() && !i.left_contour; ++a)
-    if (!std::isnan(i.point[a]) && std::abs(commanded_[a] - i.point[a]) > 1e-6)
+  for (size_t a = 0; a < out_.commanded.size() && !i.left_contour; ++a)
+    if (!std::isnan(i.point[a]) && std::abs(out_.commanded[a] - i.point[a]) > 1e-6)
       i.left_contour = true;
   // 7.1: the signals count only in the situation of 2.1 (interrupted, left by jogging, no
   // Control-Reset), and only if the program may be continued other than by the reverse
@@ -169,7 +169,7 @@ void Channel::ReposCycle(const AmplifierTelegram& at) {
   if (evaluated && function == ReposFunction::kNone && repos_.function != ReposFunction::kNone &&
       mode_ == ChannelMode::kManual && (key_held || JogsMoving()))
     return;
-  if (function != repos_.function && function != ReposFunction::kNone) repos_.start = commanded_;
+  if (function != repos_.function && function != ReposFunction::kNone) repos_.start = out_.commanded;
   repos_.function = function;
   if (repos_.function == ReposFunction::kNone) return;
   const std::vector<double> target = ReposTarget();
@@ -181,12 +181,12 @@ void Channel::ReposCycle(const AmplifierTelegram& at) {
     const ChannelAxis& axis = config_.axes[a];
     if (fictive && (static_cast<int>(a) == fx || static_cast<int>(a) == fc)) continue;
     if (std::isnan(target[a]) || axis.repos_window <= 0) continue;
-    restored = WithinReposWindow(axis, target[a], commanded_[a]) &&
+    restored = WithinReposWindow(axis, target[a], out_.commanded[a]) &&
                !OutOfItsMode(headstock(), config_.rotary_axis, a);
   }
   if (fictive && restored && config_.axes[fx].repos_window > 0)
     restored = WithinFictiveWindow(config_.axes[fx], FictiveOf(target, fx, fc),
-                                   FictiveOf(commanded_, fx, fc)) &&
+                                   FictiveOf(out_.commanded, fx, fc)) &&
                !OutOfItsMode(headstock(), config_.rotary_axis, fc);
   if (restored && SpindleRelevant()) restored = SpindleRestored(at);
   if (restored && repos_.interruption)
@@ -209,12 +209,12 @@ ReposStatus Channel::repos_status(const AmplifierTelegram* at) const {
     const ChannelAxis& axis = config_.axes[a];
     ReposAxisStatus x;
     x.name = axis.name;
-    x.command_value = commanded_[a];
+    x.command_value = out_.commanded[a];
     x.relevant = !std::isnan(target[a]) && axis.repos_window > 0;
     if (!std::isnan(target[a])) {
       x.final_value = target[a];
-      x.distance_to_go = ReposDistanceToGo(axis, target[a], commanded_[a]);
-      x.adjust = x.relevant && (!WithinReposWindow(axis, target[a], commanded_[a]) ||
+      x.distance_to_go = ReposDistanceToGo(axis, target[a], out_.commanded[a]);
+      x.adjust = x.relevant && (!WithinReposWindow(axis, target[a], out_.commanded[a]) ||
                                 OutOfItsMode(headstock(), config_.rotary_axis, a));
     }
     s.axes.push_back(x);
@@ -223,7 +223,7 @@ ReposStatus Channel::repos_status(const AmplifierTelegram* at) const {
   // as the fictive point is, with X's window (6.1).
   int fx = -1, fc = -1;
   if (FictiveRepos(fx, fc)) {
-    const nc::FictivePoint to = FictiveOf(target, fx, fc), now = FictiveOf(commanded_, fx, fc);
+    const nc::FictivePoint to = FictiveOf(target, fx, fc), now = FictiveOf(out_.commanded, fx, fc);
     const bool relevant = config_.axes[fx].repos_window > 0;
     const bool adjust = relevant && (!WithinFictiveWindow(config_.axes[fx], to, now) ||
                                      OutOfItsMode(headstock(), config_.rotary_axis, fc));
@@ -261,7 +261,7 @@ ReposStatus Channel::repos_status(const AmplifierTelegram* at) const {
   s.tool_storage_relevant = config_.process.reposition_tool_storage && ToolStorageKnown();
   s.tool_storage_adjust = !ToolStorageRestored();
   s.programmed_feed = i.modal.feed;
-  s.program = i.program < programs_.size() || running_mdi_ ? ProgramOf(i.program)->files[0] : "";
+  s.program = i.program < programs_.size() || mdi_.running ? ProgramOf(i.program)->files[0] : "";
   s.line = i.line;
   s.tool = i.modal.tool;
   s.correction = i.modal.correction;
@@ -354,15 +354,15 @@ void Channel::StartReposRun() {
     for (const ChannelAxis& a : config_.axes) ic.axes.push_back(a.name);
     ic.initial = repos_.interruption->modal;
     std::vector<const nc::Program*> programs = programs_;
-    if (running_mdi_) programs.insert(programs.begin(), &mdi_->program);
+    if (mdi_.running) programs.insert(programs.begin(), &mdi_.blocks->program);
     work_.interpreter = std::make_unique<nc::Interpreter>(std::move(programs), ic);
-    std::vector<double> position(commanded_.size());
-    for (size_t a = 0; a < position.size(); ++a) position[a] = commanded_[a] - translation_[a];
+    std::vector<double> position(out_.commanded.size());
+    for (size_t a = 0; a < position.size(); ++a) position[a] = out_.commanded[a] - frames_.translation[a];
     work_.interpreter->SetPosition(position);
     work_.interpreter->SetEventSource([this](int n) {
-      if (events_) return events_(n);
-      auto it = own_events_.find(n);
-      return it != own_events_.end() && it->second;
+      if (events_.source) return events_.source(n);
+      auto it = events_.own.find(n);
+      return it != events_.own.end() && it->second;
     });
     work_.interpreter->SetDataAccess(MakeDataAccess());
     work_.interpreter->SetVariables(std::move(variables));
@@ -447,17 +447,17 @@ bool Channel::StartReposMotion(const AmplifierTelegram& at) {
   b.has_centre = false;
   b.radius = 0;
   b.has_effective_distance = 0;
-  for (size_t a = 0; a < commanded_.size(); ++a) {
+  for (size_t a = 0; a < out_.commanded.size(); ++a) {
     const bool to_target = (work_.block.programmed >> a & 1) && !std::isnan(target[a]);
-    b.target[a] = (to_target ? target[a] : commanded_[a]) - translation_[a];
+    b.target[a] = (to_target ? target[a] : out_.commanded[a]) - frames_.translation[a];
   }
-  if (const auto error = PlanBlockMotion(b, commanded_, translation_, config_.axes, 0, work_.motion,
+  if (const auto error = PlanBlockMotion(b, out_.commanded, frames_.translation, config_.axes, 0, work_.motion,
                                          FollowUpAxes(b))) {
     Fail(program, work_.block.block, error->text, error->number);
     return false;
   }
   // The subroutine's next blocks count from the targets.
-  for (size_t a = 0; a < commanded_.size(); ++a)
+  for (size_t a = 0; a < out_.commanded.size(); ++a)
     if ((work_.block.programmed >> a & 1) && work_.interpreter)
       work_.interpreter->SetAxisPosition(a, b.target[a]);
   work_.profile = PathProfile{};
@@ -478,7 +478,7 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
     // so that the program goes on from the point it left, checked like every approach move.
     uint64_t bits = 0;
     for (size_t a = 0; a < target.size(); ++a)
-      if (!std::isnan(target[a]) && std::abs(commanded_[a] - target[a]) > 1e-9)
+      if (!std::isnan(target[a]) && std::abs(out_.commanded[a] - target[a]) > 1e-9)
         bits |= uint64_t{1} << a;
     if (SpindleRelevant() && !SpindleRestored(at)) {
       Fail(ProgramOf(work_.block.program)->files[0] +
@@ -512,7 +512,7 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
       closing.aux.clear();
       closing.instructions.clear();
       closing.events.clear();
-      closing.target.assign(commanded_.size(), 0);
+      closing.target.assign(out_.commanded.size(), 0);
       closing.fictive = false;  // within the windows: straight in the axes
       work_.block = closing;
       if (!StartReposMotion(at)) return false;

@@ -31,12 +31,12 @@ bool Channel::StartReturnToContour() {
   // Outside rotary axis mode C is not positioned: it stays where the spindle has it.
   if (headstock_ && headstock_->mode() != axes::HeadstockMode::kRotary) {
     const size_t r = static_cast<size_t>(config_.rotary_axis);
-    s.restart[r] = commanded_[r];
+    s.restart[r] = out_.commanded[r];
   }
-  if (cax_track_) {
-    for (size_t a = 0; a < commanded_.size(); ++a) {
-      if (config_.axes[a].name != "C" || std::abs(s.restart[a] - commanded_[a]) < 1e-12) continue;
-      std::vector<double> aligned = commanded_;
+  if (cax_.command) {
+    for (size_t a = 0; a < out_.commanded.size(); ++a) {
+      if (config_.axes[a].name != "C" || std::abs(s.restart[a] - out_.commanded[a]) < 1e-12) continue;
+      std::vector<double> aligned = out_.commanded;
       aligned[a] = s.restart[a];
       s.return_rest = true;
       return StartReturnMove(aligned, "C axis alignment (#CAX TRACK)");
@@ -56,16 +56,16 @@ bool Channel::StartReturnMove(const std::vector<double>& to, const std::string& 
   int x = -1, c = -1;
   if (search_->face_return && FictiveJogAxes(x, c) &&
       !nc::FaceLineOf(
-           nc::MachineToFace(commanded_[x] - translation_[x], commanded_[c] - translation_[c]),
-           nc::MachineToFace(to[x] - translation_[x], to[c] - translation_[c]))
+           nc::MachineToFace(out_.commanded[x] - frames_.translation[x], out_.commanded[c] - frames_.translation[c]),
+           nc::MachineToFace(to[x] - frames_.translation[x], to[c] - frames_.translation[c]))
            .through_centre) {
     nc::PreparedBlock b;
     b.motion = nc::Motion::kRapid;
     b.fictive = true;
     b.modal.transformation = nc::Transformation::kFace;
     b.target.resize(to.size());
-    for (size_t a = 0; a < to.size(); ++a) b.target[a] = to[a] - translation_[a];
-    if (const auto error = PlanBlockMotion(b, commanded_, translation_, config_.axes, 0,
+    for (size_t a = 0; a < to.size(); ++a) b.target[a] = to[a] - frames_.translation[a];
+    if (const auto error = PlanBlockMotion(b, out_.commanded, frames_.translation, config_.axes, 0,
                                            work_.motion, FollowUpAxes(b))) {
       Fail("block search: return to contour: " + error->text, error->number);
       return false;
@@ -80,10 +80,10 @@ bool Channel::StartReturnMove(const std::vector<double>& to, const std::string& 
   }
   // 4.2: one straight move at the rapid limits, every axis ending together.
   work_.motion = BlockMotion{};
-  work_.motion.start = commanded_;
+  work_.motion.start = out_.commanded;
   work_.motion.end = to;
   double rate = std::numeric_limits<double>::infinity(), accel = rate;
-  for (size_t a = 0; a < commanded_.size(); ++a) {
+  for (size_t a = 0; a < out_.commanded.size(); ++a) {
     const double distance = std::abs(work_.motion.end[a] - work_.motion.start[a]);
     if (distance < 1e-12) continue;
     const ChannelAxis& axis = config_.axes[a];
@@ -93,7 +93,7 @@ bool Channel::StartReturnMove(const std::vector<double>& to, const std::string& 
   if (!std::isfinite(rate)) return true;  // already there
   work_.motion.moves = true;
   work_.motion.length = 0;
-  for (size_t a = 0; a < commanded_.size(); ++a)
+  for (size_t a = 0; a < out_.commanded.size(); ++a)
     work_.motion.length += std::pow(work_.motion.end[a] - work_.motion.start[a], 2);
   work_.motion.length = std::sqrt(work_.motion.length);
   // The manual leaves obstacles on this line to the operator (8); vmt asks PathGuard first.
@@ -107,8 +107,8 @@ bool Channel::StartReturnMove(const std::vector<double>& to, const std::string& 
 bool Channel::ApplySearchOffset() {
   BlockSearchRun& s = *search_;
   double deviation2 = 0;
-  for (size_t a = 0; a < commanded_.size(); ++a)
-    if (MainAxis(config_.axes[a].name)) deviation2 += std::pow(commanded_[a] - s.restart[a], 2);
+  for (size_t a = 0; a < out_.commanded.size(); ++a)
+    if (MainAxis(config_.axes[a].name)) deviation2 += std::pow(out_.commanded[a] - s.restart[a], 2);
   const double deviation = std::sqrt(deviation2);
   const double allowed = static_cast<double>(bs_.started.deviation_max) * 1e-4;
   if (deviation > allowed + 1e-9) {
@@ -119,12 +119,12 @@ bool Channel::ApplySearchOffset() {
     return false;
   }
   // 4.2, 8: the program goes on offset by where the axes stand, until its end or a reset.
-  bs_.offset.assign(commanded_.size(), 0.0);
-  for (size_t a = 0; a < commanded_.size(); ++a) {
-    const double offset = commanded_[a] - s.restart[a];
+  bs_.offset.assign(out_.commanded.size(), 0.0);
+  for (size_t a = 0; a < out_.commanded.size(); ++a) {
+    const double offset = out_.commanded[a] - s.restart[a];
     bs_.offset[a] = offset;
-    shift_[a] += offset;
-    translation_[a] += offset;
+    frames_.shift[a] += offset;
+    frames_.translation[a] += offset;
     s.restart_motion.start[a] += offset;
     s.restart_motion.end[a] += offset;
   }
@@ -181,9 +181,9 @@ void Channel::StartBlockSearchHold() {
 }
 
 void Channel::RemoveSearchOffset() {
-  for (size_t a = 0; a < bs_.offset.size() && a < shift_.size(); ++a) {
-    shift_[a] -= bs_.offset[a];
-    translation_[a] -= bs_.offset[a];
+  for (size_t a = 0; a < bs_.offset.size() && a < frames_.shift.size(); ++a) {
+    frames_.shift[a] -= bs_.offset[a];
+    frames_.translation[a] -= bs_.offset[a];
   }
   bs_.offset.clear();
 }

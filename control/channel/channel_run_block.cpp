@@ -35,8 +35,8 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
     return StartMeasuring(at);
   }
   for (const auto& [n, set] : work_.block.events) {
-    own_events_[n] = set;
-    if (event_sink_) event_sink_(n, set);
+    events_.own[n] = set;
+    if (events_.sink) events_.sink(n, set);
   }
   if (!BlockOffsets(program)) return false;
   if (!BlockSpindles(program)) return false;
@@ -45,8 +45,8 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
   if (config_.aux_handshake) {
     for (const nc::AuxFunction& f : work_.block.aux)
       if (f.letter == 'M' || f.letter == 'H' || f.letter == 'Q' || f.letter == 'T')
-        aux_output_.push_back(f);
-    if (!aux_output_.empty()) ++aux_strobe_;
+        aux_.functions.push_back(f);
+    if (!aux_.functions.empty()) ++aux_.strobe;
   }
 
   programmed_stop_.Prepare(work_.block);
@@ -54,7 +54,7 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
   if (work_.block.end) state_ = ChannelState::kEnded, reversing_ = false;
   if (work_.block.motion == nc::Motion::kNone && !work_.block.homing && !work_.block.repos)
     return true;
-  if (!aux_output_.empty() || tool_storage_wait_) {
+  if (!aux_.functions.empty() || tool_storage_wait_) {
     work_.pending_motion = true;
     return true;
   }
@@ -111,7 +111,7 @@ bool Channel::BlockInstructions(const nc::Program& program, bool& mry) {
       }
       const int c = TrackedAxis();
       if (const auto done = CaxTrackInstruction(program, st, work_.block,
-                                                c < 0 ? 0 : commanded_[static_cast<size_t>(c)])) {
+                                                c < 0 ? 0 : out_.commanded[static_cast<size_t>(c)])) {
         if (!*done) return false;
         continue;
       }
@@ -160,22 +160,22 @@ bool Channel::BlockInstructions(const nc::Program& program, bool& mry) {
 }
 
 bool Channel::BlockOffsets(const nc::Program& program) {
-  const std::vector<double> before = translation_;
+  const std::vector<double> before = frames_.translation;
   if (!UpdateTranslation(work_.block.modal, program, work_.block.block)) return false;
   if (work_.block.set_position) {
     // G92: the programmed values become the current position of those axes (a shift that
     // stays until Control-Reset).
-    for (size_t a = 0; a < commanded_.size(); ++a)
+    for (size_t a = 0; a < out_.commanded.size(); ++a)
       if (work_.block.programmed >> a & 1) {
-        shift_[a] += commanded_[a] - (work_.block.target[a] + translation_[a]);
-        translation_[a] = commanded_[a] - work_.block.target[a];
+        frames_.shift[a] += out_.commanded[a] - (work_.block.target[a] + frames_.translation[a]);
+        frames_.translation[a] = out_.commanded[a] - work_.block.target[a];
         if (headstock_ && static_cast<int>(a) == config_.rotary_axis)
-          hs_.rotary_translation = translation_[a];
+          hs_.rotary_translation = frames_.translation[a];
       }
   }
   const bool arc =
       work_.block.motion == nc::Motion::kArcCw || work_.block.motion == nc::Motion::kArcCcw;
-  if (arc && translation_ != before) {
+  if (arc && frames_.translation != before) {
     Fail(program, work_.block.block,
          "zero offset or tool correction changes in an arc block: program it in a straight block",
          kMsgTranslationInArc);

@@ -34,7 +34,7 @@ bool Channel::StartSynchronous(const AmplifierTelegram& at) {
   if (!turning)
     return fail(std::string("spindle not turning for ") + g + ": program M3 or M4 with S first",
                 kMsgSpindleStill);
-  if (const auto error = PlanSynchronousPath(work_.block, commanded_, translation_, config_.axes,
+  if (const auto error = PlanSynchronousPath(work_.block, out_.commanded, frames_.translation, config_.axes,
                                              FollowUpAxes(work_.block), sync_.path))
     return fail(error->text, error->number);
   work_.profile = PathProfile{};
@@ -87,7 +87,7 @@ void Channel::SynchronousCycle(const AmplifierTelegram& at, double dt) {
   const double k = sync_.path.mm_per_deg;
   const double length = work_.motion.length;
   auto finish = [&] {
-    commanded_ = work_.motion.end;  // exactly the programmed point
+    out_.commanded = work_.motion.end;  // exactly the programmed point
     work_.active = false;
     sync_.phase = SyncPhase::kNone;
   };
@@ -140,14 +140,14 @@ void Channel::SynchronousCycle(const AmplifierTelegram& at, double dt) {
       sync_.law.BeginRunOut(std::max(psi, sync_.law.ramp_in_deg));
     const double s = sync_.law.PathAt(psi);
     work_.profile.u = s / length;
-    work_.motion.PointAt(work_.profile.u, commanded_);
+    work_.motion.PointAt(work_.profile.u, out_.commanded);
     if (sync_.law.running_out() && psi >= sync_.law.run_out_end_deg) finish();
     return;
   }
   if (work_.block.motion == nc::Motion::kTapping) {
     // Feed override held at 100 %, feed hold after the block.
     work_.profile.Advance(dt, 1.0);
-    work_.motion.PointAt(work_.profile.u, commanded_);
+    work_.motion.PointAt(work_.profile.u, out_.commanded);
     if (work_.profile.done()) finish();
     return;
   }
@@ -164,7 +164,7 @@ void Channel::SynchronousCycle(const AmplifierTelegram& at, double dt) {
     sync_.phase = SyncPhase::kRunning;
   }
   work_.profile.Advance(dt, std::min(sp_.override, sync_.max_override));
-  work_.motion.PointAt(work_.profile.u, commanded_);
+  work_.motion.PointAt(work_.profile.u, out_.commanded);
   const double u = std::min(work_.profile.u, 1.0);
   sp_.command.value = sync_.spindle_start_deg + sync_.direction * u * length / k;
   sp_.command.velocity_feedforward = sync_.direction * work_.profile.rate * length / k;

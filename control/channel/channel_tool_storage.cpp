@@ -10,7 +10,7 @@
 namespace vmt::control::channel {
 
 void Channel::JogToolStorage(int direction) {
-  if (tool_storage_.SetKey(direction, mode_ == ChannelMode::kManual)) take_over_pending_ = true;
+  if (tool_storage_.SetKey(direction, mode_ == ChannelMode::kManual)) out_.take_over_pending = true;
 }
 
 double Channel::tool_storage_command() const {
@@ -69,11 +69,11 @@ void Channel::ToolStorageCycle(double dt) {
   if (!ToolStorageNc()) return;
   // 3.4: the keys jog it "as it would in jog mode": the feed axes' rules decide.
   ToolStorageJog jog;
-  jog.keys = mode_ == ChannelMode::kManual && process_enable_;
+  jog.keys = mode_ == ChannelMode::kManual && enable_.process;
   jog.handwheel = jog_.mode == JogMode::kHandwheel;
   jog.speed = JogSpeed(config_.tool_storage);
   jog.increment = JogIncrement(config_.tool_storage);
-  tool_storage_.Cycle(dt, drive_positions_[config_.tool_storage_drive], process_enable_, jog,
+  tool_storage_.Cycle(dt, drive_positions_[config_.tool_storage_drive], enable_.process, jog,
                       TurretGuardOf());
 }
 

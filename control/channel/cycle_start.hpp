@@ -21,4 +21,11 @@ enum class CycleStart : uint8_t {
   kRun,              ///< the program runs from its first block (again, after its end)
 };
 
+/// A start not yet taken: the program's (positions are taken from the feedback at the next
+/// tick), or one waiting for a jog left for this mode to brake to rest.
+struct PendingStart {
+  bool program = false;
+  bool deferred = false;
+};
+
 }  // namespace vmt::control::channel

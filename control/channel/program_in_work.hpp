@@ -16,6 +16,7 @@
 #include "control/channel/path_profile.hpp"
 #include "control/channel/tool_radius_compensation.hpp"
 #include "control/nc/interpreter.hpp"
+#include "control/nc/program.hpp"
 
 namespace vmt::control::channel {
 
@@ -45,6 +46,12 @@ struct ProgramInWork {
   Vec2 contour_point;  ///< end of the last programmed element pushed (program coords)
   /// The interpreter's rotary axis position before the block last read (ReadNext), and after it.
   double rotary_start = 0, rotary_next_start = 0;
+};
+
+/// MDI: the blocks the next start runs in MDI mode, and whether the program in work is theirs.
+struct MdiState {
+  std::shared_ptr<nc::ParseResult> blocks;
+  bool running = false;
 };
 
 }  // namespace vmt::control::channel
