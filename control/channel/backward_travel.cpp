@@ -37,8 +37,7 @@ bool BackwardTravel::LastStepIs(const BlockMotion& b) const {
   if (memory_.empty()) return false;
   const BlockMotion& a = memory_[memory_.size() - 1].motion;
   return a.moves && b.moves && a.start == b.start && a.end == b.end &&
-         a.arc_axes[0] == b.arc_axes[0] && a.arc_sweep == b.arc_sweep &&
-         a.max_rate == b.max_rate;
+         a.arc_axes[0] == b.arc_axes[0] && a.arc_sweep == b.arc_sweep && a.max_rate == b.max_rate;
 }
 
 bool BackwardTravel::AtLastStepEnd(const std::vector<double>& position) const {

@@ -21,7 +21,8 @@ namespace vmt::control::channel {
 
 /// PathGuard's check of a G00 leg along a block block search decoded (the axes never went
 /// along it), from where they stand to `leg_end` (channel axes): true if it stopped the leg.
-using ReplayGuard = std::function<bool(const std::string& move, const std::vector<double>& leg_end)>;
+using ReplayGuard =
+    std::function<bool(const std::string& move, const std::vector<double>& leg_end)>;
 
 /// What a leg's start or an NC cycle of the travel came to.
 enum class ReplayStep : uint8_t {

@@ -68,7 +68,8 @@ std::unique_ptr<nc::Interpreter> Channel::MakeInterpreter() {
   auto interpreter = std::make_unique<nc::Interpreter>(std::move(programs), ic);
   // Incremental moves start from where the axes stand, in program coordinates.
   std::vector<double> position(out_.commanded.size());
-  for (size_t a = 0; a < position.size(); ++a) position[a] = out_.commanded[a] - frames_.translation[a];
+  for (size_t a = 0; a < position.size(); ++a)
+    position[a] = out_.commanded[a] - frames_.translation[a];
   interpreter->SetPosition(position);
   interpreter->SetEventSource([this](int n) {
     if (events_.source) return events_.source(n);
@@ -163,7 +164,8 @@ bool Channel::Reverse() {
   error_.clear();
   error_number_ = 0;
   std::vector<double> position(out_.commanded.size());
-  for (size_t a = 0; a < position.size(); ++a) position[a] = out_.commanded[a] - frames_.translation[a];
+  for (size_t a = 0; a < position.size(); ++a)
+    position[a] = out_.commanded[a] - frames_.translation[a];
   work_.interpreter->SetPosition(position);
   reversing_ = true;
   programmed_stop_.Leave();
@@ -294,7 +296,8 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
                        (work_.block.modal.low_lag || InSynchronousBlock()) &&
                        (state_ == ChannelState::kRunning || state_ == ChannelState::kHold);
   const auto axis_setpoint = [&](size_t a) {
-    DriveSetpoint sp{DriveMode::kPosition, out_.previous[a] + (out_.commanded[a] - out_.previous[a]) * f, 0};
+    DriveSetpoint sp{DriveMode::kPosition,
+                     out_.previous[a] + (out_.commanded[a] - out_.previous[a]) * f, 0};
     if (low_lag) sp.velocity_feedforward = (out_.commanded[a] - out_.previous[a]) / cycle_s;
     return sp;
   };
@@ -360,7 +363,8 @@ bool Channel::UpdateTranslation(const nc::ModalState& modal, const nc::Program& 
   const double sign = modal.tool_length == nc::ToolLength::kSubtract ? -1 : 1;
   for (size_t a = 0; a < frames_.translation.size(); ++a) {
     const double length = edge ? edge->Length(a, config_.axes[a].name) : 0;
-    frames_.translation[a] = config_.zero_offsets.Offset(modal.zero_offset, a) + frames_.shift[a] - sign * length;
+    frames_.translation[a] =
+        config_.zero_offsets.Offset(modal.zero_offset, a) + frames_.shift[a] - sign * length;
   }
   if (headstock_) {
     // The rotary axis' offsets act in rotary axis mode only (C-axis manual 2.3 Zero Point
@@ -379,7 +383,8 @@ bool Channel::NextHomingStage() {
     work_.homing = false;
     // The program continues from the reference points, in its own coordinates.
     std::vector<double> position(out_.commanded.size());
-    for (size_t a = 0; a < position.size(); ++a) position[a] = out_.commanded[a] - frames_.translation[a];
+    for (size_t a = 0; a < position.size(); ++a)
+      position[a] = out_.commanded[a] - frames_.translation[a];
     work_.interpreter->SetPosition(position);
     return false;
   }
@@ -463,8 +468,8 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
   }
   sync_.phase = SyncPhase::kNone;
   if (const auto error =
-          PlanBlockMotion(*planned, out_.commanded, frames_.translation, config_.axes, SpindleRevPerS(at),
-                          work_.motion, FollowUpAxes(work_.block))) {
+          PlanBlockMotion(*planned, out_.commanded, frames_.translation, config_.axes,
+                          SpindleRevPerS(at), work_.motion, FollowUpAxes(work_.block))) {
     Fail(program, work_.block.block, error->text, error->number);
     return false;
   }

@@ -566,7 +566,8 @@ void Channel::UpdateBlockSearchStatus() {
        bs_.state == BlockSearchState::kWaitForContinueContour)) {
     double d2 = 0;
     for (size_t a = 0; a < out_.commanded.size(); ++a)
-      if (MainAxis(config_.axes[a].name)) d2 += std::pow(out_.commanded[a] - search_->restart[a], 2);
+      if (MainAxis(config_.axes[a].name))
+        d2 += std::pow(out_.commanded[a] - search_->restart[a], 2);
     st.path_deviation = std::sqrt(d2);
     st.continue_position = search_->restart;
     st.dist_prog_start = search_->restart_distance + search_->restart_u * search_->restart_length;

@@ -71,7 +71,8 @@ bool Channel::SimulateMeasuringInstruction(const nc::PreparedBlock& b) {
   context.compensation = b.modal.compensation;
   for (int n = 0; n < 3; ++n)
     if (const int a = SettingAxis(n); a >= 0)
-      context.position[n] += s.position[static_cast<size_t>(a)] - out_.commanded[static_cast<size_t>(a)];
+      context.position[n] +=
+          s.position[static_cast<size_t>(a)] - out_.commanded[static_cast<size_t>(a)];
   // Planned on copies: only what the instruction sets as state is taken over below.
   measure::MeasuringPages pages = *meas_.pages;
   measure::ReverseVectors reverse = meas_.reverse_vectors;

@@ -55,8 +55,8 @@ bool Channel::HandwheelFictive(int axis, int counts) {
   out_.take_over_pending = true;
   FictiveJog& j = jog_.fictive[axis];
   if (!j.handwheel) {
-    const nc::FictivePoint p =
-        nc::MachineToFace(out_.commanded[x] - frames_.translation[x], out_.commanded[c] - frames_.translation[c]);
+    const nc::FictivePoint p = nc::MachineToFace(out_.commanded[x] - frames_.translation[x],
+                                                 out_.commanded[c] - frames_.translation[c]);
     j.handwheel = true;
     j.handwheel_target = axis == 0 ? p.x1 : p.y1;
   }
@@ -75,8 +75,8 @@ void Channel::FictiveJogging(double dt) {
   const ChannelAxis& ac = config_.axes[c];
   // A fictive axis moves X and C together: both need their axis enabling signal (C-axis 4.2).
   const bool enabled = enable_.process && axis_enabled(x) && axis_enabled(c);
-  const nc::FictivePoint p =
-      nc::MachineToFace(out_.commanded[x] - frames_.translation[x], out_.commanded[c] - frames_.translation[c]);
+  const nc::FictivePoint p = nc::MachineToFace(out_.commanded[x] - frames_.translation[x],
+                                               out_.commanded[c] - frames_.translation[c]);
   const double radius = std::hypot(p.x1, p.y1);
   // The keys at X's jogging speed, the handwheel at X's jogging rapid (as the real axes'
   // handwheel), either slower where C would pass its own jogging rapid.
@@ -182,8 +182,8 @@ bool Channel::GuardFictiveJog(int x, int c, nc::FictivePoint next) {
     }
     stop[k] += j.velocity * std::abs(j.velocity) / (2 * a) + j.velocity * interval;
   }
-  const nc::FictivePoint p =
-      nc::MachineToFace(out_.commanded[x] - frames_.translation[x], out_.commanded[c] - frames_.translation[c]);
+  const nc::FictivePoint p = nc::MachineToFace(out_.commanded[x] - frames_.translation[x],
+                                               out_.commanded[c] - frames_.translation[c]);
   const nc::FictivePoint s{stop[0], stop[1]};
   const std::string move = jog_.mode == JogMode::kHandwheel ? "handwheel X1/Y1" : "jog X1/Y1";
   // Chords of the line p-s, straight in the drives, within kChordTolerance of it (a

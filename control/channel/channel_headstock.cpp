@@ -254,7 +254,8 @@ void Channel::TrackReferences(const AmplifierTelegram& at, double dt) {
 }
 
 bool Channel::spindle_homed() const {
-  if (headstock_ && !headstock_->config().separate_servo()) return frames_.homed[config_.rotary_axis];
+  if (headstock_ && !headstock_->config().separate_servo())
+    return frames_.homed[config_.rotary_axis];
   return sp_.homed;
 }
 

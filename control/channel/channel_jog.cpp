@@ -41,13 +41,14 @@ void Channel::RestartHandwheel() {
     JogAxis& j = jog_.axes[a];
     j.handwheel = jog_.mode == JogMode::kHandwheel;
     j.handwheel_target =
-        j.stepping ? j.to : JogStopPoint(out_.commanded[a], j.velocity, config_.axes[a].acceleration);
+        j.stepping ? j.to
+                   : JogStopPoint(out_.commanded[a], j.velocity, config_.axes[a].acceleration);
   }
   // The fictive axes' likewise (their handwheel target is there only while counts are to go).
   int x = -1, c = -1;
   if (!FictiveJogAxes(x, c)) return;
-  const nc::FictivePoint p =
-      nc::MachineToFace(out_.commanded[x] - frames_.translation[x], out_.commanded[c] - frames_.translation[c]);
+  const nc::FictivePoint p = nc::MachineToFace(out_.commanded[x] - frames_.translation[x],
+                                               out_.commanded[c] - frames_.translation[c]);
   const double at[2] = {p.x1, p.y1};
   for (int k = 0; k < 2; ++k) {
     FictiveJog& f = jog_.fictive[k];

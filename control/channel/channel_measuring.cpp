@@ -201,7 +201,8 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
   if (!UpdateTranslation(b.modal, program, b.block)) return false;
   b.target.resize(out_.commanded.size());
   b.programmed = 0;
-  for (size_t a = 0; a < out_.commanded.size(); ++a) b.target[a] = out_.commanded[a] - frames_.translation[a];
+  for (size_t a = 0; a < out_.commanded.size(); ++a)
+    b.target[a] = out_.commanded[a] - frames_.translation[a];
   for (int n = 0; n < 3; ++n) {
     const int a = SettingAxis(n);
     if (a < 0 || !(step.axes >> n & 1)) continue;
@@ -216,8 +217,9 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
       return false;
     }
   sync_.phase = SyncPhase::kNone;
-  if (const auto error = PlanBlockMotion(work_.block, out_.commanded, frames_.translation, config_.axes, 0,
-                                         work_.motion, FollowUpAxes(work_.block))) {
+  if (const auto error =
+          PlanBlockMotion(work_.block, out_.commanded, frames_.translation, config_.axes, 0,
+                          work_.motion, FollowUpAxes(work_.block))) {
     Fail(program, b.block, error->text, error->number);
     return false;
   }
@@ -473,7 +475,8 @@ void Channel::EndMeasuring() {
   if (!work_.interpreter) return;
   // The program goes on from where the stylus stands (its next block's unprogrammed axes stay).
   std::vector<double> position(out_.commanded.size());
-  for (size_t a = 0; a < position.size(); ++a) position[a] = out_.commanded[a] - frames_.translation[a];
+  for (size_t a = 0; a < position.size(); ++a)
+    position[a] = out_.commanded[a] - frames_.translation[a];
   work_.interpreter->SetPosition(position);
 }
 

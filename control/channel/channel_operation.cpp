@@ -30,8 +30,7 @@ bool Channel::SetMode(ChannelMode mode) {
   // program ended or reset first, and an interrupted MDI sequence ("execute in manual mode",
   // REPOS manual 2.1) goes on in MDI, not in automatic.
   const bool interrupted = state_ == ChannelState::kHold && work_.interpreter;
-  if (interrupted && mode != ChannelMode::kManual &&
-      (mode == ChannelMode::kMdi) != mdi_.running)
+  if (interrupted && mode != ChannelMode::kManual && (mode == ChannelMode::kMdi) != mdi_.running)
     return false;
   if (mode != mode_) {
     // A jog under way is let go as at released keys: it brakes to rest in the new mode (Cycle)

@@ -187,8 +187,8 @@ void Channel::GuardJog(double dt) {
     JogAxis& j = jog_.axes[a];
     if (to[config_.axes[a].drive] == from[config_.axes[a].drive]) continue;
     if (jog_.mode == JogMode::kHandwheel) {
-      j.handwheel_target =
-          out_.commanded[a] + j.velocity * std::abs(j.velocity) / (2 * config_.axes[a].acceleration);
+      j.handwheel_target = out_.commanded[a] +
+                           j.velocity * std::abs(j.velocity) / (2 * config_.axes[a].acceleration);
     } else {
       j.blocked = j.key != 0 ? j.key : (j.velocity > 0 ? 1 : -1);
     }

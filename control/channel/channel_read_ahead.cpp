@@ -356,7 +356,8 @@ void Channel::LookAhead(const AmplifierTelegram& at) {
     // A block that moves nothing, or cannot be planned (its error comes in its turn), ends the
     // path known.
     if (!homed ||
-        PlanBlockMotion(n, from, frames_.translation, config_.axes, spindle_rev_per_s, m, FollowUpAxes(n))
+        PlanBlockMotion(n, from, frames_.translation, config_.axes, spindle_rev_per_s, m,
+                        FollowUpAxes(n))
             .has_value() ||
         !m.moves)
       break;

@@ -67,7 +67,8 @@ void Channel::CaptureInterruption() {
   // after a T word's (or MTP's) traverse, its station - also while it is still on its way or
   // its drive still settles - not the place the turret has got to. A jog since (manual mode
   // before the program) leaves the turret where the operator put it.
-  if (ToolStorageNc() && tool_storage_.axis().programmed) i.tool_storage = tool_storage_.axis().target;
+  if (ToolStorageNc() && tool_storage_.axis().programmed)
+    i.tool_storage = tool_storage_.axis().target;
   repos_.interruption = std::move(i);
   repos_.start = out_.commanded;
 }
@@ -169,7 +170,8 @@ void Channel::ReposCycle(const AmplifierTelegram& at) {
   if (evaluated && function == ReposFunction::kNone && repos_.function != ReposFunction::kNone &&
       mode_ == ChannelMode::kManual && (key_held || JogsMoving()))
     return;
-  if (function != repos_.function && function != ReposFunction::kNone) repos_.start = out_.commanded;
+  if (function != repos_.function && function != ReposFunction::kNone)
+    repos_.start = out_.commanded;
   repos_.function = function;
   if (repos_.function == ReposFunction::kNone) return;
   const std::vector<double> target = ReposTarget();
@@ -357,7 +359,8 @@ void Channel::StartReposRun() {
     if (mdi_.running) programs.insert(programs.begin(), &mdi_.blocks->program);
     work_.interpreter = std::make_unique<nc::Interpreter>(std::move(programs), ic);
     std::vector<double> position(out_.commanded.size());
-    for (size_t a = 0; a < position.size(); ++a) position[a] = out_.commanded[a] - frames_.translation[a];
+    for (size_t a = 0; a < position.size(); ++a)
+      position[a] = out_.commanded[a] - frames_.translation[a];
     work_.interpreter->SetPosition(position);
     work_.interpreter->SetEventSource([this](int n) {
       if (events_.source) return events_.source(n);
@@ -451,8 +454,8 @@ bool Channel::StartReposMotion(const AmplifierTelegram& at) {
     const bool to_target = (work_.block.programmed >> a & 1) && !std::isnan(target[a]);
     b.target[a] = (to_target ? target[a] : out_.commanded[a]) - frames_.translation[a];
   }
-  if (const auto error = PlanBlockMotion(b, out_.commanded, frames_.translation, config_.axes, 0, work_.motion,
-                                         FollowUpAxes(b))) {
+  if (const auto error = PlanBlockMotion(b, out_.commanded, frames_.translation, config_.axes, 0,
+                                         work_.motion, FollowUpAxes(b))) {
     Fail(program, work_.block.block, error->text, error->number);
     return false;
   }

@@ -35,7 +35,8 @@ bool Channel::StartReturnToContour() {
   }
   if (cax_.command) {
     for (size_t a = 0; a < out_.commanded.size(); ++a) {
-      if (config_.axes[a].name != "C" || std::abs(s.restart[a] - out_.commanded[a]) < 1e-12) continue;
+      if (config_.axes[a].name != "C" || std::abs(s.restart[a] - out_.commanded[a]) < 1e-12)
+        continue;
       std::vector<double> aligned = out_.commanded;
       aligned[a] = s.restart[a];
       s.return_rest = true;
@@ -56,7 +57,8 @@ bool Channel::StartReturnMove(const std::vector<double>& to, const std::string& 
   int x = -1, c = -1;
   if (search_->face_return && FictiveJogAxes(x, c) &&
       !nc::FaceLineOf(
-           nc::MachineToFace(out_.commanded[x] - frames_.translation[x], out_.commanded[c] - frames_.translation[c]),
+           nc::MachineToFace(out_.commanded[x] - frames_.translation[x],
+                             out_.commanded[c] - frames_.translation[c]),
            nc::MachineToFace(to[x] - frames_.translation[x], to[c] - frames_.translation[c]))
            .through_centre) {
     nc::PreparedBlock b;

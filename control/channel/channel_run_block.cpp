@@ -110,8 +110,8 @@ bool Channel::BlockInstructions(const nc::Program& program, bool& mry) {
         return false;
       }
       const int c = TrackedAxis();
-      if (const auto done = CaxTrackInstruction(program, st, work_.block,
-                                                c < 0 ? 0 : out_.commanded[static_cast<size_t>(c)])) {
+      if (const auto done = CaxTrackInstruction(
+              program, st, work_.block, c < 0 ? 0 : out_.commanded[static_cast<size_t>(c)])) {
         if (!*done) return false;
         continue;
       }

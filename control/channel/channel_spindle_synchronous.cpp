@@ -34,8 +34,8 @@ bool Channel::StartSynchronous(const AmplifierTelegram& at) {
   if (!turning)
     return fail(std::string("spindle not turning for ") + g + ": program M3 or M4 with S first",
                 kMsgSpindleStill);
-  if (const auto error = PlanSynchronousPath(work_.block, out_.commanded, frames_.translation, config_.axes,
-                                             FollowUpAxes(work_.block), sync_.path))
+  if (const auto error = PlanSynchronousPath(work_.block, out_.commanded, frames_.translation,
+                                             config_.axes, FollowUpAxes(work_.block), sync_.path))
     return fail(error->text, error->number);
   work_.profile = PathProfile{};
   work_.continuation_ready = false;

@@ -8,8 +8,8 @@
 namespace vmt::control::channel {
 
 struct ProgramEvents {
-  std::function<bool(int)> source;       ///< none: the events the program set itself
-  std::function<void(int, bool)> sink;   ///< SE n / RE n
+  std::function<bool(int)> source;      ///< none: the events the program set itself
+  std::function<void(int, bool)> sink;  ///< SE n / RE n
   std::map<int, bool> own;
 };
 

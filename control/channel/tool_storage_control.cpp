@@ -123,8 +123,7 @@ void ToolStorageControl::Jog(double dt, const ToolStorageJog& jog, const TurretG
     if (!t.stepping && t.key != 0 && jog.keys) {
       // The increment's sweep is checked whole before it starts, as a feed axis' increment.
       const double target = t.command + t.key * jog.increment;
-      if (guard.index(t.key > 0 ? "turret index MGPOS" : "turret index MGNEG", t.command,
-                      target)) {
+      if (guard.index(t.key > 0 ? "turret index MGPOS" : "turret index MGNEG", t.command, target)) {
         t.stepping = true;
         t.programmed = false;
         t.target = target;

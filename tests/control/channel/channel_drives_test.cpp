@@ -14,8 +14,9 @@ using namespace testing;  // vmt::control::channel::testing
 
 TEST(ChannelDrivesTest, TheChannelWritesItsDrivesFromItsStartOn) {
   constexpr int kS2 = 3, kOther = 4;
-  Machine m("N1 G01 X10 F600\nN2 RET\n", 0, 0,
-            [](ChannelConfig& c) { c.spindles = {{2, kS2, "S2"}}; });
+  Machine m("N1 G01 X10 F600\nN2 RET\n", 0, 0, [](ChannelConfig& c) {
+    c.spindles = {{2, kS2, "S2"}};
+  });
   for (size_t d = 0; d <= kOther; ++d) EXPECT_FALSE(m.channel->WritesDrive(d)) << d;
   m.channel->Start();
   // The start is taken at the next tick, which writes them: the channel owns them already.

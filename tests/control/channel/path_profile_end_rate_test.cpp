@@ -1,14 +1,13 @@
 // The path-parameter profile between blocks and under the operator: ending at a speed
 // (look-ahead) and carrying speed and acceleration into the next block, feed hold on the path,
 // override changes, and the old trapezoid without a jerk limit.
-#include "control/channel/path_profile.hpp"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
+#include "control/channel/path_profile.hpp"
 #include "path_profile_test_support.hpp"
 
 namespace vmt::control::channel {

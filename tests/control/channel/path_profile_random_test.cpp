@@ -1,7 +1,5 @@
 // The path-parameter profile under extreme limits and random profiles with override changes and
 // holds: every limit holds and the time stays near the analytic optimum.
-#include "control/channel/path_profile.hpp"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "control/channel/path_profile.hpp"
 #include "path_profile_test_support.hpp"
 
 namespace vmt::control::channel {

@@ -74,7 +74,7 @@ struct Sample {
 // Runs until done or max_cycles; trace[0] is the start, trace[k] the state after cycle k, run at
 // trace[k].override.
 inline std::vector<Sample> Simulate(PathProfile p, const std::function<double(int)>& override_at,
-                             int max_cycles) {
+                                    int max_cycles) {
   std::vector<Sample> trace{{p.u, p.rate, p.accel, 1}};
   for (int k = 1; k <= max_cycles && !p.done(); ++k) {
     const double override = override_at(k);
@@ -109,7 +109,7 @@ struct Arrival {
 // except while braking down after an override reduction (or from a carried-in speed), the end at
 // rate <= end_rate. Returns an empty string if all hold, else the first violation.
 inline std::string CheckTrace(const PathProfile& p, const std::vector<Sample>& trace,
-                       Arrival* arrival = nullptr) {
+                              Arrival* arrival = nullptr) {
   const double jerk_step = p.max_jerk * kDt * (1 + kSlack);
   const double accel_max = p.max_accel * (1 + kSlack);
   bool braking_down = trace[0].rate > p.max_rate * (1 + kSlack);
