@@ -466,7 +466,7 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
     if (!repos_.run) PathBarrier();  // the spindle cannot be turned back in step
     return StartSynchronous(at);
   }
-  sync_.phase = SyncPhase::kNone;
+  sync_.Clear();
   if (const auto error =
           PlanBlockMotion(*planned, out_.commanded, frames_.translation, config_.axes,
                           SpindleRevPerS(at), work_.motion, FollowUpAxes(work_.block))) {

@@ -647,10 +647,11 @@ class Channel {
   void AcknowledgeDriveTrips(MasterTelegram& mdt);
   DriveSetpoint SpindleSetpoint() const;
   // Spindle-synchronous block in work (G33/G63/G64, channel_spindle_synchronous.cpp).
-  Synchronous sync_;
+  SynchronousBlock sync_{config_.axes, config_.spindle_drive, config_.spindle};
+  SynchronousContext SynchronousContextNow();
   bool StartSynchronous(const AmplifierTelegram& at);
   void SynchronousCycle(const AmplifierTelegram& at, double dt);
-  bool InSynchronousBlock() const { return work_.active && sync_.phase != SyncPhase::kNone; }
+  bool InSynchronousBlock() const { return work_.active && sync_.active(); }
   std::optional<axes::HeadstockChangeover> headstock_;
   PlcMessage plc_message_;
   /// A changeover to rotary axis mode has ended: the block in work and the interpreter take

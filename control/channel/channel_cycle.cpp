@@ -90,7 +90,7 @@ void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, doub
   const bool frozen = state_ == ChannelState::kHold && repos_.interruption &&
                       repos_.interruption->left_contour && !repos_.run;
   if (work_.active && !frozen) {
-    if (sync_.phase != SyncPhase::kNone)
+    if (sync_.active())
       SynchronousCycle(at, dt);
     else
       Interpolate(dt);

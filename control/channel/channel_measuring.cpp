@@ -216,7 +216,7 @@ bool Channel::StartMeasuringMove(const measure::MeasuringStep& step) {
            "axis " + config_.axes[a].name + " has no reference: home it first (G74)", kMsgNotHomed);
       return false;
     }
-  sync_.phase = SyncPhase::kNone;
+  sync_.Clear();
   if (const auto error =
           PlanBlockMotion(work_.block, out_.commanded, frames_.translation, config_.axes, 0,
                           work_.motion, FollowUpAxes(work_.block))) {
