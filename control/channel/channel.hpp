@@ -394,6 +394,10 @@ class Channel {
   AxisOutput out_{.suspend_requested = config_.output_suspended_at_start,
                   .suspended = config_.output_suspended_at_start};
   PendingStart start_;
+  /// The drives Tick writes once the channel holds its axes (WritesDrive), by drive index;
+  /// the tool storage axis' aside.
+  std::vector<bool> DrivesWritten() const;
+  const std::vector<bool> drives_written_ = DrivesWritten();
   /// What Start() would do now; it changes nothing.
   CycleStart StartCase() const;
   /// Start() while the program holds on its path: it goes on if no axis has left the contour.

@@ -139,21 +139,33 @@ void Channel::CollectTrips(const AmplifierTelegram& at) {
   drives_.trip_reset_ticks = drives_.trip_reset.empty() ? 0 : config_.ticks_per_cycle;
 }
 
+std::vector<bool> Channel::DrivesWritten() const {
+  std::vector<bool> written;
+  const auto mark = [&written](int drive) {
+    if (drive < 0) return;
+    if (static_cast<size_t>(drive) >= written.size()) written.resize(drive + 1);
+    written[drive] = true;
+  };
+  // As Tick writes them: the rotary axis of a headstock and the main spindle through it.
+  for (size_t a = 0; a < config_.axes.size(); ++a)
+    if (!config_.headstock || static_cast<int>(a) != config_.rotary_axis)
+      mark(config_.axes[a].drive);
+  if (config_.headstock) {
+    mark(config_.headstock->spindle_drive);
+    if (config_.headstock->separate_servo()) mark(config_.headstock->rotary_drive);
+  } else {
+    mark(config_.spindle_drive);
+  }
+  for (const ChannelSpindle& s : config_.spindles) mark(s.drive);
+  return written;
+}
+
 bool Channel::WritesDrive(size_t d) const {
   // Tick takes the axes when a start or a hand-over is pending, before it writes.
   if (!out_.holding && !start_.program && !out_.take_over_pending) return false;
-  const auto is = [d](int drive) { return drive >= 0 && static_cast<size_t>(drive) == d; };
-  // As Tick writes them: the rotary axis of a headstock and the main spindle through it.
-  for (size_t a = 0; a < config_.axes.size(); ++a)
-    if (is(config_.axes[a].drive) && (!headstock_ || static_cast<int>(a) != config_.rotary_axis))
-      return true;
-  if (headstock_ ? is(config_.headstock->spindle_drive) ||
-                       (config_.headstock->separate_servo() && is(config_.headstock->rotary_drive))
-                 : is(config_.spindle_drive))
-    return true;
-  for (const ChannelSpindle& s : config_.spindles)
-    if (is(s.drive)) return true;
-  return is(config_.tool_storage_drive) && ToolStorageNc() && tool_storage_.axis().taken;
+  if (d < drives_written_.size() && drives_written_[d]) return true;
+  return config_.tool_storage_drive >= 0 && d == static_cast<size_t>(config_.tool_storage_drive) &&
+         ToolStorageNc() && tool_storage_.axis().taken;
 }
 
 void Channel::AcknowledgeDriveTrips(MasterTelegram& mdt) {
