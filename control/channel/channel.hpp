@@ -182,7 +182,20 @@ class Channel {
   /// of another channel) it is the one owner of its feed axes', spindles' and headstock's
   /// drives, and of an NC-controlled tool storage axis it has taken. Before, the scene holds
   /// them (the timeline player).
-  bool WritesDrive(size_t d) const;
+  /// Drive `d` is one the channel writes once it holds its axes (WritesDrive), in some state.
+  bool MayWriteDrive(size_t d) const {
+    return (d < drives_written_.size() && drives_written_[d]) ||
+           (config_.tool_storage_drive >= 0 &&
+            d == static_cast<size_t>(config_.tool_storage_drive) && tool_storage_.nc());
+  }
+  bool WritesDrive(size_t d) const {
+    // Tick takes the axes when a start or a hand-over is pending, before it writes.
+    if (!out_.holding && !start_.program && !out_.take_over_pending) return false;
+    if (d < drives_written_.size() && drives_written_[d]) return true;
+    return config_.tool_storage_drive >= 0 &&
+           d == static_cast<size_t>(config_.tool_storage_drive) && ToolStorageNc() &&
+           tool_storage_.axis().taken;
+  }
   /// Direction the axis is commanded to move this NC cycle: +1, -1 or 0 (MVPOS / MVNEG).
   int AxisMotion(size_t axis) const;
   /// Events (BES/BEC) come from here; without a source, the events the program set itself.

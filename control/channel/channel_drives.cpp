@@ -160,14 +160,6 @@ std::vector<bool> Channel::DrivesWritten() const {
   return written;
 }
 
-bool Channel::WritesDrive(size_t d) const {
-  // Tick takes the axes when a start or a hand-over is pending, before it writes.
-  if (!out_.holding && !start_.program && !out_.take_over_pending) return false;
-  if (d < drives_written_.size() && drives_written_[d]) return true;
-  return config_.tool_storage_drive >= 0 && d == static_cast<size_t>(config_.tool_storage_drive) &&
-         ToolStorageNc() && tool_storage_.axis().taken;
-}
-
 void Channel::AcknowledgeDriveTrips(MasterTelegram& mdt) {
   if (drives_.trip_reset_ticks <= 0) return;
   for (int d : drives_.trip_reset)

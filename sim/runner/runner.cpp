@@ -213,6 +213,10 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
       StartHeadstockPlc();
   }
   timeline = std::make_unique<TimelinePlayer>(scene, backend->Read(), channel.get(), image.get());
+  channel_drive.assign(m.drives.size(), 0);
+  for (const control::channel::Channel* c : {channel.get(), jog_of_path.get()})
+    for (size_t d = 0; c && d < channel_drive.size(); ++d)
+      if (c->MayWriteDrive(d)) channel_drive[d] = 1;
   if (field_bus) ReadFieldBus();
 
   last_tick = std::llround(options.until_s.value_or(scene.duration_s) / kDriveTickS);

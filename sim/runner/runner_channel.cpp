@@ -31,7 +31,7 @@ void SceneRun::State::StepChannel(double t, const control::AmplifierTelegram& at
   // Each drive has one writer: the timeline's steps for those no channel writes this tick.
   const control::channel::Channel* lent = jog_of_path.get();
   timeline->WriteSetpoints(mdt, [this, lent](size_t d) {
-    return channel->WritesDrive(d) || (lent && lent->WritesDrive(d));
+    return channel_drive[d] && (channel->WritesDrive(d) || (lent && lent->WritesDrive(d)));
   });
   // The channel holding the axes writes their setpoints last; the other holds them where the
   // holder commanded them, which also covers the cycle in which both have let them go.

@@ -85,6 +85,9 @@ struct SceneRun::State {
   std::vector<std::pair<int, int>> plc_inputs, plc_outputs;  // I/O point, signal id
   std::unique_ptr<ProbeGlue> probe_glue;  ///< the SERCOS side of the PLC's probe block
   std::unique_ptr<TimelinePlayer> timeline;
+  /// Per drive: a channel may write it (its own, or the one it lends); the timeline writes
+  /// the others every tick.
+  std::vector<uint8_t> channel_drive;
   /// The machine's changes (signals, clutches, inputs, drives, probe latches) as events.
   MachineEventWatch machine_events{m};
   /// The channel's changes (headstock, PathGuard, REPOS screen, block search, messages, state).

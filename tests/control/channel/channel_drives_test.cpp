@@ -18,6 +18,8 @@ TEST(ChannelDrivesTest, TheChannelWritesItsDrivesFromItsStartOn) {
     c.spindles = {{2, kS2, "S2"}};
   });
   for (size_t d = 0; d <= kOther; ++d) EXPECT_FALSE(m.channel->WritesDrive(d)) << d;
+  for (size_t d = 0; d <= kS2; ++d) EXPECT_TRUE(m.channel->MayWriteDrive(d)) << d;
+  EXPECT_FALSE(m.channel->MayWriteDrive(kOther));
   m.channel->Start();
   // The start is taken at the next tick, which writes them: the channel owns them already.
   for (size_t d = 0; d <= kS2; ++d) EXPECT_TRUE(m.channel->WritesDrive(d)) << d;
