@@ -13,6 +13,8 @@ Channel::Channel(ChannelConfig config, std::vector<const nc::Program*> programs)
   jog_.axes.resize(n);
   out_.commanded.assign(n, 0.0);
   out_.previous = out_.commanded;
+  // A JogOfPath channel's output is suspended until the axes are handed to it.
+  out_.suspend_requested = out_.suspended = config_.output_suspended_at_start;
   frames_.translation.assign(n, 0.0);
   frames_.shift.assign(n, 0.0);
   frames_.homed.resize(n);

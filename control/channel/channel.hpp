@@ -404,8 +404,7 @@ class Channel {
   ProgrammedStop programmed_stop_;  ///< M00 / M01
 
   /// Positions commanded at the last two NC cycles and who holds the axes.
-  AxisOutput out_{.suspend_requested = config_.output_suspended_at_start,
-                  .suspended = config_.output_suspended_at_start};
+  AxisOutput out_;
   PendingStart start_;
   /// The drives Tick writes once the channel holds its axes (WritesDrive), by drive index;
   /// the tool storage axis' aside.
