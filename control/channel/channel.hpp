@@ -32,7 +32,6 @@
 #include "control/channel/cycle_start.hpp"
 #include "control/channel/enabling_signals.hpp"
 #include "control/channel/further_spindle_control.hpp"
-#include "control/channel/guarded_moves.hpp"
 #include "control/channel/headstock_link.hpp"
 #include "control/channel/jog_state.hpp"
 #include "control/channel/look_ahead.hpp"
@@ -40,6 +39,7 @@
 #include "control/channel/measuring_run.hpp"
 #include "control/channel/nc_cycle_owner.hpp"
 #include "control/channel/operator_messages.hpp"
+#include "control/channel/path_guard_client.hpp"
 #include "control/channel/path_profile.hpp"
 #include "control/channel/program_events.hpp"
 #include "control/channel/program_frames.hpp"
@@ -215,9 +215,9 @@ class Channel {
 
   /// The machine geometry's check of approach moves (ChannelConfig::path_guard says what a
   /// contact does); null: none. It must outlive the channel.
-  void SetPathGuard(PathGuard* guard) { guarded_.guard = guard; }
+  void SetPathGuard(PathGuard* guard) { guard_.SetGuard(guard); }
   /// The checks made since the last call, oldest first.
-  std::vector<GuardRecord> TakeGuardRecords() { return std::exchange(guarded_.records, {}); }
+  std::vector<GuardRecord> TakeGuardRecords() { return guard_.TakeRecords(); }
   /// Warnings of the measuring instructions since the last call ("file:line:col: warning: ...").
   std::vector<std::string> TakeMeasuringWarnings() { return std::exchange(meas_.warnings, {}); }
 
@@ -468,6 +468,10 @@ class Channel {
   static constexpr int kMaxChords = 20000;  ///< a bound on the work (0.1 mm min. clearance)
   bool GuardStops(const std::string& move, const std::vector<double>& from,
                   const std::vector<double>& to, const PathCheck& check);
+  /// After a contact PathGuardClient recorded: with `stop`, the NC error naming the parts and
+  /// where, and true.
+  bool StopAhead(bool stop, const std::string& move, const std::vector<double>& from,
+                 const std::vector<double>& to, const PathCheck& check);
   // PathGuard of the NC turret's index and of a spindle start (channel_turret_guard.cpp).
   /// A straight move of the drives; while the NC turret indexes, against it as it turns on.
   PathCheck GuardCheck(const std::vector<double>& from, const std::vector<double>& to,
@@ -482,7 +486,7 @@ class Channel {
   /// if stopped.
   bool GuardSpindleStart(const std::string& move, const DriveSetpoint& sp);
   FurtherSpindleControl further_{config_.spindles};  ///< spindles j >= 2
-  GuardedMoves guarded_;
+  PathGuardClient guard_{config_.path_guard, config_.path_guard_every};
   std::vector<double> drive_positions_;  ///< every drive's actual position, this NC cycle
   // Repositioning and NC-block restart (channel_repositioning.cpp).
   ReposData repos_;

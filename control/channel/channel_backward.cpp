@@ -21,15 +21,15 @@ void Channel::RefuseBackward(const std::string& why) {
 
 ReplayGuard Channel::ReplayGuardOf() {
   return [this](const std::string& move, const std::vector<double>& leg_end) {
-    if (!guarded_.guard || config_.path_guard == GuardReaction::kOff) return false;
+    if (!guard_.active()) return false;
     const std::vector<double> from = GuardFrom();
     std::vector<double> to = from;
     for (size_t a = 0; a < config_.axes.size(); ++a)
       if (static_cast<size_t>(config_.axes[a].drive) < to.size())
         to[config_.axes[a].drive] = leg_end[a];
-    const PathCheck c = guarded_.guard->CheckMove(from, to);
+    const PathCheck c = guard_.guard().CheckMove(from, to);
     if (!c.clear) return GuardStops(move, from, to, c);
-    guarded_.records.push_back({move, from, to, c, 1, false});
+    guard_.Clear(move, from, to, c);
     return false;
   };
 }

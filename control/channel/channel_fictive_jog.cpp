@@ -164,9 +164,8 @@ void Channel::FictiveJogging(double dt) {
 }
 
 bool Channel::GuardFictiveJog(int x, int c, nc::FictivePoint next) {
-  if (!guarded_.guard || config_.path_guard == GuardReaction::kOff) return true;
-  if (--guarded_.fictive_jog_countdown > 0) return true;
-  guarded_.fictive_jog_countdown = config_.path_guard_every;
+  if (!guard_.active()) return true;
+  if (!guard_.FictiveDue()) return true;
   // Where the jog could stop: the next point plus the braking distance and one check interval
   // at the present velocity, along the jog's direction.
   const double dt = config_.tick_s * config_.ticks_per_cycle;
@@ -205,14 +204,14 @@ bool Channel::GuardFictiveJog(int x, int c, nc::FictivePoint next) {
     const nc::FictivePoint q{p.x1 + (s.x1 - p.x1) * u, p.y1 + (s.y1 - p.y1) * u};
     b[config_.axes[x].drive] = std::hypot(q.x1, q.y1) + frames_.translation[x];
     b[config_.axes[c].drive] = out_.commanded[c] + nc::SweepDeg(p, q);
-    const PathCheck check = guarded_.guard->CheckMove(at, b);
+    const PathCheck check = guard_.guard().CheckMove(at, b);
     if (!check.clear) return !GuardStops(move, from, to, check);
     if (record.checks == 0 || check.min_clearance < record.check.min_clearance)
       record.check = check;
     ++record.checks;
     at = b;
   }
-  guarded_.records.push_back(record);
+  guard_.Add(record);
   return true;
 }
 

@@ -24,8 +24,11 @@ std::vector<double> Channel::GuardFrom() const {
 
 bool Channel::GuardStops(const std::string& move, const std::vector<double>& from,
                          const std::vector<double>& to, const PathCheck& check) {
-  const bool stop = config_.path_guard == GuardReaction::kStop;
-  guarded_.records.push_back({move, from, to, check, 1, stop});
+  return StopAhead(guard_.Contact(move, from, to, check), move, from, to, check);
+}
+
+bool Channel::StopAhead(bool stop, const std::string& move, const std::vector<double>& from,
+                        const std::vector<double>& to, const PathCheck& check) {
   if (!stop) return false;
   std::string where;
   for (const ChannelAxis& axis : config_.axes) {
@@ -54,13 +57,13 @@ bool Channel::GuardStops(const std::string& move, const std::vector<double>& fro
 }
 
 bool Channel::GuardIncrement(size_t axis, double to_position) {
-  if (!guarded_.guard || config_.path_guard == GuardReaction::kOff) return true;
+  if (!guard_.active()) return true;
   const std::vector<double> from = GuardFrom();
   std::vector<double> to = from;
   to[config_.axes[axis].drive] = to_position;
   const PathCheck c = GuardCheck(from, to);
   if (c.clear) {
-    guarded_.records.push_back({"jog", from, to, c, 1, false});
+    guard_.Clear("jog", from, to, c);
     return true;
   }
   return !GuardStops("jog", from, to, c);
@@ -68,7 +71,7 @@ bool Channel::GuardIncrement(size_t axis, double to_position) {
 
 bool Channel::GuardBlockMove(const std::string& move, const std::vector<double>* end,
                              bool measuring_path) {
-  if (!guarded_.guard || config_.path_guard == GuardReaction::kOff) return true;
+  if (!guard_.active()) return true;
   if (!end && (work_.motion.face_axes[0] >= 0 || work_.motion.arc_axes[0] >= 0))
     return GuardCurvedMove(move);
   const std::vector<double> from = GuardFrom();
@@ -78,7 +81,7 @@ bool Channel::GuardBlockMove(const std::string& move, const std::vector<double>*
       to[config_.axes[a].drive] = end ? (*end)[a] : work_.motion.end[a];
   const PathCheck c = GuardCheck(from, to, measuring_path);
   if (c.clear) {
-    guarded_.records.push_back({move, from, to, c, 1, false});
+    guard_.Clear(move, from, to, c);
     return true;
   }
   return !GuardStops(move, from, to, c);
@@ -115,12 +118,12 @@ bool Channel::GuardCurvedMove(const std::string& move) {
     ++record.checks;
     a = b;
   }
-  guarded_.records.push_back(record);
+  guard_.Add(record);
   return true;
 }
 
 void Channel::GuardJog(double dt) {
-  if (!guarded_.guard || config_.path_guard == GuardReaction::kOff) return;
+  if (!guard_.active()) return;
   // A stopped key stays stopped until it is released (or the other way is pressed).
   for (JogAxis& j : jog_.axes)
     if (j.blocked != 0 && j.key != j.blocked) j.blocked = 0;
@@ -160,27 +163,10 @@ void Channel::GuardJog(double dt) {
     to[axis.drive] = stop;
     moving = true;
   }
-  if (!moving) {
-    if (guarded_.jog) guarded_.records.push_back(*guarded_.jog), guarded_.jog.reset();
-    guarded_.jog_countdown = 0;
-    return;
-  }
-  if (guarded_.jog && --guarded_.jog_countdown > 0) return;  // checked at the start, then every n
-  guarded_.jog_countdown = config_.path_guard_every;
+  if (!guard_.Due(ContinuousMove::kJog, moving)) return;  // at the start, then every n cycles
   const PathCheck c = GuardCheck(from, to);
-  if (c.clear) {
-    if (!guarded_.jog) {
-      guarded_.jog = GuardRecord{"jog", from, to, c, 1, false};
-    } else {
-      GuardRecord& r = *guarded_.jog;
-      r.to = to;
-      ++r.checks;
-      if (c.min_clearance < r.check.min_clearance) r.check = c;
-    }
+  if (!StopAhead(guard_.Ahead(ContinuousMove::kJog, "jog", from, to, c), "jog", from, to, c))
     return;
-  }
-  if (guarded_.jog) guarded_.records.push_back(*guarded_.jog), guarded_.jog.reset();
-  if (!GuardStops("jog", from, to, c)) return;
   // Brake every moving axis: its key is held off, a handwheel's target becomes where the axis
   // can stop.
   for (size_t a = 0; a < jog_.axes.size(); ++a) {

@@ -15,8 +15,8 @@ namespace vmt::control::channel {
 PathCheck Channel::GuardCheck(const std::vector<double>& from, const std::vector<double>& to,
                               bool measuring_path) {
   auto check = [&](const std::vector<double>& a, const std::vector<double>& b) {
-    return measuring_path ? guarded_.guard->CheckMeasuringPath(a, b)
-                          : guarded_.guard->CheckMove(a, b);
+    return measuring_path ? guard_.guard().CheckMeasuringPath(a, b)
+                          : guard_.guard().CheckMove(a, b);
   };
   const size_t t = static_cast<size_t>(config_.tool_storage_drive);
   const ToolStorageAxis& ts = tool_storage_.axis();
@@ -37,8 +37,8 @@ PathCheck Channel::GuardCheck(const std::vector<double>& from, const std::vector
   sweep_end_to[t] = ts.target;
   PathCheck best = check(a, b);
   if (!best.clear) return best;
-  for (const PathCheck& c : {check(from, to), guarded_.guard->CheckMove(sweep_from, sweep_to),
-                             guarded_.guard->CheckMove(sweep_end_from, sweep_end_to)}) {
+  for (const PathCheck& c : {check(from, to), guard_.guard().CheckMove(sweep_from, sweep_to),
+                             guard_.guard().CheckMove(sweep_end_from, sweep_end_to)}) {
     if (!c.clear) return c;
     if (c.min_clearance < best.min_clearance) best = c;
   }
@@ -46,7 +46,7 @@ PathCheck Channel::GuardCheck(const std::vector<double>& from, const std::vector
 }
 
 bool Channel::GuardTurretIndex(const std::string& move, double from_deg, double to_deg) {
-  if (!guarded_.guard || config_.path_guard == GuardReaction::kOff) return true;
+  if (!guard_.active()) return true;
   const size_t t = static_cast<size_t>(config_.tool_storage_drive);
   std::vector<double> from = GuardFrom();
   if (t >= from.size()) return true;
@@ -57,24 +57,17 @@ bool Channel::GuardTurretIndex(const std::string& move, double from_deg, double 
   std::vector<double> to = from;
   to[t] = to_deg;
   if (from[t] == to[t]) return true;
-  const PathCheck c = guarded_.guard->CheckMove(from, to);
+  const PathCheck c = guard_.guard().CheckMove(from, to);
   if (c.clear) {
-    guarded_.records.push_back({move, from, to, c, 1, false});
+    guard_.Clear(move, from, to, c);
     return true;
   }
   return !GuardStops(move, from, to, c);
 }
 
 bool Channel::GuardTurretJog(int direction, double from_deg, double to_deg) {
-  if (!guarded_.guard || config_.path_guard == GuardReaction::kOff) return false;
-  if (direction == 0) {
-    if (guarded_.turret_jog) guarded_.records.push_back(*guarded_.turret_jog);
-    guarded_.turret_jog.reset();
-    guarded_.turret_jog_countdown = 0;
-    return false;
-  }
-  if (guarded_.turret_jog && --guarded_.turret_jog_countdown > 0) return false;
-  guarded_.turret_jog_countdown = config_.path_guard_every;
+  if (!guard_.active()) return false;
+  if (!guard_.Due(ContinuousMove::kTurretJog, direction != 0)) return false;
   const size_t d = static_cast<size_t>(config_.tool_storage_drive);
   std::vector<double> from = GuardFrom();
   if (d >= from.size()) return false;
@@ -82,26 +75,12 @@ bool Channel::GuardTurretJog(int direction, double from_deg, double to_deg) {
   std::vector<double> to = from;
   to[d] = to_deg;
   const std::string move = direction > 0 ? "turret index MGPOS" : "turret index MGNEG";
-  const PathCheck c = guarded_.guard->CheckMove(from, to);
-  if (c.clear) {
-    if (!guarded_.turret_jog) {
-      guarded_.turret_jog = GuardRecord{move, from, to, c, 1, false};
-    } else {
-      GuardRecord& r = *guarded_.turret_jog;
-      r.to = to;
-      ++r.checks;
-      if (c.min_clearance < r.check.min_clearance) r.check = c;
-    }
-    return false;
-  }
-  if (guarded_.turret_jog) guarded_.records.push_back(*guarded_.turret_jog);
-  guarded_.turret_jog.reset();
-  return GuardStops(move, from, to, c);
+  const PathCheck c = guard_.guard().CheckMove(from, to);
+  return StopAhead(guard_.Ahead(ContinuousMove::kTurretJog, move, from, to, c), move, from, to, c);
 }
 
 bool Channel::GuardSpindleStart(const std::string& move, const DriveSetpoint& sp) {
-  if (!guarded_.guard || config_.path_guard == GuardReaction::kOff || config_.spindle_drive < 0)
-    return true;
+  if (!guard_.active() || config_.spindle_drive < 0) return true;
   // A spindle already turning sweeps its chuck now: the moves are checked against that. One
   // standing starts to turn on a speed, or on a position other than the one it holds (M19).
   const bool turning = sp_.command.mode == DriveMode::kVelocity && sp_.command.value != 0;
@@ -111,9 +90,9 @@ bool Channel::GuardSpindleStart(const std::string& move, const DriveSetpoint& sp
           : !(sp_.command.mode == DriveMode::kPosition && sp_.command.value == sp.value);
   if (turning || !starts) return true;
   const std::vector<double> at = GuardFrom();
-  const PathCheck c = guarded_.guard->CheckSpindleStart(at, config_.spindle_drive);
+  const PathCheck c = guard_.guard().CheckSpindleStart(at, config_.spindle_drive);
   if (c.clear) {
-    guarded_.records.push_back({move, at, at, c, 1, false});
+    guard_.Clear(move, at, at, c);
     return true;
   }
   return !GuardStops(move, at, at, c);
