@@ -20,6 +20,7 @@
 #include "control/axes/tool_table.hpp"
 #include "control/axes/zero_offsets.hpp"
 #include "control/channel/aux_output.hpp"
+#include "control/channel/axis_jog.hpp"
 #include "control/channel/axis_output.hpp"
 #include "control/channel/backward_travel.hpp"
 #include "control/channel/block_motion.hpp"
@@ -419,19 +420,12 @@ class Channel {
     return out_.suspended && !(headstock_ && static_cast<int>(axis) == config_.rotary_axis);
   }
   void Jogging(double dt);
-  /// AxxC.HOME's homing of channel axis `a` (HomeAxis): true while it owns the axis' cycle.
-  bool HomingJog(size_t a, double dt);
   /// The handwheel's counts start afresh from where each jogged axis (X1/Y1 too) comes to rest.
   void RestartHandwheel();
   // Jogging X1/Y1 under G31 (channel_fictive_jog.cpp).
-  // The jog mode's rule for every jogged axis (channel_jog.cpp): feed axes, X1/Y1 and the tool
-  // storage axis (REPOS manual 3.4: "as it would in jog mode").
-  /// Cxx.020 jogging speed (Cxx.021 in kRapid) of `axis`, each defaulting to a share of its
-  /// rapid, times the feed override.
-  double JogSpeed(const ChannelAxis& axis) const;
-  /// One key press' distance in the jog mode: Cxx.022 in kParametric, the fixed increment in
-  /// kIncrement1..1000; 0 where a key jogs continuously (or, kHandwheel, not at all).
-  double JogIncrement(const ChannelAxis& axis) const;
+  /// The jog mode's rules for every jogged axis: feed axes, X1/Y1 and the tool storage axis
+  /// (REPOS manual 3.4: "as it would in jog mode").
+  JogRules jog_rules() const;
   static constexpr double kFictiveJogCentre = 0.1;  ///< mm: the jog stops this far from the centre
   bool FictiveJogAxes(int& x, int& c) const;
   void FictiveJogging(double dt);

@@ -82,7 +82,7 @@ void Channel::FictiveJogging(double dt) {
   // handwheel), either slower where C would pass its own jogging rapid.
   const double c_limit =
       JogRapid(ac) * std::numbers::pi / 180 * std::max(radius, kFictiveJogCentre);
-  const double speed = std::min(JogSpeed(ax), c_limit);
+  const double speed = std::min(jog_rules().Speed(ax), c_limit);
   const double handwheel_speed = std::min(JogRapid(ax) * override_, c_limit);
   // 3.2: the zone of each fictive axis while a REPOS function is called.
   double low[2] = {-HUGE_VAL, -HUGE_VAL}, high[2] = {HUGE_VAL, HUGE_VAL};
@@ -99,7 +99,7 @@ void Channel::FictiveJogging(double dt) {
     }
   }
   double pos[2] = {p.x1, p.y1};
-  const double increment = JogIncrement(ax);
+  const double increment = jog_rules().Increment(ax);
   const double step = ax.acceleration * dt;
   bool moved = false;
   for (int k = 0; k < 2; ++k) {

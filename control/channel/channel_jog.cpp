@@ -59,14 +59,7 @@ void Channel::RestartHandwheel() {
   }
 }
 
-double Channel::JogSpeed(const ChannelAxis& axis) const {
-  const double normal = axis.jog_per_s > 0 ? axis.jog_per_s : axis.rapid_per_s / 10;
-  return (jog_.mode == JogMode::kRapid ? JogRapid(axis) : normal) * override_;
-}
-
-double Channel::JogIncrement(const ChannelAxis& axis) const {
-  return jog_.mode == JogMode::kParametric ? axis.jog_distance : jog_.increment;
-}
+JogRules Channel::jog_rules() const { return {jog_.mode, jog_.increment, override_}; }
 
 void Channel::Handwheel(size_t axis, int counts) {
   if (mode_ != ChannelMode::kManual || jog_.mode != JogMode::kHandwheel ||
@@ -122,7 +115,12 @@ void Channel::Jogging(double dt) {
   // target) may only come back towards it.
   const std::vector<double> repos_target =
       repos_.function != ReposFunction::kNone ? ReposTarget() : std::vector<double>{};
-  for (size_t a = 0; a < jog_.axes.size(); ++a) {
+  AxisJogContext context;
+  context.rules = jog_rules();
+  context.manual = mode_ == ChannelMode::kManual;
+  size_t a = 0;
+  context.guard_increment = [this, &a](double to) { return GuardIncrement(a, to); };
+  for (; a < jog_.axes.size(); ++a) {
     JogAxis& j = jog_.axes[a];
     // Outside rotary axis mode the rotary axis follows the spindle: it has no jog to go on with.
     if (headstock_ && static_cast<int>(a) == config_.rotary_axis &&
@@ -131,111 +129,23 @@ void Channel::Jogging(double dt) {
       continue;
     }
     const ChannelAxis& axis = config_.axes[a];
-    if (HomingJog(a, dt)) continue;
-    const double rapid = JogRapid(axis);
-    const double speed = JogSpeed(axis);
     // Jogging stops at the software limits and the repositioning zone, braking in time.
-    bool limited = axis.travel_max > axis.travel_min;
-    double low = axis.travel_min, high = axis.travel_max;
+    JogWindow& window = context.window;
+    window = {axis.travel_max > axis.travel_min, axis.travel_min, axis.travel_max};
     if (!repos_target.empty()) {
       const ReposZone zone = ZoneOf(axis, repos_target[a], repos_.start[a]);
       if (zone.limited) {
         const double zone_low = std::min(zone.low, out_.commanded[a]);
         const double zone_high = std::max(zone.high, out_.commanded[a]);
-        low = limited ? std::max(low, zone_low) : zone_low;
-        high = limited ? std::min(high, zone_high) : zone_high;
-        limited = true;
+        window.low = window.limited ? std::max(window.low, zone_low) : zone_low;
+        window.high = window.limited ? std::min(window.high, zone_high) : zone_high;
+        window.limited = true;
       }
     }
-    auto within = [&](double x) { return limited ? std::clamp(x, low, high) : x; };
-    if (jog_.mode == JogMode::kHandwheel && !j.stepping) {
-      // Follow the counts at most at the jogging rapid, braking so as not to pass the target.
-      if (!j.handwheel) j.handwheel = true, j.handwheel_target = out_.commanded[a];
-      j.handwheel_target = within(j.handwheel_target);
-      FollowTarget(out_.commanded[a], j.velocity, j.handwheel_target, rapid * override_,
-                   axis.acceleration, dt);
-      continue;
-    }
-    const double increment = JogIncrement(axis);
-    if (JogStepping(j.stepping, increment, j.velocity)) {
-      // Incremental: a key press starts one increment, which then runs to its end.
-      if (!j.stepping && j.key != 0 && enable_.process && axis_enabled(a)) {
-        j.stepping = true;
-        j.from = out_.commanded[a];
-        j.to = within(out_.commanded[a] + j.key * increment);
-        if (!GuardIncrement(a, j.to)) {
-          j.stepping = false;
-          j.key = 0;
-          continue;
-        }
-        j.increment = PathProfile{};
-        const double distance = std::max(std::abs(j.to - j.from), 1e-12);
-        j.increment.max_rate = speed / distance;
-        j.increment.max_accel = axis.acceleration / distance;
-        j.key = 0;  // one increment per press
-      }
-      if (j.stepping) {
-        j.increment.Advance(dt, 1.0);
-        out_.commanded[a] = j.from + (j.to - j.from) * j.increment.u;
-        if (j.increment.done()) out_.commanded[a] = j.to, j.stepping = false;
-      }
-      continue;
-    }
-    // Continuous: towards the jog speed while the key is held, braking when it is released or
-    // the process enabling signal is removed (C-axis manual 2.3: axes to a standstill), or the
-    // axis enabling signal (4.2).
-    const int key =
-        enable_.process && axis_enabled(a) && j.key != j.blocked && increment == 0 ? j.key : 0;
-    double target = key * speed;
-    const double step = axis.acceleration * dt;
-    if (limited) {
-      const double room = j.key > 0 ? high - out_.commanded[a] : out_.commanded[a] - low;
-      target = key * std::min(speed, std::sqrt(2 * axis.acceleration * std::max(0.0, room)));
-    }
-    j.velocity = std::clamp(target, j.velocity - step, j.velocity + step);
-    const double next = out_.commanded[a] + j.velocity * dt;
-    out_.commanded[a] = within(next);
-    if (out_.commanded[a] != next) j.velocity = 0;
+    context.enabled = enable_.process && axis_enabled(a);
+    if (JogAxisCycle(j, axis, context, out_.commanded[a], dt)) frames_.homed[a] = true;
   }
   FictiveJogging(dt);
-}
-
-bool Channel::HomingJog(size_t a, double dt) {
-  JogAxis& j = jog_.axes[a];
-  const ChannelAxis& axis = config_.axes[a];
-  // AxxC.HOME (C-axis manual 4.2): homing as G74 homes the axis (NextHomingStage), to its
-  // reference point at its homing speed; it starts once a jog or increment under way is done.
-  if (mode_ != ChannelMode::kManual) j.home_requested = false;  // a homing begun runs to its end
-  if (j.home_requested && !j.stepping && j.velocity == 0) {
-    j.home_requested = false;
-    if (!enable_.process || !axis_enabled(a) || !GuardIncrement(a, axis.reference_position))
-      return false;
-    if (std::abs(axis.reference_position - out_.commanded[a]) < 1e-12) {
-      out_.commanded[a] = axis.reference_position;  // there already: homed without a move
-      frames_.homed[a] = true;
-      return true;
-    }
-    j.stepping = j.homing = true;
-    j.handwheel = false;
-    j.from = out_.commanded[a];
-    j.to = axis.reference_position;
-    j.increment = PathProfile{};
-    const double speed = axis.homing_per_s > 0 ? axis.homing_per_s
-                         : axis.jog_per_s > 0  ? axis.jog_per_s
-                                               : axis.rapid_per_s / 10;
-    const double distance = std::abs(j.to - j.from);
-    j.increment.max_rate = speed / distance;
-    j.increment.max_accel = axis.acceleration / distance;
-  }
-  if (!j.homing) return false;
-  j.increment.Advance(dt, 1.0);
-  out_.commanded[a] = j.from + (j.to - j.from) * j.increment.u;
-  if (j.increment.done()) {
-    out_.commanded[a] = j.to;
-    j.stepping = j.homing = false;
-    frames_.homed[a] = true;
-  }
-  return true;
 }
 
 }  // namespace vmt::control::channel

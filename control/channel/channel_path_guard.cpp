@@ -145,7 +145,7 @@ void Channel::GuardJog(double dt) {
     } else if (!j.stepping) {
       // In incremental mode a key starts an increment, which GuardIncrement checks whole: no
       // continuous run to predict (its braking distance could stop a short increment).
-      if (JogIncrement(axis) > 0 && j.velocity == 0) continue;
+      if (jog_rules().Increment(axis) > 0 && j.velocity == 0) continue;
       const int key = enable_.process && j.key != j.blocked ? j.key : 0;
       const int dir = key != 0 ? key : j.velocity > 0 ? 1 : j.velocity < 0 ? -1 : 0;
       if (dir == 0) continue;

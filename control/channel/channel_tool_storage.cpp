@@ -71,8 +71,8 @@ void Channel::ToolStorageCycle(double dt) {
   ToolStorageJog jog;
   jog.keys = mode_ == ChannelMode::kManual && enable_.process;
   jog.handwheel = jog_.mode == JogMode::kHandwheel;
-  jog.speed = JogSpeed(config_.tool_storage);
-  jog.increment = JogIncrement(config_.tool_storage);
+  jog.speed = jog_rules().Speed(config_.tool_storage);
+  jog.increment = jog_rules().Increment(config_.tool_storage);
   tool_storage_.Cycle(dt, drive_positions_[config_.tool_storage_drive], enable_.process, jog,
                       TurretGuardOf());
 }
