@@ -59,6 +59,8 @@
 
 namespace vmt::control::channel {
 
+struct SpindleKeyMove;
+
 class Channel {
  public:
   /// `programs`: the main program first, then the subprograms it may call; they must outlive
@@ -651,6 +653,8 @@ class Channel {
   bool RotaryReady() const;
   /// A changeover commanded by a manual key (jog of the rotary axis, spindle keys).
   void ManualChangeover(axes::HeadstockMode target);
+  /// Takes a main spindle key's move (main_spindle_keys.hpp) as the spindle's command.
+  void ApplySpindleKey(const SpindleKeyMove& move);
   /// The rotary axis' zero offsets and G92 shift act (rotary axis mode, 2.3).
   bool RotaryOffsetsActive() const;
   /// References of spindle and rotary axis: M19, encoder frequency (2.3, 3.3).

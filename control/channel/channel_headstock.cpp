@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "control/channel/channel.hpp"
+#include "control/channel/main_spindle_keys.hpp"
 
 namespace vmt::control::channel {
 void Channel::HeadstockPowerOn() {
@@ -107,17 +108,14 @@ void Channel::ManualSpindle(int m) {
     out_.take_over_pending = true;
     return;
   }
-  const double speed = config_.spindle.jog_per_s;  // main spindle "Jogging speed"
-  DriveSetpoint sp = m == 3   ? DriveSetpoint{DriveMode::kVelocity, speed, 0}
-                     : m == 4 ? DriveSetpoint{DriveMode::kVelocity, -speed, 0}
-                     : m == 5 ? DriveSetpoint{DriveMode::kVelocity, 0, 0}
-                              : DriveSetpoint{DriveMode::kPosition,
-                                              config_.spindle.jog_spindle_position, 0};
-  if (!GuardSpindleStart("spindle start", sp)) return;
-  sp_.command = sp;
-  if (m == 19) sp_.referencing = true;
-  sp_.referencing = sp_.referencing && m == 19;
-  sp_.jogging = false;
+  const std::optional<SpindleKeyMove> move = SpindleMKey(m, config_.spindle);
+  if (move && GuardSpindleStart("spindle start", move->command)) ApplySpindleKey(*move);
+}
+
+void Channel::ApplySpindleKey(const SpindleKeyMove& move) {
+  sp_.command = move.command;
+  sp_.jogging = move.jogging;
+  sp_.referencing = move.referencing;
   out_.take_over_pending = true;
 }
 
@@ -125,12 +123,8 @@ void Channel::HomeSpindle() {
   if (mode_ != ChannelMode::kManual || config_.spindle_drive < 0) return;
   if (!enable_.process || !sp_.enable) return;
   if (headstock_) ManualChangeover(axes::HeadstockMode::kSpindle);
-  const DriveSetpoint sp{DriveMode::kPosition, config_.spindle.reference_position, 0};
-  if (!GuardSpindleStart("spindle start", sp)) return;
-  sp_.command = sp;
-  sp_.referencing = true;  // TrackReferences: homed once in position
-  sp_.jogging = false;
-  out_.take_over_pending = true;
+  const SpindleKeyMove move = SpindleHomeKey(config_.spindle);
+  if (GuardSpindleStart("spindle start", move.command)) ApplySpindleKey(move);
 }
 
 void Channel::JogSpindle(int direction) {
@@ -147,30 +141,10 @@ void Channel::JogSpindle(int direction) {
   // Movements: its jog keys abort a changeover an immediate stop interrupted. The motion acts
   // once spindle mode is there.
   if (headstock_) ManualChangeover(axes::HeadstockMode::kSpindle);
-  // 4.3: the jog mode selects the type of the spindle's jogging as of the feed axes. Continuous
-  // jogging turns it at the main spindle's "Jogging speed" (its rapid one in rapid mode); an
-  // increment or the parametric distance positions it by that many degrees from where it
-  // stands (the spindle set's position control, as M19: vmt's reading, the manual names no
-  // separate spindle increment). Handwheel mode: the keys move nothing, as for every axis.
-  const axes::AxisParameters& p = config_.spindle;
-  const double rapid = p.jog_rapid_per_s > 0 ? p.jog_rapid_per_s : p.jog_per_s;
-  switch (jog_.mode) {
-    case JogMode::kContinuous:
-    case JogMode::kRapid:
-      sp_.command = {DriveMode::kVelocity,
-                     direction * (jog_.mode == JogMode::kRapid ? rapid : p.jog_per_s), 0};
-      sp_.jogging = true;
-      break;
-    case JogMode::kHandwheel:
-      return;
-    default: {
-      const double step = jog_.mode == JogMode::kParametric ? p.jog_distance : jog_.increment;
-      sp_.command = {DriveMode::kPosition, sp_.position + direction * step, 0};
-      sp_.jogging = false;
-    }
-  }
-  sp_.referencing = false;
-  out_.take_over_pending = true;
+  // 4.3: the jog mode's type of jogging, as for the feed axes (main_spindle_keys.hpp).
+  const std::optional<SpindleKeyMove> move =
+      SpindleJogKey(direction, jog_rules(), sp_.position, config_.spindle);
+  if (move) ApplySpindleKey(*move);
 }
 
 void Channel::SetAxisEnable(size_t axis, bool on) {
