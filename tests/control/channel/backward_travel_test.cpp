@@ -10,25 +10,12 @@
 #include <string>
 #include <vector>
 
+#include "tests/control/channel/straight_motion.hpp"
+
 namespace vmt::control::channel {
 namespace {
 
 constexpr double kDt = 1e-3;
-
-BlockMotion Line(std::vector<double> start, std::vector<double> end) {
-  BlockMotion m;
-  m.start = std::move(start);
-  m.end = std::move(end);
-  double sq = 0;
-  for (size_t a = 0; a < m.start.size(); ++a)
-    sq += (m.end[a] - m.start[a]) * (m.end[a] - m.start[a]);
-  m.length = std::sqrt(sq);
-  m.max_rate = 100 / m.length;
-  m.max_accel = 1000 / m.length;
-  m.max_jerk = 20000 / m.length;
-  m.moves = true;
-  return m;
-}
 
 struct Guard {
   std::vector<std::string> asked;
@@ -44,9 +31,9 @@ struct Guard {
 /// Three blocks (0,0) -> (10,0) -> (10,10) -> (0,10); the axes at the last one's end.
 BackwardTravel ThreeBlocks(bool decoded_rapid_middle = false) {
   BackwardTravel t;
-  t.Record(Line({0, 0}, {10, 0}), false, false);
-  t.Record(Line({10, 0}, {10, 10}), decoded_rapid_middle, decoded_rapid_middle);
-  t.Record(Line({10, 10}, {0, 10}), false, false);
+  t.Record(StraightMotion({0, 0}, {10, 0}), false, false);
+  t.Record(StraightMotion({10, 0}, {10, 10}), decoded_rapid_middle, decoded_rapid_middle);
+  t.Record(StraightMotion({10, 10}, {0, 10}), false, false);
   return t;
 }
 
@@ -131,13 +118,13 @@ TEST(BackwardTravelTest, ADecodedRapidLegIsCheckedAndAStopEndsTheTravelBeforeIt)
 TEST(BackwardTravelTest, WhereTheAxesMayStartFrom) {
   BackwardTravel t;
   EXPECT_FALSE(t.CanGoBackFrom(-1));
-  const BlockMotion only = Line({0, 0}, {5, 0});
+  const BlockMotion only = StraightMotion({0, 0}, {5, 0});
   t.Record(only, false, false);
   EXPECT_TRUE(t.LastStepIs(only));
-  EXPECT_FALSE(t.LastStepIs(Line({0, 0}, {6, 0})));
+  EXPECT_FALSE(t.LastStepIs(StraightMotion({0, 0}, {6, 0})));
   EXPECT_TRUE(t.CanGoBackFrom(0.5));
   EXPECT_FALSE(t.CanGoBackFrom(0));  // at the start of the only block: nothing behind
-  t.Record(Line({5, 0}, {5, 5}), false, false);
+  t.Record(StraightMotion({5, 0}, {5, 5}), false, false);
   EXPECT_TRUE(t.CanGoBackFrom(0));
 }
 
@@ -155,7 +142,7 @@ TEST(BackwardTravelTest, LeavingAndResetForgetTheTravel) {
   t.Reset();
   EXPECT_TRUE(t.empty());
   EXPECT_TRUE(t.backward_requested());  // the operator's choice stays
-  t.Record(Line({0, 0}, {1, 0}), false, false);
+  t.Record(StraightMotion({0, 0}, {1, 0}), false, false);
   t.Forget();
   EXPECT_TRUE(t.empty());
 }

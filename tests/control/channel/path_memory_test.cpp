@@ -6,28 +6,15 @@
 #include <numbers>
 #include <vector>
 
+#include "tests/control/channel/straight_motion.hpp"
+
 namespace vmt::control::channel {
 namespace {
-
-BlockMotion Line(std::vector<double> start, std::vector<double> end) {
-  BlockMotion m;
-  m.start = std::move(start);
-  m.end = std::move(end);
-  double sq = 0;
-  for (size_t a = 0; a < m.start.size(); ++a)
-    sq += (m.end[a] - m.start[a]) * (m.end[a] - m.start[a]);
-  m.length = std::sqrt(sq);
-  m.max_rate = 100 / m.length;
-  m.max_accel = 1000 / m.length;
-  m.max_jerk = 20000 / m.length;
-  m.moves = true;
-  return m;
-}
 
 // A quarter circle of radius 10 about (0, 0) in axes 0 and 1, from (10, 0) to (0, 10), with axis
 // 2 rising from 0 to 5 (a helix).
 BlockMotion QuarterArc() {
-  BlockMotion m = Line({10, 0, 0}, {0, 10, 5});
+  BlockMotion m = StraightMotion({10, 0, 0}, {0, 10, 5});
   m.arc_axes[0] = 0;
   m.arc_axes[1] = 1;
   m.arc_radius = 10;
@@ -42,7 +29,7 @@ TEST(PathMemory, KeepsTheLastThousandBlocksOldestFirst) {
   EXPECT_TRUE(memory.empty());
   const size_t pushed = PathMemory::kBlocks + 250;
   for (size_t i = 0; i < pushed; ++i)
-    memory.Push(Line({double(i)}, {double(i + 1)}), i % 2 == 0, i % 3 == 0);
+    memory.Push(StraightMotion({double(i)}, {double(i + 1)}), i % 2 == 0, i % 3 == 0);
   ASSERT_EQ(memory.size(), PathMemory::kBlocks);
   // The first 250 are forgotten: the oldest kept is block 250, the last block pushed-1.
   EXPECT_DOUBLE_EQ(memory[0].motion.start[0], 250);
@@ -58,17 +45,17 @@ TEST(PathMemory, KeepsTheLastThousandBlocksOldestFirst) {
 
 TEST(PathMemory, ClearForgetsAndRecordsAfresh) {
   PathMemory memory;
-  for (int i = 0; i < 5; ++i) memory.Push(Line({0.0 + i}, {1.0 + i}), false, false);
+  for (int i = 0; i < 5; ++i) memory.Push(StraightMotion({0.0 + i}, {1.0 + i}), false, false);
   memory.Clear();
   EXPECT_TRUE(memory.empty());
-  memory.Push(Line({7}, {9}), true, false);
+  memory.Push(StraightMotion({7}, {9}), true, false);
   ASSERT_EQ(memory.size(), 1u);
   EXPECT_DOUBLE_EQ(memory[0].motion.start[0], 7);
   EXPECT_TRUE(memory[0].rapid);
 }
 
 TEST(PathMemory, PieceOfALineBackwardsKeepsThePathAndScalesItsLimits) {
-  const BlockMotion m = Line({0, 0}, {30, 40});  // 50 long
+  const BlockMotion m = StraightMotion({0, 0}, {30, 40});  // 50 long
   const BlockMotion back = PieceOf(m, 0.8, 0.2);
   ASSERT_TRUE(back.moves);
   EXPECT_NEAR(back.start[0], 24, 1e-12);
@@ -105,13 +92,13 @@ TEST(PathMemory, PieceOfAnArcStaysOnTheCircle) {
 }
 
 TEST(PathMemory, APieceOfNoLengthDoesNotMove) {
-  const BlockMotion m = Line({0, 0}, {10, 0});
+  const BlockMotion m = StraightMotion({0, 0}, {10, 0});
   EXPECT_FALSE(PieceOf(m, 0.3, 0.3).moves);
   EXPECT_TRUE(PieceOf(m, 0.3, 0.3 + 1e-9).moves);
 }
 
 TEST(PathMemory, FaceTransformedBlocksAreNotRetraced) {
-  BlockMotion m = Line({0, 0}, {10, 0});
+  BlockMotion m = StraightMotion({0, 0}, {10, 0});
   EXPECT_TRUE(Retraceable(m));
   m.face_axes[0] = 0;
   m.face_axes[1] = 1;
