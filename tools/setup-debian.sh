@@ -11,6 +11,10 @@ packages=(
   # vmt study shards on one machine without Slurm (tests/cli/study_test.sh uses it if there).
   parallel
   clang libclang-rt-14-dev
+  # The operator station (vmt serve --http): its HTTP server, the page's three.js and Chart.js,
+  # and the headless browser its tests drive.
+  libcpp-httplib-dev libjs-three libjs-chart.js
+  chromium chromium-driver python3-selenium
 )
 missing=()
 for p in "${packages[@]}"; do

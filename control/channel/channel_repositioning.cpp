@@ -9,6 +9,7 @@
 #include <string>
 
 #include "control/channel/channel.hpp"
+#include "control/nc/modal_g_codes.hpp"
 
 namespace vmt::control::channel {
 namespace {
@@ -269,24 +270,7 @@ ReposStatus Channel::repos_status(const AmplifierTelegram* at) const {
   s.correction = i.modal.correction;
   s.spindle_m = i.modal.spindle;
   s.coolant = i.modal.coolant;
-  const nc::ModalState& m = i.modal;
-  const int motion = m.motion == nc::Motion::kRapid          ? 0
-                     : m.motion == nc::Motion::kLinear       ? 1
-                     : m.motion == nc::Motion::kArcCw        ? 2
-                     : m.motion == nc::Motion::kArcCcw       ? 3
-                     : m.motion == nc::Motion::kThread       ? 33
-                     : m.motion == nc::Motion::kTapping      ? 63
-                     : m.motion == nc::Motion::kRigidTapping ? 64
-                                                             : -1;
-  if (motion >= 0) s.g_codes.push_back(motion);
-  s.g_codes.push_back(nc::GCode(m.plane));
-  s.g_codes.push_back(nc::GCode(m.compensation));
-  s.g_codes.push_back(nc::GCode(m.tool_length));
-  s.g_codes.push_back(m.zero_offset);
-  s.g_codes.push_back(m.incremental ? 91 : 90);
-  s.g_codes.push_back(m.feed_per_revolution ? 95 : 94);
-  if (m.transformation != nc::Transformation::kOff)
-    s.g_codes.push_back(nc::GCode(m.transformation));  // G31 / G32 (5.2)
+  s.g_codes = nc::ActiveGCodes(i.modal);  // G31 / G32 too (5.2)
   return s;
 }
 

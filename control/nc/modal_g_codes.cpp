@@ -82,4 +82,25 @@ std::string ApplyInitialWord(std::string_view word, ModalState& m) {
   }
 }
 
+std::vector<int> ActiveGCodes(const ModalState& m) {
+  std::vector<int> g;
+  const int motion = m.motion == Motion::kRapid          ? 0
+                     : m.motion == Motion::kLinear       ? 1
+                     : m.motion == Motion::kArcCw        ? 2
+                     : m.motion == Motion::kArcCcw       ? 3
+                     : m.motion == Motion::kThread       ? 33
+                     : m.motion == Motion::kTapping      ? 63
+                     : m.motion == Motion::kRigidTapping ? 64
+                                                         : -1;
+  if (motion >= 0) g.push_back(motion);
+  g.push_back(GCode(m.plane));
+  g.push_back(GCode(m.compensation));
+  g.push_back(GCode(m.tool_length));
+  g.push_back(m.zero_offset);
+  g.push_back(m.incremental ? 91 : 90);
+  g.push_back(m.feed_per_revolution ? 95 : 94);
+  if (m.transformation != Transformation::kOff) g.push_back(GCode(m.transformation));
+  return g;
+}
+
 }  // namespace vmt::control::nc

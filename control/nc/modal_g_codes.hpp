@@ -5,6 +5,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "control/nc/interpreter.hpp"
 
@@ -21,5 +22,10 @@ bool SetModalG(int g, ModalState& m);
 /// move in, so tool radius compensation (G41/G42) and the transformations that need an axis
 /// position are refused rather than set half-way.
 std::string ApplyInitialWord(std::string_view word, ModalState& m);
+
+/// The G codes in force, one per modal group as the operator is shown them: motion (G00..G03,
+/// G33, G63, G64), plane, tool radius compensation, tool length, zero offset, G90/G91,
+/// G94/G95, and G31/G32 while a transformation is on.
+std::vector<int> ActiveGCodes(const ModalState& m);
 
 }  // namespace vmt::control::nc

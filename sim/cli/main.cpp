@@ -31,7 +31,8 @@ namespace {
 using namespace vmt;
 
 int Run(const std::string& scene_path, const std::string& backend, double until,
-        const std::string& out, const std::vector<std::string>& sets) {
+        const std::string& out, const std::vector<std::string>& sets,
+        const std::string& operator_file) {
   sim::Scene scene = sim::LoadScene(scene_path);
   for (const std::string& set : sets) {
     const size_t eq = set.find('=');
@@ -49,6 +50,7 @@ int Run(const std::string& scene_path, const std::string& backend, double until,
   if (backend == "kinematic") options.backend = sim::BackendKind::kKinematic;
   if (until > 0) options.until_s = until;
   options.out_dir = out;
+  if (!operator_file.empty()) options.operator_steps = sim::ReadOperatorSteps(operator_file);
   const sim::RunResult r = sim::RunScene(scene, options);
   std::printf("%s: %.3f s simulated in %.3f s (%.1fx real time), trace digest %s\n",
               scene.name.c_str(), r.simulated_s, r.wall_s,
@@ -194,7 +196,7 @@ struct Command {
 
 Command AddRun(CLI::App& app) {
   struct Args {
-    std::string scene, backend, out = "out";
+    std::string scene, backend, out = "out", operator_file;
     double until = 0;
     std::vector<std::string> sets;
   };
@@ -210,7 +212,11 @@ Command AddRun(CLI::App& app) {
   run->add_option("--set", o->sets,
                   "NAME=VALUE: a gateway signal the PLC writes, set at t = 0 (repeatable), e.g. "
                   "P00.mc_cmd_bs_type_w=4 P00.mc_cmd_bs_block_number_w=100");
-  return {run, [o] { return Run(o->scene, o->backend, o->until, o->out, o->sets); }};
+  run->add_option("--operator", o->operator_file,
+                  "operator.yaml of a vmt serve --http run: its keys and signals, taken at the "
+                  "same ticks (the run repeats that one)");
+  return {run,
+          [o] { return Run(o->scene, o->backend, o->until, o->out, o->sets, o->operator_file); }};
 }
 
 Command AddSnapshot(CLI::App& app) {
@@ -278,10 +284,21 @@ Command AddServe(CLI::App& app) {
   auto o = std::make_shared<Args>();
   sim::ServeOptions& serve_options = o->options;
   CLI::App* serve = app.add_subcommand(
-      "serve", "Run a scene with its PLC outside, over Modbus TCP (lockstep or real time)");
+      "serve",
+      "Run a scene live: its PLC outside over Modbus TCP, and/or the operator station in a "
+      "browser (lockstep or real time)");
   serve->add_option("scene", serve_options.scene, "Scene file (YAML)")->required();
-  serve->add_option("--modbus", serve_options.endpoint, "HOST:PORT to listen on (port 0: any)")
-      ->capture_default_str();
+  CLI::Option* modbus =
+      serve
+          ->add_option("--modbus", serve_options.endpoint,
+                       "HOST:PORT to serve the signals to an external PLC on (port 0: any); the "
+                       "default without --http")
+          ->capture_default_str();
+  serve->add_option("--http", serve_options.http,
+                    "HOST:PORT of the operator station, a web page to watch and operate the "
+                    "machine (port 0: any); without --modbus the scene's PLC program runs");
+  serve->add_option("--http-token", serve_options.http_token,
+                    "Token every station request must carry (needed off loopback)");
   serve->add_flag("--lockstep", o->lockstep,
                   "The PLC steps the simulation a cycle at a time (default)");
   serve->add_flag("--realtime", o->realtime, "Run against the wall clock; report cycle lateness");
@@ -303,7 +320,8 @@ Command AddServe(CLI::App& app) {
   serve->footer(
       "Exit status: 0 the scene ended and passed, 1 it ended with failures, 2 bad input, 3 "
       "stopped early (lockstep idle timeout, SIGINT or SIGTERM); serve.json says why.");
-  return {serve, [o] {
+  return {serve, [o, modbus] {
+            o->options.modbus = modbus->count() > 0 || o->options.http.empty();
             if (o->realtime && o->lockstep) {
               std::fprintf(stderr, "vmt: error: --lockstep and --realtime exclude each other\n");
               return 2;

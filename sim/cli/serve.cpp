@@ -11,10 +11,13 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "control/plc/modbus_server.hpp"
 #include "sim/runner/runner.hpp"
+#include "sim/station/station_session.hpp"
 
 namespace vmt::sim {
 namespace {
@@ -49,20 +52,27 @@ struct PlcLinkWatch {
   int losses = 0;
 };
 
-/// --modbus HOST:PORT as the server's host and port.
-control::plc::ModbusServerOptions EndpointOptions(const std::string& endpoint) {
+/// `option` HOST:PORT as a host and a port (0..65535).
+std::pair<std::string, int> HostPort(const std::string& option, const std::string& endpoint) {
   const size_t colon = endpoint.rfind(':');
-  if (colon == std::string::npos || colon + 1 == endpoint.size())
-    throw std::invalid_argument("--modbus " + endpoint + ": expected HOST:PORT");
-  control::plc::ModbusServerOptions mb;
-  mb.host = endpoint.substr(0, colon);
+  if (colon == std::string::npos || colon == 0 || colon + 1 == endpoint.size())
+    throw std::invalid_argument(option + " " + endpoint + ": expected HOST:PORT");
+  int port = -1;
   try {
     size_t used = 0;
-    mb.port = std::stoi(endpoint.substr(colon + 1), &used);
-    if (used != endpoint.size() - colon - 1) throw std::invalid_argument("");
+    port = std::stoi(endpoint.substr(colon + 1), &used);
+    if (used != endpoint.size() - colon - 1) port = -1;
   } catch (const std::exception&) {
-    throw std::invalid_argument("--modbus " + endpoint + ": the port is not a number");
   }
+  if (port < 0 || port > 65535)
+    throw std::invalid_argument(option + " " + endpoint + ": the port is not a number 0..65535");
+  return {endpoint.substr(0, colon), port};
+}
+
+/// --modbus HOST:PORT as the server's host and port.
+control::plc::ModbusServerOptions EndpointOptions(const std::string& endpoint) {
+  control::plc::ModbusServerOptions mb;
+  std::tie(mb.host, mb.port) = HostPort("--modbus", endpoint);
   return mb;
 }
 
@@ -70,7 +80,8 @@ control::plc::ModbusServerOptions EndpointOptions(const std::string& endpoint) {
 /// There is no link watchdog, but a client that vanished must not keep serve waiting for ever.
 /// Returns why it stopped.
 std::string ServeLockstep(const ServeOptions& o, SceneRun& run, control::plc::ModbusServer& server,
-                          const std::function<void()>& drop_if_asked) {
+                          const std::function<void()>& drop_if_asked,
+                          station::StationSession* station) {
   using Clock = std::chrono::steady_clock;
   const auto idle =
       std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.idle_timeout_s));
@@ -79,8 +90,9 @@ std::string ServeLockstep(const ServeOptions& o, SceneRun& run, control::plc::Mo
   auto cycle_at = Clock::now();
   while (!run.done()) {
     if (g_stop) return "signal";
-    server.Poll(poll_ms);
+    server.Poll(station ? std::min(poll_ms, 15) : poll_ms);
     drop_if_asked();
+    if (station) station->Publish(run, "running");
     const auto now = Clock::now();
     if (server.stats().cycles != cycles) {
       cycles = server.stats().cycles;
@@ -98,7 +110,8 @@ std::string ServeLockstep(const ServeOptions& o, SceneRun& run, control::plc::Mo
 std::string ServeRealtime(const ServeOptions& o, SceneRun& run, control::plc::ModbusServer& server,
                           const std::function<void()>& cycle,
                           const std::function<void()>& drop_if_asked,
-                          std::vector<double>& lateness_ms, PlcLinkWatch& link) {
+                          std::vector<double>& lateness_ms, PlcLinkWatch& link,
+                          station::StationSession* station) {
   using Clock = std::chrono::steady_clock;
   const auto period = std::chrono::microseconds(run.ticks_per_plc_cycle() * 250);
   const int64_t timeout_us = std::llround(o.plc_timeout_ms * 1000);
@@ -136,6 +149,50 @@ std::string ServeRealtime(const ServeOptions& o, SceneRun& run, control::plc::Mo
     cycle();
     drop_if_asked();
     server.Poll(0);
+    if (station) station->Publish(run, "running");
+  }
+  return "end of scene";
+}
+
+/// Without an external PLC the station is the clock: paused, stepped a PLC cycle at a time, or
+/// running at the page's real-time factor (0: as fast as the machine allows). Keys and signals
+/// are taken at the start of a cycle. Returns why it stopped.
+std::string ServeStation(SceneRun& run, station::StationSession& station,
+                         const std::function<void()>& cycle) {
+  using Clock = std::chrono::steady_clock;
+  const auto period = std::chrono::duration<double>(run.ticks_per_plc_cycle() * 250e-6);
+  station::RunControl& control = station.control();
+  auto anchor = Clock::now();
+  int64_t anchor_tick = run.tick();
+  while (!run.done()) {
+    if (g_stop) return "signal";
+    station.TakeInputs(run);
+    if (control.changed) {
+      control.changed = false;
+      anchor = Clock::now();
+      anchor_tick = run.tick();
+    }
+    if (!control.running && control.steps == 0) {
+      station.Publish(run, "paused");
+      station.Wait(std::chrono::milliseconds(20));
+      continue;
+    }
+    if (control.running && control.speed > 0) {
+      const double cycles =
+          static_cast<double>(run.tick() - anchor_tick) / run.ticks_per_plc_cycle();
+      const auto due =
+          anchor + std::chrono::duration_cast<Clock::duration>(period * (cycles / control.speed));
+      const auto now = Clock::now();
+      if (now < due) {
+        station.Publish(run, "running");
+        station.Wait(std::min(std::chrono::duration_cast<std::chrono::milliseconds>(due - now),
+                              std::chrono::milliseconds(20)));
+        if (Clock::now() < due) continue;
+      }
+    }
+    if (!control.running) --control.steps;
+    cycle();
+    station.Publish(run, control.running ? "running" : "paused", !control.running);
   }
   return "end of scene";
 }
@@ -143,7 +200,16 @@ std::string ServeRealtime(const ServeOptions& o, SceneRun& run, control::plc::Mo
 }  // namespace
 
 int Serve(const ServeOptions& o) {
-  control::plc::ModbusServerOptions mb = EndpointOptions(o.endpoint);
+  if (!o.modbus && o.http.empty())
+    throw std::invalid_argument("vmt serve needs --modbus, --http or both");
+  control::plc::ModbusServerOptions mb;
+  if (o.modbus) mb = EndpointOptions(o.endpoint);
+  station::StationServerOptions http;
+  if (!o.http.empty()) {
+    std::tie(http.host, http.port) = HostPort("--http", o.http);
+    http.token = o.http_token;
+    http.web_dir = station::DefaultWebDir();
+  }
 
   if (!(o.plc_timeout_ms > 0) || o.plc_timeout_ms > 3.6e6)
     throw std::invalid_argument("--plc-timeout " + Fmt(o.plc_timeout_ms) +
@@ -153,42 +219,64 @@ int Serve(const ServeOptions& o) {
                                 ": expected seconds, > 0 and at most a day");
 
   const Scene scene = LoadScene(o.scene);
+  std::unique_ptr<station::StationSession> station;
+  if (!o.http.empty()) station = std::make_unique<station::StationSession>();
   RunOptions run_options;
-  run_options.external_plc = true;
+  run_options.external_plc = o.modbus;
   // The fault step runs inside a cycle, which in lockstep runs inside Poll: the connections are
   // dropped once that Poll has returned.
   bool drop_clients = false;
   run_options.on_plc_client_gone = [&drop_clients] { drop_clients = true; };
+  if (station)
+    run_options.on_event = [s = station.get()](const nlohmann::ordered_json& e) { s->Event(e); };
   run_options.out_dir = o.out_dir;
   if (o.until_s > 0) run_options.until_s = o.until_s;
   // Against the wall clock a picture (tens of ms) would make several PLC cycles late.
-  run_options.snapshots_after_run = !o.lockstep;
+  run_options.snapshots_after_run = !o.lockstep || (station && !o.modbus);
   SceneRun run(scene, run_options);
   control::gateway::SignalImage* image = run.image();
-  if (!image)
-    throw std::invalid_argument(o.scene + ": vmt serve needs a scene with an nc: section");
+  if (o.modbus && !image)
+    throw std::invalid_argument(o.scene + ": vmt serve --modbus needs a scene with an nc: section");
   const int64_t ticks = run.ticks_per_plc_cycle();
+  // The station's keys and signals are taken at the start of a PLC cycle.
   const std::function<void()> cycle = [&] {
+    if (station) station->TakeInputs(run);
     for (int64_t k = 0; k < ticks && !run.done(); ++k) run.Step();
   };
-  if (o.lockstep) {
-    mb.cycle_register = control::gateway::LockstepCycleRegister(image->table());
-    mb.on_cycle = [&](uint32_t) { cycle(); };
+  std::unique_ptr<control::plc::ModbusServer> server;
+  if (o.modbus) {
+    if (o.lockstep) {
+      mb.cycle_register = control::gateway::LockstepCycleRegister(image->table());
+      mb.on_cycle = [&](uint32_t) { cycle(); };
+    }
+    // AXD_WR (fast-measurement 7.2): the external PLC writes drive parameters the way the
+    // embedded one does, through the Modbus AXD_WR block (modbus_server.hpp), in lockstep and
+    // real time.
+    mb.axd_wr_register = control::gateway::AxdWrRegister(image->table());
+    mb.axd_wr = [&run](int axis, int ident, int64_t value) {
+      return run.AxdWrite(axis, ident, value);
+    };
+    server = std::make_unique<control::plc::ModbusServer>(*image, mb);
+    std::printf("vmt serve: %s, Modbus TCP on %s:%d, %s", scene.name.c_str(), mb.host.c_str(),
+                server->port(), o.lockstep ? "lockstep" : "real time");
+    if (o.lockstep)
+      std::printf(" (write cycle n+1 to holding register %d to run a PLC cycle of %.1f ms)",
+                  *mb.cycle_register, ticks * 0.25);
+    std::printf("; AXD_WR block at holding register %d", *mb.axd_wr_register);
+    std::printf("\n");
   }
-  // AXD_WR (fast-measurement 7.2): the external PLC writes drive parameters the way the embedded
-  // one does, through the Modbus AXD_WR block (modbus_server.hpp), in lockstep and real time.
-  mb.axd_wr_register = control::gateway::AxdWrRegister(image->table());
-  mb.axd_wr = [&run](int axis, int ident, int64_t value) {
-    return run.AxdWrite(axis, ident, value);
-  };
-  control::plc::ModbusServer server(*image, mb);
-  std::printf("vmt serve: %s, Modbus TCP on %s:%d, %s", scene.name.c_str(), mb.host.c_str(),
-              server.port(), o.lockstep ? "lockstep" : "real time");
-  if (o.lockstep)
-    std::printf(" (write cycle n+1 to holding register %d to run a PLC cycle of %.1f ms)",
-                *mb.cycle_register, ticks * 0.25);
-  std::printf("; AXD_WR block at holding register %d", *mb.axd_wr_register);
-  std::printf("\n");
+  if (station) {
+    const std::string pace = o.modbus ? (o.lockstep ? "external PLC, lockstep" : "real time")
+                                      : (o.lockstep ? "lockstep" : "real time");
+    // The external PLC is the lockstep clock and keeps the real-time link alive: the page
+    // watches and operates, but does not pause it.
+    const std::string refused =
+        o.modbus ? "the PLC over Modbus runs the clock: the page cannot pause or step it" : "";
+    station->control().running = !o.modbus && !o.lockstep;
+    station->Open(run, http, pace, refused);
+    std::printf("vmt serve: %s, operator station on http://%s:%d/ (%s)\n", scene.name.c_str(),
+                http.host.c_str(), station->port(), pace.c_str());
+  }
   std::fflush(stdout);
 
   std::signal(SIGINT, OnSignal);
@@ -196,32 +284,35 @@ int Serve(const ServeOptions& o) {
   const std::function<void()> drop_if_asked = [&] {
     if (!drop_clients) return;
     drop_clients = false;
-    server.DropClients();
+    if (server) server->DropClients();
     std::fprintf(stderr, "vmt serve: %.4f s: fault: every Modbus client dropped\n", run.time_s());
   };
   std::vector<double> lateness_ms;
   PlcLinkWatch link;
   const std::string stop_reason =
-      o.lockstep ? ServeLockstep(o, run, server, drop_if_asked)
-                 : ServeRealtime(o, run, server, cycle, drop_if_asked, lateness_ms, link);
+      !server ? ServeStation(run, *station, cycle)
+      : o.lockstep
+          ? ServeLockstep(o, run, *server, drop_if_asked, station.get())
+          : ServeRealtime(o, run, *server, cycle, drop_if_asked, lateness_ms, link, station.get());
   const RunResult r = run.Finish();
-  const auto& st = server.stats();
+  const control::plc::ModbusServer::Stats st =
+      server ? server->stats() : control::plc::ModbusServer::Stats{};
   nlohmann::ordered_json serve = {{"scene", scene.name},
                                   {"mode", o.lockstep ? "lockstep" : "realtime"},
                                   {"stopped_early", !run.done()},
                                   {"stop_reason", stop_reason},
                                   {"simulated_time_s", run.time_s()},
-                                  {"trace_digest", r.trace_digest},
-                                  {"modbus",
-                                   {{"requests", st.requests_served},
-                                    {"exceptions", st.exceptions_sent},
-                                    {"clients_accepted", st.clients_accepted},
-                                    {"clients_dropped", st.clients_dropped},
-                                    {"clients_refused", st.clients_refused},
-                                    {"cycles", st.cycles}}}};
-  if (o.lockstep) {
+                                  {"trace_digest", r.trace_digest}};
+  if (server)
+    serve["modbus"] = {
+        {"requests", st.requests_served},          {"exceptions", st.exceptions_sent},
+        {"clients_accepted", st.clients_accepted}, {"clients_dropped", st.clients_dropped},
+        {"clients_refused", st.clients_refused},   {"cycles", st.cycles}};
+  if (station)
+    serve["station"] = {{"port", station->port()}, {"operator_steps", run.operated().size()}};
+  if (server && o.lockstep) {
     serve["idle_timeout_s"] = o.idle_timeout_s;
-  } else {
+  } else if (server) {
     serve["cycle_lateness_ms"] = {{"p50", Percentile(lateness_ms, 0.5)},
                                   {"p99", Percentile(lateness_ms, 0.99)},
                                   {"max", Percentile(lateness_ms, 1.0)}};
@@ -230,15 +321,28 @@ int Serve(const ServeOptions& o) {
                          {"lost", link.losses}};
   }
   if (!o.out_dir.empty()) std::ofstream(o.out_dir + "/serve.json") << serve.dump(2) << '\n';
-  std::printf("%s: %.3f s simulated, trace digest %s, %llu Modbus requests, %llu exceptions\n",
-              scene.name.c_str(), run.time_s(), r.trace_digest.c_str(),
-              static_cast<unsigned long long>(st.requests_served),
-              static_cast<unsigned long long>(st.exceptions_sent));
-  if (!o.lockstep)
+  std::printf("%s: %.3f s simulated, trace digest %s", scene.name.c_str(), run.time_s(),
+              r.trace_digest.c_str());
+  if (server)
+    std::printf(", %llu Modbus requests, %llu exceptions",
+                static_cast<unsigned long long>(st.requests_served),
+                static_cast<unsigned long long>(st.exceptions_sent));
+  std::printf("\n");
+  if (server && !o.lockstep)
     std::printf("cycle lateness: p50 %.3f ms, p99 %.3f ms, max %.3f ms\n",
                 Percentile(lateness_ms, 0.5), Percentile(lateness_ms, 0.99),
                 Percentile(lateness_ms, 1.0));
   for (const std::string& f : r.failures) std::fprintf(stderr, "FAILED: %s\n", f.c_str());
+  if (station && run.done()) {
+    // The page keeps showing the end of the run; what it sends now has no run to act on.
+    std::printf("vmt serve: the scene has ended; the operator station stays up until Ctrl-C\n");
+    std::fflush(stdout);
+    while (!g_stop) {
+      station->DropInputs();
+      station->Publish(run, "ended", true);
+      station->Wait(std::chrono::milliseconds(100));
+    }
+  }
   if (!run.done()) {
     std::fprintf(stderr, "vmt serve: stopped early at %.4f s: %s\n", run.time_s(),
                  stop_reason.c_str());

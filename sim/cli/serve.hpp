@@ -10,6 +10,11 @@
 // clock, so nothing runs without it: after idle_timeout_s of wall time without a cycle write
 // serve stops early, writes everything computed so far and exits with kServeStoppedEarly.
 // The scene's `fault: {plc: client_gone}` step disconnects every Modbus client.
+//
+// With --http the operator station (sim/station/) serves a web page beside the run: the page
+// presses keys and writes signals at the start of a PLC cycle, and without an external PLC it
+// is the clock (run at a real-time factor, pause, step). At the scene's end the station stays
+// up, showing the final state, until SIGINT or SIGTERM.
 
 #include <string>
 
@@ -21,7 +26,13 @@ inline constexpr int kServeStoppedEarly = 3;
 
 struct ServeOptions {
   std::string scene;
+  /// Serve the signal image over Modbus TCP at `endpoint` to an external PLC. Without it the
+  /// scene's own PLC program (plc:) runs, and the operator station is the clock.
+  bool modbus = true;
   std::string endpoint = "127.0.0.1:5020";  ///< HOST:PORT; port 0 picks a free one
+  /// HOST:PORT of the operator station (docs/station.md); empty: none. Port 0 picks a free one.
+  std::string http;
+  std::string http_token;                   ///< required for an address other than loopback
   bool lockstep = true;                     ///< else real time
   double until_s = 0;                       ///< 0: the scene's duration
   std::string out_dir = "out";

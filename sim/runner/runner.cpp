@@ -233,6 +233,8 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
 
 void SceneRun::State::Step() {
   const double t = tick * kDriveTickS;
+  // An operator input of a recorded run is taken where the station took it: before the tick.
+  if (next_operator_step < options.operator_steps.size()) ReplayOperatorSteps();
   const control::AmplifierTelegram& at = Faulted(backend->Read());
   for (size_t k = 0; k < clutches.size(); ++k) clutches[k] = backend->Clutch(static_cast<int>(k));
 
@@ -335,6 +337,7 @@ RunResult SceneRun::State::Finish() {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   // The files are complete now, whether or not the run object lives on.
   recorder.Flush();
+  WriteOperatorSteps();
 
   if (recorder.writing()) {
     nlohmann::ordered_json summary;

@@ -5,15 +5,20 @@
 
 #include <functional>
 #include <memory>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
+#include "control/drive_bus.hpp"
 #include "control/gateway/signal_image.hpp"
 #include "control/plc/axd_wr.hpp"
+#include "sim/scene/operator_steps.hpp"
 #include "sim/scene/scene.hpp"
+
+namespace vmt::control::channel {
+class Channel;
+}
 
 namespace vmt::sim {
 
@@ -35,6 +40,9 @@ struct RunOptions {
   /// Every event as events.jsonl records it (also when nothing is written), in order, from
   /// the tick that makes it: a study reads its cases' path_guard and repos events here.
   std::function<void(const nlohmann::ordered_json&)> on_event;
+  /// The operator inputs of an earlier run (operator.yaml, vmt run --operator), taken at their
+  /// ticks as SceneRun::Operate took them: the run repeats that one to the same trace digest.
+  std::vector<OperatorStep> operator_steps;
 };
 
 struct ExpectationResult {
@@ -85,6 +93,25 @@ class SceneRun {
   /// The NC's machine data pages of fast measurement as the run has them now (what its
   /// instructions wrote); null without an nc: section.
   const control::measure::MeasuringPages* measuring_pages() const;
+
+  /// The operator's input, taken now, before the next Step (vmt serve --http: at the start of
+  /// a PLC cycle): a machine key of the model's io or, with an external PLC, a signal the PLC
+  /// writes. Recorded as the event {"event":"operator",...} and in operated(); at Finish the
+  /// steps are written to operator.yaml. Returns why it is refused (nothing changes then), or "".
+  std::string Operate(const std::string& signal, double value);
+  /// Why Operate would refuse `signal` (the value aside), or "". Reads only the scene.
+  std::string OperateError(const std::string& signal) const;
+  const std::vector<OperatorStep>& operated() const;
+
+  // What the run shows as it goes (the operator station reads these between steps).
+  const Scene& scene() const;
+  /// The NC channel, null without an nc: section.
+  const control::channel::Channel* channel() const;
+  /// The drives' feedback as the control saw it at the last tick.
+  const control::AmplifierTelegram& feedback() const;
+  /// The machine's joint positions now (m | rad, one per joint of the model).
+  std::vector<double> joint_positions() const;
+  int64_t tick() const;
 
  private:
   struct State;

@@ -116,6 +116,15 @@ struct SceneRun::State {
   void AcknowledgeHeadstock();
   void StartHeadstockPlc();
   int plc_client_gone_told = 0;  ///< client_gone steps passed to the callback
+
+  // The operator station's inputs (runner_operator.cpp).
+  std::string OperateError(const std::string& signal) const;
+  std::string Operate(const std::string& signal, double value);
+  /// RunOptions::operator_steps due at this tick, taken before anything else of it.
+  void ReplayOperatorSteps();
+  void WriteOperatorSteps() const;
+  std::vector<OperatorStep> operated;
+  size_t next_operator_step = 0;
 };
 
 }  // namespace vmt::sim

@@ -1,0 +1,79 @@
+// The operator station's inputs to a run (SceneRun::Operate) and their replay from
+// operator.yaml: a key or a signal set at the start of a PLC cycle, the way the timeline's
+// `press:` and `signal:` steps set them, and recorded so that the run can be repeated.
+#include <fstream>
+
+#include "sim/runner/runner_state.hpp"
+
+namespace vmt::sim {
+
+std::string SceneRun::State::OperateError(const std::string& signal) const {
+  const State& s = *this;
+  if (!s.image) return "the scene has no nc: section, so no gateway signals";
+  const int id = s.image->Find(signal);
+  if (id < 0) return "no signal " + signal;
+  const control::gateway::Signal& sig = s.image->table()[id];
+  const int io = control::IndexOf(s.m.io, sig.name);
+  if (io >= 0 && s.m.io[io].key) return "";
+  if (sig.direction == control::gateway::Direction::kNcToPlc)
+    return "the NC writes " + sig.name + ": a PLC cannot set it";
+  if (sig.direction == control::gateway::Direction::kMachineToPlc)
+    return sig.name + " is a sensor of the machine: a PLC cannot set it";
+  // The embedded PLC writes its outputs every scan: a value set beside it would last one
+  // cycle. The station presses keys then, as the timeline does with plc:.
+  if (!s.options.external_plc && s.plc)
+    return "the scene's PLC program writes " + sig.name + ": press the operator's keys instead";
+  return "";
+}
+
+std::string SceneRun::State::Operate(const std::string& signal, double value) {
+  State& s = *this;
+  if (std::string error = OperateError(signal); !error.empty()) return error;
+  const int id = s.image->Find(signal);
+  if (std::string error = control::gateway::ValueError(s.image->table()[id].type, value);
+      !error.empty())
+    return signal + ": " + error;
+  SetSignalNumber(*s.image, id, value);
+  s.recorder.Event(
+      {{"t", s.tick * kDriveTickS}, {"event", "operator"}, {"signal", signal}, {"value", value}});
+  s.operated.push_back({s.tick, signal, value});
+  return "";
+}
+
+void SceneRun::State::ReplayOperatorSteps() {
+  const std::vector<OperatorStep>& steps = options.operator_steps;
+  for (; next_operator_step < steps.size() && steps[next_operator_step].tick <= tick;
+       ++next_operator_step) {
+    const OperatorStep& o = steps[next_operator_step];
+    if (o.tick < tick) continue;  // a tick already past (checked when the file was read)
+    const std::string error = Operate(o.signal, o.value);
+    if (!error.empty())
+      result.failures.push_back("operator step at tick " + std::to_string(o.tick) + ": " + error);
+  }
+}
+
+void SceneRun::State::WriteOperatorSteps() const {
+  if (!recorder.writing() || operated.empty()) return;
+  std::ofstream f(options.out_dir + "/operator.yaml");
+  f << "# The operator station's inputs, at the drive tick of the PLC cycle that took each.\n"
+    << "# vmt run SCENE --operator operator.yaml repeats the run to the same trace digest.\n"
+    << "scene: " << nlohmann::json(scene.name).dump() << "\noperator:\n";
+  for (const OperatorStep& o : operated)
+    f << "  - {tick: " << o.tick << ", signal: " << nlohmann::json(o.signal).dump()
+      << ", value: " << nlohmann::json(o.value).dump() << "}\n";
+}
+
+std::string SceneRun::OperateError(const std::string& signal) const {
+  return state_->OperateError(signal);
+}
+std::string SceneRun::Operate(const std::string& signal, double value) {
+  return state_->Operate(signal, value);
+}
+const std::vector<OperatorStep>& SceneRun::operated() const { return state_->operated; }
+const Scene& SceneRun::scene() const { return state_->scene; }
+const control::channel::Channel* SceneRun::channel() const { return state_->channel.get(); }
+const control::AmplifierTelegram& SceneRun::feedback() const { return state_->faulted_at; }
+std::vector<double> SceneRun::joint_positions() const { return state_->backend->JointPositions(); }
+int64_t SceneRun::tick() const { return state_->tick; }
+
+}  // namespace vmt::sim

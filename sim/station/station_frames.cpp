@@ -1,0 +1,237 @@
+#include "sim/station/station_frames.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "control/channel/channel.hpp"
+#include "control/nc/modal_g_codes.hpp"
+#include "render/mesh_primitives.hpp"
+#include "sim/scene/steps/timeline_play.hpp"
+
+namespace vmt::sim::station {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+/// Rounded to 1e-6 of its unit: the page needs no more, and the frames stay short.
+double Short(double v) { return std::round(v * 1e6) / 1e6; }
+
+Json Array(const Eigen::Vector3d& v) {
+  return Json::array({Short(v.x()), Short(v.y()), Short(v.z())});
+}
+
+Json Pose(const Eigen::Isometry3d& X) {
+  const Eigen::Quaterniond q(X.rotation());
+  const Eigen::Vector3d p = X.translation();
+  return Json::array({Short(p.x()), Short(p.y()), Short(p.z()), Short(q.x()), Short(q.y()),
+                      Short(q.z()), Short(q.w())});
+}
+
+/// A mesh placed by `X` (its origin in the link), with its colour.
+Json MeshJson(const std::string& name, const render::Mesh& mesh, const Eigen::Isometry3d& X,
+              const render::Rgba& colour) {
+  Json positions = Json::array(), normals = Json::array();
+  for (size_t i = 0; i + 2 < mesh.positions.size(); i += 3) {
+    const Eigen::Vector3d p =
+        X * Eigen::Vector3d(mesh.positions[i], mesh.positions[i + 1], mesh.positions[i + 2]);
+    positions.push_back(Short(p.x()));
+    positions.push_back(Short(p.y()));
+    positions.push_back(Short(p.z()));
+  }
+  for (size_t i = 0; i + 2 < mesh.normals.size(); i += 3) {
+    const Eigen::Vector3d n =
+        X.linear() * Eigen::Vector3d(mesh.normals[i], mesh.normals[i + 1], mesh.normals[i + 2]);
+    normals.push_back(std::round(n.x() * 1e4) / 1e4);
+    normals.push_back(std::round(n.y() * 1e4) / 1e4);
+    normals.push_back(std::round(n.z() * 1e4) / 1e4);
+  }
+  return {{"name", name},
+          {"positions", std::move(positions)},
+          {"normals", std::move(normals)},
+          {"indices", mesh.indices},
+          {"colour", {colour.r, colour.g, colour.b, colour.a}}};
+}
+
+std::vector<std::string> ProgramLines(const Scene& scene) {
+  std::vector<std::string> lines;
+  if (scene.nc.programs.empty() || scene.nc.programs[0]->program.files.empty()) return lines;
+  std::ifstream in(scene.nc.programs[0]->program.files[0]);
+  for (std::string line; std::getline(in, line) && lines.size() < 100000;) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    lines.push_back(std::move(line));
+  }
+  return lines;
+}
+
+const char* Unit(control::AxisKind kind) {
+  return kind == control::AxisKind::kLinear ? "mm" : "deg";
+}
+
+}  // namespace
+
+void StationMarks::Note(const nlohmann::ordered_json& event) {
+  const std::string kind = event.value("event", "");
+  if (kind == "path_guard") {
+    if (!event.value("clear", true) && event.contains("point")) {
+      Json point = Json::array();
+      for (const auto& c : event["point"]) point.push_back(c.get<double>() / kMmPerM);
+      guard = Json{{"parts", event.value("parts", Json::array())},
+                   {"point", point},
+                   {"move", event.value("move", "")}}
+                  .dump();
+    }
+  } else if (kind == "probe_latch") {
+    probe = Json{{"drive", event.value("drive", "")},
+                 {"value", event.value("measured_value", 0.0)},
+                 {"t", event.value("t", 0.0)}}
+                .dump();
+  } else if (kind == "nc" && event.value("state", "") == "idle") {
+    guard.clear();  // Control-Reset acknowledged the refusal
+  }
+}
+
+std::string ModelJson(const SceneRun& run, const std::string& pace) {
+  const Scene& scene = run.scene();
+  const MachineModel& m = *scene.model;
+  Json links = Json::array();
+  for (const Link& link : m.links) {
+    Json visuals = Json::array();
+    for (const Visual& v : link.visuals)
+      if (v.mesh) visuals.push_back(MeshJson(v.name, *v.mesh, v.X_LinkVisual, v.colour));
+    links.push_back({{"name", link.name}, {"visuals", std::move(visuals)}});
+  }
+  // The workpiece, as the pictures show it: a visual of the link that holds it.
+  const int wp_link = scene.workpiece.present ? m.LinkIndex(scene.workpiece.part.link) : -1;
+  if (wp_link >= 0)
+    for (const RevolvedSection& s : scene.workpiece.part.sections) {
+      const double length = s.z1_m - s.z0_m;
+      const render::Mesh mesh = s.r_inner_m > 0
+                                    ? render::MakeTube(s.r_inner_m, s.r_outer_m, length, 96)
+                                    : render::MakeCylinder(s.r_outer_m, length, 96);
+      Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+      X.translation().z() = s.z0_m;
+      links[wp_link]["visuals"].push_back(MeshJson("workpiece", mesh, X, scene.workpiece.colour));
+    }
+  Json cameras = Json::array();
+  for (const NamedCamera& c : scene.cameras)
+    cameras.push_back({{"name", c.name},
+                       {"eye", Array(c.eye_m)},
+                       {"target", Array(c.target_m)},
+                       {"up", Array(c.up)},
+                       {"fov_deg", c.fov_y_deg}});
+  Json keys = Json::array();
+  for (const control::IoInfo& io : m.io)
+    if (io.key) keys.push_back(io.name);
+  Json axes = Json::array();
+  if (const control::channel::Channel* ch = run.channel()) {
+    for (size_t a = 0; a < ch->config().axes.size(); ++a)
+      axes.push_back(
+          {{"name", ch->AxisName(a)}, {"unit", ch->config().axes[a].rotary ? "deg" : "mm"}});
+  } else {
+    for (const DriveParams& d : m.drives)
+      axes.push_back({{"name", d.info.name}, {"unit", Unit(d.info.kind)}});
+  }
+  Json program = nullptr;
+  if (!scene.nc.programs.empty() && !scene.nc.programs[0]->program.files.empty())
+    program = {{"file", scene.nc.programs[0]->program.files[0]}, {"lines", ProgramLines(scene)}};
+  return Json{{"scene", scene.name},
+              {"pace", pace},
+              {"links", std::move(links)},
+              {"cameras", cameras},
+              {"keys", keys},
+              {"axes", axes},
+              {"program", program},
+              {"signals_count", scene.nc.signals ? scene.nc.signals->size() : 0}}
+      .dump();
+}
+
+std::string StateJson(const SceneRun& run, int64_t plc_cycle, const std::string& run_state,
+                      size_t events, const StationMarks& marks) {
+  const MachineModel& m = *run.scene().model;
+  Json poses = Json::array();
+  for (const Eigen::Isometry3d& X : LinkPoses(m, run.joint_positions())) poses.push_back(Pose(X));
+  const control::AmplifierTelegram& at = run.feedback();
+  Json axes = Json::array(), nc = nullptr, messages = Json::array();
+  if (const control::channel::Channel* ch = run.channel()) {
+    double feed_sq = 0;
+    for (size_t a = 0; a < ch->config().axes.size(); ++a) {
+      const int d = ch->config().axes[a].drive;
+      const bool fed = d >= 0 && static_cast<size_t>(d) < at.feedback.size();
+      const double actual = fed ? at.feedback[d].position : ch->position(a);
+      if (fed && !ch->config().axes[a].rotary)
+        feed_sq += at.feedback[d].velocity * at.feedback[d].velocity;
+      axes.push_back({{"name", ch->AxisName(a)},
+                      {"machine", Short(actual)},
+                      {"command", Short(ch->position(a))},
+                      {"program", Short(ch->position(a) - ch->Translation(a))},
+                      {"following_error", fed ? Short(at.feedback[d].following_error) : 0.0}});
+    }
+    const control::nc::ModalState& modal = ch->modal();
+    Json g = Json::array();
+    for (int code : control::nc::ActiveGCodes(modal)) {
+      char text[8];
+      std::snprintf(text, sizeof text, "G%02d", code);
+      g.push_back(text);
+    }
+    const control::channel::SpindleStatus sp = ch->spindle_status();
+    nc = {{"state", ToString(ch->state())},
+          {"mode", ToString(ch->mode())},
+          {"line", ch->line()},
+          {"modal", std::move(g)},
+          {"tool", {{"t", modal.tool}, {"d", modal.correction}}},
+          {"feed", {{"command", modal.feed}, {"actual", Short(std::sqrt(feed_sq) * 60)}}},
+          {"spindle",
+           {{"command", sp.programmed_rpm},
+            {"actual", Short(sp.actual_rpm)},
+            {"shown", sp.speeds_shown}}},
+          {"override", {{"feed", sp.feed_override}, {"spindle", sp.spindle_override}}}};
+    for (const control::channel::OperatorMessage& msg : ch->messages())
+      messages.push_back({{"number", msg.number},
+                          {"text", msg.text.empty() ? "PLC message " + std::to_string(msg.number) +
+                                                          " (" + std::to_string(msg.parameter) + ")"
+                                                    : msg.text},
+                          {"source", ToString(msg.source)}});
+  } else {
+    for (size_t d = 0; d < m.drives.size() && d < at.feedback.size(); ++d)
+      axes.push_back({{"name", m.drives[d].info.name},
+                      {"machine", Short(at.feedback[d].position)},
+                      {"following_error", Short(at.feedback[d].following_error)}});
+  }
+  return Json{{"t", run.time_s()},
+              {"cycle", plc_cycle},
+              {"run", run_state},
+              {"poses", std::move(poses)},
+              {"tool_tip", nullptr},
+              {"nc", std::move(nc)},
+              {"axes", std::move(axes)},
+              {"messages", std::move(messages)},
+              {"events", events},
+              {"guard", marks.guard.empty() ? Json(nullptr) : Json::parse(marks.guard)},
+              {"probe", marks.probe.empty() ? Json(nullptr) : Json::parse(marks.probe)}}
+      .dump();
+}
+
+std::string SignalsJson(SceneRun& run) {
+  const control::gateway::SignalImage* image = run.image();
+  Json list = Json::array();
+  if (image)
+    for (int id = 0; id < image->size(); ++id) {
+      const control::gateway::Signal& s = image->table()[id];
+      Json value;
+      if (s.type == control::gateway::SignalType::kString)
+        value = image->String(id);
+      else
+        value = SignalNumber(*image, id);
+      list.push_back({{"name", s.name},
+                      {"area", s.name.substr(0, s.name.find('.'))},
+                      {"direction", ToString(s.direction)},
+                      {"type", ToString(s.type)},
+                      {"value", std::move(value)},
+                      {"writable", run.OperateError(s.name).empty()}});
+    }
+  return Json{{"signals", std::move(list)}}.dump();
+}
+
+}  // namespace vmt::sim::station

@@ -1,0 +1,34 @@
+#pragma once
+// The operator station's JSON (docs/station.md): the model a page builds its 3D view and panel
+// from once, and the frames it polls (state, signals). Built on the simulation's thread from
+// the run between two steps; the HTTP threads only hand the text out.
+
+#include <string>
+
+#include "sim/runner/runner.hpp"
+
+namespace vmt::sim::station {
+
+/// Marks the page draws from the run's events: the last PathGuard refusal (the two parts and
+/// the contact point) and the last probe latch.
+struct StationMarks {
+  std::string guard;  ///< {"parts":[..],"point":[x,y,z] m} of the last refusal, or empty
+  std::string probe;  ///< {"drive":..,"value":..} of the last latch, or empty
+  /// Takes what an event says about the marks (a refusal, a clear check after it, a latch).
+  void Note(const nlohmann::ordered_json& event);
+};
+
+/// GET /api/model: scene, pace, links with their meshes (metres, link frame, the visual's origin
+/// applied; the workpiece as a visual of its link), cameras (metres), machine keys, axes, and
+/// the main program's text.
+std::string ModelJson(const SceneRun& run, const std::string& pace);
+
+/// GET /api/state: time, PLC cycle, run state, each link's world pose, the NC's state, mode,
+/// line and modal state, axes, messages, the event count and the marks.
+std::string StateJson(const SceneRun& run, int64_t plc_cycle, const std::string& run_state,
+                      size_t events, const StationMarks& marks);
+
+/// GET /api/signals: every gateway signal with its value and whether the page may write it.
+std::string SignalsJson(SceneRun& run);
+
+}  // namespace vmt::sim::station

@@ -1,0 +1,180 @@
+#include "sim/station/station_server.hpp"
+
+#include <httplib.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <thread>
+
+namespace vmt::sim::station {
+namespace {
+
+using Json = nlohmann::json;
+
+void Reply(httplib::Response& res, int status, const std::string& body) {
+  res.status = status;
+  res.set_header("Cache-Control", "no-store");
+  res.set_content(body, "application/json");
+}
+
+void Fail(httplib::Response& res, int status, const std::string& error) {
+  Reply(res, status, Json{{"error", error}}.dump());
+}
+
+/// The request's JSON object, or a 400 answered and nullopt.
+std::optional<Json> Body(const httplib::Request& req, httplib::Response& res) {
+  Json body = Json::parse(req.body, nullptr, false);
+  if (body.is_discarded() || !body.is_object()) {
+    Fail(res, 400, "expected a JSON object");
+    return std::nullopt;
+  }
+  return body;
+}
+
+}  // namespace
+
+bool IsLoopback(const std::string& host) {
+  return host == "localhost" || host == "::1" || host.rfind("127.", 0) == 0;
+}
+
+std::string DefaultWebDir() {
+  if (const char* dir = std::getenv("VMT_WEB_DIR"); dir && *dir) return dir;
+#ifdef VMT_SOURCE_WEB_DIR
+  if (std::filesystem::is_directory(VMT_SOURCE_WEB_DIR)) return VMT_SOURCE_WEB_DIR;
+#endif
+  std::error_code ec;
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? "web" : (exe.parent_path().parent_path() / "share/vmt/web").string();
+}
+
+struct StationServer::Impl {
+  httplib::Server http;
+  std::thread thread;
+};
+
+StationServer::StationServer(StationHub& hub, StationServerOptions o)
+    : impl_(std::make_unique<Impl>()) {
+  if (!IsLoopback(o.host) && o.token.empty())
+    throw std::invalid_argument("--http " + o.host +
+                                ": an address other than loopback needs --http-token");
+  if (!std::filesystem::is_directory(o.web_dir))
+    throw std::invalid_argument("the operator station's page is not in " + o.web_dir +
+                                " (set VMT_WEB_DIR)");
+  httplib::Server& http = impl_->http;
+  // Enough workers that five pages (a browser opens up to six connections each) are served at
+  // once; a stalled page holds a worker only until the keep-alive and read timeouts.
+  http.new_task_queue = [] { return new httplib::ThreadPool(32); };
+  http.set_payload_max_length(64 * 1024);
+  http.set_keep_alive_timeout(2);
+  http.set_read_timeout(5, 0);
+  http.set_write_timeout(5, 0);
+  if (!o.token.empty())
+    http.set_pre_routing_handler(
+        [token = o.token](const httplib::Request& req, httplib::Response& res) {
+          const bool ok = req.get_header_value("Authorization") == "Bearer " + token ||
+                          req.get_param_value("token") == token;
+          if (ok) return httplib::Server::HandlerResponse::Unhandled;
+          Fail(res, 401, "this station needs its token");
+          return httplib::Server::HandlerResponse::Handled;
+        });
+  http.set_mount_point("/", o.web_dir);
+  if (std::filesystem::is_directory(o.three_dir))
+    http.set_mount_point("/vendor/three", o.three_dir);
+  if (std::filesystem::is_directory(o.chart_dir))
+    http.set_mount_point("/vendor/chart.js", o.chart_dir);
+  http.set_file_extension_and_mimetype_mapping("mjs", "text/javascript");
+
+  http.Get("/api/model", [model = o.model_json](const httplib::Request&, httplib::Response& res) {
+    Reply(res, 200, model);
+  });
+  http.Get("/api/state", [&hub](const httplib::Request&, httplib::Response& res) {
+    Reply(res, 200, hub.State());
+  });
+  http.Get("/api/signals", [&hub](const httplib::Request&, httplib::Response& res) {
+    Reply(res, 200, hub.Signals());
+  });
+  http.Get("/api/events", [&hub](const httplib::Request& req, httplib::Response& res) {
+    size_t from = 0;
+    if (req.has_param("from")) {
+      const std::string text = req.get_param_value("from");
+      char* end = nullptr;
+      const unsigned long long n = std::strtoull(text.c_str(), &end, 10);
+      if (text.empty() || *end != '\0' || text[0] == '-')
+        return Fail(res, 400, "from: expected a whole number >= 0");
+      from = static_cast<size_t>(n);
+    }
+    Reply(res, 200, hub.Events(from));
+  });
+  http.Post("/api/key", [&hub, keys = o.keys](const httplib::Request& req, httplib::Response& res) {
+    const auto body = Body(req, res);
+    if (!body) return;
+    const auto name = body->find("name");
+    const auto pressed = body->find("pressed");
+    if (name == body->end() || !name->is_string() || pressed == body->end() ||
+        !pressed->is_boolean())
+      return Fail(res, 400, R"(expected {"name": KEY, "pressed": true | false})");
+    if (std::find(keys.begin(), keys.end(), name->get<std::string>()) == keys.end())
+      return Fail(res, 404, "no machine key " + name->get<std::string>());
+    if (!hub.Push({StationInput::Kind::kSignal, *name, pressed->get<bool>() ? 1.0 : 0.0}))
+      return Fail(res, 429, "too many inputs waiting for the next PLC cycle");
+    Reply(res, 200, R"({"ok":true})");
+  });
+  http.Post("/api/signal", [&hub, check = o.check_signal](const httplib::Request& req,
+                                                          httplib::Response& res) {
+    const auto body = Body(req, res);
+    if (!body) return;
+    const auto name = body->find("name");
+    const auto value = body->find("value");
+    if (name == body->end() || !name->is_string() || value == body->end() ||
+        !(value->is_number() || value->is_boolean()))
+      return Fail(res, 400, R"(expected {"name": SIGNAL, "value": number | true | false})");
+    const double v = value->is_boolean() ? (value->get<bool>() ? 1 : 0) : value->get<double>();
+    if (const std::string error = check ? check(*name, v) : "no signals"; !error.empty())
+      return Fail(res, error.rfind("no signal", 0) == 0 ? 404 : 403, error);
+    if (!hub.Push({StationInput::Kind::kSignal, *name, v}))
+      return Fail(res, 429, "too many inputs waiting for the next PLC cycle");
+    Reply(res, 200, R"({"ok":true})");
+  });
+  http.Post("/api/run", [&hub, refused = o.run_control_refused](const httplib::Request& req,
+                                                                httplib::Response& res) {
+    const auto body = Body(req, res);
+    if (!body) return;
+    const std::string action = body->value("action", "");
+    const StationInput::Kind kind = action == "run"     ? StationInput::Kind::kRun
+                                    : action == "pause" ? StationInput::Kind::kPause
+                                    : action == "step"  ? StationInput::Kind::kStep
+                                                        : StationInput::Kind::kSignal;
+    if (kind == StationInput::Kind::kSignal)
+      return Fail(res, 400, R"(expected {"action": "run" | "pause" | "step", "speed": factor})");
+    // Run's speed: a real-time factor, 0 for as fast as the machine allows.
+    const auto speed = body->find("speed");
+    double factor = 1;
+    if (speed != body->end()) {
+      if (!speed->is_number() || !(speed->get<double>() >= 0 && speed->get<double>() <= 1000))
+        return Fail(res, 400, "speed: expected a real-time factor from 0 (fastest) to 1000");
+      factor = speed->get<double>();
+    }
+    if (!refused.empty()) return Fail(res, 409, refused);
+    if (!hub.Push({kind, "", factor})) return Fail(res, 429, "too many inputs waiting");
+    Reply(res, 200, R"({"ok":true})");
+  });
+  http.set_error_handler([](const httplib::Request&, httplib::Response& res) {
+    if (res.body.empty()) Fail(res, res.status, "not found");
+  });
+
+  port_ = o.port == 0 ? http.bind_to_any_port(o.host)
+                      : (http.bind_to_port(o.host, o.port) ? o.port : -1);
+  if (port_ <= 0)
+    throw std::runtime_error("--http " + o.host + ":" + std::to_string(o.port) +
+                             ": cannot listen there");
+  impl_->thread = std::thread([this] { impl_->http.listen_after_bind(); });
+}
+
+StationServer::~StationServer() {
+  impl_->http.stop();
+  if (impl_->thread.joinable()) impl_->thread.join();
+}
+
+}  // namespace vmt::sim::station

@@ -1,0 +1,70 @@
+#include "sim/station/station_session.hpp"
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+namespace vmt::sim::station {
+
+using Clock = std::chrono::steady_clock;
+
+void StationSession::Event(const nlohmann::ordered_json& event) {
+  marks_.Note(event);
+  ++events_;
+  hub_.AddEvent(event.dump());
+}
+
+void StationSession::Open(SceneRun& run, StationServerOptions options, const std::string& pace,
+                          const std::string& run_control_refused) {
+  options.model_json = ModelJson(run, pace);
+  for (const control::IoInfo& io : run.scene().model->io)
+    if (io.key) options.keys.push_back(io.name);
+  const control::gateway::SignalImage* image = run.image();
+  options.check_signal = [&run, image](const std::string& signal, double value) {
+    std::string error = run.OperateError(signal);
+    if (error.empty())
+      error = control::gateway::ValueError(image->table()[image->Find(signal)].type, value);
+    return error;
+  };
+  options.run_control_refused = run_control_refused;
+  server_ = std::make_unique<StationServer>(hub_, std::move(options));
+  Publish(run, control_.running ? "running" : "paused", true);
+}
+
+void StationSession::TakeInputs(SceneRun& run) {
+  for (const StationInput& in : hub_.TakeInputs()) {
+    switch (in.kind) {
+      case StationInput::Kind::kSignal:
+        if (const std::string error = run.Operate(in.signal, in.value); !error.empty())
+          std::fprintf(stderr, "vmt serve: %.4f s: station: %s\n", run.time_s(), error.c_str());
+        break;
+      case StationInput::Kind::kRun:
+        control_.changed = control_.changed || !control_.running || control_.speed != in.value;
+        control_.running = true;
+        control_.speed = in.value;
+        break;
+      case StationInput::Kind::kPause:
+        control_.changed = control_.changed || control_.running;
+        control_.running = false;
+        break;
+      case StationInput::Kind::kStep:
+        control_.running = false;
+        ++control_.steps;
+        break;
+    }
+  }
+}
+
+void StationSession::Publish(SceneRun& run, const std::string& state, bool force) {
+  if (!server_) return;
+  const auto now = Clock::now();
+  if (!force && now - published_ < std::chrono::microseconds(16667)) return;
+  published_ = now;
+  const int64_t cycle = run.tick() / std::max<int64_t>(1, run.ticks_per_plc_cycle());
+  hub_.PublishState(StateJson(run, cycle, state, events_, marks_));
+  if (hub_.SignalsWanted() && now - signals_published_ >= std::chrono::milliseconds(200)) {
+    signals_published_ = now;
+    hub_.PublishSignals(SignalsJson(run));
+  }
+}
+
+}  // namespace vmt::sim::station

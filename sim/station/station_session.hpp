@@ -1,0 +1,59 @@
+#pragma once
+// The operator station beside one serve run: it collects the run's events, starts the HTTP
+// server once the run exists, takes the page's inputs at the start of a PLC cycle (keys and
+// signals through SceneRun::Operate, run control for the serve loop) and publishes frames at
+// most 60 times a second of wall time, so that streaming costs the simulation little.
+
+#include <chrono>
+#include <memory>
+#include <nlohmann/json_fwd.hpp>
+#include <optional>
+#include <string>
+
+#include "sim/runner/runner.hpp"
+#include "sim/station/station_frames.hpp"
+#include "sim/station/station_hub.hpp"
+#include "sim/station/station_server.hpp"
+
+namespace vmt::sim::station {
+
+/// What the page asked of the serve loop's clock.
+struct RunControl {
+  bool running = false;
+  double speed = 1;      ///< real-time factor while running; 0: as fast as the machine allows
+  int64_t steps = 0;     ///< PLC cycles to run while paused
+  bool changed = false;  ///< running or speed changed since the last TakeInputs: re-anchor
+};
+
+class StationSession {
+ public:
+  /// Before the run: `Event` must be the run's RunOptions::on_event (or called by it).
+  StationSession() = default;
+  void Event(const nlohmann::ordered_json& event);
+  /// Starts serving `run` (model, keys, signals). `pace` is shown on the page; a non-empty
+  /// `run_control_refused` answers the page's run control with 409.
+  void Open(SceneRun& run, StationServerOptions options, const std::string& pace,
+            const std::string& run_control_refused);
+  int port() const { return server_ ? server_->port() : 0; }
+
+  /// Takes the queued inputs: keys and signals are set now (at the start of the PLC cycle the
+  /// run is at), run control goes to control(). A refused one is printed, never thrown.
+  void TakeInputs(SceneRun& run);
+  RunControl& control() { return control_; }
+  /// Publishes the state (and the signals, if a page watches them) when a 60th of a second has
+  /// passed since the last, or at once with `force`. `state`: "running", "paused", "ended".
+  void Publish(SceneRun& run, const std::string& state, bool force = false);
+  void Wait(std::chrono::milliseconds timeout) { hub_.WaitForInput(timeout); }
+  /// Discards what the pages sent (the run has ended: nothing to act on).
+  void DropInputs() { hub_.TakeInputs(); }
+
+ private:
+  StationHub hub_;
+  StationMarks marks_;
+  size_t events_ = 0;
+  RunControl control_;
+  std::unique_ptr<StationServer> server_;
+  std::chrono::steady_clock::time_point published_{}, signals_published_{};
+};
+
+}  // namespace vmt::sim::station
