@@ -1,0 +1,84 @@
+// The station's JSON of a run: the model's links with their meshes and the workpiece, the
+// machine keys and axes, a state with one pose per link, and the signals with what a page may
+// write; PathGuard's refusal and a probe latch become marks.
+
+#include "sim/station/station_frames.hpp"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "../sim_test_support.hpp"
+
+namespace vmt::sim::station {
+namespace {
+
+using Json = nlohmann::json;
+using testing::SourcePath;
+
+TEST(StationFramesTest, ModelStateAndSignalsOfARun) {
+  const Scene scene = LoadScene(SourcePath("scenes/machine-panel.yaml"));
+  RunOptions options;
+  options.until_s = 0.2;
+  SceneRun run(scene, options);
+  while (!run.done()) run.Step();
+
+  const Json model = Json::parse(ModelJson(run, "lockstep"));
+  EXPECT_EQ(model["scene"], "machine-panel");
+  ASSERT_EQ(model["links"].size(), scene.model->links.size());
+  size_t triangles = 0;
+  bool workpiece = false;
+  for (const Json& link : model["links"])
+    for (const Json& v : link["visuals"]) {
+      ASSERT_EQ(v["positions"].size() % 3, 0u);
+      ASSERT_EQ(v["indices"].size() % 3, 0u);
+      triangles += v["indices"].size() / 3;
+      workpiece = workpiece || v["name"] == "workpiece";
+    }
+  EXPECT_GT(triangles, 1000u);
+  EXPECT_TRUE(workpiece);
+  EXPECT_NE(std::find(model["keys"].begin(), model["keys"].end(), "mJGPOS_X"), model["keys"].end());
+  EXPECT_EQ(model["axes"][0]["name"], "X");
+  EXPECT_FALSE(model["program"]["lines"].empty());
+  EXPECT_FALSE(model["cameras"].empty());
+
+  const Json state = Json::parse(StateJson(run, 12, "paused", 7, StationMarks{}));
+  EXPECT_EQ(state["run"], "paused");
+  EXPECT_EQ(state["cycle"], 12);
+  EXPECT_EQ(state["events"], 7);
+  EXPECT_EQ(state["poses"].size(), scene.model->links.size());
+  EXPECT_EQ(state["poses"][0].size(), 7u);
+  EXPECT_EQ(state["nc"]["mode"], "automatic");
+  EXPECT_TRUE(state["guard"].is_null());
+  ASSERT_EQ(state["axes"].size(), model["axes"].size());
+
+  const Json signals = Json::parse(SignalsJson(run));
+  bool key_writable = false, status_writable = true;
+  for (const Json& s : signals["signals"]) {
+    if (s["name"] == "mSTART") key_writable = s["writable"];
+    if (s["name"] == "P00S.RUN") status_writable = s["writable"];
+  }
+  EXPECT_TRUE(key_writable);
+  EXPECT_FALSE(status_writable);
+}
+
+TEST(StationFramesTest, MarksFollowTheEvents) {
+  StationMarks marks;
+  marks.Note({{"event", "path_guard"}, {"clear", true}});
+  EXPECT_TRUE(marks.guard.empty());
+  marks.Note({{"event", "path_guard"},
+              {"clear", false},
+              {"move", "G77"},
+              {"parts", {"turret_st01_insert", "spindle_jaw1"}},
+              {"point", {85.9, 0, 137.7}}});
+  const Json guard = Json::parse(marks.guard);
+  EXPECT_EQ(guard["parts"][1], "spindle_jaw1");
+  EXPECT_DOUBLE_EQ(guard["point"][0].get<double>(), 0.0859);  // metres
+  marks.Note({{"event", "probe_latch"}, {"drive", "X"}, {"measured_value", 29.99}, {"t", 1.2}});
+  EXPECT_EQ(Json::parse(marks.probe)["drive"], "X");
+  marks.Note({{"event", "nc"}, {"state", "idle"}});  // Control-Reset
+  EXPECT_TRUE(marks.guard.empty());
+}
+
+}  // namespace
+}  // namespace vmt::sim::station
