@@ -72,7 +72,10 @@ std::string SceneRun::Operate(const std::string& signal, double value) {
 const std::vector<OperatorStep>& SceneRun::operated() const { return state_->operated; }
 const Scene& SceneRun::scene() const { return state_->scene; }
 const control::channel::Channel* SceneRun::channel() const { return state_->channel.get(); }
-const control::AmplifierTelegram& SceneRun::feedback() const { return state_->faulted_at; }
+const control::AmplifierTelegram& SceneRun::feedback() const {
+  // Before the first tick the control has seen nothing yet: the machine as it stands.
+  return state_->faulted_at.feedback.empty() ? state_->backend->Read() : state_->faulted_at;
+}
 std::vector<double> SceneRun::joint_positions() const { return state_->backend->JointPositions(); }
 int64_t SceneRun::tick() const { return state_->tick; }
 

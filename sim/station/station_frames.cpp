@@ -231,7 +231,7 @@ std::string SignalsJson(SceneRun& run) {
                       {"value", std::move(value)},
                       {"writable", run.OperateError(s.name).empty()}});
     }
-  return Json{{"signals", std::move(list)}}.dump();
+  return Json{{"t", run.time_s()}, {"signals", std::move(list)}}.dump();
 }
 
 }  // namespace vmt::sim::station

@@ -73,8 +73,14 @@ StationServer::StationServer(StationHub& hub, StationServerOptions o)
   if (!o.token.empty())
     http.set_pre_routing_handler(
         [token = o.token](const httplib::Request& req, httplib::Response& res) {
-          const bool ok = req.get_header_value("Authorization") == "Bearer " + token ||
-                          req.get_param_value("token") == token;
+          // The page is opened with ?token=; its scripts and images cannot carry that, so the
+          // answer sets it as a cookie, which the browser sends with each of them.
+          const std::string cookie = "vmt_token=" + token;
+          const bool in_param = req.get_param_value("token") == token;
+          const bool ok = in_param || req.get_header_value("Authorization") == "Bearer " + token ||
+                          req.get_header_value("Cookie").find(cookie) != std::string::npos;
+          if (in_param)
+            res.set_header("Set-Cookie", cookie + "; Path=/; HttpOnly; SameSite=Strict");
           if (ok) return httplib::Server::HandlerResponse::Unhandled;
           Fail(res, 401, "this station needs its token");
           return httplib::Server::HandlerResponse::Handled;

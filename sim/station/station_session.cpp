@@ -1,5 +1,6 @@
 #include "sim/station/station_session.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -31,9 +32,23 @@ void StationSession::Open(SceneRun& run, StationServerOptions options, const std
 }
 
 void StationSession::TakeInputs(SceneRun& run) {
-  for (const StationInput& in : hub_.TakeInputs()) {
+  for (StationInput& in : hub_.TakeInputs()) waiting_.push_back(std::move(in));
+  if (run.tick() != changed_tick_) {
+    changed_.clear();
+    changed_tick_ = run.tick();
+  }
+  // Run control acts at once; keys and signals keep their order among themselves, so once one
+  // waits for the next cycle, those after it wait too.
+  std::deque<StationInput> later;
+  for (StationInput& in : waiting_) {
     switch (in.kind) {
       case StationInput::Kind::kSignal:
+        if (!later.empty() ||
+            std::find(changed_.begin(), changed_.end(), in.signal) != changed_.end()) {
+          later.push_back(std::move(in));
+          break;
+        }
+        changed_.push_back(in.signal);
         if (const std::string error = run.Operate(in.signal, in.value); !error.empty())
           std::fprintf(stderr, "vmt serve: %.4f s: station: %s\n", run.time_s(), error.c_str());
         break;
@@ -52,6 +67,7 @@ void StationSession::TakeInputs(SceneRun& run) {
         break;
     }
   }
+  waiting_ = std::move(later);
 }
 
 void StationSession::Publish(SceneRun& run, const std::string& state, bool force) {

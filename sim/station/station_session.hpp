@@ -5,10 +5,12 @@
 // most 60 times a second of wall time, so that streaming costs the simulation little.
 
 #include <chrono>
+#include <deque>
 #include <memory>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "sim/runner/runner.hpp"
 #include "sim/station/station_frames.hpp"
@@ -37,7 +39,10 @@ class StationSession {
   int port() const { return server_ ? server_->port() : 0; }
 
   /// Takes the queued inputs: keys and signals are set now (at the start of the PLC cycle the
-  /// run is at), run control goes to control(). A refused one is printed, never thrown.
+  /// run is at), run control goes to control(). A refused one is printed, never thrown. A
+  /// signal changes at most once a cycle: a press and its release in one batch (a quick click,
+  /// or a click while paused) are taken a cycle apart, so the PLC sees the key; what follows
+  /// waits for the next cycle, in order.
   void TakeInputs(SceneRun& run);
   RunControl& control() { return control_; }
   /// Publishes the state (and the signals, if a page watches them) when a 60th of a second has
@@ -45,10 +50,16 @@ class StationSession {
   void Publish(SceneRun& run, const std::string& state, bool force = false);
   void Wait(std::chrono::milliseconds timeout) { hub_.WaitForInput(timeout); }
   /// Discards what the pages sent (the run has ended: nothing to act on).
-  void DropInputs() { hub_.TakeInputs(); }
+  void DropInputs() {
+    hub_.TakeInputs();
+    waiting_.clear();
+  }
 
  private:
   StationHub hub_;
+  std::deque<StationInput> waiting_;  ///< taken from the hub, due at a later cycle
+  std::vector<std::string> changed_;  ///< signals set at tick changed_tick_
+  int64_t changed_tick_ = -1;
   StationMarks marks_;
   size_t events_ = 0;
   RunControl control_;

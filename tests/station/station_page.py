@@ -1,0 +1,279 @@
+#!/usr/bin/python3
+"""Smoke test of the operator station's page against a running `vmt serve` (or a mock).
+
+    /usr/bin/python3 tests/station/station_page.py --url http://127.0.0.1:PORT/ --screenshot OUT.png
+        [--jog-key mJGPOS_X --jog-axis X] [--manual-key mMANU] [--auto-key mAUTO --start-key mSTART]
+
+Drives Debian's chromium through chromedriver (selenium 4), headless with SwiftShader so that
+WebGL renders without a GPU. Prints one "ok: ..." line per check; exits 1 with "FAIL: ..." at
+the first failed check, 2 when the browser cannot be started. Every wait is bounded; the whole
+run stays under 90 s.
+"""
+import argparse
+import struct
+import sys
+import time
+import zlib
+
+DEADLINE_S = 85.0
+START = time.monotonic()
+
+
+class Failure(Exception):
+    pass
+
+
+def remaining():
+    return DEADLINE_S - (time.monotonic() - START)
+
+
+def wait_for(what, predicate, timeout, interval=0.05):
+    """predicate() -> a true value when done; returns it, raises Failure on timeout."""
+    end = time.monotonic() + min(timeout, max(0.5, remaining()))
+    last_error = None
+    while True:
+        try:
+            value = predicate()
+            if value:
+                return value
+        except Exception as e:  # a stale element, a value not yet parseable
+            last_error = e
+        if time.monotonic() >= end:
+            raise Failure('timed out after %.1f s waiting for %s%s' % (
+                timeout, what, ' (last error: %s)' % last_error if last_error else ''))
+        time.sleep(interval)
+
+
+def ok(text):
+    print('ok: ' + text, flush=True)
+
+
+# ------------------------------------------------------------------ PNG without PIL
+def png_colours(data, limit=100000):
+    """The number of distinct RGBA colours of an 8-bit RGB/RGBA/grey PNG (non-interlaced)."""
+    if data[:8] != b'\x89PNG\r\n\x1a\n':
+        raise Failure('the screenshot is not a PNG')
+    pos, idat, width = 8, [], 0
+    while pos < len(data):
+        length, kind = struct.unpack('>I4s', data[pos:pos + 8])
+        chunk = data[pos + 8:pos + 8 + length]
+        if kind == b'IHDR':
+            width, height, depth, ctype, _, _, interlace = struct.unpack('>IIBBBBB', chunk)
+            if depth != 8 or interlace or ctype not in (0, 2, 4, 6):
+                raise Failure('unsupported PNG (depth %d, colour type %d, interlace %d)' % (depth, ctype, interlace))
+            bpp = {0: 1, 2: 3, 4: 2, 6: 4}[ctype]
+        elif kind == b'IDAT':
+            idat.append(chunk)
+        elif kind == b'IEND':
+            break
+        pos += 12 + length
+    raw = zlib.decompress(b''.join(idat))
+    stride = width * bpp
+    prev = bytearray(stride)
+    colours = set()
+    i = 0
+    for _ in range(height):
+        ftype = raw[i]
+        line = bytearray(raw[i + 1:i + 1 + stride])
+        i += 1 + stride
+        if ftype == 1:
+            for x in range(bpp, stride):
+                line[x] = (line[x] + line[x - bpp]) & 255
+        elif ftype == 2:
+            for x in range(stride):
+                line[x] = (line[x] + prev[x]) & 255
+        elif ftype == 3:
+            for x in range(stride):
+                left = line[x - bpp] if x >= bpp else 0
+                line[x] = (line[x] + ((left + prev[x]) >> 1)) & 255
+        elif ftype == 4:
+            for x in range(stride):
+                a = line[x - bpp] if x >= bpp else 0
+                b = prev[x]
+                c = prev[x - bpp] if x >= bpp else 0
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                pred = a if pa <= pb and pa <= pc else (b if pb <= pc else c)
+                line[x] = (line[x] + pred) & 255
+        for x in range(0, stride, bpp):
+            colours.add(bytes(line[x:x + bpp]))
+        if len(colours) >= limit:
+            break
+        prev = line
+    return len(colours), width, height
+
+
+# ------------------------------------------------------------------ the browser
+def start_browser():
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+    opts = webdriver.ChromeOptions()
+    opts.binary_location = '/usr/bin/chromium'
+    for a in ['--headless=new', '--no-sandbox', '--disable-dev-shm-usage', '--window-size=1400,900',
+              '--use-angle=swiftshader', '--use-gl=angle', '--enable-unsafe-swiftshader',
+              '--ignore-gpu-blocklist', '--hide-scrollbars', '--force-device-scale-factor=1']:
+        opts.add_argument(a)
+    opts.set_capability('goog:loggingPrefs', {'browser': 'ALL'})
+    driver = webdriver.Chrome(service=Service('/usr/bin/chromedriver'), options=opts)
+    driver.set_page_load_timeout(30)
+    driver.set_script_timeout(10)
+    driver.set_window_size(1400, 900)
+    # headless=new takes the window's decorations off the viewport: make the page itself 1400x900
+    driver.execute_cdp_cmd('Emulation.setDeviceMetricsOverride',
+                           {'width': 1400, 'height': 900, 'deviceScaleFactor': 1, 'mobile': False})
+    return driver
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument('--url', required=True)
+    ap.add_argument('--screenshot', required=True, help='PNG of the 3D view')
+    ap.add_argument('--jog-key')
+    ap.add_argument('--jog-axis')
+    ap.add_argument('--manual-key', help='a key pressed before jogging (e.g. mMANU)')
+    ap.add_argument('--auto-key')
+    ap.add_argument('--start-key')
+    ap.add_argument('--min-colours', type=int, default=64)
+    args = ap.parse_args()
+    if bool(args.jog_key) != bool(args.jog_axis):
+        ap.error('--jog-key and --jog-axis go together')
+    if bool(args.auto_key) != bool(args.start_key):
+        ap.error('--auto-key and --start-key go together')
+
+    try:
+        driver = start_browser()
+    except Exception as e:
+        print('FAIL: cannot start chromium/chromedriver: %s' % e, file=sys.stderr)
+        return 2
+    try:
+        run_checks(driver, args)
+    except Failure as e:
+        print('FAIL: %s' % e, file=sys.stderr)
+        dump_console(driver)
+        return 1
+    except Exception as e:
+        first = (getattr(e, 'msg', None) or str(e)).strip().splitlines()
+        print('FAIL: %s: %s' % (type(e).__name__, first[0] if first else ''), file=sys.stderr)
+        dump_console(driver)
+        return 1
+    finally:
+        try:
+            driver.quit()
+        except Exception:
+            pass
+    print('ok: all checks passed in %.1f s' % (time.monotonic() - START), flush=True)
+    return 0
+
+
+def dump_console(driver):
+    try:
+        for entry in driver.get_log('browser')[-20:]:
+            print('  console %s: %s' % (entry.get('level'), entry.get('message')), file=sys.stderr)
+    except Exception:
+        pass
+
+
+def run_checks(driver, args):
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.common.action_chains import ActionChains
+
+    def find(css):
+        return driver.find_element(By.CSS_SELECTOR, css)
+
+    def text(css):
+        return find(css).text.strip()
+
+    def hold(key, seconds):
+        """Press a key's button with the mouse, keep it down, release it."""
+        b = wait_for('the key %s' % key, lambda: find('[data-key="%s"]' % key), 5)
+        ActionChains(driver, duration=10).click_and_hold(b).perform()
+        time.sleep(seconds)
+        ActionChains(driver, duration=10).release().perform()
+
+    def run_state():
+        return text('[data-run-state]')
+
+    try:
+        driver.get(args.url)
+    except Exception as e:
+        first = (getattr(e, 'msg', None) or str(e)).strip().splitlines()
+        raise Failure('cannot load %s: %s' % (args.url, first[0] if first else e))
+    state = wait_for('[data-nc-state] to have text', lambda: text('[data-nc-state]'), 20)
+    ok('page loaded, NC state "%s"' % state)
+    keys = driver.find_elements(By.CSS_SELECTOR, '[data-key]')
+    if not keys:
+        raise Failure('no [data-key] buttons on the page')
+    ok('%d machine keys on the panel' % len(keys))
+    wait_for('the run state', lambda: run_state() not in ('', '\u2014'), 10)
+
+    if run_state() == 'paused':
+        find('[data-run="run"]').click()
+        wait_for('the run to be running (it is "%s")' % run_state(), lambda: run_state() == 'running', 10)
+        ok('run started')
+    else:
+        ok('run is "%s"' % run_state())
+
+    if args.jog_key:
+        if args.manual_key:
+            hold(args.manual_key, 0.3)
+            ok('pressed %s' % args.manual_key)
+        axis = '[data-axis="%s"]' % args.jog_axis
+        before = wait_for('%s to show a position' % axis, lambda: text(axis) if text(axis) not in ('', '\u2014') else None, 10)
+        hold(args.jog_key, 1.0)
+        after = wait_for('%s to change from %s after holding %s' % (axis, before, args.jog_key),
+                         lambda: text(axis) if text(axis) != before else None, 5)
+        ok('holding %s moved %s from %s to %s' % (args.jog_key, args.jog_axis, before, after))
+        time.sleep(0.3)
+        settled = text(axis)
+        time.sleep(0.5)
+        if abs(float(text(axis)) - float(settled)) > 0.01:  # at rest, not quantisation noise
+            raise Failure('%s still moves after %s was released (%s, then %s)' % (args.jog_axis, args.jog_key, settled, text(axis)))
+        ok('%s stopped after the release (%s)' % (args.jog_axis, settled))
+
+    if args.auto_key:
+        line = lambda: int(find('[data-current-line]').get_attribute('data-current-line') or 0)
+        first = line()
+        hold(args.auto_key, 0.3)
+        hold(args.start_key, 0.3)
+        seen = set()
+
+        def advanced():
+            n = line()
+            seen.add(n)
+            return n if (n > 0 and n != first) or len([s for s in seen if s > 0]) > 1 else None
+        n = wait_for('the current line to advance from %d after %s, %s' % (first, args.auto_key, args.start_key), advanced, 10)
+        ok('%s, %s: the current line went from %d to %d ("%s")' % (args.auto_key, args.start_key, first, n, text('[data-current-line]')))
+
+    find('[data-run="pause"]').click()
+    wait_for('the run to be paused (it is "%s")' % run_state(), lambda: run_state() == 'paused', 10)
+    t0 = float(text('[data-time]'))
+    time.sleep(0.3)
+    t1 = float(text('[data-time]'))
+    if t1 != t0:
+        raise Failure('the time moves while paused (%.3f, then %.3f)' % (t0, t1))
+    ok('paused at t = %.3f s' % t1)
+    find('[data-run="step"]').click()
+    t2 = wait_for('the time to advance after Step', lambda: float(text('[data-time]')) if float(text('[data-time]')) > t1 else None, 5)
+    if t2 - t1 > 0.5:
+        raise Failure('one step advanced the time by %.3f s, more than a PLC cycle should' % (t2 - t1))
+    ok('step advanced the time by %.3f s (%.3f -> %.3f)' % (t2 - t1, t1, t2))
+
+    canvas = find('canvas[data-view="machine"]')
+    time.sleep(0.3)  # a frame after the last state
+    png = canvas.screenshot_as_png
+    with open(args.screenshot, 'wb') as f:
+        f.write(png)
+    colours, w, h = png_colours(png)
+    if colours < args.min_colours:
+        raise Failure('the 3D view has only %d colours (want >= %d): is WebGL rendering? (%s)' % (colours, args.min_colours, args.screenshot))
+    ok('3D view %dx%d has %d colours, saved to %s' % (w, h, colours, args.screenshot))
+
+    errors = [e for e in driver.get_log('browser') if e.get('level') == 'SEVERE'
+              and 'Failed to load resource' not in e.get('message', '')]
+    if errors:
+        raise Failure('errors in the browser console: ' + ' | '.join(e['message'] for e in errors[:5]))
+    ok('no script errors in the browser console')
+
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -1,0 +1,146 @@
+// The operator panel: every machine key of the model as a button that is held while pressed.
+import {el, postKey} from './api.js';
+
+// Groups by name pattern, first match wins; a key no pattern knows goes to "Other", so that
+// every key of the model is on the panel.
+const GROUPS = [
+  {id: 'mode', title: 'Mode', re: /^m(AUTO|MANU|MDI|REF|EDIT|JOGM\d*)$/i},
+  {id: 'program', title: 'Program', re: /^m(START|STOP|RESET|SBL|BSL|DRY|CYCLE|HOLD|FEEDHOLD)/i},
+  {id: 'jog', title: 'Jog', re: /^m(JG|JOG|MG|HW|INC)/i},
+  {id: 'spindle', title: 'Spindle', re: /^m(A\d+CM\d+|SP|S\d|M\d+$)/i},
+  {id: 'restart', title: 'Restart', re: /^m(REPOS|RESTA|RaR)/i},
+  {
+    id: 'machine',
+    title: 'Machine',
+    re: /^m(COOLANT|DOOR|TAILSTOCK|CHUCK|CLAMP|LIGHT|CONVEYOR|QUILL)/i
+  },
+  {id: 'other', title: 'Other', re: /./},
+];
+
+const LABELS = {
+  mAUTO: 'AUTO',
+  mMANU: 'MANUAL',
+  mSTART: 'CYCLE\nSTART',
+  mSTOP: 'FEED\nHOLD',
+  mRESET: 'RESET',
+  mSBL: 'SINGLE\nBLOCK',
+  mREPOS: 'REPOS',
+  mRESTA: 'BLOCK\nRESTART',
+  mRaR_OFF: 'RaR\nOFF',
+  mCOOLANT: 'COOLANT',
+  mDOOR: 'DOOR',
+  mTAILSTOCK: 'QUILL',
+  mMGPOS: 'TURRET\n+',
+  mMGNEG: 'TURRET\n\u2212',
+};
+
+function label(name) {
+  if (LABELS[name]) return LABELS[name];
+  let m = /^mJG(POS|NEG)_(\w+)$/.exec(name);
+  if (m) return `${m[2]} ${m[1] === 'POS' ? '+' : '\u2212'}`;
+  m = /^mJOGM(\d)$/.exec(name);
+  if (m) return `JOG\nbit ${m[1]}`;
+  m = /^mA(\d+)CM(\d+)$/.exec(name);
+  if (m) return `M${m[2]}\nA${m[1]}`;
+  return name.replace(/^m/, '');
+}
+
+// Jog keys in axis pairs, minus before plus, as on a real panel.
+function jogOrder(a, b) {
+  const k = (n) => {
+    const m = /^mJG(POS|NEG)_(\w+)$/.exec(n);
+    return m ? `0${m[2]}${m[1] === 'NEG' ? 0 : 1}` : `1${n}`;
+  };
+  return k(a) < k(b) ? -1 : k(a) > k(b) ? 1 : 0;
+}
+
+const LED_KEYS = ['mAUTO', 'mMANU', 'mSTART', 'mSTOP'];
+
+export class OperatorPanel {
+  constructor(root, keys) {
+    this.root = root;
+    this.buttons = new Map();
+    const groups = GROUPS.map((g) => ({...g, keys: []}));
+    for (const k of keys) groups.find((g) => g.re.test(k)).keys.push(k);
+    const jog = groups.find((g) => g.id === 'jog');
+    jog.keys.sort(jogOrder);
+    for (const g of groups) {
+      if (!g.keys.length) continue;
+      const box =
+          el('div', {class: `keygroup kg-${g.id}`}, el('div', {class: 'kg-title', text: g.title}));
+      const grid = el('div', {class: 'kg-keys'});
+      for (const k of g.keys) grid.append(this.button(k));
+      box.append(grid);
+      root.append(box);
+    }
+    // A key must not stay pressed when the page loses the pointer or the focus.
+    window.addEventListener('blur', () => this.releaseAll());
+    document.addEventListener('visibilitychange', () => {
+      if (document.hidden) this.releaseAll();
+    });
+  }
+
+  button(name) {
+    const lines = label(name).split('\n');
+    const b =
+        el('button', {class: 'key', 'data-key': name, title: name, type: 'button'},
+           el('span', {class: 'led'}),
+           el('span', {class: 'key-label'}, ...lines.flatMap((l, i) => (i ? [el('br'), l] : [l]))),
+           el('span', {class: 'key-name', text: name}));
+    b.classList.add(`key-${name.replace(/[^A-Za-z0-9_]/g, '')}`);
+    if (LED_KEYS.includes(name)) b.classList.add('has-led');
+    const press = () => {
+      if (b.classList.contains('held')) return;
+      b.classList.add('held');
+      postKey(name, true);
+    };
+    const release = () => {
+      if (!b.classList.contains('held')) return;
+      b.classList.remove('held');
+      postKey(name, false);
+    };
+    b.addEventListener('pointerdown', (e) => {
+      if (e.button !== 0) return;
+      e.preventDefault();  // no focus steal, no text selection, no emulated mouse events
+      press();
+    });
+    for (const ev of ['pointerup', 'pointerleave', 'pointercancel'])
+      b.addEventListener(ev, release);
+    b.addEventListener('keydown', (e) => {
+      if ((e.key === ' ' || e.key === 'Enter') && !e.repeat) {
+        e.preventDefault();
+        press();
+      }
+    });
+    b.addEventListener('keyup', (e) => {
+      if (e.key === ' ' || e.key === 'Enter') {
+        e.preventDefault();
+        release();
+      }
+    });
+    b.addEventListener('blur', release);
+    b.addEventListener('contextmenu', (e) => e.preventDefault());  // a long touch is a held key
+    b.release = release;
+    this.buttons.set(name, b);
+    return b;
+  }
+
+  releaseAll() {
+    for (const b of this.buttons.values()) b.release();
+  }
+
+  // The LEDs show what the NC reports, not what was pressed.
+  update(state) {
+    const nc = state.nc || {};
+    const lit = {
+      mAUTO: nc.mode === 'automatic',
+      mMANU: nc.mode === 'manual',
+      mSTART: nc.state === 'running',
+      mSTOP: nc.state === 'hold',
+    };
+    for (const [name, on] of Object.entries(lit)) {
+      const b = this.buttons.get(name);
+      if (b && b.classList.contains('lit') !== on) b.classList.toggle('lit', on);
+    }
+  }
+}
