@@ -35,8 +35,28 @@ async function main() {
     }
   }
   setText($('#n-signals'), model.signals_count != null ? String(model.signals_count) : '');
+  // A replay (vmt view) is watched, not operated: a time slider instead of the keys.
+  const replay = model.pace === 'replay';
+  const seek = $('[data-seek]');
+  let seeking = false;
+  if (replay) {
+    seek.hidden = false;
+    seek.max = String(model.end_s || 1);
+    seek.addEventListener('input', () => {
+      seeking = true;
+    });
+    seek.addEventListener('change', () => {
+      seeking = false;
+      postRun({action: 'seek', t: Number(seek.value)});
+    });
+  }
 
   const panel = new OperatorPanel($('#operator-panel'), model.keys || []);
+  if (replay)
+    for (const b of document.querySelectorAll('[data-key]')) {
+      b.disabled = true;
+      b.title = 'a replay is watched, not operated';
+    }
   const nc = new NcScreen($('#nc'), model);
   const tabs = new Tabs();
   const plot = new Plot($('#plot'), model, {
@@ -55,8 +75,12 @@ async function main() {
   monitor.setWanted(() => !document.hidden && (tabs.current === 'signals' || plot.hasSignals()));
   const events = new EventLog($('#events'), {
     onCount: (n) => setText($('#n-events'), String(n)),
-    onSelect: (e) => status(
-        `event at t = ${typeof e.t === 'number' ? e.t.toFixed(3) : e.t} s: ${e.event}`, 'info'),
+    onSelect: (e) => {
+      status(
+          `event at t = ${typeof e.t === 'number' ? e.t.toFixed(3) : e.t} s: ${e.event}`, 'info');
+      // in a replay an event takes the run to its time
+      if (replay && typeof e.t === 'number') postRun({action: 'seek', t: e.t});
+    },
   });
   tabs.onChange = (name) => {
     plot.setVisible(name === 'plot');
@@ -99,6 +123,7 @@ async function main() {
   const apply = (state) => {
     lastRun = state.run;
     setText($('[data-time]'), typeof state.t === 'number' ? state.t.toFixed(3) : '—');
+    if (replay && !seeking && typeof state.t === 'number') seek.value = String(state.t);
     setText($('#cycle'), String(state.cycle ?? '—'));
     const run = $('#run-state');
     setText(run, state.run || '—');

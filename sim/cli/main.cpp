@@ -20,6 +20,7 @@
 #include "render/image.hpp"
 #include "render/image_compare.hpp"
 #include "sim/cli/serve.hpp"
+#include "sim/cli/view.hpp"
 #include "sim/model/gateway_layout.hpp"
 #include "sim/model/model_error.hpp"
 #include "sim/runner/runner.hpp"
@@ -331,6 +332,20 @@ Command AddServe(CLI::App& app) {
           }};
 }
 
+Command AddView(CLI::App& app) {
+  auto o = std::make_shared<sim::ViewOptions>();
+  CLI::App* view = app.add_subcommand(
+      "view",
+      "Replay a finished run in the operator station: the machine, the NC screen, the "
+      "events, a time slider");
+  view->add_option("out", o->out_dir, "Output folder of vmt run or vmt serve")->required();
+  view->add_option("--http", o->http, "HOST:PORT to serve the page on (port 0: any)")
+      ->capture_default_str();
+  view->add_option("--http-token", o->http_token,
+                   "Token every request must carry (needed off loopback)");
+  return {view, [o] { return sim::View(*o); }};
+}
+
 /// `vmt study repos` and `vmt study merge`.
 std::vector<Command> AddStudy(CLI::App& app) {
   struct Args {
@@ -428,8 +443,8 @@ int main(int argc, char** argv) {
   CLI::App app{"vmt: a virtual machine tool (CNC kernel + simulated lathe)"};
   app.require_subcommand(1);
 
-  std::vector<Command> commands = {AddRun(app), AddSnapshot(app), AddCheck(app), AddSignals(app),
-                                   AddServe(app)};
+  std::vector<Command> commands = {AddRun(app),     AddSnapshot(app), AddCheck(app),
+                                   AddSignals(app), AddServe(app),    AddView(app)};
   for (Command& c : AddStudy(app)) commands.push_back(std::move(c));
   commands.push_back(AddImgdiff(app));
 

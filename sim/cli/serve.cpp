@@ -159,40 +159,11 @@ std::string ServeRealtime(const ServeOptions& o, SceneRun& run, control::plc::Mo
 /// are taken at the start of a cycle. Returns why it stopped.
 std::string ServeStation(SceneRun& run, station::StationSession& station,
                          const std::function<void()>& cycle) {
-  using Clock = std::chrono::steady_clock;
-  const auto period = std::chrono::duration<double>(run.ticks_per_plc_cycle() * 250e-6);
-  station::RunControl& control = station.control();
-  auto anchor = Clock::now();
-  int64_t anchor_tick = run.tick();
   while (!run.done()) {
     if (g_stop) return "signal";
-    station.TakeInputs(run);
-    if (control.changed) {
-      control.changed = false;
-      anchor = Clock::now();
-      anchor_tick = run.tick();
-    }
-    if (!control.running && control.steps == 0) {
-      station.Publish(run, "paused");
-      station.Wait(std::chrono::milliseconds(20));
-      continue;
-    }
-    if (control.running && control.speed > 0) {
-      const double cycles =
-          static_cast<double>(run.tick() - anchor_tick) / run.ticks_per_plc_cycle();
-      const auto due =
-          anchor + std::chrono::duration_cast<Clock::duration>(period * (cycles / control.speed));
-      const auto now = Clock::now();
-      if (now < due) {
-        station.Publish(run, "running");
-        station.Wait(std::min(std::chrono::duration_cast<std::chrono::milliseconds>(due - now),
-                              std::chrono::milliseconds(20)));
-        if (Clock::now() < due) continue;
-      }
-    }
-    if (!control.running) --control.steps;
+    if (!station.CycleDue(run)) continue;
     cycle();
-    station.Publish(run, control.running ? "running" : "paused", !control.running);
+    station.Published(run);
   }
   return "end of scene";
 }

@@ -342,6 +342,8 @@ RunResult SceneRun::State::Finish() {
   if (recorder.writing()) {
     nlohmann::ordered_json summary;
     summary["scene"] = scene.name;
+    // vmt view replays the run from here: the scene, the backend and the operator's inputs.
+    summary["scene_file"] = std::filesystem::absolute(scene.file).lexically_normal().string();
     summary["backend"] = ToString(options.backend.value_or(scene.backend));
     summary["simulated_time_s"] = result.simulated_s;
     summary["wall_time_s"] = result.wall_s;

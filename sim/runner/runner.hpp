@@ -112,6 +112,8 @@ class SceneRun {
   /// The machine's joint positions now (m | rad, one per joint of the model).
   std::vector<double> joint_positions() const;
   int64_t tick() const;
+  /// Where the run ends (s): the scene's duration or RunOptions::until_s.
+  double end_s() const;
 
  private:
   struct State;

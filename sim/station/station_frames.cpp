@@ -138,6 +138,7 @@ std::string ModelJson(const SceneRun& run, const std::string& pace) {
     program = {{"file", scene.nc.programs[0]->program.files[0]}, {"lines", ProgramLines(scene)}};
   return Json{{"scene", scene.name},
               {"pace", pace},
+              {"end_s", run.end_s()},
               {"links", std::move(links)},
               {"cameras", cameras},
               {"keys", keys},

@@ -16,6 +16,11 @@ void StationHub::PublishSignals(std::string json) {
   signals_ = std::move(frame);
 }
 
+bool StationHub::StateWanted() const {
+  std::lock_guard lock(mutex_);
+  return Clock::now() - state_asked_ < std::chrono::seconds(2);
+}
+
 bool StationHub::SignalsWanted() const {
   std::lock_guard lock(mutex_);
   return Clock::now() - signals_asked_ < std::chrono::seconds(2);
@@ -47,6 +52,7 @@ std::string StationHub::State() const {
   std::shared_ptr<const std::string> frame;
   {
     std::lock_guard lock(mutex_);
+    state_asked_ = Clock::now();
     frame = state_;
   }
   return frame ? *frame : std::string("{}");

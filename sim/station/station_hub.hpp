@@ -17,7 +17,7 @@ namespace vmt::sim::station {
 
 /// One request of a page: a key or signal value, or run control.
 struct StationInput {
-  enum class Kind { kSignal, kRun, kPause, kStep };
+  enum class Kind { kSignal, kRun, kPause, kStep, kSeek };
   Kind kind = Kind::kSignal;
   std::string signal;
   double value = 0;
@@ -32,7 +32,8 @@ class StationHub {
   // The simulation's side.
   void PublishState(std::string json);
   void PublishSignals(std::string json);
-  /// A page has asked for the signals within the last two seconds: worth building them.
+  /// A page has asked for the state (the signals) within the last two seconds: worth building.
+  bool StateWanted() const;
   bool SignalsWanted() const;
   void AddEvent(std::string json);
   std::vector<StationInput> TakeInputs();
@@ -52,6 +53,7 @@ class StationHub {
   mutable std::mutex mutex_;
   std::condition_variable input_queued_;
   std::shared_ptr<const std::string> state_, signals_;
+  mutable std::chrono::steady_clock::time_point state_asked_{};
   std::chrono::steady_clock::time_point signals_asked_{};
   std::deque<std::string> events_;
   size_t events_dropped_ = 0;

@@ -113,7 +113,8 @@ StationServer::StationServer(StationHub& hub, StationServerOptions o)
     }
     Reply(res, 200, hub.Events(from));
   });
-  http.Post("/api/key", [&hub, keys = o.keys](const httplib::Request& req, httplib::Response& res) {
+  http.Post("/api/key", [&hub, keys = o.keys, refused = o.operate_refused](
+                            const httplib::Request& req, httplib::Response& res) {
     const auto body = Body(req, res);
     if (!body) return;
     const auto name = body->find("name");
@@ -121,6 +122,7 @@ StationServer::StationServer(StationHub& hub, StationServerOptions o)
     if (name == body->end() || !name->is_string() || pressed == body->end() ||
         !pressed->is_boolean())
       return Fail(res, 400, R"(expected {"name": KEY, "pressed": true | false})");
+    if (!refused.empty()) return Fail(res, 403, refused);
     if (std::find(keys.begin(), keys.end(), name->get<std::string>()) == keys.end())
       return Fail(res, 404, "no machine key " + name->get<std::string>());
     if (!hub.Push({StationInput::Kind::kSignal, *name, pressed->get<bool>() ? 1.0 : 0.0}))
@@ -143,27 +145,34 @@ StationServer::StationServer(StationHub& hub, StationServerOptions o)
       return Fail(res, 429, "too many inputs waiting for the next PLC cycle");
     Reply(res, 200, R"({"ok":true})");
   });
-  http.Post("/api/run", [&hub, refused = o.run_control_refused](const httplib::Request& req,
-                                                                httplib::Response& res) {
+  http.Post("/api/run", [&hub, refused = o.run_control_refused, seekable = o.seekable](
+                            const httplib::Request& req, httplib::Response& res) {
     const auto body = Body(req, res);
     if (!body) return;
     const std::string action = body->value("action", "");
-    const StationInput::Kind kind = action == "run"     ? StationInput::Kind::kRun
-                                    : action == "pause" ? StationInput::Kind::kPause
-                                    : action == "step"  ? StationInput::Kind::kStep
-                                                        : StationInput::Kind::kSignal;
+    const StationInput::Kind kind = action == "run"                ? StationInput::Kind::kRun
+                                    : action == "pause"            ? StationInput::Kind::kPause
+                                    : action == "step"             ? StationInput::Kind::kStep
+                                    : action == "seek" && seekable ? StationInput::Kind::kSeek
+                                                                   : StationInput::Kind::kSignal;
     if (kind == StationInput::Kind::kSignal)
-      return Fail(res, 400, R"(expected {"action": "run" | "pause" | "step", "speed": factor})");
-    // Run's speed: a real-time factor, 0 for as fast as the machine allows.
-    const auto speed = body->find("speed");
-    double factor = 1;
-    if (speed != body->end()) {
+      return Fail(res, 400,
+                  seekable ? R"(expected {"action": "run" | "pause" | "step" | "seek"})"
+                           : R"(expected {"action": "run" | "pause" | "step", "speed": factor})");
+    // Run's speed: a real-time factor, 0 for as fast as the machine allows; seek's time.
+    double value = 1;
+    if (kind == StationInput::Kind::kSeek) {
+      const auto t = body->find("t");
+      if (t == body->end() || !t->is_number() || !(t->get<double>() >= 0 && t->get<double>() < 1e9))
+        return Fail(res, 400, "t: expected the simulated time to go to, seconds >= 0");
+      value = t->get<double>();
+    } else if (const auto speed = body->find("speed"); speed != body->end()) {
       if (!speed->is_number() || !(speed->get<double>() >= 0 && speed->get<double>() <= 1000))
         return Fail(res, 400, "speed: expected a real-time factor from 0 (fastest) to 1000");
-      factor = speed->get<double>();
+      value = speed->get<double>();
     }
     if (!refused.empty()) return Fail(res, 409, refused);
-    if (!hub.Push({kind, "", factor})) return Fail(res, 429, "too many inputs waiting");
+    if (!hub.Push({kind, "", value})) return Fail(res, 429, "too many inputs waiting");
     Reply(res, 200, R"({"ok":true})");
   });
   http.set_error_handler([](const httplib::Request&, httplib::Response& res) {

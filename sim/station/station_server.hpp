@@ -29,6 +29,10 @@ struct StationServerOptions {
   std::function<std::string(const std::string& signal, double value)> check_signal;
   /// Why the page may not pause, run or step, or "" (an external PLC is the lockstep clock).
   std::string run_control_refused;
+  /// Why the page may not press keys, or "" (a replay is watched, not operated).
+  std::string operate_refused;
+  /// POST /api/run {"action": "seek", "t": s} goes to a time (a replay).
+  bool seekable = false;
 };
 
 class StationServer {

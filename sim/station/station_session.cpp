@@ -20,12 +20,18 @@ void StationSession::Open(SceneRun& run, StationServerOptions options, const std
   for (const control::IoInfo& io : run.scene().model->io)
     if (io.key) options.keys.push_back(io.name);
   const control::gateway::SignalImage* image = run.image();
-  options.check_signal = [&run, image](const std::string& signal, double value) {
-    std::string error = run.OperateError(signal);
-    if (error.empty())
-      error = control::gateway::ValueError(image->table()[image->Find(signal)].type, value);
-    return error;
-  };
+  if (options.operate_refused.empty()) {
+    options.check_signal = [&run, image](const std::string& signal, double value) {
+      std::string error = run.OperateError(signal);
+      if (error.empty())
+        error = control::gateway::ValueError(image->table()[image->Find(signal)].type, value);
+      return error;
+    };
+  } else {
+    options.check_signal = [refused = options.operate_refused](const std::string&, double) {
+      return refused;
+    };
+  }
   options.run_control_refused = run_control_refused;
   server_ = std::make_unique<StationServer>(hub_, std::move(options));
   Publish(run, control_.running ? "running" : "paused", true);
@@ -65,15 +71,57 @@ void StationSession::TakeInputs(SceneRun& run) {
         control_.running = false;
         ++control_.steps;
         break;
+      case StationInput::Kind::kSeek:  // a replay goes to the time and holds there
+        control_.seek = in.value;
+        control_.running = false;
+        control_.steps = 0;
+        control_.changed = true;
+        break;
     }
   }
   waiting_ = std::move(later);
 }
 
+bool StationSession::CycleDue(SceneRun& run) {
+  TakeInputs(run);
+  if (control_.changed) {
+    control_.changed = false;
+    anchor_ = Clock::now();
+    anchor_tick_ = run.tick();
+  }
+  if (!control_.running && control_.steps == 0) {
+    Publish(run, "paused");
+    Wait(std::chrono::milliseconds(20));
+    return false;
+  }
+  if (control_.running && control_.speed > 0) {
+    const std::chrono::duration<double> period(run.ticks_per_plc_cycle() * 250e-6);
+    const double cycles =
+        static_cast<double>(run.tick() - anchor_tick_) / run.ticks_per_plc_cycle();
+    const auto due =
+        anchor_ + std::chrono::duration_cast<Clock::duration>(period * (cycles / control_.speed));
+    const auto now = Clock::now();
+    if (now < due) {
+      Publish(run, "running");
+      Wait(std::min(std::chrono::duration_cast<std::chrono::milliseconds>(due - now),
+                    std::chrono::milliseconds(20)));
+      if (Clock::now() < due) return false;
+    }
+  }
+  if (!control_.running) --control_.steps;
+  return true;
+}
+
+void StationSession::Published(SceneRun& run) {
+  Publish(run, control_.running ? "running" : "paused", !control_.running);
+}
+
 void StationSession::Publish(SceneRun& run, const std::string& state, bool force) {
   if (!server_) return;
   const auto now = Clock::now();
-  if (!force && now - published_ < std::chrono::microseconds(16667)) return;
+  // No page asking: no frame to build (the next request gets the last one, then fresh ones).
+  if (!force && (now - published_ < std::chrono::microseconds(16667) || !hub_.StateWanted()))
+    return;
   published_ = now;
   const int64_t cycle = run.tick() / std::max<int64_t>(1, run.ticks_per_plc_cycle());
   hub_.PublishState(StateJson(run, cycle, state, events_, marks_));

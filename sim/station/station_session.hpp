@@ -22,6 +22,7 @@ namespace vmt::sim::station {
 /// What the page asked of the serve loop's clock.
 struct RunControl {
   bool running = false;
+  std::optional<double> seek;  ///< a replay: go to this simulated time (s)
   double speed = 1;      ///< real-time factor while running; 0: as fast as the machine allows
   int64_t steps = 0;     ///< PLC cycles to run while paused
   bool changed = false;  ///< running or speed changed since the last TakeInputs: re-anchor
@@ -45,10 +46,25 @@ class StationSession {
   /// waits for the next cycle, in order.
   void TakeInputs(SceneRun& run);
   RunControl& control() { return control_; }
-  /// Publishes the state (and the signals, if a page watches them) when a 60th of a second has
-  /// passed since the last, or at once with `force`. `state`: "running", "paused", "ended".
+  /// Publishes the state (and the signals, if a page watches them) when a page has asked for
+  /// one lately and a 60th of a second has passed since the last, or at once with `force`. `state`:
+  /// "running", "paused", "ended".
   void Publish(SceneRun& run, const std::string& state, bool force = false);
   void Wait(std::chrono::milliseconds timeout) { hub_.WaitForInput(timeout); }
+  /// The station as the run's clock: takes the inputs, and returns true when a PLC cycle is due
+  /// now (a step asked for, or running and its wall time at the real-time factor has come).
+  /// Otherwise it publishes, waits at most 20 ms for an input and returns false.
+  bool CycleDue(SceneRun& run);
+  /// After a cycle that CycleDue allowed: publishes (at once after a step).
+  void Published(SceneRun& run);
+  /// Marks from a run's events without listing the events (a replay lists the recorded ones).
+  void Mark(const nlohmann::ordered_json& event) { marks_.Note(event); }
+  void ClearMarks() { marks_ = {}; }
+  /// Lists an event recorded earlier (a replay's events.jsonl line).
+  void Listed(std::string json) {
+    ++events_;
+    hub_.AddEvent(std::move(json));
+  }
   /// Discards what the pages sent (the run has ended: nothing to act on).
   void DropInputs() {
     hub_.TakeInputs();
@@ -65,6 +81,8 @@ class StationSession {
   RunControl control_;
   std::unique_ptr<StationServer> server_;
   std::chrono::steady_clock::time_point published_{}, signals_published_{};
+  std::chrono::steady_clock::time_point anchor_{};  ///< wall time of anchor_tick_ while running
+  int64_t anchor_tick_ = 0;
 };
 
 }  // namespace vmt::sim::station

@@ -131,6 +131,34 @@ else
   echo "skipped: no chromium-driver / python3-selenium (tools/setup-debian.sh installs them)"
 fi
 
+# --- vmt view: the recorded run again, at any time; watched, not operated.
+timeout 600 "$vmt" view "$out/live" --http 127.0.0.1:0 >"$out/view.log" 2>&1 &
+pid=$!
+for _ in $(seq 1200); do
+  port=$(sed -n 's|.*operator station on http://127.0.0.1:\([0-9]*\)/.*|\1|p' "$out/view.log")
+  [ -n "$port" ] && break; sleep 0.05
+done
+status 200 GET /api/model
+grep -q '"pace":"replay"' "$out/last.json" || fail "vmt view's model is not a replay"
+status 200 POST /api/run '{"action":"seek","t":10.5}'
+wait_state 'abs(d["t"] - 10.5) < 1e-9 and d["nc"]["state"] == "ended" and d["run"] == "paused"' 30
+status 200 POST /api/run '{"action":"seek","t":1.5}'
+wait_state 'abs(d["t"] - 1.5) < 1e-9 and d["nc"]["state"] == "running"' 30
+status 403 POST /api/key '{"name":"mAUTO","pressed":true}'
+status 400 POST /api/run '{"action":"seek","t":-1}'
+status 200 POST /api/run '{"action":"run","speed":0}'
+wait_state 'd["run"] == "ended"' 60
+if [ -x /usr/bin/chromedriver ] && "$python" -c 'import selenium' 2>/dev/null; then
+  timeout 300 "$python" "$src/tests/station/station_page.py" --url "$(url /)" \
+    --screenshot "$out/view-canvas.png" --seek 3.25 >"$out/view-page.log" 2>&1 ||
+    fail "vmt view's page in chromium: $(tail -5 "$out/view-page.log")"
+fi
+kill -INT $pid; wait $pid
+grep -q "differs from the recorded" "$out/view.log" && fail "the replay's digest differs: $(cat "$out/view.log")"
+status_missing=$("$vmt" view "$out/nothing-here" --http 127.0.0.1:0 2>&1)
+[ $? = 2 ] && echo "$status_missing" | grep -q "no summary.json" ||
+  fail "vmt view of a folder without a run: $status_missing"
+
 # --- Off loopback only with a token, and then every request carries it.
 "$vmt" serve "$scene" --http 0.0.0.0:0 --out "$out/open" >"$out/open.log" 2>&1
 [ $? = 2 ] && grep -q "needs --http-token" "$out/open.log" || fail "a non-loopback address without a token was not refused"

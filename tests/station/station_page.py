@@ -3,6 +3,7 @@
 
     /usr/bin/python3 tests/station/station_page.py --url http://127.0.0.1:PORT/ --screenshot OUT.png
         [--jog-key mJGPOS_X --jog-axis X] [--manual-key mMANU] [--auto-key mAUTO --start-key mSTART]
+        [--seek T]   (a replay of vmt view: the time slider goes to T, the keys are disabled)
 
 Drives Debian's chromium through chromedriver (selenium 4), headless with SwiftShader so that
 WebGL renders without a GPU. Prints one "ok: ..." line per check; exits 1 with "FAIL: ..." at
@@ -134,6 +135,7 @@ def main():
     ap.add_argument('--auto-key')
     ap.add_argument('--start-key')
     ap.add_argument('--min-colours', type=int, default=64)
+    ap.add_argument('--seek', type=float, help='a replay (vmt view): move the time slider here')
     args = ap.parse_args()
     if bool(args.jog_key) != bool(args.jog_axis):
         ap.error('--jog-key and --jog-axis go together')
@@ -205,6 +207,19 @@ def run_checks(driver, args):
         raise Failure('no [data-key] buttons on the page')
     ok('%d machine keys on the panel' % len(keys))
     wait_for('the run state', lambda: run_state() not in ('', '\u2014'), 10)
+
+    if args.seek is not None:
+        slider = find('[data-seek]')
+        if not slider.is_displayed():
+            raise Failure('a replay shows no time slider [data-seek]')
+        if find('[data-key]').is_enabled():
+            raise Failure("a replay's keys are enabled")
+        driver.execute_script(
+            "arguments[0].value = arguments[1];"
+            "arguments[0].dispatchEvent(new Event('change'));", slider, str(args.seek))
+        want = '%.3f' % args.seek
+        wait_for('the time to go to %s after the slider moved' % want, lambda: text('[data-time]') == want, 20)
+        ok('the time slider took the replay to t = %s s' % want)
 
     if run_state() == 'paused':
         find('[data-run="run"]').click()

@@ -14,7 +14,9 @@ namespace {
 
 TEST(StationHubTest, TheLatestFrameWins) {
   StationHub hub;
+  EXPECT_FALSE(hub.StateWanted());
   EXPECT_EQ(hub.State(), "{}");
+  EXPECT_TRUE(hub.StateWanted());
   hub.PublishState(R"({"t":1})");
   hub.PublishState(R"({"t":2})");
   EXPECT_EQ(hub.State(), R"({"t":2})");
