@@ -25,8 +25,12 @@ TEST(RunnerOperatorTest, AKeyTakenLiveIsReplayedToTheSameDigest) {
   SceneRun live(scene, options);
   ASSERT_EQ(live.ticks_per_plc_cycle(), kCycle);
   while (!live.done()) {
-    if (live.tick() == 5 * kCycle) EXPECT_EQ(live.Operate("mCOOLANT", 1), "");
-    if (live.tick() == 6 * kCycle) EXPECT_EQ(live.Operate("mCOOLANT", 0), "");
+    if (live.tick() == 5 * kCycle) {
+      EXPECT_EQ(live.Operate("mCOOLANT", 1), "");
+    }
+    if (live.tick() == 6 * kCycle) {
+      EXPECT_EQ(live.Operate("mCOOLANT", 0), "");
+    }
     live.Step();
   }
   const RunResult a = live.Finish();
