@@ -2,6 +2,7 @@
 // 3D view, the operator panel, the NC screen, the signal monitor, the plot and the event log.
 import {getJSON, postRun, setText, status} from './api.js';
 import {EventLog} from './events.js';
+import {Functions} from './functions.js';
 import {NcScreen} from './ncscreen.js';
 import {OperatorPanel} from './panel.js';
 import {Plot} from './plot.js';
@@ -58,6 +59,7 @@ async function main() {
       b.title = 'a replay is watched, not operated';
     }
   const nc = new NcScreen($('#nc'), model);
+  const functions = new Functions($('#functions'));
   const tabs = new Tabs();
   const plot = new Plot($('#plot'), model, {
     onSignalsChanged: (name, on) => {
@@ -137,6 +139,7 @@ async function main() {
                                             ''));
     if (view) view.update(state);
     nc.update(state);
+    if (tabs.current === 'functions') functions.update(state);
     panel.update(state);
     plot.sampleState(state);
     if (typeof state.events === 'number') events.announce(state.events);

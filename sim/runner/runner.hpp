@@ -75,6 +75,7 @@ class SceneRun {
   RunResult Finish();
   /// The gateway signals, null without an nc: section.
   control::gateway::SignalImage* image();
+  const control::gateway::SignalImage* image() const;
   int64_t ticks_per_plc_cycle() const;
   /// AXD_WR for an external PLC (vmt serve's Modbus AXD_WR block): the same path as the embedded
   /// PLC's (PlcScan::axd_wr), S-0-`ident` := `value` in the drive of axis number `axis`.

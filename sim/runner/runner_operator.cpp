@@ -78,6 +78,7 @@ const control::AmplifierTelegram& SceneRun::feedback() const {
 }
 std::vector<double> SceneRun::joint_positions() const { return state_->backend->JointPositions(); }
 int64_t SceneRun::tick() const { return state_->tick; }
+const control::gateway::SignalImage* SceneRun::image() const { return state_->image.get(); }
 double SceneRun::end_s() const { return state_->last_tick * kDriveTickS; }
 
 }  // namespace vmt::sim

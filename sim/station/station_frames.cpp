@@ -8,6 +8,7 @@
 #include "control/channel/channel.hpp"
 #include "control/nc/modal_g_codes.hpp"
 #include "render/mesh_primitives.hpp"
+#include "sim/runner/channel_events.hpp"
 #include "sim/scene/steps/timeline_play.hpp"
 
 namespace vmt::sim::station {
@@ -69,6 +70,39 @@ const char* Unit(control::AxisKind kind) {
   return kind == control::AxisKind::kLinear ? "mm" : "deg";
 }
 
+/// An event's JSON as a panel of the state: without its time and kind.
+Json Panel(nlohmann::ordered_json event) {
+  event.erase("t");
+  event.erase("event");
+  return Json(event);
+}
+
+/// The headstock's panel: the changeover's mode and target, and the PLC's side of it.
+Json HeadstockPanel(const control::channel::Channel& ch, const control::gateway::SignalImage* image,
+                    const StationMarks& marks) {
+  const control::axes::HeadstockChangeover* hs = ch.headstock();
+  if (!hs) return nullptr;
+  Json panel = {{"mode", ToString(hs->mode())},
+                {"target", ToString(hs->target())},
+                {"busy", hs->busy()},
+                {"axis", ch.HeadstockAxisName()},
+                {"position", Short(ch.HeadstockPosition())}};
+  Json signals = Json::object();
+  if (image)
+    for (int id = 0; id < image->size(); ++id) {
+      const std::string& name = image->table()[id].name;
+      const size_t dot = name.find('.');
+      const std::string family = dot == std::string::npos ? "" : name.substr(dot + 1);
+      if (family == "ROTMOD" || family == "ROTMOD_Q" || family == "SPMOD" || family == "SPMOD_Q")
+        signals[name] = image->Bool(id);
+    }
+  panel["signals"] = std::move(signals);
+  Json clutches = Json::object();
+  for (const auto& [name, state] : marks.clutches) clutches[name] = state;
+  panel["clutches"] = std::move(clutches);
+  return panel;
+}
+
 }  // namespace
 
 void StationMarks::Note(const nlohmann::ordered_json& event) {
@@ -87,6 +121,8 @@ void StationMarks::Note(const nlohmann::ordered_json& event) {
                  {"value", event.value("measured_value", 0.0)},
                  {"t", event.value("t", 0.0)}}
                 .dump();
+  } else if (kind == "clutch") {
+    clutches[event.value("name", "")] = event.value("state", "");
   } else if (kind == "nc" && event.value("state", "") == "idle") {
     guard.clear();  // Control-Reset acknowledged the refusal
   }
@@ -155,6 +191,7 @@ std::string StateJson(const SceneRun& run, int64_t plc_cycle, const std::string&
   for (const Eigen::Isometry3d& X : LinkPoses(m, run.joint_positions())) poses.push_back(Pose(X));
   const control::AmplifierTelegram& at = run.feedback();
   Json axes = Json::array(), nc = nullptr, messages = Json::array();
+  Json repos = nullptr, headstock = nullptr, block_search = nullptr;
   if (const control::channel::Channel* ch = run.channel()) {
     double feed_sq = 0;
     for (size_t a = 0; a < ch->config().axes.size(); ++a) {
@@ -188,6 +225,9 @@ std::string StateJson(const SceneRun& run, int64_t plc_cycle, const std::string&
             {"actual", Short(sp.actual_rpm)},
             {"shown", sp.speeds_shown}}},
           {"override", {{"feed", sp.feed_override}, {"spindle", sp.spindle_override}}}};
+    repos = Panel(ReposEvent(run.time_s(), ch->repos_status(&at)));
+    block_search = Panel(BlockSearchEvent(run.time_s(), *ch));
+    headstock = HeadstockPanel(*ch, run.image(), marks);
     for (const control::channel::OperatorMessage& msg : ch->messages())
       messages.push_back({{"number", msg.number},
                           {"text", msg.text.empty() ? "PLC message " + std::to_string(msg.number) +
@@ -210,7 +250,10 @@ std::string StateJson(const SceneRun& run, int64_t plc_cycle, const std::string&
               {"messages", std::move(messages)},
               {"events", events},
               {"guard", marks.guard.empty() ? Json(nullptr) : Json::parse(marks.guard)},
-              {"probe", marks.probe.empty() ? Json(nullptr) : Json::parse(marks.probe)}}
+              {"probe", marks.probe.empty() ? Json(nullptr) : Json::parse(marks.probe)},
+              {"repos", std::move(repos)},
+              {"headstock", std::move(headstock)},
+              {"block_search", std::move(block_search)}}
       .dump();
 }
 

@@ -3,6 +3,7 @@
 // from once, and the frames it polls (state, signals). Built on the simulation's thread from
 // the run between two steps; the HTTP threads only hand the text out.
 
+#include <map>
 #include <string>
 
 #include "sim/runner/runner.hpp"
@@ -14,6 +15,7 @@ namespace vmt::sim::station {
 struct StationMarks {
   std::string guard;  ///< {"parts":[..],"point":[x,y,z] m} of the last refusal, or empty
   std::string probe;  ///< {"drive":..,"value":..} of the last latch, or empty
+  std::map<std::string, std::string> clutches;  ///< each dog clutch's last state (clutch events)
   /// Takes what an event says about the marks (a refusal, a clear check after it, a latch).
   void Note(const nlohmann::ordered_json& event);
 };
@@ -24,7 +26,9 @@ struct StationMarks {
 std::string ModelJson(const SceneRun& run, const std::string& pace);
 
 /// GET /api/state: time, PLC cycle, run state, each link's world pose, the NC's state, mode,
-/// line and modal state, axes, messages, the event count and the marks.
+/// line and modal state, axes, messages, the event count and the marks; the REPOS screen
+/// (repositioning manual 2.2), the headstock (C-axis manual 2.3: mode, changeover, ROTMOD/SPMOD
+/// and their acknowledgements, clutches) and block search (its HLI state and figures).
 std::string StateJson(const SceneRun& run, int64_t plc_cycle, const std::string& run_state,
                       size_t events, const StationMarks& marks);
 

@@ -144,6 +144,8 @@ status 200 POST /api/run '{"action":"seek","t":10.5}'
 wait_state 'abs(d["t"] - 10.5) < 1e-9 and d["nc"]["state"] == "ended" and d["run"] == "paused"' 30
 status 200 POST /api/run '{"action":"seek","t":1.5}'
 wait_state 'abs(d["t"] - 1.5) < 1e-9 and d["nc"]["state"] == "running"' 30
+# The functions' panels: the REPOS screen, the headstock with its PLC signals, block search.
+wait_state 'd["repos"]["function"] == "none" and d["headstock"]["mode"] == "spindle" and "A03.SPMOD_Q" in d["headstock"]["signals"] and d["block_search"]["state"].startswith("HLI_BS_")' 10
 status 403 POST /api/key '{"name":"mAUTO","pressed":true}'
 status 400 POST /api/run '{"action":"seek","t":-1}'
 status 200 POST /api/run '{"action":"run","speed":0}'

@@ -51,6 +51,10 @@ TEST(StationFramesTest, ModelStateAndSignalsOfARun) {
   EXPECT_EQ(state["nc"]["mode"], "automatic");
   EXPECT_TRUE(state["guard"].is_null());
   ASSERT_EQ(state["axes"].size(), model["axes"].size());
+  EXPECT_EQ(state["repos"]["function"], "none");  // the REPOS screen, nothing called
+  EXPECT_EQ(state["headstock"]["mode"], "spindle");
+  EXPECT_TRUE(state["headstock"]["signals"].contains("A03.ROTMOD_Q"));
+  EXPECT_EQ(state["block_search"]["state"], "HLI_BS_INACTIVE");
 
   const Json signals = Json::parse(SignalsJson(run));
   bool key_writable = false, status_writable = true;
@@ -76,6 +80,8 @@ TEST(StationFramesTest, MarksFollowTheEvents) {
   EXPECT_DOUBLE_EQ(guard["point"][0].get<double>(), 0.0859);  // metres
   marks.Note({{"event", "probe_latch"}, {"drive", "X"}, {"measured_value", 29.99}, {"t", 1.2}});
   EXPECT_EQ(Json::parse(marks.probe)["drive"], "X");
+  marks.Note({{"event", "clutch"}, {"name", "K"}, {"state", "blocked"}});
+  EXPECT_EQ(marks.clutches.at("K"), "blocked");
   marks.Note({{"event", "nc"}, {"state", "idle"}});  // Control-Reset
   EXPECT_TRUE(marks.guard.empty());
 }
