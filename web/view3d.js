@@ -91,6 +91,7 @@ export class MachineView {
       });
       m.userData.colour = colour.clone();
       const mesh = new THREE.Mesh(g, m);
+      mesh.userData.name = v.name || '';
       group.add(mesh);
       group.userData.meshes.push(mesh);
     }
@@ -298,8 +299,63 @@ export class MachineView {
     this.lastT = state.t;
     if (state.tool_tip) this.addTip(state.tool_tip);
     this.updateGuard(state.guard);
+    if (typeof state.stock === 'number' && state.stock !== this.stockVersion) this.loadStock();
     this.updateMarker(this.probeMarker, state.probe && state.probe.point);
     this.updateLegend(state);
+    this.dirty = true;
+  }
+
+  // The workpiece as turned: cylinders along its link's z axis replace the stock's visuals.
+  // One request at a time; a newer version seen meanwhile is fetched after it.
+  async loadStock() {
+    if (this.stockLoading) return;
+    this.stockLoading = true;
+    try {
+      const r = await fetch('api/stock', {cache: 'no-store'});
+      const stock = await r.json();
+      this.showStock(stock);
+      this.stockVersion = stock.version;
+    } catch (e) {
+      // the state poll reports the connection; the next state asks again
+    } finally {
+      this.stockLoading = false;
+    }
+  }
+
+  showStock(stock) {
+    const group = this.linkByName.get(stock.link);
+    if (!group || !Array.isArray(stock.cylinders)) return;
+    if (this.stockGroup) {
+      this.stockGroup.parent.remove(this.stockGroup);
+      for (const m of this.stockGroup.children) m.geometry.dispose();
+    }
+    const original = group.userData.meshes.find((m) => m.userData.name === 'workpiece');
+    const material =
+        original ? original.material : new THREE.MeshStandardMaterial({color: 0xc7c9cc});
+    for (const m of group.userData.meshes)
+      if (m.userData.name === 'workpiece') m.visible = false;
+    this.stockGroup = new THREE.Group();
+    for (const [z0, length, radius, inner] of stock.cylinders) {
+      if (!(length > 0 && radius > 0)) continue;
+      // the profile of one run: a ring (or a disc) swept about the axis
+      const pts = inner > 0 ?
+          [
+            new THREE.Vector2(inner, 0), new THREE.Vector2(radius, 0),
+            new THREE.Vector2(radius, length), new THREE.Vector2(inner, length),
+            new THREE.Vector2(inner, 0)
+          ] :
+          [
+            new THREE.Vector2(0, 0), new THREE.Vector2(radius, 0),
+            new THREE.Vector2(radius, length), new THREE.Vector2(0, length)
+          ];
+      const g = new THREE.LatheGeometry(pts, 96);
+      const mesh = new THREE.Mesh(g, material);
+      // LatheGeometry turns about y; the spindle's axis is the link's z
+      mesh.rotation.x = Math.PI / 2;
+      mesh.position.z = z0;
+      this.stockGroup.add(mesh);
+    }
+    group.add(this.stockGroup);
     this.dirty = true;
   }
 
@@ -307,8 +363,9 @@ export class MachineView {
     const parts = guard && Array.isArray(guard.parts) ? guard.parts : [];
     if (parts.join('\n') !== this.guardParts.join('\n')) {
       for (const g of this.links) {
-        const red = parts.includes(g.name);
         for (const mesh of g.userData.meshes) {
+          // PathGuard names the collision parts; a model's visuals carry the same names
+          const red = parts.includes(g.name) || parts.includes(mesh.userData.name);
           mesh.material.color.copy(red ? GUARD_RED : mesh.material.userData.colour);
           mesh.material.emissive.setHex(red ? 0x4a0000 : 0x000000);
         }

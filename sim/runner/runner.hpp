@@ -13,6 +13,7 @@
 #include "control/drive_bus.hpp"
 #include "control/gateway/signal_image.hpp"
 #include "control/plc/axd_wr.hpp"
+#include "sim/collision/collision_world.hpp"
 #include "sim/scene/operator_steps.hpp"
 #include "sim/scene/scene.hpp"
 
@@ -115,6 +116,11 @@ class SceneRun {
   int64_t tick() const;
   /// Where the run ends (s): the scene's duration or RunOptions::until_s.
   double end_s() const;
+  /// The workpiece as turned so far (its solid of revolution as cylinders in its link's frame,
+  /// the rings included), and how many ticks have cut it: a new count, a new shape. Empty
+  /// without a workpiece that PathGuard turns.
+  std::vector<CylinderPart> TurnedStockCylinders() const;
+  int64_t stock_cuts() const;
 
  private:
   struct State;

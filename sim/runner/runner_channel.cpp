@@ -13,7 +13,10 @@ namespace vmt::sim {
 // note whether the spindle turns (the chuck is then checked as it sweeps).
 void SceneRun::State::FollowSpindle(double t) {
   const std::vector<double> q = backend->JointPositions();
-  if (cutter && cutter->Cut(q, t)) guard_parts_stale = true;
+  if (cutter && cutter->Cut(q, t)) {
+    guard_parts_stale = true;
+    ++stock_cuts;
+  }
   const int joint = path_guard->sweep().joint;
   if (joint < 0) return;
   const double cycle_s = channel->ticks_per_cycle() * kDriveTickS;

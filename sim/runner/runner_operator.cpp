@@ -79,6 +79,11 @@ const control::AmplifierTelegram& SceneRun::feedback() const {
 std::vector<double> SceneRun::joint_positions() const { return state_->backend->JointPositions(); }
 int64_t SceneRun::tick() const { return state_->tick; }
 const control::gateway::SignalImage* SceneRun::image() const { return state_->image.get(); }
+std::vector<CylinderPart> SceneRun::TurnedStockCylinders() const {
+  // Finer than PathGuard's: the page draws what is cut to a micrometre.
+  return state_->cutter ? state_->cutter->stock().Cylinders(1e-6) : std::vector<CylinderPart>{};
+}
+int64_t SceneRun::stock_cuts() const { return state_->stock_cuts; }
 double SceneRun::end_s() const { return state_->last_tick * kDriveTickS; }
 
 }  // namespace vmt::sim

@@ -69,6 +69,7 @@ struct SceneRun::State {
   std::unique_ptr<StockCutter> cutter;
   double spindle_angle = 0;
   bool guard_parts_stale = false;
+  int64_t stock_cuts = 0;  ///< ticks in which the turned stock changed
   void FollowSpindle(double t);
   /// The machine data pages of fast measurement: the channel's MTD(...) and the probe block's
   /// MTD_RD read and write the same ones.

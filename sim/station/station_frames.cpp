@@ -253,7 +253,20 @@ std::string StateJson(const SceneRun& run, int64_t plc_cycle, const std::string&
               {"probe", marks.probe.empty() ? Json(nullptr) : Json::parse(marks.probe)},
               {"repos", std::move(repos)},
               {"headstock", std::move(headstock)},
-              {"block_search", std::move(block_search)}}
+              {"block_search", std::move(block_search)},
+              {"stock", run.stock_cuts()}}
+      .dump();
+}
+
+std::string StockJson(const SceneRun& run) {
+  Json cylinders = Json::array();
+  std::string link;
+  for (const CylinderPart& c : run.TurnedStockCylinders()) {
+    link = c.link;
+    cylinders.push_back(
+        {Short(c.z_m), Short(c.length_m), Short(c.radius_m), Short(c.inner_radius_m)});
+  }
+  return Json{{"version", run.stock_cuts()}, {"link", link}, {"cylinders", std::move(cylinders)}}
       .dump();
 }
 

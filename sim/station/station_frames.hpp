@@ -32,6 +32,11 @@ std::string ModelJson(const SceneRun& run, const std::string& pace);
 std::string StateJson(const SceneRun& run, int64_t plc_cycle, const std::string& run_state,
                       size_t events, const StationMarks& marks);
 
+/// GET /api/stock: the workpiece as turned, `cylinders` of [z0, length, radius, inner radius]
+/// (metres, along the z axis of `link`), and `version` (StateJson's `stock`: a new one, a new
+/// shape).
+std::string StockJson(const SceneRun& run);
+
 /// GET /api/signals: every gateway signal with its value and whether the page may write it.
 std::string SignalsJson(SceneRun& run);
 

@@ -16,6 +16,21 @@ void StationHub::PublishSignals(std::string json) {
   signals_ = std::move(frame);
 }
 
+void StationHub::PublishStock(std::string json) {
+  auto frame = std::make_shared<const std::string>(std::move(json));
+  std::lock_guard lock(mutex_);
+  stock_ = std::move(frame);
+}
+
+std::string StationHub::Stock() const {
+  std::shared_ptr<const std::string> frame;
+  {
+    std::lock_guard lock(mutex_);
+    frame = stock_;
+  }
+  return frame ? *frame : std::string(R"({"version":0,"link":"","cylinders":[]})");
+}
+
 bool StationHub::StateWanted() const {
   std::lock_guard lock(mutex_);
   return Clock::now() - state_asked_ < std::chrono::seconds(2);

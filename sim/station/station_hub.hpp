@@ -32,6 +32,7 @@ class StationHub {
   // The simulation's side.
   void PublishState(std::string json);
   void PublishSignals(std::string json);
+  void PublishStock(std::string json);
   /// A page has asked for the state (the signals) within the last two seconds: worth building.
   bool StateWanted() const;
   bool SignalsWanted() const;
@@ -43,6 +44,7 @@ class StationHub {
   // The HTTP threads' side.
   std::string State() const;
   std::string Signals();
+  std::string Stock() const;
   /// {"total": N, "first": F, "events": [...]}: events from number `from` on (0-based over the
   /// run; `first` is the oldest still kept), at most kMaxEventsPerAnswer.
   std::string Events(size_t from) const;
@@ -52,7 +54,7 @@ class StationHub {
  private:
   mutable std::mutex mutex_;
   std::condition_variable input_queued_;
-  std::shared_ptr<const std::string> state_, signals_;
+  std::shared_ptr<const std::string> state_, signals_, stock_;
   mutable std::chrono::steady_clock::time_point state_asked_{};
   std::chrono::steady_clock::time_point signals_asked_{};
   std::deque<std::string> events_;

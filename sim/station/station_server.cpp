@@ -98,6 +98,9 @@ StationServer::StationServer(StationHub& hub, StationServerOptions o)
   http.Get("/api/state", [&hub](const httplib::Request&, httplib::Response& res) {
     Reply(res, 200, hub.State());
   });
+  http.Get("/api/stock", [&hub](const httplib::Request&, httplib::Response& res) {
+    Reply(res, 200, hub.Stock());
+  });
   http.Get("/api/signals", [&hub](const httplib::Request&, httplib::Response& res) {
     Reply(res, 200, hub.Signals());
   });

@@ -124,6 +124,14 @@ void StationSession::Publish(SceneRun& run, const std::string& state, bool force
     return;
   published_ = now;
   const int64_t cycle = run.tick() / std::max<int64_t>(1, run.ticks_per_plc_cycle());
+  // The turned stock first, so that a page seeing a new version in the state finds it.
+  if ((run.stock_cuts() != stock_published_ &&
+       (force || now - stock_at_ >= std::chrono::milliseconds(200))) ||
+      stock_published_ < 0) {
+    stock_at_ = now;
+    stock_published_ = run.stock_cuts();
+    hub_.PublishStock(StockJson(run));
+  }
   hub_.PublishState(StateJson(run, cycle, state, events_, marks_));
   if (hub_.SignalsWanted() && now - signals_published_ >= std::chrono::milliseconds(200)) {
     signals_published_ = now;

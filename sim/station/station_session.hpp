@@ -83,6 +83,8 @@ class StationSession {
   std::chrono::steady_clock::time_point published_{}, signals_published_{};
   std::chrono::steady_clock::time_point anchor_{};  ///< wall time of anchor_tick_ while running
   int64_t anchor_tick_ = 0;
+  int64_t stock_published_ = -1;  ///< the turned stock's version the hub has
+  std::chrono::steady_clock::time_point stock_at_{};
 };
 
 }  // namespace vmt::sim::station

@@ -56,6 +56,13 @@ TEST(StationFramesTest, ModelStateAndSignalsOfARun) {
   EXPECT_TRUE(state["headstock"]["signals"].contains("A03.ROTMOD_Q"));
   EXPECT_EQ(state["block_search"]["state"], "HLI_BS_INACTIVE");
 
+  // The workpiece as turned: not cut yet at 0.2 s, the stock cylinder whole.
+  const Json stock = Json::parse(StockJson(run));
+  EXPECT_EQ(stock["link"], "spindle");
+  ASSERT_EQ(stock["cylinders"].size(), 1u);
+  EXPECT_NEAR(stock["cylinders"][0][2].get<double>(), 0.030, 1e-9);  // 60 mm diameter
+  EXPECT_EQ(state["stock"], stock["version"]);
+
   const Json signals = Json::parse(SignalsJson(run));
   bool key_writable = false, status_writable = true;
   for (const Json& s : signals["signals"]) {
