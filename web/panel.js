@@ -1,5 +1,5 @@
 // The operator panel: every machine key of the model as a button that is held while pressed.
-import {el, postKey} from './api.js';
+import {el, postJSON, postKey, status} from './api.js';
 
 // Groups by name pattern, first match wins; a key no pattern knows goes to "Other", so that
 // every key of the model is on the panel.
@@ -57,7 +57,7 @@ function jogOrder(a, b) {
 const LED_KEYS = ['mAUTO', 'mMANU', 'mSTART', 'mSTOP'];
 
 export class OperatorPanel {
-  constructor(root, keys) {
+  constructor(root, keys, handwheelAxes = []) {
     this.root = root;
     this.buttons = new Map();
     const groups = GROUPS.map((g) => ({...g, keys: []}));
@@ -73,11 +73,38 @@ export class OperatorPanel {
       box.append(grid);
       root.append(box);
     }
+    if (handwheelAxes.length) root.append(this.handwheel(handwheelAxes));
     // A key must not stay pressed when the page loses the pointer or the focus.
     window.addEventListener('blur', () => this.releaseAll());
     document.addEventListener('visibilitychange', () => {
       if (document.hidden) this.releaseAll();
     });
+  }
+
+  // The handwheel (manual mode, jog mode "handwheel"): counts for the chosen axis, as a
+  // detent wheel gives them; the mouse wheel over it turns it a count per notch.
+  handwheel(axes) {
+    const axis =
+        el('select', {class: 'hw-axis', 'data-handwheel-axis': '', title: 'handwheel axis'},
+           ...axes.map((a) => el('option', {value: a, text: a})));
+    const turn = (counts) => postJSON('api/handwheel', {axis: axis.value, counts}).then((a) => {
+      if (!a.ok) status(`handwheel: ${a.error}`, 'error');
+    });
+    const buttons = [-10, -1, 1, 10].map((n) => el('button', {
+                                           class: 'key hw',
+                                           type: 'button',
+                                           'data-handwheel': String(n),
+                                           text: n > 0 ? `+${n}` : `\u2212${- n}`,
+                                           onclick: () => turn(n)
+                                         }));
+    const box = el(
+        'div', {class: 'keygroup kg-handwheel'}, el('div', {class: 'kg-title', text: 'Handwheel'}),
+        el('div', {class: 'hw-row'}, axis, ...buttons));
+    box.addEventListener('wheel', (e) => {
+      e.preventDefault();
+      turn(e.deltaY < 0 ? 1 : -1);
+    }, {passive: false});
+    return box;
   }
 
   button(name) {

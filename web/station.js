@@ -52,9 +52,11 @@ async function main() {
     });
   }
 
-  const panel = new OperatorPanel($('#operator-panel'), model.keys || []);
+  const panel =
+      new OperatorPanel($('#operator-panel'), model.keys || [], model.handwheel_axes || []);
   if (replay)
-    for (const b of document.querySelectorAll('[data-key]')) {
+    for (const b of document.querySelectorAll(
+             '[data-key], [data-handwheel], [data-handwheel-axis]')) {
       b.disabled = true;
       b.title = 'a replay is watched, not operated';
     }

@@ -101,6 +101,9 @@ class SceneRun {
   /// writes. Recorded as the event {"event":"operator",...} and in operated(); at Finish the
   /// steps are written to operator.yaml. Returns why it is refused (nothing changes then), or "".
   std::string Operate(const std::string& signal, double value);
+  /// The operator turns the handwheel of `axis` (a channel axis, or X1 / Y1 of G31) by `counts`,
+  /// as the timeline's `handwheel:` does; recorded like Operate. Returns why it is refused, or "".
+  std::string OperateHandwheel(const std::string& axis, int counts);
   /// Why Operate would refuse `signal` (the value aside), or "". Reads only the scene.
   std::string OperateError(const std::string& signal) const;
   const std::vector<OperatorStep>& operated() const;

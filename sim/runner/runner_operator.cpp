@@ -36,7 +36,26 @@ std::string SceneRun::State::Operate(const std::string& signal, double value) {
   SetSignalNumber(*s.image, id, value);
   s.recorder.Event(
       {{"t", s.tick * kDriveTickS}, {"event", "operator"}, {"signal", signal}, {"value", value}});
-  s.operated.push_back({s.tick, signal, value});
+  s.operated.push_back({s.tick, signal, value, ""});
+  return "";
+}
+
+std::string SceneRun::State::OperateHandwheel(const std::string& axis, int counts) {
+  if (!channel) return "the scene has no nc: section, so no handwheel";
+  if (counts == 0 || counts < -10000 || counts > 10000)
+    return "handwheel counts: expected -10000..10000, not 0";
+  if (axis == "X1" || axis == "Y1") {
+    if (!channel->HandwheelFictive(axis == "X1" ? 0 : 1, counts))
+      return "the handwheel of " + axis + " needs G31 in manual handwheel mode";
+  } else {
+    size_t a = 0;
+    while (a < channel->config().axes.size() && channel->AxisName(a) != axis) ++a;
+    if (a == channel->config().axes.size()) return "no channel axis " + axis;
+    channel->Handwheel(a, counts);
+  }
+  recorder.Event(
+      {{"t", tick * kDriveTickS}, {"event", "operator"}, {"handwheel", axis}, {"counts", counts}});
+  operated.push_back({tick, "", static_cast<double>(counts), axis});
   return "";
 }
 
@@ -46,7 +65,9 @@ void SceneRun::State::ReplayOperatorSteps() {
        ++next_operator_step) {
     const OperatorStep& o = steps[next_operator_step];
     if (o.tick < tick) continue;  // a tick already past (checked when the file was read)
-    const std::string error = Operate(o.signal, o.value);
+    const std::string error = o.handwheel.empty()
+                                  ? Operate(o.signal, o.value)
+                                  : OperateHandwheel(o.handwheel, static_cast<int>(o.value));
     if (!error.empty())
       result.failures.push_back("operator step at tick " + std::to_string(o.tick) + ": " + error);
   }
@@ -58,9 +79,14 @@ void SceneRun::State::WriteOperatorSteps() const {
   f << "# The operator station's inputs, at the drive tick of the PLC cycle that took each.\n"
     << "# vmt run SCENE --operator operator.yaml repeats the run to the same trace digest.\n"
     << "scene: " << nlohmann::json(scene.name).dump() << "\noperator:\n";
-  for (const OperatorStep& o : operated)
-    f << "  - {tick: " << o.tick << ", signal: " << nlohmann::json(o.signal).dump()
-      << ", value: " << nlohmann::json(o.value).dump() << "}\n";
+  for (const OperatorStep& o : operated) {
+    if (o.handwheel.empty())
+      f << "  - {tick: " << o.tick << ", signal: " << nlohmann::json(o.signal).dump()
+        << ", value: " << nlohmann::json(o.value).dump() << "}\n";
+    else
+      f << "  - {tick: " << o.tick << ", handwheel: " << nlohmann::json(o.handwheel).dump()
+        << ", counts: " << static_cast<int>(o.value) << "}\n";
+  }
 }
 
 std::string SceneRun::OperateError(const std::string& signal) const {
@@ -68,6 +94,9 @@ std::string SceneRun::OperateError(const std::string& signal) const {
 }
 std::string SceneRun::Operate(const std::string& signal, double value) {
   return state_->Operate(signal, value);
+}
+std::string SceneRun::OperateHandwheel(const std::string& axis, int counts) {
+  return state_->OperateHandwheel(axis, counts);
 }
 const std::vector<OperatorStep>& SceneRun::operated() const { return state_->operated; }
 const Scene& SceneRun::scene() const { return state_->scene; }

@@ -15,13 +15,25 @@ std::vector<OperatorStep> ReadOperatorSteps(const std::string& file) {
   std::vector<OperatorStep> steps;
   for (size_t i = 0; i < list.size(); ++i) {
     const YamlNode n = list[i];
-    if (!n.IsMap()) n.Fail("expected {tick, signal, value}");
-    n.AllowKeys({"tick", "signal", "value"});
+    if (!n.IsMap()) n.Fail("expected {tick, signal, value} or {tick, handwheel, counts}");
+    const bool handwheel = n.Has("handwheel");
+    if (handwheel)
+      n.AllowKeys({"tick", "handwheel", "counts"});
+    else
+      n.AllowKeys({"tick", "signal", "value"});
     const double tick = n["tick"].Double();
     if (!(tick >= 0) || tick > 9e15 || tick != std::floor(tick))
       n["tick"].Fail("expected a whole number of drive ticks, >= 0");
-    OperatorStep s{static_cast<int64_t>(tick), n["signal"].String(), n["value"].Double()};
-    if (!std::isfinite(s.value)) n["value"].Fail("expected a finite number");
+    OperatorStep s;
+    s.tick = static_cast<int64_t>(tick);
+    if (handwheel) {
+      s.handwheel = n["handwheel"].String();
+      s.value = n["counts"].Int();
+    } else {
+      s.signal = n["signal"].String();
+      s.value = n["value"].Double();
+      if (!std::isfinite(s.value)) n["value"].Fail("expected a finite number");
+    }
     if (!steps.empty() && s.tick < steps.back().tick)
       n["tick"].Fail("goes back in time (the steps are in the order they were taken)");
     steps.push_back(std::move(s));

@@ -12,11 +12,13 @@ namespace vmt::sim {
 /// tick of a PLC cycle), as the timeline's `press:` and `signal:` set them.
 struct OperatorStep {
   int64_t tick = 0;
-  std::string signal;
-  double value = 0;
+  std::string signal;     ///< a key or signal set to `value`; empty for a handwheel's turn
+  double value = 0;       ///< the signal's value, or the handwheel's counts
+  std::string handwheel;  ///< the axis whose handwheel turned `value` counts (X, Z, X1, ...)
 };
 
-/// Reads `operator: [{tick, signal, value}, ...]` of an operator.yaml; ticks must not go back.
+/// Reads `operator: [{tick, signal, value} | {tick, handwheel, counts}, ...]` of an
+/// operator.yaml; ticks must not go back.
 /// Throws ModelError naming the file and YAML path of a bad entry. Whether each signal may be
 /// set is checked when the run takes it.
 std::vector<OperatorStep> ReadOperatorSteps(const std::string& file);

@@ -169,6 +169,12 @@ std::string ModelJson(const SceneRun& run, const std::string& pace) {
     for (const DriveParams& d : m.drives)
       axes.push_back({{"name", d.info.name}, {"unit", Unit(d.info.kind)}});
   }
+  Json handwheel = Json::array();
+  if (const control::channel::Channel* ch = run.channel()) {
+    for (size_t a = 0; a < ch->config().axes.size(); ++a) handwheel.push_back(ch->AxisName(a));
+    handwheel.push_back("X1");  // G31's fictive axes (REPOS manual 5.2)
+    handwheel.push_back("Y1");
+  }
   Json program = nullptr;
   if (!scene.nc.programs.empty() && !scene.nc.programs[0]->program.files.empty())
     program = {{"file", scene.nc.programs[0]->program.files[0]}, {"lines", ProgramLines(scene)}};
@@ -178,6 +184,7 @@ std::string ModelJson(const SceneRun& run, const std::string& pace) {
               {"links", std::move(links)},
               {"cameras", cameras},
               {"keys", keys},
+              {"handwheel_axes", std::move(handwheel)},
               {"axes", axes},
               {"program", program},
               {"signals_count", scene.nc.signals ? scene.nc.signals->size() : 0}}

@@ -15,9 +15,10 @@
 
 namespace vmt::sim::station {
 
-/// One request of a page: a key or signal value, or run control.
+/// One request of a page: a key or signal value (`signal`, `value`), a handwheel's turn
+/// (`signal` the axis, `value` the counts), or run control.
 struct StationInput {
-  enum class Kind { kSignal, kRun, kPause, kStep, kSeek };
+  enum class Kind { kSignal, kHandwheel, kRun, kPause, kStep, kSeek };
   Kind kind = Kind::kSignal;
   std::string signal;
   double value = 0;

@@ -132,6 +132,24 @@ StationServer::StationServer(StationHub& hub, StationServerOptions o)
       return Fail(res, 429, "too many inputs waiting for the next PLC cycle");
     Reply(res, 200, R"({"ok":true})");
   });
+  http.Post("/api/handwheel", [&hub, axes = o.handwheel_axes, refused = o.operate_refused](
+                                  const httplib::Request& req, httplib::Response& res) {
+    const auto body = Body(req, res);
+    if (!body) return;
+    const auto axis = body->find("axis");
+    const auto counts = body->find("counts");
+    if (axis == body->end() || !axis->is_string() || counts == body->end() ||
+        !counts->is_number_integer() || counts->get<int64_t>() == 0 ||
+        std::abs(counts->get<int64_t>()) > 10000)
+      return Fail(res, 400, R"(expected {"axis": AXIS, "counts": -10000..10000, not 0})");
+    if (!refused.empty()) return Fail(res, 403, refused);
+    if (std::find(axes.begin(), axes.end(), axis->get<std::string>()) == axes.end())
+      return Fail(res, 404, "no handwheel axis " + axis->get<std::string>());
+    if (!hub.Push(
+            {StationInput::Kind::kHandwheel, *axis, static_cast<double>(counts->get<int64_t>())}))
+      return Fail(res, 429, "too many inputs waiting for the next PLC cycle");
+    Reply(res, 200, R"({"ok":true})");
+  });
   http.Post("/api/signal", [&hub, check = o.check_signal](const httplib::Request& req,
                                                           httplib::Response& res) {
     const auto body = Body(req, res);

@@ -25,6 +25,7 @@ struct StationServerOptions {
   std::string chart_dir = "/usr/share/javascript/chart.js";
   std::string model_json;         ///< GET /api/model
   std::vector<std::string> keys;  ///< the machine keys POST /api/key accepts
+  std::vector<std::string> handwheel_axes;  ///< the axes POST /api/handwheel accepts
   /// Why the page may not set `signal` to `value`, or "" (checked before anything is queued).
   std::function<std::string(const std::string& signal, double value)> check_signal;
   /// Why the page may not pause, run or step, or "" (an external PLC is the lockstep clock).

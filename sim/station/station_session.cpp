@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "control/channel/channel.hpp"
+
 namespace vmt::sim::station {
 
 using Clock = std::chrono::steady_clock;
@@ -33,6 +35,11 @@ void StationSession::Open(SceneRun& run, StationServerOptions options, const std
     };
   }
   options.run_control_refused = run_control_refused;
+  if (const control::channel::Channel* ch = run.channel()) {
+    for (size_t a = 0; a < ch->config().axes.size(); ++a)
+      options.handwheel_axes.push_back(ch->AxisName(a));
+    options.handwheel_axes.insert(options.handwheel_axes.end(), {"X1", "Y1"});
+  }
   server_ = std::make_unique<StationServer>(hub_, std::move(options));
   Publish(run, control_.running ? "running" : "paused", true);
 }
@@ -56,6 +63,15 @@ void StationSession::TakeInputs(SceneRun& run) {
         }
         changed_.push_back(in.signal);
         if (const std::string error = run.Operate(in.signal, in.value); !error.empty())
+          std::fprintf(stderr, "vmt serve: %.4f s: station: %s\n", run.time_s(), error.c_str());
+        break;
+      case StationInput::Kind::kHandwheel:
+        if (!later.empty()) {
+          later.push_back(std::move(in));
+          break;
+        }
+        if (const std::string error = run.OperateHandwheel(in.signal, static_cast<int>(in.value));
+            !error.empty())
           std::fprintf(stderr, "vmt serve: %.4f s: station: %s\n", run.time_s(), error.c_str());
         break;
       case StationInput::Kind::kRun:

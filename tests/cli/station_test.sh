@@ -74,6 +74,13 @@ status 200 POST /api/run '{"action":"step"}'
 status 200 POST /api/key '{"name":"mCOOLANT","pressed":false}'
 status 200 POST /api/run '{"action":"step"}'
 wait_state 'd["cycle"] == 7' 10
+# The handwheel: taken like a key, recorded, replayed (the channel moves only in handwheel mode).
+status 200 POST /api/handwheel '{"axis":"X","counts":5}'
+status 404 POST /api/handwheel '{"axis":"Q","counts":5}'
+status 400 POST /api/handwheel '{"axis":"X","counts":0}'
+status 400 POST /api/handwheel '{"axis":"X","counts":1.5}'
+status 200 POST /api/run '{"action":"step"}'
+wait_state 'd["cycle"] == 8' 10
 # Bad requests: 4xx, and nothing queued.
 status 400 POST /api/key 'not json'
 status 400 POST /api/key '{"name":"mCOOLANT"}'
@@ -99,6 +106,7 @@ status 200 GET /api/signals
 kill -INT $pid; wait $pid; rc=$?
 [ $rc = 0 ] || fail "vmt serve --http exited $rc after the scene's end and SIGINT"
 grep -c mCOOLANT "$out/live/operator.yaml" | grep -q 2 || fail "operator.yaml lacks the two key changes"
+grep -q 'handwheel: "X", counts: 5' "$out/live/operator.yaml" || fail "operator.yaml lacks the handwheel"
 live=$("$python" -c 'import json,sys; print(json.load(open(sys.argv[1]))["trace_digest"])' "$out/live/serve.json")
 "$vmt" run "$scene" --operator "$out/live/operator.yaml" --out "$out/replay" >"$out/replay.log" 2>&1 ||
   fail "the replay failed: $(cat "$out/replay.log")"

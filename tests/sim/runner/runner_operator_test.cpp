@@ -72,7 +72,7 @@ TEST(RunnerOperatorTest, AStepThatCannotBeTakenFailsTheReplay) {
   const Scene scene = LoadScene(SourcePath("scenes/machine-panel.yaml"));
   RunOptions options;
   options.until_s = 0.1;
-  options.operator_steps = {{16, "P00S.RUN", 1}};
+  options.operator_steps = {{16, "P00S.RUN", 1, ""}};
   const RunResult r = RunScene(scene, options);
   ASSERT_FALSE(r.ok());
   bool told = false;

@@ -41,9 +41,13 @@ TEST(OperatorStepsTest, OperatorFilesAreCheckedAsTheyAreRead) {
 TEST(OperatorStepsTest, ReadsTheStepsInOrder) {
   const std::string path = testing::OutputDir("operator-files") + "/good.yaml";
   std::ofstream(path) << "scene: x\noperator:\n  - {tick: 16, signal: mAUTO, value: 1}\n"
-                         "  - {tick: 16, signal: mAUTO, value: 0}\n";
+                         "  - {tick: 16, signal: mAUTO, value: 0}\n"
+                         "  - {tick: 32, handwheel: X, counts: -3}\n";
   const std::vector<OperatorStep> steps = ReadOperatorSteps(path);
-  ASSERT_EQ(steps.size(), 2u);
+  ASSERT_EQ(steps.size(), 3u);
+  EXPECT_EQ(steps[2].handwheel, "X");
+  EXPECT_EQ(steps[2].value, -3);
+  EXPECT_TRUE(steps[2].signal.empty());
   EXPECT_EQ(steps[0].tick, 16);
   EXPECT_EQ(steps[0].signal, "mAUTO");
   EXPECT_EQ(steps[1].value, 0);
