@@ -205,6 +205,11 @@ int Serve(const ServeOptions& o) {
   // Against the wall clock a picture (tens of ms) would make several PLC cycles late.
   run_options.snapshots_after_run = !o.lockstep || (station && !o.modbus);
   SceneRun run(scene, run_options);
+  // The station's server threads read the run (its signal checks): they stop before it goes.
+  struct StationStop {
+    std::unique_ptr<station::StationSession>& session;
+    ~StationStop() { session.reset(); }
+  } station_stop{station};
   control::gateway::SignalImage* image = run.image();
   if (o.modbus && !image)
     throw std::invalid_argument(o.scene + ": vmt serve --modbus needs a scene with an nc: section");
