@@ -20,12 +20,15 @@ start_station() {  # start_station OUTDIR [SCENE [OPTION...]]: sets pid and port
   mkdir -p "$dir"
   timeout 600 "$vmt" serve "$what" --http 127.0.0.1:0 --out "$dir" "$@" >"$dir/serve.log" 2>&1 &
   pid=$!
+  station_port "$dir/serve.log"
+}
+station_port() {  # station_port LOG: waits for the station's address in LOG; sets port
   for _ in $(seq 1200); do
-    port=$(sed -n 's|.*operator station on http://127.0.0.1:\([0-9]*\)/.*|\1|p' "$dir/serve.log")
+    port=$(sed -n 's|.*operator station on http://[0-9.]*:\([0-9]*\)/.*|\1|p' "$1")
     [ -n "$port" ] && return 0
     sleep 0.05
   done
-  fail "vmt serve --http did not start"; cat "$dir/serve.log"; return 1
+  fail "the station did not start: $(cat "$1")"; return 1
 }
 url() { echo "http://127.0.0.1:$port$1"; }
 status() {  # status EXPECTED METHOD PATH [BODY]
@@ -142,10 +145,7 @@ fi
 # --- vmt view: the recorded run again, at any time; watched, not operated.
 timeout 600 "$vmt" view "$out/live" --http 127.0.0.1:0 >"$out/view.log" 2>&1 &
 pid=$!
-for _ in $(seq 1200); do
-  port=$(sed -n 's|.*operator station on http://127.0.0.1:\([0-9]*\)/.*|\1|p' "$out/view.log")
-  [ -n "$port" ] && break; sleep 0.05
-done
+station_port "$out/view.log"
 status 200 GET /api/model
 grep -q '"pace":"replay"' "$out/last.json" || fail "vmt view's model is not a replay"
 status 200 POST /api/run '{"action":"seek","t":10.5}'
@@ -175,10 +175,7 @@ status_missing=$("$vmt" view "$out/nothing-here" --http 127.0.0.1:0 2>&1)
 timeout 600 "$vmt" serve "$scene" --http 0.0.0.0:0 --http-token s3cret --out "$out/token" \
   >"$out/token.log" 2>&1 &
 pid=$!
-for _ in $(seq 1200); do
-  port=$(sed -n 's|.*operator station on http://0.0.0.0:\([0-9]*\)/.*|\1|p' "$out/token.log")
-  [ -n "$port" ] && break; sleep 0.05
-done
+station_port "$out/token.log"
 status 401 GET /api/state
 code=$(curl -s -o /dev/null -w '%{http_code}' -H 'Authorization: Bearer s3cret' "$(url /api/state)")
 [ "$code" = 200 ] || fail "the token was not accepted ($code)"
@@ -190,10 +187,7 @@ kill -TERM $pid; wait $pid
 timeout 600 "$vmt" serve "$scene" --http 127.0.0.1:0 --modbus 127.0.0.1:0 --idle-timeout 60 \
   --out "$out/modbus" >"$out/modbus.log" 2>&1 &
 pid=$!
-for _ in $(seq 1200); do
-  port=$(sed -n 's|.*operator station on http://127.0.0.1:\([0-9]*\)/.*|\1|p' "$out/modbus.log")
-  [ -n "$port" ] && break; sleep 0.05
-done
+station_port "$out/modbus.log"
 grep -q "Modbus TCP on" "$out/modbus.log" || fail "--modbus with --http did not serve Modbus"
 status 409 POST /api/run '{"action":"pause"}'
 status 200 GET /api/state
