@@ -25,6 +25,7 @@
 #include "sim/model/model_error.hpp"
 #include "sim/runner/runner.hpp"
 #include "sim/runner/scene_renderer.hpp"
+#include "sim/study/case_replay.hpp"
 #include "sim/study/study.hpp"
 
 namespace {
@@ -356,6 +357,9 @@ std::vector<Command> AddStudy(CLI::App& app) {
     bool no_fork = false;
     std::vector<std::string> merge_dirs;
     std::string merge_out;
+    std::string replay_dir, replay_case;
+    sim::ViewOptions replay_view;
+    bool replay_serve = false;
   };
   auto o = std::make_shared<Args>();
   sim::study::StudyOptions& study_options = o->options;
@@ -390,6 +394,36 @@ std::vector<Command> AddStudy(CLI::App& app) {
       study->add_subcommand("merge", "Join study folders (shards) into one, one result per case");
   merge->add_option("dirs", o->merge_dirs, "Study folders")->required();
   merge->add_option("--out", o->merge_out, "The joined study folder")->required();
+  CLI::App* replay = study->add_subcommand(
+      "replay", "Save one case's run in the study folder (cases/<id>/) to watch it with vmt view");
+  replay->add_option("dir", o->replay_dir, "Study folder")->required();
+  replay->add_option("case", o->replay_case, "Case id, as in cases.csv")->required();
+  replay
+      ->add_option("--http", o->replay_view.http,
+                   "Also serve its replay on HOST:PORT (the operator station)")
+      ->each([o](const std::string&) { o->replay_serve = true; });
+  replay->add_option("--http-token", o->replay_view.http_token,
+                     "Token every request must carry (needed off loopback)");
+  Command run_replay{replay, [o] {
+                       std::string folder;
+                       try {
+                         folder = sim::study::SaveCase(o->replay_dir, o->replay_case);
+                       } catch (const sim::study::UnknownCase& e) {
+                         std::fprintf(stderr, "vmt: error: %s\n", e.what());
+                         return 2;
+                       }
+                       std::printf("case %s: %s/{trace.csv,events.jsonl,summary.json,case.json}\n",
+                                   o->replay_case.c_str(), folder.c_str());
+                       if (!o->replay_serve) {
+                         std::printf("watch it: vmt view %s --http 127.0.0.1:8080\n",
+                                     folder.c_str());
+                         return 0;
+                       }
+                       std::fflush(stdout);
+                       sim::ViewOptions view = o->replay_view;
+                       view.out_dir = folder;
+                       return sim::View(view);
+                     }};
   Command run_repos{repos, [o] {
                       sim::study::StudyOptions options = o->options;
                       if (o->every_ms > 0) options.every_ms = o->every_ms;
@@ -404,7 +438,7 @@ std::vector<Command> AddStudy(CLI::App& app) {
                                   o->merge_out.c_str(), n, o->merge_out.c_str());
                       return 0;
                     }};
-  return {run_repos, run_merge};
+  return {run_repos, run_merge, run_replay};
 }
 
 Command AddImgdiff(CLI::App& app) {

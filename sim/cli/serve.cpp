@@ -270,12 +270,13 @@ int Serve(const ServeOptions& o) {
       : o.lockstep
           ? ServeLockstep(o, run, *server, drop_if_asked, station.get())
           : ServeRealtime(o, run, *server, cycle, drop_if_asked, lateness_ms, link, station.get());
+  const bool stopped_early = !run.done();  // Finish makes the tick it is at the run's last
   const RunResult r = run.Finish();
   const control::plc::ModbusServer::Stats st =
       server ? server->stats() : control::plc::ModbusServer::Stats{};
   nlohmann::ordered_json serve = {{"scene", scene.name},
                                   {"mode", o.lockstep ? "lockstep" : "realtime"},
-                                  {"stopped_early", !run.done()},
+                                  {"stopped_early", stopped_early},
                                   {"stop_reason", stop_reason},
                                   {"simulated_time_s", run.time_s()},
                                   {"trace_digest", r.trace_digest}};
@@ -309,7 +310,7 @@ int Serve(const ServeOptions& o) {
                 Percentile(lateness_ms, 0.5), Percentile(lateness_ms, 0.99),
                 Percentile(lateness_ms, 1.0));
   for (const std::string& f : r.failures) std::fprintf(stderr, "FAILED: %s\n", f.c_str());
-  if (station && run.done()) {
+  if (station && !stopped_early) {
     // The page keeps showing the end of the run; what it sends now has no run to act on.
     std::printf("vmt serve: the scene has ended; the operator station stays up until Ctrl-C\n");
     std::fflush(stdout);
@@ -319,7 +320,7 @@ int Serve(const ServeOptions& o) {
       station->Wait(std::chrono::milliseconds(100));
     }
   }
-  if (!run.done()) {
+  if (stopped_early) {
     std::fprintf(stderr, "vmt serve: stopped early at %.4f s: %s\n", run.time_s(),
                  stop_reason.c_str());
     return kServeStoppedEarly;

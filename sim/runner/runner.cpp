@@ -311,9 +311,15 @@ void SceneRun::State::TakeDueSnapshots(double t) {
 }
 
 RunResult SceneRun::State::Finish() {
+  // A run stopped early (vmt serve, a study's case) ends with the tick it is at, as a run to that
+  // time does (its last tick's trace row, no step beyond): so vmt view, running to the time in
+  // summary.json, runs the same ticks and gives the same digest.
+  if (!finished) {
+    last_tick = tick;
+    Step();
+  }
   RenderPendingSnapshots();
-  // A run stopped early (vmt serve) has simulated only up to where it stopped.
-  result.simulated_s = (finished ? last_tick : tick) * kDriveTickS;
+  result.simulated_s = last_tick * kDriveTickS;
   result.final_joint_positions = backend->JointPositions();
   result.trace_digest = recorder.DigestHex();
   for (size_t i = 0; i < checks.size(); ++i) {

@@ -72,7 +72,8 @@ class SceneRun {
   bool done() const;
   /// One drive tick; after the scene's last tick done() is true.
   void Step();
-  /// Checks what is left, writes summary.json; call once, when done or stopping early.
+  /// Checks what is left, writes summary.json; call once, when done or stopping early. Stopped
+  /// early, the tick the run is at is its last (summary.json's simulated_time_s).
   RunResult Finish();
   /// The gateway signals, null without an nc: section.
   control::gateway::SignalImage* image();

@@ -1,27 +1,17 @@
 #include "sim/station/station_server.hpp"
 
-#include <httplib.h>
-
 #include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <thread>
 
+#include "sim/station/http_access.hpp"
+
 namespace vmt::sim::station {
 namespace {
 
 using Json = nlohmann::json;
-
-void Reply(httplib::Response& res, int status, const std::string& body) {
-  res.status = status;
-  res.set_header("Cache-Control", "no-store");
-  res.set_content(body, "application/json");
-}
-
-void Fail(httplib::Response& res, int status, const std::string& error) {
-  Reply(res, status, Json{{"error", error}}.dump());
-}
 
 /// The request's JSON object, or a 400 answered and nullopt.
 std::optional<Json> Body(const httplib::Request& req, httplib::Response& res) {
@@ -56,9 +46,7 @@ struct StationServer::Impl {
 
 StationServer::StationServer(StationHub& hub, StationServerOptions o)
     : impl_(std::make_unique<Impl>()) {
-  if (!IsLoopback(o.host) && o.token.empty())
-    throw std::invalid_argument("--http " + o.host +
-                                ": an address other than loopback needs --http-token");
+  CheckAccess(o.host, o.token);
   if (!std::filesystem::is_directory(o.web_dir))
     throw std::invalid_argument("the operator station's page is not in " + o.web_dir +
                                 " (set VMT_WEB_DIR)");
@@ -70,21 +58,7 @@ StationServer::StationServer(StationHub& hub, StationServerOptions o)
   http.set_keep_alive_timeout(2);
   http.set_read_timeout(5, 0);
   http.set_write_timeout(5, 0);
-  if (!o.token.empty())
-    http.set_pre_routing_handler(
-        [token = o.token](const httplib::Request& req, httplib::Response& res) {
-          // The page is opened with ?token=; its scripts and images cannot carry that, so the
-          // answer sets it as a cookie, which the browser sends with each of them.
-          const std::string cookie = "vmt_token=" + token;
-          const bool in_param = req.get_param_value("token") == token;
-          const bool ok = in_param || req.get_header_value("Authorization") == "Bearer " + token ||
-                          req.get_header_value("Cookie").find(cookie) != std::string::npos;
-          if (in_param)
-            res.set_header("Set-Cookie", cookie + "; Path=/; HttpOnly; SameSite=Strict");
-          if (ok) return httplib::Server::HandlerResponse::Unhandled;
-          Fail(res, 401, "this station needs its token");
-          return httplib::Server::HandlerResponse::Handled;
-        });
+  RequireToken(http, o.token);
   http.set_mount_point("/", o.web_dir);
   if (std::filesystem::is_directory(o.three_dir))
     http.set_mount_point("/vendor/three", o.three_dir);
@@ -200,11 +174,7 @@ StationServer::StationServer(StationHub& hub, StationServerOptions o)
     if (res.body.empty()) Fail(res, res.status, "not found");
   });
 
-  port_ = o.port == 0 ? http.bind_to_any_port(o.host)
-                      : (http.bind_to_port(o.host, o.port) ? o.port : -1);
-  if (port_ <= 0)
-    throw std::runtime_error("--http " + o.host + ":" + std::to_string(o.port) +
-                             ": cannot listen there");
+  port_ = Bind(http, o.host, o.port);
   impl_->thread = std::thread([this] { impl_->http.listen_after_bind(); });
 }
 

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -51,6 +52,13 @@ void WriteAll(int fd, const std::string& s) {
 }
 
 }  // namespace
+
+std::string FileNameOf(const std::string& case_id) {
+  std::string name;
+  for (const char c : case_id)
+    name += (std::isalnum(static_cast<unsigned char>(c)) || c == '-') ? c : '_';
+  return name;
+}
 
 std::string CsvHeader() {
   std::string h;

@@ -21,6 +21,10 @@ std::vector<CaseResult> ReadCases(const std::string& jsonl_path);
 /// One result per id (the first), sorted by id.
 std::vector<CaseResult> Deduplicated(std::vector<CaseResult> cases);
 
+/// A case id as a file name: every character but A-Z a-z 0-9 - as _ (a `../` of a
+/// subroutine's path would make a hidden file or leave the folder).
+std::string FileNameOf(const std::string& case_id);
+
 /// Writes dir/cases.jsonl and dir/cases.csv anew from `cases`, in their order.
 void RewriteCaseFiles(const std::string& dir, const std::vector<CaseResult>& cases);
 

@@ -86,14 +86,18 @@ CaseResult DiedResult(const StudyPlan& plan, const std::vector<Interruption>& in
 }  // namespace
 
 Scene SubroutineScene(const Scene& base, const Subroutine& subroutine) {
+  return SubroutineScene(base, subroutine.file);
+}
+
+Scene SubroutineScene(const Scene& base, const std::string& subroutine_file) {
   Scene scene = base;
-  if (!subroutine.manual()) {
-    std::ifstream in(subroutine.file, std::ios::binary);
-    if (!in) throw std::runtime_error("cannot open NC program " + subroutine.file);
+  if (!subroutine_file.empty()) {
+    std::ifstream in(subroutine_file, std::ios::binary);
+    if (!in) throw std::runtime_error("cannot open NC program " + subroutine_file);
     const std::string text((std::istreambuf_iterator<char>(in)), {});
     namespace cnc = control::nc;
     auto parsed = std::make_shared<cnc::ParseResult>(
-        cnc::ParseProgram(text, subroutine.file, cnc::DetectDialect(text, subroutine.file)));
+        cnc::ParseProgram(text, subroutine_file, cnc::DetectDialect(text, subroutine_file)));
     if (!parsed->ok())
       throw std::runtime_error(cnc::Format(parsed->errors[0], parsed->program.files));
     scene.nc.programs.push_back(parsed);
@@ -108,8 +112,12 @@ Scene SubroutineScene(const Scene& base, const Subroutine& subroutine) {
   return scene;
 }
 
+namespace {
+std::string HoldLine(double t_s) { return "{at: " + Fixed(t_s) + ", nc: stop}"; }
+}  // namespace
+
 TimelineStep HoldStep(const Scene& scene, double t_s, size_t index) {
-  return Step(scene, "{at: " + Fixed(t_s) + ", nc: stop}", index);
+  return Step(scene, HoldLine(t_s), index);
 }
 
 namespace {
@@ -125,7 +133,8 @@ void WaitLines(const Scene& scene, const std::string& axis, const char* directio
   char moving[16];
   std::snprintf(moving, sizeof moving, "A%02dS.MV%s", number, direction);
   lines.push_back(std::string("{wait_until: {signal: ") + moving + ", value: false, timeout: 10}}");
-  if (standstill) lines.push_back("{wait_until: {axis: " + axis + ", standstill: true, timeout: 1}}");
+  if (standstill)
+    lines.push_back("{wait_until: {axis: " + axis + ", standstill: true, timeout: 1}}");
 }
 
 // One incremental jog of `mm` (signed) on `axis`, and the waits until it is over.
@@ -195,8 +204,8 @@ std::vector<std::string> ManualReturnLines(const Scene& scene, const Subroutine&
     // The spindle's Axx as the gateway numbers it (sim/model/gateway_layout.cpp).
     int highest = 0;
     for (const auto& a : scene.model->nc.axes) highest = std::max(highest, a.number);
-    const int number = scene.model->nc.spindle_number > 0 ? scene.model->nc.spindle_number
-                                                           : highest + 1;
+    const int number =
+        scene.model->nc.spindle_number > 0 ? scene.model->nc.spindle_number : highest + 1;
     std::snprintf(key, sizeof key, "A%02dC.M%d", number, m);
     lines.push_back(std::string("{signal: {name: ") + key + ", value: true}}");
     lines.push_back("{wait: 0.5}");  // the spindle runs up before the tool comes back
@@ -212,29 +221,34 @@ std::vector<std::string> ManualReturnLines(const Scene& scene, const Subroutine&
   lines.push_back("{wait: 0.01}");
   return lines;
 }
-void Append(Scene& scene, const std::vector<std::string>& lines) {
-  for (const std::string& l : lines)
+// `written`, when given, collects the lines: a saved case's timeline (case.yaml).
+void Append(Scene& scene, const std::vector<std::string>& lines,
+            std::vector<std::string>* written = nullptr) {
+  for (const std::string& l : lines) {
     scene.timeline.push_back(Step(scene, l, scene.timeline.size()));
+    if (written) written->push_back(l);
+  }
 }
 
 // The way back of a case whose retract is appended (and perhaps run): the REPOS subroutine
 // (the call, AUTO, start) or the operator's manual return; runs the case to its end. The same
 // steps on the same ticks whether the case was forked or runs from the start.
 void RunReturn(Scene& scene, SceneRun& run, CaseObserver& obs, const StudyPlan& plan,
-               const Subroutine& way, ReposMode mode, double limit) {
+               const Subroutine& way, ReposMode mode, double limit,
+               std::vector<std::string>* written = nullptr) {
   if (!way.manual()) {
     const std::vector<std::string> lines = ModeLines(scene, mode);
     obs.SetPhaseStep(scene.timeline.size() + lines.size() - 2);  // the switch to AUTO
-    Append(scene, lines);
+    Append(scene, lines, written);
     RunCase(run, obs, plan, limit);
     return;
   }
   obs.SetPhaseStep(scene.timeline.size());  // the call
-  Append(scene, ManualCallLines(scene, mode));
+  Append(scene, ManualCallLines(scene, mode), written);
   const size_t shown = scene.timeline.size() - 1;
   while (!run.done() && !obs.done() && !obs.step_seen(shown) && run.time_s() < limit) run.Step();
   if (!obs.done() && obs.step_seen(shown)) {
-    Append(scene, ManualReturnLines(scene, way, obs.last_repos()));
+    Append(scene, ManualReturnLines(scene, way, obs.last_repos()), written);
     obs.SetManualEnd(scene.timeline.size() - 1);
   }
   RunCase(run, obs, plan, limit);
@@ -412,6 +426,37 @@ CaseResult RunCaseFromStart(const Scene& base, const StudyPlan& plan,
   for (int k = 0; k < 2 && !shots.empty() && !run.done(); ++k) run.Step();
   if (t_end_s) *t_end_s = obs.t_end();
   return obs.Result(plan, interruptions, c, run.time_s());
+}
+
+SavedCase SaveCaseRun(const Scene& base, const StudyPlan& plan,
+                      const std::vector<Interruption>& interruptions, const StudyCase& c,
+                      const std::string& out_dir) {
+  const Subroutine& way = plan.subroutines[c.subroutine];
+  Scene scene = SubroutineScene(base, way);
+  scene.trace_period_s = base.trace_period_s;  // watched, so traced as the scene is
+  const Interruption& in = interruptions[c.interruption];
+  const RetractPattern& retract = plan.retracts[c.retract];
+  SavedCase saved;
+  Append(scene, {HoldLine(in.t_s)}, &saved.timeline);
+  Append(scene, RetractLines(scene, plan, in, retract), &saved.timeline);
+  CaseObserver obs;
+  CaseObserver* observer = &obs;
+  RunOptions options = CaseOptions(&observer);
+  options.out_dir = out_dir;
+  SceneRun run(scene, options);
+  RunReturn(scene, run, obs, plan, way, c.mode, CaseLimit(plan, in, retract), &saved.timeline);
+  saved.result = obs.Result(plan, interruptions, c, run.time_s());
+  saved.subroutine_file = way.file;
+  saved.until_s = run.time_s();
+  saved.trace_digest = run.Finish().trace_digest;
+  return saved;
+}
+
+Scene SavedCaseScene(const Scene& base, const SavedCase& saved) {
+  Scene scene = SubroutineScene(base, saved.subroutine_file);
+  scene.trace_period_s = base.trace_period_s;
+  Append(scene, saved.timeline);
+  return scene;
 }
 
 }  // namespace vmt::sim::study

@@ -25,6 +25,8 @@ namespace vmt::sim::study {
 /// programs (as program 99: the main program must have no .REPOS of its own; nothing for a
 /// manual order), no expectations, no snapshots, and a timeline that only starts the program.
 Scene SubroutineScene(const Scene& base, const Subroutine& subroutine);
+/// The same by the subroutine's file (empty: a manual order, no program appended).
+Scene SubroutineScene(const Scene& base, const std::string& subroutine_file);
 
 /// The feed hold at t (timeline step `index`).
 TimelineStep HoldStep(const Scene& scene, double t_s, size_t index);
@@ -42,5 +44,25 @@ CaseResult RunCaseFromStart(const Scene& base, const StudyPlan& plan,
                             const std::vector<Interruption>& interruptions, const StudyCase& c,
                             const std::vector<SnapshotSpec>& shots = {},
                             const std::string& out_dir = "", double* t_end_s = nullptr);
+
+/// A case's run as saved for watching it: the timeline steps it ran after the program's start
+/// (as a scene writes them), the subroutine's file and the time it ended.
+struct SavedCase {
+  std::vector<std::string> timeline;
+  std::string subroutine_file;  ///< empty: a manual order
+  double until_s = 0;
+  std::string trace_digest;
+  CaseResult result;
+};
+
+/// One case from the program's start with the scene's own trace, its files (trace.csv,
+/// events.jsonl, summary.json) written to `out_dir`. The steps it ran are the saved case's:
+/// SavedCaseScene makes a scene of them that runs the same way (the same digest) with no
+/// observer -- the steps the study appends while a case runs would have been appended before
+/// they are due.
+SavedCase SaveCaseRun(const Scene& base, const StudyPlan& plan,
+                      const std::vector<Interruption>& interruptions, const StudyCase& c,
+                      const std::string& out_dir);
+Scene SavedCaseScene(const Scene& base, const SavedCase& saved);
 
 }  // namespace vmt::sim::study

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "sim/study/case_files.hpp"
+
 namespace vmt::sim::study {
 namespace {
 
@@ -62,10 +64,7 @@ std::vector<std::string> WorstCaseIds(const std::vector<CaseResult>& results, in
 }
 
 std::string SnapshotFileOf(const std::string& case_id) {
-  std::string name;
-  for (const char c : case_id)
-    name += (std::isalnum(static_cast<unsigned char>(c)) || c == '-') ? c : '_';  // no dot files
-  return "snapshots/" + name + ".png";
+  return "snapshots/" + FileNameOf(case_id) + ".png";
 }
 
 std::map<std::string, std::string> SnapshotCases(const Scene& base, const StudyPlan& plan,

@@ -17,8 +17,7 @@ namespace vmt::sim::study {
 /// cases by id and the clear case with the smallest clearance (the first by id of equals).
 std::vector<std::string> WorstCaseIds(const std::vector<CaseResult>& results, int collisions);
 
-/// `snapshots/<case id with every character but A-Z a-z 0-9 - as _>.png` (a `../` of a
-/// subroutine's path would make a hidden file).
+/// `snapshots/<FileNameOf(case id)>.png`.
 std::string SnapshotFileOf(const std::string& case_id);
 
 /// Renders the cases `ids` (of `cases`) into dir/snapshots/ with the camera and size of the

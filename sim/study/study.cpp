@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "sim/study/case_files.hpp"
+#include "sim/study/case_replay.hpp"
 #include "sim/study/case_snapshots.hpp"
 #include "sim/study/study_report.hpp"
 
@@ -106,6 +107,7 @@ StudySummary RunStudy(const StudyOptions& o) {
     plan.every_ms = 0;
   }
   std::filesystem::create_directories(o.out_dir);
+  WriteStudySource(o.out_dir, o.scene, plan);
   const Reference ref = LoadOrRunReference(scene, o.out_dir);
   const std::vector<Interruption> interruptions = Interruptions(plan, ref);
   std::vector<StudyCase> cases;
@@ -228,6 +230,15 @@ size_t MergeStudies(const std::vector<std::string>& dirs, const std::string& out
     }
   if (!shots.empty()) WriteSnapshotIndex(out_dir, shots);
   if (!reference.empty()) std::ofstream(out_dir + "/reference.json", std::ios::binary) << reference;
+  // The shards ran one study: the first's record of its scene serves them all.
+  for (const std::string& d : dirs)
+    if (std::filesystem::exists(d + "/study.json")) {
+      std::error_code same;
+      if (!std::filesystem::equivalent(d + "/study.json", out_dir + "/study.json", same))
+        std::filesystem::copy_file(d + "/study.json", out_dir + "/study.json",
+                                   std::filesystem::copy_options::overwrite_existing);
+      break;
+    }
   WriteReport(out_dir, "REPOS study (merged)");
   return all.size();
 }

@@ -1,6 +1,7 @@
 #include "sim/study/study_report.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -40,6 +41,22 @@ std::string Num(double v, const char* fmt = "%.3f") {
 
 std::string Str(const CaseResult& r, const char* key) {
   return r.contains(key) && r[key].is_string() ? r[key].get<std::string>() : "";
+}
+
+// The link that watches a case: served by `vmt view STUDY_DIR`, which saves the case's run and
+// opens a replay station for it.
+std::string ReplayHref(const std::string& case_id) {
+  std::string q = "replay?case=";
+  for (const unsigned char c : case_id) {
+    if (std::isalnum(c) || c == '-' || c == '_' || c == '.' || c == '~') {
+      q += static_cast<char>(c);
+    } else {
+      char hex[4];
+      std::snprintf(hex, sizeof hex, "%%%02X", c);
+      q += hex;
+    }
+  }
+  return q;
 }
 
 const char* Colour(const std::string& verdict) {
@@ -86,11 +103,12 @@ std::string Plane(const std::vector<const CaseResult*>& cases, const Reference* 
       if (kind != pass) continue;
       const auto& path = (*r)["path"];
       if (path.empty()) continue;
+      o << "<a href=\"" << Esc(ReplayHref(Str(*r, "case"))) << "\">";
       o << "<polyline fill=\"none\" stroke-opacity=\"0.6\" stroke=\"" << Colour(v)
         << "\" stroke-width=\"1\" points=\"";
       for (const auto& p : path)
         o << px(p[1].get<double>()) << "," << py(p[0].get<double>()) << " ";
-      o << "\"><title>" << Esc(Str(*r, "case")) << ": " << Esc(v) << "</title></polyline>\n";
+      o << "\"><title>" << Esc(Str(*r, "case")) << ": " << Esc(v) << "</title></polyline></a>\n";
       if (v == "collision") {
         const auto& last = path.back();
         o << "<circle r=\"3\" fill=\"#d62828\" cx=\"" << px(last[1].get<double>()) << "\" cy=\""
@@ -165,7 +183,8 @@ std::string ReportHtml(const std::string& title, const std::vector<CaseResult>& 
     worst.insert(worst.end(), tight.begin(), tight.end());
     o << "<h3>Worst cases</h3>\n<table><tr><th class=\"l\">case</th><th class=\"l\">verdict"
          "</th><th class=\"l\">first contact</th><th class=\"l\">point, mm</th><th>clearance, mm"
-         "</th><th class=\"l\">error</th><th class=\"l\">picture</th></tr>\n";
+         "</th><th class=\"l\">error</th><th class=\"l\">picture</th><th class=\"l\">replay"
+         "</th></tr>\n";
     for (const CaseResult* r : worst) {
       const std::string v = Str(*r, "verdict");
       o << "<tr><td class=\"l\">" << Esc(Str(*r, "case")) << "</td><td class=\"l " << Esc(v)
@@ -176,7 +195,8 @@ std::string ReportHtml(const std::string& title, const std::vector<CaseResult>& 
         << "</td><td class=\"l\">" << Esc(Str(*r, "error")) << "</td><td class=\"l\">";
       const auto shot = snapshots.find(Str(*r, "case"));
       if (shot != snapshots.end()) o << "<a href=\"" << Esc(shot->second) << "\">picture</a>";
-      o << "</td></tr>\n";
+      o << "</td><td class=\"l\"><a class=\"replay\" href=\"" << Esc(ReplayHref(Str(*r, "case")))
+        << "\">watch</a></td></tr>\n";
     }
     o << "</table>\n";
     // The pictures of this subroutine's worst cases: a collision at its first contact, the

@@ -1,5 +1,6 @@
 #!/bin/bash
-# vmt study as a user meets it: a tiny study, a rerun that skips every case, shards (and worker
+# vmt study as a user meets it: a tiny study, a rerun that skips every case, a case saved and
+# watched from the report (vmt study replay, vmt view of the study folder), shards (and worker
 # processes, and GNU parallel if installed) that merge into the unsharded result.
 # Usage: study_test.sh VMT SOURCE_DIR WORK_DIR
 set -euo pipefail
@@ -43,6 +44,52 @@ cmp whole/cases.jsonl jobs/cases.jsonl || fail "cases.jsonl: not the same bytes 
 "$vmt" study repos "$scene" --out noshots --snapshots 0 > /dev/null
 [ ! -e noshots/snapshots ] || fail "--snapshots 0 took pictures"
 cmp whole/cases.jsonl noshots/cases.jsonl || fail "cases.jsonl depends on the pictures"
+
+# A case watched: saved on demand (vmt study replay), then the study's report served by vmt view,
+# each case a link that opens a replay station of its own; the merged folder knows its scene too.
+id=$(grep -o '"case":"[^"]*over the chuck/repositioning"' whole/cases.jsonl | head -1 | cut -d'"' -f4)
+[ -n "$id" ] || fail "no case over the chuck to replay"
+"$vmt" study replay whole "$id" > replay.txt || fail "vmt study replay: $(cat replay.txt)"
+case_dir=$(sed -n 's/^case .*: \(.*\)\/{trace.csv.*/\1/p' replay.txt)
+for f in trace.csv events.jsonl summary.json case.json; do
+  [ -f "$case_dir/$f" ] || fail "the saved case has no $f: $(cat replay.txt)"
+done
+grep -q '"event":"path_guard"' "$case_dir/events.jsonl" || fail "the saved collision case has no PathGuard event"
+grep -q '"verdict": "collision"' "$case_dir/case.json" || fail "the saved case's verdict differs from the study's"
+[ -f merged/study.json ] || fail "the merged study does not know its scene"
+set +e
+"$vmt" study replay whole "no/such/case" 2> err.txt; rc=$?
+set -e
+[ $rc -eq 2 ] && grep -q "has no case" err.txt || fail "an unknown case: exit $rc, $(cat err.txt)"
+grep -q 'href="replay?case=' whole/report.html || fail "report.html links no case to its replay"
+timeout 300 "$vmt" view whole --http 127.0.0.1:0 > view.log 2>&1 &
+view_pid=$!
+port=
+for _ in $(seq 200); do
+  port=$(sed -n 's|.*report on http://127.0.0.1:\([0-9]*\)/.*|\1|p' view.log)
+  [ -n "$port" ] && break
+  sleep 0.05
+done
+[ -n "$port" ] || fail "vmt view of a study folder did not start: $(cat view.log)"
+curl -sf "http://127.0.0.1:$port/report.html" | grep -q '<svg' || fail "the study's report is not served"
+link=$(curl -sf "http://127.0.0.1:$port/report.html" | grep -o 'href="replay?case=[^"]*"' | tail -1 |
+       cut -d'"' -f2 | sed 's/&amp;/\&/g')
+to=$(curl -s -o /dev/null -w '%{http_code} %{redirect_url}' "http://127.0.0.1:$port/$link")
+case "$to" in
+  "302 http://127.0.0.1:"*/) ;;
+  *) fail "following $link: $to" ;;
+esac
+curl -sf "${to#302 }api/model" | grep -q '"pace":"replay"' || fail "the case's station is not a replay"
+code=$(curl -s -o /dev/null -w '%{http_code}' "http://127.0.0.1:$port/replay?case=no%2Fsuch")
+[ "$code" = 404 ] || fail "an unknown case's replay: HTTP $code"
+if [ -x /usr/bin/chromedriver ] && /usr/bin/python3 -c 'import selenium' 2>/dev/null; then
+  timeout 200 /usr/bin/python3 "$src/tests/station/study_report_page.py" \
+    --url "http://127.0.0.1:$port/report.html" > report-page.log 2>&1 ||
+    fail "clicking a case in the report (chromium): $(tail -5 report-page.log)"
+  cat report-page.log
+fi
+kill -INT $view_pid; wait $view_pid || true
+grep -q "differs from the recorded" view.log && fail "a case's replay digest differs: $(cat view.log)"
 
 # GNU parallel, as on a workstation without Slurm.
 if command -v parallel > /dev/null; then

@@ -1,0 +1,111 @@
+#include "sim/study/case_replay.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "sim/study/case_files.hpp"
+#include "sim/study/reference_run.hpp"
+#include "sim/study/study_cases.hpp"
+
+namespace vmt::sim::study {
+namespace {
+
+nlohmann::json ReadJson(const std::string& path, const std::string& what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path + ": missing (" + what + ")");
+  nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) throw std::runtime_error(path + ": not a JSON object");
+  return j;
+}
+
+std::string ReadText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+}  // namespace
+
+void WriteStudySource(const std::string& dir, const std::string& scene_file,
+                      const StudyPlan& plan) {
+  nlohmann::ordered_json j;
+  j["scene_file"] = std::filesystem::absolute(scene_file).lexically_normal().string();
+  j["every_ms"] = plan.every_ms;
+  j["per_mille"] = plan.per_mille;
+  const std::string tmp = dir + "/study.json." + std::to_string(::getpid());
+  std::ofstream(tmp, std::ios::binary) << j.dump(1) << "\n";
+  std::filesystem::rename(tmp, dir + "/study.json");
+}
+
+std::string CaseFolderOf(const std::string& case_id) { return "cases/" + FileNameOf(case_id); }
+
+std::string SaveCase(const std::string& dir, const std::string& case_id) {
+  const std::string folder = dir + "/" + CaseFolderOf(case_id);
+  if (std::filesystem::exists(folder + "/case.json")) {
+    const nlohmann::json saved = ReadJson(folder + "/case.json", "a saved case");
+    if (saved.value("case", "") != case_id)
+      throw std::runtime_error(folder + " holds case " + saved.value("case", "?") + ", not " +
+                               case_id);
+    return folder;
+  }
+  const nlohmann::json source = ReadJson(dir + "/study.json",
+                                         "not a study folder, or one made before cases could be "
+                                         "replayed: run the study again");
+  const std::string scene_file = source.value("scene_file", "");
+  const Scene scene = LoadScene(scene_file);
+  StudyPlan plan = LoadStudyPlan(scene_file, scene);
+  plan.every_ms = source.value("every_ms", 0.0);
+  plan.per_mille = source.value("per_mille", std::vector<int>{});
+  if (!std::filesystem::exists(dir + "/reference.json"))
+    throw std::runtime_error(dir + ": no reference.json (not a study folder)");
+  const Reference ref = ReferenceFromJson(ReadText(dir + "/reference.json"));
+  const std::vector<Interruption> interruptions = Interruptions(plan, ref);
+  const std::vector<StudyCase> cases = EnumerateCases(plan, interruptions);
+  const auto c =
+      std::find_if(cases.begin(), cases.end(), [&](const StudyCase& k) { return k.id == case_id; });
+  if (c == cases.end())
+    throw UnknownCase("the study in " + dir + " has no case " + case_id +
+                      " (cases.csv lists them)");
+
+  // Saved under another name first and renamed, so that a folder is either whole or absent.
+  const std::string work = folder + ".saving-" + std::to_string(::getpid());
+  std::filesystem::remove_all(work);
+  std::filesystem::create_directories(work);
+  const SavedCase saved = SaveCaseRun(scene, plan, interruptions, *c, work);
+  nlohmann::ordered_json j;
+  j["case"] = case_id;
+  j["scene_file"] = std::filesystem::absolute(scene_file).lexically_normal().string();
+  j["subroutine_file"] = saved.subroutine_file;
+  j["until_s"] = saved.until_s;
+  j["trace_digest"] = saved.trace_digest;
+  j["timeline"] = saved.timeline;
+  j["result"] = saved.result;
+  std::ofstream(work + "/case.json", std::ios::binary) << j.dump(1) << "\n";
+  std::error_code ec;
+  std::filesystem::rename(work, folder, ec);
+  if (ec) std::filesystem::remove_all(work);  // another request saved it meanwhile
+  return folder;
+}
+
+std::optional<CaseReplay> ReadCaseReplay(const std::string& run_dir) {
+  const std::string path = run_dir + "/case.json";
+  if (!std::filesystem::exists(path)) return std::nullopt;
+  const nlohmann::json j = ReadJson(path, "a saved case");
+  try {
+    SavedCase saved;
+    saved.timeline = j.at("timeline").get<std::vector<std::string>>();
+    saved.subroutine_file = j.at("subroutine_file").get<std::string>();
+    CaseReplay replay;
+    replay.until_s = j.at("until_s").get<double>();
+    replay.trace_digest = j.at("trace_digest").get<std::string>();
+    replay.scene = SavedCaseScene(LoadScene(j.at("scene_file").get<std::string>()), saved);
+    return replay;
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error(path + ": " + e.what());
+  }
+}
+
+}  // namespace vmt::sim::study
