@@ -50,6 +50,9 @@ async function main() {
       seeking = false;
       postRun({action: 'seek', t: Number(seek.value)});
     });
+    // ?t=SECONDS opens the replay at that time (a failing golden picture links there).
+    const at = Number(new URLSearchParams(location.search).get('t'));
+    if (at > 0) postRun({action: 'seek', t: Math.min(at, model.end_s || at)});
   }
 
   const panel =

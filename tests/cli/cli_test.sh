@@ -84,7 +84,8 @@ check imgdiff_golden 0 "equal" -- "$vmt" imgdiff "$src/tests/golden/default/iso_
 
 # The golden driver as ctest's golden_<scene> tests run it (tests/golden/check_scene.sh), on the
 # run above: its own pictures as goldens pass; a deliberately changed golden fails and leaves the
-# actual picture and the diff where it prints them; a golden missing or left over fails.
+# actual picture, the diff and a page linking to the replay where it prints them; a golden
+# missing or left over fails.
 golden_check() {  # golden_check GOLDEN_DIR FAIL_DIR [SCENE_OUT]
   bash "$src/tests/golden/check_scene.sh" "$vmt" "$1" "${3:-$out/run}" "$2"
 }
@@ -100,6 +101,9 @@ check golden_changed_prints_diff 0 "diff: +$out/golden_fail/work_3.2s/diff.png" 
 check golden_changed_actual 0 "" -- cmp "$out/golden_fail/work_3.2s/actual.png" "$out/run/work_3.2s.png"
 check golden_changed_diff 0 "" -- test -s "$out/golden_fail/work_3.2s/diff.png"
 check golden_changed_iso_passed 1 "" -- test -e "$out/golden_fail/iso_3.2s"
+# ... and a page of the three side by side that links to the run's replay at the picture's time.
+check golden_changed_page 0 'href="http://127.0.0.1:8080/\?t=3.2' -- cat "$out/golden_fail/work_3.2s/index.html"
+check golden_changed_prints_replay 0 "replay: vmt view $out/run --http 127.0.0.1:8080, then open http://127.0.0.1:8080/\?t=3.2" -- cat "$out/golden_changed.log"
 cp "$out/run/iso_3.2s.png" "$out/golden_missing/"
 check golden_missing 1 "FAIL work_3.2s.png: no golden" -- golden_check "$out/golden_missing" "$out/golden_fail_missing"
 cp "$out/golden_same/"*.png "$out/golden_extra/" && cp "$out/a.png" "$out/golden_extra/old.png"

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# A scene's pictures against its golden images (issue 9, image regression).
+# A scene's pictures against its golden images (image regression).
 # Usage: check_scene.sh VMT GOLDEN_DIR SCENE_OUT FAIL_DIR
 #   GOLDEN_DIR  tests/golden/<scene>: the golden pictures, named as the scene names its snapshots
 #   SCENE_OUT   the scene's `vmt run --out` folder (the scene test's, so the scene runs once)
-#   FAIL_DIR    where a failing picture leaves <picture>/actual.png, diff.png and golden.png
+#   FAIL_DIR    where a failing picture leaves <picture>/actual.png, diff.png, golden.png and
+#               index.html: the three side by side, and how to watch the run at its time
 # Every snapshot the scene wrote (its `snapshot` events) must have a golden of the same name
 # and match it; every golden must have been written, so that a renamed or dropped snapshot
 # shows. Exit 0 all match, 1 otherwise. Refresh after an intended change:
@@ -20,6 +21,23 @@ vmt=$1 golden=$2 run=$3 fail=$4
 # pixels (38 at 320x240) beyond 2 levels passes: 2.4 times that, and half of what a turret
 # detail added since the first golden of `default` changed in its work picture (0.10 %).
 tolerance=2 allowed_fraction=0.0005
+
+# A failing picture's page: golden, actual and difference side by side, and the link that opens
+# the run's replay (vmt view) at the picture's time.
+write_failure_page() {  # write_failure_page DIR SHOT WHAT REPLAY_COMMAND T
+  local dir=$1 shot=$2 what=$3 replay=$4 t=$5
+  local diff_img=""
+  [ -f "$dir/diff.png" ] && diff_img='<figure><img src="diff.png"><figcaption>difference</figcaption></figure>'
+  cat > "$dir/index.html" <<HTML
+<!DOCTYPE html><html><head><meta charset="utf-8"><title>$shot differs from its golden</title>
+<style>body{font-family:sans-serif;margin:2em}figure{display:inline-block;margin:4px}</style></head>
+<body><h1>$shot differs from its golden</h1><p>$what</p>
+<figure><img src="golden.png"><figcaption>golden</figcaption></figure>
+<figure><img src="actual.png"><figcaption>actual</figcaption></figure>$diff_img
+<p>Watch the run at the picture's time (t = $t s): run <code>$replay</code>, then open
+<a href="http://127.0.0.1:8080/?t=$t">http://127.0.0.1:8080/?t=$t</a>.</p></body></html>
+HTML
+}
 
 rm -rf "$fail"
 events=$run/events.jsonl
@@ -50,10 +68,17 @@ for shot in "${shots[@]}"; do
   fi
   cp "$run/$shot" "$where/actual.png"
   cp "$golden/$shot" "$where/golden.png"
+  # The picture's time, to watch the run there in the operator station.
+  t=$(grep '"event":"snapshot"' "$events" | grep -F "\"file\":\"$shot\"" | head -1 |
+      sed -n 's/^{"t":\([0-9.e+-]*\),.*/\1/p')
+  replay="vmt view $(cd "$run" && pwd) --http 127.0.0.1:8080"
+  write_failure_page "$where" "$shot" "$out" "$replay" "${t:-0}"
   echo "FAIL $shot: $out"
   echo "     golden: $golden/$shot"
   echo "     actual: $where/actual.png"
   [ -f "$where/diff.png" ] && echo "     diff:   $where/diff.png"
+  echo "     page:   $where/index.html (the three side by side)"
+  echo "     replay: $replay, then open http://127.0.0.1:8080/?t=${t:-0}"
   fails=$((fails + 1))
 done
 for g in "$golden"/*.png; do
