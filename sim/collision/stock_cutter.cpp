@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "sim/model/model_error.hpp"
 
@@ -29,6 +30,58 @@ StockCutter::StockCutter(const MachineModel& model, const RevolvedPart& part)
       cut.radius = std::max(cut.radius, (p - cut.centre).norm());
     cutters_.push_back(std::move(cut));
   }
+  for (const Cutter& c : cutters_) {
+    if (std::any_of(holders_.begin(), holders_.end(),
+                    [&](const Holder& h) { return h.link == c.link; }))
+      continue;
+    Holder holder{c.link, {}};
+    const std::vector<Visual>& parts = model.links[c.link].collisions;
+    for (size_t i = 0; i < parts.size(); ++i) {
+      const bool cutting = std::any_of(
+          model.cutting_parts.begin(), model.cutting_parts.end(), [&](const CuttingPart& p) {
+            return p.link == c.link && p.collision == static_cast<int>(i);
+          });
+      if (cutting || !parts[i].mesh) continue;
+      const auto& pos = parts[i].mesh->positions;
+      for (size_t k = 0; k + 2 < pos.size(); k += 3)
+        holder.corners.push_back(parts[i].X_LinkVisual *
+                                 Eigen::Vector3d(pos[k], pos[k + 1], pos[k + 2]));
+    }
+    holders_.push_back(std::move(holder));
+  }
+}
+
+std::optional<Eigen::Vector3d> StockCutter::CuttingPoint(const std::vector<double>& q) const {
+  // Corners this close to the nearest one count as its edge (rounding of the turret's angle).
+  constexpr double kEdgeM = 1e-5;
+  if (cutters_.empty()) return std::nullopt;
+  const std::vector<Eigen::Isometry3d> X_W = LinkPoses(*model_, q);
+  const Eigen::Isometry3d X_PartWorld = X_W[link_].inverse();
+  double nearest = std::numeric_limits<double>::infinity();
+  int link = -1;
+  for (const Cutter& c : cutters_) {
+    const Eigen::Isometry3d X = X_PartWorld * X_W[c.link];
+    for (const Eigen::Vector3d& p : c.corners) {
+      const double r = (X * p).head<2>().norm();
+      if (r < nearest) nearest = r, link = c.link;
+    }
+  }
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  int count = 0;
+  for (const Cutter& c : cutters_) {
+    const Eigen::Isometry3d X = X_PartWorld * X_W[c.link];
+    for (const Eigen::Vector3d& p : c.corners) {
+      const Eigen::Vector3d p_part = X * p;
+      if (p_part.head<2>().norm() <= nearest + kEdgeM) sum += p_part, ++count;
+    }
+  }
+  for (const Holder& h : holders_) {
+    if (h.link != link) continue;
+    const Eigen::Isometry3d X = X_PartWorld * X_W[h.link];
+    for (const Eigen::Vector3d& p : h.corners)
+      if ((X * p).head<2>().norm() < nearest - kEdgeM) return std::nullopt;
+  }
+  return X_W[link_] * (sum / count);
 }
 
 bool StockCutter::Cut(const std::vector<double>& q, double t_s) {

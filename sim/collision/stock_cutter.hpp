@@ -6,6 +6,7 @@
 // in its own cut is clear and an approach into the cut meets only what is left.
 
 #include <Eigen/Geometry>
+#include <optional>
 #include <vector>
 
 #include "sim/collision/turned_stock.hpp"
@@ -33,6 +34,14 @@ class StockCutter {
 
   const TurnedStock& stock() const { return stock_; }
 
+  /// Where the tool in work cuts, world frame (m), at joint positions `q`: of the cutting
+  /// parts, the corners nearest the spindle axis (their middle: an edge square to the tool's
+  /// ray has its nearest point between its corners). The station facing the spindle holds its
+  /// tool nearer the axis than every other station, so these are the tool in work's; none when
+  /// something else of that link is nearer still (a probe, a drill or an empty holder faces the
+  /// spindle). Reads only: cutting is Cut's.
+  std::optional<Eigen::Vector3d> CuttingPoint(const std::vector<double>& q) const;
+
  private:
   struct Cutter {
     int link = -1;
@@ -44,6 +53,12 @@ class StockCutter {
   TurnedStock stock_;
   int link_ = -1, spindle_joint_ = -1;
   std::vector<Cutter> cutters_;
+  /// Per link that holds a cutting part: the corners of its other collision parts (link frame).
+  struct Holder {
+    int link = -1;
+    std::vector<Eigen::Vector3d> corners;
+  };
+  std::vector<Holder> holders_;
   double last_angle_ = 0, last_t_ = -1;
 };
 

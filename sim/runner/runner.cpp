@@ -1,10 +1,12 @@
 #include "sim/runner/runner.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <span>
@@ -15,6 +17,7 @@
 #include "control/plc/plc_programs.hpp"
 #include "control/plc/plc_runtime.hpp"
 #include "render/image.hpp"
+#include "sim/backend/stylus.hpp"
 #include "sim/collision/machine_path_guard.hpp"
 #include "sim/collision/spindle_sweep.hpp"
 #include "sim/collision/stock_cutter.hpp"
@@ -107,6 +110,7 @@ nlohmann::ordered_json SpindleStatusJson(const control::channel::Channel& ch,
 SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     : scene(scene_), options(options_), m(*scene_.model) {
   recorder.AddObserver([this](const nlohmann::ordered_json& e) { NoteSnapshotEvent(e); });
+  recorder.AddObserver([this](const nlohmann::ordered_json& e) { NoteProbeLatch(e); });
   if (options.on_event) recorder.AddObserver(options.on_event);
   backend = MakeBackend(options.backend.value_or(scene.backend), m, scene.initial);
   if (scene.workpiece.present) backend->SetWorkpiece(scene.workpiece.part);
@@ -395,6 +399,37 @@ void SceneRun::PlcLost(const std::string& reason) { state_->StopPlc(time_s(), re
 void SceneRun::PlcRunning() {
   state_->recorder.Event({{"t", time_s()}, {"event", "plc"}, {"state", "running"}});
 }
+// A latch event comes in the tick after the backend step whose contact the drive latched, so
+// the machine stands where that step left it: the sphere is in the part by the pre-travel and
+// at most one tick's travel, and the part's surface point nearest it is where it touched.
+void SceneRun::State::NoteProbeLatch(const nlohmann::ordered_json& event) {
+  if (event.value("event", "") != "probe_latch") return;
+  probe_latch_point.reset();
+  const int part_link = scene.workpiece.present ? m.LinkIndex(scene.workpiece.part.link) : -1;
+  if (part_link < 0) return;
+  const bool pin5 = event.value("input", "") == "PIN5";
+  const auto stylus = std::find_if(m.probes.begin(), m.probes.end(),
+                                   [pin5](const ProbeStylus& s) { return s.pin5 == pin5; });
+  if (stylus == m.probes.end() || stylus->spheres.empty()) return;
+  const std::vector<Eigen::Isometry3d> X_W = LinkPoses(m, backend->JointPositions());
+  const std::vector<Eigen::Vector3d> centres =
+      SphereCentres(*stylus, X_W[part_link].inverse() * X_W[stylus->link]);
+  double deepest = -std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < centres.size(); ++i) {
+    const RevolvedDistance d = SignedDistance(scene.workpiece.part, centres[i]);
+    const double depth = stylus->spheres[i].radius_m - d.distance_m;
+    if (depth > deepest) deepest = depth, probe_latch_point = X_W[part_link] * d.point_m;
+  }
+}
+
+std::optional<Eigen::Vector3d> SceneRun::ToolTip() const {
+  if (!state_->cutter) return std::nullopt;
+  return state_->cutter->CuttingPoint(state_->backend->JointPositions());
+}
+std::optional<Eigen::Vector3d> SceneRun::ProbeLatchPoint() const {
+  return state_->probe_latch_point;
+}
+
 
 RunResult RunScene(const Scene& scene, const RunOptions& options) {
   SceneRun run(scene, options);

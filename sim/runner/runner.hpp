@@ -125,6 +125,14 @@ class SceneRun {
   /// without a workpiece that PathGuard turns.
   std::vector<CylinderPart> TurnedStockCylinders() const;
   int64_t stock_cuts() const;
+  /// Where the tool in work cuts now (world, m; StockCutter::CuttingPoint): none without a
+  /// workpiece that PathGuard turns, or when no cutting tool faces the spindle.
+  std::optional<Eigen::Vector3d> ToolTip() const;
+  /// Where a stylus touched the workpiece at the last probe latch (world, m): the part's
+  /// surface point nearest the sphere pushed deepest, the stylus on the latching drive's probe
+  /// input posed as the machine stood in the latch's tick. None before a latch or without one
+  /// (no stylus on that input, no workpiece).
+  std::optional<Eigen::Vector3d> ProbeLatchPoint() const;
 
  private:
   struct State;

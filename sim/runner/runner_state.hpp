@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -70,6 +71,9 @@ struct SceneRun::State {
   double spindle_angle = 0;
   bool guard_parts_stale = false;
   int64_t stock_cuts = 0;  ///< ticks in which the turned stock changed
+  /// SceneRun::ProbeLatchPoint, taken from each probe_latch event as it is recorded.
+  std::optional<Eigen::Vector3d> probe_latch_point;
+  void NoteProbeLatch(const nlohmann::ordered_json& event);
   void FollowSpindle(double t);
   /// The machine data pages of fast measurement: the channel's MTD(...) and the probe block's
   /// MTD_RD read and write the same ones.

@@ -16,8 +16,9 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-/// Rounded to 1e-6 of its unit: the page needs no more, and the frames stay short.
-double Short(double v) { return std::round(v * 1e6) / 1e6; }
+/// Rounded to 1e-6 of its unit: the page needs no more, and the frames stay short (+ 0.0: no
+/// "-0.0" on an axis).
+double Short(double v) { return std::round(v * 1e6) / 1e6 + 0.0; }
 
 Json Array(const Eigen::Vector3d& v) {
   return Json::array({Short(v.x()), Short(v.y()), Short(v.z())});
@@ -119,8 +120,11 @@ void StationMarks::Note(const nlohmann::ordered_json& event) {
   } else if (kind == "probe_latch") {
     probe = Json{{"drive", event.value("drive", "")},
                  {"value", event.value("measured_value", 0.0)},
-                 {"t", event.value("t", 0.0)}}
+                 {"t", event.value("t", 0.0)},
+                 {"edge", event.value("edge", "")}}
                 .dump();
+    if (latches.size() == kLatchesKept) latches.erase(latches.begin());
+    latches.push_back(probe);
   } else if (kind == "clutch") {
     clutches[event.value("name", "")] = event.value("state", "");
   } else if (kind == "nc" && event.value("state", "") == "idle") {
@@ -247,17 +251,27 @@ std::string StateJson(const SceneRun& run, int64_t plc_cycle, const std::string&
                       {"machine", Short(at.feedback[d].position)},
                       {"following_error", Short(at.feedback[d].following_error)}});
   }
+  const std::optional<Eigen::Vector3d> tip = run.ToolTip();
+  Json probe = nullptr;
+  if (!marks.probe.empty()) {
+    probe = Json::parse(marks.probe);
+    const std::optional<Eigen::Vector3d> point = run.ProbeLatchPoint();
+    probe["point"] = point ? Array(*point) : Json(nullptr);
+    Json latches = Json::array();
+    for (const std::string& latch : marks.latches) latches.push_back(Json::parse(latch));
+    probe["latches"] = std::move(latches);
+  }
   return Json{{"t", run.time_s()},
               {"cycle", plc_cycle},
               {"run", run_state},
               {"poses", std::move(poses)},
-              {"tool_tip", nullptr},
+              {"tool_tip", tip ? Array(*tip) : Json(nullptr)},
               {"nc", std::move(nc)},
               {"axes", std::move(axes)},
               {"messages", std::move(messages)},
               {"events", events},
               {"guard", marks.guard.empty() ? Json(nullptr) : Json::parse(marks.guard)},
-              {"probe", marks.probe.empty() ? Json(nullptr) : Json::parse(marks.probe)},
+              {"probe", std::move(probe)},
               {"repos", std::move(repos)},
               {"headstock", std::move(headstock)},
               {"block_search", std::move(block_search)},

@@ -1,11 +1,13 @@
 // The station's JSON of a run: the model's links with their meshes and the workpiece, the
 // machine keys and axes, a state with one pose per link, and the signals with what a page may
-// write; PathGuard's refusal and a probe latch become marks.
+// write; where the tool in work cuts; PathGuard's refusal and a probe latch (with where the
+// stylus touched the part) become marks.
 
 #include "sim/station/station_frames.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "../sim_test_support.hpp"
@@ -73,6 +75,52 @@ TEST(StationFramesTest, ModelStateAndSignalsOfARun) {
   EXPECT_FALSE(status_writable);
 }
 
+// lathe-c1 holds every tool's tip on the turret's tool-tip plane, 60 mm ahead of the Z
+// carriage, and X is the tip's radius (models/lathe-c1/README.md, turret stations).
+TEST(StationFramesTest, ToolTipIsTheCuttingCornerOfTheToolInWork) {
+  const Scene scene = LoadScene(SourcePath("scenes/machine-panel.yaml"));
+  RunOptions options;
+  options.until_s = 0.1;
+  SceneRun run(scene, options);
+  while (!run.done()) run.Step();
+  const Json state = Json::parse(StateJson(run, 0, "paused", 0, StationMarks{}));
+  ASSERT_TRUE(state["tool_tip"].is_array());
+  const double x_mm = state["axes"][0]["machine"], z_mm = state["axes"][1]["machine"];
+  EXPECT_NEAR(state["tool_tip"][0].get<double>(), x_mm / 1000, 1e-6);
+  EXPECT_NEAR(state["tool_tip"][1].get<double>(), 0.0, 1e-6);
+  EXPECT_NEAR(state["tool_tip"][2].get<double>(), (z_mm + 60) / 1000, 1e-6);
+}
+
+TEST(StationFramesTest, NoToolTipWhileTheProbeFacesTheSpindle) {
+  const Scene scene = LoadScene(SourcePath("scenes/measure-shaft.yaml"));  // turret at T3
+  RunOptions options;
+  options.until_s = 0.01;
+  SceneRun run(scene, options);
+  while (!run.done()) run.Step();
+  EXPECT_TRUE(Json::parse(StateJson(run, 0, "paused", 0, StationMarks{}))["tool_tip"].is_null());
+}
+
+// The first contact of measure-shaft: the ruby meets the d60 master, and both measuring axes
+// latch at that edge.
+TEST(StationFramesTest, ProbeLatchCarriesWhereTheStylusTouched) {
+  const Scene scene = LoadScene(SourcePath("scenes/measure-shaft.yaml"));
+  StationMarks marks;
+  RunOptions options;
+  options.until_s = 1.2;
+  options.on_event = [&marks](const nlohmann::ordered_json& e) { marks.Note(e); };
+  SceneRun run(scene, options);
+  while (!run.done()) run.Step();
+  const Json probe = Json::parse(StateJson(run, 0, "paused", 0, marks))["probe"];
+  ASSERT_TRUE(probe.is_object());
+  ASSERT_TRUE(probe["point"].is_array());
+  const double r = std::hypot(probe["point"][0].get<double>(), probe["point"][1].get<double>());
+  EXPECT_NEAR(r, 0.030, 1e-6);  // on the master's surface
+  const double z = probe["point"][2];
+  EXPECT_TRUE(z > 0.060 && z < 0.190) << z;  // on the d60, between the chuck and the shoulder
+  ASSERT_EQ(probe["latches"].size(), 2u);
+  EXPECT_EQ(probe["latches"][0]["t"], probe["latches"][1]["t"]);
+}
+
 TEST(StationFramesTest, MarksFollowTheEvents) {
   StationMarks marks;
   marks.Note({{"event", "path_guard"}, {"clear", true}});
@@ -87,6 +135,10 @@ TEST(StationFramesTest, MarksFollowTheEvents) {
   EXPECT_DOUBLE_EQ(guard["point"][0].get<double>(), 0.0859);  // metres
   marks.Note({{"event", "probe_latch"}, {"drive", "X"}, {"measured_value", 29.99}, {"t", 1.2}});
   EXPECT_EQ(Json::parse(marks.probe)["drive"], "X");
+  for (int i = 0; i < 20; ++i)
+    marks.Note({{"event", "probe_latch"}, {"drive", "Z"}, {"measured_value", i}, {"t", 2.0 + i}});
+  ASSERT_EQ(marks.latches.size(), StationMarks::kLatchesKept);  // the last few
+  EXPECT_EQ(Json::parse(marks.latches.back())["value"], 19);
   marks.Note({{"event", "clutch"}, {"name", "K"}, {"state", "blocked"}});
   EXPECT_EQ(marks.clutches.at("K"), "blocked");
   marks.Note({{"event", "nc"}, {"state", "idle"}});  // Control-Reset
