@@ -1,7 +1,7 @@
 // The control's functions as the operator reads them beside the program: the REPOS screen
 // (repositioning manual 2.2), the headstock (C-axis manual 2.3: spindle or rotary axis mode,
 // the changeover, ROTMOD/SPMOD and their acknowledgements, clutch K), block search (its HLI
-// state) and the probe's last latch. Rebuilt from each state; the markup is small.
+// state) and the probe's latches. Rebuilt from each state; the markup is small.
 
 const fmt = (v, d = 3) => (typeof v === 'number' ? v.toFixed(d) : v == null ? '—' : String(v));
 const esc = (s) => String(s).replace(
@@ -27,9 +27,7 @@ export class Functions {
     this.draw('repos', state.repos, (r) => this.repos(r));
     this.draw('headstock', state.headstock, (h) => this.headstock(h));
     this.draw('block-search', state.block_search, (b) => this.blockSearch(b));
-    this.draw(
-        'probe', state.probe,
-        (p) => `latched ${esc(p.drive)} = ${fmt(p.value)} at t = ${fmt(p.t)} s`);
+    this.draw('probe', state.probe, (p) => this.probe(p));
   }
 
   draw(name, data, render) {
@@ -81,6 +79,28 @@ export class Functions {
         <span>${esc(h.axis)} ${fmt(h.position)} deg</span>
         <span>clutch ${clutches || '—'}</span></div>
       <div class="fn-flags">${signals}</div>`;
+  }
+
+  // One edge latches every measuring axis: the latches of one instant are one row.
+  probe(p) {
+    const rows = new Map();
+    for (const l of p.latches || []) {
+      const key = `${fmt(l.t)} ${l.edge || ''}`;
+      if (!rows.has(key)) rows.set(key, {t: l.t, edge: l.edge, axes: []});
+      rows.get(key).axes.push(`${esc(l.drive)} ${fmt(l.value)}`);
+    }
+    const body = [...rows.values()]
+                     .reverse()
+                     .map((r) => `<tr><td class="num">${fmt(r.t)}</td><td>${esc(r.edge || '')}</td>
+        <td class="mono">${r.axes.join(' &nbsp; ')}</td></tr>`)
+                     .join('');
+    const point = Array.isArray(p.point) ?
+        ` &middot; touched at (${p.point.map((c) => fmt(c * 1000, 2)).join(', ')}) mm` :
+        '';
+    return `<div class="fn-kv"><span>last: ${esc(p.drive)} = ${fmt(p.value)} at t = ${fmt(p.t)} s${
+        point}</span></div>
+      <table class="grid fn-table" data-probe-latches><thead><tr><th class="num">t (s)</th>
+        <th>edge</th><th>latched values (mm | deg)</th></tr></thead><tbody>${body}</tbody></table>`;
   }
 
   blockSearch(b) {

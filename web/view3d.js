@@ -6,7 +6,10 @@ import * as THREE from './vendor/three/build/three.module.js';
 // module instance (two instances of three.js would not share classes).
 import {OrbitControls} from './vendor/three/examples/jsm/controls/OrbitControls.js';
 
-const TRAIL_POINTS = 5000;
+// The trail keeps the last TRAIL_SEGMENTS pieces, one per state in which the tip moved more
+// than TRAIL_STEP_M: a finishing pass of 100 mm at 0.2 mm is 500 of them.
+const TRAIL_SEGMENTS = 20000;
+const TRAIL_STEP_M = 2e-4;
 const GUARD_RED = new THREE.Color(0xe53935);
 
 export class MachineView {
@@ -38,8 +41,9 @@ export class MachineView {
     this.links = model.links.map((link) => this.buildLink(link));
     this.linkByName = new Map(this.links.map((g) => [g.name, g]));
     this.buildTrail();
-    this.guardMarker = this.marker(0xff2d2d);
-    this.probeMarker = this.marker(0x32e06a);
+    this.guardMarker = this.marker(0xff2d2d, 0.004);
+    // smaller than the ruby (r 3 mm), which stands on it at the latch
+    this.probeMarker = this.marker(0x32e06a, 0.0015);
     this.guardParts = [];
 
     this.cameras = model.cameras || [];
@@ -53,6 +57,7 @@ export class MachineView {
     const loop = () => {
       if (this.dirty) {
         this.dirty = false;
+        this.uploadTrail();
         this.renderer.render(this.scene, this.camera);
       }
       requestAnimationFrame(loop);
@@ -99,20 +104,25 @@ export class MachineView {
     return group;
   }
 
+  // Separate segments rather than one polyline: the trail breaks where no cutting tool faces
+  // the spindle (state.tool_tip null), and a full ring overwrites its oldest segment in place.
   buildTrail() {
-    this.trailPositions = new Float32Array(TRAIL_POINTS * 3);
-    this.trailCount = 0;
+    this.trailPositions = new Float32Array(TRAIL_SEGMENTS * 6);
+    this.trailCount = 0;     // segments written since the last clear
+    this.trailDirty = null;  // [first, last] segment not yet uploaded
     const g = new THREE.BufferGeometry();
-    g.setAttribute('position', new THREE.BufferAttribute(this.trailPositions, 3));
+    const attribute = new THREE.BufferAttribute(this.trailPositions, 3);
+    attribute.setUsage(THREE.DynamicDrawUsage);
+    g.setAttribute('position', attribute);
     g.setDrawRange(0, 0);
     this.trail = new THREE.Group();
     // The path runs inside the (uncut) workpiece: a faint copy drawn through the parts shows
     // where it is hidden, the bright one where it is in sight.
-    const hidden = new THREE.Line(
+    const hidden = new THREE.LineSegments(
         g,
         new THREE.LineBasicMaterial(
             {color: 0x2fd4ff, transparent: true, opacity: 0.35, depthTest: false}));
-    const seen = new THREE.Line(g, new THREE.LineBasicMaterial({color: 0x2fd4ff}));
+    const seen = new THREE.LineSegments(g, new THREE.LineBasicMaterial({color: 0x2fd4ff}));
     for (const line of [hidden, seen]) {
       // The trail's bounding sphere would have to be recomputed on every point.
       line.frustumCulled = false;
@@ -125,10 +135,10 @@ export class MachineView {
     this.lastT = -Infinity;
   }
 
-  marker(colour) {
+  marker(colour, radius) {
     // Drawn over everything: a refusal point inside a part must still be seen.
     const m = new THREE.Mesh(
-        new THREE.SphereBufferGeometry(0.004, 20, 14),
+        new THREE.SphereBufferGeometry(radius, 20, 14),
         new THREE.MeshBasicMaterial(
             {color: colour, depthTest: false, transparent: true, opacity: 0.95}));
     m.renderOrder = 10;
@@ -258,25 +268,44 @@ export class MachineView {
   clearTrail() {
     this.trailCount = 0;
     this.lastTip = null;
+    this.trailDirty = null;
     this.trailGeometry.setDrawRange(0, 0);
     this.dirty = true;
   }
 
+  // The tip's world position (m), or null where no cutting tool faces the spindle.
   addTip(p) {
-    const last = this.lastTip;
-    if (last && Math.abs(last[0] - p[0]) < 1e-7 && Math.abs(last[1] - p[1]) < 1e-7 &&
-        Math.abs(last[2] - p[2]) < 1e-7)
+    if (!Array.isArray(p) || p.length !== 3) {
+      this.lastTip = null;
       return;
-    this.lastTip = p;
-    const a = this.trailPositions;
-    if (this.trailCount === TRAIL_POINTS) {
-      a.copyWithin(0, 3);
-      this.trailCount--;
     }
-    a.set(p, this.trailCount * 3);
+    const last = this.lastTip;
+    if (!last) {
+      this.lastTip = p;
+      return;
+    }
+    const dx = p[0] - last[0], dy = p[1] - last[1], dz = p[2] - last[2];
+    if (dx * dx + dy * dy + dz * dz < TRAIL_STEP_M * TRAIL_STEP_M) return;
+    const i = this.trailCount % TRAIL_SEGMENTS;
+    this.trailPositions.set(last, i * 6);
+    this.trailPositions.set(p, i * 6 + 3);
     this.trailCount++;
-    this.trailGeometry.attributes.position.needsUpdate = true;
-    this.trailGeometry.setDrawRange(0, this.trailCount);
+    this.lastTip = p;
+    this.trailDirty = this.trailDirty ?
+        [Math.min(this.trailDirty[0], i), Math.max(this.trailDirty[1], i)] :
+        [i, i];
+    this.trailGeometry.setDrawRange(0, Math.min(this.trailCount, TRAIL_SEGMENTS) * 2);
+  }
+
+  // Only the segments written since the last frame go to the GPU.
+  uploadTrail() {
+    if (!this.trailDirty) return;
+    const [first, last] = this.trailDirty;
+    const attribute = this.trailGeometry.attributes.position;
+    attribute.updateRange.offset = first * 6;
+    attribute.updateRange.count = (last - first + 1) * 6;
+    attribute.needsUpdate = true;
+    this.trailDirty = null;
   }
 
   update(state) {
@@ -295,9 +324,9 @@ export class MachineView {
       }
       this.orientGround();
     }
-    if (state.t < this.lastT) this.clearTrail();  // a new run
+    if (state.t < this.lastT) this.clearTrail();  // a replay went back (seek), or a new run
     this.lastT = state.t;
-    if (state.tool_tip) this.addTip(state.tool_tip);
+    this.addTip(state.tool_tip);
     this.updateGuard(state.guard);
     if (typeof state.stock === 'number' && state.stock !== this.stockVersion) this.loadStock();
     this.updateMarker(this.probeMarker, state.probe && state.probe.point);
