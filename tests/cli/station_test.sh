@@ -131,12 +131,15 @@ grep -q 'tick: 0, signal: "mCOOLANT", value: 1' "$out/click/operator.yaml" &&
 
 # --- A real browser on the page (headless chromium through chromedriver).
 if [ -x /usr/bin/chromedriver ] && "$python" -c 'import selenium' 2>/dev/null; then
-  # The scene with nothing scripted: the page's keys alone operate the machine.
+  # The scene with nothing scripted: the page's keys alone operate the machine. Its 3D view at
+  # t = 0 against a golden; VMT_REFRESH_STATION_GOLDEN=1 writes the golden instead.
   start_station "$out/browser" "$station_scene" || exit 1
   timeout 300 "$python" "$src/tests/station/station_page.py" --url "$(url /)" \
     --screenshot "$out/browser/canvas.png" --jog-key mJGPOS_X --jog-axis X --manual-key mMANU \
-    --auto-key mAUTO --start-key mSTART >"$out/browser/page.log" 2>&1 ||
-    fail "the page in chromium: $(tail -5 "$out/browser/page.log")"
+    --auto-key mAUTO --start-key mSTART --vmt "$vmt" \
+    --golden "$src/tests/golden/station-page/canvas.png" --golden-out "$out/browser/golden" \
+    ${VMT_REFRESH_STATION_GOLDEN:+--refresh-golden} >"$out/browser/page.log" 2>&1 ||
+    fail "the page in chromium: $(tail -8 "$out/browser/page.log")"
   kill -INT $pid; wait $pid
 else
   echo "skipped: no chromium-driver / python3-selenium (tools/setup-debian.sh installs them)"

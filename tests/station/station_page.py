@@ -4,6 +4,14 @@
     /usr/bin/python3 tests/station/station_page.py --url http://127.0.0.1:PORT/ --screenshot OUT.png
         [--jog-key mJGPOS_X --jog-axis X] [--manual-key mMANU] [--auto-key mAUTO --start-key mSTART]
         [--seek T]   (a replay of vmt view: the time slider goes to T, the keys are disabled)
+        [--golden PNG --vmt VMT [--golden-out DIR] [--refresh-golden]]
+
+With --golden, the 3D view right after the page loaded (a lockstep run, paused at t = 0, the
+first camera, the view pinned to GOLDEN_W x GOLDEN_H, the tool path trail empty) is compared
+with PNG by `VMT imgdiff`; a failure names the actual picture and the difference picture
+(in --golden-out). After an intended change of the view, --refresh-golden writes PNG instead
+(tests/cli/station_test.sh passes it when VMT_REFRESH_STATION_GOLDEN=1); look at the picture
+before committing it.
 
 Drives Debian's chromium through chromedriver (selenium 4), headless with SwiftShader so that
 WebGL renders without a GPU. Prints one "ok: ..." line per check; exits 1 with "FAIL: ..." at
@@ -11,7 +19,11 @@ the first failed check, 2 when the browser cannot be started. Every wait is boun
 run stays under 90 s.
 """
 import argparse
+import base64
+import os
+import shutil
 import struct
+import subprocess
 import sys
 import time
 import zlib
@@ -47,6 +59,18 @@ def wait_for(what, predicate, timeout, interval=0.05):
 
 def ok(text):
     print('ok: ' + text, flush=True)
+
+
+# The 3D view's size for the golden, whatever the page's layout makes of the window.
+GOLDEN_W, GOLDEN_H = 960, 540
+# SwiftShader draws the same bytes run after run on one machine: six runs gave equal PNGs
+# (0 pixels beyond 0 levels). Another CPU may get other code from SwiftShader's JIT, which
+# moves edge pixels by a few levels, as llvmpipe's goldens allow for (tests/golden/
+# check_scene.sh: at most 0.021 % of the pixels beyond 2 levels). So at most 0.03 % of the
+# pixels (155) may differ by more than 8 levels. What that still catches, measured on this
+# view: the Z carriage 2 mm off changes 301 pixels, the turret 1 degree off 713, the camera's
+# field of view 0.5 degree wider 9 %; a 60 mm tool path trail (40) or a marker (3) it misses.
+GOLDEN_TOLERANCE, GOLDEN_ALLOWED_FRACTION = 8, 0.0003
 
 
 # ------------------------------------------------------------------ PNG without PIL
@@ -136,7 +160,15 @@ def main():
     ap.add_argument('--start-key')
     ap.add_argument('--min-colours', type=int, default=64)
     ap.add_argument('--seek', type=float, help='a replay (vmt view): move the time slider here')
+    ap.add_argument('--golden', help="the 3D view's golden PNG at t = 0 (a lockstep run)")
+    ap.add_argument('--vmt', help='the vmt binary, whose imgdiff compares with --golden')
+    ap.add_argument('--golden-out', help='where the actual and difference pictures go '
+                    '(default: golden-view/ beside --screenshot)')
+    ap.add_argument('--refresh-golden', action='store_true',
+                    help='write the view to --golden instead of comparing')
     args = ap.parse_args()
+    if args.golden and not (args.vmt or args.refresh_golden):
+        ap.error('--golden needs --vmt (or --refresh-golden)')
     if bool(args.jog_key) != bool(args.jog_axis):
         ap.error('--jog-key and --jog-axis go together')
     if bool(args.auto_key) != bool(args.start_key):
@@ -207,6 +239,9 @@ def run_checks(driver, args):
         raise Failure('no [data-key] buttons on the page')
     ok('%d machine keys on the panel' % len(keys))
     wait_for('the run state', lambda: run_state() not in ('', '\u2014'), 10)
+
+    if args.golden:
+        check_golden(driver, args, run_state, text)
 
     if args.seek is not None:
         slider = find('[data-seek]')
@@ -288,6 +323,76 @@ def run_checks(driver, args):
     if errors:
         raise Failure('errors in the browser console: ' + ' | '.join(e['message'] for e in errors[:5]))
     ok('no script errors in the browser console')
+
+
+def view_picture(driver):
+    """The 3D view's pixels as its WebGL canvas holds them (PNG bytes): without the page's
+    buttons and legend over it, which are the page's layout, not the view."""
+    url = driver.execute_script(
+        "return document.querySelector('canvas[data-view=\"machine\"]').toDataURL('image/png');")
+    if not url or not url.startswith('data:image/png;base64,'):
+        raise Failure('the 3D view gave no picture (%s)' % (url or '')[:40])
+    return base64.b64decode(url.split(',', 1)[1])
+
+
+def check_golden(driver, args, run_state, text):
+    """The view at t = 0, paused, in a state that depends on nothing but the scene."""
+    if run_state() != 'paused' or text('[data-time]') != '0.000':
+        raise Failure('the golden view needs a lockstep run paused at t = 0 (it is "%s" at t = %s)'
+                      % (run_state(), text('[data-time]')))
+    # The view has the state's poses and the turned stock drawn; then the golden's size and
+    # camera, and no trail.
+    wait_for('the 3D view to show the first state and the stock', lambda: driver.execute_script("""
+        const v = window.vmtStation && window.vmtStation.view;
+        return v && v.framed && v.stockVersion !== undefined && !v.stockLoading;"""), 20)
+    driver.execute_script("""
+        const v = window.vmtStation.view;
+        const c = v.container;  // its border is outside the view
+        c.style.width = arguments[0] + c.offsetWidth - c.clientWidth + 'px';
+        c.style.height = arguments[1] + c.offsetHeight - c.clientHeight + 'px';
+        if (v.cameras.length) v.setCamera(v.cameras[0]);
+        v.clearTrail();""", GOLDEN_W, GOLDEN_H)
+    wait_for('the 3D view drawn at %dx%d' % (GOLDEN_W, GOLDEN_H), lambda: driver.execute_script("""
+        const v = window.vmtStation.view, c = v.canvas;
+        return c.width === arguments[0] && c.height === arguments[1] && !v.dirty;""",
+                                                                  GOLDEN_W, GOLDEN_H), 10)
+    # two animation frames later the drawing is on the canvas
+    driver.execute_async_script("""
+        const done = arguments[arguments.length - 1];
+        requestAnimationFrame(() => requestAnimationFrame(() => done(true)));""")
+    png = view_picture(driver)
+    driver.execute_script("""
+        const s = window.vmtStation.view.container.style;
+        s.width = s.height = '';""")
+    if args.refresh_golden:
+        os.makedirs(os.path.dirname(os.path.abspath(args.golden)), exist_ok=True)
+        with open(args.golden, 'wb') as f:
+            f.write(png)
+        ok('wrote the golden %s: look at it before committing it' % args.golden)
+        return
+    where = args.golden_out or os.path.join(os.path.dirname(os.path.abspath(args.screenshot)),
+                                            'golden-view')
+    os.makedirs(where, exist_ok=True)
+    actual = os.path.join(where, 'actual.png')
+    diff = os.path.join(where, 'diff.png')
+    with open(actual, 'wb') as f:
+        f.write(png)
+    if os.path.exists(diff):
+        os.remove(diff)
+    if not os.path.exists(args.golden):
+        raise Failure('no golden %s (write it with --refresh-golden); actual: %s'
+                      % (args.golden, actual))
+    r = subprocess.run([args.vmt, 'imgdiff', args.golden, actual,
+                        '--tolerance', str(GOLDEN_TOLERANCE),
+                        '--allowed-fraction', str(GOLDEN_ALLOWED_FRACTION), '--diff', diff],
+                       capture_output=True, text=True, timeout=60)
+    said = (r.stdout + r.stderr).strip()
+    if r.returncode != 0:
+        shutil.copyfile(args.golden, os.path.join(where, 'golden.png'))
+        raise Failure('the 3D view at t = 0 differs from its golden: %s\n  golden: %s\n'
+                      '  actual: %s\n  diff:   %s' % (said, args.golden, actual,
+                                                    diff if os.path.exists(diff) else '(none)'))
+    ok('the 3D view at t = 0 matches its golden (%s)' % said)
 
 
 if __name__ == '__main__':
