@@ -71,15 +71,16 @@ for _ in $(seq 200); do
   sleep 0.05
 done
 [ -n "$port" ] || fail "vmt view of a study folder did not start: $(cat view.log)"
-curl -sf "http://127.0.0.1:$port/report.html" | grep -q '<svg' || fail "the study's report is not served"
-link=$(curl -sf "http://127.0.0.1:$port/report.html" | grep -o 'href="replay?case=[^"]*"' | tail -1 |
-       cut -d'"' -f2 | sed 's/&amp;/\&/g')
+curl -sf "http://127.0.0.1:$port/report.html" -o served-report.html || fail "the study's report is not served"
+grep -q '<svg' served-report.html || fail "the served report has no SVG"
+link=$(grep -o 'href="replay?case=[^"]*"' served-report.html | tail -1 | cut -d'"' -f2 | sed 's/&amp;/\&/g')
 to=$(curl -s -o /dev/null -w '%{http_code} %{redirect_url}' "http://127.0.0.1:$port/$link")
 case "$to" in
   "302 http://127.0.0.1:"*/) ;;
   *) fail "following $link: $to" ;;
 esac
-curl -sf "${to#302 }api/model" | grep -q '"pace":"replay"' || fail "the case's station is not a replay"
+curl -sf "${to#302 }api/model" -o case-model.json || fail "the case's station does not answer"
+grep -q '"pace":"replay"' case-model.json || fail "the case's station is not a replay"
 code=$(curl -s -o /dev/null -w '%{http_code}' "http://127.0.0.1:$port/replay?case=no%2Fsuch")
 [ "$code" = 404 ] || fail "an unknown case's replay: HTTP $code"
 if [ -x /usr/bin/chromedriver ] && /usr/bin/python3 -c 'import selenium' 2>/dev/null; then
