@@ -150,6 +150,24 @@ struct IoInfo {
   /// An operator's key (machine key table, repositioning manual 8.1): an input of the PLC that
   /// the operator presses, not the machine; the backends leave it alone.
   bool key = false;
+  /// A selector (a key with positions): a multi-position switch of the operator panel, e.g. the
+  /// feed override switch, whose position (an integer, one of these) the PLC reads.
+  std::vector<int> positions;
+  int initial = 0;  ///< a selector's position at the start
+  bool selector() const { return !positions.empty(); }
+  /// What the operator can set it to: a selector one of its positions, a key 0 or 1.
+  bool PositionOk(double value) const {
+    if (!selector()) return value == 0 || value == 1;
+    for (const int p : positions)
+      if (value == p) return true;
+    return false;
+  }
+  /// "0/50/100" (a selector's positions, for messages).
+  std::string PositionList() const {
+    std::string s;
+    for (const int p : positions) s += (s.empty() ? "" : "/") + std::to_string(p);
+    return s;
+  }
 };
 
 /// Master data telegram: written by the control every drive cycle.

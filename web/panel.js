@@ -1,4 +1,5 @@
-// The operator panel: every machine key of the model as a button that is held while pressed.
+// The operator panel: every machine key of the model as a button that is held while pressed,
+// every selector (override switch) as a choice of its positions.
 import {el, postJSON, postKey, status} from './api.js';
 
 // Groups by name pattern, first match wins; a key no pattern knows goes to "Other", so that
@@ -57,9 +58,10 @@ function jogOrder(a, b) {
 const LED_KEYS = ['mAUTO', 'mMANU', 'mSTART', 'mSTOP'];
 
 export class OperatorPanel {
-  constructor(root, keys, handwheelAxes = []) {
+  constructor(root, keys, handwheelAxes = [], selectors = []) {
     this.root = root;
     this.buttons = new Map();
+    this.selectors = new Map();
     const groups = GROUPS.map((g) => ({...g, keys: []}));
     for (const k of keys) groups.find((g) => g.re.test(k)).keys.push(k);
     const jog = groups.find((g) => g.id === 'jog');
@@ -73,12 +75,38 @@ export class OperatorPanel {
       box.append(grid);
       root.append(box);
     }
+    if (selectors.length) root.append(this.overrides(selectors));
     if (handwheelAxes.length) root.append(this.handwheel(handwheelAxes));
     // A key must not stay pressed when the page loses the pointer or the focus.
     window.addEventListener('blur', () => this.releaseAll());
     document.addEventListener('visibilitychange', () => {
       if (document.hidden) this.releaseAll();
     });
+  }
+
+  // The override switches (the model's selectors): a position is set, as the panel's rotary
+  // switch is turned, and the PLC makes it the NC's override.
+  overrides(selectors) {
+    const rows = selectors.map((s) => {
+      const m = /^m(FOVR|SOVR)_?(\w*)$/.exec(s.name);
+      const title =
+          m ? (m[1] === 'FOVR' ? 'feed' : `spindle ${m[2]}`.trim()) : s.name.replace(/^m/, '');
+      const select =
+          el('select', {'data-selector': s.name, title: s.name},
+             ...s.positions.map((p) => el('option', {value: String(p), text: `${p} %`})));
+      select.value = String(s.initial);
+      select.addEventListener('change', () => {
+        select.dataset.pending = select.value;
+        postJSON('api/signal', {name: s.name, value: Number(select.value)}).then((a) => {
+          if (!a.ok) status(`${s.name}: ${a.error}`, 'error');
+        });
+      });
+      this.selectors.set(s.name, select);
+      return el('label', {class: 'ovr-row'}, el('span', {class: 'ovr-name', text: title}), select);
+    });
+    return el(
+        'div', {class: 'keygroup kg-override'}, el('div', {class: 'kg-title', text: 'Override'}),
+        ...rows);
   }
 
   // The handwheel (manual mode, jog mode "handwheel"): counts for the chosen axis, as a
@@ -168,6 +196,14 @@ export class OperatorPanel {
     for (const [name, on] of Object.entries(lit)) {
       const b = this.buttons.get(name);
       if (b && b.classList.contains('lit') !== on) b.classList.toggle('lit', on);
+    }
+    // A switch shows where the run has it, once the position just chosen has been taken.
+    for (const [name, v] of Object.entries(state.selectors || {})) {
+      const select = this.selectors.get(name);
+      if (!select || document.activeElement === select) continue;
+      if (select.dataset.pending && select.dataset.pending !== String(v)) continue;
+      delete select.dataset.pending;
+      if (select.value !== String(v)) select.value = String(v);
     }
   }
 }

@@ -55,11 +55,11 @@ async function main() {
     if (at > 0) postRun({action: 'seek', t: Math.min(at, model.end_s || at)});
   }
 
-  const panel =
-      new OperatorPanel($('#operator-panel'), model.keys || [], model.handwheel_axes || []);
+  const panel = new OperatorPanel(
+      $('#operator-panel'), model.keys || [], model.handwheel_axes || [], model.selectors || []);
   if (replay)
     for (const b of document.querySelectorAll(
-             '[data-key], [data-handwheel], [data-handwheel-axis]')) {
+             '[data-key], [data-handwheel], [data-handwheel-axis], [data-selector]')) {
       b.disabled = true;
       b.title = 'a replay is watched, not operated';
     }

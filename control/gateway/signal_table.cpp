@@ -212,9 +212,10 @@ std::vector<Signal> BuildSignalTable(const GatewayLayout& layout) {
     if (f.scope == Scope::kGlobal) table.push_back(FromFamily(f, -1, {}));
   }
   for (const GatewayLayout::Io& io : layout.io) {
-    table.push_back(Plain(io.name, SignalType::kBool,
+    table.push_back(Plain(io.name, io.integer ? SignalType::kInt : SignalType::kBool,
                           io.output ? Direction::kPlcToMachine : Direction::kMachineToPlc,
                           io.meaning, "machine model", io.name, Scope::kIo, -1));
+    table.back().preset = io.preset;
   }
 
   // Machine I/O names come from the model and may collide with NC signal names.

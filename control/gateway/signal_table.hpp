@@ -75,6 +75,8 @@ struct GatewayLayout {
     std::string name;  ///< e.g. QROTMODE (valve), IROTMODE (switch)
     bool output;       ///< true: the PLC writes it (kPlcToMachine); false: reads it
     std::string meaning;
+    bool integer = false;  ///< an INT (a selector's position), not a BOOL
+    int preset = 0;
   };
   std::vector<Io> io;
   /// Q functions (Pxx.Qnnnn, Pxx.Qnnnn_Q) beyond the manuals' 9992, 9998, 9999; 0..9999.

@@ -25,12 +25,14 @@ JOG = {"mJGPOS_X": "A01C.JGPOS", "mJGNEG_X": "A01C.JGNEG",
        "mJGPOS_Z": "A02C.JGPOS", "mJGNEG_Z": "A02C.JGNEG"}
 # The jog mode selector: each key toggles its bit of the code on P00C.JOGM0..2.
 JOG_MODE = {"mJOGM0": "P00C.JOGM0", "mJOGM1": "P00C.JOGM1", "mJOGM2": "P00C.JOGM2"}
-INPUTS = KEYS + list(JOG) + list(JOG_MODE) + ["P00S.RUN", "P00S.AUXSTB", "P00S.MFUNC", "P00S.REPOS",
+# The override switches (selectors, INT positions in percent) are the NC's overrides.
+OVERRIDES = {"mFOVR": "P00C.FOVR", "mSOVR_S1": "A03C.SOVR"}
+INPUTS = KEYS + list(JOG) + list(JOG_MODE) + list(OVERRIDES) + ["P00S.RUN", "P00S.AUXSTB", "P00S.MFUNC", "P00S.REPOS",
                              "A03S.N_NMIN", "IDOOR_CLOSED", "ICOOLANT_PRESSURE"]
 # P00C.REPOS/RESTA hold themselves (8.2): the program reads back what it wrote.
 OUTPUTS = ["P00C.AUTO", "P00C.MANU", "P00C.RESET", "P00C.SBL", "P00C.STOP", "P00C.START",
            "P00C.AUXACK", "P00C.REPOS", "P00C.RESTA", "QDOOR_OPEN", "QTAILSTOCK",
-           "QCOOLANT"] + list(JOG.values()) + list(JOG_MODE.values())
+           "QCOOLANT"] + list(JOG.values()) + list(JOG_MODE.values()) + list(OVERRIDES.values())
 
 
 class Edge:
@@ -78,6 +80,8 @@ class MachinePanel:
             if edge[key]:
                 self.jog_mode[key] = not self.jog_mode[key]
             io.set(signal, self.jog_mode[key])
+        for key, signal in OVERRIDES.items():
+            io.set(signal, g(key))
         if edge["mTAILSTOCK"] and not running:
             self.quill = not self.quill
         io.set("QTAILSTOCK", self.quill)

@@ -23,11 +23,15 @@ control::gateway::GatewayLayout GatewayLayoutOf(const MachineModel& m) {
     else
       layout.axes.push_back({number, m.drives[m.nc.spindle_drive].info.name, true, false});
   }
-  for (const control::IoInfo& io : m.io)
-    layout.io.push_back({io.name, io.is_output,
-                         io.is_output ? "valve (machine output)"
-                         : io.key     ? "machine key (operator input)"
-                                      : "sensor (machine input)"});
+  for (const control::IoInfo& io : m.io) {
+    std::string meaning = io.is_output    ? "valve (machine output)"
+                          : io.selector() ? "selector (operator input), positions"
+                          : io.key        ? "machine key (operator input)"
+                                          : "sensor (machine input)";
+    for (size_t k = 0; k < io.positions.size(); ++k)
+      meaning += (k ? "/" : " ") + std::to_string(io.positions[k]);
+    layout.io.push_back({io.name, io.is_output, meaning, io.selector(), io.initial});
+  }
   return layout;
 }
 

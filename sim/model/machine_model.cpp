@@ -1,5 +1,6 @@
 #include "sim/model/machine_model.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "sim/model/model_error.hpp"
@@ -271,11 +272,35 @@ MachineModel LoadMachineModel(const std::string& machine_yaml_path) {
   if (root.Has("io")) {
     const YamlNode io = root["io"];
     for (size_t i = 0; i < io.size(); ++i) {
-      io[i].AllowKeys({"name", "dir"});
+      io[i].AllowKeys({"name", "dir", "positions", "initial"});
       const std::string dir = io[i]["dir"].String();
-      if (dir != "in" && dir != "out" && dir != "key") io[i]["dir"].Fail("expected in, out or key");
+      if (dir != "in" && dir != "out" && dir != "key" && dir != "selector")
+        io[i]["dir"].Fail("expected in, out, key or selector");
       if (control::IndexOf(m.io, io[i]["name"].String()) >= 0) io[i]["name"].Fail("duplicate");
-      m.io.push_back({io[i]["name"].String(), dir == "out", dir == "key"});
+      control::IoInfo point;
+      point.name = io[i]["name"].String();
+      point.is_output = dir == "out";
+      point.key = dir == "key" || dir == "selector";
+      if (dir == "selector") {
+        const YamlNode positions = io[i]["positions"];
+        if (!positions.IsSequence() || positions.size() < 2 || positions.size() > 64)
+          positions.Fail("expected a list of 2 to 64 positions (integers)");
+        for (size_t k = 0; k < positions.size(); ++k) {
+          const int v = positions[k].Int();
+          if (v < 0 || v > 32767) positions[k].Fail("expected a position 0..32767");
+          if (k > 0 && v <= point.positions.back())
+            positions[k].Fail("expected the positions in increasing order");
+          point.positions.push_back(v);
+        }
+        point.initial = io[i].Has("initial") ? io[i]["initial"].Int() : point.positions.front();
+        if (std::find(point.positions.begin(), point.positions.end(), point.initial) ==
+            point.positions.end())
+          io[i]["initial"].Fail("expected one of the positions");
+      } else {
+        for (const char* only : {"positions", "initial"})
+          if (io[i].Has(only)) io[i][only].Fail("only a selector (dir: selector) has it");
+      }
+      m.io.push_back(std::move(point));
     }
   }
 

@@ -107,6 +107,8 @@ class SceneRun {
   std::string OperateHandwheel(const std::string& axis, int counts);
   /// Why Operate would refuse `signal` (the value aside), or "". Reads only the scene.
   std::string OperateError(const std::string& signal) const;
+  /// Why Operate would refuse `signal` = `value` (its type's range, a selector's positions), or "".
+  std::string OperateError(const std::string& signal, double value) const;
   const std::vector<OperatorStep>& operated() const;
 
   // What the run shows as it goes (the operator station reads these between steps).

@@ -26,13 +26,22 @@ std::string SceneRun::State::OperateError(const std::string& signal) const {
   return "";
 }
 
-std::string SceneRun::State::Operate(const std::string& signal, double value) {
-  State& s = *this;
+std::string SceneRun::State::ValueError(const std::string& signal, double value) const {
   if (std::string error = OperateError(signal); !error.empty()) return error;
-  const int id = s.image->Find(signal);
-  if (std::string error = control::gateway::ValueError(s.image->table()[id].type, value);
+  const int id = image->Find(signal);
+  if (std::string error = control::gateway::ValueError(image->table()[id].type, value);
       !error.empty())
     return signal + ": " + error;
+  if (const int io = control::IndexOf(m.io, signal);
+      io >= 0 && m.io[io].selector() && !m.io[io].PositionOk(value))
+    return signal + " is a selector: expected one of its positions " + m.io[io].PositionList();
+  return "";
+}
+
+std::string SceneRun::State::Operate(const std::string& signal, double value) {
+  State& s = *this;
+  if (std::string error = ValueError(signal, value); !error.empty()) return error;
+  const int id = s.image->Find(signal);
   SetSignalNumber(*s.image, id, value);
   s.recorder.Event(
       {{"t", s.tick * kDriveTickS}, {"event", "operator"}, {"signal", signal}, {"value", value}});
@@ -91,6 +100,9 @@ void SceneRun::State::WriteOperatorSteps() const {
 
 std::string SceneRun::OperateError(const std::string& signal) const {
   return state_->OperateError(signal);
+}
+std::string SceneRun::OperateError(const std::string& signal, double value) const {
+  return state_->ValueError(signal, value);
 }
 std::string SceneRun::Operate(const std::string& signal, double value) {
   return state_->Operate(signal, value);

@@ -124,6 +124,7 @@ struct SceneRun::State {
 
   // The operator station's inputs (runner_operator.cpp).
   std::string OperateError(const std::string& signal) const;
+  std::string ValueError(const std::string& signal, double value) const;
   std::string Operate(const std::string& signal, double value);
   std::string OperateHandwheel(const std::string& axis, int counts);
   /// RunOptions::operator_steps due at this tick, taken before anything else of it.

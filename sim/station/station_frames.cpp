@@ -161,9 +161,14 @@ std::string ModelJson(const SceneRun& run, const std::string& pace) {
                        {"target", Array(c.target_m)},
                        {"up", Array(c.up)},
                        {"fov_deg", c.fov_y_deg}});
-  Json keys = Json::array();
-  for (const control::IoInfo& io : m.io)
-    if (io.key) keys.push_back(io.name);
+  Json keys = Json::array(), selectors = Json::array();
+  for (const control::IoInfo& io : m.io) {
+    if (io.selector())
+      selectors.push_back(
+          {{"name", io.name}, {"positions", io.positions}, {"initial", io.initial}});
+    else if (io.key)
+      keys.push_back(io.name);
+  }
   Json axes = Json::array();
   if (const control::channel::Channel* ch = run.channel()) {
     for (size_t a = 0; a < ch->config().axes.size(); ++a)
@@ -188,6 +193,7 @@ std::string ModelJson(const SceneRun& run, const std::string& pace) {
               {"links", std::move(links)},
               {"cameras", cameras},
               {"keys", keys},
+              {"selectors", std::move(selectors)},
               {"handwheel_axes", std::move(handwheel)},
               {"axes", axes},
               {"program", program},
@@ -251,6 +257,12 @@ std::string StateJson(const SceneRun& run, int64_t plc_cycle, const std::string&
                       {"machine", Short(at.feedback[d].position)},
                       {"following_error", Short(at.feedback[d].following_error)}});
   }
+  // Where the operator's selectors stand (the override switches).
+  Json selectors = Json::object();
+  if (const control::gateway::SignalImage* image = run.image())
+    for (const control::IoInfo& io : m.io)
+      if (const int id = io.selector() ? image->Find(io.name) : -1; id >= 0)
+        selectors[io.name] = image->Int(id);
   const std::optional<Eigen::Vector3d> tip = run.ToolTip();
   Json probe = nullptr;
   if (!marks.probe.empty()) {
@@ -269,6 +281,7 @@ std::string StateJson(const SceneRun& run, int64_t plc_cycle, const std::string&
               {"nc", std::move(nc)},
               {"axes", std::move(axes)},
               {"messages", std::move(messages)},
+              {"selectors", std::move(selectors)},
               {"events", events},
               {"guard", marks.guard.empty() ? Json(nullptr) : Json::parse(marks.guard)},
               {"probe", std::move(probe)},

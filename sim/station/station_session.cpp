@@ -20,14 +20,11 @@ void StationSession::Open(SceneRun& run, StationServerOptions options, const std
                           const std::string& run_control_refused) {
   options.model_json = ModelJson(run, pace);
   for (const control::IoInfo& io : run.scene().model->io)
-    if (io.key) options.keys.push_back(io.name);
-  const control::gateway::SignalImage* image = run.image();
+    if (io.key && !io.selector())
+      options.keys.push_back(io.name);  // a selector is set, not pressed
   if (options.operate_refused.empty()) {
-    options.check_signal = [&run, image](const std::string& signal, double value) {
-      std::string error = run.OperateError(signal);
-      if (error.empty())
-        error = control::gateway::ValueError(image->table()[image->Find(signal)].type, value);
-      return error;
+    options.check_signal = [&run](const std::string& signal, double value) {
+      return run.OperateError(signal, value);
     };
   } else {
     options.check_signal = [refused = options.operate_refused](const std::string&, double) {

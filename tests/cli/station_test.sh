@@ -84,6 +84,16 @@ status 400 POST /api/handwheel '{"axis":"X","counts":0}'
 status 400 POST /api/handwheel '{"axis":"X","counts":1.5}'
 status 200 POST /api/run '{"action":"step"}'
 wait_state 'd["cycle"] == 8' 10
+# The feed override switch (a selector): set to one of its positions, the PLC makes it PxxC.FOVR.
+status 200 POST /api/signal '{"name":"mFOVR","value":50}'
+status 403 POST /api/signal '{"name":"mFOVR","value":77}'
+status 404 POST /api/key '{"name":"mFOVR","pressed":true}'
+status 200 POST /api/run '{"action":"step"}'
+status 200 POST /api/run '{"action":"step"}'
+wait_state 'd["cycle"] == 10 and d["selectors"]["mFOVR"] == 50 and d["nc"]["override"]["feed"] == 0.5' 10
+status 200 POST /api/signal '{"name":"mFOVR","value":100}'  # back, for the scene's timing
+status 200 POST /api/run '{"action":"step"}'
+wait_state 'd["cycle"] == 11 and d["selectors"]["mFOVR"] == 100' 10
 # Bad requests: 4xx, and nothing queued.
 status 400 POST /api/key 'not json'
 status 400 POST /api/key '{"name":"mCOOLANT"}'
@@ -110,6 +120,7 @@ kill -INT $pid; wait $pid; rc=$?
 [ $rc = 0 ] || fail "vmt serve --http exited $rc after the scene's end and SIGINT"
 grep -c mCOOLANT "$out/live/operator.yaml" | grep -q 2 || fail "operator.yaml lacks the two key changes"
 grep -q 'handwheel: "X", counts: 5' "$out/live/operator.yaml" || fail "operator.yaml lacks the handwheel"
+grep -q 'signal: "mFOVR", value: 50' "$out/live/operator.yaml" || fail "operator.yaml lacks the override switch"
 live=$("$python" -c 'import json,sys; print(json.load(open(sys.argv[1]))["trace_digest"])' "$out/live/serve.json")
 "$vmt" run "$scene" --operator "$out/live/operator.yaml" --out "$out/replay" >"$out/replay.log" 2>&1 ||
   fail "the replay failed: $(cat "$out/replay.log")"

@@ -36,6 +36,9 @@ MachinePanel::MachinePanel(const gateway::SignalImage& image, bool nc_turret_con
   for (int id = 0; id < image.size(); ++id) {
     const gateway::Signal& s = image.table()[id];
     if (s.pattern == "AxxS.N_NMIN") standstill.push_back(id);
+    if (s.pattern == "AxxC.SOVR")
+      if (const int sel = image.Find("mSOVR_" + s.instance_name); sel >= 0)
+        overrides.push_back({sel, id});
     for (const char* dir : {"JGPOS", "JGNEG"}) {
       if (s.pattern != std::string("AxxC.") + dir) continue;
       const int key = image.Find("m" + std::string(dir) + "_" + s.instance_name);
@@ -50,6 +53,8 @@ MachinePanel::MachinePanel(const gateway::SignalImage& image, bool nc_turret_con
     b.signal = RequireSignal(image, "P00C.JOGM" + std::to_string(bit));
     jog_mode.push_back(b);
   }
+  if (const int sel = image.Find("mFOVR"); sel >= 0)
+    overrides.push_back({sel, RequireSignal(image, "P00C.FOVR")});
   if (image.Find("mREPOS") >= 0) repos.emplace(image);
   if (nc_turret_controlled) nc_turret.emplace(image);
   // A headstock whose spindle has a rotary axis mode through clutch K.
@@ -92,6 +97,8 @@ void MachinePanel::operator()(PlcScan& s) {
     if (b.press.Q) b.on = !b.on;
     s.SetBool(b.signal, b.on);
   }
+
+  for (const OverrideSwitch& o : overrides) s.SetInt(o.signal, s.Int(o.selector));
 
   // Tailstock quill: toggled while the program is not running.
   quill_key(s.Bool(mTAILSTOCK));

@@ -12,8 +12,9 @@
 // The repositioning manual's machine keys (8.2) are a network of it (ReposMachineKeys), and so is
 // the C-axis manual's changeover of a headstock with a clutch (4.4, CAxisChangeover). A panel
 // with jog mode keys mJOGM0..2 toggles PxxC.JOGM0..2 with them (the jog mode's code, bit by
-// bit). machine_panel_nc_turret is the same program for a machine whose turret the NC controls
-// (NcTurret).
+// bit); its override switches (selectors mFOVR, mSOVR_<spindle>) are the feed override PxxC.FOVR
+// and the spindle's override AxxC.SOVR, in percent. machine_panel_nc_turret is the same program for
+// a machine whose turret the NC controls (NcTurret).
 
 #include <optional>
 #include <vector>
@@ -45,6 +46,10 @@ struct MachinePanel {
     bool on = false;
   };
   std::vector<JogModeBit> jog_mode;
+  struct OverrideSwitch {
+    int selector, signal;  ///< mFOVR -> P00C.FOVR, mSOVR_S -> A03C.SOVR
+  };
+  std::vector<OverrideSwitch> overrides;
   // Machine I/O and panel keys.
   int mAUTO, mMANU, mSTART, mSTOP, mRESET, mSBL, mCOOLANT, mDOOR, mTAILSTOCK;
   int QDOOR_OPEN, IDOOR_CLOSED, QTAILSTOCK, QCOOLANT, ICOOLANT_PRESSURE;

@@ -17,6 +17,9 @@ std::vector<TimelineStep> ReadPress(const MachineModel& m, const YamlNode& n, si
   if (!(hold_s > 0)) a["for"].Fail("must be > 0");
   const int io = control::IndexOf(m.io, name.String());
   if (io < 0 || !m.io[io].key) name.Fail("'" + name.String() + "' is not a key (io dir: key)");
+  if (m.io[io].selector())
+    name.Fail("'" + name.String() + "' is a selector: turn it with {signal: {name: " +
+              name.String() + ", value: POSITION}}");
   TimelineStep press{}, hold{}, release{};
   press.kind = release.kind = TimelineStep::Kind::kSignal;
   press.signal = release.signal = RequireSignal(nc, name);

@@ -25,6 +25,9 @@ void Read(const StepSource& src, TimelineStep& s, std::ostringstream& text) {
     a["name"].Fail("the scene's PLC program writes " + sig.name +
                    ": with plc: the timeline only presses the operator's keys");
   s.target = SignalValue(src.nc, s.signal, a["value"]);
+  if (key && !src.m.io[io].PositionOk(s.target))
+    a["value"].Fail(sig.name + " is a selector: expected one of its positions " +
+                    src.m.io[io].PositionList());
   text << "signal " << sig.name << " = " << Fmt(s.target);
 }
 

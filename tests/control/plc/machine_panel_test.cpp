@@ -218,6 +218,41 @@ TEST(MachinePanelJogMode, EachKeyTogglesItsBitOfTheJogModeCode) {
   EXPECT_EQ(code(), 0);
 }
 
+// The override switches are selectors (INT inputs): their positions are the feed override and the
+// spindle's override, every scan; a machine without them leaves both at their presets.
+TEST(MachinePanelOverrides, SelectorPositionsAreTheFeedAndSpindleOverrides) {
+  gateway::GatewayLayout layout;
+  layout.processes = {0};
+  layout.axes = {{1, "X", false, false}, {2, "Z", false, false}, {3, "S1", true, false}};
+  for (const char* out : {"QDOOR_OPEN", "QTAILSTOCK", "QCOOLANT"})
+    layout.io.push_back({out, true, "valve"});
+  for (const char* in : {"IDOOR_CLOSED", "ICOOLANT_PRESSURE"})
+    layout.io.push_back({in, false, "switch"});
+  for (const char* key :
+       {"mAUTO", "mMANU", "mSTART", "mSTOP", "mRESET", "mSBL", "mCOOLANT", "mDOOR", "mTAILSTOCK"})
+    layout.io.push_back({key, false, "key"});
+  gateway::SignalImage bare(gateway::BuildSignalTable(layout));
+  layout.io.push_back({"mFOVR", false, "selector", true, 100});
+  layout.io.push_back({"mSOVR_S1", false, "selector", true, 90});
+  gateway::SignalImage image(gateway::BuildSignalTable(layout));
+  EXPECT_EQ(image.table()[image.Require("mFOVR")].type, gateway::SignalType::kInt);
+
+  PlcRuntime plc(image, *MakePlcProgram("machine_panel", image), PlcTime(4000));
+  plc.Scan();
+  EXPECT_EQ(image.Int(image.Require("P00C.FOVR")), 100);
+  EXPECT_EQ(image.Int(image.Require("A03C.SOVR")), 90);
+  image.SetInt(image.Require("mFOVR"), 40);
+  image.SetInt(image.Require("mSOVR_S1"), 115);
+  plc.Scan();
+  EXPECT_EQ(image.Int(image.Require("P00C.FOVR")), 40);
+  EXPECT_EQ(image.Int(image.Require("A03C.SOVR")), 115);
+
+  PlcRuntime without(bare, *MakePlcProgram("machine_panel", bare), PlcTime(4000));
+  without.Scan();
+  EXPECT_EQ(bare.Int(bare.Require("P00C.FOVR")), 100);  // the signal's preset
+  EXPECT_EQ(bare.Int(bare.Require("A03C.SOVR")), 100);
+}
+
 // machine_panel_nc_turret: the turret is the NC's (REPOS manual 3.4) - the clamp released for
 // the NC's drive, mMGPOS / mMGNEG to PxxC.MGPOS / MGNEG while the door is closed.
 TEST(MachinePanelNcTurret, ReleasesTheClampAndPassesTheTurretJogKeys) {

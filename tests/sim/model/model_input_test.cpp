@@ -6,9 +6,9 @@
 
 #include <fstream>
 
+#include "../sim_test_support.hpp"
 #include "sim/model/model_error.hpp"
 #include "sim/scene/scene.hpp"
-#include "../sim_test_support.hpp"
 
 namespace vmt::sim {
 namespace {
@@ -246,6 +246,44 @@ TEST(ModelInputTest, UnknownJointAndIo) {
                            return Replace(s, "sensor_engaged: IROTMODE", "sensor_engaged: QSPMODE");
                          }),
               HasSubstr("must be an input"));
+}
+
+// A selector (an override switch of the panel) is an operator's input with positions.
+TEST(ModelInputTest, SelectorsAreReadAndChecked) {
+  const MachineModel m = LoadMachineModel(SourcePath("models/lathe-c1/machine.yaml"));
+  const int fovr = control::IndexOf(m.io, "mFOVR");
+  ASSERT_GE(fovr, 0);
+  EXPECT_TRUE(m.io[fovr].key);
+  EXPECT_TRUE(m.io[fovr].selector());
+  EXPECT_EQ(m.io[fovr].initial, 100);
+  EXPECT_EQ(m.io[fovr].positions.front(), 0);
+  EXPECT_EQ(m.io[fovr].positions.back(), 120);
+  EXPECT_TRUE(m.io[fovr].PositionOk(75));
+  EXPECT_FALSE(m.io[fovr].PositionOk(77));
+  const std::string fovr_line = "  - {name: mFOVR, dir: selector, initial: 100,";
+  EXPECT_THAT(LoadEdited("selector_initial",
+                         [&](std::string s) {
+                           return Replace(s, fovr_line,
+                                          "  - {name: mFOVR, dir: selector, initial: 77,");
+                         }),
+              HasSubstr("initial: expected one of the positions"));
+  EXPECT_THAT(LoadEdited("selector_order",
+                         [](std::string s) {
+                           return Replace(s, "positions: [0, 1, 2,", "positions: [0, 2, 1,");
+                         }),
+              HasSubstr("expected the positions in increasing order"));
+  EXPECT_THAT(LoadEdited("selector_no_positions",
+                         [&](std::string s) {
+                           return Replace(s, fovr_line,
+                                          "  - {name: mFOVRX, dir: selector}\n" + fovr_line);
+                         }),
+              HasSubstr("io[47]: missing required key 'positions'"));
+  EXPECT_THAT(LoadEdited("key_with_positions",
+                         [](std::string s) {
+                           return Replace(s, "{name: mSBL, dir: key}",
+                                          "{name: mSBL, dir: key, positions: [0, 1]}");
+                         }),
+              HasSubstr("only a selector (dir: selector) has it"));
 }
 
 TEST(ModelInputTest, YamlSyntaxErrorHasLineAndColumn) {

@@ -15,8 +15,8 @@ namespace {
 using ::testing::HasSubstr;
 using Kind = TimelineStep::Kind;
 
-const std::string kNc = "nc: {program: " + testing::SourcePath("scenes/nc/stepped_shaft.mtc") +
-                        "}\nduration: 2\n";
+const std::string kNc =
+    "nc: {program: " + testing::SourcePath("scenes/nc/stepped_shaft.mtc") + "}\nduration: 2\n";
 
 Scene Load(const std::string& name, const std::string& body) {
   return LoadScene(testing::WriteLatheScene("scene_steps", name, body));
@@ -55,6 +55,19 @@ TEST(SceneSteps, APressNeedsAKeyAndATime) {
               HasSubstr("timeline[0].press.for: must be > 0"));
   EXPECT_THAT(Error("press_key", kNc + "timeline:\n  - press: {name: mREPOS, hold: 1}\n"),
               HasSubstr("timeline[0].press.hold: unknown key 'hold'"));
+}
+
+// An override switch is turned to one of its positions, not pressed.
+TEST(SceneSteps, ASelectorIsTurnedToAPosition) {
+  EXPECT_THAT(Error("press_selector", kNc + "timeline:\n  - press: mFOVR\n"),
+              HasSubstr("timeline[0].press: 'mFOVR' is a selector"));
+  EXPECT_THAT(
+      Error("selector_value", kNc + "timeline:\n  - signal: {name: mFOVR, value: 77}\n"),
+      HasSubstr("timeline[0].signal.value: mFOVR is a selector: expected one of its positions "
+                "0/1/2/4/6/8/10/20/30"));
+  EXPECT_THAT(Error("key_value", kNc + "timeline:\n  - signal: {name: mREPOS, value: 2}\n"),
+              HasSubstr("timeline[0].signal.value"));
+  EXPECT_EQ(Error("selector_ok", kNc + "timeline:\n  - signal: {name: mFOVR, value: 75}\n"), "");
 }
 
 TEST(SceneSteps, WaitUntilConditionsOfEveryKind) {
@@ -103,17 +116,20 @@ TEST(SceneSteps, ATimelineSignalIsOneAPlcWrites) {
 TEST(SceneSteps, AValueMustFitTheSignalsType) {
   // QMFB1A00.ACHS_NR_1 is an INT: the gateway could not hold these, so the scene says where.
   EXPECT_THAT(
-      Error("signal_range", kNc + "timeline:\n  - signal: {name: QMFB1A00.ACHS_NR_1, value: 40000}\n"),
+      Error("signal_range",
+            kNc + "timeline:\n  - signal: {name: QMFB1A00.ACHS_NR_1, value: 40000}\n"),
       HasSubstr("timeline[0].signal.value: QMFB1A00.ACHS_NR_1: 40000 is outside INT's range "
                 "-32768..32767"));
   EXPECT_THAT(
-      Error("signal_fraction", kNc + "timeline:\n  - signal: {name: QMFB1A00.ACHS_NR_1, value: 1.5}\n"),
+      Error("signal_fraction",
+            kNc + "timeline:\n  - signal: {name: QMFB1A00.ACHS_NR_1, value: 1.5}\n"),
       HasSubstr("timeline[0].signal.value: QMFB1A00.ACHS_NR_1: 1.5 is not an integer: INT"));
   EXPECT_THAT(Error("constant_range", kNc + "plc:\n  program: probe_block\n"
                                             "  constants: {QMFB1A00.ACHS_NR_1: -40000}\n"),
               HasSubstr("plc.constants.QMFB1A00.ACHS_NR_1: QMFB1A00.ACHS_NR_1: -40000 is outside "
                         "INT's range"));
-  const Scene s = Load("signal_fits", kNc + "timeline:\n  - signal: {name: QMFB1A00.ACHS_NR_1, value: -32768}\n");
+  const Scene s = Load("signal_fits",
+                       kNc + "timeline:\n  - signal: {name: QMFB1A00.ACHS_NR_1, value: -32768}\n");
   ASSERT_EQ(s.timeline.size(), 1u);
   EXPECT_EQ(s.timeline[0].target, -32768);
 }
