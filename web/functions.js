@@ -1,7 +1,8 @@
 // The control's functions as the operator reads them beside the program: the REPOS screen
 // (repositioning manual 2.2), the headstock (C-axis manual 2.3: spindle or rotary axis mode,
 // the changeover, ROTMOD/SPMOD and their acknowledgements, clutch K), block search (its HLI
-// state) and the probe's latches. Rebuilt from each state; the markup is small.
+// state), the probe's switches and latches and the machine data pages of fast measurement.
+// Rebuilt from each state where it changed; the markup is small.
 
 const fmt = (v, d = 3) => (typeof v === 'number' ? v.toFixed(d) : v == null ? '—' : String(v));
 const esc = (s) => String(s).replace(
@@ -16,7 +17,10 @@ export class Functions {
         <section class="fn-card" data-fn="repos"><h3>REPOS screen</h3><div class="fn-body"></div></section>
         <section class="fn-card" data-fn="headstock"><h3>Headstock</h3><div class="fn-body"></div></section>
         <section class="fn-card" data-fn="block-search"><h3>Block search</h3><div class="fn-body"></div></section>
-        <section class="fn-card" data-fn="probe"><h3>Probe</h3><div class="fn-body"></div></section>
+        <section class="fn-card" data-fn="probe"><h3>Probe</h3>
+          <div class="fn-switches"></div><div class="fn-body"></div></section>
+        <section class="fn-card fn-wide" data-fn="measuring-pages"><h3>Measuring pages</h3>
+          <div class="fn-body"></div></section>
       </div>`;
     this.body = (name) => this.root.querySelector(`[data-fn="${name}"] .fn-body`);
     this.last = {};
@@ -28,6 +32,17 @@ export class Functions {
     this.draw('headstock', state.headstock, (h) => this.headstock(h));
     this.draw('block-search', state.block_search, (b) => this.blockSearch(b));
     this.draw('probe', state.probe, (p) => this.probe(p));
+    this.drawInto(
+        this.root.querySelector('.fn-switches'), 'probe-switches', state.probe_switches,
+        (l) => this.probeSwitches(l));
+    this.draw('measuring-pages', state.measuring_pages, (m) => this.measuringPages(m));
+  }
+
+  drawInto(node, name, data, render) {
+    const key = JSON.stringify(data ?? null);
+    if (this.last[name] === key) return;
+    this.last[name] = key;
+    node.innerHTML = data && data.length ? render(data) : '';
   }
 
   draw(name, data, render) {
@@ -101,6 +116,40 @@ export class Functions {
         point}</span></div>
       <table class="grid fn-table" data-probe-latches><thead><tr><th class="num">t (s)</th>
         <th>edge</th><th>latched values (mm | deg)</th></tr></thead><tbody>${body}</tbody></table>`;
+  }
+
+  // The switch of each stylus (its input) and its ready message, as the PLC reads them.
+  probeSwitches(list) {
+    return `<div class="fn-flags" data-probe-switches>${
+        list.map(
+                (p) => `${flag(p.on, `${p.contact || p.pin} (T${p.t})`)}${
+                    p.ready_input ? flag(p.ready, p.ready_input) : ''}`)
+            .join(' ')}</div>`;
+  }
+
+  // The machine data pages of fast measurement (MTD): per page its set rows, one column per
+  // element, the element's designation as the column's title.
+  measuringPages(pages) {
+    const num = (v) => (Number.isInteger(v) ? String(v) : fmt(v, 4));
+    return pages
+        .map((page) => {
+          const head =
+              page.elements.map((d, i) => `<th class="num" title="${esc(d)}">${i + 1}</th>`)
+                  .join('');
+          const rows =
+              page.rows
+                  .map(
+                      (r) =>
+                          `<tr><td>${[r.lv1, r.lv2].filter((v) => v != null).join('/') || ''}</td>${
+                              r.values.map((v) => `<td class="num">${num(v)}</td>`).join('')}</tr>`)
+                  .join('');
+          return `<details class="fn-page" data-measuring-page="${esc(page.name)}" ${
+              page.rows.length && page.name !== 'ZWISCHENSPEICHERPAGE' ? 'open' : ''}>
+            <summary>${esc(page.name)} (${page.number}) &middot; ${page.rows.length} rows</summary>
+            <div class="fn-scroll"><table class="grid fn-table"><thead><tr><th>LV</th>${head}</tr>
+            </thead><tbody>${rows}</tbody></table></div></details>`;
+        })
+        .join('');
   }
 
   blockSearch(b) {

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "control/channel/channel.hpp"
+#include "control/measure/measuring_pages.hpp"
 #include "control/nc/modal_g_codes.hpp"
 #include "render/mesh_primitives.hpp"
 #include "sim/runner/channel_events.hpp"
@@ -201,6 +202,85 @@ std::string ModelJson(const SceneRun& run, const std::string& pace) {
       .dump();
 }
 
+namespace {
+
+// The probes' switches as the PLC sees them: the contact input and the ready message.
+Json ProbeSwitchesJson(const MachineModel& m, const control::gateway::SignalImage* image) {
+  Json list = Json::array();
+  auto value = [&](int io) -> Json {
+    if (io < 0 || !image) return nullptr;
+    const int id = image->Find(m.io[io].name);
+    return id >= 0 ? Json(image->Bool(id)) : Json(nullptr);
+  };
+  for (const ProbeStylus& p : m.probes)
+    list.push_back({{"pin", p.pin5 ? "PIN5" : "PIN4"},
+                    {"t", p.t_number},
+                    {"contact", p.contact_input >= 0 ? Json(m.io[p.contact_input].name) : Json()},
+                    {"on", value(p.contact_input)},
+                    {"ready_input", p.ready_input >= 0 ? Json(m.io[p.ready_input].name) : Json()},
+                    {"ready", p.ready_input >= 0 ? value(p.ready_input) : Json(true)}});
+  return list;
+}
+
+// The machine data pages of fast measurement as MTD( ) reads them: every element of each page's
+// rows, the rows of styluses, spheres, points and compares only where something is set.
+Json MeasuringPagesJson(const control::measure::MeasuringPages& pages) {
+  namespace measure = control::measure;
+  Json out = Json::array();
+  for (const measure::Page page : measure::kPages) {
+    const int number = pages.NumberOf(page), elements = measure::ElementCount(page);
+    Json designations = Json::array();
+    for (int e = 1; e <= elements; ++e)
+      designations.push_back(measure::ElementDesignation(page, e));
+    std::vector<std::pair<std::optional<double>, std::optional<double>>> rows;
+    bool sparse = true;
+    switch (page) {
+      case measure::Page::kBasisMessPage:
+      case measure::Page::kZwischenspeicherPage:
+        for (int p = 0; p < pages.config.processes; ++p) rows.push_back({p, std::nullopt});
+        sparse = false;
+        break;
+      case measure::Page::kTastwerkzeugPage:
+        for (int t = 1; t <= measure::kStyluses; ++t) rows.push_back({t, std::nullopt});
+        break;
+      case measure::Page::kEichwertePage:
+        for (int t = 1; t <= measure::kStyluses; ++t)
+          for (int k = 1; k <= measure::kSpheres; ++k) rows.push_back({t, k});
+        break;
+      case measure::Page::kPointPage:
+      case measure::Page::kErgebnisPage: {
+        const int n =
+            page == measure::Page::kPointPage ? pages.config.points : pages.config.results;
+        for (int p = 0; p < pages.config.processes; ++p)
+          for (int k = 1; k <= n; ++k) rows.push_back({p, k});
+        break;
+      }
+    }
+    Json list = Json::array();
+    for (const auto& [lv1, lv2] : rows) {
+      Json values = Json::array();
+      bool set = !sparse;
+      for (int e = 1; e <= elements; ++e) {
+        const measure::MtdRead r =
+            measure::ReadMtd(pages, {double(number), lv1, lv2, double(e)}, 0);
+        values.push_back(r.error.empty() ? Short(r.value) : 0.0);
+        set = set || (r.error.empty() && r.value != 0);
+      }
+      if (set)
+        list.push_back({{"lv1", lv1 ? Json(*lv1) : Json()},
+                        {"lv2", lv2 ? Json(*lv2) : Json()},
+                        {"values", std::move(values)}});
+    }
+    out.push_back({{"name", measure::PageName(page)},
+                   {"number", number},
+                   {"elements", std::move(designations)},
+                   {"rows", std::move(list)}});
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string StateJson(const SceneRun& run, int64_t plc_cycle, const std::string& run_state,
                       size_t events, const StationMarks& marks) {
   const MachineModel& m = *run.scene().model;
@@ -285,6 +365,9 @@ std::string StateJson(const SceneRun& run, int64_t plc_cycle, const std::string&
               {"events", events},
               {"guard", marks.guard.empty() ? Json(nullptr) : Json::parse(marks.guard)},
               {"probe", std::move(probe)},
+              {"probe_switches", ProbeSwitchesJson(m, run.image())},
+              {"measuring_pages",
+               run.measuring_pages() ? MeasuringPagesJson(*run.measuring_pages()) : Json(nullptr)},
               {"repos", std::move(repos)},
               {"headstock", std::move(headstock)},
               {"block_search", std::move(block_search)},

@@ -121,6 +121,33 @@ TEST(StationFramesTest, ProbeLatchCarriesWhereTheStylusTouched) {
   EXPECT_EQ(probe["latches"][0]["t"], probe["latches"][1]["t"]);
 }
 
+// The probe card's switches and the measuring pages as MTD( ) reads them: SETTING and the
+// stylus page set by the program, the basis page's page numbers as installed.
+TEST(StationFramesTest, ProbeSwitchesAndMeasuringPages) {
+  const Scene scene = LoadScene(SourcePath("scenes/measure-shaft.yaml"));
+  RunOptions options;
+  options.until_s = 1.2;
+  SceneRun run(scene, options);
+  while (!run.done()) run.Step();
+  const Json state = Json::parse(StateJson(run, 0, "paused", 0, StationMarks{}));
+  const Json& switches = state["probe_switches"];
+  ASSERT_EQ(switches.size(), 2u);
+  EXPECT_EQ(switches[0]["pin"], "PIN4");
+  EXPECT_EQ(switches[0]["contact"], "IPROBE_CONTACT");
+  EXPECT_EQ(switches[0]["ready_input"], "IPROBE_READY");
+  EXPECT_TRUE(switches[0]["ready"].is_boolean());
+  const Json& pages = state["measuring_pages"];
+  ASSERT_EQ(pages.size(), 6u);
+  EXPECT_EQ(pages[0]["name"], "BASISMESSPAGE");
+  EXPECT_EQ(pages[0]["number"], 90);
+  ASSERT_EQ(pages[0]["rows"].size(), 1u);  // process 0
+  ASSERT_EQ(pages[0]["elements"].size(), 10u);
+  EXPECT_EQ(pages[0]["rows"][0]["values"][0], 101);  // ZWISCHENSPEICHERPAGE's number
+  EXPECT_EQ(pages[2]["name"], "TASTWERKZEUGPAGE");
+  EXPECT_FALSE(pages[2]["rows"].empty());  // the styluses the scene sets up
+  EXPECT_EQ(pages[4]["name"], "POINTPAGE");
+}
+
 TEST(StationFramesTest, MarksFollowTheEvents) {
   StationMarks marks;
   marks.Note({{"event", "path_guard"}, {"clear", true}});
