@@ -18,7 +18,7 @@ done
 # Real-time pacing of vmt serve: how late the PLC cycles start against the wall clock.
 if [ -x "$build/sim/vmt" ]; then
   echo "== serve --realtime"
-  "$build/sim/vmt" serve scenes/repos-machine-keys.yaml --modbus 127.0.0.1:0 --realtime \
+  "$build/sim/vmt" serve scenes/repos-machine-keys.yaml --modbus 127.0.0.1:0 --realtime --no-wait-for-plc \
     --out out/bench/serve_realtime >/dev/null 2>&1 || true
   if [ -f out/bench/serve_realtime/serve.json ]; then
     cp out/bench/serve_realtime/serve.json out/bench/serve_realtime.json

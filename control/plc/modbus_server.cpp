@@ -175,6 +175,15 @@ struct ModbusServer::State {
       return Reply::kDrop;
     }
     ++stats.requests_served;
+    switch (adu[kMbapBytes]) {
+      case MODBUS_FC_WRITE_SINGLE_COIL:
+      case MODBUS_FC_WRITE_SINGLE_REGISTER:
+      case MODBUS_FC_WRITE_MULTIPLE_COILS:
+      case MODBUS_FC_WRITE_MULTIPLE_REGISTERS:
+      case MODBUS_FC_MASK_WRITE_REGISTER:
+      case MODBUS_FC_WRITE_AND_READ_REGISTERS:
+        ++stats.writes;
+    }
     return Reply::kSent;
   }
 

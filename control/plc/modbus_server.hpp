@@ -87,8 +87,10 @@ struct ModbusServerStats {
   uint64_t clients_refused = 0;  ///< closed at once because max_clients were connected
   uint64_t cycles = 0;           ///< cycle register writes that ran a cycle
   uint64_t axd_writes = 0;       ///< AXD_WR block writes that reached the drive
-  /// Every request answered, normally or with an exception: each one shows a PLC at the other
-  /// end (vmt serve's link watchdog looks at whether this has moved).
+  /// Write requests answered normally (coils, holding registers): the PLC writing its outputs.
+  /// A monitor that only reads never moves it.
+  uint64_t writes = 0;
+  /// Every request answered, normally or with an exception.
   uint64_t requests() const { return requests_served + exceptions_sent; }
 };
 

@@ -13,8 +13,9 @@ connection.
     vmt serve scenes/repos-machine-keys.yaml --modbus 127.0.0.1:5020 --lockstep &
     examples/plc/repos_machine_keys.py --port 5020 --signals signals.json
 
-With --realtime it scans on its own clock every --period ms instead (against `vmt serve
---realtime`, whose link watchdog stops the NC if the PLC is silent for --plc-timeout). With
+With --realtime it scans on its own clock every --period ms instead and writes its outputs every
+scan (against `vmt serve --realtime`, whose link watchdog stops the NC if the PLC writes nothing
+for --plc-timeout; the clock starts at the PLC's first write). With
 --retry S it keeps trying to connect for S seconds, at the start and after the connection
 drops, as a PLC's field bus master would; a lockstep PLC then reads the cycle register to
 carry on where the simulation is. --cycles N stops after N scans, a PLC that goes away.
@@ -83,6 +84,10 @@ def main():
                                 (key_resta or resta) and ok and not key_repos)
                 io.set("P00C.REPOS", repos)
                 io.set("P00C.RESTA", resta)
+                if args.realtime:
+                    # As on a field bus, every scan writes the outputs: vmt's link watchdog
+                    # listens for the PLC's writes (a client that only reads is a monitor).
+                    io.forget_writes()
                 io.flush(["P00C.REPOS", "P00C.RESTA"])
                 cycle += 1
                 if args.realtime:

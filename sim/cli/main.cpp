@@ -309,9 +309,14 @@ Command AddServe(CLI::App& app) {
   serve->add_option("--out", serve_options.out_dir, "Output folder")->capture_default_str();
   serve
       ->add_option("--plc-timeout", serve_options.plc_timeout_ms,
-                   "Real time: ms without a Modbus request after which the PLC link is lost "
-                   "(its outputs drop, the NC stops with message 505)")
+                   "Real time: ms without a write from the PLC after which the PLC link is "
+                   "lost (its outputs drop, the NC stops with message 505); clients that only "
+                   "read are monitors and do not keep it")
       ->check(CLI::Range(0.001, 3.6e6))
+      ->capture_default_str();
+  serve
+      ->add_flag("--wait-for-plc,!--no-wait-for-plc", serve_options.wait_for_plc,
+                 "Real time: start the clock at the PLC's first write (default), or at once")
       ->capture_default_str();
   serve
       ->add_option("--idle-timeout", serve_options.idle_timeout_s,

@@ -45,7 +45,7 @@ std::string Fmt(double v) {
 struct PlcLinkWatch {
   int64_t timeout_cycles = 1;
   std::chrono::steady_clock::duration timeout{};
-  uint64_t seen_requests = 0;
+  uint64_t seen_requests = 0;  ///< the PLC's writes so far
   int64_t heard_cycle = 0;  ///< cycle before which the last request was seen
   std::chrono::steady_clock::time_point heard_at;
   bool lost = false;
@@ -118,7 +118,18 @@ std::string ServeRealtime(const ServeOptions& o, SceneRun& run, control::plc::Mo
   link.timeout_cycles = std::max<int64_t>(1, (timeout_us + period.count() - 1) / period.count());
   link.timeout = std::chrono::microseconds(timeout_us);
   const std::string lost =
-      "Modbus: no request for " + Fmt(o.plc_timeout_ms) + " ms, the PLC link is lost";
+      "Modbus: no write from the PLC for " + Fmt(o.plc_timeout_ms) + " ms, the PLC link is lost";
+  // The clock starts with the PLC: a PLC started a moment after vmt would otherwise find the NC
+  // already in error (the link lost before it ever came).
+  if (o.wait_for_plc) {
+    std::printf("vmt serve: waiting for the PLC's first write before the clock starts\n");
+    std::fflush(stdout);
+    while (server.stats().writes == 0) {
+      if (g_stop) return "signal";
+      server.Poll(50);
+      if (station) station->Publish(run, "paused");
+    }
+  }
   const auto start = Clock::now();
   link.heard_at = start;
   for (int64_t n = 0; !run.done(); ++n) {
@@ -129,9 +140,10 @@ std::string ServeRealtime(const ServeOptions& o, SceneRun& run, control::plc::Mo
           0, std::chrono::duration_cast<std::chrono::milliseconds>(due - now).count())));
     const auto now = Clock::now();
     lateness_ms.push_back(std::chrono::duration<double, std::milli>(now - due).count());
-    // The link watchdog looks at the start of the cycle, where the embedded PLC's scans.
-    if (server.stats().requests() != link.seen_requests) {
-      link.seen_requests = server.stats().requests();
+    // The link watchdog looks at the start of the cycle, where the embedded PLC's scans. The PLC
+    // is the client that writes its outputs: monitors that only read keep no dead PLC alive.
+    if (server.stats().writes != link.seen_requests) {
+      link.seen_requests = server.stats().writes;
       link.heard_cycle = n;
       link.heard_at = now;
       if (link.lost) {

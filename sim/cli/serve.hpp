@@ -36,9 +36,12 @@ struct ServeOptions {
   bool lockstep = true;                     ///< else real time
   double until_s = 0;                       ///< 0: the scene's duration
   std::string out_dir = "out";
-  /// Real time: the PLC link's timeout, as a field bus's (ms, > 0). Checked in whole PLC
-  /// cycles (rounded up) and against the wall clock, so a late cycle does not trip it.
+  /// Real time: the PLC link's timeout, as a field bus's (ms, > 0): no write from the PLC for
+  /// that long (a reading monitor does not count). Checked in whole PLC cycles (rounded up) and
+  /// against the wall clock, so a late cycle does not trip it.
   double plc_timeout_ms = 100;
+  /// Real time with Modbus: the clock starts at the PLC's first write, not at once.
+  bool wait_for_plc = true;
   /// Lockstep: wall time without a cycle write after which serve stops early (s, > 0).
   double idle_timeout_s = 30;
 };

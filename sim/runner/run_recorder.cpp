@@ -17,7 +17,8 @@ void RunRecorder::Open(const std::string& out_dir) {
 
 void RunRecorder::Event(nlohmann::ordered_json event) {
   event["t"] = std::round(event["t"].get<double>() * 1e6) / 1e6;
-  if (writing_) events_file_ << event.dump() << '\n';
+  // Line by line, so that a PLC engineer can follow events.jsonl while the run goes on (tail -f).
+  if (writing_) events_file_ << event.dump() << '\n' << std::flush;
   for (const EventObserver& observe : observers_) observe(event);
 }
 

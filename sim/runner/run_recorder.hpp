@@ -45,8 +45,8 @@ class RunRecorder {
     digest_.Add(row);
     if (writing_) trace_file_ << row;
   }
-  /// Rounds the event's time to the tick grid (3.4995, not 3.4995000000000003), writes it
-  /// and hands it to the observers.
+  /// Rounds the event's time to the tick grid (3.4995, not 3.4995000000000003), writes it (a
+  /// whole line to the file at once, as it happens) and hands it to the observers.
   void Event(nlohmann::ordered_json event);
 
   std::string DigestHex() const { return digest_.Hex(); }

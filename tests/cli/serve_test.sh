@@ -168,16 +168,44 @@ grep -q '"event":"plc"' "$rt/events.jsonl" && fail "PLC lost while the client po
 # Real time without a PLC: after 100 ms the link is lost, the NC stops with message 505.
 rt=$out/realtime-no-plc
 mkdir -p "$rt"
-timeout 300 "$vmt" serve "$scene" --modbus 127.0.0.1:0 --realtime --until 0.5 --out "$rt" \
-  >"$rt/serve.log" 2>&1
+timeout 300 "$vmt" serve "$scene" --modbus 127.0.0.1:0 --realtime --no-wait-for-plc --until 0.5 \
+  --out "$rt" >"$rt/serve.log" 2>&1
 rc=$?
 [ $rc = 1 ] || { fail "realtime serve without a PLC: exit $rc, not 1"; cat "$rt/serve.log"; }
-lost='Modbus: no request for 100 ms, the PLC link is lost'
+lost='Modbus: no write from the PLC for 100 ms, the PLC link is lost'
 grep -q "\"event\":\"plc\",\"state\":\"stopped\",\"reason\":\"$lost\"" "$rt/events.jsonl" ||
   fail "no PLC stopped event"
 grep -q '"name":"P00S.ERRNR","value":505.0' "$rt/events.jsonl" || fail "no message 505"
 json "$rt/summary.json" '"NC error: '"$lost"'" in d["failures"]'
 json "$rt/serve.json" 'd["plc_link"]["lost"] == 1'
+
+# Real time waits for the PLC's first write before its clock starts: a monitor that only reads
+# is not the PLC, so with it alone the simulated time stays at 0 until serve is stopped.
+rt=$out/realtime-wait
+mkdir -p "$rt"
+timeout 300 "$vmt" serve "$scene" --modbus 127.0.0.1:0 --realtime --until 0.5 --out "$rt" \
+  >"$rt/serve.log" 2>&1 &
+serve_pid=$!
+mb_port=
+for _ in $(seq 200); do
+  mb_port=$(sed -n 's/.*Modbus TCP on 127.0.0.1:\([0-9]*\),.*/\1/p' "$rt/serve.log")
+  [ -n "$mb_port" ] && break
+  sleep 0.05
+done
+"$python" - "$mb_port" <<'PY' || fail "a reading monitor could not read"
+import sys, time
+from pymodbus.client import ModbusTcpClient
+c = ModbusTcpClient("127.0.0.1", port=int(sys.argv[1]))
+assert c.connect()
+for _ in range(20):
+    assert not c.read_discrete_inputs(0, 8, slave=1).isError()
+    time.sleep(0.025)
+c.close()
+PY
+grep -q "waiting for the PLC's first write" "$rt/serve.log" || fail "real time did not wait for the PLC"
+kill -TERM $serve_pid; wait $serve_pid
+json "$rt/serve.json" 'd["stopped_early"] and d["stop_reason"] == "signal" and d["simulated_time_s"] < 0.01'
+grep -q '"event":"plc","state":"stopped"' "$rt/events.jsonl" && fail "the link was lost before the PLC came"
 
 # Lockstep with a PLC that stops after 50 cycles: serve gives up after 1 s of wall time without
 # a cycle write and still writes what it computed (as far as the cycles went: a PLC stalled for

@@ -94,6 +94,9 @@ wait_state 'd["cycle"] == 10 and d["selectors"]["mFOVR"] == 50 and d["nc"]["over
 status 200 POST /api/signal '{"name":"mFOVR","value":100}'  # back, for the scene's timing
 status 200 POST /api/run '{"action":"step"}'
 wait_state 'd["cycle"] == 11 and d["selectors"]["mFOVR"] == 100' 10
+# events.jsonl grows as the run goes (a PLC engineer follows it with tail -f), not at its end.
+grep -q '"signal":"mFOVR","value":50' "$out/live/events.jsonl" ||
+  fail "events.jsonl is not written as the run goes: $(wc -l < "$out/live/events.jsonl") lines"
 # Bad requests: 4xx, and nothing queued.
 status 400 POST /api/key 'not json'
 status 400 POST /api/key '{"name":"mCOOLANT"}'

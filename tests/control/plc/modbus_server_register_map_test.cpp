@@ -216,5 +216,27 @@ TEST_F(ModbusServerTest, IllegalAddressesChangeNothing) {
   EXPECT_EQ(server_.stats().clients_dropped, 1u);  // its own disconnect at the end
 }
 
+// The PLC is the client that writes: vmt serve's link watchdog counts writes, so a monitor that
+// only reads keeps no dead PLC alive.
+TEST_F(ModbusServerTest, CountsWritesApartFromReads) {
+  WhilePolling(server_, [&] {
+    Client c(server_.port());
+    uint8_t bits[8];
+    uint16_t regs[2];
+    for (int k = 0; k < 3; ++k) {
+      ASSERT_EQ(modbus_read_input_bits(c.ctx, 0, 8, bits), 8);
+      ASSERT_EQ(modbus_read_registers(c.ctx, 0, 2, regs), 2);
+    }
+    EXPECT_EQ(server_.stats().writes, 0u);
+    ASSERT_EQ(
+        modbus_write_bit(c.ctx, image_.table()[image_.Require("P00C.START")].modbus.address, 1), 1);
+    ASSERT_EQ(modbus_write_register(c.ctx,
+                                    image_.table()[image_.Require("P00C.FOVR")].modbus.address, 50),
+              1);
+  });
+  EXPECT_EQ(server_.stats().writes, 2u);
+  EXPECT_EQ(server_.stats().requests_served, 8u);
+}
+
 }  // namespace
 }  // namespace vmt::control::plc
