@@ -302,9 +302,10 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
     const int key = pos == neg ? 0 : pos ? 1 : -1;
     if (key != last_mg_key_) ch.JogToolStorage(key), last_mg_key_ = key;
   }
-  // Acknowledgement of the auxiliary functions: AUXACK's edge, or every pending Q function
-  // acknowledged on its own signal.
-  bool ack = auxack_.Rising(im);
+  // Acknowledgement of the auxiliary functions: AUXACK's edge while the strobe is out, or every
+  // pending Q function acknowledged on its own signal.
+  bool ack = auxack_.Rising(im) && aux_strobe_;
+  if (ack) aux_strobe_ = false, aux_low_cycles_ = 0;
   if (!ch.aux_output().empty() && !ack) {
     bool all_q = true;
     for (const nc::AuxFunction& f : ch.aux_output()) {
@@ -357,13 +358,21 @@ void ChannelGateway::WriteStatus(const channel::Channel& ch, const AmplifierTele
   set(s_rev_, ch.reversing());
   set(s_error_, ch.state() == channel::ChannelState::kError);
   set_int(s_errnr_, ch.error_number());
-  // The strobe is for M, H and T; a Q function has its own signal and acknowledgement.
+  // The strobe is for M, H and T; a Q function has its own signal and acknowledgement. It rises
+  // for the next block's functions once the last handshake is over: AUXACK low, and the strobe
+  // low for a whole PLC scan.
   const auto& aux = ch.aux_output();
-  bool strobe = false;
-  for (const nc::AuxFunction& f : aux) strobe = strobe || f.letter != 'Q';
-  set(s_auxstb_, strobe);
+  bool pending = false;
+  for (const nc::AuxFunction& f : aux) pending = pending || f.letter != 'Q';
+  if (!pending && aux_strobe_) aux_strobe_ = false, aux_low_cycles_ = 0;  // Control-Reset
+  const bool ack_low = auxack_.id < 0 || !im.Bool(auxack_.id);
+  if (pending && !aux_strobe_ && ack_low && aux_low_cycles_ >= plc_scan_nc_cycles_)
+    aux_strobe_ = true;
+  if (!aux_strobe_ && aux_low_cycles_ < (1 << 20)) ++aux_low_cycles_;
+  set(s_auxstb_, aux_strobe_);
   int64_t m = -1, h = -1, t = -1;
   for (const nc::AuxFunction& f : aux) {
+    if (!aux_strobe_) break;  // the functions show with their strobe
     if (f.letter == 'M' && m < 0) m = static_cast<int64_t>(f.value);
     if (f.letter == 'H' && h < 0) h = static_cast<int64_t>(f.value);
     if (f.letter == 'T' && t < 0) t = static_cast<int64_t>(f.value);

@@ -42,6 +42,9 @@ class ChannelGateway {
   void ReadControls(channel::Channel& channel);
   /// NC -> PLC: the channel's and the drives' state into the image.
   void WriteStatus(const channel::Channel& channel, const AmplifierTelegram& at);
+  /// The PLC's scan in NC cycles (rounded up), for the auxiliary functions' handshake: each of
+  /// its phases lasts at least one scan, so that a PLC sees every edge.
+  void SetPlcScan(int nc_cycles) { plc_scan_nc_cycles_ = nc_cycles < 1 ? 1 : nc_cycles; }
   /// The JogOfPath channel (block search 4.2.1) beside `channel`: Pxx.jog_of_path.* start and
   /// hold its program, and report its state and whether it holds the axes.
   void ReadJogOfPath(channel::Channel& jog_of_path);
@@ -69,6 +72,12 @@ class ChannelGateway {
 
   SignalImage* image_;
   Edge auto_, manu_, mdi_, start_, reset_, rev_, auxack_;
+  /// The handshake of M, H and T: PxxS.AUXSTB rises only once AUXACK is low and the strobe has
+  /// been low for a PLC scan, so that a PLC that holds AUXACK until the strobe falls (four
+  /// phases) and one that pulses it both see each edge.
+  bool aux_strobe_ = false;
+  int aux_low_cycles_ = 1 << 20;  ///< NC cycles since the strobe fell
+  int plc_scan_nc_cycles_ = 1;
   int stop_ = -1, sbl_ = -1, opstp_ = -1, fovr_ = -1, jogm_[3] = {-1, -1, -1};
   int repos_ = -1, resta_ = -1;  ///< PxxC.REPOS, PxxC.RESTA
   /// PxxC.MGPOS / PxxC.MGNEG: the tool storage axis' jog keys (REPOS manual 3.4).

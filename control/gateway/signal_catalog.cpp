@@ -162,16 +162,20 @@ constexpr SignalFamily kPanelAndAxisFamilies[] = {
     // Auxiliary functions with acknowledgement: the manuals give Q functions their own
     // acknowledgement (Pxx.Qnnnn_Q) but name no strobe for M, H and T.
     {"PxxS.AUXSTB", kProcess, kBool, kNcToPlc,
-     "Auxiliary functions (M, H, T) of the block output: the block waits for PxxC.AUXACK",
+     "Auxiliary functions (M, H, T) of the block output: the block waits for PxxC.AUXACK. Falls "
+     "at the acknowledgement; rises for the next functions only once AUXACK is low and it has "
+     "been low a PLC scan (a pulsed or a held AUXACK both work)",
      "vmt"},
     {"PxxS.MFUNC", kProcess, kInt, kNcToPlc, "M function number while PxxS.AUXSTB (-1: none)",
      "vmt", "", "", -1},
     {"PxxS.HFUNC", kProcess, kInt, kNcToPlc, "H function number while PxxS.AUXSTB (-1: none)",
      "vmt", "", "", -1},
-    {"PxxS.TFUNC", kProcess, kInt, kNcToPlc, "T number (tool) while PxxS.AUXSTB (-1: none)",
-     "vmt", "", "", -1},
+    {"PxxS.TFUNC", kProcess, kInt, kNcToPlc, "T number (tool) while PxxS.AUXSTB (-1: none)", "vmt",
+     "", "", -1},
     {"PxxC.AUXACK", kProcess, kBool, kPlcToNc,
-     "Acknowledge the auxiliary functions output (rising edge): the block goes on", "vmt"},
+     "Acknowledge the auxiliary functions output (rising edge while AUXSTB is high): the block "
+     "goes on; pulse it for a scan or hold it until AUXSTB falls",
+     "vmt"},
 
     // ---------------------------------------------------------------------------------------
     // Axis signals (c-axis 4.2 table "Axis Signals"; Axx: axis number xx, from 01: the
@@ -230,12 +234,12 @@ constexpr SignalFamily kPanelAndAxisFamilies[] = {
     {"AxxC.M19", kSpindle, kBool, kPlcToNc,
      "Spindle positioning (rising edge, to the jogging spindle position)",
      REPOS "3.3; " CAXIS "2.3; 4.2; 4.3", "", "AxxCM19"},
-    {"AxxC.GEAR1", kSpindle, kBool, kPlcToNc, "Actual gear stage bit 1", CAXIS "4.2; 4.3", "",
-     "", 0, kNoGearbox},
-    {"AxxC.GEAR2", kSpindle, kBool, kPlcToNc, "Actual gear stage bit 2", CAXIS "4.2; 4.3", "",
-     "", 0, kNoGearbox},
-    {"AxxC.GEAR3", kSpindle, kBool, kPlcToNc, "Actual gear stage bit 3", CAXIS "4.2; 4.3", "",
-     "", 0, kNoGearbox},
+    {"AxxC.GEAR1", kSpindle, kBool, kPlcToNc, "Actual gear stage bit 1", CAXIS "4.2; 4.3", "", "",
+     0, kNoGearbox},
+    {"AxxC.GEAR2", kSpindle, kBool, kPlcToNc, "Actual gear stage bit 2", CAXIS "4.2; 4.3", "", "",
+     0, kNoGearbox},
+    {"AxxC.GEAR3", kSpindle, kBool, kPlcToNc, "Actual gear stage bit 3", CAXIS "4.2; 4.3", "", "",
+     0, kNoGearbox},
     {"AxxC.SOVR", kSpindle, kInt, kPlcToNc,
      "Spindle override (spindle-specific; acts while M3/M4/M19 are active)",
      "vmt (" CAXIS "2.3 Feed and Spindle Override)", "%", "", 100},

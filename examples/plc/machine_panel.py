@@ -48,7 +48,12 @@ class Edge:
 
 
 class MachinePanel:
-    def __init__(self):
+    def __init__(self, hold_ack=False):
+        # The auxiliary functions' handshake: pulse AUXACK for one scan (the embedded program's
+        # way), or hold it until the strobe falls (four phases, as many PLC programmers write
+        # it). vmt raises the next strobe only after AUXACK is low and the strobe has been low
+        # for a scan, so both work alike.
+        self.hold_ack = hold_ack
         self.edges = {k: Edge() for k in ("mSTART", "mSTOP", "mSBL", "mCOOLANT", "mDOOR",
                                           "mTAILSTOCK", *JOG_MODE)}
         self.jog_mode = {k: False for k in JOG_MODE}
@@ -94,7 +99,11 @@ class MachinePanel:
         if m == 9:
             self.coolant = False
         io.set("QCOOLANT", self.coolant)
-        ack = strobe and (m != 8 or g("ICOOLANT_PRESSURE")) and not self.aux_acked
+        done = strobe and (m != 8 or g("ICOOLANT_PRESSURE"))
+        if self.hold_ack:
+            ack = done or (self.aux_acked and strobe)
+        else:
+            ack = done and not self.aux_acked
         io.set("P00C.AUXACK", ack)
         self.aux_acked = ack
         # Repositioning manual 8.2, networks 1 to 3.
@@ -106,9 +115,12 @@ class MachinePanel:
 
 
 def main():
-    args = plc_arguments(__doc__.split("\n")[0]).parse_args()
+    ap = plc_arguments(__doc__.split("\n")[0])
+    ap.add_argument("--hold-ack", action="store_true",
+                    help="hold AUXACK until AUXSTB falls (four-phase handshake) instead of a pulse")
+    args = ap.parse_args()
     signals = load_signals(args.signals)
-    program, changeover = MachinePanel(), CAxisChangeover(signals)
+    program, changeover = MachinePanel(args.hold_ack), CAxisChangeover(signals)
 
     def scan(io, now_ms):
         program.scan(io)

@@ -176,6 +176,10 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
   // it through the image (as over a field bus) and its valves go out to the machine.
   // An external PLC (vmt serve) takes the embedded program's place.
   plc_every = std::llround(scene.plc.period_s / kDriveTickS);
+  if (gateway) {
+    const int64_t nc = channel->ticks_per_cycle();
+    gateway->SetPlcScan(static_cast<int>((plc_every + nc - 1) / nc));
+  }
   if (image && scene.plc.present && !options.external_plc) {
     auto made = control::plc::MakePlcProgram(scene.plc.program, *image, &measuring_pages);
     if (!made) throw std::runtime_error("no PLC program '" + scene.plc.program + "'");

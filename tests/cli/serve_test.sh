@@ -69,6 +69,9 @@ same_as_embedded keys "$scene" repos_machine_keys.py &&
   { grep -q '"passed": true' "$out/keys_external/summary.json" || fail "keys: external run failed"; }
 # A PLC that drives valves and acknowledges M functions: the panel program.
 same_as_embedded panel "$src/scenes/machine-panel.yaml" machine_panel.py
+# The same PLC holding AUXACK until AUXSTB falls (a four-phase handshake) instead of pulsing it:
+# the NC holds each phase a scan, so it sees every edge and the run is the same.
+same_as_embedded panel_hold "$src/scenes/machine-panel.yaml" machine_panel.py --hold-ack
 # The C-axis changeover (4.4) over Modbus: the Python program takes the place of the one the
 # runner runs for a scene without plc:, writes the AXD idents (DINT registers) and switches the
 # clutch.

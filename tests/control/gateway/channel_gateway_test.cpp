@@ -7,6 +7,7 @@
 
 #include <set>
 #include <string_view>
+#include <vector>
 
 #include "control/gateway/signal_catalog.hpp"
 #include "control/nc/parser.hpp"
@@ -106,6 +107,29 @@ TEST(ChannelGateway, AuxFunctionsWaitForAuxAckAndQFunctionsForTheirOwn) {
   r.Cycle(1000);
   EXPECT_EQ(r.ch->state(), channel::ChannelState::kEnded);
   EXPECT_DOUBLE_EQ(r.at.feedback[0].position, 20);
+}
+
+// M functions in consecutive blocks, against a PLC that scans every 4 NC cycles and acknowledges
+// by a pulse (one scan) or by holding AUXACK until the strobe falls (four phases): the strobe
+// stays low a whole scan and until AUXACK is low, so either PLC sees every function once.
+TEST(ChannelGateway, AuxHandshakeHoldsEachPhaseAPlcScan) {
+  for (const bool hold : {false, true}) {
+    SCOPED_TRACE(hold ? "holding AUXACK" : "pulsing AUXACK");
+    Rig r("N1 M08\nN2 M03 S100\nN3 M09\nN4 M05\nN5 RET\n", true);
+    r.gateway->SetPlcScan(4);
+    r.Press("P00C.START");
+    std::vector<int64_t> seen;
+    bool acked = false;
+    for (int scan = 0; scan < 200 && r.ch->state() != channel::ChannelState::kEnded; ++scan) {
+      const bool strobe = r.Get("P00S.AUXSTB");
+      if (strobe && !acked) seen.push_back(r.GetInt("P00S.MFUNC"));
+      acked = hold ? strobe : strobe && !acked;
+      r.Set("P00C.AUXACK", acked);
+      r.Cycle(4);
+    }
+    EXPECT_EQ(r.ch->state(), channel::ChannelState::kEnded);
+    EXPECT_EQ(seen, (std::vector<int64_t>{8, 3, 9, 5}));
+  }
 }
 
 TEST(ChannelGateway, OptionalStopSignalMakesM01HoldAndTheStopConditionsShowIt) {
