@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace vmt::control::axes {
 namespace {
@@ -93,10 +94,14 @@ bool HeadstockChangeover::Cycle(const HeadstockPlc& plc, const AmplifierTelegram
       if (!plc.stop && Standstill(at, config_.spindle_drive) &&
           Standstill(at, config_.rotary_drive)) {
         phase_ = ChangeoverPhase::kExternal;
+        external_s_ = 0;
         parameter_set_ = SetOf(target_);
       }
       return true;
     case ChangeoverPhase::kExternal: {
+      external_s_ += dt_s;
+      spindle_axd_ = plc.spindle_axd;
+      rotary_axd_ = plc.rotary_axd;
       RunFunction(spindle_fn_, plc.spindle_axd, at.feedback[config_.spindle_drive], plc.stop,
                   dt_s);
       if (config_.separate_servo())
@@ -116,6 +121,35 @@ bool HeadstockChangeover::Cycle(const HeadstockPlc& plc, const AmplifierTelegram
     }
   }
   return true;
+}
+
+std::string HeadstockChangeover::Stalled() const {
+  if (phase_ != ChangeoverPhase::kExternal || external_s_ < config_.stall_message_s) return "";
+  const bool rotary = target_ == HeadstockMode::kRotary;
+  char head[160];
+  std::snprintf(head, sizeof head, "changeover to %s mode: no %s from the PLC within %.1f s",
+                rotary ? "rotary axis" : "spindle", rotary ? "ROTMOD_Q" : "SPMOD_Q",
+                config_.stall_message_s);
+  std::string why;
+  auto check = [&why](const char* drive, const std::array<int64_t, 4>& axd) {
+    const int64_t request = axd[kAxdFunction] & 0xff;
+    if (request & axd::kSpeedSpec) {
+      if (axd[kAxdSpeed] == 0)
+        why +=
+            std::string("; the ") + drive + " drive's speed specification has speed 0 (AXD 65013)";
+      else if (axd[kAxdAccel] == 0)
+        why += std::string("; the ") + drive +
+               " drive's speed specification has acceleration 0 (AXD 65014)";
+    }
+    return request != 0;
+  };
+  bool any = check("spindle", spindle_axd_);
+  if (config_.separate_servo()) any = check("rotary", rotary_axd_) || any;
+  if (!any && config_.separate_servo())
+    why +=
+        "; no AXD motion function is requested (65012 = 0): a clutch whose dogs meet tooth "
+        "on tooth does not mesh unless a drive turns";
+  return head + why;
 }
 
 // The AXD motion functions (2.2): hunting, positioning, speed specification, each acknowledged

@@ -65,6 +65,10 @@ struct HeadstockConfig {
   /// window (deg).
   double positioning_speed = 36;
   double positioning_window = 0.1;
+  /// An external changeover without the PLC's acknowledgement for this long (s) is reported
+  /// (Stalled()): most often a clutch whose dogs meet tooth on tooth and no AXD motion function
+  /// turns the drive to let them mesh.
+  double stall_message_s = 5;
 
   bool separate_servo() const { return rotary_drive != spindle_drive; }
 };
@@ -118,6 +122,10 @@ class HeadstockChangeover {
   /// axis' actual position as its command value (5).
   bool TakeOverRotary() { return std::exchange(take_over_rotary_, false); }
   const std::string& error() const { return error_; }
+  /// Empty, or why the external changeover has waited stall_message_s for the PLC: the mode
+  /// it waits for, and what the AXD idents the PLC wrote leave undone (no motion function
+  /// requested, a speed specification with speed or acceleration 0).
+  std::string Stalled() const;
   const HeadstockConfig& config() const { return config_; }
 
  private:
@@ -158,6 +166,8 @@ class HeadstockChangeover {
   /// spindle's speed, and a drive switched while turning faster trips (overspeed).
   uint8_t parameter_set_ = 0;
   std::string error_;
+  double external_s_ = 0;                                ///< time in the external changeover
+  std::array<int64_t, 4> spindle_axd_{}, rotary_axd_{};  ///< what the PLC wrote last
 };
 
 }  // namespace vmt::control::axes

@@ -198,6 +198,9 @@ std::vector<OperatorMessage> Channel::messages() const {
   if (plc_message_.number != 0)
     list.push_back(
         {OperatorMessage::Source::kPlc, plc_message_.number, plc_message_.parameter, {}});
+  if (headstock_)
+    if (std::string stalled = headstock_->Stalled(); !stalled.empty())
+      list.push_back({OperatorMessage::Source::kNc, kMsgChangeoverStalled, 0, std::move(stalled)});
   return list;
 }
 

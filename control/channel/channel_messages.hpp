@@ -59,6 +59,9 @@ inline constexpr int kMsgCollision = 507;
 inline constexpr int kMsgSafetyLimitSwitch = 508;
 /// AxxC.MTAS: a motor's thermal protection switch opened (C-axis manual 4.2).
 inline constexpr int kMsgThermalSwitch = 509;
+/// A headstock changeover has waited for the PLC's acknowledgement too long (a notice: the
+/// program waits on; HeadstockChangeover::Stalled says why).
+inline constexpr int kMsgChangeoverStalled = 510;
 
 /// Fast measurement: a measuring instruction cannot run (its parameters, its place, 4.1).
 inline constexpr int kMsgMeasuringInstruction = 601;
@@ -136,6 +139,8 @@ inline const char* MessageText(int number) {
       return "safety limit switch";
     case kMsgThermalSwitch:
       return "thermal protection switch";
+    case kMsgChangeoverStalled:
+      return "spindle / rotary axis changeover not acknowledged";
     case kMsgTransformation:
       return "coordinate transformation error";
     case kMsgMeasuringInstruction:

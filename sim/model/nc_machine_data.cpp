@@ -286,10 +286,10 @@ NcMachineData ReadNcMachineData(const MachineModel& m, const YamlNode& node) {
     if (!m.drives[nc.spindle_drive].spindle) s.Fail("not a spindle drive");
     nc.spindle.max_spindle_rpm = m.drives[nc.spindle_drive].velocity_limit * kDegPerRad / 6;
     if (sp.IsMap()) {
-      sp.AllowKeys({"drive", "number", "rotary_axis", "rotary_parameter_set", "jogging_speed",
-                    "jogging_spindle_position", "Cxx.049", "encoder_periods_per_rev",
-                    "encoder_limit_hz", "Cxx.025", "Cxx.026", "Cxx.027", "Cxx.028", "Cxx.029",
-                    "Cxx.030", "Cxx.031", "Cxx.032"});
+      sp.AllowKeys({"drive", "number", "rotary_axis", "rotary_parameter_set",
+                    "changeover_message_s", "jogging_speed", "jogging_spindle_position", "Cxx.049",
+                    "encoder_periods_per_rev", "encoder_limit_hz", "Cxx.025", "Cxx.026", "Cxx.027",
+                    "Cxx.028", "Cxx.029", "Cxx.030", "Cxx.031", "Cxx.032"});
       ReadSpindleParameters(m, sp, nc);
       nc.spindle_number = sp.Int("number", -1);
       if (sp.Has("number") && (nc.spindle_number < 1 || nc.spindle_number > 99))
@@ -301,6 +301,9 @@ NcMachineData ReadNcMachineData(const MachineModel& m, const YamlNode& node) {
         if (!nc.axes[nc.rotary_axis].rotary) sp["rotary_axis"].Fail("not a rotary axis");
       }
       nc.rotary_parameter_set = sp.Int("rotary_parameter_set", 0);
+      nc.changeover_message_s = sp.Double("changeover_message_s", 5);
+      if (!(nc.changeover_message_s > 0 && nc.changeover_message_s <= 3600))
+        sp["changeover_message_s"].Fail("expected seconds, > 0 and at most 3600");
       if (nc.rotary_parameter_set < 0 || nc.rotary_parameter_set > 7)
         sp["rotary_parameter_set"].Fail("must be in 0..7");
       for (const auto& a : nc.axes)

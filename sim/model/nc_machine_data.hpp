@@ -30,6 +30,9 @@ struct NcMachineData {
   /// the drive parameter set of rotary axis mode (section 2, 0: no switch).
   int rotary_axis = -1;
   int rotary_parameter_set = 0;
+  /// `changeover_message_s`: a headstock changeover the PLC has not acknowledged for this long
+  /// is reported with its likely cause (HeadstockConfig::stall_message_s).
+  double changeover_message_s = 5;
   control::axes::ZeroOffsetTable zero_offsets;
   control::axes::ToolTable tools;
   /// `path_guard: stop | warn | off`: what a contact PathGuard finds ahead of a move does.

@@ -38,6 +38,7 @@ control::channel::ChannelConfig ChannelConfigOf(const MachineModel& m, const NcS
     h.spindle_drive = nc.data.spindle_drive;
     h.rotary_drive = nc.data.axes[nc.data.rotary_axis].drive;
     h.rotary_parameter_set = static_cast<uint8_t>(nc.data.rotary_parameter_set);
+    h.stall_message_s = nc.data.changeover_message_s;
     config.headstock = h;
     config.rotary_axis = nc.data.rotary_axis;
   }

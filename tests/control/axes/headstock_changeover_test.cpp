@@ -672,5 +672,34 @@ TEST(HeadstockChangeoverTest, OneDriveWithoutItsEnableIsOffInEveryMode) {
   }
 }
 
+// A changeover the PLC does not acknowledge is reported after stall_message_s, with what the
+// PLC's AXD idents leave undone; the report goes with the acknowledgement.
+TEST(HeadstockChangeoverTest, AStalledChangeoverSaysWhy) {
+  Rig r(Kind::kServo);
+  r.hs.Request(HeadstockMode::kRotary);
+  r.RunUntil(ChangeoverPhase::kExternal);
+  const int cycles = static_cast<int>(r.config.stall_message_s / kDt);
+  r.Run(cycles - 2);
+  EXPECT_EQ(r.hs.Stalled(), "");
+  r.Run(4);
+  EXPECT_EQ(r.hs.Stalled(),
+            "changeover to rotary axis mode: no ROTMOD_Q from the PLC within 5.0 s; no AXD "
+            "motion function is requested (65012 = 0): a clutch whose dogs meet tooth on tooth "
+            "does not mesh unless a drive turns");
+  // A speed specification left at speed 0 turns nothing either.
+  r.plc.rotary_axd = {axd::kSpeedSpec, 0, 100, 0};
+  r.Run(1);
+  EXPECT_NE(r.hs.Stalled().find("the rotary drive's speed specification has speed 0 (AXD 65013)"),
+            std::string::npos)
+      << r.hs.Stalled();
+  r.plc.rotary_axd = {axd::kSpeedSpec, 100000, 0, 0};
+  r.Run(1);
+  EXPECT_NE(r.hs.Stalled().find("acceleration 0 (AXD 65014)"), std::string::npos) << r.hs.Stalled();
+  r.Acknowledge(HeadstockMode::kRotary);
+  r.Run(2);
+  EXPECT_EQ(r.hs.mode(), HeadstockMode::kRotary);
+  EXPECT_EQ(r.hs.Stalled(), "");
+}
+
 }  // namespace
 }  // namespace vmt::control::axes
