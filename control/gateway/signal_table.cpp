@@ -216,6 +216,7 @@ std::vector<Signal> BuildSignalTable(const GatewayLayout& layout) {
                           io.output ? Direction::kPlcToMachine : Direction::kMachineToPlc,
                           io.meaning, "machine model", io.name, Scope::kIo, -1));
     table.back().preset = io.preset;
+    table.back().operator_input = io.operator_input;
   }
 
   // Machine I/O names come from the model and may collide with NC signal names.

@@ -55,6 +55,7 @@ struct Signal {
   double preset;                     ///< initial value
   /// Empty when vmt evaluates or drives the signal, else why not (SignalFamily::not_evaluated).
   std::string not_evaluated;
+  bool operator_input = false;  ///< an operator's key or selector of the machine's I/O
 };
 
 /// What a machine has: its NC processes, axes and I/O points.
@@ -77,6 +78,7 @@ struct GatewayLayout {
     std::string meaning;
     bool integer = false;  ///< an INT (a selector's position), not a BOOL
     int preset = 0;
+    bool operator_input = false;  ///< a key or selector: the operator sets it, not the machine
   };
   std::vector<Io> io;
   /// Q functions (Pxx.Qnnnn, Pxx.Qnnnn_Q) beyond the manuals' 9992, 9998, 9999; 0..9999.

@@ -24,14 +24,41 @@ std::string VmtColumn(const Signal& s) {
   return s.not_evaluated.empty() ? "evaluated" : "not evaluated: " + s.not_evaluated;
 }
 
+std::string WrittenBy(const Signal& s) {
+  switch (s.direction) {
+    case Direction::kNcToPlc:
+      return "vmt (the NC)";
+    case Direction::kMachineToPlc:
+      return s.operator_input ? "the operator (vmt: timeline, station)" : "vmt (the machine)";
+    case Direction::kPlcToNc:
+    case Direction::kPlcToMachine:
+      return "the PLC";
+    case Direction::kShared:
+      return "the PLC and the NC";
+  }
+  return "";
+}
+
 std::string FormatCsv(const std::vector<Signal>& table) {
-  std::string out = "name,type,direction,area,address,count,meaning,source,vmt\n";
+  // Modbus addresses as the protocol data unit carries them, from 0 (mbpoll: -0; tools that
+  // count from 1 add one).
+  std::string out =
+      "name,type,direction,area,address (0-based),count,meaning,source,vmt,written_by\n";
   for (const Signal& s : table) {
     out += CsvField(s.name) + ',' + ToString(s.type) + ',' + ToString(s.direction) + ',' +
            ToString(s.modbus.area) + ',' + std::to_string(s.modbus.address) + ',' +
            std::to_string(s.modbus.count) + ',' + CsvField(s.meaning) + ',' + CsvField(s.source) +
-           ',' + CsvField(VmtColumn(s)) + '\n';
+           ',' + CsvField(VmtColumn(s)) + ',' + CsvField(WrittenBy(s)) + '\n';
   }
+  // vmt serve's registers beyond the signals (control/plc/modbus_server.hpp).
+  out += "(lockstep cycle),UINT,PLC->NC,holding_register," +
+         std::to_string(LockstepCycleRegister(table)) +
+         ",1,\"vmt serve --lockstep: the PLC writes the next cycle number (modulo 65536) after its "
+         "outputs; vmt runs that PLC cycle, then answers\",vmt serve,evaluated,the PLC\n";
+  out += "(AXD_WR block),WORD,PLC->NC,holding_register," + std::to_string(AxdWrRegister(table)) +
+         ",6,\"a drive parameter write: axis, ident, value (DINT, 2 registers), result (read "
+         "only), writes done (read only)\",vmt serve (fast-measurement 7.2 AXD_WR),evaluated,"
+         "the PLC\n";
   return out;
 }
 
@@ -45,6 +72,7 @@ std::string FormatJson(const std::vector<Signal>& table) {
       {"discrete_input", "BOOL the PLC reads"},
       {"holding_register", "numeric or STRING the PLC writes"},
       {"input_register", "numeric or STRING the PLC reads"},
+      {"addressing", "0-based: the address the Modbus PDU carries (mbpoll: -0)"},
       {"lockstep_cycle_register", LockstepCycleRegister(table)},
       {"axd_wr_register", AxdWrRegister(table)},
       {"encoding",
@@ -73,6 +101,7 @@ std::string FormatJson(const std::vector<Signal>& table) {
     if (!s.aliases.empty()) j["aliases"] = s.aliases;
     if (s.preset != 0) j["preset"] = s.preset;
     j["vmt"] = s.not_evaluated.empty() ? "evaluated" : "not evaluated";
+    j["written_by"] = WrittenBy(s);
     if (!s.not_evaluated.empty()) j["not_evaluated"] = s.not_evaluated;
     signals.push_back(std::move(j));
   }

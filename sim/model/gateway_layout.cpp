@@ -30,7 +30,7 @@ control::gateway::GatewayLayout GatewayLayoutOf(const MachineModel& m) {
                                           : "sensor (machine input)";
     for (size_t k = 0; k < io.positions.size(); ++k)
       meaning += (k ? "/" : " ") + std::to_string(io.positions[k]);
-    layout.io.push_back({io.name, io.is_output, meaning, io.selector(), io.initial});
+    layout.io.push_back({io.name, io.is_output, meaning, io.selector(), io.initial, io.key});
   }
   return layout;
 }

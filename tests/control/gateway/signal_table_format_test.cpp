@@ -52,13 +52,14 @@ std::vector<std::vector<std::string>> ParseCsv(const std::string& text) {
 TEST(SignalTableFormat, CsvRoundTrip) {
   const auto table = BuildSignalTable(LatheLayout());
   const auto rows = ParseCsv(FormatCsv(table));
-  ASSERT_EQ(rows.size(), table.size() + 1);
-  EXPECT_EQ(rows[0], (std::vector<std::string>{"name", "type", "direction", "area", "address",
-                                               "count", "meaning", "source", "vmt"}));
+  ASSERT_EQ(rows.size(), table.size() + 3);
+  EXPECT_EQ(rows[0],
+            (std::vector<std::string>{"name", "type", "direction", "area", "address (0-based)",
+                                      "count", "meaning", "source", "vmt", "written_by"}));
   for (size_t i = 0; i < table.size(); ++i) {
     const auto& r = rows[i + 1];
     const Signal& s = table[i];
-    ASSERT_EQ(r.size(), 9u) << s.name;
+    ASSERT_EQ(r.size(), 10u) << s.name;
     EXPECT_EQ(r[0], s.name);
     EXPECT_EQ(r[1], ToString(s.type));
     EXPECT_EQ(r[2], ToString(s.direction));
@@ -68,7 +69,29 @@ TEST(SignalTableFormat, CsvRoundTrip) {
     EXPECT_EQ(r[6], s.meaning);
     EXPECT_EQ(r[7], s.source);
     EXPECT_EQ(r[8], VmtColumn(s));
+    EXPECT_EQ(r[9], WrittenBy(s));
   }
+  // vmt serve's registers that are not signals: the lockstep cycle, the AXD_WR block.
+  const auto& cycle = rows[table.size() + 1];
+  ASSERT_EQ(cycle.size(), 10u);
+  EXPECT_EQ(cycle[0], "(lockstep cycle)");
+  EXPECT_EQ(cycle[3], "holding_register");
+  EXPECT_EQ(cycle[4], std::to_string(LockstepCycleRegister(table)));
+  const auto& axd = rows[table.size() + 2];
+  EXPECT_EQ(axd[0], "(AXD_WR block)");
+  EXPECT_EQ(axd[4], std::to_string(AxdWrRegister(table)));
+  EXPECT_EQ(axd[5], "6");
+}
+
+TEST(SignalTableFormat, WrittenBySaysWhoSetsEachSignal) {
+  const auto table = BuildSignalTable(LatheLayout());
+  auto who = [&](const char* name) {
+    for (const Signal& s : table)
+      if (s.name == name) return WrittenBy(s);
+    return std::string("(missing)");
+  };
+  EXPECT_EQ(who("P00S.RUN"), "vmt (the NC)");
+  EXPECT_EQ(who("P00C.START"), "the PLC");
 }
 
 TEST(SignalTableFormat, CsvQuotesCommasQuotesAndLineBreaks) {
@@ -78,7 +101,7 @@ TEST(SignalTableFormat, CsvQuotesCommasQuotesAndLineBreaks) {
   const std::string csv = FormatCsv(table);
   EXPECT_NE(csv.find("\"say \"\"hi\"\", then\nleave\""), std::string::npos) << csv;
   const auto rows = ParseCsv(csv);
-  ASSERT_EQ(rows.size(), 2u);
+  ASSERT_EQ(rows.size(), 4u);  // the header, the signal, vmt serve's two register blocks
   EXPECT_EQ(rows[1][6], table[0].meaning);
   // The source of P00C.REPOS has "; " but no comma: left unquoted.
   EXPECT_EQ(rows[1][7], table[0].source);
