@@ -179,8 +179,8 @@ TEST(MachinePanelChangeoverTest, RunsTheChangeoverWhenTheSpindleHasARotaryAxisMo
   EXPECT_EQ(image.Int(image.Require("A04.AXD.65012")), 0b100);  // C hunts
 }
 
-// The jog mode selector: each key toggles its bit of PxxC.JOGM0..2.
-TEST(MachinePanelJogMode, EachKeyTogglesItsBitOfTheJogModeCode) {
+// The panel's machine I/O and keys without the optional ones (jog mode keys, selectors).
+gateway::GatewayLayout PanelLayout() {
   gateway::GatewayLayout layout;
   layout.processes = {0};
   layout.axes = {{1, "X", false, false}, {2, "Z", false, false}, {3, "S1", true, false}};
@@ -188,9 +188,16 @@ TEST(MachinePanelJogMode, EachKeyTogglesItsBitOfTheJogModeCode) {
     layout.io.push_back({out, true, "valve"});
   for (const char* in : {"IDOOR_CLOSED", "ICOOLANT_PRESSURE"})
     layout.io.push_back({in, false, "switch"});
-  for (const char* key : {"mAUTO", "mMANU", "mSTART", "mSTOP", "mRESET", "mSBL", "mCOOLANT",
-                          "mDOOR", "mTAILSTOCK", "mJOGM0", "mJOGM1", "mJOGM2"})
+  for (const char* key :
+       {"mAUTO", "mMANU", "mSTART", "mSTOP", "mRESET", "mSBL", "mCOOLANT", "mDOOR", "mTAILSTOCK"})
     layout.io.push_back({key, false, "key"});
+  return layout;
+}
+
+// The jog mode selector: each key toggles its bit of PxxC.JOGM0..2.
+TEST(MachinePanelJogMode, EachKeyTogglesItsBitOfTheJogModeCode) {
+  gateway::GatewayLayout layout = PanelLayout();
+  for (const char* key : {"mJOGM0", "mJOGM1", "mJOGM2"}) layout.io.push_back({key, false, "key"});
   gateway::SignalImage image(gateway::BuildSignalTable(layout));
   PlcRuntime plc(image, *MakePlcProgram("machine_panel", image), PlcTime(4000));
   auto press = [&](const char* key) {
@@ -221,16 +228,7 @@ TEST(MachinePanelJogMode, EachKeyTogglesItsBitOfTheJogModeCode) {
 // The override switches are selectors (INT inputs): their positions are the feed override and the
 // spindle's override, every scan; a machine without them leaves both at their presets.
 TEST(MachinePanelOverrides, SelectorPositionsAreTheFeedAndSpindleOverrides) {
-  gateway::GatewayLayout layout;
-  layout.processes = {0};
-  layout.axes = {{1, "X", false, false}, {2, "Z", false, false}, {3, "S1", true, false}};
-  for (const char* out : {"QDOOR_OPEN", "QTAILSTOCK", "QCOOLANT"})
-    layout.io.push_back({out, true, "valve"});
-  for (const char* in : {"IDOOR_CLOSED", "ICOOLANT_PRESSURE"})
-    layout.io.push_back({in, false, "switch"});
-  for (const char* key :
-       {"mAUTO", "mMANU", "mSTART", "mSTOP", "mRESET", "mSBL", "mCOOLANT", "mDOOR", "mTAILSTOCK"})
-    layout.io.push_back({key, false, "key"});
+  gateway::GatewayLayout layout = PanelLayout();
   gateway::SignalImage bare(gateway::BuildSignalTable(layout));
   layout.io.push_back({"mFOVR", false, "selector", true, 100});
   layout.io.push_back({"mSOVR_S1", false, "selector", true, 90});
