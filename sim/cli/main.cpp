@@ -23,6 +23,7 @@
 #include "sim/cli/view.hpp"
 #include "sim/model/gateway_layout.hpp"
 #include "sim/model/model_error.hpp"
+#include "sim/runner/run_story.hpp"
 #include "sim/runner/runner.hpp"
 #include "sim/runner/scene_renderer.hpp"
 #include "sim/study/case_replay.hpp"
@@ -57,6 +58,8 @@ int Run(const std::string& scene_path, const std::string& backend, double until,
   std::printf("%s: %.3f s simulated in %.3f s (%.1fx real time), trace digest %s\n",
               scene.name.c_str(), r.simulated_s, r.wall_s,
               r.wall_s > 0 ? r.simulated_s / r.wall_s : 0.0, r.trace_digest.c_str());
+  std::ifstream events(out + "/events.jsonl");
+  for (const std::string& line : sim::RunStory(events)) std::printf("  %s\n", line.c_str());
   std::printf("output: %s/{trace.csv,events.jsonl,summary.json}", out.c_str());
   for (const std::string& f : r.snapshot_files) std::printf(" %s", f.c_str());
   const auto failed = std::count_if(r.expectations.begin(), r.expectations.end(),

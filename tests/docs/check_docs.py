@@ -159,6 +159,8 @@ class Checker:
             elif words[0] in ("bash", "python3", "sh") and len(words) > 1:
                 if not os.path.exists(os.path.join(self.src, words[1])):
                     self.fail(where, f"script '{words[1]}' does not exist")
+            elif words[0].startswith("build/"):
+                self.fail(where, f"'{words[0]}' is not something the build makes (vmt is build/sim/vmt)")
             elif words[0].startswith(("tools/", "bench/", "examples/", "./tools/")):
                 if not os.path.exists(os.path.join(self.src, words[0])):
                     self.fail(where, f"script '{words[0]}' does not exist")
