@@ -3,9 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <map>
-#include <set>
-
 #include <nlohmann/json.hpp>
+#include <set>
 
 namespace vmt::sim {
 namespace {
@@ -41,11 +40,11 @@ struct OperatorActions {
       const std::string text = e.value("text", "");
       const size_t at = text.find(": press ");
       if (at != std::string::npos) key = text.substr(at + 8);
-    } else if (e["event"] == "operator" && e.contains("signal") && e.value("value", Json()) == true) {
+    } else if (e["event"] == "operator" && e.contains("signal") &&
+               e.value("value", Json()) == true) {
       key = e["signal"].get<std::string>();
     }
-    if (!key.empty() && std::find(keys.begin(), keys.end(), key) == keys.end())
-      keys.push_back(key);
+    if (!key.empty() && std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
   }
 };
 
@@ -70,7 +69,8 @@ struct ProgramCourse {
     std::string s = "NC program: started at " + Seconds(std::max(started, 0.0));
     if (holds > 0) s += ", held " + std::to_string(holds) + (holds == 1 ? " time" : " times");
     if (ended >= 0) s += ", ended at " + Seconds(ended);
-    if (error_t >= 0) s += ", stopped in error at " + Seconds(error_t) + (error.empty() ? "" : ": " + error);
+    if (error_t >= 0)
+      s += ", stopped in error at " + Seconds(error_t) + (error.empty() ? "" : ": " + error);
     if (ended < 0 && error_t < 0) s += ", still running when the run ended";
     lines.push_back(s);
   }
@@ -91,7 +91,8 @@ struct Repositioning {
   void Tell(std::vector<std::string>& lines) const {
     if (runs.empty() && !in_subroutine) return;
     std::string s = "repositioning: the REPOS subroutine ran " + Join(runs, ", ");
-    if (in_subroutine) s += std::string(runs.empty() ? "" : ", ") + "from " + Seconds(from) + " (unfinished)";
+    if (in_subroutine)
+      s += std::string(runs.empty() ? "" : ", ") + "from " + Seconds(from) + " (unfinished)";
     lines.push_back(s);
   }
 };
@@ -127,8 +128,8 @@ struct Guard {
   }
   void Tell(std::vector<std::string>& lines) const {
     if (checked == 0) return;
-    std::string s = "PathGuard: checked " + std::to_string(checked) +
-                    (checked == 1 ? " move" : " moves");
+    std::string s =
+        "PathGuard: checked " + std::to_string(checked) + (checked == 1 ? " move" : " moves");
     if (refused == 0) {
       s += ", all clear";
     } else {

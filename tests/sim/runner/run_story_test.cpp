@@ -1,9 +1,9 @@
 #include "sim/runner/run_story.hpp"
 
-#include <sstream>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <sstream>
 
 namespace vmt::sim {
 namespace {
@@ -32,12 +32,11 @@ TEST(RunStory, TellsTheProgramTheOperatorRepositioningAndPathGuard) {
 not json
 {"t":20.898,"event":"nc","state":"ended"}
 )");
-  EXPECT_THAT(lines,
-              ElementsAre("NC program: started at 0.10 s, held 1 time, ended at 20.90 s",
-                          "keys pressed: mAUTO, mSTART, mMANU",
-                          "repositioning: the REPOS subroutine ran 12.71 s to 15.04 s",
-                          "PathGuard: checked 2 moves, all clear; closest approach 0.019 mm "
-                          "(turret_st01_insert and workpiece)"));
+  EXPECT_THAT(lines, ElementsAre("NC program: started at 0.10 s, held 1 time, ended at 20.90 s",
+                                 "keys pressed: mAUTO, mSTART, mMANU",
+                                 "repositioning: the REPOS subroutine ran 12.71 s to 15.04 s",
+                                 "PathGuard: checked 2 moves, all clear; closest approach 0.019 mm "
+                                 "(turret_st01_insert and workpiece)"));
 }
 
 TEST(RunStory, TellsRefusalsErrorsMessagesAndDriveTrips) {
@@ -50,8 +49,10 @@ TEST(RunStory, TellsRefusalsErrorsMessagesAndDriveTrips) {
 {"t":3.0,"event":"nc","state":"error","error":"PathGuard: contact"}
 )");
   ASSERT_EQ(lines.size(), 4u);
-  EXPECT_EQ(lines[0], "NC program: started at 0.10 s, stopped in error at 3.00 s: PathGuard: contact");
-  EXPECT_EQ(lines[1], "PathGuard: checked 1 move, refused 1: G77 at 3.00 s (turret_disc and spindle_jaw2)");
+  EXPECT_EQ(lines[0],
+            "NC program: started at 0.10 s, stopped in error at 3.00 s: PathGuard: contact");
+  EXPECT_EQ(lines[1],
+            "PathGuard: checked 1 move, refused 1: G77 at 3.00 s (turret_disc and spindle_jaw2)");
   EXPECT_EQ(lines[2], "messages: nc 507 at 3.00 s \"collision\"");
   EXPECT_THAT(lines[3], HasSubstr("C overload at 2.50 s"));
 }
