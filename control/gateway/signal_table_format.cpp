@@ -4,6 +4,8 @@
 #include <set>
 #include <string_view>
 
+#include "control/gateway/nc_status_block.hpp"
+
 namespace vmt::control::gateway {
 namespace {
 
@@ -59,11 +61,19 @@ std::string FormatCsv(const std::vector<Signal>& table) {
          ",6,\"a drive parameter write: axis, ident, value (DINT, 2 registers), result (read "
          "only), writes done (read only)\",vmt serve (fast-measurement 7.2 AXD_WR),evaluated,"
          "the PLC\n";
+  // The NC status block: read only, refreshed by vmt serve after every cycle.
+  for (const NcStatusField& f : NcStatusLayoutOf(table).Fields()) {
+    out += f.name + ',' + ToString(f.type) + ",NC->PLC,input_register," +
+           std::to_string(f.address) + ',' + std::to_string(f.count) + ',' +
+           CsvField(f.unit.empty() ? f.meaning : f.meaning + " [" + f.unit + "]") +
+           ",vmt serve (NC status block),evaluated,vmt (the NC)\n";
+  }
   return out;
 }
 
 std::string FormatJson(const std::vector<Signal>& table) {
   using nlohmann::ordered_json;
+  const NcStatusLayout nc_status = NcStatusLayoutOf(table);
   ordered_json doc;
   doc["format"] = "vmt-gateway-signals";
   doc["version"] = 1;
@@ -75,6 +85,7 @@ std::string FormatJson(const std::vector<Signal>& table) {
       {"addressing", "0-based: the address the Modbus PDU carries (mbpoll: -0)"},
       {"lockstep_cycle_register", LockstepCycleRegister(table)},
       {"axd_wr_register", AxdWrRegister(table)},
+      {"nc_status_register", nc_status.address},
       {"encoding",
        "16-bit registers, most significant word first; INT two's complement; DINT/UDINT/DWORD 2 "
        "registers; REAL IEEE-754 binary32 in 2 registers; LREAL binary64 in 4; STRING(83) 42 "
@@ -106,6 +117,19 @@ std::string FormatJson(const std::vector<Signal>& table) {
     signals.push_back(std::move(j));
   }
   doc["signals"] = std::move(signals);
+  ordered_json status = ordered_json::array();
+  for (const NcStatusField& f : nc_status.Fields()) {
+    ordered_json j;
+    j["name"] = f.name;
+    j["type"] = ToString(f.type);
+    j["direction"] = ToString(Direction::kNcToPlc);
+    j["modbus"] = {{"area", "input_register"}, {"address", f.address}, {"count", f.count}};
+    j["meaning"] = f.meaning;
+    if (!f.unit.empty()) j["unit"] = f.unit;
+    j["written_by"] = "vmt (the NC)";
+    status.push_back(std::move(j));
+  }
+  doc["nc_status"] = std::move(status);
 
   ordered_json values = ordered_json::array();
   for (const ValueName& v : SignalValues()) {

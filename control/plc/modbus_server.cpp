@@ -80,6 +80,8 @@ struct ModbusServer::State {
   uint32_t cycle = 0;
   int axd_register = -1;                      // B, -1: no AXD_WR block
   std::array<uint16_t, kAxdRegisters> axd{};  // what B..B+5 read
+  int status_register = -1;                   // -1: no status block
+  std::vector<uint16_t> status_words;         // what the status block reads
   std::vector<Client> clients;                // closed ones until the end of Poll
   int open_clients = 0;
   std::vector<pollfd> fds;
@@ -106,10 +108,16 @@ struct ModbusServer::State {
     return axd_register >= 0 && a >= axd_register && a < axd_register + kAxdRegisters;
   }
 
+  bool InStatus(int a) const {
+    return status_register >= 0 && a >= status_register &&
+           a < status_register + static_cast<int>(status_words.size());
+  }
+
   bool Readable(ModbusAddress::Area area, int address, int quantity) const {
     for (int a = address; a < address + quantity; ++a) {
       const bool special =
-          area == ModbusAddress::kHoldingRegister && (a == cycle_register || InAxd(a));
+          (area == ModbusAddress::kHoldingRegister && (a == cycle_register || InAxd(a))) ||
+          (area == ModbusAddress::kInputRegister && InStatus(a));
       if (!special && Owner(area, a) < 0) return false;
     }
     return true;
@@ -143,6 +151,11 @@ struct ModbusServer::State {
       }
       if (area == ModbusAddress::kHoldingRegister && InAxd(a)) {
         tab[a] = axd[static_cast<size_t>(a - axd_register)];
+        ++a;
+        continue;
+      }
+      if (area == ModbusAddress::kInputRegister && InStatus(a)) {
+        tab[a] = status_words[static_cast<size_t>(a - status_register)];
         ++a;
         continue;
       }
@@ -513,6 +526,25 @@ ModbusServer::ModbusServer(SignalImage& image, Options options)
     holding = std::max(holding, b + kAxdRegisters);
   }
 
+  int input = static_cast<int>(s.owner[ModbusAddress::kInputRegister].size());
+  if (o.status_register) {
+    const int b = *o.status_register;
+    if (o.status_count < 1 || b < 0 || b + o.status_count > 65536) {
+      throw std::invalid_argument("ModbusServer: status block " + std::to_string(b) + " x" +
+                                  std::to_string(o.status_count) + " outside 0..65535");
+    }
+    for (int a = b; a < b + o.status_count; ++a) {
+      if (s.Owner(ModbusAddress::kInputRegister, a) >= 0) {
+        throw std::invalid_argument("ModbusServer: status block register " + std::to_string(a) +
+                                    " belongs to signal " +
+                                    s.Sig(s.Owner(ModbusAddress::kInputRegister, a)).name);
+      }
+    }
+    s.status_register = b;
+    s.status_words.assign(static_cast<size_t>(o.status_count), 0);
+    input = std::max(input, b + o.status_count);
+  }
+
   s.ctx = modbus_new_tcp("127.0.0.1", MODBUS_TCP_DEFAULT_PORT);
   if (s.ctx == nullptr) {
     throw std::runtime_error(std::string("ModbusServer: modbus_new_tcp: ") +
@@ -524,10 +556,9 @@ ModbusServer::ModbusServer(SignalImage& image, Options options)
     throw std::runtime_error(std::string("ModbusServer: modbus_set_response_timeout: ") +
                              modbus_strerror(errno));
   }
-  s.mapping =
-      modbus_mapping_new(static_cast<int>(s.owner[ModbusAddress::kCoil].size()),
-                         static_cast<int>(s.owner[ModbusAddress::kDiscreteInput].size()), holding,
-                         static_cast<int>(s.owner[ModbusAddress::kInputRegister].size()));
+  s.mapping = modbus_mapping_new(static_cast<int>(s.owner[ModbusAddress::kCoil].size()),
+                                 static_cast<int>(s.owner[ModbusAddress::kDiscreteInput].size()),
+                                 holding, input);
   if (s.mapping == nullptr) {
     throw std::runtime_error(std::string("ModbusServer: modbus_mapping_new: ") +
                              modbus_strerror(errno));
@@ -613,6 +644,14 @@ void ModbusServer::Poll(int timeout_ms) {
   }
   if (s.fds[0].revents != 0) s.Accept();
   std::erase_if(s.clients, [](const Client& c) { return c.closed; });
+}
+
+void ModbusServer::SetStatus(std::span<const uint16_t> words) {
+  State& s = *state_;
+  VMT_DEMAND(words.size() == s.status_words.size(),
+             "ModbusServer::SetStatus: %zu words for a status block of %zu", words.size(),
+             s.status_words.size());
+  std::copy(words.begin(), words.end(), s.status_words.begin());
 }
 
 void ModbusServer::DropClients() {

@@ -49,11 +49,17 @@
 // write touching the block (part of it, FC6, B+4 / B+5); 03 for axis 0 or above 32, ident 0;
 // 04 if the writer throws. A refusal by the drive is a result (3), not an exception: the PLC's
 // block turns it into its own error number (QMFB1Axx FEHLER_NR 28..40).
+//
+// Status block (Options::status_register + status_count): input registers beside the signals'
+// that the caller fills with SetStatus (vmt serve: the NC status block, nc_status_block.hpp,
+// after every cycle). Read with FC04, also in one request with signals' input registers where
+// the two are adjacent; they read 0 until the first SetStatus.
 
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 
 #include "control/gateway/signal_image.hpp"
@@ -75,6 +81,9 @@ struct ModbusServerOptions {
   std::optional<int> axd_wr_register;
   /// Writes the drive parameter; called from Poll. Must not call Poll.
   AxdWriter axd_wr;
+  /// Input register address of the status block (`status_count` registers, none a signal's).
+  std::optional<int> status_register;
+  int status_count = 0;
 };
 
 struct ModbusServerStats {
@@ -103,7 +112,7 @@ class ModbusServer {
   /// host:port and the system's reason if it cannot listen, std::invalid_argument for options
   /// that make no sense (port or cycle register outside 0..65535, a cycle register a signal
   /// owns, max_clients < 1, an AXD_WR block without its writer or overlapping a signal or the
-  /// cycle register).
+  /// cycle register, a status block of no registers or overlapping a signal).
   ModbusServer(gateway::SignalImage& image, Options options);
   ~ModbusServer();
   ModbusServer(ModbusServer&&) noexcept;
@@ -112,6 +121,9 @@ class ModbusServer {
   /// Waits at most `timeout_ms` (negative: until something happens) for a connection or data,
   /// accepts new clients, serves every complete request that has arrived, and returns.
   void Poll(int timeout_ms);
+
+  /// The status block's registers from now on; `words` has Options::status_count of them.
+  void SetStatus(std::span<const uint16_t> words);
 
   /// Closes every client connection (each counts in clients_dropped), as when the PLC's link
   /// goes down; the server keeps listening and accepts new clients. A request partly received

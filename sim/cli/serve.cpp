@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "control/gateway/nc_status_block.hpp"
 #include "control/plc/modbus_server.hpp"
 #include "sim/runner/runner.hpp"
 #include "sim/station/station_session.hpp"
@@ -226,12 +227,25 @@ int Serve(const ServeOptions& o) {
   if (o.modbus && !image)
     throw std::invalid_argument(o.scene + ": vmt serve --modbus needs a scene with an nc: section");
   const int64_t ticks = run.ticks_per_plc_cycle();
+  std::unique_ptr<control::plc::ModbusServer> server;
+  // The NC status block (read only): refreshed after every cycle, so what a client reads
+  // between two cycles is the state the last one left.
+  control::gateway::NcStatusLayout nc_status;
+  std::vector<uint16_t> nc_status_words;
+  const auto refresh_nc_status = [&] {
+    if (!server || !run.channel()) return;
+    control::gateway::EncodeNcStatus(
+        nc_status,
+        control::gateway::NcStatusOf(nc_status, *run.channel(), run.feedback(), run.time_s()),
+        nc_status_words);
+    server->SetStatus(nc_status_words);
+  };
   // The station's keys and signals are taken at the start of a PLC cycle.
   const std::function<void()> cycle = [&] {
     if (station) station->TakeInputs(run);
     for (int64_t k = 0; k < ticks && !run.done(); ++k) run.Step();
+    refresh_nc_status();
   };
-  std::unique_ptr<control::plc::ModbusServer> server;
   if (o.modbus) {
     if (o.lockstep) {
       mb.cycle_register = control::gateway::LockstepCycleRegister(image->table());
@@ -244,13 +258,19 @@ int Serve(const ServeOptions& o) {
     mb.axd_wr = [&run](int axis, int ident, int64_t value) {
       return run.AxdWrite(axis, ident, value);
     };
+    nc_status = control::gateway::NcStatusLayoutOf(image->table());
+    nc_status_words.assign(static_cast<size_t>(nc_status.count()), 0);
+    mb.status_register = nc_status.address;
+    mb.status_count = nc_status.count();
     server = std::make_unique<control::plc::ModbusServer>(*image, mb);
+    refresh_nc_status();
     std::printf("vmt serve: %s, Modbus TCP on %s:%d, %s", scene.name.c_str(), mb.host.c_str(),
                 server->port(), o.lockstep ? "lockstep" : "real time");
     if (o.lockstep)
       std::printf(" (write cycle n+1 to holding register %d to run a PLC cycle of %.1f ms)",
                   *mb.cycle_register, ticks * 0.25);
     std::printf("; AXD_WR block at holding register %d", *mb.axd_wr_register);
+    std::printf("; NC status block at input register %d", nc_status.address);
     std::printf("\n");
   }
   if (station) {

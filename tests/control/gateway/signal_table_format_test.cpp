@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "control/gateway/nc_status_block.hpp"
 #include "tests/control/gateway/lathe_layout.hpp"
 
 namespace vmt::control::gateway {
@@ -52,7 +53,8 @@ std::vector<std::vector<std::string>> ParseCsv(const std::string& text) {
 TEST(SignalTableFormat, CsvRoundTrip) {
   const auto table = BuildSignalTable(LatheLayout());
   const auto rows = ParseCsv(FormatCsv(table));
-  ASSERT_EQ(rows.size(), table.size() + 3);
+  const std::vector<NcStatusField> status = NcStatusLayoutOf(table).Fields();
+  ASSERT_EQ(rows.size(), table.size() + 3 + status.size());
   EXPECT_EQ(rows[0],
             (std::vector<std::string>{"name", "type", "direction", "area", "address (0-based)",
                                       "count", "meaning", "source", "vmt", "written_by"}));
@@ -81,6 +83,21 @@ TEST(SignalTableFormat, CsvRoundTrip) {
   EXPECT_EQ(axd[0], "(AXD_WR block)");
   EXPECT_EQ(axd[4], std::to_string(AxdWrRegister(table)));
   EXPECT_EQ(axd[5], "6");
+  // Then the NC status block's registers, read only, with their units.
+  for (size_t i = 0; i < status.size(); ++i) {
+    const auto& r = rows[table.size() + 3 + i];
+    ASSERT_EQ(r.size(), 10u) << status[i].name;
+    EXPECT_EQ(r[0], status[i].name);
+    EXPECT_EQ(r[2], "NC->PLC");
+    EXPECT_EQ(r[3], "input_register");
+    EXPECT_EQ(r[4], std::to_string(status[i].address));
+    EXPECT_EQ(r[9], "vmt (the NC)");
+    if (!status[i].unit.empty()) {
+      EXPECT_TRUE(r[6].ends_with(" [" + status[i].unit + "]")) << r[6];
+    }
+  }
+  EXPECT_EQ(rows[table.size() + 3][0], "NC.VERSION");
+  EXPECT_EQ(rows[table.size() + 3][4], "1000");
 }
 
 TEST(SignalTableFormat, WrittenBySaysWhoSetsEachSignal) {
@@ -101,7 +118,8 @@ TEST(SignalTableFormat, CsvQuotesCommasQuotesAndLineBreaks) {
   const std::string csv = FormatCsv(table);
   EXPECT_NE(csv.find("\"say \"\"hi\"\", then\nleave\""), std::string::npos) << csv;
   const auto rows = ParseCsv(csv);
-  ASSERT_EQ(rows.size(), 4u);  // the header, the signal, vmt serve's two register blocks
+  // The header, the signal, vmt serve's two register blocks, the NC status block (no axes).
+  ASSERT_EQ(rows.size(), 4u + NcStatusLayoutOf(table).Fields().size());
   EXPECT_EQ(rows[1][6], table[0].meaning);
   // The source of P00C.REPOS has "; " but no comma: left unquoted.
   EXPECT_EQ(rows[1][7], table[0].source);
@@ -114,6 +132,19 @@ TEST(SignalTableFormat, JsonParsesAndListsEverySignal) {
   EXPECT_EQ(doc["version"], 1);
   const auto& signals = doc["signals"];
   ASSERT_EQ(signals.size(), table.size());
+  // The NC status block apart from the signals.
+  const NcStatusLayout layout = NcStatusLayoutOf(table);
+  EXPECT_EQ(doc["modbus"]["nc_status_register"], layout.address);
+  ASSERT_EQ(doc["nc_status"].size(), layout.Fields().size());
+  for (const auto& j : doc["nc_status"]) {
+    EXPECT_EQ(j["modbus"]["area"], "input_register");
+    EXPECT_EQ(j["written_by"], "vmt (the NC)");
+    if (j["name"] == "A01.NC_POS") {
+      EXPECT_EQ(j["unit"], "0.0001 mm");
+      EXPECT_EQ(j["type"], "DINT");
+      EXPECT_EQ(j["modbus"]["address"], layout.address + 32);
+    }
+  }
   for (size_t i = 0; i < table.size(); ++i) {
     const auto& j = signals[i];
     EXPECT_EQ(j["name"], table[i].name);
