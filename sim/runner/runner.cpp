@@ -225,6 +225,8 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
   for (const control::channel::Channel* c : {channel.get(), jog_of_path.get()})
     for (size_t d = 0; c && d < channel_drive.size(); ++d)
       if (c->MayWriteDrive(d)) channel_drive[d] = 1;
+  for (size_t d = 0; d < channel_drive.size(); ++d)
+    if (channel_drive[d]) timeline->LeaveEnableToChannel(d);
   if (field_bus) ReadFieldBus();
 
   last_tick = std::llround(options.until_s.value_or(scene.duration_s) / kDriveTickS);

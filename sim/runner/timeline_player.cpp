@@ -20,7 +20,14 @@ TimelinePlayer::TimelinePlayer(const Scene& scene, const control::AmplifierTeleg
   play_.faults.sensor.assign(m.io.size(), -1);
   play_.faults.valve.assign(m.io.size(), -1);
   play_.faults.drive.assign(m.drives.size(), false);
+  encoder_clutch_.assign(m.drives.size(), -1);
+  held_.assign(m.drives.size(), false);
   for (size_t d = 0; d < m.drives.size(); ++d) {
+    const DriveParams& p = m.drives[d];
+    for (size_t k = 0; k < m.clutches.size() && !p.spindle && p.load_joint >= 0; ++k)
+      if (m.clutches[k].motor_joint == p.motor_joint && m.clutches[k].load_joint == p.load_joint)
+        encoder_clutch_[d] = static_cast<int>(k);
+    held_[d] = encoder_clutch_[d] >= 0;
     if (m.drives[d].spindle)
       play_.setpoints[d] = {DriveMode::kVelocity, 0, 0};
     else
@@ -38,10 +45,28 @@ void TimelinePlayer::Tick(double t_s, const control::AmplifierTelegram& at,
       step_since_s_ = t_s;
       events.push_back({t_s, "step", step.text});
     }
-    if (!StepKindOf(step.kind).play(step, {t_s, step_since_s_, at, clutches, events}, play_))
-      break;
+    const std::vector<control::DriveSetpoint> before = play_.setpoints;
+    const std::vector<bool> profiling_before = play_.profiling;
+    const bool done =
+        StepKindOf(step.kind).play(step, {t_s, step_since_s_, at, clutches, events}, play_);
+    for (size_t d = 0; d < held_.size(); ++d)
+      if (held_[d] &&
+          (play_.profiling[d] != profiling_before[d] || play_.setpoints[d].mode != before[d].mode ||
+           play_.setpoints[d].value != before[d].value ||
+           play_.setpoints[d].parameter_set != before[d].parameter_set))
+        held_[d] = false;
+    if (!done) break;
     ++next_;
     step_since_s_ = -1;
+  }
+  for (size_t d = 0; d < held_.size(); ++d) {
+    if (!held_[d] || clutches.empty()) continue;
+    control::DriveSetpoint& sp = play_.setpoints[d];
+    const double position = at.feedback[d].position;
+    if (clutches[encoder_clutch_[d]] != ClutchState::kEngaged)
+      sp = {DriveMode::kOff, position, sp.parameter_set};
+    else if (sp.mode == DriveMode::kOff)
+      sp = {DriveMode::kPosition, position, sp.parameter_set};
   }
   for (size_t d = 0; d < play_.setpoints.size(); ++d)
     if (play_.profiling[d]) play_.setpoints[d].value = play_.profiles[d].At(t_s);

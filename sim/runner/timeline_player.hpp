@@ -17,6 +17,12 @@ namespace vmt::sim {
 class TimelinePlayer {
  public:
   /// `feedback` gives the state at t = 0: servos hold their position, spindles stand at 0.
+  /// A servo whose position encoder sits beyond a dog clutch (the C servo on the spindle's
+  /// encoder, through clutch K) is held only while the clutch is engaged; released, its
+  /// controller enable is off and its command follows the encoder (follow-up mode, C-axis
+  /// manual 4.3), as the PLC of spindle mode keeps it -- held, it would chase a spindle it
+  /// cannot reach until its amplifier trips on overload. A step that commands the drive ends
+  /// this default, and so does LeaveEnableToChannel.
   /// `channel` (may be null) receives the timeline's NC steps.
   /// `image` (may be null): the gateway signals the timeline's `signal:` steps write, as the
   /// default PLC passing panel keys to the NC would.
@@ -38,6 +44,10 @@ class TimelinePlayer {
       if (!written_elsewhere(d)) mdt.setpoints[d] = play_.setpoints[d];
   }
 
+  /// A channel may write drive d (its axis, or the rotary axis of its headstock): the
+  /// channel's headstock switches its controller enable, the timeline holds it until then.
+  void LeaveEnableToChannel(size_t d) { held_[d] = false; }
+
   bool finished() const { return next_ >= scene_->timeline.size(); }
   InjectedFaults& faults() { return play_.faults; }
   /// Steps that did not complete (wait_until timeouts), as messages.
@@ -47,6 +57,10 @@ class TimelinePlayer {
   const Scene* scene_;
   TimelinePlay play_;
   size_t next_ = 0;
+  /// Per drive: the clutch between its motor and its encoder (-1: none), and whether the
+  /// drive still has its default setpoint (no step has commanded it).
+  std::vector<int> encoder_clutch_;
+  std::vector<bool> held_;
   double step_since_s_ = -1;  ///< when the current blocking step began
 };
 
