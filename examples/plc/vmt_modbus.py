@@ -26,8 +26,10 @@ class Gateway:
 
     def __init__(self, client: ModbusTcpClient, signals: dict):
         self.client = client
-        self.where = {s["name"]: s["modbus"] for s in signals["signals"]}
-        self.types = {s["name"]: s["type"] for s in signals["signals"]}
+        # The NC status block's registers (read only) are latched by name like the signals.
+        listed = signals["signals"] + signals.get("nc_status", [])
+        self.where = {s["name"]: s["modbus"] for s in listed}
+        self.types = {s["name"]: s["type"] for s in listed}
         self.cycle_register = signals["modbus"]["lockstep_cycle_register"]
         self.axd_wr_register = signals["modbus"].get("axd_wr_register")
         self.values = {}
@@ -63,13 +65,13 @@ class Gateway:
                 self.values[name] = bool(v)
             elif t == "INT":
                 self.values[name] = v - 65536 if v >= 32768 else v
-            elif t == "WORD":
+            elif t in ("WORD", "UINT"):
                 self.values[name] = v
             elif t in ("DINT", "UDINT", "DWORD"):
                 v = v << 16 | got[a["address"] - lo + 1]  # most significant word first
                 self.values[name] = v - (1 << 32) if t == "DINT" and v >= 1 << 31 else v
             else:
-                raise ValueError(f"{name}: only BOOL, INT, WORD and DINT signals here")
+                raise ValueError(f"{name}: only BOOL, INT, UINT, WORD and DINT signals here")
 
     def get(self, name):
         return self.values[name]

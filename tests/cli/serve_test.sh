@@ -87,6 +87,23 @@ if same_as_embedded wrong "$src/scenes/fault-changeover-wrong-plc.yaml" c_axis_c
   done
 fi
 
+# The minimal PLC of docs/plc.md (standard library only) drives a program to its end: automatic
+# mode, cycle start, M functions acknowledged four-phase (M08 on the coolant pressure), spindle
+# mode. It reads the NC status block (input registers) over the wire: X moves from 150 to 40.
+if start_serve "$out/minimal" lockstep "$src/examples/plc/minimal_plc.yaml"; then
+  timeout 120 "$python" "$src/examples/plc/minimal_plc.py" --port "$port" \
+    --signals "$out/signals.json" >"$out/minimal/client.log" 2>&1 ||
+    { fail "minimal_plc.py: exit $?"; cat "$out/minimal/client.log"; }
+  wait $serve_pid || { fail "minimal: vmt serve exit $?"; cat "$out/minimal/serve.log"; }
+  grep -q "NC status block at input register 1000" "$out/minimal/serve.log" ||
+    fail "serve names no NC status block"
+  grep -q "program ended" "$out/minimal/client.log" || fail "minimal: the program did not end"
+  grep -q "NC running" "$out/minimal/client.log" || fail "minimal: NC.STATE never showed running"
+  grep -q "axis X (A01): 150.0000 -> 40.0000 \[mm\]" "$out/minimal/client.log" ||
+    { fail "minimal: X not read moving from 150 to 40"; cat "$out/minimal/client.log"; }
+  json "$out/minimal/summary.json" 'd["expectations_failed"] == 0 and d["expectations_passed"] == 4'
+fi
+
 scene=$src/scenes/repos-machine-keys.yaml
 
 # mbpoll reads the status, and writing an NC status address is refused.
@@ -96,6 +113,12 @@ if start_serve "$out/mbpoll" lockstep; then
   mbpoll -m tcp -a 1 -p "$port" -0 -t 1 -r "$addr" -c 1 -1 127.0.0.1 >"$out/mbpoll.log" 2>&1 ||
     fail "mbpoll read"
   grep -qE "^\[$addr\]:[[:space:]]+0" "$out/mbpoll.log" || { fail "mbpoll output"; cat "$out/mbpoll.log"; }
+  # The NC status block with function 04 (-t 3): layout version 1, four axis rows.
+  mbpoll -m tcp -a 1 -p "$port" -0 -t 3 -r 1000 -c 2 -1 127.0.0.1 >"$out/mbpoll_status.log" 2>&1 ||
+    fail "mbpoll read of the NC status block"
+  grep -qE "^\[1000\]:[[:space:]]+1$" "$out/mbpoll_status.log" &&
+    grep -qE "^\[1001\]:[[:space:]]+4$" "$out/mbpoll_status.log" ||
+    { fail "mbpoll NC status output"; cat "$out/mbpoll_status.log"; }
   # A holding register no signal owns (past the cycle register and the AXD_WR block): 02.
   cyc=$("$python" -c "import json,sys; print(json.load(open(sys.argv[1]))['modbus']['lockstep_cycle_register'])" "$out/signals.json")
   mbpoll -m tcp -a 1 -p "$port" -0 -t 4 -r $((cyc + 7)) -1 127.0.0.1 7 >"$out/mbpoll_write.log" 2>&1 &&
