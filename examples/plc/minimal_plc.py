@@ -98,14 +98,13 @@ class MinimalPlc:
                      for s in signals["nc_status"] if s["name"].endswith(".NC_POS")]
         self.status_count = 32 + 8 * len(self.axes)
         assert status["NC.STATE"]["modbus"]["address"] == self.status + 7
-        self.written = {}
         self.out = {n: False for n in self.OUTPUTS}
         self.started = self.ack = self.coolant = False
         self.state = self.messages = None
         self.ended = False
         self.first = self.last = None
 
-    def scan(self, mb, now_s):
+    def scan(self, mb):
         di = mb.read_bits(2, 0, self.inputs)
         x = {n: di[self.bit[n]] for n in self.INPUTS}
         mfunc = mb.read_registers(4, self.mfunc, 1)[0]
@@ -141,14 +140,15 @@ class MinimalPlc:
         # with it (in spindle mode), the C servo only in rotary axis mode.
         self.out[self.SP_READY] = not (x[self.ROTMOD] and engaged)
         self.out[self.ROT_READY] = x[self.ROTMOD]
+        # The outputs every scan, as a field bus carries them: in real time vmt's link watchdog
+        # takes a PLC that writes nothing for --plc-timeout (100 ms) for a dead one.
         for name, value in self.out.items():
-            if self.written.get(name) != value:
-                mb.write_coil(self.bit[name], value)
-                self.written[name] = value
-        self.watch(mb.read_registers(4, self.status, self.status_count), now_s)
+            mb.write_coil(self.bit[name], value)
+        self.watch(mb.read_registers(4, self.status, self.status_count))
 
-    def watch(self, w, now_s):
+    def watch(self, w):
         """The NC status block: program state, messages, axis positions."""
+        now_s = dint(w, 4) / 1000  # NC.TIME_MS: the simulated time
         state, count = w[7], w[10]
         messages = [(w[12 + 2 * k], "NC" if w[13 + 2 * k] == 1 else "PLC")
                     for k in range(min(count, 8))]
@@ -181,7 +181,7 @@ def main():
     cycle = 0
     try:
         while True:
-            plc.scan(mb, cycle * args.period / 1000)
+            plc.scan(mb)
             cycle += 1
             if args.realtime:
                 time.sleep(args.period / 1000)
