@@ -19,6 +19,7 @@
 #include "control/nc/parser.hpp"
 #include "render/image.hpp"
 #include "render/image_compare.hpp"
+#include "sim/cli/golden.hpp"
 #include "sim/cli/serve.hpp"
 #include "sim/cli/view.hpp"
 #include "sim/model/gateway_layout.hpp"
@@ -62,6 +63,7 @@ int Run(const std::string& scene_path, const std::string& backend, double until,
   for (const std::string& line : sim::RunStory(events)) std::printf("  %s\n", line.c_str());
   std::printf("output: %s/{trace.csv,events.jsonl,summary.json}", out.c_str());
   for (const std::string& f : r.snapshot_files) std::printf(" %s", f.c_str());
+  for (const std::string& f : r.contact_sheets) std::printf(" %s", f.c_str());
   const auto failed = std::count_if(r.expectations.begin(), r.expectations.end(),
                                     [](const auto& e) { return !e.passed; });
   std::printf("\nexpectations: %zu passed, %zu failed\n",
@@ -176,16 +178,8 @@ int ImgDiff(const std::string& a, const std::string& b, const std::string& diff,
   opt.channel_tolerance = channel_tolerance;
   opt.allowed_fraction = tolerance_fraction;
   const render::CompareResult r = render::CompareImages(ia, ib, opt);
-  if (r.equal) {
-    std::printf("equal (%d pixels beyond tolerance %d)\n", r.differing_pixels, channel_tolerance);
-    return 0;
-  }
-  if (r.size_mismatch)
-    std::printf("different sizes: %dx%d vs %dx%d\n", ia.width, ia.height, ib.width, ib.height);
-  else
-    std::printf("different: %d pixels (%.4f%%) beyond tolerance %d, max channel delta %d\n",
-                r.differing_pixels, 100 * r.differing_fraction, channel_tolerance,
-                r.max_channel_delta);
+  std::printf("%s\n", render::DescribeComparison(ia, ib, r, opt).c_str());
+  if (r.equal) return 0;
   if (!diff.empty() && !r.size_mismatch) {
     render::WritePng(diff, r.diff);
     std::printf("diff picture: %s\n", diff.c_str());
@@ -452,8 +446,8 @@ std::vector<Command> AddStudy(CLI::App& app) {
 Command AddImgdiff(CLI::App& app) {
   struct Args {
     std::string a, b, diff;
-    double tolerance_fraction = 0;
-    int channel_tolerance = 2;
+    double tolerance_fraction = render::kGoldenAllowedFraction;
+    int channel_tolerance = render::kGoldenChannelTolerance;
   };
   auto o = std::make_shared<Args>();
   CLI::App* imgdiff = app.add_subcommand(
@@ -461,12 +455,16 @@ Command AddImgdiff(CLI::App& app) {
   imgdiff->add_option("a", o->a, "First PNG")->required();
   imgdiff->add_option("b", o->b, "Second PNG")->required();
   imgdiff->add_option("--diff", o->diff, "Write a diff picture here when they differ");
-  imgdiff->add_option("--tolerance", o->channel_tolerance, "Per-channel tolerance 0..255")
+  imgdiff
+      ->add_option("--tolerance", o->channel_tolerance,
+                   "Levels a channel may differ by before the pixel counts as different, "
+                   "0..255 (the project's golden tolerance by default)")
       ->check(CLI::Range(0, 255))
       ->capture_default_str();
   imgdiff
       ->add_option("--allowed-fraction", o->tolerance_fraction,
-                   "Fraction of pixels allowed to differ")
+                   "Fraction of the pixels (0..1) allowed to differ (the project's golden "
+                   "tolerance by default: 0.0005 = 0.05 %)")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   return {imgdiff, [o] {
@@ -489,6 +487,7 @@ int main(int argc, char** argv) {
                                    AddSignals(app), AddServe(app),    AddView(app)};
   for (Command& c : AddStudy(app)) commands.push_back(std::move(c));
   commands.push_back(AddImgdiff(app));
+  for (auto& [sub, action] : sim::AddGoldenCommands(app)) commands.push_back({sub, action});
 
   try {
     app.parse(argc, argv);

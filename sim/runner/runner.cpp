@@ -23,6 +23,7 @@
 #include "sim/collision/stock_cutter.hpp"
 #include "sim/model/gateway_layout.hpp"
 #include "sim/runner/channel_events.hpp"
+#include "sim/runner/contact_sheets.hpp"
 #include "sim/runner/event_snapshots.hpp"
 #include "sim/runner/make_backend.hpp"
 #include "sim/runner/probe_glue.hpp"
@@ -329,6 +330,8 @@ RunResult SceneRun::State::Finish() {
     Step();
   }
   RenderPendingSnapshots();
+  if (options.snapshots && recorder.writing())
+    result.contact_sheets = WriteContactSheets(scene, options.out_dir, result.snapshot_files);
   result.simulated_s = last_tick * kDriveTickS;
   result.final_joint_positions = backend->JointPositions();
   result.trace_digest = recorder.DigestHex();
@@ -375,6 +378,7 @@ RunResult SceneRun::State::Finish() {
       list.push_back({{"text", c.text}, {"passed", c.passed}, {"detail", c.detail}});
     summary["failures"] = result.failures;
     summary["snapshots"] = result.snapshot_files;
+    if (!result.contact_sheets.empty()) summary["contact_sheets"] = result.contact_sheets;
     // The NC's message list over the run (NC errors, PLC messages MSG_WR): the operator's log.
     summary["messages"] = channel_events.messages_seen();
     if (channel && scene.nc.data.spindle_drive >= 0)

@@ -59,6 +59,7 @@ struct RunResult {
   std::vector<ExpectationResult> expectations;
   std::vector<std::string> failures;  ///< failed expectations and timed-out waits
   std::vector<std::string> snapshot_files;
+  std::vector<std::string> contact_sheets;  ///< one per snapshot series that took pictures
   std::vector<double> final_joint_positions;  ///< m | rad, at the end of the run
   bool ok() const { return failures.empty(); }
 };

@@ -4,6 +4,7 @@
 // demos, the tests and the benchmark inputs at once.
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -190,6 +191,11 @@ struct Expectation {
 enum class SnapshotEvent { kNone, kCollision, kProbeLatch, kError };
 const char* ToString(SnapshotEvent e);
 
+/// A rectangle of a snapshot in pixels, from its top left corner.
+struct SnapshotMaskRect {
+  int x = 0, y = 0, width = 0, height = 0;
+};
+
 /// A picture at a time (`at:`), or at the first `limit` occurrences of an event (`on:`).
 struct SnapshotSpec {
   double at_s = 0;                          ///< time snapshots
@@ -198,6 +204,19 @@ struct SnapshotSpec {
   std::string camera;
   int width = 640, height = 480;
   std::string file;  ///< time snapshots: relative to the output folder; event ones name theirs
+  /// Comparison with a golden picture (vmt golden): pixels left out of it (`mask:`), and the
+  /// tolerance where it is not the project's (`allowed_fraction:`, `tolerance_levels:`).
+  std::vector<SnapshotMaskRect> mask;
+  std::optional<double> allowed_fraction;
+  std::optional<int> tolerance_levels;
+  int series = -1;  ///< index into Scene::snapshot_series, -1: not part of a series
+};
+
+/// `snapshots: - {every:, from:, to:}`: time snapshots at even steps and a contact sheet of
+/// them all, a grid in time order (render/contact_sheet.hpp).
+struct SnapshotSeries {
+  std::string sheet;          ///< the contact sheet's file, relative to the output folder
+  std::vector<size_t> shots;  ///< indexes into Scene::snapshots, in time order
 };
 
 struct Scene {
@@ -214,6 +233,7 @@ struct Scene {
   std::vector<TimelineStep> timeline;
   std::vector<Expectation> expectations;
   std::vector<SnapshotSpec> snapshots;
+  std::vector<SnapshotSeries> snapshot_series;
   std::vector<NamedCamera> cameras;  ///< the model's, then the scene's (same name replaces)
   /// `probe: {sampling_phase: seeded, seed: N}`: the drives' probe sampling phase (off: fixed).
   ProbeSamplingPhase probe_sampling;

@@ -318,7 +318,7 @@ Scene LoadScene(const std::string& path) {
     for (size_t i = 0; i < e.size(); ++i)
       s.expectations.push_back(ReadExpectation(m, e[i], i, s.nc));
   }
-  if (root.Has("snapshots")) s.snapshots = ReadSnapshots(root["snapshots"], s);
+  if (root.Has("snapshots")) ReadSnapshots(root["snapshots"], s);
   if (s.nc.present) s.nc.channel = ChannelConfigOf(m, s.nc);
   return s;
 }

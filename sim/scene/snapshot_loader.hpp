@@ -1,6 +1,7 @@
 #pragma once
-// The scene's `snapshots:` (docs/scene-format.md): pictures at a time, or on an event (a
-// collision, a probe latch, an NC error) for its first occurrences.
+// The scene's `snapshots:` (docs/scene-format.md): pictures at a time, at even steps of time (a
+// series, with a contact sheet), or on an event (a collision, a probe latch, an NC error) for
+// its first occurrences; each with what a golden comparison ignores and tolerates.
 
 #include <vector>
 
@@ -10,8 +11,11 @@ namespace vmt::sim {
 
 class YamlNode;
 
-/// The list under `snapshots:`; the scene's cameras must be known. Throws ModelError with the
-/// YAML path of the fault.
-std::vector<SnapshotSpec> ReadSnapshots(const YamlNode& list, const Scene& scene);
+/// Pictures a series may have (`every:`, `from:`, `to:`): a mistyped step stays a few files.
+inline constexpr int kMaxSeriesPictures = 200;
+
+/// Reads the list under `snapshots:` into scene.snapshots and scene.snapshot_series; the
+/// scene's cameras must be known. Throws ModelError with the YAML path of the fault.
+void ReadSnapshots(const YamlNode& list, Scene& scene);
 
 }  // namespace vmt::sim

@@ -42,7 +42,8 @@ TEST(CompareImagesTest, DifferenceWithinToleranceIsEqual) {
   const Image a = Filled(8, 6, 10, 20, 30);
   Image b = a;
   Pixel(b, 3, 2)[1] += 2;
-  const CompareResult result = CompareImages(a, b, {.channel_tolerance = 2});
+  const CompareResult result =
+      CompareImages(a, b, {.channel_tolerance = 2, .allowed_fraction = 0, .mask = {}});
   EXPECT_TRUE(result.equal);
   EXPECT_EQ(result.differing_pixels, 0);
   EXPECT_EQ(result.max_channel_delta, 2);
@@ -52,7 +53,8 @@ TEST(CompareImagesTest, OnePixelBeyondToleranceDiffers) {
   const Image a = Filled(10, 10, 10, 20, 30);
   Image b = a;
   Pixel(b, 3, 2)[2] = 30 + 3;
-  const CompareResult result = CompareImages(a, b, {.channel_tolerance = 2});
+  const CompareResult result =
+      CompareImages(a, b, {.channel_tolerance = 2, .allowed_fraction = 0, .mask = {}});
   EXPECT_FALSE(result.equal);
   EXPECT_FALSE(result.size_mismatch);
   EXPECT_EQ(result.differing_pixels, 1);
@@ -71,9 +73,12 @@ TEST(CompareImagesTest, AllowedFractionAcceptsFewDifferingPixels) {
   const Image a = Filled(10, 10, 10, 20, 30);
   Image b = a;
   Pixel(b, 3, 2)[0] = 200;
-  EXPECT_TRUE(CompareImages(a, b, {.channel_tolerance = 2, .allowed_fraction = 0.01}).equal);
-  EXPECT_TRUE(CompareImages(a, b, {.channel_tolerance = 2, .allowed_fraction = 0.05}).equal);
-  EXPECT_FALSE(CompareImages(a, b, {.channel_tolerance = 2, .allowed_fraction = 0.005}).equal);
+  EXPECT_TRUE(
+      CompareImages(a, b, {.channel_tolerance = 2, .allowed_fraction = 0.01, .mask = {}}).equal);
+  EXPECT_TRUE(
+      CompareImages(a, b, {.channel_tolerance = 2, .allowed_fraction = 0.05, .mask = {}}).equal);
+  EXPECT_FALSE(
+      CompareImages(a, b, {.channel_tolerance = 2, .allowed_fraction = 0.005, .mask = {}}).equal);
 }
 
 TEST(CompareImagesTest, SizeMismatchIsAResultNotAnError) {
@@ -108,6 +113,67 @@ TEST(CompareImagesTest, MalformedImageThrows) {
 
 TEST(CompareImagesTest, EmptyImagesAreEqual) {
   EXPECT_TRUE(CompareImages(Image{}, Image{}, {}).equal);
+}
+
+TEST(CompareImagesTest, ProjectToleranceByDefault) {
+  const CompareOptions options;
+  EXPECT_EQ(options.channel_tolerance, kGoldenChannelTolerance);
+  EXPECT_EQ(options.allowed_fraction, kGoldenAllowedFraction);
+  // 0.05 %: 1 pixel in 2000 passes, 2 do not.
+  const Image a = Filled(100, 20, 10, 20, 30);
+  Image b = a;
+  Pixel(b, 7, 7)[0] = 200;
+  EXPECT_TRUE(CompareImages(a, b).equal);
+  Pixel(b, 8, 7)[0] = 200;
+  EXPECT_FALSE(CompareImages(a, b).equal);
+}
+
+TEST(CompareImagesTest, MaskedPixelsAreLeftOutAndShownMasked) {
+  const Image a = Filled(10, 10, 10, 20, 30);
+  Image b = a;
+  for (int y = 2; y < 5; ++y)
+    for (int x = 1; x < 4; ++x) Pixel(b, x, y)[0] = 250;  // a 3x3 block changed
+  Pixel(b, 9, 9)[1] = 250;                                // and one pixel outside the mask
+  const CompareOptions options{
+      .channel_tolerance = 2, .allowed_fraction = 0, .mask = {{1, 2, 3, 3}}};
+  const CompareResult result = CompareImages(a, b, options);
+  EXPECT_EQ(result.masked_pixels, 9);
+  EXPECT_EQ(result.compared_pixels, 91);
+  EXPECT_EQ(result.differing_pixels, 1);
+  EXPECT_DOUBLE_EQ(result.differing_fraction, 1.0 / 91);
+  EXPECT_EQ(result.max_channel_delta, 250 - 20);  // the masked 240 is not counted
+  EXPECT_FALSE(result.equal);
+  // Masked pixels are neither red nor grey: blue, in stripes.
+  for (int y = 2; y < 5; ++y) {
+    for (int x = 1; x < 4; ++x) {
+      const uint8_t* p = &result.diff.rgba[(size_t(y) * 10 + x) * 4];
+      EXPECT_EQ(p[2], 255) << x << "," << y;
+      EXPECT_LT(p[0], p[2]) << x << "," << y;
+    }
+  }
+  EXPECT_TRUE(IsRed(result.diff, 9, 9));
+  // Masking the other pixel too makes them equal; a rectangle beyond the edge is clipped.
+  const CompareOptions both{
+      .channel_tolerance = 2, .allowed_fraction = 0, .mask = {{1, 2, 3, 3}, {8, 8, 5, 5}}};
+  const CompareResult all = CompareImages(a, b, both);
+  EXPECT_TRUE(all.equal);
+  EXPECT_EQ(all.masked_pixels, 9 + 4);
+  EXPECT_EQ(all.compared_pixels, 100 - 13);
+}
+
+TEST(CompareImagesTest, DescriptionsNameTheFigures) {
+  const Image a = Filled(10, 10, 10, 20, 30);
+  Image b = a;
+  Pixel(b, 0, 0)[0] = 200;
+  const CompareOptions options{
+      .channel_tolerance = 2, .allowed_fraction = 0, .mask = {{5, 5, 2, 2}}};
+  EXPECT_EQ(DescribeComparison(a, b, CompareImages(a, b, options), options),
+            "different: 1 pixels (1.0417 % of 96 compared, allowed 0.0000 %) beyond tolerance 2, "
+            "max channel delta 190, 4 masked");
+  EXPECT_EQ(DescribeComparison(a, a, CompareImages(a, a), {}),
+            "equal (0 pixels beyond tolerance 2)");
+  const Image c = Filled(4, 3, 0, 0, 0);
+  EXPECT_EQ(DescribeComparison(a, c, CompareImages(a, c), {}), "different sizes: 10x10 vs 4x3");
 }
 
 }  // namespace
