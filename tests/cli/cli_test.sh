@@ -82,35 +82,7 @@ echo "not a png" >"$out/text.png"
 check imgdiff_not_png 2 "text.png" -- "$vmt" imgdiff "$out/a.png" "$out/text.png"
 check imgdiff_golden 0 "equal" -- "$vmt" imgdiff "$src/tests/golden/default/iso_3.2s.png" "$out/run/iso_3.2s.png" --tolerance 8 --allowed-fraction 0.002
 
-# The golden driver as ctest's golden_<scene> tests run it (tests/golden/check_scene.sh), on the
-# run above: its own pictures as goldens pass; a deliberately changed golden fails and leaves the
-# actual picture, the diff and a page linking to the replay where it prints them; a golden
-# missing or left over fails.
-golden_check() {  # golden_check GOLDEN_DIR FAIL_DIR [SCENE_OUT]
-  bash "$src/tests/golden/check_scene.sh" "$vmt" "$1" "${3:-$out/run}" "$2"
-}
-mkdir -p "$out/golden_same" "$out/golden_changed" "$out/golden_missing" "$out/golden_extra"
-cp "$out/run/iso_3.2s.png" "$out/run/work_3.2s.png" "$out/golden_same/"
-check golden_same 0 "golden: 2 pictures, 0 failed" -- golden_check "$out/golden_same" "$out/golden_fail_same"
-check golden_same_leaves_nothing 1 "" -- test -e "$out/golden_fail_same"
-cp "$out/run/iso_3.2s.png" "$out/golden_changed/"
-cp "$out/run/iso_3.2s.png" "$out/golden_changed/work_3.2s.png"  # another picture in its place
-check golden_changed 1 "FAIL work_3.2s.png: different: [0-9]+ pixels" -- golden_check "$out/golden_changed" "$out/golden_fail"
-check golden_changed_prints_actual 0 "actual: $out/golden_fail/work_3.2s/actual.png" -- cat "$out/golden_changed.log"
-check golden_changed_prints_diff 0 "diff: +$out/golden_fail/work_3.2s/diff.png" -- cat "$out/golden_changed.log"
-check golden_changed_actual 0 "" -- cmp "$out/golden_fail/work_3.2s/actual.png" "$out/run/work_3.2s.png"
-check golden_changed_diff 0 "" -- test -s "$out/golden_fail/work_3.2s/diff.png"
-check golden_changed_iso_passed 1 "" -- test -e "$out/golden_fail/iso_3.2s"
-# ... and a page of the three side by side that links to the run's replay at the picture's time.
-check golden_changed_page 0 'href="http://127.0.0.1:8080/\?t=3.2' -- cat "$out/golden_fail/work_3.2s/index.html"
-check golden_changed_prints_replay 0 "replay: vmt view $out/run --http 127.0.0.1:8080, then open http://127.0.0.1:8080/\?t=3.2" -- cat "$out/golden_changed.log"
-cp "$out/run/iso_3.2s.png" "$out/golden_missing/"
-check golden_missing 1 "FAIL work_3.2s.png: no golden" -- golden_check "$out/golden_missing" "$out/golden_fail_missing"
-cp "$out/golden_same/"*.png "$out/golden_extra/" && cp "$out/a.png" "$out/golden_extra/old.png"
-check golden_left_over 1 "FAIL old.png: golden not written by the scene" -- golden_check "$out/golden_extra" "$out/golden_fail_extra"
-cp "$out/a.png" "$out/golden_extra/iso_3.2s.png"  # 320x240 against the scene's 640x480
-check golden_size 1 "FAIL iso_3.2s.png: different sizes" -- golden_check "$out/golden_extra" "$out/golden_fail_size"
-check golden_no_run 1 "events.jsonl is missing" -- golden_check "$out/golden_same" "$out/golden_fail_no_run" "$out/nothing"
+# vmt golden (and the ctest golden_<scene> tests' use of it): tests/cli/golden_test.sh.
 
 # vmt check: every error as file:line:column, exit 1; clean 0; a file it cannot read 2.
 check check_clean 0 "stepped_shaft.mtc: mtc200, [0-9]+ blocks, 0 errors" -- "$vmt" check "$src/scenes/nc/stepped_shaft.mtc"

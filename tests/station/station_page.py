@@ -65,8 +65,8 @@ def ok(text):
 GOLDEN_W, GOLDEN_H = 960, 540
 # SwiftShader draws the same bytes run after run on one machine: six runs gave equal PNGs
 # (0 pixels beyond 0 levels). Another CPU may get other code from SwiftShader's JIT, which
-# moves edge pixels by a few levels, as llvmpipe's goldens allow for (tests/golden/
-# check_scene.sh: at most 0.021 % of the pixels beyond 2 levels). So at most 0.03 % of the
+# moves edge pixels by a few levels, as llvmpipe's goldens allow for (render/
+# image_compare.hpp: at most 0.021 % of the pixels beyond 2 levels). So at most 0.03 % of the
 # pixels (155) may differ by more than 8 levels. What that still catches, measured on this
 # view: the Z carriage 2 mm off changes 301 pixels, the turret 1 degree off 713, the camera's
 # field of view 0.5 degree wider 9 %; a 60 mm tool path trail (40) or a marker (3) it misses.
