@@ -103,6 +103,30 @@ if start_serve "$out/minimal" lockstep "$src/examples/plc/minimal_plc.yaml"; the
     { fail "minimal: X not read moving from 150 to 40"; cat "$out/minimal/client.log"; }
   json "$out/minimal/summary.json" 'd["expectations_failed"] == 0 and d["expectations_passed"] == 4'
 fi
+# The same PLC in real time for 2 s: the clock waits for its first write, the status block is
+# refreshed as the wall clock runs, and it reads X leaving 150 mm (the watchdog generous: the
+# assert is about the block, not about how fast this machine scans).
+rt=$out/minimal-realtime
+mkdir -p "$rt"
+timeout 300 "$vmt" serve "$src/examples/plc/minimal_plc.yaml" --modbus 127.0.0.1:0 --realtime \
+  --until 2 --plc-timeout 2000 --out "$rt" >"$rt/serve.log" 2>&1 &
+serve_pid=$!
+mb_port=
+for _ in $(seq 1200); do
+  mb_port=$(sed -n 's/.*Modbus TCP on 127.0.0.1:\([0-9]*\),.*/\1/p' "$rt/serve.log")
+  [ -n "$mb_port" ] && break
+  sleep 0.05
+done
+timeout 120 "$python" "$src/examples/plc/minimal_plc.py" --port "$mb_port" --realtime \
+  --signals "$out/signals.json" >"$rt/client.log" 2>&1  # 1: the program has not ended at 2 s
+wait $serve_pid
+grep -q "NC running" "$rt/client.log" || { fail "minimal realtime: never running"; cat "$rt/client.log"; }
+"$python" - "$rt/client.log" <<'PY' || { fail "minimal realtime: X did not move"; cat "$rt/client.log"; }
+import re, sys
+m = re.search(r"axis X \(A01\): ([-0-9.]+) -> ([-0-9.]+)", open(sys.argv[1]).read())
+sys.exit(0 if m and float(m.group(1)) == 150 and float(m.group(2)) < 100 else 1)
+PY
+json "$rt/serve.json" 'd["mode"] == "realtime" and d["plc_link"]["lost"] == 0'
 
 scene=$src/scenes/repos-machine-keys.yaml
 
@@ -226,6 +250,9 @@ assert c.connect()
 for _ in range(20):
     assert not c.read_discrete_inputs(0, 8, slave=1).isError()
     time.sleep(0.025)
+# The NC status block is served while the clock waits: version 1, simulated time 0 ms.
+r = c.read_input_registers(1000, 6, slave=1)
+assert not r.isError() and r.registers[0] == 1 and r.registers[4:6] == [0, 0], r
 c.close()
 PY
 grep -q "waiting for the PLC's first write" "$rt/serve.log" || fail "real time did not wait for the PLC"
