@@ -3,11 +3,22 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <span>
+#include <utility>
 
 #include "sim/runner/channel_events.hpp"
 #include "sim/scene/steps/timeline_play.hpp"
 
 namespace vmt::sim {
+
+std::string TripCauses(uint32_t faults) {
+  using namespace control::drive_status;
+  std::string s;
+  for (const auto& [bit, name] : {std::pair<uint32_t, const char*>{kOverload, "overload"},
+                                  {kOverspeed, "overspeed"},
+                                  {kParameterSetError, "parameter_set_error"}})
+    if (faults & bit) s += (s.empty() ? "" : " and ") + std::string(name);
+  return s;
+}
 
 void MachineEventWatch::Watch(double t, const control::AmplifierTelegram& at,
                               const std::vector<ClutchState>& clutches,
@@ -94,6 +105,8 @@ void MachineEventWatch::WatchDrives(double t, const control::AmplifierTelegram& 
     e["overspeed"] = (faults & kOverspeed) != 0;
     e["parameter_set_error"] = (faults & kParameterSetError) != 0;
     recorder.Event(e);
+    if (const uint32_t new_faults = faults & ~last_faults_[d])
+      trips_.push_back({t, static_cast<int>(d), new_faults});
     last_faults_[d] = faults;
   }
   // Probe latches as the drives fill them (7.3): latched value beside the exact contact.

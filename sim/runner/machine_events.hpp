@@ -5,6 +5,7 @@
 // watch keeps what it saw last and hands each change to the recorder.
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "control/drive_bus.hpp"
@@ -15,6 +16,16 @@
 
 namespace vmt::sim {
 
+/// A drive's amplifier tripping (SERCOS status kOverload | kOverspeed | kParameterSetError):
+/// when, which drive, and the fault bits that came with it.
+struct DriveTrip {
+  double t_s = 0;
+  int drive = -1;
+  uint32_t faults = 0;
+};
+/// "overload", "overspeed", "parameter_set_error", joined by " and ".
+std::string TripCauses(uint32_t faults);
+
 class MachineEventWatch {
  public:
   explicit MachineEventWatch(const MachineModel& model) : m_(&model) {}
@@ -24,6 +35,9 @@ class MachineEventWatch {
   void Watch(double t, const control::AmplifierTelegram& at,
              const std::vector<ClutchState>& clutches, const MachineBackend& backend,
              const control::gateway::SignalImage* image, RunRecorder& recorder);
+  /// Every trip of the run so far, in time order (a fault bit that comes while others stand is
+  /// a trip of its own).
+  const std::vector<DriveTrip>& trips() const { return trips_; }
 
  private:
   void WatchSignals(double t, const control::gateway::SignalImage& image, RunRecorder& recorder);
@@ -40,6 +54,7 @@ class MachineEventWatch {
   std::vector<uint32_t> last_faults_;  ///< per drive: its fault bits at the last tick
   std::vector<uint8_t> last_sets_;     ///< per drive: its current parameter set at the last tick
   std::vector<uint8_t> last_latches_;  ///< per drive: its probe latched flags at the last tick
+  std::vector<DriveTrip> trips_;
 };
 
 }  // namespace vmt::sim

@@ -39,6 +39,12 @@ namespace {
 /// the cut's allowance, so a merged run never stands above a tool in its cut.
 constexpr double kStockTolerance = 2e-6;
 
+std::string Seconds(double t_s) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g s", t_s);
+  return buf;
+}
+
 double Measured(const Expectation& e, const control::AmplifierTelegram& at,
                 const std::vector<ClutchState>& clutches,
                 const control::gateway::SignalImage* image) {
@@ -61,9 +67,19 @@ double Measured(const Expectation& e, const control::AmplifierTelegram& at,
     case Q::kClutch:
       return static_cast<double>(clutches[e.index]);
     case Q::kNc:
-      return 0;  // a state, compared in Check
+    case Q::kDriveTrip:
+      return 0;  // a state, compared in Check; the trips so far, in CheckExpectations
   }
   return 0;
+}
+
+// `{drive:, trip:}`: has the drive tripped, for one of the causes meant, by now?
+ExpectationResult CheckTrip(const Expectation& e, const std::vector<DriveTrip>& trips,
+                            const MachineModel& m) {
+  for (const DriveTrip& trip : trips)
+    if (trip.drive == e.index && (trip.faults & e.trip))
+      return {e.text, true, "tripped: " + TripCauses(trip.faults) + " at " + Seconds(trip.t_s)};
+  return {e.text, false, "drive " + m.drives[e.index].info.name + " has not tripped"};
 }
 
 ExpectationResult Check(const Expectation& e, const control::AmplifierTelegram& at,
@@ -295,7 +311,9 @@ void SceneRun::State::CheckExpectations(double t, const control::AmplifierTelegr
     const bool due = e.at_s < 0 ? tick == last_tick : t >= e.at_s - 1e-9;
     if (checked[i] || !due) continue;
     checked[i] = true;
-    checks[i] = Check(e, at, clutches, channel.get(), image.get());
+    checks[i] = e.quantity == Expectation::Quantity::kDriveTrip
+                    ? CheckTrip(e, machine_events.trips(), m)
+                    : Check(e, at, clutches, channel.get(), image.get());
     recorder.Event({{"t", t},
                     {"event", "expectation"},
                     {"text", e.text},
@@ -350,6 +368,21 @@ RunResult SceneRun::State::Finish() {
       expected = expected || (e.quantity == Expectation::Quantity::kNc &&
                               e.nc == control::channel::ChannelState::kError);
     if (!expected) result.failures.push_back("NC error: " + channel->error());
+  }
+  // So does a drive trip: a protection that takes a power stage off is a fault of the machine
+  // or of the program unless the scene means it (`expect: {drive:, trip:}`).
+  for (const DriveTrip& trip : machine_events.trips()) {
+    uint32_t expected = 0;
+    for (const Expectation& e : scene.expectations)
+      if (e.quantity == Expectation::Quantity::kDriveTrip && e.index == trip.drive)
+        expected |= e.trip;
+    if (const uint32_t unexpected = trip.faults & ~expected) {
+      const std::string& name = m.drives[trip.drive].info.name;
+      result.failures.push_back("drive " + name + " tripped on " + TripCauses(unexpected) + " at " +
+                                Seconds(trip.t_s) +
+                                ", which the scene does not expect (expect: {drive: " + name +
+                                ", trip: " + TripCauses(unexpected & (0u - unexpected)) + "})");
+    }
   }
   result.expectations = checks;
   result.wall_s =

@@ -174,7 +174,8 @@ struct Expectation {
     kInput,
     kClutch,
     kNc,
-    kSignal
+    kSignal,
+    kDriveTrip  ///< `{drive:, trip:}`: the drive's amplifier has tripped by then
   } quantity;
   double at_s = -1;  ///< -1: at the end of the run
   int index = -1;    ///< drive, I/O point, clutch or gateway signal
@@ -182,6 +183,9 @@ struct Expectation {
   double tolerance = 0;
   ClutchState clutch = ClutchState::kEngaged;
   control::channel::ChannelState nc = control::channel::ChannelState::kEnded;
+  /// kDriveTrip: the fault bits it means (control::drive_status kOverload | kOverspeed |
+  /// kParameterSetError; any of them). A trip no such expectation covers fails the run.
+  uint32_t trip = 0;
   std::string text;  ///< "expect[2]: Z position 250 +- 0.01 at 3 s"
 };
 

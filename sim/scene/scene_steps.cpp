@@ -7,6 +7,7 @@
 #include <cctype>
 #include <sstream>
 
+#include "control/drive_bus.hpp"
 #include "sim/model/model_error.hpp"
 #include "sim/model/yaml_reader.hpp"
 
@@ -107,7 +108,7 @@ control::channel::ChannelState ParseNcState(const YamlNode& n) {
 
 Expectation ReadExpectation(const MachineModel& m, const YamlNode& n, size_t i, const NcSetup& nc) {
   n.AllowKeys({"at", "axis", "position", "velocity", "rpm", "following_error", "parameter_set",
-               "input", "value", "clutch", "state", "tol", "nc", "signal"});
+               "input", "value", "clutch", "state", "tol", "nc", "signal", "drive", "trip"});
   Expectation e{};
   e.at_s = n.Double("at", -1);
   std::ostringstream text;
@@ -161,8 +162,19 @@ Expectation ReadExpectation(const MachineModel& m, const YamlNode& n, size_t i, 
     if (e.index < 0) n["clutch"].Fail("no clutch '" + n["clutch"].String() + "'");
     e.clutch = ParseClutchState(n["state"]);
     text << "clutch " << n["clutch"].String() << " " << ToString(e.clutch);
+  } else if (n.Has("drive")) {
+    using namespace control::drive_status;
+    e.quantity = Expectation::Quantity::kDriveTrip;
+    e.index = RequireDrive(m, n["drive"]);
+    const std::string cause = n["trip"].String();
+    if (cause == "overload") e.trip = kOverload;
+    if (cause == "overspeed") e.trip = kOverspeed;
+    if (cause == "parameter_set_error") e.trip = kParameterSetError;
+    if (cause == "any") e.trip = kOverload | kOverspeed | kParameterSetError;
+    if (e.trip == 0) n["trip"].Fail("expected overload, overspeed, parameter_set_error or any");
+    text << "drive " << n["drive"].String() << " trips (" << cause << ")";
   } else {
-    n.Fail("expected axis:, input:, clutch:, nc: or signal:");
+    n.Fail("expected axis:, input:, clutch:, nc:, signal: or drive:");
   }
   text << (e.at_s < 0 ? std::string(" at the end") : " at " + Fmt(e.at_s) + " s");
   e.text = text.str();
