@@ -108,6 +108,20 @@ void Compare(GoldenPicture& p, const render::CompareOptions& o, const std::strin
   p.page = where + "/index.html";
 }
 
+// The pages an earlier check left for this scene would mislead; only what Compare writes goes,
+// so a --fail-dir given by mistake loses nothing else.
+void RemoveFailurePages(const std::string& fail_dir) {
+  if (!fs::is_directory(fail_dir)) return;
+  std::error_code ignored;
+  for (const auto& entry : fs::directory_iterator(fail_dir)) {
+    if (!entry.is_directory() || !fs::exists(entry.path() / "index.html")) continue;
+    for (const char* file : {"index.html", "actual.png", "golden.png", "diff.png"})
+      fs::remove(entry.path() / file, ignored);
+    fs::remove(entry.path(), ignored);  // only if empty
+  }
+  fs::remove(fail_dir, ignored);
+}
+
 void Print(const GoldenScene& s, const GoldenPicture& p) {
   const std::string name = s.name + "/" + p.file;
   switch (p.status) {
@@ -145,7 +159,7 @@ GoldenScene GoldenOfScene(const std::string& scene_path, const GoldenOptions& o)
   const std::string baselines = o.golden_dir + "/" + g.name;
   const std::string fail_dir =
       (o.fail_dir.empty() ? o.out_dir + "/golden-failures" : o.fail_dir) + "/" + g.name;
-  if (!o.update) fs::remove_all(fail_dir);  // the pages of an earlier check would mislead
+  if (!o.update) RemoveFailurePages(fail_dir);
 
   if (!o.no_run) {
     RunOptions run;
@@ -238,6 +252,17 @@ GoldenScene GoldenOfScene(const std::string& scene_path, const GoldenOptions& o)
 }
 
 int Golden(const GoldenOptions& o) {
+  // Scenes are told apart by their file names: two of one name would share folders.
+  std::set<std::string> names;
+  for (const std::string& scene : o.scenes) {
+    if (!names.insert(fs::path(scene).stem().string()).second) {
+      std::fprintf(stderr,
+                   "vmt: error: %s: a second scene named '%s' (runs and baselines go to "
+                   "folders named after the scene file)\n",
+                   scene.c_str(), fs::path(scene).stem().string().c_str());
+      return 2;
+    }
+  }
   std::vector<GoldenScene> results;
   for (const std::string& scene : o.scenes) {
     results.push_back(GoldenOfScene(scene, o));

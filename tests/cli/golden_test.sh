@@ -122,6 +122,10 @@ check run_fails 1 "FAIL failing: " -- "$vmt" golden check "$out/failing.yaml" --
 check run_fails_junit 0 '<testcase classname="golden.failing" name="run">' -- cat "$out/run.xml"
 check update_failing_writes_none 1 "" -- "$vmt" golden update "$out/failing.yaml" --golden "$g" --out "$r"
 check update_failing_nothing 1 "" -- test -e "$g/failing"
+mkdir -p "$out/other" && cp "$out/turn.yaml" "$out/other/turn.yaml"
+check same_name_twice 2 "a second scene named 'turn'" -- "$vmt" golden check "$out/turn.yaml" "$out/other/turn.yaml" --golden "$g"
+mkdir -p "$r/golden-failures/turn/mine" && echo keep >"$r/golden-failures/turn/mine/notes.txt"
+check fail_dir_keeps_others 0 "" -- sh -c "\"$vmt\" golden check \"$out/turn.yaml\" --golden \"$g\" --out \"$r\" >/dev/null && test -s \"$r/golden-failures/turn/mine/notes.txt\""
 check bad_scene 2 "nope.yaml" -- "$vmt" golden check "$out/nope.yaml" --golden "$g"
 sed 's/mask: \[\[0, 0, 20, 10\]\]/mask: [[150, 0, 20, 10]]/' "$out/turn.yaml" >"$out/bad_mask.yaml"
 check bad_mask 2 "bad_mask.yaml:[0-9]+:[0-9]+: snapshots\[1\]\.mask\[0\]: reaches beyond the 160x120 picture" -- \
