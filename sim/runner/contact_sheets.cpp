@@ -10,10 +10,14 @@ namespace vmt::sim {
 std::vector<std::string> WriteContactSheets(const Scene& scene, const std::string& out_dir,
                                             const std::vector<std::string>& written) {
   std::vector<std::string> sheets;
-  for (const SnapshotSeries& series : scene.snapshot_series) {
+  for (size_t k = 0; k < scene.snapshot_series.size(); ++k) {
+    const SnapshotSeries& series = scene.snapshot_series[k];
     std::vector<render::Image> pictures;
     std::vector<std::string> captions;
     for (size_t shot : series.shots) {
+      // A caller that replaced the scene's snapshots (a study's case) leaves series that are
+      // not its pictures any more.
+      if (shot >= scene.snapshots.size() || scene.snapshots[shot].series != int(k)) continue;
       const SnapshotSpec& s = scene.snapshots[shot];
       const std::string path = out_dir + "/" + s.file;
       if (std::find(written.begin(), written.end(), path) == written.end()) continue;
