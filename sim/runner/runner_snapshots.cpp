@@ -20,7 +20,7 @@ void SceneRun::State::NoteSnapshotEvent(const nlohmann::ordered_json& event) {
 void SceneRun::State::TakeSnapshot(const SnapshotSpec& s, const std::string& file,
                                    nlohmann::ordered_json event) {
   if (!options.snapshots) return;
-  PendingSnapshot shot{backend->JointPositions(), &s, options.out_dir + "/" + file};
+  PendingSnapshot shot{backend->JointPositions(), &s, options.out_dir + "/" + file, TurnedNow()};
   if (!options.snapshots_after_run)
     RenderSnapshot(shot);
   else if (recorder.writing())
@@ -31,11 +31,21 @@ void SceneRun::State::TakeSnapshot(const SnapshotSpec& s, const std::string& fil
   recorder.Event(std::move(event));
 }
 
+// The stock cutter's profile for a picture of this tick, copied only when a cut has changed it
+// since the last picture. Finer than PathGuard's, as the web station draws it: to a micrometre.
+std::shared_ptr<const TurnedProfile> SceneRun::State::TurnedNow() {
+  if (!cutter || stock_cuts == 0) return nullptr;
+  if (!turned_profile || turned_profile->version != stock_cuts)
+    turned_profile = std::make_shared<const TurnedProfile>(
+        TurnedProfile{stock_cuts, cutter->stock().Cylinders(1e-6)});
+  return turned_profile;
+}
+
 void SceneRun::State::RenderSnapshot(const PendingSnapshot& shot) {
   if (!renderer) renderer = std::make_unique<SceneRenderer>(m, scene.workpiece);
   const SnapshotSpec& s = *shot.spec;
   const render::Image picture =
-      renderer->Render(shot.joints, *scene.Camera(s.camera), s.width, s.height);
+      renderer->Render(shot.joints, *scene.Camera(s.camera), s.width, s.height, shot.turned.get());
   if (recorder.writing()) render::WritePng(shot.path, picture);
 }
 

@@ -48,12 +48,17 @@ struct SceneRun::State {
 
   void NoteSnapshotEvent(const nlohmann::ordered_json& event);
   void TakeSnapshot(const SnapshotSpec& s, const std::string& file, nlohmann::ordered_json event);
-  /// A picture as taken: the joint positions of its tick, what to render, where it goes.
+  /// A picture as taken: the joint positions of its tick, what to render, where it goes, and
+  /// the workpiece as turned then (null: as the scene made it, nothing cut yet).
   struct PendingSnapshot {
     std::vector<double> joints;
     const SnapshotSpec* spec;
     std::string path;
+    std::shared_ptr<const TurnedProfile> turned;
   };
+  /// The turned stock as the last picture took it: shared by the pictures until the next cut.
+  std::shared_ptr<const TurnedProfile> TurnedNow();
+  std::shared_ptr<const TurnedProfile> turned_profile;
   void RenderSnapshot(const PendingSnapshot& shot);
   void RenderPendingSnapshots();
   /// RunOptions::snapshots_after_run: the pictures taken, rendered at Finish.
