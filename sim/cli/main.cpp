@@ -29,6 +29,7 @@
 #include "sim/runner/scene_renderer.hpp"
 #include "sim/study/case_replay.hpp"
 #include "sim/study/study.hpp"
+#include "sim/study/study_compare.hpp"
 
 namespace {
 
@@ -81,13 +82,18 @@ int Snapshot(const std::string& scene_path, double at, const std::string& camera
     for (const auto& c : scene.cameras) names += " " + c.name;
     throw sim::ModelError(scene_path, "cameras", "no camera '" + camera + "' (have:" + names + ")");
   }
-  // Run the scene up to `at` without writing its own outputs, then picture the machine there.
+  // Run the scene up to `at` without writing its own outputs, then picture the machine there,
+  // the workpiece as turned by then.
   sim::RunOptions options;
   options.until_s = at;
   options.snapshots = false;
-  const sim::RunResult r = sim::RunScene(scene, options);
+  sim::SceneRun run(scene, options);
+  while (!run.done()) run.Step();
+  const sim::RunResult r = run.Finish();
+  const sim::TurnedProfile turned{run.stock_cuts(), run.TurnedStockCylinders()};
   sim::SceneRenderer renderer(*scene.model, scene.workpiece);
-  render::WritePng(out, renderer.Render(r.final_joint_positions, *cam, width, height));
+  render::WritePng(out, renderer.Render(r.final_joint_positions, *cam, width, height,
+                                        turned.version > 0 ? &turned : nullptr));
   std::printf("%s: %s at %.4f s -> %s\n", scene.name.c_str(), camera.c_str(), r.simulated_s,
               out.c_str());
   return 0;
@@ -349,6 +355,30 @@ Command AddView(CLI::App& app) {
   return {view, [o] { return sim::View(*o); }};
 }
 
+/// `vmt study compare DIR_A DIR_B`: two studies case by case.
+Command AddStudyCompare(CLI::App& study) {
+  struct Args {
+    std::string a, b, html = "compare.html";
+    double threshold = 0.1;
+  };
+  auto o = std::make_shared<Args>();
+  CLI::App* compare = study.add_subcommand(
+      "compare", "Two study folders side by side, case by case: what changed from A to B");
+  compare->add_option("dir_a", o->a, "Study folder A (e.g. the old machine or program)")
+      ->required();
+  compare->add_option("dir_b", o->b, "Study folder B")->required();
+  compare->add_option("--html", o->html, "Write the comparison page here")->capture_default_str();
+  compare->add_option("--threshold", o->threshold, "Report clearance changes larger than this, mm")
+      ->check(CLI::Range(0.0, 1e6))
+      ->capture_default_str();
+  return {compare, [o] {
+            std::fputs(sim::study::CompareStudies(o->a, o->b, o->html, o->threshold).c_str(),
+                       stdout);
+            std::printf("output: %s\n", o->html.c_str());
+            return 0;
+          }};
+}
+
 /// `vmt study repos` and `vmt study merge`.
 std::vector<Command> AddStudy(CLI::App& app) {
   struct Args {
@@ -440,7 +470,7 @@ std::vector<Command> AddStudy(CLI::App& app) {
                                   o->merge_out.c_str(), n, o->merge_out.c_str());
                       return 0;
                     }};
-  return {run_repos, run_merge, run_replay};
+  return {run_repos, run_merge, run_replay, AddStudyCompare(*study)};
 }
 
 Command AddImgdiff(CLI::App& app) {

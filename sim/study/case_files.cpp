@@ -38,9 +38,9 @@ std::string Cell(const nlohmann::ordered_json& v) {
 }
 
 const char* const kColumns[] = {
-    "case",           "subroutine",   "interrupt",    "block", "per_mille", "t_interrupt_s",
-    "retract",        "mode",         "verdict",      "parts", "point",     "min_clearance_mm",
-    "path_length_mm", "repos_time_s", "error_number", "error"};
+    "case",           "subroutine",   "interrupt",    "block", "per_mille",     "t_interrupt_s",
+    "retract",        "mode",         "verdict",      "parts", "point",         "min_clearance_mm",
+    "path_length_mm", "repos_time_s", "error_number", "error", "contact_class", "past_contact_mm"};
 
 void WriteAll(int fd, const std::string& s) {
   size_t done = 0;
@@ -62,7 +62,10 @@ std::string FileNameOf(const std::string& case_id) {
 
 std::string CsvHeader() {
   std::string h;
-  for (const char* c : kColumns) h += (h.empty() ? "" : ",") + std::string(c);
+  for (const char* c : kColumns) {
+    if (!h.empty()) h += ',';
+    h += c;
+  }
   return h + "\n";
 }
 

@@ -18,6 +18,17 @@ double Micro(double v) { return std::round(v * 1000) / 1000 + 0.0; }
 
 }  // namespace
 
+double PastContact(const nlohmann::ordered_json& position, const nlohmann::ordered_json& target) {
+  if (!position.is_object() || !target.is_object()) return 0;
+  double sum = 0;
+  for (const auto& [axis, to] : target.items())
+    if (to.is_number() && position.contains(axis) && position[axis].is_number()) {
+      const double d = to.get<double>() - position[axis].get<double>();
+      sum += d * d;
+    }
+  return std::sqrt(sum);
+}
+
 void CaseObserver::OnEvent(const nlohmann::ordered_json& e) {
   const std::string kind = e.value("event", "");
   const double t = e.value("t", 0.0);
@@ -62,6 +73,8 @@ void CaseObserver::OnEvent(const nlohmann::ordered_json& e) {
       parts_ = e["parts"];
       point_ = e["point"];
       position_ = e["position"];
+      move_ = e.value("move", "");
+      target_ = e.contains("to") ? e["to"] : nlohmann::ordered_json();
       // Where the move would have touched, on the drawing's axes.
       // The refused move never started: the path travelled ends where it would have begun.
       AddMove(e, false);
@@ -122,11 +135,22 @@ CaseResult CaseObserver::Result(const StudyPlan& plan,
     verdict = "collision";
   else if (!error_.empty() || !done_ || (!manual_end_ && !subroutine_seen_) ||
            (manual_end_ && !last_repos_.value("conditions_restored", false)))
-    verdict = "error";
+    // PathGuard refusing the operator's own retract ends the case before any return: the
+    // operator's problem, never the subroutine's.
+    verdict = retract_contact_.is_null() ? "error" : "retract_refused";
   r["verdict"] = verdict;
   r["parts"] = contact_ ? parts_ : nullptr;
   r["point"] = contact_ ? point_ : nullptr;
   r["contact_position"] = contact_ ? position_ : nullptr;
+  // Severity: how far the refused move would have gone on past its first contact (the axes'
+  // distance from the contact to the move's end). Within kGrazeMm the parts only meet at the
+  // move's end (a tool set back onto the contour it cut): a graze, apart from a crash.
+  const double past = contact_ ? PastContact(position_, target_) : 0;
+  r["contact_move"] = contact_ ? nlohmann::ordered_json(move_) : nullptr;
+  r["contact_target"] = contact_ && target_.is_object() ? target_ : nullptr;
+  r["past_contact_mm"] = contact_ ? nlohmann::ordered_json(Micro(past)) : nullptr;
+  r["contact_class"] =
+      contact_ ? nlohmann::ordered_json(past <= kGrazeMm + 1e-9 ? "graze" : "crash") : nullptr;
   r["min_clearance_mm"] =
       std::isfinite(min_clearance_) ? nlohmann::ordered_json(min_clearance_) : nullptr;
   double length = 0;

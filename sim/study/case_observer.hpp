@@ -15,9 +15,19 @@
 namespace vmt::sim::study {
 
 /// The case's result line (cases.jsonl): id, interruption, retract, mode, verdict (collision |
-/// clear | error), the first contact's parts and point, the smallest clearance of the REPOS
-/// moves, the approach path (X, Z) and its length, the simulated time of the REPOS phase.
+/// clear | error | retract_refused), the first contact's parts, point (model frame) and axis
+/// positions, its severity (past_contact_mm, contact_class graze | crash), the smallest
+/// clearance of the REPOS moves, the approach path (X, Z axis positions, machine coordinates)
+/// and its length, the simulated time of the REPOS phase.
 using CaseResult = nlohmann::ordered_json;
+
+/// A contact this close to the refused move's end (mm) is a graze, farther a crash.
+constexpr double kGrazeMm = 0.1;
+
+/// The distance of the axes from `position` (the first contact) to `target` (the refused
+/// move's end), over the axes `target` names that `position` has: how far the move would have
+/// gone on into the part.
+double PastContact(const nlohmann::ordered_json& position, const nlohmann::ordered_json& target);
 
 class CaseObserver {
  public:
@@ -62,7 +72,8 @@ class CaseObserver {
   bool have_command_ = false;
   double t_start_ = 0, t_end_ = 0, x_ = 0, z_ = 0;
   double min_clearance_ = std::numeric_limits<double>::infinity();
-  nlohmann::ordered_json parts_, point_, position_, retract_contact_, last_repos_;
+  nlohmann::ordered_json parts_, point_, position_, target_, retract_contact_, last_repos_;
+  std::string move_;  ///< the refused move's kind (jog, G77)
   std::string error_;
   int error_number_ = 0;
   std::vector<std::pair<double, double>> path_;

@@ -407,7 +407,7 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
 CaseResult RunCaseFromStart(const Scene& base, const StudyPlan& plan,
                             const std::vector<Interruption>& interruptions, const StudyCase& c,
                             const std::vector<SnapshotSpec>& shots, const std::string& out_dir,
-                            double* t_end_s) {
+                            double* t_end_s, const std::function<void(const SceneRun&)>& after) {
   Scene scene = SubroutineScene(base, plan.subroutines[c.subroutine]);
   scene.snapshots = shots;
   const Interruption& in = interruptions[c.interruption];
@@ -425,6 +425,7 @@ CaseResult RunCaseFromStart(const Scene& base, const StudyPlan& plan,
   // A picture due at the end (an `at:` of the case's end) is taken at the next tick.
   for (int k = 0; k < 2 && !shots.empty() && !run.done(); ++k) run.Step();
   if (t_end_s) *t_end_s = obs.t_end();
+  if (after) after(run);
   return obs.Result(plan, interruptions, c, run.time_s());
 }
 

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/runner/runner.hpp"
 #include "sim/study/case_observer.hpp"
 #include "sim/study/study_cases.hpp"
 
@@ -40,10 +41,13 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
 /// One case from the program's start, without fork. With `shots`, the run renders them (the
 /// scene's `snapshots:` entries, e.g. {on: collision}) into `out_dir`, where it also writes its
 /// trace and events; *t_end_s gets the time the case ended.
+/// `after`, when set, sees the run as the case ended (the machine where it stood, the workpiece
+/// as turned).
 CaseResult RunCaseFromStart(const Scene& base, const StudyPlan& plan,
                             const std::vector<Interruption>& interruptions, const StudyCase& c,
                             const std::vector<SnapshotSpec>& shots = {},
-                            const std::string& out_dir = "", double* t_end_s = nullptr);
+                            const std::string& out_dir = "", double* t_end_s = nullptr,
+                            const std::function<void(const SceneRun&)>& after = {});
 
 /// A case's run as saved for watching it: the timeline steps it ran after the program's start
 /// (as a scene writes them), the subroutine's file and the time it ended.

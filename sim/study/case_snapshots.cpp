@@ -7,7 +7,10 @@
 #include <filesystem>
 #include <fstream>
 
+#include "render/image.hpp"
 #include "sim/study/case_files.hpp"
+#include "sim/study/contact_picture.hpp"
+#include "sim/study/study_conclusions.hpp"
 
 namespace vmt::sim::study {
 namespace {
@@ -44,9 +47,9 @@ std::vector<std::string> WorstCaseIds(const std::vector<CaseResult>& results, in
   for (const CaseResult& r : results) by_sub[Str(r, "subroutine")].push_back(&r);
   std::vector<std::string> ids;
   for (auto& [sub, list] : by_sub) {
-    std::stable_sort(list.begin(), list.end(), [](const CaseResult* a, const CaseResult* b) {
-      return Str(*a, "case") < Str(*b, "case");
-    });
+    // The most severe first: the deepest crashes, then grazes.
+    std::stable_sort(list.begin(), list.end(),
+                     [](const CaseResult* a, const CaseResult* b) { return MoreSevere(*a, *b); });
     int n = 0;
     const CaseResult* tightest = nullptr;
     for (const CaseResult* r : list) {
@@ -93,10 +96,16 @@ std::map<std::string, std::string> SnapshotCases(const Scene& base, const StudyP
     std::filesystem::create_directories(work);
     SnapshotSpec shot = look;
     if (Str(*r, "verdict") == "collision") {
-      // At the first contact: PathGuard refused the move, so the tool stands where the
-      // refused move would have started; the contact point is in the case's line.
-      shot.on = SnapshotEvent::kCollision;
-      shot.limit = 1;
+      // At the first contact: PathGuard refused the move before it started, so the machine
+      // stands where it would have begun until the case ends; posed at the contact from there.
+      ContactStage stage;
+      RunCaseFromStart(base, plan, interruptions, *c, {}, "", nullptr, [&](const SceneRun& run) {
+        stage.joints = run.joint_positions();
+        stage.stock = run.TurnedStockCylinders();
+      });
+      render::WritePng(dir + "/" + file, ContactImage(base, stage, *r, look));
+      index[id] = file;
+      continue;
     } else {
       // The clear case at its end: first learn when that is, then picture it.
       double t_end = 0;

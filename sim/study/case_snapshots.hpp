@@ -1,9 +1,9 @@
 #pragma once
-// Pictures of a study's worst cases (report.html links them): per subroutine the first few
-// collisions (in case id order) at their first contact, and the clear case with the smallest
-// clearance at its end. The study runs without pictures; the chosen cases run again from the
-// start afterwards with the scene's camera on -- a case is deterministic, so the rerun is the
-// case of cases.jsonl.
+// Pictures of a study's worst cases (report.html links them): per subroutine the most severe
+// collisions at their first contact (contact_picture.hpp: the two parts magenta, the point
+// marked), and the clear case with the smallest clearance at its end. The study runs without
+// pictures; the chosen cases run again from the start afterwards with the scene's camera on --
+// a case is deterministic, so the rerun is the case of cases.jsonl.
 
 #include <map>
 #include <string>
@@ -13,8 +13,9 @@
 
 namespace vmt::sim::study {
 
-/// The ids of the cases to picture, sorted: per subroutine the first `collisions` collision
-/// cases by id and the clear case with the smallest clearance (the first by id of equals).
+/// The ids of the cases to picture, sorted: per subroutine the `collisions` most severe
+/// collisions (MoreSevere: the deepest crashes first) and the clear case with the smallest
+/// clearance (the first by id of equals).
 std::vector<std::string> WorstCaseIds(const std::vector<CaseResult>& results, int collisions);
 
 /// `snapshots/<FileNameOf(case id)>.png`.

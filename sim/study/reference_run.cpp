@@ -4,8 +4,10 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
+#include "sim/collision/spindle_sweep.hpp"
 #include "sim/runner/runner.hpp"
 
 namespace vmt::sim::study {
@@ -34,6 +36,44 @@ std::vector<std::string> FirstWords(const Scene& scene) {
   return words;
 }
 
+// The drive `name`'s position (mm) for joint positions `q`.
+std::optional<double> DrivePosition(const MachineModel& m, const std::vector<double>& q,
+                                    const std::string& name) {
+  for (const DriveParams& d : m.drives)
+    if (d.info.name == name) {
+      if (d.load_joint >= 0) return q[d.load_joint] * kMmPerM;
+      if (d.motor_joint >= 0) return q[d.motor_joint] / d.ratio * kMmPerM;
+    }
+  return std::nullopt;
+}
+
+// The tool tip's offset from the axes and the chuck's outline, where the program ended.
+void MachineFrame(const Scene& scene, const SceneRun& run, Reference& ref) {
+  const std::optional<Eigen::Vector3d> tip = run.ToolTip();
+  if (!tip || !scene.model) return;
+  const std::vector<double> q = run.joint_positions();
+  const std::optional<double> x = DrivePosition(*scene.model, q, "X");
+  const std::optional<double> z = DrivePosition(*scene.model, q, "Z");
+  if (!x || !z) return;
+  ref.has_tip = true;
+  // To the µm: a model's tip stands at round figures, its floats do not.
+  const auto micro = [](double v) { return std::round(v * 1000) / 1000 + 0.0; };
+  ref.tip_x = micro(std::hypot(tip->x(), tip->y()) * kMmPerM - *x);
+  ref.tip_z = micro(tip->z() * kMmPerM - *z);
+  CollisionWorld world(*scene.model);
+  world.Pose(q);
+  const std::string link = scene.workpiece.present ? scene.workpiece.part.link : "spindle";
+  const SpindleSweep sweep = SweepOf(world, link);
+  for (size_t i = 0; i < sweep.swept.size() && i < sweep.parts.size(); ++i) {
+    const CylinderPart& c = sweep.swept[i];
+    const Eigen::Isometry3d& X = world.X_WorldLink(world.part(sweep.parts[i]).link);
+    const double a = (X * Eigen::Vector3d(0, 0, c.z_m)).z() * kMmPerM - ref.tip_z;
+    const double b = (X * Eigen::Vector3d(0, 0, c.z_m + c.length_m)).z() * kMmPerM - ref.tip_z;
+    ref.chuck.push_back({c.name, micro(c.radius_m * kMmPerM - ref.tip_x), micro(std::min(a, b)),
+                         micro(std::max(a, b))});
+  }
+}
+
 }  // namespace
 
 Reference RunReference(const Scene& base, const std::string& work_dir) {
@@ -55,9 +95,11 @@ Reference RunReference(const Scene& base, const std::string& work_dir) {
     state = e.value("state", "");
     error = e.value("error", "");
   };
+  Reference ref;
   {
     SceneRun run(scene, options);
     while (!run.done() && state != "ended" && state != "error") run.Step();
+    MachineFrame(scene, run, ref);
     run.Finish();
   }
   if (state != "ended")
@@ -76,7 +118,6 @@ Reference RunReference(const Scene& base, const std::string& work_dir) {
   const int cx = column("X.pos"), cz = column("Z.pos"), cs = column("nc.state"),
             cl = column("nc.line");
   const std::vector<std::string> words = FirstWords(base);
-  Reference ref;
   bool started = false;
   double last_path_t = -1;
   BlockSpan* open = nullptr;
@@ -139,6 +180,12 @@ std::string ReferenceJson(const Reference& r) {
                       {"motion", b.motion}});
   auto& path = j["path"] = nlohmann::ordered_json::array();
   for (const auto& [x, z] : r.path) path.push_back({x, z});
+  if (r.has_tip) {
+    j["tip_offset_mm"] = {{"x", r.tip_x}, {"z", r.tip_z}};
+    auto& chuck = j["chuck"] = nlohmann::ordered_json::array();
+    for (const ChuckOutline& c : r.chuck)
+      chuck.push_back({{"name", c.name}, {"x1", c.x1}, {"z0", c.z0}, {"z1", c.z1}});
+  }
   return j.dump() + "\n";
 }
 
@@ -153,6 +200,14 @@ Reference ReferenceFromJson(const std::string& text) {
                         b.at("motion").get<bool>()});
   for (const auto& p : j.at("path"))
     r.path.emplace_back(p.at(0).get<double>(), p.at(1).get<double>());
+  if (j.contains("tip_offset_mm")) {  // a folder of an older vmt has none
+    r.has_tip = true;
+    r.tip_x = j["tip_offset_mm"].at("x").get<double>();
+    r.tip_z = j["tip_offset_mm"].at("z").get<double>();
+    for (const auto& c : j.value("chuck", nlohmann::json::array()))
+      r.chuck.push_back({c.at("name").get<std::string>(), c.at("x1").get<double>(),
+                         c.at("z0").get<double>(), c.at("z1").get<double>()});
+  }
   return r;
 }
 

@@ -19,11 +19,26 @@ struct BlockSpan {
   bool motion = false;  ///< X or Z moved while it was current
 };
 
+/// A part that turns with the spindle (chuck body, jaw) as the envelope it sweeps, in the XZ
+/// plane of the machine coordinates: X from 0 to x1, Z from z0 to z1, mm.
+struct ChuckOutline {
+  std::string name;
+  double x1 = 0, z0 = 0, z1 = 0;
+};
+
 struct Reference {
   double start_s = 0;  ///< the program started (the NC ran)
   double end_s = 0;    ///< it ended
   std::vector<BlockSpan> blocks;
   std::vector<std::pair<double, double>> path;  ///< (X, Z) of the tool, mm, every 10 ms
+  /// Where the tool's tip stands in the model frame (x radial, z the spindle axis, mm) less
+  /// the axis positions X, Z: a point p of the model frame lies at the machine coordinates
+  /// (|p radial| - tip_x, p.z - tip_z), where the tool tip touches it. Unknown without a
+  /// turned workpiece (no cutting tool).
+  bool has_tip = false;
+  double tip_x = 0, tip_z = 0;
+  /// The chuck's parts in machine coordinates (empty when the tip is unknown).
+  std::vector<ChuckOutline> chuck;
 };
 
 /// Runs `scene`'s program alone (timeline: start, run to its end) and reads its trace in

@@ -17,6 +17,7 @@
 #include "sim/study/case_files.hpp"
 #include "sim/study/case_replay.hpp"
 #include "sim/study/case_snapshots.hpp"
+#include "sim/study/study_conclusions.hpp"
 #include "sim/study/study_report.hpp"
 
 namespace vmt::sim::study {
@@ -60,21 +61,14 @@ void Bar(size_t done, size_t total, double wall_s) {
 }
 
 std::string Tally(const std::vector<CaseResult>& cases) {
-  struct Count {
-    size_t n = 0, clear = 0, collision = 0, error = 0;
-  };
-  std::map<std::string, Count> by;
-  for (const CaseResult& r : cases) {
-    Count& c = by[r.value("subroutine", "")];
-    const std::string v = r.value("verdict", "");
-    ++c.n;
-    c.clear += v == "clear", c.collision += v == "collision";
-    c.error += v != "clear" && v != "collision";
-  }
+  std::map<std::string, ClassCount> by;
+  for (const CaseResult& r : cases) by[r.value("subroutine", "")].Add(r);
   std::string s;
   for (const auto& [sub, c] : by)
-    s += sub + ": " + std::to_string(c.n) + " cases, " + std::to_string(c.clear) + " clear, " +
-         std::to_string(c.collision) + " collisions, " + std::to_string(c.error) + " errors\n";
+    s += sub + ": " + std::to_string(c.cases) + " cases, " + std::to_string(c.clear) + " clear, " +
+         std::to_string(c.crash + c.graze) + " collisions (" + std::to_string(c.crash) +
+         " crashes, " + std::to_string(c.graze) + " grazes), " + std::to_string(c.error) +
+         " errors, " + std::to_string(c.retract_refused) + " retract refused\n";
   return s;
 }
 

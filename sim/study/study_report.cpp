@@ -12,26 +12,11 @@
 
 #include "sim/study/case_files.hpp"
 #include "sim/study/case_snapshots.hpp"
+#include "sim/study/study_conclusions.hpp"
+#include "sim/study/study_plane.hpp"
 
 namespace vmt::sim::study {
 namespace {
-
-std::string Esc(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    if (c == '<')
-      o += "&lt;";
-    else if (c == '>')
-      o += "&gt;";
-    else if (c == '&')
-      o += "&amp;";
-    else if (c == '"')
-      o += "&quot;";
-    else
-      o += c;
-  }
-  return o;
-}
 
 std::string Num(double v, const char* fmt = "%.3f") {
   char buf[32];
@@ -59,65 +44,29 @@ std::string ReplayHref(const std::string& case_id) {
   return q;
 }
 
-const char* Colour(const std::string& verdict) {
-  if (verdict == "clear") return "#2a9d3f";
-  if (verdict == "collision") return "#d62828";
-  return "#f08c00";
+// The contact point in machine coordinates (where the tool tip would touch it), else in the
+// model frame, said so.
+std::string ContactPoint(const CaseResult& r, const Reference* ref) {
+  const auto& p = Field(r, "point");
+  if (!p.is_array() || p.size() != 3) return "";
+  if (ref && ref->has_tip)
+    return "X" + Num(std::hypot(p[0].get<double>(), p[1].get<double>()) - ref->tip_x) + " Z" +
+           Num(p[2].get<double>() - ref->tip_z);
+  return "model frame " + p.dump();
 }
 
-struct Box {
-  double z0 = std::numeric_limits<double>::infinity(), z1 = -z0, x0 = z0, x1 = -z0;
-  void Add(double x, double z) {
-    x0 = std::min(x0, x), x1 = std::max(x1, x), z0 = std::min(z0, z), z1 = std::max(z1, z);
-  }
-};
+std::string ClassName(const std::string& cls) {
+  return cls == "retract_refused" ? "retract refused" : cls;
+}
 
-// The XZ plane: Z to the right, X (the tool's radius) up, one scale for both.
-std::string Plane(const std::vector<const CaseResult*>& cases, const Reference* ref) {
-  Box box;
-  if (ref)
-    for (const auto& [x, z] : ref->path) box.Add(x, z);
-  for (const CaseResult* r : cases)
-    for (const auto& p : (*r)["path"]) box.Add(p[0].get<double>(), p[1].get<double>());
-  if (!std::isfinite(box.x0)) return "<p>(no paths)</p>\n";
-  const double w = 640, h = 420, pad = 20;
-  const double span_z = std::max(box.z1 - box.z0, 1.0), span_x = std::max(box.x1 - box.x0, 1.0);
-  const double s = std::min((w - 2 * pad) / span_z, (h - 2 * pad) / span_x);
-  auto px = [&](double z) { return Num(pad + (z - box.z0) * s, "%.1f"); };
-  auto py = [&](double x) { return Num(h - pad - (x - box.x0) * s, "%.1f"); };
-  std::ostringstream o;
-  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << w << "\" height=\"" << h
-    << "\" style=\"border:1px solid #ccc;background:#fff\">\n";
-  o << "<text x=\"" << w - 60 << "\" y=\"" << h - 5 << "\" font-size=\"11\">Z &#8594;</text>"
-    << "<text x=\"4\" y=\"14\" font-size=\"11\">X &#8593;</text>\n";
-  if (ref && !ref->path.empty()) {
-    o << "<polyline fill=\"none\" stroke=\"#888\" stroke-width=\"1.5\" points=\"";
-    for (const auto& [x, z] : ref->path) o << px(z) << "," << py(x) << " ";
-    o << "\"><title>the program's tool path (reference run)</title></polyline>\n";
+void Conclude(std::ostringstream& o, const std::vector<CaseResult>& cases, const Reference* ref) {
+  o << "<h2>Conclusions</h2>\n";
+  for (const ModeConclusion& m : Conclusions(cases, ref)) {
+    o << "<h3>" << Esc(m.mode) << "</h3>\n<p class=\"headline\"><b>" << Esc(m.headline)
+      << "</b></p>\n<ul>\n";
+    for (const std::string& s : m.sentences) o << "<li>" << Esc(s) << "</li>\n";
+    o << "</ul>\n";
   }
-  // Clear first, so that collisions and errors are drawn on top.
-  for (const char* pass : {"clear", "error", "collision"})
-    for (const CaseResult* r : cases) {
-      const std::string v = Str(*r, "verdict");
-      const std::string kind = v == "clear" || v == "collision" ? v : "error";
-      if (kind != pass) continue;
-      const auto& path = (*r)["path"];
-      if (path.empty()) continue;
-      o << "<a href=\"" << Esc(ReplayHref(Str(*r, "case"))) << "\">";
-      o << "<polyline fill=\"none\" stroke-opacity=\"0.6\" stroke=\"" << Colour(v)
-        << "\" stroke-width=\"1\" points=\"";
-      for (const auto& p : path)
-        o << px(p[1].get<double>()) << "," << py(p[0].get<double>()) << " ";
-      o << "\"><title>" << Esc(Str(*r, "case")) << ": " << Esc(v) << "</title></polyline></a>\n";
-      if (v == "collision") {
-        const auto& last = path.back();
-        o << "<circle r=\"3\" fill=\"#d62828\" cx=\"" << px(last[1].get<double>()) << "\" cy=\""
-          << py(last[0].get<double>()) << "\"><title>" << Esc(Str(*r, "case")) << ": "
-          << Esc((*r)["parts"].dump()) << "</title></circle>\n";
-      }
-    }
-  o << "</svg>\n";
-  return o.str();
 }
 
 }  // namespace
@@ -129,69 +78,114 @@ std::string ReportHtml(const std::string& title, const std::vector<CaseResult>& 
   for (const CaseResult& r : cases) by_sub[Str(r, "subroutine")].push_back(&r);
   std::ostringstream o;
   o << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << Esc(title)
-    << "</title>\n<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}"
-       "td,th{border:1px solid #bbb;padding:3px 8px;text-align:right}td.l,th.l{text-align:left}"
-       ".clear{color:#2a9d3f}.collision{color:#d62828}.error{color:#f08c00}</style></head><body>\n";
-  o << "<h1>" << Esc(title) << "</h1>\n<p>" << cases.size()
-    << " cases. Verdicts: <span class=\"clear\">clear</span> (the REPOS subroutine returned, "
-       "or the operator's manual jogs restored the conditions, PxxS.CREST; every move checked "
-       "clear by PathGuard), <span class=\"collision\">collision</span> (PathGuard found a "
-       "contact on a REPOS move or a manual return jog), <span class=\"error\">error</span> "
-       "(another NC error or a timeout). The rows <i>manual X,Z</i> are the operator jogging "
-       "back in manual mode in that order of axes (repositioning manual 3).</p>\n";
+    << "</title>\n<style>body{font-family:sans-serif;margin:2em;max-width:80em}"
+       "table{border-collapse:collapse}td,th{border:1px solid #bbb;padding:3px 8px;"
+       "text-align:right}td.l,th.l{text-align:left}.clear{color:#2a9d3f}.crash{color:#d62828}"
+       ".graze{color:#7b2cbf}.error{color:#f08c00}.retract_refused{color:#6c757d}"
+       "dt{font-weight:bold}</style></head><body>\n";
+  o << "<h1>" << Esc(title) << "</h1>\n<p>" << cases.size() << " cases.</p>\n";
+  Conclude(o, cases, reference);
+  o << "<h2>How to read this report</h2>\n<dl>"
+       "<dt>Classes</dt><dd><span class=\"clear\">clear</span>: the REPOS subroutine returned "
+       "(or the operator's manual jogs restored the conditions, PxxS.CREST) with every move "
+       "checked clear by PathGuard. <span class=\"crash\">crash</span>: PathGuard found a "
+       "contact on a REPOS move or a manual return jog, farther than "
+    << Num(kGrazeMm, "%.1f")
+    << " mm before the move's end. <span class=\"graze\">graze</span>: the first contact lies "
+       "within "
+    << Num(kGrazeMm, "%.1f")
+    << " mm of the move's end: the parts only meet where the move stops (typically the tool "
+       "set back onto the contour it was cutting). <span class=\"error\">error</span>: another "
+       "NC error or a timeout. <span class=\"retract_refused\">retract refused</span>: PathGuard "
+       "refused the operator's own retract jog, so no return was tried: the operator's problem, "
+       "counted apart and not against the subroutine. The rows <i>manual X,Z</i> are the "
+       "operator jogging back in manual mode in that order of axes (repositioning manual 3)."
+       "</dd><dt>Severity</dt><dd>For a contact: how far the refused move would have gone on "
+       "past its first contact (the axes' distance from the contact position to the move's end, "
+       "mm): the depth the parts would have run into each other along the move. Worst cases are "
+       "sorted by it: crashes deepest first, then grazes, then errors, then the clear cases with "
+       "the smallest clearance.</dd><dt>Clearance</dt><dd>The smallest distance PathGuard found "
+       "between two parts that move against each other (tool, turret and slides against the "
+       "chuck, its jaws, the tailstock and the part as turned) over the REPOS moves it checked "
+       "clear, mm; exact to 10 &#181;m or 10 %, never reported larger than it is. For a contact: "
+       "over the moves before the refused one.</dd><dt>Coordinates</dt><dd>Machine coordinates "
+       "throughout: X and Z are the axes' positions as the NC shows them (mm). Points in space "
+       "(a contact point, the chuck's parts) are given where the tool tip touches them at those "
+       "axis positions";
+  if (reference && reference->has_tip)
+    o << " (the model frame shifted by the tool tip's offset: x &#8722; " << Num(reference->tip_x)
+      << " mm, z &#8722; " << Num(reference->tip_z) << " mm)";
+  o << ".</dd></dl>\n";
   o << "<h2>Summary per REPOS subroutine or manual order</h2>\n<table><tr><th class=\"l\">"
-       "subroutine</th>"
-       "<th class=\"l\">mode</th><th>cases</th><th>clear</th><th>collisions</th><th>errors</th>"
-       "<th>worst clearance, mm</th></tr>\n";
+       "subroutine</th><th class=\"l\">mode</th><th>cases</th><th>clear</th><th>crash</th>"
+       "<th>graze</th><th>errors</th><th>retract refused</th><th>worst clearance, mm</th>"
+       "<th>deepest past contact, mm</th></tr>\n";
   for (const auto& [sub, list] : by_sub) {
     std::map<std::string, std::vector<const CaseResult*>> by_mode;
     for (const CaseResult* r : list) by_mode[Str(*r, "mode")].push_back(r);
     by_mode["all"] = list;
     for (const auto& [mode, ms] : by_mode) {
-      int clear = 0, coll = 0, err = 0;
-      double worst = std::numeric_limits<double>::infinity();
+      ClassCount n;
+      double worst = std::numeric_limits<double>::infinity(), deepest = -1;
       for (const CaseResult* r : ms) {
-        const std::string v = Str(*r, "verdict");
-        clear += v == "clear", coll += v == "collision", err += v != "clear" && v != "collision";
-        if (v == "clear" && (*r)["min_clearance_mm"].is_number())
-          worst = std::min(worst, (*r)["min_clearance_mm"].get<double>());
+        n.Add(*r);
+        const std::string cls = ClassOf(*r);
+        if (cls == "clear" && Field(*r, "min_clearance_mm").is_number())
+          worst = std::min(worst, Field(*r, "min_clearance_mm").get<double>());
+        if ((cls == "crash" || cls == "graze") && Field(*r, "past_contact_mm").is_number())
+          deepest = std::max(deepest, Field(*r, "past_contact_mm").get<double>());
       }
       o << "<tr><td class=\"l\">" << Esc(sub) << "</td><td class=\"l\">" << Esc(mode) << "</td><td>"
-        << ms.size() << "</td><td class=\"clear\">" << clear << "</td><td class=\"collision\">"
-        << coll << "</td><td class=\"error\">" << err << "</td><td>"
-        << (std::isfinite(worst) ? Num(worst) : "&#8211;") << "</td></tr>\n";
+        << n.cases << "</td><td class=\"clear\">" << n.clear << "</td><td class=\"crash\">"
+        << n.crash << "</td><td class=\"graze\">" << n.graze << "</td><td class=\"error\">"
+        << n.error << "</td><td class=\"retract_refused\">" << n.retract_refused << "</td><td>"
+        << (std::isfinite(worst) ? Num(worst) : "&#8211;") << "</td><td>"
+        << (deepest >= 0 ? Num(deepest) : "&#8211;") << "</td></tr>\n";
     }
   }
   o << "</table>\n";
   for (const auto& [sub, list] : by_sub) {
     o << "<h2>" << Esc(sub) << ": approach paths in the XZ plane</h2>\n"
-      << "<p>Grey: the program's tool path (the contour as turned). Each case's REPOS path from "
-         "where the operator left the tool, coloured by verdict; a dot marks a first contact "
-         "(hover for the case).</p>\n"
-      << Plane(list, reference);
+      << "<p>Machine coordinates, mm. Grey: the program's tool path (the contour as turned); "
+         "dashed: the chuck's parts as the envelopes they sweep while the spindle turns (what "
+         "PathGuard checks against). Each case's REPOS path from where the operator left the "
+         "tool, coloured by class; a dot marks where the tool stood at a first contact, a cross "
+         "the contact point (hover for the case, click to watch it).</p>\n"
+      << PlaneSvg(list, reference, [](const std::string& id) { return ReplayHref(id); });
     std::vector<const CaseResult*> worst;
-    for (const CaseResult* r : list)
-      if (Str(*r, "verdict") != "clear") worst.push_back(r);
+    for (const CaseResult* r : list) {
+      const std::string cls = ClassOf(*r);
+      if (cls != "clear" && cls != "retract_refused") worst.push_back(r);
+    }
     std::vector<const CaseResult*> tight;
     for (const CaseResult* r : list)
-      if (Str(*r, "verdict") == "clear" && (*r)["min_clearance_mm"].is_number()) tight.push_back(r);
-    std::stable_sort(tight.begin(), tight.end(), [](const CaseResult* a, const CaseResult* b) {
-      return (*a)["min_clearance_mm"].get<double>() < (*b)["min_clearance_mm"].get<double>();
-    });
+      if (ClassOf(*r) == "clear" && Field(*r, "min_clearance_mm").is_number()) tight.push_back(r);
+    const auto severe = [](const CaseResult* a, const CaseResult* b) { return MoreSevere(*a, *b); };
+    std::stable_sort(worst.begin(), worst.end(), severe);
+    std::stable_sort(tight.begin(), tight.end(), severe);
     if (tight.size() > 5) tight.resize(5);
     if (worst.size() > 20) worst.resize(20);
     worst.insert(worst.end(), tight.begin(), tight.end());
-    o << "<h3>Worst cases</h3>\n<table><tr><th class=\"l\">case</th><th class=\"l\">verdict"
-         "</th><th class=\"l\">first contact</th><th class=\"l\">point, mm</th><th>clearance, mm"
-         "</th><th class=\"l\">error</th><th class=\"l\">picture</th><th class=\"l\">replay"
-         "</th></tr>\n";
+    o << "<h3>Worst cases, most severe first</h3>\n<table><tr><th class=\"l\">case</th>"
+         "<th class=\"l\">class</th><th class=\"l\">first contact</th><th class=\"l\">"
+         "move</th><th class=\"l\">axes at the contact</th><th class=\"l\">contact point</th>"
+         "<th>past contact, mm</th><th>clearance, mm</th><th class=\"l\">error</th>"
+         "<th class=\"l\">picture</th><th class=\"l\">replay</th></tr>\n";
     for (const CaseResult* r : worst) {
-      const std::string v = Str(*r, "verdict");
-      o << "<tr><td class=\"l\">" << Esc(Str(*r, "case")) << "</td><td class=\"l " << Esc(v)
-        << "\">" << Esc(v) << "</td><td class=\"l\">"
-        << ((*r)["parts"].is_array() ? Esc((*r)["parts"].dump()) : "") << "</td><td class=\"l\">"
-        << ((*r)["point"].is_array() ? Esc((*r)["point"].dump()) : "") << "</td><td>"
-        << ((*r)["min_clearance_mm"].is_number() ? Num((*r)["min_clearance_mm"].get<double>()) : "")
+      const std::string cls = ClassOf(*r);
+      o << "<tr><td class=\"l\">" << Esc(Str(*r, "case")) << "</td><td class=\"l " << Esc(cls)
+        << "\">" << Esc(ClassName(cls)) << "</td><td class=\"l\">"
+        << (Field(*r, "parts").is_array() ? Esc(Field(*r, "parts").dump()) : "")
+        << "</td><td class=\"l\">" << Esc(Str(*r, "contact_move")) << "</td><td class=\"l\">"
+        << Esc(ContactAxes(*r)) << "</td><td class=\"l\">" << Esc(ContactPoint(*r, reference))
+        << "</td><td>"
+        << (Field(*r, "past_contact_mm").is_number()
+                ? Num(Field(*r, "past_contact_mm").get<double>())
+                : "")
+        << "</td><td>"
+        << (Field(*r, "min_clearance_mm").is_number()
+                ? Num(Field(*r, "min_clearance_mm").get<double>())
+                : "")
         << "</td><td class=\"l\">" << Esc(Str(*r, "error")) << "</td><td class=\"l\">";
       const auto shot = snapshots.find(Str(*r, "case"));
       if (shot != snapshots.end()) o << "<a href=\"" << Esc(shot->second) << "\">picture</a>";
@@ -201,21 +195,27 @@ std::string ReportHtml(const std::string& title, const std::vector<CaseResult>& 
     o << "</table>\n";
     // The pictures of this subroutine's worst cases: a collision at its first contact, the
     // tightest clear case at its end.
-    bool any = false;
-    for (const CaseResult* r : list) {
-      const auto shot = snapshots.find(Str(*r, "case"));
-      if (shot == snapshots.end()) continue;
-      if (!any) o << "<h3>Pictures of the worst cases</h3>\n<div>\n";
-      any = true;
-      const std::string v = Str(*r, "verdict");
-      o << "<figure style=\"display:inline-block;margin:4px\"><a href=\"" << Esc(shot->second)
-        << "\"><img src=\"" << Esc(shot->second) << "\" width=\"320\" alt=\""
-        << Esc(Str(*r, "case")) << "\"></a><figcaption class=\"" << Esc(v) << "\">"
-        << Esc(Str(*r, "case")) << ": " << Esc(v)
-        << (v == "collision" ? " (first contact)" : " (end of the return)")
+    std::vector<const CaseResult*> pictured;
+    for (const CaseResult* r : list)
+      if (snapshots.count(Str(*r, "case"))) pictured.push_back(r);
+    std::stable_sort(pictured.begin(), pictured.end(), severe);
+    if (!pictured.empty())
+      o << "<h3>Pictures of the worst cases</h3>\n<p>A collision is pictured with the axes "
+           "at its first contact: the two parts that meet are drawn magenta, a cyan cross marks "
+           "the contact point, the workpiece as turned.</p>\n<div>\n";
+    for (const CaseResult* r : pictured) {
+      const std::string& file = snapshots.at(Str(*r, "case"));
+      const std::string cls = ClassOf(*r);
+      const bool contact = cls == "crash" || cls == "graze";
+      o << "<figure style=\"display:inline-block;margin:4px\"><a href=\"" << Esc(file)
+        << "\"><img src=\"" << Esc(file) << "\" width=\"320\" alt=\"" << Esc(Str(*r, "case"))
+        << "\"></a><figcaption class=\"" << Esc(cls) << "\">" << Esc(Str(*r, "case")) << ": "
+        << Esc(ClassName(cls))
+        << (contact ? " (first contact: " + Esc(Field(*r, "parts").dump()) + ")"
+                    : " (end of the return)")
         << "</figcaption></figure>\n";
     }
-    if (any) o << "</div>\n";
+    if (!pictured.empty()) o << "</div>\n";
   }
   o << "</body></html>\n";
   return o.str();

@@ -34,13 +34,16 @@ size_t Count(const std::string& text, const std::string& what) {
   return n;
 }
 
-// The summary row of `sub` and `mode`: subroutine, mode, cases, clear, collisions, errors, worst.
+// The summary row of `sub` and `mode`: subroutine, mode, cases, clear, crashes (collisions
+// without a class), grazes 0, errors, retract refused 0, worst clearance, deepest past contact.
 std::string Row(const std::string& sub, const std::string& mode, int cases, int clear, int coll,
-                int err, const std::string& worst) {
+                int err, const std::string& worst, const std::string& deepest = "&#8211;") {
   return "<tr><td class=\"l\">" + sub + "</td><td class=\"l\">" + mode + "</td><td>" +
          std::to_string(cases) + "</td><td class=\"clear\">" + std::to_string(clear) +
-         "</td><td class=\"collision\">" + std::to_string(coll) + "</td><td class=\"error\">" +
-         std::to_string(err) + "</td><td>" + worst + "</td></tr>";
+         "</td><td class=\"crash\">" + std::to_string(coll) +
+         "</td><td class=\"graze\">0</td><td class=\"error\">" + std::to_string(err) +
+         "</td><td class=\"retract_refused\">0</td><td>" + worst + "</td><td>" + deepest +
+         "</td></tr>";
 }
 
 TEST(study_report, SummaryPerSubroutineAndMode) {
@@ -59,7 +62,7 @@ TEST(study_report, SummaryPerSubroutineAndMode) {
   // No clear case: no worst clearance.
   EXPECT_NE(html.find(Row("nc/98.mtc", "all", 1, 0, 1, 0, "&#8211;")), std::string::npos);
   // One plane per subroutine, a contact dot per collision.
-  EXPECT_EQ(Count(html, "<svg"), 2u);
+  EXPECT_EQ(Count(html, "<svg xmlns"), 2u);
   EXPECT_EQ(Count(html, "<circle"), 2u);
 }
 
@@ -70,11 +73,11 @@ TEST(study_report, WorstCasesAreTheFailuresThenTheTightestClearOnes) {
   for (int i = 0; i < 8; ++i)
     cases.push_back(Case("k" + std::to_string(i), "s", "m", "clear", 10.0 - i));  // k7 tightest
   const std::string html = ReportHtml("t", cases, nullptr);
-  const std::string worst = html.substr(html.find("<h3>Worst cases</h3>"));
+  const std::string worst = html.substr(html.find("<h3>Worst cases"));
   // At most 20 failures, then the 5 tightest clear cases, tightest first.
-  EXPECT_EQ(Count(worst, "<td class=\"l collision\">"), 20u);
+  EXPECT_EQ(Count(worst, "<td class=\"l crash\">"), 20u);
   EXPECT_EQ(Count(worst, "<td class=\"l clear\">"), 5u);
-  EXPECT_NE(worst.find("c119"), std::string::npos);
+  EXPECT_NE(worst.find("c119"), std::string::npos);  // equally severe: by case id
   EXPECT_EQ(worst.find("c120"), std::string::npos);
   EXPECT_LT(worst.find(">k7<"), worst.find(">k6<"));
   EXPECT_NE(worst.find(">k3<"), std::string::npos);
@@ -83,8 +86,8 @@ TEST(study_report, WorstCasesAreTheFailuresThenTheTightestClearOnes) {
 
 TEST(study_report, TextsFromTheCasesAreNotReadAsHtml) {
   // cases.jsonl is a file anyone can edit or tear: what it says is shown, never interpreted.
-  CaseResult hostile = Case("<b>x</b>", "<script>alert(1)</script>", "\"mode\"",
-                            "bad\"><script>alert(2)</script>");
+  CaseResult hostile =
+      Case("<b>x</b>", "<script>alert(1)</script>", "\"mode\"", "bad\"><script>alert(2)</script>");
   hostile["error"] = "<img src=x onerror=alert(3)>";
   const std::string html =
       ReportHtml("<title>&", {hostile}, nullptr, {{"<b>x</b>", "shots/\"a\".png"}});
