@@ -1,7 +1,8 @@
 #!/bin/bash
 # vmt study as a user meets it: a tiny study, a rerun that skips every case, a case saved and
 # watched from the report (vmt study replay, vmt view of the study folder), shards (and worker
-# processes, and GNU parallel if installed) that merge into the unsharded result.
+# processes, and GNU parallel if installed) that merge into the unsharded result, two versions
+# of a REPOS subroutine compared (vmt study compare).
 # Usage: study_test.sh VMT SOURCE_DIR WORK_DIR
 set -euo pipefail
 vmt=$1 src=$2 work=$3
@@ -101,6 +102,32 @@ if command -v parallel > /dev/null; then
 else
   echo "GNU parallel not installed: its part skipped"
 fi
+
+# Two versions of the REPOS subroutine compared case by case (vmt study compare): program 99
+# returning X first, then the same file with Z first; the case over the chuck stops crashing.
+mkdir -p v/nc
+sed "s|\.\./\.\./\.\./|$src/|; s|subroutines: \[.*\]|subroutines: [nc/99.mtc]|" "$scene" > v/study.yaml
+cp "$src/scenes/nc/99.mtc" v/nc/99.mtc
+"$vmt" study repos v/study.yaml --out v1 --snapshots 0 > /dev/null
+cp "$src/scenes/nc/99_safe.mtc" v/nc/99.mtc
+"$vmt" study repos v/study.yaml --out v2 --snapshots 0 > /dev/null
+"$vmt" study compare v1 v2 --html cmp.html > cmp.txt || fail "vmt study compare: exit $?"
+cat cmp.txt
+grep -q "cases in both, 0 only in A, 0 only in B" cmp.txt || fail "compare: the cases do not match"
+grep -q "crash -> clear: 1" cmp.txt || fail "compare: the crash over the chuck did not go"
+grep -q "over the chuck/repositioning: crash -> clear" cmp.txt || fail "compare: the changed case"
+grep -q "<b>clear</b>" cmp.html || fail "compare: no page"
+"$vmt" study compare whole whole --html same.html | grep -q "^0 changed class" ||
+  fail "a study compared with itself changed"
+# The report of the first concludes, the crash named with its parts and program region.
+grep -q "<h2>Conclusions</h2>" v1/report.html || fail "report.html: no conclusions"
+grep -q "nc/99.mtc fails in 1 of" v1/report.html || fail "report.html: no sentence for program 99"
+grep -q "is clear in all" v2/report.html || fail "report.html: program 99 Z first not clear"
+grep -q '"contact_class":"crash"' v1/cases.jsonl || fail "cases.jsonl: no contact class"
+set +e
+"$vmt" study compare v1 no-such-folder 2> err.txt; rc=$?
+set -e
+[ $rc -eq 2 ] && grep -q "not a study folder" err.txt || fail "compare with no study: exit $rc"
 
 # Bad input: exit 2 with a message.
 set +e
