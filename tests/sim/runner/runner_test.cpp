@@ -138,8 +138,8 @@ TEST(SnapshotTest, DefaultSceneMatchesGolden) {
     const std::string golden = SourcePath(std::string("tests/golden/default/") + name);
     const render::Image expected = render::ReadPng(golden);
     const render::Image actual = render::ReadPng(dir + "/" + name);
-    const render::CompareResult c = render::CompareImages(
-        expected, actual, {.channel_tolerance = 8, .allowed_fraction = 0.002, .mask = {}});
+    // The project's tolerance (render::kGoldenChannelTolerance, kGoldenAllowedFraction).
+    const render::CompareResult c = render::CompareImages(expected, actual);
     if (!c.equal && !c.size_mismatch) render::WritePng(dir + "/diff_" + std::string(name), c.diff);
     EXPECT_TRUE(c.equal) << name << ": " << c.differing_pixels << " pixels differ, max delta "
                          << c.max_channel_delta << "; see " << dir;
