@@ -33,7 +33,7 @@ struct StudySummary {
   double cases_cpu_s = 0;       ///< CPU time (user + system) of the worker processes
   double snapshots_wall_s = 0;  ///< of wall_s, the worst cases' pictures
   size_t snapshots = 0;
-  std::string text;  ///< per subroutine: cases, collisions, errors
+  std::string text;  ///< per subroutine: cases, clear, crashes, grazes, errors, retracts refused
 };
 
 /// Throws ModelError (scene or plan) or std::runtime_error.

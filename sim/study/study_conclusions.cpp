@@ -146,6 +146,8 @@ const nlohmann::ordered_json& Field(const CaseResult& r, const char* key) {
 std::string ClassOf(const CaseResult& r) {
   const std::string v = Str(r, "verdict");
   if (v == "clear" || v == "retract_refused") return v;
+  // A study made before the verdict existed called a refused retract an error.
+  if (v == "error" && Field(r, "retract_contact").is_array()) return "retract_refused";
   if (v == "collision") return Str(r, "contact_class") == "graze" ? "graze" : "crash";
   return "error";
 }

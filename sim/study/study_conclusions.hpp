@@ -17,8 +17,9 @@ namespace vmt::sim::study {
 const nlohmann::ordered_json& Field(const CaseResult& r, const char* key);
 
 /// clear | crash | graze | error | retract_refused. A collision is a graze when its first
-/// contact lies within kGrazeMm of the refused move's end, else a crash; results written
-/// before the classes existed count every collision as a crash.
+/// contact lies within kGrazeMm of the refused move's end, else a crash. Results written
+/// before the classes existed count every collision as a crash, and an error after a retract
+/// PathGuard refused as retract_refused.
 std::string ClassOf(const CaseResult& r);
 
 /// Case counts by class.

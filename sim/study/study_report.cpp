@@ -118,8 +118,10 @@ std::string ReportHtml(const std::string& title, const std::vector<CaseResult>& 
   o << ".</dd></dl>\n";
   o << "<h2>Summary per REPOS subroutine or manual order</h2>\n<table><tr><th class=\"l\">"
        "subroutine</th><th class=\"l\">mode</th><th>cases</th><th>clear</th><th>crash</th>"
-       "<th>graze</th><th>errors</th><th>retract refused</th><th>worst clearance, mm</th>"
-       "<th>deepest past contact, mm</th></tr>\n";
+       "<th>graze</th><th>errors</th><th>retract refused</th><th title=\"the smallest clearance "
+       "PathGuard found on the REPOS moves of the clear cases\">worst clearance, mm</th>"
+       "<th title=\"how far a refused move would have gone on past its first contact, the "
+       "largest\">deepest past contact, mm</th></tr>\n";
   for (const auto& [sub, list] : by_sub) {
     std::map<std::string, std::vector<const CaseResult*>> by_mode;
     for (const CaseResult* r : list) by_mode[Str(*r, "mode")].push_back(r);
@@ -169,7 +171,9 @@ std::string ReportHtml(const std::string& title, const std::vector<CaseResult>& 
     o << "<h3>Worst cases, most severe first</h3>\n<table><tr><th class=\"l\">case</th>"
          "<th class=\"l\">class</th><th class=\"l\">first contact</th><th class=\"l\">"
          "move</th><th class=\"l\">axes at the contact</th><th class=\"l\">contact point</th>"
-         "<th>past contact, mm</th><th>clearance, mm</th><th class=\"l\">error</th>"
+         "<th title=\"how far the refused move would have gone on past its first contact\">past "
+         "contact, mm</th><th title=\"the smallest clearance PathGuard found on the REPOS moves "
+         "(before the refused one)\">clearance, mm</th><th class=\"l\">error</th>"
          "<th class=\"l\">picture</th><th class=\"l\">replay</th></tr>\n";
     for (const CaseResult* r : worst) {
       const std::string cls = ClassOf(*r);

@@ -1,8 +1,9 @@
 #pragma once
-// report.html of a study: plain HTML with inline SVG, no scripts. Per REPOS subroutine a
-// summary (cases, clear, collisions, errors, the worst clearance), the XZ plane with the
-// program's tool path (the contour as turned, from the reference run) and every case's approach
-// path coloured by its verdict, and the worst cases.
+// report.html of a study: plain HTML with inline SVG, no scripts. First the conclusions per
+// mode (study_conclusions.hpp), then how to read the report (classes, severity, clearance, the
+// frame), per REPOS subroutine and mode a summary (cases by class, the worst clearance, the
+// deepest contact), per subroutine the XZ plane (study_plane.hpp) and the worst cases by
+// severity with their pictures.
 
 #include <map>
 #include <string>

@@ -64,6 +64,10 @@ TEST(study_conclusions, ClassesFromVerdictAndDepth) {
   CaseResult old = Contact(base, "tool", "jaw1", 0.05);
   old.erase("contact_class");
   EXPECT_EQ(ClassOf(old), "crash");
+  // ... and an error after a retract PathGuard refused: the operator's, as now.
+  CaseResult refused = Case("s", "N0010", "r", "m", "error");
+  refused["retract_contact"] = {"turret_st01_holder", "spindle_jaw3"};
+  EXPECT_EQ(ClassOf(refused), "retract_refused");
 }
 
 TEST(study_conclusions, SeverityOrdersCrashesByDepthThenGrazesErrorsClear) {

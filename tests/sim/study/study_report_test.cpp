@@ -84,6 +84,33 @@ TEST(study_report, WorstCasesAreTheFailuresThenTheTightestClearOnes) {
   EXPECT_EQ(worst.find(">k2<"), std::string::npos);
 }
 
+TEST(study_report, WorstCasesMostSevereFirstRefusedRetractsApart) {
+  std::vector<CaseResult> cases;
+  const auto contact = [](const std::string& id, double past, const char* cls) {
+    CaseResult r = Case(id, "s", "m", "collision");
+    r["past_contact_mm"] = past;
+    r["contact_class"] = cls;
+    r["contact_position"] = {{"X", 30.0}, {"Z", 95.0}};
+    return r;
+  };
+  cases.push_back(contact("a-graze", 0.05, "graze"));
+  cases.push_back(contact("b-shallow", 0.4, "crash"));
+  cases.push_back(Case("c-error", "s", "m", "error"));
+  cases.push_back(contact("d-deep", 25.0, "crash"));
+  cases.push_back(Case("e-refused", "s", "m", "retract_refused"));
+  const std::string html = ReportHtml("t", cases, nullptr);
+  const std::string worst = html.substr(html.find("<h3>Worst cases"));
+  EXPECT_LT(worst.find(">d-deep<"), worst.find(">b-shallow<"));
+  EXPECT_LT(worst.find(">b-shallow<"), worst.find(">a-graze<"));
+  EXPECT_LT(worst.find(">a-graze<"), worst.find(">c-error<"));
+  EXPECT_EQ(worst.find(">e-refused<"), std::string::npos);  // not the subroutine's
+  EXPECT_NE(worst.find("<td>25.000</td>"), std::string::npos);
+  // The summary counts them apart: 2 crashes, 1 graze, 1 error, 1 retract refused.
+  EXPECT_NE(html.find("<td class=\"crash\">2</td><td class=\"graze\">1</td><td class=\"error\">"
+                      "1</td><td class=\"retract_refused\">1</td>"),
+            std::string::npos);
+}
+
 TEST(study_report, TextsFromTheCasesAreNotReadAsHtml) {
   // cases.jsonl is a file anyone can edit or tear: what it says is shown, never interpreted.
   CaseResult hostile =
