@@ -11,7 +11,7 @@ namespace {
 using namespace vmt;
 
 void BM_LatheSnapshot640x480(benchmark::State& state) {
-  const sim::Scene scene = sim::LoadScene(std::string(VMT_SOURCE_DIR) + "/scenes/default.yaml");
+  const sim::Scene scene = sim::LoadScene(std::string(VMT_SOURCE_DIR) + "/scenes/drive-timeline.yaml");
   sim::SceneRenderer renderer(*scene.model, scene.workpiece);
   std::vector<double> q = sim::InitialJointPositions(*scene.model, scene.initial);
   const sim::NamedCamera& camera = *scene.Camera("iso");

@@ -23,9 +23,9 @@ check run_help 0 "--backend" -- "$vmt" run --help
 check snapshot_help 0 "--camera" -- "$vmt" snapshot --help
 check imgdiff_help 0 "--diff" -- "$vmt" imgdiff --help
 check no_subcommand 2 "" -- "$vmt"
-check unknown_option 2 "" -- "$vmt" run "$src/scenes/default.yaml" --bogus
+check unknown_option 2 "" -- "$vmt" run "$src/scenes/drive-timeline.yaml" --bogus
 
-check run_kinematic 0 "10 passed, 0 failed" -- "$vmt" run "$src/scenes/default.yaml" --backend kinematic --out "$out/run"
+check run_kinematic 0 "10 passed, 0 failed" -- "$vmt" run "$src/scenes/drive-timeline.yaml" --backend kinematic --out "$out/run"
 for f in trace.csv events.jsonl summary.json iso_3.2s.png work_3.2s.png; do
   check "run_wrote_$f" 0 "" -- test -s "$out/run/$f"
 done
@@ -46,7 +46,7 @@ printf 'scene: bad\nmodel: %s\nduration: 1\ntimeline:\n  - move: {axis: Z, to: f
 check run_bad_scene 2 "bad.yaml:5:[0-9]+: timeline\[0\]\.move\.to: expected a number" -- "$vmt" run "$out/bad.yaml"
 check run_missing_scene 2 "cannot open file" -- "$vmt" run "$out/nope.yaml"
 # --until cuts the run short: expectations it does not reach count as failed.
-check run_until 1 "0.500 s simulated" -- "$vmt" run "$src/scenes/default.yaml" --backend kinematic --until 0.5 --out "$out/until"
+check run_until 1 "0.500 s simulated" -- "$vmt" run "$src/scenes/drive-timeline.yaml" --backend kinematic --until 0.5 --out "$out/until"
 
 # Block search from the command line (issue 8): --set writes the CNC objects at t = 0. The
 # refused scene's search moved to N0020 (the plunge at Z158): its return from X26 Z180 is clear
@@ -62,15 +62,15 @@ sed 's/mc_cmd_bs_type_w: 4/mc_cmd_bs_type_w: many/' "$src/scenes/block-search-re
   | sed "s#\.\./models#$src/models#; s#nc/stepped_shaft#$src/scenes/nc/stepped_shaft#" >"$out/bad_search.yaml"
 check run_bad_block_search 2 "bad_search.yaml:[0-9]+:[0-9]+: nc\.block_search\.mc_cmd_bs_type_w: 'P00.mc_cmd_bs_type_w' expects a number" -- "$vmt" run "$out/bad_search.yaml"
 
-check snapshot_a 0 "" -- "$vmt" snapshot "$src/scenes/default.yaml" --at 0.5 --camera iso --out "$out/a.png" --width 320 --height 240
-check snapshot_b 0 "" -- "$vmt" snapshot "$src/scenes/default.yaml" --at 0.5 --camera iso --out "$out/b.png" --width 320 --height 240
+check snapshot_a 0 "" -- "$vmt" snapshot "$src/scenes/drive-timeline.yaml" --at 0.5 --camera iso --out "$out/a.png" --width 320 --height 240
+check snapshot_b 0 "" -- "$vmt" snapshot "$src/scenes/drive-timeline.yaml" --at 0.5 --camera iso --out "$out/b.png" --width 320 --height 240
 check snapshot_same_bytes 0 "" -- cmp "$out/a.png" "$out/b.png"
 # llvmpipe reads LP_NUM_THREADS once per process: compare separate processes.
-check snapshot_1_thread 0 "" -- env LP_NUM_THREADS=1 "$vmt" snapshot "$src/scenes/default.yaml" --at 0.5 --camera iso --out "$out/t1.png" --width 320 --height 240
-check snapshot_4_threads 0 "" -- env LP_NUM_THREADS=4 "$vmt" snapshot "$src/scenes/default.yaml" --at 0.5 --camera iso --out "$out/t4.png" --width 320 --height 240
+check snapshot_1_thread 0 "" -- env LP_NUM_THREADS=1 "$vmt" snapshot "$src/scenes/drive-timeline.yaml" --at 0.5 --camera iso --out "$out/t1.png" --width 320 --height 240
+check snapshot_4_threads 0 "" -- env LP_NUM_THREADS=4 "$vmt" snapshot "$src/scenes/drive-timeline.yaml" --at 0.5 --camera iso --out "$out/t4.png" --width 320 --height 240
 check snapshot_threads_same_bytes 0 "" -- cmp "$out/t1.png" "$out/t4.png"
-check snapshot_bad_camera 2 "no camera 'nope'" -- "$vmt" snapshot "$src/scenes/default.yaml" --at 0.5 --camera nope --out "$out/c.png"
-check snapshot_other 0 "" -- "$vmt" snapshot "$src/scenes/default.yaml" --at 1.5 --camera iso --out "$out/c.png" --width 320 --height 240
+check snapshot_bad_camera 2 "no camera 'nope'" -- "$vmt" snapshot "$src/scenes/drive-timeline.yaml" --at 0.5 --camera nope --out "$out/c.png"
+check snapshot_other 0 "" -- "$vmt" snapshot "$src/scenes/drive-timeline.yaml" --at 1.5 --camera iso --out "$out/c.png" --width 320 --height 240
 
 check imgdiff_equal 0 "equal" -- "$vmt" imgdiff "$out/a.png" "$out/b.png"
 check imgdiff_different 1 "different" -- "$vmt" imgdiff "$out/a.png" "$out/c.png" --diff "$out/diff.png"
@@ -80,7 +80,7 @@ check imgdiff_tolerant 0 "equal" -- "$vmt" imgdiff "$out/a.png" "$out/c.png" --t
 check imgdiff_missing 2 "nope.png" -- "$vmt" imgdiff "$out/a.png" "$out/nope.png"
 echo "not a png" >"$out/text.png"
 check imgdiff_not_png 2 "text.png" -- "$vmt" imgdiff "$out/a.png" "$out/text.png"
-check imgdiff_golden 0 "equal" -- "$vmt" imgdiff "$src/tests/golden/default/iso_3.2s.png" "$out/run/iso_3.2s.png" --tolerance 8 --allowed-fraction 0.002
+check imgdiff_golden 0 "equal" -- "$vmt" imgdiff "$src/tests/golden/drive-timeline/iso_3.2s.png" "$out/run/iso_3.2s.png" --tolerance 8 --allowed-fraction 0.002
 
 # vmt golden (and the ctest golden_<scene> tests' use of it): tests/cli/golden_test.sh.
 

@@ -99,9 +99,12 @@ class Checker:
     def help_of(self, words):
         key = tuple(words)
         if key not in self.help:
-            out = subprocess.run([self.vmt, *words, "--help"], capture_output=True, text=True,
-                                 timeout=60)
-            self.help[key] = out.stdout if out.returncode == 0 else None
+            try:
+                out = subprocess.run([self.vmt, *words, "--help"], capture_output=True, text=True,
+                                     timeout=60)
+                self.help[key] = out.stdout if out.returncode == 0 else None
+            except (OSError, subprocess.TimeoutExpired) as e:
+                sys.exit(f"docs: cannot run {self.vmt}: {e}")
         return self.help[key]
 
     def check_links(self, path, text):
@@ -137,8 +140,12 @@ class Checker:
                 if not os.path.exists(os.path.join(self.scratch, a)):
                     self.fail(where, f"file '{a}' does not exist")
         if run and path[0] in RUN_QUICK and "--http" not in args:
-            out = subprocess.run(words, cwd=self.scratch, capture_output=True, text=True,
-                                 timeout=300, env=dict(os.environ, GALLIUM_DRIVER="llvmpipe"))
+            try:
+                out = subprocess.run(words, cwd=self.scratch, capture_output=True, text=True,
+                                     timeout=300, env=dict(os.environ, GALLIUM_DRIVER="llvmpipe"))
+            except (OSError, subprocess.TimeoutExpired) as e:
+                self.fail(where, f"'{' '.join(words)}' did not run: {e}")
+                return
             if out.returncode != 0:
                 tail = (out.stderr or out.stdout).strip().split("\n")[-1:]
                 self.fail(where, f"'{' '.join(words)}' exited {out.returncode}: {tail}")

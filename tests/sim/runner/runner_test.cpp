@@ -23,7 +23,7 @@ using testing::OutputDir;
 using testing::SourcePath;
 
 TEST(RunnerTest, DefaultScenePassesAndWritesItsOutputs) {
-  const Scene scene = LoadScene(SourcePath("scenes/default.yaml"));
+  const Scene scene = LoadScene(SourcePath("scenes/drive-timeline.yaml"));
   RunOptions options;
   options.out_dir = OutputDir("default");
   const RunResult r = RunScene(scene, options);
@@ -38,7 +38,7 @@ TEST(RunnerTest, DefaultScenePassesAndWritesItsOutputs) {
 }
 
 TEST(RunnerTest, BackendsGiveDifferentTracesButTheSameEndState) {
-  const Scene scene = LoadScene(SourcePath("scenes/default.yaml"));
+  const Scene scene = LoadScene(SourcePath("scenes/drive-timeline.yaml"));
   RunOptions physics, kinematic;
   physics.snapshots = kinematic.snapshots = false;
   physics.backend = BackendKind::kPhysics;
@@ -109,7 +109,7 @@ TEST(RunnerTest, ExternalPlcLostDropsItsOutputsAndStopsTheNc) {
 }
 
 TEST(SnapshotTest, SameSnapshotSameBytes) {
-  const Scene scene = LoadScene(SourcePath("scenes/default.yaml"));
+  const Scene scene = LoadScene(SourcePath("scenes/drive-timeline.yaml"));
   const std::string a = OutputDir("snap_a"), b = OutputDir("snap_b");
   RunOptions options;
   options.until_s = 3.2;
@@ -128,14 +128,14 @@ TEST(SnapshotTest, SameSnapshotSameBytes) {
 // The golden picture was rendered on this project's machines (llvmpipe); a small tolerance
 // absorbs rounding differences between CPU instruction sets, not changes of the scene.
 TEST(SnapshotTest, DefaultSceneMatchesGolden) {
-  const Scene scene = LoadScene(SourcePath("scenes/default.yaml"));
+  const Scene scene = LoadScene(SourcePath("scenes/drive-timeline.yaml"));
   const std::string dir = OutputDir("golden");
   RunOptions options;
   options.until_s = 3.2;
   options.out_dir = dir;
   RunScene(scene, options);
   for (const char* name : {"iso_3.2s.png", "work_3.2s.png"}) {
-    const std::string golden = SourcePath(std::string("tests/golden/default/") + name);
+    const std::string golden = SourcePath(std::string("tests/golden/drive-timeline/") + name);
     const render::Image expected = render::ReadPng(golden);
     const render::Image actual = render::ReadPng(dir + "/" + name);
     // The project's tolerance (render::kGoldenChannelTolerance, kGoldenAllowedFraction).
