@@ -19,7 +19,7 @@
 //   seen (the drive samples, it does not interrupt). The enable of this tick's setpoint is valid
 //   from the tick's start, so an edge sampled in the tick that arms is latched.
 // - The positive measured value belongs to the 0-1 edge (the SERCOS names; the manual's "1-0"
-//   sentence contradicts them, docs/design-notes.md).
+//   sentence contradicts them, docs/fast-measurement.md).
 
 #include <array>
 #include <optional>

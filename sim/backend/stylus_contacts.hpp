@@ -2,8 +2,8 @@
 // The machine's measuring styluses (machine.yaml `probe:`) against the scene's workpiece, stepped
 // inside a backend's Step: after the links moved and before the drives sample their probe
 // inputs, so that ProbeWiring knows the exact instant of a contact within the tick being stepped
-// (docs/design-notes.md, "Where the runner steps it"). Stepping it after Step and setting the
-// switch for the next tick would latch one tick's travel late.
+// (it interpolates the drives' positions between the tick's start and end). Stepping it after
+// Step and setting the switch for the next tick would latch one tick's travel late.
 //
 // Shared by both backends: they hand over the joint positions before and after the tick's
 // motion; the stylus' link and the part's link are posed from them (LinkPoses).
