@@ -1,5 +1,6 @@
 #include "sim/study/contact_picture.hpp"
 
+#include <cmath>
 #include <memory>
 #include <set>
 #include <stdexcept>
@@ -33,6 +34,41 @@ void PoseAtContact(const MachineModel& m, const CaseResult& r, std::vector<doubl
   }
 }
 
+// A part that turns with a spindle (a chuck jaw) is checked as the ring it sweeps while the
+// spindle turns, so the contact may lie where the part is not now: the spindle is turned until
+// the part's centre faces the contact point about the spindle's axis.
+void TurnToContact(const MachineModel& m, const std::set<std::string>& met,
+                   const Eigen::Vector3d& point_m, std::vector<double>& q) {
+  const std::vector<Eigen::Isometry3d> X_WLink = LinkPoses(m, q);
+  for (size_t l = 0; l < m.links.size(); ++l) {
+    const int j = m.links[l].parent_joint;
+    if (j < 0 ||
+        (m.joints[j].type != JointType::kRevolute && m.joints[j].type != JointType::kContinuous))
+      continue;
+    for (const Visual& v : m.links[l].visuals) {
+      if (!met.count(v.name) || !v.mesh || v.mesh->positions.size() < 3) continue;
+      Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+      const size_t n = v.mesh->positions.size() / 3;
+      for (size_t i = 0; i < n; ++i)
+        centre += Eigen::Vector3d(v.mesh->positions[3 * i], v.mesh->positions[3 * i + 1],
+                                  v.mesh->positions[3 * i + 2]);
+      centre = X_WLink[l] * v.X_LinkVisual * (centre / static_cast<double>(n));
+      const Joint& joint = m.joints[j];
+      const Eigen::Isometry3d X_WJoint = X_WLink[joint.parent_link] * joint.X_ParentJoint;
+      const Eigen::Vector3d axis = (X_WJoint.linear() * joint.axis).normalized();
+      const Eigen::Vector3d o = X_WJoint.translation();
+      const auto radial = [&](const Eigen::Vector3d& p) {
+        const Eigen::Vector3d d = p - o;
+        return Eigen::Vector3d(d - d.dot(axis) * axis);
+      };
+      const Eigen::Vector3d from = radial(centre), to = radial(point_m);
+      if (from.norm() < 1e-6 || to.norm() < 1e-6) continue;
+      q[j] += std::atan2(axis.dot(from.cross(to)), from.dot(to));
+      return;
+    }
+  }
+}
+
 }  // namespace
 
 render::Image ContactImage(const Scene& scene, const ContactStage& stage, const CaseResult& r,
@@ -48,6 +84,13 @@ render::Image ContactImage(const Scene& scene, const ContactStage& stage, const 
   std::vector<double> q = stage.joints;
   q.resize(m.joints.size(), 0.0);
   PoseAtContact(m, r, q);
+  Eigen::Vector3d point_m = Eigen::Vector3d::Zero();
+  const auto& p = Field(r, "point");
+  const bool marked = p.is_array() && p.size() == 3;
+  if (marked) {
+    point_m = Eigen::Vector3d(p[0].get<double>(), p[1].get<double>(), p[2].get<double>()) / kMmPerM;
+    TurnToContact(m, met, point_m, q);
+  }
   const std::vector<Eigen::Isometry3d> X_WLink = LinkPoses(m, q);
   std::vector<render::DrawItem> items;
   for (size_t l = 0; l < m.links.size(); ++l)
@@ -79,11 +122,7 @@ render::Image ContactImage(const Scene& scene, const ContactStage& stage, const 
   }
 
   // A cross of three bars at the contact point, 40 mm across: half of it may be inside a part.
-  Eigen::Vector3d point_m = Eigen::Vector3d::Zero();
-  const auto& p = Field(r, "point");
-  const bool marked = p.is_array() && p.size() == 3;
   if (marked) {
-    point_m = Eigen::Vector3d(p[0].get<double>(), p[1].get<double>(), p[2].get<double>()) / kMmPerM;
     const double a = 0.02, t = 0.0015;
     for (int axis = 0; axis < 3; ++axis) {
       Eigen::Vector3d half(t, t, t);

@@ -1,9 +1,9 @@
 #pragma once
 // A study case's picture at its first contact: the machine posed where the refused move would
-// first touch (the axes at the contact position), the workpiece as the tools had turned it,
-// the two parts that meet drawn magenta and a cyan cross at the contact point, seen by the
-// scene's camera turned to look at that point. PathGuard refuses a move before it starts, so
-// the case's own pictures would show the parts apart; this one shows where they meet.
+// first touch (the axes at the contact position, a chuck jaw turned to the contact), the workpiece
+// as the tools had turned it, the two parts that meet drawn magenta and a cyan cross at the contact
+// point, seen by the scene's camera turned to look at that point. PathGuard refuses a move before
+// it starts, so the case's own pictures would show the parts apart; this one shows where they meet.
 
 #include <Eigen/Geometry>
 #include <string>
