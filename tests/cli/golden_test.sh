@@ -131,23 +131,24 @@ sed 's/mask: \[\[0, 0, 20, 10\]\]/mask: [[150, 0, 20, 10]]/' "$out/turn.yaml" >"
 check bad_mask 2 "bad_mask.yaml:[0-9]+:[0-9]+: snapshots\[1\]\.mask\[0\]: reaches beyond the 160x120 picture" -- \
   "$vmt" golden check "$out/bad_mask.yaml" --golden "$g"
 
-# As ctest's golden_<scene> tests run it: --no-run on the scene test's folder (here a run of
-# the default scene), baselines in DIR/<scene>/.
-"$vmt" run "$src/scenes/default.yaml" --backend kinematic --out "$out/scenes/default" >"$out/default_run.log" 2>&1
+# As ctest's golden_<scene> tests run it: --no-run on the folder of an earlier vmt run (the
+# scene test's), baselines in DIR/<scene>/.
+"$vmt" run "$out/turn.yaml" --out "$out/scenes/turn" >"$out/turn_run.log" 2>&1
 ctest_check() {  # ctest_check BASELINES FAIL_DIR [RUNS]
-  "$vmt" golden check "$src/scenes/default.yaml" --no-run --golden "$1" --out "${3:-$out/scenes}" --fail-dir "$2"
+  "$vmt" golden check "$out/turn.yaml" --no-run --golden "$1" --out "${3:-$out/scenes}" --fail-dir "$2"
 }
-mkdir -p "$out/same/default" "$out/changed/default" "$out/extra/default"
-cp "$out/scenes/default/iso_3.2s.png" "$out/scenes/default/work_3.2s.png" "$out/same/default/"
-check no_run_same 0 "golden: default: 2 pictures, 0 failed" -- ctest_check "$out/same" "$out/fail_same"
-check no_run_same_leaves_nothing 1 "" -- test -e "$out/fail_same/default"
-cp "$out/scenes/default/iso_3.2s.png" "$out/changed/default/"
-cp "$out/scenes/default/iso_3.2s.png" "$out/changed/default/work_3.2s.png"  # another picture in its place
-check no_run_changed 1 "FAIL default/work_3.2s.png: different: [0-9]+ pixels" -- ctest_check "$out/changed" "$out/fail"
-check no_run_changed_page 0 'href="http://127.0.0.1:8080/\?t=3.2' -- cat "$out/fail/default/work_3.2s/index.html"
-check no_run_changed_iso_passed 1 "" -- test -e "$out/fail/default/iso_3.2s"
-cp "$out/same/default/"*.png "$out/extra/default/" && cp "$r/turn/z-1.png" "$out/extra/default/iso_3.2s.png"
-check no_run_size 1 "FAIL default/iso_3.2s.png: different sizes" -- ctest_check "$out/extra" "$out/fail_size"
+mkdir -p "$out/same/turn" "$out/changed/turn" "$out/extra/turn"
+cp "$out/scenes/turn/"*.png "$out/same/turn/" && rm "$out/same/turn/z-sheet.png"
+check no_run_same 0 "golden: turn: 6 pictures, 0 failed" -- ctest_check "$out/same" "$out/fail_same"
+check no_run_same_leaves_nothing 1 "" -- test -e "$out/fail_same/turn"
+cp "$out/same/turn/"*.png "$out/changed/turn/"
+cp "$out/scenes/turn/z-5.png" "$out/changed/turn/iso_0.5s.png"  # another picture in its place
+check no_run_changed 1 "FAIL turn/iso_0.5s.png: different: [0-9]+ pixels" -- ctest_check "$out/changed" "$out/fail"
+check no_run_changed_page 0 'href="http://127.0.0.1:8080/\?t=0.5' -- cat "$out/fail/turn/iso_0.5s/index.html"
+check no_run_changed_others_passed 1 "" -- test -e "$out/fail/turn/z-1"
+cp "$out/same/turn/"*.png "$out/extra/turn/"
+"$vmt" snapshot "$out/turn.yaml" --at 0.5 --camera iso --width 80 --height 60 --out "$out/extra/turn/iso_0.5s.png" >/dev/null
+check no_run_size 1 "FAIL turn/iso_0.5s.png: different sizes: 80x60 vs 160x120" -- ctest_check "$out/extra" "$out/fail_size"
 check no_run_no_run 1 "events.jsonl is missing" -- ctest_check "$out/same" "$out/fail_no_run" "$out/nothing"
 
 echo "golden: $passes passed, $fails failed"
