@@ -264,8 +264,22 @@ int Golden(const GoldenOptions& o) {
     }
   }
   std::vector<GoldenScene> results;
+  bool bad_input = false;
   for (const std::string& scene : o.scenes) {
-    results.push_back(GoldenOfScene(scene, o));
+    // A scene that does not load is bad input (exit 2) but no reason to leave the others
+    // unchecked or CI without its report: it is a failed run in the results.
+    try {
+      results.push_back(GoldenOfScene(scene, o));
+    } catch (const std::exception& e) {
+      std::fflush(stdout);
+      std::fprintf(stderr, "vmt: error: %s\n", e.what());
+      bad_input = true;
+      GoldenScene g;
+      g.name = fs::path(scene).stem().string();
+      g.out_dir = o.out_dir + "/" + g.name;
+      g.run_failures.push_back(e.what());
+      results.push_back(std::move(g));
+    }
     std::fflush(stdout);
   }
   if (!o.junit.empty()) WriteJUnit(o.junit, results);
@@ -274,7 +288,7 @@ int Golden(const GoldenOptions& o) {
       std::count_if(results.begin(), results.end(), [](const GoldenScene& s) { return !s.ok(); });
   if (results.size() > 1)
     std::printf("golden: %zu scenes, %zu failed\n", results.size(), size_t(failed));
-  return failed ? 1 : 0;
+  return bad_input ? 2 : failed ? 1 : 0;
 }
 
 CLI::App* AddGoldenSubcommand(CLI::App& golden, const char* name, const char* help,

@@ -127,6 +127,10 @@ check same_name_twice 2 "a second scene named 'turn'" -- "$vmt" golden check "$o
 mkdir -p "$r/golden-failures/turn/mine" && echo keep >"$r/golden-failures/turn/mine/notes.txt"
 check fail_dir_keeps_others 0 "" -- sh -c "\"$vmt\" golden check \"$out/turn.yaml\" --golden \"$g\" --out \"$r\" >/dev/null && test -s \"$r/golden-failures/turn/mine/notes.txt\""
 check bad_scene 2 "nope.yaml" -- "$vmt" golden check "$out/nope.yaml" --golden "$g"
+# ... and the other scenes are still checked and reported.
+check bad_scene_others 2 "golden: turn: 6 pictures, 0 failed" -- \
+  "$vmt" golden check "$out/nope.yaml" "$out/turn.yaml" --golden "$g" --out "$r" --junit "$out/bad.xml"
+check bad_scene_junit 0 '<testsuite name="nope" tests="1" failures="1"' -- cat "$out/bad.xml"
 sed 's/mask: \[\[0, 0, 20, 10\]\]/mask: [[150, 0, 20, 10]]/' "$out/turn.yaml" >"$out/bad_mask.yaml"
 check bad_mask 2 "bad_mask.yaml:[0-9]+:[0-9]+: snapshots\[1\]\.mask\[0\]: reaches beyond the 160x120 picture" -- \
   "$vmt" golden check "$out/bad_mask.yaml" --golden "$g"
