@@ -19,6 +19,7 @@
 #include "control/nc/parser.hpp"
 #include "render/image.hpp"
 #include "render/image_compare.hpp"
+#include "sim/cli/command_help.hpp"
 #include "sim/cli/golden.hpp"
 #include "sim/cli/serve.hpp"
 #include "sim/cli/view.hpp"
@@ -518,7 +519,19 @@ int main(int argc, char** argv) {
   for (Command& c : AddStudy(app)) commands.push_back(std::move(c));
   commands.push_back(AddImgdiff(app));
   for (auto& [sub, action] : sim::AddGoldenCommands(app)) commands.push_back({sub, action});
+  sim::AddExamples(app);
 
+  const sim::CommandWords words =
+      sim::ReadCommandWords(app, std::vector<std::string>(argv + 1, argv + argc));
+  if (!words.unknown.empty()) {
+    std::string path = "vmt";
+    for (const std::string& w : words.path) path += " " + w;
+    std::fprintf(stderr, "%s: error: unknown command '%s'", path.c_str(), words.unknown.c_str());
+    if (!words.suggestion.empty())
+      std::fprintf(stderr, "; did you mean '%s'?", words.suggestion.c_str());
+    std::fprintf(stderr, "\nRun %s --help for the commands.\n", path.c_str());
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -23,6 +23,12 @@ check run_help 0 "--backend" -- "$vmt" run --help
 check snapshot_help 0 "--camera" -- "$vmt" snapshot --help
 check imgdiff_help 0 "--diff" -- "$vmt" imgdiff --help
 check no_subcommand 2 "" -- "$vmt"
+check help_example 0 "Example:" -- "$vmt" study repos --help
+check typo_run 2 "unknown command 'rn'; did you mean 'run'" -- "$vmt" rn
+check typo_signals 2 "did you mean 'signals'" -- "$vmt" sigs
+check typo_study 2 "vmt study: error: unknown command 'rpos'; did you mean 'repos'" -- "$vmt" study rpos
+check typo_golden 2 "did you mean 'check'" -- "$vmt" golden chek
+check not_a_command 2 "unknown command 'scene.yaml'" -- "$vmt" scene.yaml
 check unknown_option 2 "" -- "$vmt" run "$src/scenes/drive-timeline.yaml" --bogus
 
 check run_kinematic 0 "10 passed, 0 failed" -- "$vmt" run "$src/scenes/drive-timeline.yaml" --backend kinematic --out "$out/run"
