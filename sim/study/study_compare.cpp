@@ -150,7 +150,10 @@ std::string CompareText(const Comparison& c, const std::vector<CaseResult>& a,
     o << "  " << key.first << ", " << key.second << "\n    A " << Counts(t.first) << "\n    B "
       << Counts(t.second) << "\n";
   }
-  if (!c.changes.empty()) o << "changes (the first 20 of " << c.changes.size() << "):\n";
+  if (c.changes.size() > 20)
+    o << "changes (the first 20 of " << c.changes.size() << "; all on the page):\n";
+  else if (!c.changes.empty())
+    o << "changes:\n";
   for (size_t i = 0; i < c.changes.size() && i < 20; ++i)
     o << "  " << c.changes[i].identity << ": " << What(c.changes[i], c.threshold_mm) << "\n";
   return o.str();

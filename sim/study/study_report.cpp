@@ -55,6 +55,15 @@ std::string ContactPoint(const CaseResult& r, const Reference* ref) {
   return "model frame " + p.dump();
 }
 
+// The NC's message of a case. A contact's is said by the columns before it (PathGuard's text
+// gives the point in the model frame): its number only.
+std::string Message(const CaseResult& r) {
+  const std::string cls = ClassOf(r);
+  if ((cls == "crash" || cls == "graze") && Field(r, "error_number").is_number())
+    return "NC error " + std::to_string(Field(r, "error_number").get<int>());
+  return Str(r, "error");
+}
+
 std::string ClassName(const std::string& cls) {
   return cls == "retract_refused" ? "retract refused" : cls;
 }
@@ -173,7 +182,7 @@ std::string ReportHtml(const std::string& title, const std::vector<CaseResult>& 
          "move</th><th class=\"l\">axes at the contact</th><th class=\"l\">contact point</th>"
          "<th title=\"how far the refused move would have gone on past its first contact\">past "
          "contact, mm</th><th title=\"the smallest clearance PathGuard found on the REPOS moves "
-         "(before the refused one)\">clearance, mm</th><th class=\"l\">error</th>"
+         "(before the refused one)\">clearance, mm</th><th class=\"l\">NC message</th>"
          "<th class=\"l\">picture</th><th class=\"l\">replay</th></tr>\n";
     for (const CaseResult* r : worst) {
       const std::string cls = ClassOf(*r);
@@ -190,7 +199,7 @@ std::string ReportHtml(const std::string& title, const std::vector<CaseResult>& 
         << (Field(*r, "min_clearance_mm").is_number()
                 ? Num(Field(*r, "min_clearance_mm").get<double>())
                 : "")
-        << "</td><td class=\"l\">" << Esc(Str(*r, "error")) << "</td><td class=\"l\">";
+        << "</td><td class=\"l\">" << Esc(Message(*r)) << "</td><td class=\"l\">";
       const auto shot = snapshots.find(Str(*r, "case"));
       if (shot != snapshots.end()) o << "<a href=\"" << Esc(shot->second) << "\">picture</a>";
       o << "</td><td class=\"l\"><a class=\"replay\" href=\"" << Esc(ReplayHref(Str(*r, "case")))
