@@ -86,7 +86,8 @@ render::Image ContactImage(const Scene& scene, const ContactStage& stage, const 
   PoseAtContact(m, r, q);
   Eigen::Vector3d point_m = Eigen::Vector3d::Zero();
   const auto& p = Field(r, "point");
-  const bool marked = p.is_array() && p.size() == 3;
+  const bool marked =
+      p.is_array() && p.size() == 3 && p[0].is_number() && p[1].is_number() && p[2].is_number();
   if (marked) {
     point_m = Eigen::Vector3d(p[0].get<double>(), p[1].get<double>(), p[2].get<double>()) / kMmPerM;
     TurnToContact(m, met, point_m, q);

@@ -178,7 +178,8 @@ std::string ContactAxes(const CaseResult& r) {
   // The record names the axes that moved; the path's last corner is X and Z at the contact.
   std::map<std::string, double> axes;
   const auto& path = Field(r, "path");
-  if (path.is_array() && !path.empty() && path.back().is_array() && path.back().size() == 2)
+  if (path.is_array() && !path.empty() && path.back().is_array() && path.back().size() == 2 &&
+      path.back()[0].is_number() && path.back()[1].is_number())
     axes["X"] = path.back()[0].get<double>(), axes["Z"] = path.back()[1].get<double>();
   for (const auto& [axis, v] : at.items())
     if (v.is_number()) axes[axis] = v.get<double>();

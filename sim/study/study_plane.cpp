@@ -28,6 +28,10 @@ struct Box {
   }
 };
 
+bool IsPoint(const nlohmann::ordered_json& p) {
+  return p.is_array() && p.size() == 3 && p[0].is_number() && p[1].is_number() && p[2].is_number();
+}
+
 }  // namespace
 
 std::string Esc(const std::string& s) {
@@ -70,7 +74,7 @@ std::string PlaneSvg(const std::vector<const CaseResult*>& cases, const Referenc
     for (const auto& [x, z] : ref->path) box.Add(x, z);
   for (const CaseResult* r : cases) {
     for (const auto& p : Field(*r, "path")) box.Add(p[0].get<double>(), p[1].get<double>());
-    if (ref && ref->has_tip && Field(*r, "point").is_array() && Field(*r, "point").size() == 3) {
+    if (ref && ref->has_tip && IsPoint(Field(*r, "point"))) {
       const auto& p = Field(*r, "point");
       box.Add(std::hypot(p[0].get<double>(), p[1].get<double>()) - ref->tip_x,
               p[2].get<double>() - ref->tip_z);
@@ -144,7 +148,7 @@ std::string PlaneSvg(const std::vector<const CaseResult*>& cases, const Referenc
         << ", the axes at the first contact " << Esc(ContactAxes(*r)) << ", " << Esc(parts)
         << "</title></circle>\n";
       // The contact point itself, where the tool tip would touch it.
-      if (ref && ref->has_tip && Field(*r, "point").is_array() && Field(*r, "point").size() == 3) {
+      if (ref && ref->has_tip && IsPoint(Field(*r, "point"))) {
         const auto& p = Field(*r, "point");
         const double cx = std::hypot(p[0].get<double>(), p[1].get<double>()) - ref->tip_x;
         const double cz = p[2].get<double>() - ref->tip_z;

@@ -48,7 +48,8 @@ std::string ReplayHref(const std::string& case_id) {
 // model frame, said so.
 std::string ContactPoint(const CaseResult& r, const Reference* ref) {
   const auto& p = Field(r, "point");
-  if (!p.is_array() || p.size() != 3) return "";
+  if (!p.is_array() || p.size() != 3 || !p[0].is_number() || !p[1].is_number() || !p[2].is_number())
+    return "";
   if (ref && ref->has_tip)
     return "X" + Num(std::hypot(p[0].get<double>(), p[1].get<double>()) - ref->tip_x) + " Z" +
            Num(p[2].get<double>() - ref->tip_z);

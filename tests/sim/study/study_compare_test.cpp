@@ -83,6 +83,19 @@ TEST(study_compare, IdenticalStudiesHaveNoChanges) {
   EXPECT_THAT(CompareHtml(c, a, a), HasSubstr("None: every case has the same class"));
 }
 
+TEST(study_compare, TextsFromTheCasesAreNotReadAsHtml) {
+  CaseResult a = Case("N0010", "clear");
+  a["subroutine"] = "<script>alert(1)</script>";
+  CaseResult b = a;
+  b["verdict"] = "collision";
+  b["parts"] = {"<b>tool</b>", "jaw"};
+  b["point"] = {"x", 1, 2};  // a damaged line: shown, never trusted
+  const std::vector<CaseResult> as = {a}, bs = {b};
+  const std::string html = CompareHtml(CompareCases(as, bs, 0.1), as, bs);
+  EXPECT_EQ(html.find("<script>"), std::string::npos) << html;
+  EXPECT_EQ(html.find("<b>tool"), std::string::npos);
+}
+
 TEST(study_compare, FoldersReadAndPageWritten) {
   const std::string root = std::string(VMT_BINARY_DIR) + "/test_output/study/compare";
   std::filesystem::remove_all(root);
