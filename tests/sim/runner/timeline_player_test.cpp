@@ -152,5 +152,39 @@ TEST(TimelinePlayerTest, ItLeavesTheDrivesAChannelWritesAlone) {
   EXPECT_EQ(p.mdt.setpoints[x].value, 42);
 }
 
+TEST(TimelinePlayerTest, AServoOnAnEncoderBeyondAReleasedClutchIsInFollowUp) {
+  // lathe-c1's C reads the spindle's encoder through clutch K: released, its controller enable
+  // is off and its command follows the encoder; engaged, it holds where it stands.
+  Player p("  - wait: 1\n  - move: {axis: C, to: 90, feed: 3600}\n");
+  const int c = p.Drive("C"), z = p.Drive("Z");
+  ASSERT_GE(c, 0);
+  p.at.feedback[c].position = 123.4;  // the spindle turned C's encoder
+  p.Tick();
+  EXPECT_EQ(p.mdt.setpoints[c].mode, control::DriveMode::kOff);
+  EXPECT_EQ(p.mdt.setpoints[c].value, 123.4);
+  EXPECT_EQ(p.mdt.setpoints[z].mode, control::DriveMode::kPosition);  // no clutch: held
+  p.clutches[0] = ClutchState::kEngaging;
+  p.Tick();
+  EXPECT_EQ(p.mdt.setpoints[c].mode, control::DriveMode::kOff);
+  p.clutches[0] = ClutchState::kEngaged;
+  p.Tick();
+  EXPECT_EQ(p.mdt.setpoints[c].mode, control::DriveMode::kPosition);
+  EXPECT_EQ(p.mdt.setpoints[c].value, 123.4);
+  // A step that commands C takes over, whatever the clutch does.
+  p.RunTo(1.01);
+  p.clutches[0] = ClutchState::kReleased;
+  p.RunTo(5);
+  EXPECT_EQ(p.mdt.setpoints[c].mode, control::DriveMode::kPosition);
+  EXPECT_NEAR(p.mdt.setpoints[c].value, 90, 1e-9);
+}
+
+TEST(TimelinePlayerTest, AServoAChannelMayWriteIsLeftToItsHeadstock) {
+  Player p("  - wait: 1\n");
+  const int c = p.Drive("C");
+  p.player.LeaveEnableToChannel(c);
+  p.Tick();
+  EXPECT_EQ(p.mdt.setpoints[c].mode, control::DriveMode::kPosition);  // held until it starts
+}
+
 }  // namespace
 }  // namespace vmt::sim
