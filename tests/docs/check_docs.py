@@ -81,6 +81,21 @@ def commands(body):
             yield offset, code
 
 
+def without_redirections(words):
+    """The command's own words: no `> file`, `2>&1`, `< file` or a trailing `&`."""
+    out, skip = [], False
+    for w in words:
+        if skip:
+            skip = False
+        elif re.fullmatch(r"\d*[<>]{1,2}", w):
+            skip = True
+        elif re.fullmatch(r"\d*[<>]{1,2}&?\S+", w) or w == "&":
+            pass
+        else:
+            out.append(w)
+    return out
+
+
 class Checker:
     def __init__(self, src, vmt):
         self.src = src
@@ -159,6 +174,7 @@ class Checker:
                 continue
             while words and "=" in words[0] and not words[0].startswith("-"):
                 words = words[1:]  # VAR=value prefixes
+            words = without_redirections(words)
             if not words:
                 continue
             if words[0] == "build/sim/vmt":
