@@ -15,6 +15,7 @@ Usage: check_docs.py SOURCE_DIR VMT_BINARY
 import os
 import re
 import shlex
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -203,8 +204,11 @@ def main():
     src, vmt = (os.path.abspath(a) for a in sys.argv[1:])
     checker = Checker(src, vmt)
     files = list(markdown_files(src))
-    for path in files:
-        checker.check_file(path)
+    try:
+        for path in files:
+            checker.check_file(path)
+    finally:
+        shutil.rmtree(checker.scratch, ignore_errors=True)
     for e in checker.errors:
         print(e)
     print(f"docs: {len(files)} files, {len(checker.errors)} problems")
