@@ -1,14 +1,40 @@
 #pragma once
 // A Modbus TCP server that exposes the signal image to an external PLC (DESIGN.md, plc/): the
 // signal table's Modbus addresses (signal_table.hpp) become coils, discrete inputs, holding and
-// input registers. Single-threaded: the caller's loop calls Poll, which never blocks longer than
-// its timeout and never throws because of what a client sends. Optionally a cycle register lets
-// the client step the simulation in lockstep with its own scan.
+// input registers. Single-threaded: the caller's loop calls Poll or ServeUntil, which never block
+// longer than asked and never throw because of what a client sends. Optionally a cycle register
+// lets the client step the simulation in lockstep with its own scan.
 //
 // Function codes: 1, 2, 3, 4 (read), 5, 6, 15, 16 (write), 23 (write then read registers).
-// Anything else is answered with exception 01 ILLEGAL FUNCTION. The unit id is not checked and
-// is echoed. FC23 reads back the registers it has just written as sent (libmodbus copies them),
-// not as the image decoded them: they differ only in a STRING's bytes after its NUL.
+// Anything else is answered with exception 01 ILLEGAL FUNCTION. FC23 reads back the registers
+// it has just written as sent (libmodbus copies them), not as the image decoded them: they
+// differ only in a STRING's bytes after its NUL.
+//
+// Unit id: the server answers Options::unit_id and 0 and 255, the two values a Modbus TCP
+// client uses for "the server at this address" (Modbus Messaging on TCP/IP 4.4.2); any other
+// is answered with exception 0B GATEWAY TARGET DEVICE FAILED TO RESPOND, as a gateway answers
+// for a device it does not have, and nothing is done. The reply echoes the request's unit id.
+//
+// The PLC role (docs/plc.md, "Who may connect and write"): one connection at a time may write. A
+// write (FC 5, 6, 15, 16, 23, the cycle register and the AXD_WR block included) from any other
+// connection is answered with exception 01 ILLEGAL FUNCTION ("not an allowable action for the
+// server in its state") and changes nothing. The first connection whose write succeeds takes
+// the role; it keeps it until its connection closes or, with Options::plc_role_timeout_ms, until
+// it has written nothing for that long (a PLC reconnecting over a half-open connection). Reads
+// are open to every connection. Signals vmt drives (NC->PLC, MACHINE->PLC) lie in the read-only
+// areas (discrete inputs, input registers), so no connection can write them: the constructor
+// refuses a table that puts one in a coil or holding register.
+//
+// Connections: at most Options::max_clients. When that many are open, a new connection closes
+// the one that has been idle longest (the PLC role's holder never), so a PLC can always
+// reconnect; a connection that sends no request for Options::client_timeout_ms is closed.
+// Listening on an address other than loopback needs Options::allow_remote; with
+// Options::allowed_clients, connections from other addresses (loopback excepted) are closed at
+// accept.
+//
+// Work per call: requests are served one per connection in turn, so a client with many
+// requests in flight does not starve the others, and ServeUntil stops serving at its deadline,
+// leaving the rest in the connections' buffers for the next call: the caller's cycle comes first.
 //
 // Requests are checked completely before anything is applied; a request answered with an
 // exception changes nothing:
@@ -55,12 +81,14 @@
 // after every cycle). Read with FC04, also in one request with signals' input registers where
 // the two are adjacent; they read 0 until the first SetStatus.
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "control/gateway/signal_image.hpp"
 #include "control/plc/axd_wr.hpp"
@@ -70,7 +98,20 @@ namespace vmt::control::plc {
 struct ModbusServerOptions {
   std::string host = "127.0.0.1";  ///< numeric address or name to listen on; "" = every address
   int port = 0;                    ///< 0: a free ephemeral port (see ModbusServer::port())
-  int max_clients = 8;             ///< further connections are closed right after accept
+  /// Open connections at most (1..1024): a further one closes the longest idle connection that
+  /// does not hold the PLC role, or is closed itself if there is none.
+  int max_clients = 8;
+  /// The unit id answered besides 0 and 255 (1..247); others get exception 0B.
+  int unit_id = 1;
+  /// A connection that sends no complete request for this long is closed (ms, 0: never).
+  int client_timeout_ms = 30000;
+  /// The PLC role passes to another connection's write once its holder has written nothing for
+  /// this long (ms; 0: only when the holder's connection closes).
+  int plc_role_timeout_ms = 0;
+  /// Listening on an address that is not loopback (127.0.0.0/8, ::1) throws without it.
+  bool allow_remote = false;
+  /// Numeric addresses (IPv4 or IPv6) that may connect; empty: any. Loopback always may.
+  std::vector<std::string> allowed_clients;
   /// Holding register address of the lockstep cycle register; it must not belong to a signal
   /// (one past the table's last holding register is the usual choice).
   std::optional<int> cycle_register;
@@ -93,7 +134,15 @@ struct ModbusServerStats {
   /// Connections closed after being accepted: the peer disconnected, sent a bad MBAP header, or
   /// did not take its replies.
   uint64_t clients_dropped = 0;
-  uint64_t clients_refused = 0;  ///< closed at once because max_clients were connected
+  /// Closed at once: max_clients were connected, all but the PLC's busy or none to close, or
+  /// the address is not among Options::allowed_clients.
+  uint64_t clients_refused = 0;
+  uint64_t clients_not_allowed = 0;  ///< of clients_refused: not an allowed address
+  uint64_t clients_evicted = 0;  ///< closed to make room for a new connection (in clients_dropped)
+  uint64_t clients_timed_out = 0;  ///< closed after client_timeout_ms idle (in clients_dropped)
+  /// Writes refused with exception 01 because another connection holds the PLC role.
+  uint64_t writes_refused = 0;
+  uint64_t wrong_unit = 0;       ///< requests answered with exception 0B (another unit id)
   uint64_t cycles = 0;           ///< cycle register writes that ran a cycle
   uint64_t axd_writes = 0;       ///< AXD_WR block writes that reached the drive
   /// Write requests answered normally (coils, holding registers): the PLC writing its outputs.
@@ -111,16 +160,23 @@ class ModbusServer {
   /// Binds and listens. `image` must outlive the server. Throws std::runtime_error naming
   /// host:port and the system's reason if it cannot listen, std::invalid_argument for options
   /// that make no sense (port or cycle register outside 0..65535, a cycle register a signal
-  /// owns, max_clients < 1, an AXD_WR block without its writer or overlapping a signal or the
-  /// cycle register, a status block of no registers or overlapping a signal).
+  /// owns, max_clients outside 1..1024, an AXD_WR block without its writer or overlapping a signal
+  /// or the cycle register, a status block of no registers or overlapping a signal, a unit id
+  /// outside 1..247, a negative timeout, an allowed client that is not a numeric address, a
+  /// signal vmt drives in a writable area, an address off loopback without allow_remote).
   ModbusServer(gateway::SignalImage& image, Options options);
   ~ModbusServer();
   ModbusServer(ModbusServer&&) noexcept;
   ModbusServer& operator=(ModbusServer&&) noexcept;
 
   /// Waits at most `timeout_ms` (negative: until something happens) for a connection or data,
-  /// accepts new clients, serves every complete request that has arrived, and returns.
+  /// accepts new clients, serves the complete requests that have arrived, and returns.
   void Poll(int timeout_ms);
+
+  /// Accepts and serves until `deadline`, and returns then: a request is never started after
+  /// it, so the caller is late by one request's work at most (vmt serve --realtime: the next
+  /// cycle's time). Requests still waiting are served by the next call.
+  void ServeUntil(std::chrono::steady_clock::time_point deadline);
 
   /// The status block's registers from now on; `words` has Options::status_count of them.
   void SetStatus(std::span<const uint16_t> words);
@@ -134,6 +190,8 @@ class ModbusServer {
   int port() const;  ///< the bound port
   const Stats& stats() const;
   int clients() const;  ///< connected clients
+  /// Listening on an address other than loopback (Options::allow_remote was needed).
+  bool remote() const;
   /// Number of the last completed cycle (the cycle register shows it modulo 65536).
   uint32_t cycle() const;
 

@@ -1,6 +1,6 @@
 // The Modbus TCP server's connections: a client gone mid-request, a partial frame that must not
-// block the simulation's poll, clients at once, the client limit, and dropping every client
-// (vmt serve's client_gone fault).
+// block the simulation's poll, a PLC and a monitor at once, the client limit, and dropping every
+// client (vmt serve's client_gone fault).
 
 #include <gtest/gtest.h>
 #include <modbus.h>
@@ -51,46 +51,74 @@ TEST_F(ModbusServerTest, PartialFrameDoesNotBlockPoll) {
   EXPECT_EQ(raw.Receive(11).size(), 11u);
 }
 
-TEST_F(ModbusServerTest, TwoClientsAtOnce) {
+// The PLC writes and reads back while a monitor reads at the same time; the monitor's write is
+// refused (the PLC role, modbus_server.hpp) and changes nothing.
+TEST_F(ModbusServerTest, ThePlcWritesWhileAMonitorReads) {
   const int fovr = image_.Require("P00C.FOVR");
   const int dint = image_.Require("P00.MSG_WR_N");
   std::atomic<int> failures{0};
+  std::atomic<bool> plc_wrote{false};
+  std::atomic<bool> monitor_done{false};
   WhilePolling(server_, [&] {
-    const auto run = [&](const char* name, int words) {
+    std::thread plc([&] {
       Client c(server_.port());
-      const int address = At(image_, name).address;
       for (int i = 1; i <= 200; ++i) {
         uint16_t w[2] = {0, static_cast<uint16_t>(i)};
         uint16_t r[2] = {};
-        if (modbus_write_registers(c.ctx, address, words, words == 2 ? w : w + 1) != words ||
-            modbus_read_registers(c.ctx, address, words, r) != words || r[words - 1] != i) {
+        if (modbus_write_registers(c.ctx, At(image_, "P00.MSG_WR_N").address, 2, w) != 2 ||
+            modbus_write_register(c.ctx, At(image_, "P00C.FOVR").address, i) != 1 ||
+            modbus_read_registers(c.ctx, At(image_, "P00.MSG_WR_N").address, 2, r) != 2 ||
+            r[1] != i) {
+          ++failures;
+        }
+        plc_wrote = true;
+      }
+      // Connected until the monitor is done: a closed PLC leaves the role to the next writer.
+      while (!monitor_done) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    });
+    std::thread monitor([&] {
+      Client c(server_.port());
+      while (!plc_wrote) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      for (int i = 1; i <= 200; ++i) {
+        uint16_t r[2] = {};
+        if (modbus_read_registers(c.ctx, At(image_, "P00.MSG_WR_N").address, 2, r) != 2 ||
+            modbus_read_registers(c.ctx, At(image_, "P00C.FOVR").address, 1, r) != 1) {
           ++failures;
         }
       }
-    };
-    std::thread a(run, "P00C.FOVR", 1);
-    std::thread b(run, "P00.MSG_WR_N", 2);
-    a.join();
-    b.join();
+      if (modbus_write_register(c.ctx, At(image_, "P00C.FOVR").address, 7) != -1 ||
+          errno != EMBXILFUN) {
+        ++failures;
+      }
+      monitor_done = true;
+    });
+    plc.join();
+    monitor.join();
   });
   EXPECT_EQ(failures, 0);
   EXPECT_EQ(image_.Int(fovr), 200);
   EXPECT_EQ(image_.Int(dint), 200);
-  EXPECT_EQ(server_.stats().requests_served, 800u);
+  EXPECT_EQ(server_.stats().requests_served, 1000u);
+  EXPECT_EQ(server_.stats().writes_refused, 1u);
 }
 
-TEST_F(ModbusServerTest, MaxClientsRefusesTheRest) {
+// At the limit a new connection closes the longest idle one, never the PLC's: with room for one,
+// a monitor gives way, the PLC does not.
+TEST_F(ModbusServerTest, MaxClientsMakesRoomButNotFromThePlc) {
   ModbusServer::Options o;
   o.max_clients = 1;
   ModbusServer one(image_, o);
   WhilePolling(one, [&] {
-    Client first(one.port());
+    Raw monitor(one.port());
+    Client plc(one.port());
+    EXPECT_TRUE(monitor.Closed());
+    ASSERT_EQ(modbus_write_register(plc.ctx, At(image_, "P00C.FOVR").address, 5), 1);
+    Raw refused(one.port());
+    EXPECT_TRUE(refused.Closed());
     uint16_t r;
-    ASSERT_EQ(modbus_read_registers(first.ctx, 0, 1, &r), 1);
-    Raw second(one.port());
-    EXPECT_TRUE(second.Closed());
-    EXPECT_EQ(modbus_read_registers(first.ctx, 0, 1, &r), 1);
+    EXPECT_EQ(modbus_read_registers(plc.ctx, 0, 1, &r), 1);
   });
+  EXPECT_EQ(one.stats().clients_evicted, 1u);
   EXPECT_EQ(one.stats().clients_refused, 1u);
 }
 
