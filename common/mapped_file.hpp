@@ -1,15 +1,17 @@
 #pragma once
 // Reading a file whole without copying it.
 
-#include <fcntl.h>
 #include <sys/mman.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
+
+#include "common/input_file.hpp"
 
 namespace vmt::common {
 
@@ -36,23 +38,26 @@ class MappedFile {
   std::string_view text() const { return {static_cast<const char*>(data_), size_}; }
   operator std::string_view() const { return text(); }
 
-  /// nullopt when the file cannot be read (missing, a directory, unreadable).
-  static std::optional<MappedFile> Read(const std::string& path) {
-    // O_NONBLOCK: opening a FIFO must not wait for a writer (a FIFO is refused below).
-    const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-    if (fd < 0) return std::nullopt;
-    struct stat st {};
+  /// nullopt when the file cannot be read (missing, a directory, a FIFO, unreadable); `why`, if
+  /// given, receives the reason.
+  static std::optional<MappedFile> Read(const std::string& path, std::string* why = nullptr) {
+    std::string reason;
+    size_t size = 0;
+    const int fd = OpenRegularFile(path, reason, size);
     std::optional<MappedFile> file;
-    if (fstat(fd, &st) == 0 && S_ISREG(st.st_mode)) {
-      if (st.st_size == 0) {
+    if (fd >= 0) {
+      if (size == 0) {
         file = MappedFile(nullptr, 0);  // mmap refuses a length of 0
       } else {
-        const auto size = static_cast<size_t>(st.st_size);
         void* data = mmap(nullptr, size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
-        if (data != MAP_FAILED) file = MappedFile(data, size);
+        if (data != MAP_FAILED)
+          file = MappedFile(data, size);
+        else
+          reason = std::strerror(errno);
       }
+      close(fd);  // the mapping stays valid without the descriptor
     }
-    close(fd);  // the mapping stays valid without the descriptor
+    if (why) *why = reason;
     return file;
   }
 

@@ -1,6 +1,7 @@
 #include "render/image.hpp"
 
 #include <png.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <csetjmp>
@@ -8,11 +9,16 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "common/input_file.hpp"
+
 namespace vmt::render {
 namespace {
 
 // Larger pictures are more likely a corrupt header than a snapshot; refuse before allocating.
 constexpr png_uint_32 kMaxSide = 16384;
+// A picture read is at most 32 Mi pixels (128 MiB as RGBA8): snapshots are at most 4096 x 4096
+// and contact sheets 2048 wide. A 200-byte header may claim 16384 x 16384 (1 GiB).
+constexpr size_t kMaxPngPixels = size_t{1} << 25;
 
 // libpng reports errors by longjmp. The functions that call setjmp hold only objects whose
 // destructors a longjmp may skip safely (none run between setjmp and libpng's frames), and the
@@ -56,6 +62,10 @@ bool ReadPngRaw(std::FILE* file, Image& image, PngErrorSink& sink) {
   png_init_io(png, file);
   png_set_user_limits(png, kMaxSide, kMaxSide);
   png_read_info(png, info);
+  // The header alone decides the allocation: refuse a picture beyond the limit before it.
+  if (size_t{png_get_image_width(png, info)} * png_get_image_height(png, info) > kMaxPngPixels) {
+    png_error(png, "larger than the limit of 33554432 pixels (e.g. 8192 x 4096)");
+  }
 
   // Convert everything to RGBA8 and keep the stored values: no gamma handling, so a golden
   // picture compares as the bytes it holds.
@@ -141,8 +151,15 @@ void WritePng(const std::string& path, const Image& image) {
 }
 
 Image ReadPng(const std::string& path) {
-  File file{std::fopen(path.c_str(), "rb")};
-  if (!file.f) throw std::runtime_error(Describe(path, std::strerror(errno)));
+  std::string why;
+  size_t size = 0;
+  const int fd = common::OpenRegularFile(path, why, size);
+  if (fd < 0) throw std::runtime_error(Describe(path, why.c_str()));
+  File file{fdopen(fd, "rb")};
+  if (!file.f) {
+    close(fd);
+    throw std::runtime_error(Describe(path, std::strerror(errno)));
+  }
   png_byte signature[8] = {};
   if (std::fread(signature, 1, sizeof signature, file.f) != sizeof signature ||
       png_sig_cmp(signature, 0, sizeof signature) != 0) {

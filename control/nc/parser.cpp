@@ -129,11 +129,12 @@ ParseResult ParseProgram(std::string_view text, const std::string& file_name, Di
 }
 
 ParseResult ParseFile(const std::string& path, Dialect dialect) {
-  const std::optional<common::MappedFile> text = common::MappedFile::Read(path);
+  std::string why;
+  const std::optional<common::MappedFile> text = common::MappedFile::Read(path, &why);
   if (!text) {
     ParseResult r;
     r.program.files.push_back(path);
-    r.errors.push_back({{0, 0, 0, 0}, "cannot open file"});
+    r.errors.push_back({{0, 0, 0, 0}, "cannot open file: " + why});
     return r;
   }
   return ParseProgram(*text, path, dialect);

@@ -161,9 +161,10 @@ int StudyRepos(sim::study::StudyOptions options, const std::string& shard,
 
 int Check(const std::string& file, const std::string& dialect_name) {
   namespace nc = control::nc;
-  const std::optional<common::MappedFile> read = common::MappedFile::Read(file);
+  std::string why;
+  const std::optional<common::MappedFile> read = common::MappedFile::Read(file, &why);
   if (!read) {
-    std::fprintf(stderr, "%s:0:0: error: cannot open file\n", file.c_str());
+    std::fprintf(stderr, "%s:0:0: error: cannot open file: %s\n", file.c_str(), why.c_str());
     return 2;
   }
   const std::string_view text = *read;

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/input_file.hpp"
+
 namespace vmt::sim {
 
 MeshCache& MeshCache::Shared() {
@@ -31,6 +33,9 @@ std::shared_ptr<const render::Mesh> MeshCache::Load(const std::string& path,
   const std::lock_guard<std::mutex> lock(mutex_);
   if (auto it = meshes_.find(key.str()); it != meshes_.end()) return it->second;
 
+  // Assimp opens the file by name: a FIFO would block it, a directory gives a vague error.
+  if (const std::string why = common::InputFileProblem(path); !why.empty())
+    throw std::runtime_error("mesh " + path + ": cannot open file: " + why);
   Assimp::Importer importer;
   // Keep vertices as written: the meshes carry their own normals, and joining vertices would
   // smooth hard edges.

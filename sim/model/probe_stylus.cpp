@@ -1,5 +1,7 @@
 #include "sim/model/probe_stylus.hpp"
 
+#include <cmath>
+
 #include "sim/model/machine_model.hpp"
 #include "sim/model/yaml_reader.hpp"
 
@@ -41,9 +43,14 @@ ProbeStylus ReadStylus(const MachineModel& m, const YamlNode& p) {
     b.AllowKeys({"centre", "radius"});
     const std::vector<double> c = b["centre"].Doubles(3);
     MeasuringSphere sphere;
+    // A stylus is centimetres long with a ruby of a few mm: larger numbers are typos, and
+    // huge ones stall the collision geometry.
+    for (const double v : c)
+      if (!(std::abs(v) <= 1000)) b["centre"].Fail("coordinates must be within +-1000 mm");
     sphere.centre_m = Eigen::Vector3d(c[0], c[1], c[2]) / kMmPerM;
     sphere.radius_m = b["radius"].Double() / kMmPerM;
-    if (!(sphere.radius_m > 0)) b["radius"].Fail("must be > 0");
+    if (!(sphere.radius_m > 0 && sphere.radius_m <= 0.05))
+      b["radius"].Fail("must be in (0, 50] mm");
     s.spheres.push_back(sphere);
   }
 
@@ -59,9 +66,11 @@ ProbeStylus ReadStylus(const MachineModel& m, const YamlNode& p) {
   }
 
   s.pre_travel_m = p["pre_travel"].Double() / kMmPerM;
-  if (!(s.pre_travel_m > 0)) p["pre_travel"].Fail("must be > 0");
+  if (!(s.pre_travel_m > 0 && s.pre_travel_m <= 0.01))
+    p["pre_travel"].Fail("must be in (0, 10] mm");
   s.over_travel_m = p["over_travel"].Double() / kMmPerM;
-  if (!(s.over_travel_m > s.pre_travel_m)) p["over_travel"].Fail("must be greater than pre_travel");
+  if (!(s.over_travel_m > s.pre_travel_m && s.over_travel_m <= 0.05))
+    p["over_travel"].Fail("must be greater than pre_travel, at most 50 mm");
 
   s.contact_input = InputNamed(m, p["input"]);
   if (p.Has("ready")) {

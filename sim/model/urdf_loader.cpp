@@ -3,13 +3,14 @@
 #include <console_bridge/console.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 
+#include "common/input_file.hpp"
 #include "sim/model/mesh_loader.hpp"
 #include "sim/model/model_error.hpp"
+#include "sim/model/nesting_depth.hpp"
 
 namespace vmt::sim {
 namespace {
@@ -35,6 +36,21 @@ Eigen::Isometry3d ToIsometry(const urdf::Pose& pose) {
   return X;
 }
 
+// A machine fits in a room: origins beyond 100 m, a mesh scale outside 1e-6..1000 or a limit
+// beyond 1000 (m or rad) are typos, and huge numbers stall the mesh and collision code.
+constexpr double kMaxOriginM = 100, kMaxJointLimit = 1000;
+
+void RequireSensiblePose(const std::string& urdf_path, const std::string& where,
+                         const urdf::Pose& pose) {
+  const urdf::Vector3& p = pose.position;
+  for (const double v : {p.x, p.y, p.z})
+    if (!(std::abs(v) <= kMaxOriginM))
+      throw ModelError(urdf_path, where, "<origin xyz> must be within +-100 m");
+  const urdf::Rotation& r = pose.rotation;
+  for (const double v : {r.x, r.y, r.z, r.w})
+    if (!std::isfinite(v)) throw ModelError(urdf_path, where, "<origin rpy> must be finite");
+}
+
 Visual ToVisual(const std::string& urdf_path, const std::string& where,
                 const urdf::GeometrySharedPtr& geometry, const urdf::Pose& origin,
                 const urdf::MaterialSharedPtr& material, MeshCache& meshes) {
@@ -48,6 +64,10 @@ Visual ToVisual(const std::string& urdf_path, const std::string& where,
   const std::filesystem::path full =
       std::filesystem::path(urdf_path).parent_path() / mesh->filename;
   const Eigen::Vector3d scale(mesh->scale.x, mesh->scale.y, mesh->scale.z);
+  for (const double v : {scale.x(), scale.y(), scale.z()})
+    if (!(std::abs(v) >= 1e-6 && std::abs(v) <= 1000))
+      throw ModelError(urdf_path, where, "<mesh scale> must be within 1e-6..1000 in magnitude");
+  RequireSensiblePose(urdf_path, where, origin);
   try {
     v.mesh = meshes.Load(full.string(), scale);
   } catch (const std::exception& e) {
@@ -62,14 +82,17 @@ Visual ToVisual(const std::string& urdf_path, const std::string& where,
 }  // namespace
 
 void LoadUrdf(const std::string& urdf_path, MachineModel& model) {
-  std::ifstream in(urdf_path);
-  if (!in) throw ModelError(urdf_path, "", "cannot open URDF file");
-  std::stringstream text;
-  text << in.rdbuf();
+  std::string text, why;
+  if (!common::ReadInputFile(urdf_path, text, why))
+    throw ModelError(urdf_path, "", "cannot open URDF file: " + why);
+  // urdfdom's XML parser recurses per element: refuse a nesting that would overflow the stack.
+  if (const int line = XmlNestingBeyond(text, kMaxNestingDepth))
+    throw ModelError(urdf_path + ":" + std::to_string(line), "",
+                     "elements nested deeper than " + std::to_string(kMaxNestingDepth) + " levels");
 
   CollectingHandler handler;
   console_bridge::useOutputHandler(&handler);
-  urdf::ModelInterfaceSharedPtr urdf = urdf::parseURDF(text.str());
+  urdf::ModelInterfaceSharedPtr urdf = urdf::parseURDF(text);
   console_bridge::restorePreviousOutputHandler();
   if (!urdf)
     throw ModelError(urdf_path, "<robot>",
@@ -91,8 +114,10 @@ void LoadUrdf(const std::string& urdf_path, MachineModel& model) {
       link.mass_kg = ul->inertial->mass;
       link.com_m = ToIsometry(ul->inertial->origin).translation();
       link.inertia_kgm2 = {ul->inertial->ixx, ul->inertial->iyy, ul->inertial->izz};
-      if (link.mass_kg < 0 || link.inertia_kgm2.minCoeff() < 0)
-        throw ModelError(urdf_path, where, "negative mass or inertia");
+      if (!(link.mass_kg >= 0 && link.inertia_kgm2.minCoeff() >= 0) ||
+          !std::isfinite(link.mass_kg) || !link.inertia_kgm2.allFinite())
+        throw ModelError(urdf_path, where, "negative or infinite mass or inertia");
+      RequireSensiblePose(urdf_path, where + " <inertial>", ul->inertial->origin);
     }
     for (const auto& uv : ul->visual_array) {
       link.visuals.push_back(
@@ -131,6 +156,7 @@ void LoadUrdf(const std::string& urdf_path, MachineModel& model) {
       }
       joint.parent_link = link_index.at(uj.parent_link_name);
       joint.child_link = index;
+      RequireSensiblePose(urdf_path, jwhere, uj.parent_to_joint_origin_transform);
       joint.X_ParentJoint = ToIsometry(uj.parent_to_joint_origin_transform);
       joint.axis = Eigen::Vector3d(uj.axis.x, uj.axis.y, uj.axis.z);
       if (joint.type != JointType::kFixed) {
@@ -140,6 +166,8 @@ void LoadUrdf(const std::string& urdf_path, MachineModel& model) {
       if (uj.limits) {
         joint.lower = uj.limits->lower;
         joint.upper = uj.limits->upper;
+        if (!(std::abs(joint.lower) <= kMaxJointLimit && std::abs(joint.upper) <= kMaxJointLimit))
+          throw ModelError(urdf_path, jwhere, "<limit> lower and upper must be within +-1000");
       }
       if (uj.dynamics) {
         joint.damping = uj.dynamics->damping;

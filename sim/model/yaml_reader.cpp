@@ -1,17 +1,79 @@
 #include "sim/model/yaml_reader.hpp"
 
-#include <cmath>
-#include <fstream>
+#include <yaml-cpp/eventhandler.h>
 
+#include <cmath>
+#include <sstream>
+
+#include "common/input_file.hpp"
 #include "sim/model/model_error.hpp"
+#include "sim/model/nesting_depth.hpp"
 
 namespace vmt::sim {
 
-YamlNode YamlNode::LoadFile(const std::string& file) {
-  std::ifstream in(file);
-  if (!in) throw ModelError(file, "", "cannot open file");
+namespace {
+
+// Most YAML nodes a file may have. The shipped scenes and models have a few thousand; yaml-cpp's
+// tree costs about 500 bytes a node, so a 10 MB flow list would take gigabytes.
+constexpr size_t kMaxYamlNodes = 200000;
+
+// Counts the nodes of a document without building its tree, to refuse a huge one first.
+class NodeCounter : public YAML::EventHandler {
+ public:
+  struct TooMany {};
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override { Count(); }
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override { Count(); }
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                const std::string&) override {
+    Count();
+  }
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {
+    Count();
+  }
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {
+    Count();
+  }
+  void OnMapEnd() override {}
+
+ private:
+  void Count() {
+    if (++nodes_ > kMaxYamlNodes) throw TooMany{};
+  }
+  size_t nodes_ = 0;
+};
+
+// Refuses a text that would overflow yaml-cpp's recursion or memory before it builds a tree.
+void CheckYamlSize(const std::string& file, const std::string& text) {
+  if (const int line = YamlNestingBeyond(text, kMaxNestingDepth))
+    throw ModelError(file + ":" + std::to_string(line), "",
+                     "nesting deeper than " + std::to_string(kMaxNestingDepth) + " levels");
+  std::istringstream in(text);
+  YAML::Parser parser(in);
+  NodeCounter counter;
   try {
-    return YamlNode(YAML::Load(in), file, "");
+    while (parser.HandleNextDocument(counter)) {
+    }
+  } catch (const NodeCounter::TooMany&) {
+    throw ModelError(file, "",
+                     "more than " + std::to_string(kMaxYamlNodes) + " YAML nodes (the limit)");
+  }
+}
+
+}  // namespace
+
+YamlNode YamlNode::LoadFile(const std::string& file) {
+  std::string text, why;
+  if (!common::ReadInputFile(file, text, why))
+    throw ModelError(file, "", "cannot open file: " + why);
+  try {
+    CheckYamlSize(file, text);
+    return YamlNode(YAML::Load(text), file, "");
+
   } catch (const YAML::Exception& e) {
     throw ModelError(
         file + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1), "",

@@ -201,8 +201,9 @@ NcSetup ReadNc(const YamlNode& nc, const MachineModel& m, const std::string& pat
   const auto parse = [&](const YamlNode& f) {
     const std::string file =
         (std::filesystem::path(path).parent_path() / f.String()).lexically_normal().string();
-    const std::optional<common::MappedFile> read = common::MappedFile::Read(file);
-    if (!read) f.Fail("cannot open NC program " + file);
+    std::string why;
+    const std::optional<common::MappedFile> read = common::MappedFile::Read(file, &why);
+    if (!read) f.Fail("cannot open NC program " + file + ": " + why);
     const std::string_view text = *read;
     namespace cnc = control::nc;
     const cnc::Dialect d = dialect.empty()    ? cnc::DetectDialect(text, file)

@@ -1,6 +1,7 @@
 #include "sim/scene/workpiece_loader.hpp"
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 #include "sim/model/yaml_reader.hpp"
@@ -8,6 +9,22 @@
 
 namespace vmt::sim {
 namespace {
+
+// Physically sensible sizes of a lathe's part (mm): beyond them a number is a typo, and a
+// diameter of 1e20 makes the mesh and collision code iterate for minutes.
+constexpr double kMaxDiameterMm = 2000;
+constexpr double kMaxLengthMm = 10000;
+constexpr double kMaxPositionMm = 10000;  // |z|, |from|, |to|
+constexpr double kMaxOversizeMm = 100;
+
+// A number within [lo, hi] (or (0, hi] with `positive`), refused with the range otherwise.
+double Bounded(const YamlNode& n, double lo, double hi, bool positive = false) {
+  const double v = n.Double();
+  if (positive ? !(v > 0 && v <= hi) : !(v >= lo && v <= hi))
+    n.Fail("must be in " + std::string(positive ? "(0, " : "[" + Fmt(lo) + ", ") + Fmt(hi) +
+           "] mm, got " + Fmt(v));
+  return v;
+}
 
 bool ShareMaterial(const RevolvedSection& a, const RevolvedSection& b) {
   return a.z0_m < b.z1_m && b.z0_m < a.z1_m && a.r_inner_m < b.r_outer_m &&
@@ -25,7 +42,7 @@ void ApplyOversize(const YamlNode& w, const std::vector<bool>& machined,
   if (machined.empty()) o.Fail("needs sections, some of them machined: true");
   if (std::find(machined.begin(), machined.end(), true) == machined.end())
     o.Fail("no section is machined: true");
-  const double radius_m = o.Double() / 2 / kMmPerM;
+  const double radius_m = Bounded(o, -kMaxOversizeMm, kMaxOversizeMm) / 2 / kMmPerM;
   for (size_t i = 0; i < sections.size(); ++i) {
     if (!machined[i]) continue;
     RevolvedSection& s = sections[i];
@@ -53,13 +70,12 @@ Workpiece LoadWorkpiece(const YamlNode& w, const MachineModel& m) {
   std::vector<bool> machined;  // per section: the oversize applies to it
   p.part.link = w.String("link", "spindle");
   if (m.LinkIndex(p.part.link) < 0) w["link"].Fail("no link '" + p.part.link + "'");
-  const double z_m = w["z"].Double() / kMmPerM;
+  const double z_m = Bounded(w["z"], -kMaxPositionMm, kMaxPositionMm) / kMmPerM;
   if (w.Has("sections") == (w.Has("diameter") || w.Has("length")))
     w.Fail("needs either diameter and length (a stock cylinder) or sections");
   if (w.Has("diameter")) {
-    const double d = w["diameter"].Double(), length = w["length"].Double();
-    if (!(d > 0)) w["diameter"].Fail("must be > 0");
-    if (!(length > 0)) w["length"].Fail("must be > 0");
+    const double d = Bounded(w["diameter"], 0, kMaxDiameterMm, true);
+    const double length = Bounded(w["length"], 0, kMaxLengthMm, true);
     p.part.sections.push_back({z_m, z_m + length / kMmPerM, 0, d / 2 / kMmPerM});
   } else {
     const YamlNode list = w["sections"];
@@ -67,10 +83,11 @@ Workpiece LoadWorkpiece(const YamlNode& w, const MachineModel& m) {
     for (size_t i = 0; i < list.size(); ++i) {
       const YamlNode n = list[i];
       n.AllowKeys({"from", "to", "diameter", "bore", "machined"});
-      const double from = n["from"].Double(), to = n["to"].Double();
-      const double d = n["diameter"].Double(), bore = n.Double("bore", 0);
+      const double from = Bounded(n["from"], -kMaxPositionMm, kMaxPositionMm);
+      const double to = Bounded(n["to"], -kMaxPositionMm, kMaxPositionMm);
+      const double d = Bounded(n["diameter"], 0, kMaxDiameterMm, true);
+      const double bore = n.Double("bore", 0);
       if (!(to > from)) n["to"].Fail("must be beyond from (" + Fmt(from) + " mm)");
-      if (!(d > 0)) n["diameter"].Fail("must be > 0");
       if (!(bore >= 0 && bore < d)) n["bore"].Fail("must be in [0, diameter)");
       const RevolvedSection s{z_m + from / kMmPerM, z_m + to / kMmPerM, bore / 2 / kMmPerM,
                               d / 2 / kMmPerM};

@@ -6,10 +6,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
+#include "common/mapped_file.hpp"
 #include "control/nc/parser.hpp"
 #include "sim/model/yaml_reader.hpp"
 #include "sim/runner/runner.hpp"
@@ -92,12 +93,12 @@ Scene SubroutineScene(const Scene& base, const Subroutine& subroutine) {
 Scene SubroutineScene(const Scene& base, const std::string& subroutine_file) {
   Scene scene = base;
   if (!subroutine_file.empty()) {
-    std::ifstream in(subroutine_file, std::ios::binary);
-    if (!in) throw std::runtime_error("cannot open NC program " + subroutine_file);
-    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    std::string why;
+    const std::optional<common::MappedFile> text = common::MappedFile::Read(subroutine_file, &why);
+    if (!text) throw std::runtime_error("cannot open NC program " + subroutine_file + ": " + why);
     namespace cnc = control::nc;
     auto parsed = std::make_shared<cnc::ParseResult>(
-        cnc::ParseProgram(text, subroutine_file, cnc::DetectDialect(text, subroutine_file)));
+        cnc::ParseProgram(*text, subroutine_file, cnc::DetectDialect(*text, subroutine_file)));
     if (!parsed->ok())
       throw std::runtime_error(cnc::Format(parsed->errors[0], parsed->program.files));
     scene.nc.programs.push_back(parsed);

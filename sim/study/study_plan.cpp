@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 
+#include "common/input_file.hpp"
 #include "sim/model/yaml_reader.hpp"
 
 namespace vmt::sim::study {
@@ -132,7 +132,9 @@ StudyPlan LoadStudyPlan(const std::string& scene_path, const Scene& scene) {
     for (size_t i = 0; i < subs.size(); ++i) {
       Subroutine sub{subs[i].String(), "", {}};
       sub.file = (std::filesystem::path(scene_path).parent_path() / sub.name).lexically_normal();
-      if (!std::ifstream(sub.file)) subs[i].Fail("cannot open NC program " + sub.file);
+      // Checked here, before the reference run, so a wrong entry fails at once.
+      if (const std::string why = common::InputFileProblem(sub.file); !why.empty())
+        subs[i].Fail("cannot open NC program " + sub.file + ": " + why);
       for (const Subroutine& o : plan.subroutines)
         if (o.name == sub.name) subs[i].Fail("listed twice");
       plan.subroutines.push_back(sub);

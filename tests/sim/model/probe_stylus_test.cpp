@@ -121,7 +121,11 @@ TEST(ProbeStylusModel, BadKeysNameTheirYamlPath) {
   EXPECT_THAT(ErrorOf("probe_pin", "pin: PIN4", "pin: 4"),
               HasSubstr("probe[0].pin: expected PIN4 or PIN5"));
   EXPECT_THAT(ErrorOf("probe_radius", "radius: 3}", "radius: 0}"),
-              HasSubstr("probe[0].spheres[0].radius: must be > 0"));
+              HasSubstr("probe[0].spheres[0].radius: must be in (0, 50] mm"));
+  EXPECT_THAT(ErrorOf("probe_radius_huge", "radius: 3}", "radius: 60}"),
+              HasSubstr("probe[0].spheres[0].radius: must be in (0, 50] mm"));
+  EXPECT_THAT(ErrorOf("probe_centre_huge", "centre: [47, 0, 0]", "centre: [5000, 0, 0]"),
+              HasSubstr("probe[0].spheres[0].centre: coordinates must be within +-1000 mm"));
   EXPECT_THAT(ErrorOf("probe_centre", "centre: [47, 0, 0]", "centre: [47, 0]"),
               HasSubstr("probe[0].spheres[0].centre"));
   const std::string six = "- {centre: [47, 0, 0], radius: 3}";
@@ -135,9 +139,11 @@ TEST(ProbeStylusModel, BadKeysNameTheirYamlPath) {
   EXPECT_THAT(ErrorOf("probe_part", "sphere_parts: [probe_ruby]", "sphere_parts: [ruby]"),
               HasSubstr("probe[0].sphere_parts[0]: no <collision name=\"ruby\"> in link 'probe'"));
   EXPECT_THAT(ErrorOf("probe_pre", "pre_travel: 0.005", "pre_travel: -1"),
-              HasSubstr("probe[0].pre_travel: must be > 0"));
+              HasSubstr("probe[0].pre_travel: must be in (0, 10] mm"));
   EXPECT_THAT(ErrorOf("probe_over", "over_travel: 1.0", "over_travel: 0.001"),
               HasSubstr("probe[0].over_travel: must be greater than pre_travel"));
+  EXPECT_THAT(ErrorOf("probe_over_huge", "over_travel: 1.0", "over_travel: 80"),
+              HasSubstr("probe[0].over_travel: must be greater than pre_travel, at most 50 mm"));
   EXPECT_THAT(ErrorOf("probe_input", "input: IPROBE_CONTACT", "input: QPROBE_ON"),
               HasSubstr("probe[0].input: 'QPROBE_ON' must be an input"));
   EXPECT_THAT(ErrorOf("probe_input2", "input: IPROBE_CONTACT", "input: IPROBE_NONE"),

@@ -81,8 +81,9 @@ TEST(WorkpieceLoaderTest, OversizeNarrowsAFaceGrooveFromBothWalls) {
 }
 
 TEST(WorkpieceLoaderTest, BadValuesNameTheFileAndTheYamlPath) {
-  EXPECT_THAT(ErrorOf("bad_machined", "  z: 60\n  sections:\n"
-                                      "    - {from: 0, to: 10, diameter: 40, machined: 2}\n"),
+  EXPECT_THAT(ErrorOf("bad_machined",
+                      "  z: 60\n  sections:\n"
+                      "    - {from: 0, to: 10, diameter: 40, machined: 2}\n"),
               HasSubstr("workpiece.sections[0].machined: expected true or false"));
   EXPECT_THAT(ErrorOf("bad_oversize", std::string(kShaft) + "  oversize: big\n"),
               HasSubstr("workpiece.oversize: expected a number"));
@@ -95,12 +96,37 @@ TEST(WorkpieceLoaderTest, BadValuesNameTheFileAndTheYamlPath) {
               HasSubstr("workpiece.oversize: needs sections, some of them machined: true"));
   EXPECT_THAT(ErrorOf("oversize_shut", std::string(kFaceGroove) + "  oversize: 16\n"),
               HasSubstr("workpiece.oversize: closes the gap between sections 1 and 2"));
-  EXPECT_THAT(ErrorOf("oversize_bore", "  z: 60\n  sections:\n"
-                                       "    - {from: 0, to: 10, diameter: 40, bore: 4,"
-                                       " machined: true}\n  oversize: 5\n"),
+  EXPECT_THAT(ErrorOf("oversize_bore",
+                      "  z: 60\n  sections:\n"
+                      "    - {from: 0, to: 10, diameter: 40, bore: 4,"
+                      " machined: true}\n  oversize: 5\n"),
               HasSubstr("workpiece.oversize: closes the bore of section 0"));
   EXPECT_THAT(ErrorOf("oversize_gone", std::string(kShaft) + "  oversize: -40\n"),
               HasSubstr("workpiece.oversize: leaves section 1 without material"));
+}
+
+// A size beyond a lathe's is refused with its range: 1e20 made the mesh code loop for minutes.
+TEST(WorkpieceLoaderTest, SizesBeyondALathesAreRefused) {
+  EXPECT_THAT(ErrorOf("huge_stock", "  {diameter: 1e308, length: 100, z: 60}\n"),
+              HasSubstr("workpiece.diameter: must be in"));
+  EXPECT_THAT(ErrorOf("big_stock", "  {diameter: 5000, length: 100, z: 60}\n"),
+              HasSubstr("workpiece.diameter: must be in (0, 2000] mm, got 5000"));
+  EXPECT_THAT(ErrorOf("negative_stock", "  {diameter: -60, length: 100, z: 60}\n"),
+              HasSubstr("workpiece.diameter: must be in (0, 2000] mm"));
+  EXPECT_THAT(ErrorOf("long_stock", "  {diameter: 60, length: 20000, z: 60}\n"),
+              HasSubstr("workpiece.length: must be in (0, 10000] mm"));
+  EXPECT_THAT(ErrorOf("far_stock", "  {diameter: 60, length: 100, z: -20000}\n"),
+              HasSubstr("workpiece.z: must be in [-10000, 10000] mm"));
+  EXPECT_THAT(ErrorOf("huge_section",
+                      "  z: 60\n  sections:\n"
+                      "    - {from: 0, to: 10, diameter: 3000}\n"),
+              HasSubstr("workpiece.sections[0].diameter: must be in (0, 2000] mm"));
+  EXPECT_THAT(ErrorOf("far_section",
+                      "  z: 60\n  sections:\n"
+                      "    - {from: 0, to: 20000, diameter: 40}\n"),
+              HasSubstr("workpiece.sections[0].to: must be in [-10000, 10000] mm"));
+  EXPECT_THAT(ErrorOf("huge_oversize", std::string(kShaft) + "  oversize: 500\n"),
+              HasSubstr("workpiece.oversize: must be in [-100, 100] mm"));
 }
 
 }  // namespace
