@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/input_file.hpp"
 #include "common/mapped_file.hpp"
 #include "control/nc/modal_g_codes.hpp"
 #include "control/nc/parser.hpp"
@@ -276,7 +277,8 @@ Scene LoadScene(const std::string& path) {
   const YamlNode model = root["model"];
   const std::string model_path =
       (std::filesystem::path(path).parent_path() / model.String()).lexically_normal().string();
-  if (!std::filesystem::exists(model_path)) model.Fail("model file not found: " + model_path);
+  if (const std::string why = common::InputFileProblem(model_path); !why.empty())
+    model.Fail("cannot open model " + model_path + ": " + why);
   s.model = std::make_shared<MachineModel>(LoadMachineModel(model_path));
   const MachineModel& m = *s.model;
 
