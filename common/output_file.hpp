@@ -148,4 +148,20 @@ inline void WriteFileAtomically(const std::string& path, std::string_view text) 
   file.Commit();
 }
 
+/// Copies `from` whole to `to` (temporary and rename). Throws WriteError, or
+/// std::runtime_error "cannot read FROM: REASON".
+inline void CopyFileAtomically(const std::string& from, const std::string& to) {
+  const int in = ::open(from.c_str(), O_RDONLY | O_CLOEXEC);
+  if (in < 0) throw std::runtime_error("cannot read " + from + ": " + std::strerror(errno));
+  OutputFile out(to);
+  char block[1 << 16];
+  ssize_t n = 0;
+  while ((n = ::read(in, block, sizeof block)) > 0 || (n < 0 && errno == EINTR))
+    if (n > 0) out.Write(std::string_view(block, static_cast<size_t>(n)));
+  const int read_error = errno;
+  ::close(in);
+  if (n < 0) throw std::runtime_error("cannot read " + from + ": " + std::strerror(read_error));
+  out.Commit();
+}
+
 }  // namespace vmt::common

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "common/input_file.hpp"
+#include "common/output_file.hpp"
 
 namespace vmt::render {
 namespace {
@@ -100,7 +101,14 @@ bool ReadPngRaw(std::FILE* file, Image& image, PngErrorSink& sink) {
   return true;
 }
 
-bool WritePngRaw(std::FILE* file, const Image& image, PngErrorSink& sink) {
+void AppendPngBytes(png_structp png, png_bytep data, png_size_t length) {
+  static_cast<std::string*>(png_get_io_ptr(png))
+      ->append(reinterpret_cast<const char*>(data), length);
+}
+void FlushNothing(png_structp) {}
+
+// The PNG's bytes into `bytes` (in memory: the file is written whole or not at all).
+bool WritePngRaw(std::string& bytes, const Image& image, PngErrorSink& sink) {
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &sink, OnPngError, OnPngWarning);
   if (!png) {
     std::snprintf(sink.message, sizeof sink.message, "out of memory");
@@ -111,7 +119,7 @@ bool WritePngRaw(std::FILE* file, const Image& image, PngErrorSink& sink) {
     png_destroy_write_struct(&png, &info);
     return false;
   }
-  png_init_io(png, file);
+  png_set_write_fn(png, &bytes, AppendPngBytes, FlushNothing);
   // Fixed settings so the bytes depend on the pixels only (libpng's defaults could change).
   png_set_compression_level(png, 6);
   png_set_compression_strategy(png, 0 /* Z_DEFAULT_STRATEGY */);
@@ -140,14 +148,10 @@ void WritePng(const std::string& path, const Image& image) {
     throw std::runtime_error(Describe(path, "image has ") + std::to_string(image.rgba.size()) +
                              " bytes, expected width * height * 4");
   }
-  File file{std::fopen(path.c_str(), "wb")};
-  if (!file.f) throw std::runtime_error(Describe(path, std::strerror(errno)));
+  std::string bytes;
   PngErrorSink sink;
-  if (!WritePngRaw(file.f, image, sink)) throw std::runtime_error(Describe(path, sink.message));
-  // A full disk shows up at close, not at fwrite.
-  const int close_result = std::fclose(file.f);
-  file.f = nullptr;
-  if (close_result != 0) throw std::runtime_error(Describe(path, std::strerror(errno)));
+  if (!WritePngRaw(bytes, image, sink)) throw std::runtime_error(Describe(path, sink.message));
+  common::WriteFileAtomically(path, bytes);
 }
 
 Image ReadPng(const std::string& path) {

@@ -15,8 +15,8 @@ struct Image {
 
 /// Writes `image` as an 8-bit RGBA PNG. The bytes depend only on the pixels (no time or text
 /// chunks, fixed compression settings), so equal pictures give equal files.
-/// Throws std::runtime_error naming `path` if the image is malformed or the file cannot be
-/// written.
+/// The file is written whole or not at all (common::OutputFile). Throws std::runtime_error
+/// naming `path` if the image is malformed, common::WriteError if the file cannot be written.
 void WritePng(const std::string& path, const Image& image);
 
 /// Reads a PNG of any colour type and depth (gray, gray+alpha, RGB, RGBA, palette, 1..16 bit)

@@ -10,6 +10,7 @@
 #include <set>
 #include <string>
 
+#include "common/output_file.hpp"
 #include "render/image.hpp"
 #include "render/image_compare.hpp"
 #include "sim/cli/golden_report.hpp"
@@ -75,7 +76,7 @@ render::CompareOptions CompareOptionsOf(const SnapshotSpec* spec) {
 
 void CopyPicture(const std::string& from, const std::string& to) {
   fs::create_directories(fs::path(to).parent_path());
-  fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+  common::CopyFileAtomically(from, to);
 }
 
 // Compares one picture with its baseline; a failure leaves the three pictures and the page in
@@ -101,8 +102,8 @@ void Compare(GoldenPicture& p, const render::CompareOptions& o, const std::strin
   p.status = GoldenStatus::kFailed;
   const std::string where = fail_dir + "/" + fs::path(p.file).stem().string();
   fs::create_directories(where);
-  fs::copy_file(p.actual, where + "/actual.png", fs::copy_options::overwrite_existing);
-  fs::copy_file(p.golden, where + "/golden.png", fs::copy_options::overwrite_existing);
+  common::CopyFileAtomically(p.actual, where + "/actual.png");
+  common::CopyFileAtomically(p.golden, where + "/golden.png");
   if (!r.size_mismatch) render::WritePng(where + "/diff.png", r.diff);
   WriteFailurePage(where, p, run_dir);
   p.page = where + "/index.html";
@@ -169,6 +170,7 @@ GoldenScene GoldenOfScene(const std::string& scene_path, const GoldenOptions& o)
     fs::create_directories(g.out_dir);
     const RunResult r = RunScene(scene, run);
     g.ran = true;
+    if (!r.write_errors.empty()) throw std::runtime_error(r.write_errors.front());
     g.run_failures = r.failures;
     for (const std::string& f : r.failures) std::printf("FAIL %s: %s\n", g.name.c_str(), f.c_str());
   }

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/output_file.hpp"
+
 namespace vmt::sim {
 namespace {
 
@@ -38,9 +40,7 @@ std::string Escape(const std::string& text) {
 }
 
 void WriteText(const std::string& path, const std::string& text) {
-  std::ofstream f(path, std::ios::binary);
-  f << text;
-  if (!f.good()) throw std::runtime_error("cannot write " + path);
+  common::WriteFileAtomically(path, text);
 }
 
 std::string Seconds(double t) {

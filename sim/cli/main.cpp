@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "common/mapped_file.hpp"
+#include "common/output_file.hpp"
 #include "control/gateway/signal_table_format.hpp"
 #include "control/nc/parser.hpp"
 #include "render/image.hpp"
@@ -23,6 +24,7 @@
 #include "sim/cli/golden.hpp"
 #include "sim/cli/serve.hpp"
 #include "sim/cli/view.hpp"
+#include "sim/cli/stop_signals.hpp"
 #include "sim/model/gateway_layout.hpp"
 #include "sim/model/model_error.hpp"
 #include "sim/runner/run_story.hpp"
@@ -57,12 +59,16 @@ int Run(const std::string& scene_path, const std::string& backend, double until,
   if (until > 0) options.until_s = until;
   options.out_dir = out;
   if (!operator_file.empty()) options.operator_steps = sim::ReadOperatorSteps(operator_file);
-  const sim::RunResult r = sim::RunScene(scene, options);
+  sim::CatchStopSignals();
+  const sim::RunResult r = sim::RunScene(scene, options, sim::StopSignalName);
   std::printf("%s: %.3f s simulated in %.3f s (%.1fx real time), trace digest %s\n",
               scene.name.c_str(), r.simulated_s, r.wall_s,
               r.wall_s > 0 ? r.simulated_s / r.wall_s : 0.0, r.trace_digest.c_str());
-  std::ifstream events(out + "/events.jsonl");
-  for (const std::string& line : sim::RunStory(events)) std::printf("  %s\n", line.c_str());
+  // Only a file the run wrote (events.jsonl may be a device: /dev/full reads zeros forever).
+  if (std::filesystem::is_regular_file(out + "/events.jsonl")) {
+    std::ifstream events(out + "/events.jsonl");
+    for (const std::string& line : sim::RunStory(events)) std::printf("  %s\n", line.c_str());
+  }
   std::printf("output: %s/{trace.csv,events.jsonl,summary.json}", out.c_str());
   for (const std::string& f : r.snapshot_files) std::printf(" %s", f.c_str());
   for (const std::string& f : r.contact_sheets) std::printf(" %s", f.c_str());
@@ -74,6 +80,12 @@ int Run(const std::string& scene_path, const std::string& backend, double until,
   return r.ok() ? 0 : 1;
 }
 
+  for (const std::string& e : r.write_errors) std::fprintf(stderr, "vmt: error: %s\n", e.c_str());
+  if (!r.stop_reason.empty())
+    std::fprintf(stderr, "vmt run: stopped early at %.4f s: %s\n", r.simulated_s,
+                 r.stop_reason.c_str());
+  if (!r.write_errors.empty()) return 2;
+  if (!r.stop_reason.empty()) return sim::kStoppedEarly;
 int Snapshot(const std::string& scene_path, double at, const std::string& camera,
              const std::string& out, int width, int height) {
   sim::Scene scene = sim::LoadScene(scene_path);
@@ -146,7 +158,7 @@ int StudyRepos(sim::study::StudyOptions options, const std::string& shard,
     std::filesystem::create_directories(std::filesystem::path(bench_json).parent_path().empty()
                                             ? std::filesystem::path(".")
                                             : std::filesystem::path(bench_json).parent_path());
-    std::ofstream out(bench_json);
+    std::ostringstream out;
     out << "{\"benchmark\": \"study\", \"scene\": \"" << options.scene << "\", \"cases\": " << s.run
         << ", \"wall_s\": " << s.wall_s << ", \"cases_per_minute\": " << s.cases_per_minute
         << ", \"cases_cpu_s\": " << s.cases_cpu_s
@@ -154,7 +166,7 @@ int StudyRepos(sim::study::StudyOptions options, const std::string& shard,
         << ", \"snapshots\": " << s.snapshots << ", \"snapshots_wall_s\": " << s.snapshots_wall_s
         << ", \"jobs\": " << options.jobs << ", \"cores\": " << std::thread::hardware_concurrency()
         << "}\n";
-    if (!out) throw std::runtime_error("cannot write " + bench_json);
+    common::WriteFileAtomically(bench_json, out.str());
   }
   return 0;
 }
@@ -547,3 +559,6 @@ int main(int argc, char** argv) {
   }
   return 2;
 }
+  // A file size limit (ulimit -f) is then a write error naming the file, as a full disk is,
+  // instead of a kill that leaves the files cut.
+  std::signal(SIGXFSZ, SIG_IGN);

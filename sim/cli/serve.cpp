@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/output_file.hpp"
 #include "control/gateway/nc_status_block.hpp"
 #include "control/plc/modbus_server.hpp"
 #include "sim/runner/runner.hpp"
@@ -303,7 +304,7 @@ int Serve(const ServeOptions& o) {
           ? ServeLockstep(o, run, *server, drop_if_asked, station.get())
           : ServeRealtime(o, run, *server, cycle, drop_if_asked, lateness_ms, link, station.get());
   const bool stopped_early = !run.done();  // Finish makes the tick it is at the run's last
-  const RunResult r = run.Finish();
+  const RunResult r = run.Finish(stop_reason);
   const control::plc::ModbusServer::Stats st =
       server ? server->stats() : control::plc::ModbusServer::Stats{};
   nlohmann::ordered_json serve = {{"scene", scene.name},
@@ -329,7 +330,13 @@ int Serve(const ServeOptions& o) {
                          {"timeout_cycles", link.timeout_cycles},
                          {"lost", link.losses}};
   }
-  if (!o.out_dir.empty()) std::ofstream(o.out_dir + "/serve.json") << serve.dump(2) << '\n';
+  std::vector<std::string> write_errors = r.write_errors;
+  try {
+    if (!o.out_dir.empty())
+      common::WriteFileAtomically(o.out_dir + "/serve.json", serve.dump(2) + '\n');
+  } catch (const common::WriteError& e) {
+    write_errors.push_back(e.what());
+  }
   std::printf("%s: %.3f s simulated, trace digest %s", scene.name.c_str(), run.time_s(),
               r.trace_digest.c_str());
   if (server)
@@ -352,11 +359,14 @@ int Serve(const ServeOptions& o) {
       station->Wait(std::chrono::milliseconds(100));
     }
   }
+  for (const std::string& e : write_errors)
+    std::fprintf(stderr, "vmt serve: error: %s\n", e.c_str());
   if (stopped_early) {
     std::fprintf(stderr, "vmt serve: stopped early at %.4f s: %s\n", run.time_s(),
                  stop_reason.c_str());
-    return kServeStoppedEarly;
   }
+  if (!write_errors.empty()) return 2;  // a lost file outweighs an early stop
+  if (stopped_early) return kServeStoppedEarly;
   return r.ok() ? 0 : 1;
 }
 

@@ -7,24 +7,46 @@
 namespace vmt::sim {
 
 void RunRecorder::Open(const std::string& out_dir) {
-  std::filesystem::create_directories(out_dir);
-  trace_file_.open(out_dir + "/trace.csv", std::ios::binary);
-  events_file_.open(out_dir + "/events.jsonl", std::ios::binary);
-  if (!trace_file_ || !events_file_)
-    throw std::runtime_error("cannot write to output folder " + out_dir);
+  std::error_code error;
+  std::filesystem::create_directories(out_dir, error);
+  if (error) throw common::WriteError(out_dir, error.value());
+  trace_file_ = std::make_unique<common::OutputFile>(out_dir + "/trace.csv");
+  events_file_ = std::make_unique<common::OutputFile>(out_dir + "/events.jsonl",
+                                                      common::OutputFile::Mode::kStream);
   writing_ = true;
 }
 
 void RunRecorder::Event(nlohmann::ordered_json event) {
   event["t"] = std::round(event["t"].get<double>() * 1e6) / 1e6;
   // Line by line, so that a PLC engineer can follow events.jsonl while the run goes on (tail -f).
-  if (writing_) events_file_ << event.dump() << '\n' << std::flush;
+  if (events_file_) {
+    events_file_->Write(event.dump() + '\n');
+    Checked(events_file_, false);
+  }
   for (const EventObserver& observe : observers_) observe(event);
 }
 
+void RunRecorder::Checked(std::unique_ptr<common::OutputFile>& file, bool close) {
+  if (!file) return;
+  try {
+    close ? file->Commit() : file->Flush();
+    if (close) file.reset();
+  } catch (const common::WriteError& e) {
+    AddWriteError(e.what());
+    file.reset();  // the run goes on without it
+  }
+}
+
+void RunRecorder::AddWriteError(const std::string& error) { write_errors_.push_back(error); }
+
 void RunRecorder::Flush() {
-  trace_file_.flush();
-  events_file_.flush();
+  Checked(trace_file_, false);
+  Checked(events_file_, false);
+}
+
+void RunRecorder::Close() {
+  Checked(trace_file_, true);
+  Checked(events_file_, true);
 }
 
 }  // namespace vmt::sim

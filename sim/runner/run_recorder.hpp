@@ -5,11 +5,13 @@
 
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "common/output_file.hpp"
 
 namespace vmt::sim {
 
@@ -37,26 +39,40 @@ class RunRecorder {
   void AddObserver(EventObserver observer) { observers_.push_back(std::move(observer)); }
 
   /// Writes trace.csv and events.jsonl into `out_dir` (created) from here on; without it the
-  /// run only digests its trace and hands events to the observers. Throws if it cannot write.
+  /// run only digests its trace and hands events to the observers. Throws common::WriteError
+  /// if it cannot create them.
   void Open(const std::string& out_dir);
   bool writing() const { return writing_; }
 
   void Trace(const std::string& row) {
     digest_.Add(row);
-    if (writing_) trace_file_ << row;
+    if (trace_file_) trace_file_->Write(row);  // checked at Flush and Close, not per row
   }
   /// Rounds the event's time to the tick grid (3.4995, not 3.4995000000000003), writes it (a
   /// whole line to the file at once, as it happens) and hands it to the observers.
   void Event(nlohmann::ordered_json event);
 
   std::string DigestHex() const { return digest_.Hex(); }
-  /// The files complete on disk, whether or not the run goes on.
+  /// What is written so far handed to the system (the run goes on). A file that failed is
+  /// dropped (trace.csv: its temporary removed; events.jsonl: its whole lines kept) and the
+  /// run goes on without it; the failure is in write_errors().
   void Flush();
+  /// The run is over: trace.csv renamed to its name (complete), events.jsonl closed.
+  void Close();
+  /// A file the run could not write ("cannot write FILE: REASON"), or any other output of the
+  /// run (summary.json, a picture): each is reported once, in order.
+  void AddWriteError(const std::string& error);
+  const std::vector<std::string>& write_errors() const { return write_errors_; }
 
  private:
+  void Checked(std::unique_ptr<common::OutputFile>& file, bool close);
+
   Fnv1a64 digest_;
   bool writing_ = false;
-  std::ofstream trace_file_, events_file_;
+  // trace.csv is whole or missing (a temporary renamed at Close); events.jsonl is streamed, a
+  // whole line at a time, so that it can be followed as the run goes on.
+  std::unique_ptr<common::OutputFile> trace_file_, events_file_;
+  std::vector<std::string> write_errors_;
   std::vector<EventObserver> observers_;
 };
 

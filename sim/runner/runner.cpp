@@ -339,17 +339,25 @@ void SceneRun::State::TakeDueSnapshots(double t) {
   }
 }
 
-RunResult SceneRun::State::Finish() {
-  // A run stopped early (vmt serve, a study's case) ends with the tick it is at, as a run to that
-  // time does (its last tick's trace row, no step beyond): so vmt view, running to the time in
-  // summary.json, runs the same ticks and gives the same digest.
+RunResult SceneRun::State::Finish(const std::string& stop_reason) {
+  // A run stopped early (vmt serve, a study's case, a signal) ends with the tick it is at, as a
+  // run to that time does (its last tick's trace row, no step beyond): so vmt view, running to
+  // the time in summary.json, runs the same ticks and gives the same digest.
+  const bool stopped_early = !finished;
+  if (stopped_early)
+    result.stop_reason = stop_reason.empty() ? "stopped before its end" : stop_reason;
   if (!finished) {
     last_tick = tick;
     Step();
   }
   RenderPendingSnapshots();
-  if (options.snapshots && recorder.writing())
-    result.contact_sheets = WriteContactSheets(scene, options.out_dir, result.snapshot_files);
+  if (options.snapshots && recorder.writing()) {
+    try {
+      result.contact_sheets = WriteContactSheets(scene, options.out_dir, result.snapshot_files);
+    } catch (const common::WriteError& e) {
+      recorder.AddWriteError(e.what());
+    }
+  }
   result.simulated_s = last_tick * kDriveTickS;
   result.final_joint_positions = backend->JointPositions();
   result.trace_digest = recorder.DigestHex();
@@ -388,7 +396,7 @@ RunResult SceneRun::State::Finish() {
   result.wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   // The files are complete now, whether or not the run object lives on.
-  recorder.Flush();
+  recorder.Close();
   WriteOperatorSteps();
 
   if (recorder.writing()) {
@@ -398,6 +406,10 @@ RunResult SceneRun::State::Finish() {
     summary["scene_file"] = std::filesystem::absolute(scene.file).lexically_normal().string();
     summary["backend"] = ToString(options.backend.value_or(scene.backend));
     summary["simulated_time_s"] = result.simulated_s;
+    if (stopped_early) {
+      summary["stopped_early"] = true;
+      summary["stop_reason"] = result.stop_reason;
+    }
     summary["wall_time_s"] = result.wall_s;
     summary["real_time_factor"] = result.wall_s > 0 ? result.simulated_s / result.wall_s : 0.0;
     summary["trace_digest"] = result.trace_digest;
@@ -417,8 +429,14 @@ RunResult SceneRun::State::Finish() {
     if (channel && scene.nc.data.spindle_drive >= 0)
       summary["spindle_status"] =
           SpindleStatusJson(*channel, m.drives[scene.nc.data.spindle_drive].info.name);
-    std::ofstream(options.out_dir + "/summary.json") << summary.dump(2) << '\n';
+    // Last: a summary.json says the run's files are complete (events.jsonl, written as the run
+    // goes, may lack its end without it). A file that failed is named in it.
+    if (!recorder.write_errors().empty()) summary["write_errors"] = recorder.write_errors();
+    WriteOutput(
+        options.out_dir + "/summary.json",
+        summary.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + '\n');
   }
+  result.write_errors = recorder.write_errors();
   return result;
 }
 
@@ -427,7 +445,7 @@ SceneRun::SceneRun(const Scene& scene, const RunOptions& options)
 SceneRun::~SceneRun() = default;
 bool SceneRun::done() const { return state_->finished; }
 void SceneRun::Step() { state_->Step(); }
-RunResult SceneRun::Finish() { return state_->Finish(); }
+RunResult SceneRun::Finish(const std::string& stop_reason) { return state_->Finish(stop_reason); }
 control::gateway::SignalImage* SceneRun::image() { return state_->image.get(); }
 const control::measure::MeasuringPages* SceneRun::measuring_pages() const {
   return state_->channel ? &state_->measuring_pages : nullptr;
@@ -473,11 +491,16 @@ std::optional<Eigen::Vector3d> SceneRun::ProbeLatchPoint() const {
   return state_->probe_latch_point;
 }
 
-
-RunResult RunScene(const Scene& scene, const RunOptions& options) {
+RunResult RunScene(const Scene& scene, const RunOptions& options,
+                   const std::function<std::string()>& stop) {
   SceneRun run(scene, options);
-  while (!run.done()) run.Step();
-  return run.Finish();
+  if (!stop) {
+    while (!run.done()) run.Step();
+    return run.Finish();
+  }
+  std::string reason;
+  while (!run.done() && (reason = stop()).empty()) run.Step();
+  return run.Finish(reason);
 }
 
 }  // namespace vmt::sim

@@ -61,11 +61,16 @@ struct RunResult {
   std::vector<std::string> snapshot_files;
   std::vector<std::string> contact_sheets;  ///< one per snapshot series that took pictures
   std::vector<double> final_joint_positions;  ///< m | rad, at the end of the run
+  /// "cannot write FILE: REASON" for each output that could not be written (a full disk): the
+  /// file is missing (events.jsonl: its whole lines kept), the others are complete.
+  std::vector<std::string> write_errors;
+  /// Why the run stopped before its end (Finish's reason), empty when it ran to its end.
+  std::string stop_reason;
   bool ok() const { return failures.empty(); }
 };
 
 /// A run one drive tick at a time, for whoever paces it (vmt serve: an external PLC's cycles).
-/// Throws std::runtime_error when an output file cannot be written.
+/// Throws common::WriteError when the output folder cannot be made.
 class SceneRun {
  public:
   SceneRun(const Scene& scene, const RunOptions& options);
@@ -73,9 +78,12 @@ class SceneRun {
   bool done() const;
   /// One drive tick; after the scene's last tick done() is true.
   void Step();
-  /// Checks what is left, writes summary.json; call once, when done or stopping early. Stopped
-  /// early, the tick the run is at is its last (summary.json's simulated_time_s).
-  RunResult Finish();
+  /// Checks what is left, completes the files and writes summary.json last; call once, when
+  /// done or stopping early. Stopped early, the tick the run is at is its last (summary.json's
+  /// simulated_time_s) and summary.json says `"stopped_early": true` and `stop_reason` (given
+  /// here, e.g. "SIGTERM"). A file that cannot be written does not throw: the run's other files
+  /// are still written, and RunResult::write_errors names it.
+  RunResult Finish(const std::string& stop_reason = {});
   /// The gateway signals, null without an nc: section.
   control::gateway::SignalImage* image();
   const control::gateway::SignalImage* image() const;
@@ -142,7 +150,10 @@ class SceneRun {
   std::unique_ptr<State> state_;
 };
 
-/// Throws std::runtime_error when an output file cannot be written.
-RunResult RunScene(const Scene& scene, const RunOptions& options);
+/// Runs the scene to its end, or until `stop` (checked once a tick) says to stop early: then
+/// Finish gets `stop()`'s text as the reason. Throws common::WriteError when the output folder
+/// cannot be made; a file that fails later is in RunResult::write_errors.
+RunResult RunScene(const Scene& scene, const RunOptions& options,
+                   const std::function<std::string()>& stop = {});
 
 }  // namespace vmt::sim

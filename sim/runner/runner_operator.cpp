@@ -2,6 +2,7 @@
 // operator.yaml: a key or a signal set at the start of a PLC cycle, the way the timeline's
 // `press:` and `signal:` steps set them, and recorded so that the run can be repeated.
 #include <fstream>
+#include <sstream>
 
 #include "sim/runner/runner_state.hpp"
 
@@ -82,9 +83,9 @@ void SceneRun::State::ReplayOperatorSteps() {
   }
 }
 
-void SceneRun::State::WriteOperatorSteps() const {
+void SceneRun::State::WriteOperatorSteps() {
   if (!recorder.writing() || operated.empty()) return;
-  std::ofstream f(options.out_dir + "/operator.yaml");
+  std::ostringstream f;
   f << "# The operator station's inputs, at the drive tick of the PLC cycle that took each.\n"
     << "# vmt run SCENE --operator operator.yaml repeats the run to the same trace digest.\n"
     << "scene: " << nlohmann::json(scene.name).dump() << "\noperator:\n";
@@ -96,6 +97,7 @@ void SceneRun::State::WriteOperatorSteps() const {
       f << "  - {tick: " << o.tick << ", handwheel: " << nlohmann::json(o.handwheel).dump()
         << ", counts: " << static_cast<int>(o.value) << "}\n";
   }
+  WriteOutput(options.out_dir + "/operator.yaml", f.str());
 }
 
 std::string SceneRun::OperateError(const std::string& signal) const {

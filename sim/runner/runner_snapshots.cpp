@@ -1,4 +1,7 @@
 // Pictures of a scene run: at a time or on an event, rendered at once or after the run.
+#include <string_view>
+
+#include "common/output_file.hpp"
 #include "render/image.hpp"
 #include "sim/runner/event_snapshots.hpp"
 #include "sim/runner/runner_state.hpp"
@@ -21,10 +24,11 @@ void SceneRun::State::TakeSnapshot(const SnapshotSpec& s, const std::string& fil
                                    nlohmann::ordered_json event) {
   if (!options.snapshots) return;
   PendingSnapshot shot{backend->JointPositions(), &s, options.out_dir + "/" + file, TurnedNow()};
-  if (!options.snapshots_after_run)
-    RenderSnapshot(shot);
-  else if (recorder.writing())
+  if (!options.snapshots_after_run) {
+    if (!RenderSnapshot(shot)) return;
+  } else if (recorder.writing()) {
     pending_snapshots.push_back(std::move(shot));
+  }
   if (!recorder.writing()) return;
   result.snapshot_files.push_back(options.out_dir + "/" + file);
   event["file"] = file;
@@ -41,17 +45,35 @@ std::shared_ptr<const TurnedProfile> SceneRun::State::TurnedNow() {
   return turned_profile;
 }
 
-void SceneRun::State::RenderSnapshot(const PendingSnapshot& shot) {
+bool SceneRun::State::RenderSnapshot(const PendingSnapshot& shot) {
   if (!renderer) renderer = std::make_unique<SceneRenderer>(m, scene.workpiece);
   const SnapshotSpec& s = *shot.spec;
   const render::Image picture =
       renderer->Render(shot.joints, *scene.Camera(s.camera), s.width, s.height, shot.turned.get());
-  if (recorder.writing()) render::WritePng(shot.path, picture);
+  if (!recorder.writing()) return true;
+  try {
+    render::WritePng(shot.path, picture);
+    return true;
+  } catch (const common::WriteError& e) {
+    recorder.AddWriteError(e.what());
+    return false;
+  }
 }
 
 void SceneRun::State::RenderPendingSnapshots() {
-  for (const PendingSnapshot& shot : pending_snapshots) RenderSnapshot(shot);
+  for (const PendingSnapshot& shot : pending_snapshots)
+    if (!RenderSnapshot(shot)) std::erase(result.snapshot_files, shot.path);
   pending_snapshots.clear();
+}
+
+bool SceneRun::State::WriteOutput(const std::string& path, std::string_view text) {
+  try {
+    common::WriteFileAtomically(path, text);
+    return true;
+  } catch (const common::WriteError& e) {
+    recorder.AddWriteError(e.what());
+    return false;
+  }
 }
 
 }  // namespace vmt::sim

@@ -33,7 +33,7 @@ namespace vmt::sim {
 struct SceneRun::State {
   State(const Scene& scene, const RunOptions& options);
   void Step();
-  RunResult Finish();
+  RunResult Finish(const std::string& stop_reason);
   void ReadFieldBus();
   const control::AmplifierTelegram& Faulted(const control::AmplifierTelegram& raw);
   void ApplyOutputFaults();
@@ -59,7 +59,8 @@ struct SceneRun::State {
   /// The turned stock as the last picture took it: shared by the pictures until the next cut.
   std::shared_ptr<const TurnedProfile> TurnedNow();
   std::shared_ptr<const TurnedProfile> turned_profile;
-  void RenderSnapshot(const PendingSnapshot& shot);
+  /// Returns whether the picture was written (a failure is a write error of the run).
+  bool RenderSnapshot(const PendingSnapshot& shot);
   void RenderPendingSnapshots();
   /// RunOptions::snapshots_after_run: the pictures taken, rendered at Finish.
   std::vector<PendingSnapshot> pending_snapshots;
@@ -134,7 +135,10 @@ struct SceneRun::State {
   std::string OperateHandwheel(const std::string& axis, int counts);
   /// RunOptions::operator_steps due at this tick, taken before anything else of it.
   void ReplayOperatorSteps();
-  void WriteOperatorSteps() const;
+  void WriteOperatorSteps();
+  /// Writes one of the run's files whole (common::OutputFile); a failure is kept in the
+  /// recorder's write errors and the run goes on. Returns whether it was written.
+  bool WriteOutput(const std::string& path, std::string_view text);
   std::vector<OperatorStep> operated;
   size_t next_operator_step = 0;
 };

@@ -6,10 +6,13 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <stdexcept>
+
+#include "common/output_file.hpp"
 
 namespace vmt::sim::study {
 namespace {
@@ -42,13 +45,25 @@ const char* const kColumns[] = {
     "retract",        "mode",         "verdict",      "parts", "point",         "min_clearance_mm",
     "path_length_mm", "repos_time_s", "error_number", "error", "contact_class", "past_contact_mm"};
 
-void WriteAll(int fd, const std::string& s) {
+constexpr size_t kErrorsShown = 10;  // of a corrupt cases.jsonl's bad lines
+
+void WriteAll(int fd, const std::string& s, const std::string& path) {
   size_t done = 0;
   while (done < s.size()) {
     const ssize_t n = ::write(fd, s.data() + done, s.size() - done);
-    if (n <= 0) throw std::runtime_error("cannot write a study's case files");
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) throw common::WriteError(path, n < 0 ? errno : ENOSPC);
     done += static_cast<size_t>(n);
   }
+}
+
+// Why a line of cases.jsonl is no case, or "".
+std::string LineError(const std::string& line, CaseResult& r) {
+  r = nlohmann::ordered_json::parse(line, nullptr, false);
+  if (r.is_discarded()) return "not JSON";
+  if (!r.is_object()) return "not a JSON object";
+  if (!r.contains("case") || !r["case"].is_string()) return "no \"case\" id";
+  return "";
 }
 
 }  // namespace
@@ -80,16 +95,33 @@ std::string CsvRow(const CaseResult& r) {
   return row + "\n";
 }
 
-std::vector<CaseResult> ReadCases(const std::string& jsonl_path) {
+std::vector<CaseResult> ReadCases(const std::string& jsonl_path, TornLine torn) {
   std::vector<CaseResult> out;
   std::ifstream in(jsonl_path, std::ios::binary);
   std::string text((std::istreambuf_iterator<char>(in)), {});
-  size_t begin = 0;
+  std::string errors;
+  size_t bad = 0, line = 0, begin = 0;
+  const auto fault = [&](const std::string& why) {
+    if (++bad <= kErrorsShown)
+      errors += "\n" + jsonl_path + ":" + std::to_string(line) + ": " + why;
+  };
   for (size_t end; (end = text.find('\n', begin)) != std::string::npos; begin = end + 1) {
-    CaseResult r = nlohmann::ordered_json::parse(text.substr(begin, end - begin), nullptr, false);
-    if (!r.is_discarded() && r.is_object() && r.contains("case") && r["case"].is_string())
+    ++line;
+    CaseResult r;
+    const std::string why = LineError(text.substr(begin, end - begin), r);
+    if (why.empty())
       out.push_back(std::move(r));
+    else
+      fault(why);
   }
+  if (begin < text.size() && torn == TornLine::kError) {
+    ++line;
+    fault("the last line is cut short (the study was stopped while writing it; run it again)");
+  }
+  if (bad > kErrorsShown) errors += "\n... and " + std::to_string(bad - kErrorsShown) + " more";
+  if (bad > 0)
+    throw std::runtime_error(jsonl_path + ": " + std::to_string(bad) + " of " +
+                             std::to_string(line) + " lines are no case:" + errors);
   return out;
 }
 
@@ -106,27 +138,27 @@ std::vector<CaseResult> Deduplicated(std::vector<CaseResult> cases) {
 void RewriteCaseFiles(const std::string& dir, const std::vector<CaseResult>& cases) {
   std::filesystem::create_directories(dir);
   // Written beside and renamed: a study killed now still has its old files whole.
-  std::ofstream jsonl(dir + "/cases.jsonl.tmp", std::ios::binary);
-  std::ofstream csv(dir + "/cases.csv.tmp", std::ios::binary);
-  csv << CsvHeader();
+  common::OutputFile jsonl(dir + "/cases.jsonl");
+  common::OutputFile csv(dir + "/cases.csv");
+  csv.Write(CsvHeader());
   for (const CaseResult& r : cases) {
-    jsonl << r.dump() << '\n';
-    csv << CsvRow(r);
+    jsonl.Write(r.dump() + '\n');
+    csv.Write(CsvRow(r));
   }
-  jsonl.close();
-  csv.close();
-  if (!jsonl || !csv) throw std::runtime_error("cannot write the case files in " + dir);
-  std::filesystem::rename(dir + "/cases.jsonl.tmp", dir + "/cases.jsonl");
-  std::filesystem::rename(dir + "/cases.csv.tmp", dir + "/cases.csv");
+  jsonl.Commit();
+  csv.Commit();
 }
 
 CaseFiles::CaseFiles(const std::string& dir) {
   std::filesystem::create_directories(dir);
-  jsonl_ = ::open((dir + "/cases.jsonl").c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
-  csv_ = ::open((dir + "/cases.csv").c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
-  if (jsonl_ < 0 || csv_ < 0) throw std::runtime_error("cannot open the case files in " + dir);
+  jsonl_path_ = dir + "/cases.jsonl";
+  csv_path_ = dir + "/cases.csv";
+  jsonl_ = ::open(jsonl_path_.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  if (jsonl_ < 0) throw common::WriteError(jsonl_path_, errno);
+  csv_ = ::open(csv_path_.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  if (csv_ < 0) throw common::WriteError(csv_path_, errno);
   struct stat st {};
-  if (::fstat(csv_, &st) == 0 && st.st_size == 0) WriteAll(csv_, CsvHeader());
+  if (::fstat(csv_, &st) == 0 && st.st_size == 0) WriteAll(csv_, CsvHeader(), csv_path_);
 }
 
 CaseFiles::~CaseFiles() {
@@ -135,8 +167,8 @@ CaseFiles::~CaseFiles() {
 }
 
 void CaseFiles::Write(const CaseResult& r) {
-  WriteAll(jsonl_, r.dump() + "\n");
-  WriteAll(csv_, CsvRow(r));
+  WriteAll(jsonl_, r.dump() + "\n", jsonl_path_);
+  WriteAll(csv_, CsvRow(r), csv_path_);
 }
 
 }  // namespace vmt::sim::study

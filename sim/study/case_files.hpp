@@ -14,9 +14,17 @@ namespace vmt::sim::study {
 std::string CsvHeader();
 std::string CsvRow(const CaseResult& r);
 
-/// The complete lines of a cases.jsonl (a torn last line of a killed study is left out); none
-/// if the file is not there.
-std::vector<CaseResult> ReadCases(const std::string& jsonl_path);
+/// What to do with a last line that has no line break (a study killed while writing it).
+enum class TornLine {
+  kLeftOut,  ///< the study resuming in its own folder runs that case again
+  kError,    ///< merge, compare: the shard was not finished
+};
+
+/// The cases of a cases.jsonl; none if the file is not there. Every line must be a case (a JSON
+/// object with a "case" id): otherwise throws std::runtime_error listing the bad lines as
+/// "FILE:LINE: REASON", so that a corrupt file is never taken for a study of fewer cases.
+std::vector<CaseResult> ReadCases(const std::string& jsonl_path,
+                                  TornLine torn = TornLine::kLeftOut);
 
 /// One result per id (the first), sorted by id.
 std::vector<CaseResult> Deduplicated(std::vector<CaseResult> cases);
@@ -39,6 +47,7 @@ class CaseFiles {
   void Write(const CaseResult& r);
 
  private:
+  std::string jsonl_path_, csv_path_;
   int jsonl_ = -1, csv_ = -1;
 };
 

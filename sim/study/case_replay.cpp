@@ -7,8 +7,10 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "common/output_file.hpp"
 #include "sim/study/case_files.hpp"
 #include "sim/study/reference_run.hpp"
+#include "sim/study/scratch_folder.hpp"
 #include "sim/study/study_cases.hpp"
 
 namespace vmt::sim::study {
@@ -35,9 +37,7 @@ void WriteStudySource(const std::string& dir, const std::string& scene_file,
   j["scene_file"] = std::filesystem::absolute(scene_file).lexically_normal().string();
   j["every_ms"] = plan.every_ms;
   j["per_mille"] = plan.per_mille;
-  const std::string tmp = dir + "/study.json." + std::to_string(::getpid());
-  std::ofstream(tmp, std::ios::binary) << j.dump(1) << "\n";
-  std::filesystem::rename(tmp, dir + "/study.json");
+  common::WriteFileAtomically(dir + "/study.json", j.dump(1) + "\n");
 }
 
 std::string CaseFolderOf(const std::string& case_id) { return "cases/" + FileNameOf(case_id); }
@@ -71,9 +71,8 @@ std::string SaveCase(const std::string& dir, const std::string& case_id) {
                       " (cases.csv lists them)");
 
   // Saved under another name first and renamed, so that a folder is either whole or absent.
-  const std::string work = folder + ".saving-" + std::to_string(::getpid());
-  std::filesystem::remove_all(work);
-  std::filesystem::create_directories(work);
+  const ScratchFolder scratch(folder + ".saving-" + std::to_string(::getpid()));
+  const std::string& work = scratch.path();
   const SavedCase saved = SaveCaseRun(scene, plan, interruptions, *c, work);
   nlohmann::ordered_json j;
   j["case"] = case_id;
@@ -83,10 +82,9 @@ std::string SaveCase(const std::string& dir, const std::string& case_id) {
   j["trace_digest"] = saved.trace_digest;
   j["timeline"] = saved.timeline;
   j["result"] = saved.result;
-  std::ofstream(work + "/case.json", std::ios::binary) << j.dump(1) << "\n";
+  common::WriteFileAtomically(work + "/case.json", j.dump(1) + "\n");
   std::error_code ec;
-  std::filesystem::rename(work, folder, ec);
-  if (ec) std::filesystem::remove_all(work);  // another request saved it meanwhile
+  std::filesystem::rename(work, folder, ec);  // failing, another request saved it meanwhile
   return folder;
 }
 

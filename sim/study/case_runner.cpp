@@ -15,6 +15,7 @@
 #include "sim/model/yaml_reader.hpp"
 #include "sim/runner/runner.hpp"
 #include "sim/scene/scene_steps.hpp"
+#include "sim/study/die_with_parent.hpp"
 
 namespace vmt::sim::study {
 namespace {
@@ -261,9 +262,11 @@ std::vector<std::string> InChild(const std::function<void(int)>& work, int* stat
   int fds[2];
   if (::pipe(fds) != 0) ::_exit(3);
   std::fflush(nullptr);
+  const pid_t parent = ::getpid();
   const pid_t child = ::fork();
   if (child < 0) ::_exit(4);
   if (child == 0) {
+    DieWithParent(parent);
     ::close(fds[0]);
     // A copy of the study process must never unwind into the study's own code.
     try {
@@ -320,9 +323,11 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
     int lines[2];
     if (::pipe(lines) != 0) throw std::runtime_error("pipe failed");
     std::fflush(nullptr);
+    const pid_t parent = ::getpid();
     const pid_t group = ::fork();
     if (group < 0) throw std::runtime_error("fork failed");
     if (group == 0) {
+      DieWithParent(parent);
       ::close(lines[0]);
       scene.timeline.push_back(HoldStep(scene, in.t_s, scene.timeline.size()));
       while (!run.done() && run.time_s() < in.t_s + plan.hold_s - kAhead) run.Step();
@@ -450,7 +455,9 @@ SavedCase SaveCaseRun(const Scene& base, const StudyPlan& plan,
   saved.result = obs.Result(plan, interruptions, c, run.time_s());
   saved.subroutine_file = way.file;
   saved.until_s = run.time_s();
-  saved.trace_digest = run.Finish().trace_digest;
+  const RunResult r = run.Finish();
+  if (!r.write_errors.empty()) throw std::runtime_error(r.write_errors.front());
+  saved.trace_digest = r.trace_digest;
   return saved;
 }
 

@@ -7,9 +7,11 @@
 #include <filesystem>
 #include <fstream>
 
+#include "common/output_file.hpp"
 #include "render/image.hpp"
 #include "sim/study/case_files.hpp"
 #include "sim/study/contact_picture.hpp"
+#include "sim/study/scratch_folder.hpp"
 #include "sim/study/study_conclusions.hpp"
 
 namespace vmt::sim::study {
@@ -37,9 +39,7 @@ SnapshotSpec Look(const Scene& scene) {
 void WriteSnapshotIndex(const std::string& dir, const std::map<std::string, std::string>& index) {
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
   for (const auto& [id, file] : index) j[id] = file;
-  const std::string tmp = dir + "/snapshots.json." + std::to_string(::getpid());
-  std::ofstream(tmp, std::ios::binary) << j.dump(1) << "\n";
-  std::filesystem::rename(tmp, dir + "/snapshots.json");
+  common::WriteFileAtomically(dir + "/snapshots.json", j.dump(1) + "\n");
 }
 
 std::vector<std::string> WorstCaseIds(const std::vector<CaseResult>& results, int collisions) {
@@ -91,9 +91,8 @@ std::map<std::string, std::string> SnapshotCases(const Scene& base, const StudyP
       index[id] = file;
       continue;
     }
-    const std::string work = dir + "/.snapshot-" + std::to_string(::getpid());
-    std::filesystem::remove_all(work);
-    std::filesystem::create_directories(work);
+    const ScratchFolder scratch(dir + "/.snapshot-" + std::to_string(::getpid()));
+    const std::string& work = scratch.path();
     SnapshotSpec shot = look;
     if (Str(*r, "verdict") == "collision") {
       // At the first contact: PathGuard refused the move before it started, so the machine
@@ -120,7 +119,6 @@ std::map<std::string, std::string> SnapshotCases(const Scene& base, const StudyP
         index[id] = file;
         break;
       }
-    std::filesystem::remove_all(work);
   }
   WriteSnapshotIndex(dir, index);
   return index;

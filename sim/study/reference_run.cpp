@@ -100,7 +100,8 @@ Reference RunReference(const Scene& base, const std::string& work_dir) {
     SceneRun run(scene, options);
     while (!run.done() && state != "ended" && state != "error") run.Step();
     MachineFrame(scene, run, ref);
-    run.Finish();
+    const RunResult r = run.Finish();
+    if (!r.write_errors.empty()) throw std::runtime_error(r.write_errors.front());
   }
   if (state != "ended")
     throw std::runtime_error("the study's reference run of " + base.file +

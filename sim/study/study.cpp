@@ -14,9 +14,12 @@
 #include <stdexcept>
 #include <thread>
 
+#include "common/output_file.hpp"
 #include "sim/study/case_files.hpp"
 #include "sim/study/case_replay.hpp"
 #include "sim/study/case_snapshots.hpp"
+#include "sim/study/die_with_parent.hpp"
+#include "sim/study/scratch_folder.hpp"
 #include "sim/study/study_conclusions.hpp"
 #include "sim/study/study_report.hpp"
 
@@ -37,12 +40,11 @@ Reference LoadOrRunReference(const Scene& scene, const std::string& dir) {
     } catch (const std::exception&) {  // torn: run it again
     }
   }
-  const std::string work = dir + "/.reference-" + std::to_string(::getpid());
-  const Reference ref = RunReference(scene, work);
-  std::filesystem::remove_all(work);
-  const std::string tmp = file + "." + std::to_string(::getpid());
-  std::ofstream(tmp, std::ios::binary) << ReferenceJson(ref);
-  std::filesystem::rename(tmp, file);
+  const Reference ref = [&] {
+    const ScratchFolder work(dir + "/.reference-" + std::to_string(::getpid()));
+    return RunReference(scene, work.path());
+  }();
+  common::WriteFileAtomically(file, ReferenceJson(ref));
   return ref;
 }
 
@@ -133,6 +135,7 @@ StudySummary RunStudy(const StudyOptions& o) {
   const double cpu0 = ChildrenCpuSeconds();
   std::vector<pid_t> workers;
   std::fflush(nullptr);
+  const pid_t study_pid = ::getpid();
   for (int w = 0; w < o.jobs && !todo.empty(); ++w) {
     const pid_t pid = ::fork();
     if (pid < 0) throw std::runtime_error("fork failed");
@@ -140,6 +143,7 @@ StudySummary RunStudy(const StudyOptions& o) {
       workers.push_back(pid);
       continue;
     }
+    DieWithParent(study_pid);
     int code = 0;
     try {
       std::vector<StudyCase> mine;
@@ -202,7 +206,7 @@ size_t MergeStudies(const std::vector<std::string>& dirs, const std::string& out
   for (const std::string& d : dirs) {
     if (!std::filesystem::exists(d + "/cases.jsonl"))
       throw std::runtime_error(d + ": no cases.jsonl (not a study folder)");
-    std::vector<CaseResult> some = ReadCases(d + "/cases.jsonl");
+    std::vector<CaseResult> some = ReadCases(d + "/cases.jsonl", TornLine::kError);
     all.insert(all.end(), std::make_move_iterator(some.begin()),
                std::make_move_iterator(some.end()));
     if (reference.empty() && std::filesystem::exists(d + "/reference.json"))
@@ -218,19 +222,17 @@ size_t MergeStudies(const std::vector<std::string>& dirs, const std::string& out
       const std::filesystem::path to = std::filesystem::path(out_dir) / file;
       std::filesystem::create_directories(to.parent_path());
       if (std::filesystem::absolute(d + "/" + file) != std::filesystem::absolute(to))
-        std::filesystem::copy_file(d + "/" + file, to,
-                                   std::filesystem::copy_options::overwrite_existing);
+        common::CopyFileAtomically(d + "/" + file, to.string());
       shots[id] = file;
     }
   if (!shots.empty()) WriteSnapshotIndex(out_dir, shots);
-  if (!reference.empty()) std::ofstream(out_dir + "/reference.json", std::ios::binary) << reference;
+  if (!reference.empty()) common::WriteFileAtomically(out_dir + "/reference.json", reference);
   // The shards ran one study: the first's record of its scene serves them all.
   for (const std::string& d : dirs)
     if (std::filesystem::exists(d + "/study.json")) {
       std::error_code same;
       if (!std::filesystem::equivalent(d + "/study.json", out_dir + "/study.json", same))
-        std::filesystem::copy_file(d + "/study.json", out_dir + "/study.json",
-                                   std::filesystem::copy_options::overwrite_existing);
+        common::CopyFileAtomically(d + "/study.json", out_dir + "/study.json");
       break;
     }
   WriteReport(out_dir, "REPOS study (merged)");

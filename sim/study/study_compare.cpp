@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/output_file.hpp"
 #include "sim/study/case_files.hpp"
 #include "sim/study/study_conclusions.hpp"
 #include "sim/study/study_plane.hpp"
@@ -227,12 +228,12 @@ std::string CompareStudies(const std::string& dir_a, const std::string& dir_b,
     if (!std::filesystem::exists(d + "/cases.jsonl"))
       throw std::runtime_error(d + ": no cases.jsonl (not a study folder)");
   if (!(threshold_mm >= 0)) throw std::runtime_error("--threshold needs a distance >= 0 mm");
-  const std::vector<CaseResult> a = Deduplicated(ReadCases(dir_a + "/cases.jsonl"));
-  const std::vector<CaseResult> b = Deduplicated(ReadCases(dir_b + "/cases.jsonl"));
+  const std::vector<CaseResult> a =
+      Deduplicated(ReadCases(dir_a + "/cases.jsonl", TornLine::kError));
+  const std::vector<CaseResult> b =
+      Deduplicated(ReadCases(dir_b + "/cases.jsonl", TornLine::kError));
   const Comparison c = CompareCases(a, b, threshold_mm, dir_a, dir_b);
-  std::ofstream html(html_path, std::ios::binary);
-  if (!(html << CompareHtml(c, a, b)))
-    throw std::runtime_error(html_path + ": cannot write the comparison page");
+  common::WriteFileAtomically(html_path, CompareHtml(c, a, b));
   return CompareText(c, a, b);
 }
 

@@ -10,6 +10,7 @@
 #include <optional>
 #include <sstream>
 
+#include "common/output_file.hpp"
 #include "sim/study/case_files.hpp"
 #include "sim/study/case_snapshots.hpp"
 #include "sim/study/study_conclusions.hpp"
@@ -246,8 +247,8 @@ void WriteReport(const std::string& dir, const std::string& title) {
     } catch (const std::exception&) {  // a torn reference only loses the contour
     }
   }
-  std::ofstream(dir + "/report.html", std::ios::binary)
-      << ReportHtml(title, cases, ref ? &*ref : nullptr, ReadSnapshotIndex(dir));
+  common::WriteFileAtomically(dir + "/report.html", ReportHtml(title, cases, ref ? &*ref : nullptr,
+                                                               ReadSnapshotIndex(dir)));
 }
 
 }  // namespace vmt::sim::study
