@@ -52,13 +52,18 @@ SourcePos Program::PosAt(uint32_t offset) const {
   return {0, line, offset - line_starts[line - 1] + 1, offset};
 }
 
+// Editors on Windows start a UTF-8 file with a byte order mark: it is no part of the program.
+static size_t Utf8BomLength(std::string_view text) {
+  return text.substr(0, 3) == "\xEF\xBB\xBF" ? 3 : 0;
+}
+
 Dialect DetectDialect(std::string_view text, std::string_view file_name) {
   auto ends_with = [&](std::string_view ext) {
     return file_name.size() >= ext.size() && file_name.substr(file_name.size() - ext.size()) == ext;
   };
   if (ends_with(".isg") || ends_with(".ISG")) return Dialect::kIsg;
   if (ends_with(".mtc") || ends_with(".MTC")) return Dialect::kMtc200;
-  for (size_t i = 0; i < text.size();) {
+  for (size_t i = Utf8BomLength(text); i < text.size();) {
     size_t end = text.find('\n', i);
     if (end == std::string_view::npos) end = text.size();
     std::string_view line = text.substr(i, end - i);
@@ -95,7 +100,8 @@ ParseResult ParseProgram(std::string_view text, const std::string& file_name, Di
   ExpressionParser expr(p, r.errors);
   const auto parse_line = dialect == Dialect::kIsg ? ParseIsgLine : ParseMtc200Line;
   uint32_t line_number = 0, counter = 0;
-  for (size_t i = 0; i <= text.size();) {
+  // Offsets stay those of the whole text; the first line starts after the mark.
+  for (size_t i = Utf8BomLength(text); i <= text.size();) {
     size_t end = text.find('\n', i);
     if (end == std::string_view::npos) end = text.size();
     ++line_number;

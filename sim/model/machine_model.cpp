@@ -10,6 +10,9 @@
 namespace vmt::sim {
 namespace {
 
+// Longest switching time of a valve, clutch or settling drive (10 min): any longer is a typo.
+constexpr double kMaxActionSeconds = 600;
+
 constexpr double kRadPerDeg = 1.0 / kDegPerRad;
 
 // Machine units (mm | deg) -> SI (m | rad).
@@ -47,8 +50,8 @@ void ReadActuators(MachineModel& m, const YamlNode& list) {
     d.valve = RequireIo(m, a["valve"], true);
     d.on_switch = OptionalIo(m, a, "on_switch", false);
     d.off_switch = OptionalIo(m, a, "off_switch", false);
-    d.time_on_s = a["time_on"].Double();
-    d.time_off_s = a["time_off"].Double();
+    d.time_on_s = a["time_on"].Double(0, kMaxActionSeconds);
+    d.time_off_s = a["time_off"].Double(0, kMaxActionSeconds);
     if (d.time_on_s <= 0) a["time_on"].Fail("must be > 0");
     if (d.time_off_s <= 0) a["time_off"].Fail("must be > 0");
     if (a.Has("holds")) {
@@ -195,7 +198,7 @@ DriveParams ReadDrive(const MachineModel& m, const YamlNode& d) {
   if (p.ratio == 0) d["ratio"].Fail("must not be 0");
   p.encoder_resolution = d["encoder_resolution"].Double() * s;
   if (p.encoder_resolution <= 0) d["encoder_resolution"].Fail("must be > 0");
-  p.overload_time_s = d.Double("overload_time", 1.0);
+  p.overload_time_s = d.Double("overload_time", 1.0, 0, 3600);
   if (p.overload_time_s <= 0) d["overload_time"].Fail("must be > 0");
   // The threshold status bits (C-axis manual 4.2 AxxS.MD_MDX, P_PX): N | N m and W, as the
   // torque limit, already SI.
@@ -227,7 +230,7 @@ DriveParams ReadDrive(const MachineModel& m, const YamlNode& d) {
   if (d.Has("spec")) {
     const YamlNode spec = d["spec"];
     spec.AllowKeys({"settle_time", "overshoot"});
-    p.spec_settle_time_s = spec["settle_time"].Double();
+    p.spec_settle_time_s = spec["settle_time"].Double(0, kMaxActionSeconds);
     p.spec_overshoot = spec["overshoot"].Double() * s;
   }
   return p;
@@ -347,12 +350,12 @@ MachineModel LoadMachineModel(const std::string& machine_yaml_path) {
         k.load_joint = RequireJoint(m, c["load"]);
         k.ratio = c["ratio"].Double();
         if (k.ratio == 0) c["ratio"].Fail("must not be 0");
-        k.teeth = c["teeth"].Int();
+        k.teeth = c["teeth"].Int(1, 3600);
         if (k.teeth < 1) c["teeth"].Fail("must be >= 1");
-        k.phase_tolerance_rad = c["phase_tolerance"].Double() * kRadPerDeg;
+        k.phase_tolerance_rad = c["phase_tolerance"].Double(0, 360) * kRadPerDeg;
         k.max_relative_speed_rad_s = c["max_relative_speed"].Double() * kRadPerDeg;
-        k.engage_time_s = c["engage_time"].Double();
-        k.release_time_s = c["release_time"].Double();
+        k.engage_time_s = c["engage_time"].Double(0, kMaxActionSeconds);
+        k.release_time_s = c["release_time"].Double(0, kMaxActionSeconds);
         k.valve_engage = RequireIo(m, c["valve_engage"], true);
         k.valve_release = RequireIo(m, c["valve_release"], true);
         k.sensor_engaged = RequireIo(m, c["sensor_engaged"], false);

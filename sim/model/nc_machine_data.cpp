@@ -8,6 +8,11 @@
 namespace vmt::sim {
 namespace {
 
+// Largest zero offset (100 m) and tool length or nose radius (10 m): beyond any lathe's work
+// space, small enough that positions computed of them stay exact to far below a micrometre.
+constexpr double kMaxOffsetMm = 1e5;
+constexpr double kMaxToolLengthMm = 1e4;
+
 int AxisIndex(const std::vector<control::axes::AxisParameters>& axes, const std::string& name) {
   for (size_t a = 0; a < axes.size(); ++a)
     if (axes[a].name == name) return static_cast<int>(a);
@@ -180,7 +185,7 @@ control::axes::ZeroOffsetTable ReadZeroOffsets(
     for (const std::string& axis : table.Keys()) {
       const int a = AxisIndex(axes, axis);
       if (a < 0) table[axis].Fail("no NC axis '" + axis + "'");
-      row[a] = table[axis].Double();
+      row[a] = table[axis].Double(-kMaxOffsetMm, kMaxOffsetMm);
     }
   }
   return t;
@@ -192,8 +197,8 @@ control::axes::ToolTable ReadToolTable(const std::vector<control::axes::AxisPara
   for (size_t i = 0; i < node.size(); ++i) {
     const YamlNode e = node[i];
     control::axes::ToolEdge edge;
-    edge.tool = e["T"].Int();
-    edge.edge = e.Int("D", 1);
+    edge.tool = e["T"].Int(0, 99999999);
+    edge.edge = e.Int("D", 1, 1, 99);
     if (edge.tool < 0) e["T"].Fail("must be >= 0");
     if (edge.edge < 1) e["D"].Fail("must be >= 1 (D0 is no correction)");
     if (t.Find(edge.tool, edge.edge))
@@ -202,15 +207,15 @@ control::axes::ToolTable ReadToolTable(const std::vector<control::axes::AxisPara
     for (const std::string& key : e.Keys()) {
       if (key == "T" || key == "D") continue;
       if (key == "radius") {
-        edge.nose_radius = e[key].Double();
+        edge.nose_radius = e[key].Double(0, kMaxToolLengthMm);
         if (edge.nose_radius < 0) e[key].Fail("must be >= 0");
       } else if (key == "edge") {
-        edge.edge_position = e[key].Int();
+        edge.edge_position = e[key].Int(0, 9);
         if (edge.edge_position < 0 || edge.edge_position > 9) e[key].Fail("must be in 0..9");
       } else {
         const int a = AxisIndex(axes, key);
         if (a < 0) e[key].Fail("expected T, D, radius, edge or an NC axis name");
-        edge.length[a] = e[key].Double();
+        edge.length[a] = e[key].Double(-kMaxToolLengthMm, kMaxToolLengthMm);
       }
     }
     t.edges.push_back(edge);

@@ -3,11 +3,13 @@
 #include <yaml-cpp/eventhandler.h>
 
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "common/input_file.hpp"
 #include "sim/model/model_error.hpp"
 #include "sim/model/nesting_depth.hpp"
+#include "sim/model/yaml_text_checks.hpp"
 
 namespace vmt::sim {
 
@@ -72,18 +74,18 @@ YamlNode YamlNode::LoadFile(const std::string& file) {
     throw ModelError(file, "", "cannot open file: " + why);
   try {
     CheckYamlSize(file, text);
-    return YamlNode(YAML::Load(text), file, "");
-
+    CheckUtf8Text(file, text);
+    const YAML::Node root = YAML::Load(text);
+    CheckMapKeys(file, root);
+    return YamlNode(root, file, "");
   } catch (const YAML::Exception& e) {
-    throw ModelError(
-        file + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1), "",
-        "YAML syntax error: " + e.msg);
+    throw ModelError(YamlSyntaxError(file, e));
   }
 }
 
 void YamlNode::Fail(const std::string& message) const {
   std::string where = file_;
-  const YAML::Mark mark = node_.Mark();
+  const YAML::Mark mark = node_.IsDefined() ? node_.Mark() : YAML::Mark::null_mark();
   if (mark.line >= 0)
     where += ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1);
   throw ModelError(where, path_.empty() ? "(top level)" : path_, message);
@@ -115,8 +117,20 @@ size_t YamlNode::size() const {
 std::vector<std::string> YamlNode::Keys() const {
   if (!node_.IsMap()) Fail("expected a map");
   std::vector<std::string> keys;
-  for (const auto& kv : node_) keys.push_back(kv.first.as<std::string>());
+  for (const auto& kv : node_) {
+    if (!kv.first.IsScalar()) YamlNode(kv.first, file_, path_).Fail("a key must be a name");
+    keys.push_back(kv.first.Scalar());
+  }
   return keys;
+}
+
+YamlNode YamlNode::KeyNode(const std::string& key) const {
+  const std::string key_path = path_.empty() ? key : path_ + "." + key;
+  if (node_.IsMap())
+    for (const auto& kv : node_)
+      if (kv.first.IsScalar() && kv.first.Scalar() == key)
+        return YamlNode(kv.first, file_, key_path);
+  return YamlNode(node_, file_, key_path);
 }
 
 void YamlNode::AllowKeys(std::initializer_list<const char*> allowed) const {
@@ -126,29 +140,52 @@ void YamlNode::AllowKeys(std::initializer_list<const char*> allowed) const {
     if (ok) continue;
     std::string list;
     for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
-    YamlNode(node_[key], file_, path_.empty() ? key : path_ + "." + key)
-        .Fail("unknown key '" + key + "' (expected one of: " + list + ")");
+    KeyNode(key).Fail("unknown key '" + key + "' (expected one of: " + list + ")");
   }
 }
 
-double YamlNode::Double() const {
+namespace {
+
+std::string Number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", v);
+  return text;
+}
+
+}  // namespace
+
+double YamlNode::Double(double min, double max) const {
   if (!node_.IsScalar()) Fail("expected a number");
+  double v = 0;
   try {
-    const double v = node_.as<double>();
-    if (!std::isfinite(v)) Fail("expected a finite number, got \"" + node_.Scalar() + "\"");
-    return v;
+    v = node_.as<double>();
   } catch (const YAML::Exception&) {
     Fail("expected a number, got \"" + node_.Scalar() + "\"");
   }
+  if (!std::isfinite(v)) Fail("expected a finite number, got \"" + node_.Scalar() + "\"");
+  if (v < min || v > max)
+    Fail("must be in " + Number(min) + ".." + Number(max) + ", got " + node_.Scalar());
+  return v;
+}
+
+int YamlNode::Int(int min, int max) const {
+  if (!node_.IsScalar()) Fail("expected a whole number");
+  int v = 0;
+  try {
+    v = node_.as<int>();
+  } catch (const YAML::Exception&) {
+    Fail("expected a whole number in " + std::to_string(min) + ".." + std::to_string(max) +
+         ", got \"" + node_.Scalar() + "\"");
+  }
+  if (v < min || v > max)
+    Fail("must be in " + std::to_string(min) + ".." + std::to_string(max) + ", got " +
+         node_.Scalar());
+  return v;
 }
 
 int YamlNode::Int() const {
-  if (!node_.IsScalar()) Fail("expected an integer");
-  try {
-    return node_.as<int>();
-  } catch (const YAML::Exception&) {
-    Fail("expected an integer, got \"" + node_.Scalar() + "\"");
-  }
+  constexpr int kAnyInt = static_cast<int>(kAnyNumber);
+  return Int(-kAnyInt, kAnyInt);
 }
 
 bool YamlNode::Bool() const {
@@ -165,8 +202,11 @@ std::string YamlNode::String() const {
   return node_.Scalar();
 }
 
-double YamlNode::Double(const std::string& key, double fallback) const {
-  return Has(key) ? (*this)[key].Double() : fallback;
+double YamlNode::Double(const std::string& key, double fallback, double min, double max) const {
+  return Has(key) ? (*this)[key].Double(min, max) : fallback;
+}
+int YamlNode::Int(const std::string& key, int fallback, int min, int max) const {
+  return Has(key) ? (*this)[key].Int(min, max) : fallback;
 }
 int YamlNode::Int(const std::string& key, int fallback) const {
   return Has(key) ? (*this)[key].Int() : fallback;
@@ -178,11 +218,11 @@ std::string YamlNode::String(const std::string& key, const std::string& fallback
   return Has(key) ? (*this)[key].String() : fallback;
 }
 
-std::vector<double> YamlNode::Doubles(size_t n) const {
+std::vector<double> YamlNode::Doubles(size_t n, double min, double max) const {
   if (!node_.IsSequence() || node_.size() != n)
     Fail("expected a list of " + std::to_string(n) + " numbers");
   std::vector<double> out;
-  for (size_t i = 0; i < n; ++i) out.push_back((*this)[i].Double());
+  for (size_t i = 0; i < n; ++i) out.push_back((*this)[i].Double(min, max));
   return out;
 }
 

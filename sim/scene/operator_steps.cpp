@@ -21,7 +21,7 @@ std::vector<OperatorStep> ReadOperatorSteps(const std::string& file) {
       n.AllowKeys({"tick", "handwheel", "counts"});
     else
       n.AllowKeys({"tick", "signal", "value"});
-    const double tick = n["tick"].Double();
+    const double tick = n["tick"].Double(0, 9e15);
     if (!(tick >= 0) || tick > 9e15 || tick != std::floor(tick))
       n["tick"].Fail("expected a whole number of drive ticks, >= 0");
     OperatorStep s;

@@ -20,6 +20,13 @@
 
 namespace vmt::sim {
 
+/// The longest scene (a day): every time in a scene lies in 0..kMaxSceneSeconds.
+inline constexpr double kMaxSceneSeconds = 86400;
+/// Fastest spindle (rpm) and feed (mm/min | deg/min) a scene step may command: far above any
+/// lathe's, the drives' own limits apply below them.
+inline constexpr double kMaxRpm = 1e5;
+inline constexpr double kMaxFeed = 1e7;
+
 enum class BackendKind { kPhysics, kKinematic };
 inline const char* ToString(BackendKind k) {
   return k == BackendKind::kPhysics ? "physics" : "kinematic";

@@ -45,7 +45,7 @@ ProbeSamplingPhase ReadProbeSampling(const YamlNode& probe) {
     probe["sampling_phase"].Fail("expected fixed or seeded, got \"" + phase + "\"");
   if (probe.Has("seed")) {
     if (!sampling.seeded) probe["seed"].Fail("a seed needs sampling_phase: seeded");
-    const double seed = probe["seed"].Double();
+    const double seed = probe["seed"].Double(0, 4294967295.0);
     if (seed < 0 || seed > 4294967295.0 || seed != std::floor(seed))
       probe["seed"].Fail("expected a whole number 0..4294967295");
     sampling.seed = static_cast<uint64_t>(seed);
@@ -53,8 +53,7 @@ ProbeSamplingPhase ReadProbeSampling(const YamlNode& probe) {
   return sampling;
 }
 
-InitialState ReadInitialState(const YamlNode& init, const MachineModel& m,
-                              const std::string& path) {
+InitialState ReadInitialState(const YamlNode& init, const MachineModel& m) {
   InitialState initial;
   for (const std::string& key : init.Keys()) {
     if (key == "clutch") {
@@ -69,7 +68,7 @@ InitialState ReadInitialState(const YamlNode& init, const MachineModel& m,
         initial.clutch_engaged[name] = state == "engaged";
       }
     } else {
-      const int d = RequireDrive(m, YamlNode(YAML::Node(key), path, init.path() + "." + key));
+      const int d = RequireDrive(m, init.KeyNode(key));
       initial.drive_positions[key] = init[key].Double();
       RequireWithinTravel(m, d, init[key].Double(), init[key]);
     }
@@ -115,7 +114,7 @@ PlcSetup ReadPlc(const YamlNode& plc, const NcSetup& nc) {
       plc_setup.constants.emplace_back(id, SignalValue(nc, id, constants[name]));
     }
   }
-  const double period_ms = plc.Double("period_ms", 4);
+  const double period_ms = plc.Double("period_ms", 4, 0, 1000);
   const double ticks = period_ms * 1e-3 / kDriveTickS;
   if (!(ticks >= 1) || std::abs(ticks - std::round(ticks)) > 1e-9 || ticks > 4000)
     plc["period_ms"].Fail("must be a multiple of the 0.25 ms drive tick, at most 1000 ms");
@@ -257,10 +256,27 @@ NcSetup ReadNc(const YamlNode& nc, const MachineModel& m, const std::string& pat
         "the machine's tool storage axis has no stations (nc: tool_storage: {stations: ...})");
   setup.signals = std::make_shared<const std::vector<control::gateway::Signal>>(
       control::gateway::BuildSignalTable(GatewayLayoutOf(m)));
-  setup.override = nc.Double("override", 100) / 100;
+  // Feed override in percent, as the operator panel sets it (0..200 %).
+  setup.override = nc.Double("override", 100, 0, 200) / 100;
   PresetStylusPages(m, setup.measuring_pages);
   if (nc.Has("block_search")) ReadBlockSearchObjects(nc["block_search"], setup);
   return setup;
+}
+
+// The block search objects whose values the TwinCAT manual bounds (4.1.1: the covered distance
+// in per mille of the block; distances and offsets are not negative), checked as they are set
+// rather than when the search starts.
+std::string BlockSearchRangeError(const std::string& name, double value) {
+  const auto ends_with = [&](const char* suffix) {
+    const std::string s = suffix;
+    return name.size() >= s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0;
+  };
+  if (ends_with("mc_cmd_bs_covered_distance_w") && !(value >= 0 && value <= 1000))
+    return "must be in 0..1000 (per mille of the block's path)";
+  for (const char* key : {"mc_cmd_bs_deviation_max_w", "mc_command_file_offset_w",
+                          "mc_cmd_bs_distance_prog_start_w", "mc_cmd_bs_breakpoint_position_w"})
+    if (ends_with(key) && value < 0) return "must not be negative";
+  return "";
 }
 
 }  // namespace
@@ -289,15 +305,15 @@ Scene LoadScene(const std::string& path) {
     s.backend = BackendKind::kKinematic;
   else
     root["backend"].Fail("expected physics or kinematic, got \"" + backend + "\"");
-  s.duration_s = root["duration"].Double();
+  s.duration_s = root["duration"].Double(0, kMaxSceneSeconds);
   if (s.duration_s <= 0 || s.duration_s > 86400) root["duration"].Fail("must be in (0, 86400] s");
-  s.trace_period_s = root.Double("trace_period", 0.001);
+  s.trace_period_s = root.Double("trace_period", 0.001, kDriveTickS, kMaxSceneSeconds);
   if (s.trace_period_s < kDriveTickS) root["trace_period"].Fail("must be >= 0.00025 s");
 
   if (root.Has("workpiece")) s.workpiece = LoadWorkpiece(root["workpiece"], m);
 
   if (root.Has("probe")) s.probe_sampling = ReadProbeSampling(root["probe"]);
-  if (root.Has("initial")) s.initial = ReadInitialState(root["initial"], m, path);
+  if (root.Has("initial")) s.initial = ReadInitialState(root["initial"], m);
   s.cameras = root.Has("cameras") ? ReadCameras(root["cameras"], m) : m.cameras;
   if (root.Has("nc")) s.nc = ReadNc(root["nc"], m, path);
   if (root.Has("measuring_pages")) {
@@ -353,6 +369,8 @@ std::string AddSignalPreset(NcSetup& nc, const std::string& name, const std::str
       return "'" + name + "' expects a number, not '" + value + "'";
     const std::string error = control::gateway::ValueError(sig.type, preset.number);
     if (!error.empty()) return "'" + name + "': " + error;
+    const std::string range = BlockSearchRangeError(name, preset.number);
+    if (!range.empty()) return "'" + name + "': " + range;
   }
   for (NcSetup::SignalPreset& p : nc.presets)
     if (p.id == id) {

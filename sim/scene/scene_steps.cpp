@@ -110,7 +110,7 @@ Expectation ReadExpectation(const MachineModel& m, const YamlNode& n, size_t i, 
   n.AllowKeys({"at", "axis", "position", "velocity", "rpm", "following_error", "parameter_set",
                "input", "value", "clutch", "state", "tol", "nc", "signal", "drive", "trip"});
   Expectation e{};
-  e.at_s = n.Double("at", -1);
+  e.at_s = n.Double("at", -1, 0, kMaxSceneSeconds);
   std::ostringstream text;
   text << "expect[" << i << "]: ";
   if (n.Has("axis")) {
@@ -125,7 +125,7 @@ Expectation ReadExpectation(const MachineModel& m, const YamlNode& n, size_t i, 
     if (n.Has("parameter_set")) {
       // A set number: exact, no tolerance.
       e.quantity = Expectation::Quantity::kParameterSet;
-      e.value = n["parameter_set"].Int();
+      e.value = n["parameter_set"].Int(0, 7);
       if (e.value < 0 || e.value > 7) n["parameter_set"].Fail("must be in 0..7");
       text << n["axis"].String() << " parameter_set " << Fmt(e.value);
     } else {
@@ -136,7 +136,7 @@ Expectation ReadExpectation(const MachineModel& m, const YamlNode& n, size_t i, 
       if (n.Has("following_error"))
         e.quantity = Expectation::Quantity::kFollowingError, q = "following_error";
       e.value = n[q].Double();
-      e.tolerance = n["tol"].Double();
+      e.tolerance = n["tol"].Double(0, YamlNode::kAnyNumber);
       if (e.tolerance < 0) n["tol"].Fail("must be >= 0");
       text << n["axis"].String() << " " << q << " " << Fmt(e.value) << " +- " << Fmt(e.tolerance);
     }

@@ -35,7 +35,8 @@ void ReadComparison(const YamlNode& n, SnapshotSpec& spec) {
     for (size_t j = 0; j < list.size(); ++j) {
       const YamlNode r = list[j];
       if (!r.IsSequence() || r.size() != 4) r.Fail("expected [x, y, width, height] in pixels");
-      const SnapshotMaskRect rect{r[0].Int(), r[1].Int(), r[2].Int(), r[3].Int()};
+      const SnapshotMaskRect rect{r[0].Int(0, 4096), r[1].Int(0, 4096), r[2].Int(1, 4096),
+                                  r[3].Int(1, 4096)};
       if (rect.x < 0 || rect.y < 0) r.Fail("x and y must be >= 0 (the top left corner is 0, 0)");
       if (rect.width < 1 || rect.height < 1) r.Fail("width and height must be >= 1");
       if (rect.x + rect.width > spec.width || rect.y + rect.height > spec.height)
@@ -45,13 +46,13 @@ void ReadComparison(const YamlNode& n, SnapshotSpec& spec) {
     }
   }
   if (n.Has("allowed_fraction")) {
-    const double f = n["allowed_fraction"].Double();
+    const double f = n["allowed_fraction"].Double(0, 1);
     if (!(f >= 0 && f <= 1))
       n["allowed_fraction"].Fail("must be in 0..1 (a fraction of the pixels, 0.001 = 0.1 %)");
     spec.allowed_fraction = f;
   }
   if (n.Has("tolerance_levels")) {
-    const int levels = n["tolerance_levels"].Int();
+    const int levels = n["tolerance_levels"].Int(0, 255);
     if (levels < 0 || levels > 255) n["tolerance_levels"].Fail("must be in 0..255");
     spec.tolerance_levels = levels;
   }
@@ -81,9 +82,9 @@ std::string SeriesFile(const std::string& pattern, int index, int count, double 
 // (included when a step lands on it).
 std::vector<double> SeriesTimes(const YamlNode& n) {
   if (!n.Has("to")) n.Fail("a series (every:) needs to: (the last time, s)");
-  const double every = n["every"].Double();
-  const double from = n.Double("from", 0);
-  const double to = n["to"].Double();
+  const double every = n["every"].Double(0, kMaxSceneSeconds);
+  const double from = n.Double("from", 0, 0, kMaxSceneSeconds);
+  const double to = n["to"].Double(0, kMaxSceneSeconds);
   if (!(every > 0)) n["every"].Fail("must be > 0 s");
   if (!(from >= 0)) n["from"].Fail("must be >= 0 s");
   if (!(from <= to)) n["to"].Fail("must be >= from (" + Fmt(from) + " s)");
@@ -129,8 +130,8 @@ void ReadSnapshots(const YamlNode& list, Scene& scene) {
     SnapshotSpec spec;
     spec.camera = n["camera"].String();
     if (!scene.Camera(spec.camera)) n["camera"].Fail("no camera '" + spec.camera + "'");
-    spec.width = n.Int("width", 640);
-    spec.height = n.Int("height", 480);
+    spec.width = n.Int("width", 640, 16, 4096);
+    spec.height = n.Int("height", 480, 16, 4096);
     if (spec.width < 16 || spec.width > 4096) n["width"].Fail("must be in 16..4096");
     if (spec.height < 16 || spec.height > 4096) n["height"].Fail("must be in 16..4096");
     ReadComparison(n, spec);
@@ -139,7 +140,7 @@ void ReadSnapshots(const YamlNode& list, Scene& scene) {
       if (n.Has("every")) n["every"].Fail("a snapshot is a series or on an event, not both");
       if (n.Has("file")) n["file"].Fail("an event snapshot names its files itself");
       spec.on = ReadEvent(n["on"]);
-      spec.limit = n.Int("limit", 1);
+      spec.limit = n.Int("limit", 1, 1, kMaxEventSnapshots);
       if (spec.limit < 1 || spec.limit > kMaxEventSnapshots)
         n["limit"].Fail("must be in 1.." + std::to_string(kMaxEventSnapshots));
       // Two entries for the same event and camera would write the same files.
@@ -179,7 +180,7 @@ void ReadSnapshots(const YamlNode& list, Scene& scene) {
     }
     for (const char* key : {"from", "to", "sheet"})
       if (n.Has(key)) n[key].Fail("only with every: (a series)");
-    spec.at_s = n["at"].Double();
+    spec.at_s = n["at"].Double(0, scene.duration_s);
     std::ostringstream file;
     file << spec.camera << "_" << Fmt(spec.at_s) << "s.png";
     spec.file = n.String("file", file.str());

@@ -23,7 +23,7 @@ void Read(const StepSource& src, TimelineStep& s, std::ostringstream& text) {
     if (a.Has("direction")) a["direction"].Fail("give direction or to, not both");
     s.jog_to = true;
     s.target = a["to"].Double();
-    s.wait_s = a.Has("hold") ? a["hold"].Double() : 0.05;
+    s.wait_s = a.Has("hold") ? a["hold"].Double(0, kMaxSceneSeconds) : 0.05;
     if (s.wait_s <= 0) a["hold"].Fail("must be > 0");
     text << "jog " << a["axis"].String() << " to " << Fmt(s.target);
     return;
@@ -31,7 +31,7 @@ void Read(const StepSource& src, TimelineStep& s, std::ostringstream& text) {
   const std::string dir = a["direction"].String();
   if (dir != "+" && dir != "-") a["direction"].Fail("expected + or -");
   s.direction = dir == "+" ? 1 : -1;
-  s.wait_s = a["hold"].Double();
+  s.wait_s = a["hold"].Double(0, kMaxSceneSeconds);
   if (s.wait_s <= 0) a["hold"].Fail("must be > 0");
   text << "jog " << a["axis"].String() << dir << " for " << Fmt(s.wait_s) << " s";
 }

@@ -13,7 +13,7 @@ std::vector<TimelineStep> ReadPress(const MachineModel& m, const YamlNode& n, si
   const YamlNode a = n["press"];
   const YamlNode name = a.IsMap() ? a["name"] : a;
   if (a.IsMap()) a.AllowKeys({"name", "for"});
-  const double hold_s = a.IsMap() ? a.Double("for", 0.1) : 0.1;
+  const double hold_s = a.IsMap() ? a.Double("for", 0.1, 0, kMaxSceneSeconds) : 0.1;
   if (!(hold_s > 0)) a["for"].Fail("must be > 0");
   const int io = control::IndexOf(m.io, name.String());
   if (io < 0 || !m.io[io].key) name.Fail("'" + name.String() + "' is not a key (io dir: key)");
@@ -23,7 +23,7 @@ std::vector<TimelineStep> ReadPress(const MachineModel& m, const YamlNode& n, si
   TimelineStep press{}, hold{}, release{};
   press.kind = release.kind = TimelineStep::Kind::kSignal;
   press.signal = release.signal = RequireSignal(nc, name);
-  press.not_before_s = n.Double("at", 0);
+  press.not_before_s = n.Double("at", 0, 0, kMaxSceneSeconds);
   press.target = 1;
   release.target = 0;
   hold.kind = TimelineStep::Kind::kWait;

@@ -12,12 +12,13 @@ void Read(const StepSource& src, TimelineStep& s, std::ostringstream& text) {
   s.drive = RequireDrive(src.m, a["axis"]);
   if (src.m.drives[s.drive].info.kind == control::AxisKind::kRotary) {
     a.AllowKeys({"axis", "rpm", "parameter_set"});
-    s.target = a["rpm"].Double() * 6.0;  // rpm -> deg/s
-    text << "speed " << a["axis"].String() << " " << Fmt(a["rpm"].Double()) << " rpm";
+    s.target = a["rpm"].Double(-kMaxRpm, kMaxRpm) * 6.0;  // rpm -> deg/s
+    text << "speed " << a["axis"].String() << " " << Fmt(a["rpm"].Double(-kMaxRpm, kMaxRpm))
+         << " rpm";
   } else {
     a.AllowKeys({"axis", "feed", "parameter_set"});
-    s.target = a["feed"].Double() / 60.0;
-    text << "speed " << a["axis"].String() << " F" << Fmt(a["feed"].Double());
+    s.target = a["feed"].Double(-kMaxFeed, kMaxFeed) / 60.0;
+    text << "speed " << a["axis"].String() << " F" << Fmt(a["feed"].Double(-kMaxFeed, kMaxFeed));
   }
   s.parameter_set = ReadDriveParameterSet(a, text);
 }

@@ -51,7 +51,7 @@ const StepKind& StepKindOf(TimelineStep::Kind kind) {
 }
 
 int ReadDriveParameterSet(const YamlNode& step, std::ostringstream& text) {
-  const int set = step.Int("parameter_set", 0);
+  const int set = step.Int("parameter_set", 0, 0, 7);
   if (set < 0 || set > 7) step["parameter_set"].Fail("expected 0..7");
   if (set != 0) text << " (parameter set " << set << ")";
   return set;
@@ -62,7 +62,7 @@ TimelineStep ReadStep(const MachineModel& m, const YamlNode& n, size_t i, const 
   n.AllowKeys({"at", "move", "speed", "orient", "off", "output", "wait", "wait_until", "nc", "jog",
                "handwheel", "signal", "fault", "press"});
   TimelineStep s{};
-  s.not_before_s = n.Double("at", 0);
+  s.not_before_s = n.Double("at", 0, 0, kMaxSceneSeconds);
   std::ostringstream text;
   text << "timeline[" << i << "]: ";
   int actions = 0;

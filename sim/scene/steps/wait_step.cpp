@@ -8,7 +8,7 @@ namespace {
 
 void Read(const StepSource& src, TimelineStep& s, std::ostringstream& text) {
   s.kind = TimelineStep::Kind::kWait;
-  s.wait_s = src.n["wait"].Double();
+  s.wait_s = src.n["wait"].Double(0, kMaxSceneSeconds);
   if (s.wait_s < 0) src.n["wait"].Fail("must be >= 0");
   text << "wait " << Fmt(s.wait_s) << " s";
 }

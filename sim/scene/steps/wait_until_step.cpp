@@ -58,7 +58,7 @@ void Read(const StepSource& src, TimelineStep& s, std::ostringstream& text) {
   const YamlNode a = src.n["wait_until"];
   s.kind = TimelineStep::Kind::kWaitUntil;
   s.until = ReadCondition(src.m, a, src.nc);
-  s.timeout_s = a.Double("timeout", 10);
+  s.timeout_s = a.Double("timeout", 10, 0, kMaxSceneSeconds);
   text << "wait until";
   for (const std::string& k : a.Keys())
     if (k != "timeout") text << " " << k << "=" << a[k].String();
