@@ -14,6 +14,7 @@
 #include "render/image.hpp"
 #include "render/image_compare.hpp"
 #include "sim/cli/golden_report.hpp"
+#include "sim/cli/option_checks.hpp"
 #include "sim/runner/runner.hpp"
 
 namespace vmt::sim {
@@ -302,13 +303,14 @@ CLI::App* AddGoldenSubcommand(CLI::App& golden, const char* name, const char* he
                   "without .yaml")
       ->required();
   sub->add_option("--out", o.out_dir, "Runs go to OUT/<scene> (as vmt run --out)")
+      ->check(kOutputFolder)
       ->capture_default_str();
   sub->add_flag("--no-run", o.no_run,
                 "Take OUT/<scene> as an earlier vmt run left it instead of running the scene");
   sub->add_option("--backend", o.backend, "physics or kinematic (default: the scene's)")
       ->check(CLI::IsMember({"physics", "kinematic"}));
-  sub->add_option("--junit", o.junit, "Write the results as JUnit XML here");
-  sub->add_option("--json", o.json, "Write the results as JSON here");
+  sub->add_option("--junit", o.junit, "Write the results as JUnit XML here")->check(kOutputFile);
+  sub->add_option("--json", o.json, "Write the results as JSON here")->check(kOutputFile);
   return sub;
 }
 
@@ -329,9 +331,11 @@ std::vector<std::pair<CLI::App*, std::function<int()>>> AddGoldenCommands(CLI::A
       *check);
   check_app->add_flag("--create-missing", check->create_missing,
                       "Write a missing baseline from the run instead of failing");
-  check_app->add_option("--fail-dir", check->fail_dir,
-                        "Failing pictures leave DIR/<scene>/<picture>/{actual,golden,diff}.png "
-                        "and index.html (default: OUT/golden-failures)");
+  check_app
+      ->add_option("--fail-dir", check->fail_dir,
+                   "Failing pictures leave DIR/<scene>/<picture>/{actual,golden,diff}.png "
+                   "and index.html (default: OUT/golden-failures)")
+      ->check(kOutputFolder);
   CLI::App* update_app = AddGoldenSubcommand(
       *golden, "update",
       "Run the scenes and write their snapshots as the baselines (a baseline no snapshot "

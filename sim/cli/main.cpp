@@ -22,9 +22,10 @@
 #include "render/image_compare.hpp"
 #include "sim/cli/command_help.hpp"
 #include "sim/cli/golden.hpp"
+#include "sim/cli/option_checks.hpp"
 #include "sim/cli/serve.hpp"
-#include "sim/cli/view.hpp"
 #include "sim/cli/stop_signals.hpp"
+#include "sim/cli/view.hpp"
 #include "sim/model/gateway_layout.hpp"
 #include "sim/model/model_error.hpp"
 #include "sim/runner/run_story.hpp"
@@ -37,6 +38,8 @@
 namespace {
 
 using namespace vmt;
+using sim::FiniteIn;
+using sim::WholeIn;
 
 int Run(const std::string& scene_path, const std::string& backend, double until,
         const std::string& out, const std::vector<std::string>& sets,
@@ -80,12 +83,12 @@ int Run(const std::string& scene_path, const std::string& backend, double until,
   return r.ok() ? 0 : 1;
 }
 
-  for (const std::string& e : r.write_errors) std::fprintf(stderr, "vmt: error: %s\n", e.c_str());
-  if (!r.stop_reason.empty())
-    std::fprintf(stderr, "vmt run: stopped early at %.4f s: %s\n", r.simulated_s,
-                 r.stop_reason.c_str());
-  if (!r.write_errors.empty()) return 2;
-  if (!r.stop_reason.empty()) return sim::kStoppedEarly;
+for (const std::string& e : r.write_errors) std::fprintf(stderr, "vmt: error: %s\n", e.c_str());
+if (!r.stop_reason.empty())
+  std::fprintf(stderr, "vmt run: stopped early at %.4f s: %s\n", r.simulated_s,
+               r.stop_reason.c_str());
+if (!r.write_errors.empty()) return 2;
+if (!r.stop_reason.empty()) return sim::kStoppedEarly;
 int Snapshot(const std::string& scene_path, double at, const std::string& camera,
              const std::string& out, int width, int height) {
   sim::Scene scene = sim::LoadScene(scene_path);
@@ -226,8 +229,10 @@ Command AddRun(CLI::App& app) {
   run->add_option("--backend", o->backend, "physics or kinematic (default: the scene's)")
       ->check(CLI::IsMember({"physics", "kinematic"}));
   run->add_option("--until", o->until, "Stop at this simulated time, seconds")
-      ->check(CLI::PositiveNumber);
-  run->add_option("--out", o->out, "Output folder")->capture_default_str();
+      ->check(FiniteIn(sim::kDriveTickS, sim::kMaxSceneSeconds, "number of seconds"));
+  run->add_option("--out", o->out, "Output folder")
+      ->check(sim::kOutputFolder)
+      ->capture_default_str();
   run->add_option("--set", o->sets,
                   "NAME=VALUE: a gateway signal the PLC writes, set at t = 0 (repeatable), e.g. "
                   "P00.mc_cmd_bs_type_w=4 P00.mc_cmd_bs_block_number_w=100");
@@ -249,14 +254,14 @@ Command AddSnapshot(CLI::App& app) {
   snap->add_option("scene", o->scene, "Scene file (YAML)")->required();
   snap->add_option("--at", o->at, "Simulated time, seconds")
       ->required()
-      ->check(CLI::NonNegativeNumber);
+      ->check(FiniteIn(0, sim::kMaxSceneSeconds, "number of seconds"));
   snap->add_option("--camera", o->camera, "Camera name (model or scene)")->capture_default_str();
-  snap->add_option("--out", o->out, "PNG file to write")->required();
+  snap->add_option("--out", o->out, "PNG file to write")->required()->check(sim::kOutputFile);
   snap->add_option("--width", o->width, "Picture width")
-      ->check(CLI::Range(16, 4096))
+      ->check(WholeIn(16, 4096))
       ->capture_default_str();
   snap->add_option("--height", o->height, "Picture height")
-      ->check(CLI::Range(16, 4096))
+      ->check(WholeIn(16, 4096))
       ->capture_default_str();
   return {snap, [o] { return Snapshot(o->scene, o->at, o->camera, o->out, o->width, o->height); }};
 }
@@ -322,14 +327,16 @@ Command AddServe(CLI::App& app) {
                   "The PLC steps the simulation a cycle at a time (default)");
   serve->add_flag("--realtime", o->realtime, "Run against the wall clock; report cycle lateness");
   serve->add_option("--until", serve_options.until_s, "Stop at this simulated time, seconds")
-      ->check(CLI::PositiveNumber);
-  serve->add_option("--out", serve_options.out_dir, "Output folder")->capture_default_str();
+      ->check(FiniteIn(sim::kDriveTickS, sim::kMaxSceneSeconds, "number of seconds"));
+  serve->add_option("--out", serve_options.out_dir, "Output folder")
+      ->check(sim::kOutputFolder)
+      ->capture_default_str();
   serve
       ->add_option("--plc-timeout", serve_options.plc_timeout_ms,
                    "Real time: ms without a write from the PLC after which the PLC link is "
                    "lost (its outputs drop, the NC stops with message 505); clients that only "
                    "read are monitors and do not keep it")
-      ->check(CLI::Range(0.001, 3.6e6))
+      ->check(FiniteIn(0.001, 3.6e6, "number of ms"))
       ->capture_default_str();
   serve
       ->add_flag("--wait-for-plc,!--no-wait-for-plc", serve_options.wait_for_plc,
@@ -339,7 +346,7 @@ Command AddServe(CLI::App& app) {
       ->add_option("--idle-timeout", serve_options.idle_timeout_s,
                    "Lockstep: s of wall time without a cycle write after which serve stops "
                    "early (exit 3)")
-      ->check(CLI::Range(0.001, 8.64e4))
+      ->check(FiniteIn(0.001, 8.64e4, "number of seconds"))
       ->capture_default_str();
   serve->footer(
       "Exit status: 0 the scene ended and passed, 1 it ended with failures, 2 bad input, 3 "
@@ -381,9 +388,11 @@ Command AddStudyCompare(CLI::App& study) {
   compare->add_option("dir_a", o->a, "Study folder A (e.g. the old machine or program)")
       ->required();
   compare->add_option("dir_b", o->b, "Study folder B")->required();
-  compare->add_option("--html", o->html, "Write the comparison page here")->capture_default_str();
+  compare->add_option("--html", o->html, "Write the comparison page here")
+      ->check(sim::kOutputFile)
+      ->capture_default_str();
   compare->add_option("--threshold", o->threshold, "Report clearance changes larger than this, mm")
-      ->check(CLI::Range(0.0, 1e6))
+      ->check(FiniteIn(0, 1e6, "number of mm"))
       ->capture_default_str();
   return {compare, [o] {
             std::fputs(sim::study::CompareStudies(o->a, o->b, o->html, o->threshold).c_str(),
@@ -417,29 +426,34 @@ std::vector<Command> AddStudy(CLI::App& app) {
       "subroutines) on the kinematic backend with PathGuard");
   repos->add_option("scene", study_options.scene, "Scene file with a study: section")->required();
   repos->add_option("--out", study_options.out_dir, "Study folder (a rerun skips its cases)")
-      ->required();
+      ->required()
+      ->check(sim::kOutputFolder);
   repos->add_option("--jobs", study_options.jobs, "Worker processes")
-      ->check(CLI::Range(1, 256))
+      ->check(WholeIn(1, 256))
       ->capture_default_str();
   repos->add_option("--shard", o->shard, "K/N: this process runs shard K of N (every N-th group)");
   repos->add_option("--every-ms", o->every_ms, "Interrupt every T ms of the program's run")
-      ->check(CLI::Range(1.0, 1e7));
+      ->check(FiniteIn(1, 1e7, "number of ms"));
   repos->add_option("--per-mille", o->per_mille,
                     "Interrupt every motion block at these points, e.g. 250,750");
-  repos->add_option("--max-cases", o->max_cases, "Only the first N cases (of this shard)");
+  repos->add_option("--max-cases", o->max_cases, "Only the first N cases (of this shard)")
+      ->check(WholeIn(1, 1000000000));
   repos->add_flag("--no-fork", o->no_fork,
                   "Run every case from the program's start (slow; checks the forked run-ups)");
-  repos->add_option("--bench-json", o->bench_json, "Also write the speed here as JSON");
+  repos->add_option("--bench-json", o->bench_json, "Also write the speed here as JSON")
+      ->check(sim::kOutputFile);
   repos
       ->add_option("--snapshots", study_options.snapshots,
                    "Pictures of the worst cases per subroutine: this many collisions and the "
                    "tightest clear case (0: none)")
-      ->check(CLI::Range(0, 100))
+      ->check(WholeIn(0, 100))
       ->capture_default_str();
   CLI::App* merge =
       study->add_subcommand("merge", "Join study folders (shards) into one, one result per case");
   merge->add_option("dirs", o->merge_dirs, "Study folders")->required();
-  merge->add_option("--out", o->merge_out, "The joined study folder")->required();
+  merge->add_option("--out", o->merge_out, "The joined study folder")
+      ->required()
+      ->check(sim::kOutputFolder);
   CLI::App* replay = study->add_subcommand(
       "replay", "Save one case's run in the study folder (cases/<id>/) to watch it with vmt view");
   replay->add_option("dir", o->replay_dir, "Study folder")->required();
@@ -498,18 +512,19 @@ Command AddImgdiff(CLI::App& app) {
       "imgdiff", "Compare two PNG pictures: exit 0 equal, 1 different, 2 bad input");
   imgdiff->add_option("a", o->a, "First PNG")->required();
   imgdiff->add_option("b", o->b, "Second PNG")->required();
-  imgdiff->add_option("--diff", o->diff, "Write a diff picture here when they differ");
+  imgdiff->add_option("--diff", o->diff, "Write a diff picture here when they differ")
+      ->check(sim::kOutputFile);
   imgdiff
       ->add_option("--tolerance", o->channel_tolerance,
                    "Levels a channel may differ by before the pixel counts as different, "
                    "0..255 (the project's golden tolerance by default)")
-      ->check(CLI::Range(0, 255))
+      ->check(WholeIn(0, 255))
       ->capture_default_str();
   imgdiff
       ->add_option("--allowed-fraction", o->tolerance_fraction,
                    "Fraction of the pixels (0..1) allowed to differ (the project's golden "
                    "tolerance by default: 0.0005 = 0.05 %)")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(FiniteIn(0, 1, "fraction"))
       ->capture_default_str();
   return {imgdiff, [o] {
             return ImgDiff(o->a, o->b, o->diff, o->channel_tolerance, o->tolerance_fraction);
@@ -548,7 +563,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    std::fprintf(stderr, "vmt: error: %s\nRun with --help for more information.\n", e.what());
+    return 2;
   }
   try {
     for (const Command& c : commands)
@@ -559,6 +576,6 @@ int main(int argc, char** argv) {
   }
   return 2;
 }
-  // A file size limit (ulimit -f) is then a write error naming the file, as a full disk is,
-  // instead of a kill that leaves the files cut.
-  std::signal(SIGXFSZ, SIG_IGN);
+// A file size limit (ulimit -f) is then a write error naming the file, as a full disk is,
+// instead of a kill that leaves the files cut.
+std::signal(SIGXFSZ, SIG_IGN);
