@@ -95,6 +95,12 @@ TEST(study_plan, BadInputNamesFileLineAndPath) {
                               "distance. or to .a position., not both.*"));
   e = Error("study:\n  interrupt: {every_ms: 500}\n" + retract + "  subroutines: [nope.mtc]\n");
   EXPECT_THAT(e, HasSubstr("cannot open NC program"));
+  EXPECT_THAT(e, HasSubstr("nope.mtc: No such file or directory"));
+  // An empty entry names the scene's folder: refused when the plan loads, not after the
+  // reference run.
+  e = Error("study:\n  interrupt: {every_ms: 500}\n" + retract + "  subroutines: [\"\"]\n");
+  EXPECT_THAT(e, MatchesRegex(".*:[0-9]+:[0-9]+: study.subroutines.0.: cannot open NC program "
+                              ".*: Is a directory.*"));
   e = Error("study:\n  interrupt: {every_ms: 500}\n" + retract + subs + "  modes: [manual]\n");
   EXPECT_THAT(e, HasSubstr("expected repositioning or restart"));
   e = Error("study:\n  interrupt: {every_ms: 500}\n" + retract + subs + "  speed: 3\n");
