@@ -348,9 +348,36 @@ Command AddServe(CLI::App& app) {
                    "early (exit 3)")
       ->check(FiniteIn(0.001, 8.64e4, "number of seconds"))
       ->capture_default_str();
+  serve
+      ->add_option("--unit-id", serve_options.unit_id,
+                   "Modbus unit id answered besides 0 and 255; others get exception 0B")
+      ->check(WholeIn(1, 247))
+      ->capture_default_str();
+  serve
+      ->add_option("--client-timeout", serve_options.client_timeout_s,
+                   "s without a request after which a Modbus connection is closed (0: never)")
+      ->check(FiniteIn(0, 8.64e4, "number of seconds"))
+      ->capture_default_str();
+  serve->add_flag("--allow-remote", serve_options.allow_remote,
+                  "Let --modbus listen on an address other than loopback: clients on the "
+                  "network may connect (a warning says so)");
+  serve
+      ->add_option("--allow-client", serve_options.allow_clients,
+                   "With --allow-remote: a numeric address that may connect (repeatable); others "
+                   "are closed at once, loopback always may")
+      ->allow_extra_args(false);
+  serve
+      ->add_option("--late-limit", serve_options.late_limit_ms,
+                   "Real time: ms after its time a cycle may start; a later one is recorded "
+                   "(events.jsonl, serve.json) and fails the run (exit 1)")
+      ->check(FiniteIn(0.001, 3.6e6, "number of ms"))
+      ->capture_default_str();
+  serve->add_flag("--allow-late", serve_options.allow_late,
+                  "Real time: late cycles are recorded but do not fail the run");
   serve->footer(
-      "Exit status: 0 the scene ended and passed, 1 it ended with failures, 2 bad input, 3 "
-      "stopped early (lockstep idle timeout, SIGINT or SIGTERM); serve.json says why.");
+      "Exit status: 0 the scene ended and passed, 1 it ended with failures (or, in real time, a "
+      "cycle later than --late-limit), 2 bad input, 3 stopped early (lockstep idle timeout, "
+      "SIGINT or SIGTERM); serve.json says why.");
   return {serve, [o, modbus] {
             o->options.modbus = modbus->count() > 0 || o->options.http.empty();
             if (o->realtime && o->lockstep) {

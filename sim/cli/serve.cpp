@@ -18,6 +18,7 @@
 #include "common/output_file.hpp"
 #include "control/gateway/nc_status_block.hpp"
 #include "control/plc/modbus_server.hpp"
+#include "sim/cli/serve_modbus.hpp"
 #include "sim/runner/runner.hpp"
 #include "sim/station/station_session.hpp"
 
@@ -71,13 +72,6 @@ std::pair<std::string, int> HostPort(const std::string& option, const std::strin
   return {endpoint.substr(0, colon), port};
 }
 
-/// --modbus HOST:PORT as the server's host and port.
-control::plc::ModbusServerOptions EndpointOptions(const std::string& endpoint) {
-  control::plc::ModbusServerOptions mb;
-  std::tie(mb.host, mb.port) = HostPort("--modbus", endpoint);
-  return mb;
-}
-
 /// Lockstep: the client is the clock, each cycle it writes runs one PLC cycle inside Poll.
 /// There is no link watchdog, but a client that vanished must not keep serve waiting for ever.
 /// Returns why it stopped.
@@ -107,13 +101,14 @@ std::string ServeLockstep(const ServeOptions& o, SceneRun& run, control::plc::Mo
 }
 
 /// Real time: each PLC cycle starts at its wall-clock time; between cycles the server answers
-/// the PLC. `lateness_ms` gets how long after its time each cycle started; `link` watches the
-/// PLC's requests. Returns why it stopped.
+/// its clients, never past the next cycle's time (the cycle comes first). `lateness_ms` gets
+/// how long after its time each cycle started, `late` the cycles beyond its limit; `link`
+/// watches the PLC's requests. Returns why it stopped.
 std::string ServeRealtime(const ServeOptions& o, SceneRun& run, control::plc::ModbusServer& server,
                           const std::function<void()>& cycle,
                           const std::function<void()>& drop_if_asked,
-                          std::vector<double>& lateness_ms, PlcLinkWatch& link,
-                          station::StationSession* station) {
+                          std::vector<double>& lateness_ms, RealtimeLateness& late,
+                          PlcLinkWatch& link, station::StationSession* station) {
   using Clock = std::chrono::steady_clock;
   const auto period = std::chrono::microseconds(run.ticks_per_plc_cycle() * 250);
   const int64_t timeout_us = std::llround(o.plc_timeout_ms * 1000);
@@ -137,11 +132,10 @@ std::string ServeRealtime(const ServeOptions& o, SceneRun& run, control::plc::Mo
   for (int64_t n = 0; !run.done(); ++n) {
     if (g_stop) return "signal";
     const auto due = start + n * period;
-    for (auto now = Clock::now(); now < due; now = Clock::now())
-      server.Poll(static_cast<int>(std::max<int64_t>(
-          0, std::chrono::duration_cast<std::chrono::milliseconds>(due - now).count())));
+    server.ServeUntil(due);
     const auto now = Clock::now();
     lateness_ms.push_back(std::chrono::duration<double, std::milli>(now - due).count());
+    late.Note(run, lateness_ms.back());
     // The link watchdog looks at the start of the cycle, where the embedded PLC's scans. The PLC
     // is the client that writes its outputs: monitors that only read keep no dead PLC alive.
     if (server.stats().writes != link.seen_requests) {
@@ -162,7 +156,6 @@ std::string ServeRealtime(const ServeOptions& o, SceneRun& run, control::plc::Mo
     }
     cycle();
     drop_if_asked();
-    server.Poll(0);
     if (station) station->Publish(run, "running");
   }
   return "end of scene";
@@ -188,7 +181,7 @@ int Serve(const ServeOptions& o) {
   if (!o.modbus && o.http.empty())
     throw std::invalid_argument("vmt serve needs --modbus, --http or both");
   control::plc::ModbusServerOptions mb;
-  if (o.modbus) mb = EndpointOptions(o.endpoint);
+  if (o.modbus) mb = ModbusServerOptionsOf(o);
   station::StationServerOptions http;
   if (!o.http.empty()) {
     std::tie(http.host, http.port) = HostPort("--http", o.http);
@@ -265,8 +258,10 @@ int Serve(const ServeOptions& o) {
     mb.status_count = nc_status.count();
     server = std::make_unique<control::plc::ModbusServer>(*image, mb);
     refresh_nc_status();
-    std::printf("vmt serve: %s, Modbus TCP on %s:%d, %s", scene.name.c_str(), mb.host.c_str(),
-                server->port(), o.lockstep ? "lockstep" : "real time");
+    WarnIfRemote(*server, mb);
+    std::printf("vmt serve: %s, Modbus TCP on %s, %s", scene.name.c_str(),
+                ModbusEndpointText(mb, server->port()).c_str(),
+                o.lockstep ? "lockstep" : "real time");
     if (o.lockstep)
       std::printf(" (write cycle n+1 to holding register %d to run a PLC cycle of %.1f ms)",
                   *mb.cycle_register, ticks * 0.25);
@@ -297,12 +292,13 @@ int Serve(const ServeOptions& o) {
     std::fprintf(stderr, "vmt serve: %.4f s: fault: every Modbus client dropped\n", run.time_s());
   };
   std::vector<double> lateness_ms;
+  RealtimeLateness late{.limit_ms = o.late_limit_ms};
   PlcLinkWatch link;
-  const std::string stop_reason =
-      !server ? ServeStation(run, *station, cycle)
-      : o.lockstep
-          ? ServeLockstep(o, run, *server, drop_if_asked, station.get())
-          : ServeRealtime(o, run, *server, cycle, drop_if_asked, lateness_ms, link, station.get());
+  const std::string stop_reason = !server ? ServeStation(run, *station, cycle)
+                                  : o.lockstep
+                                      ? ServeLockstep(o, run, *server, drop_if_asked, station.get())
+                                      : ServeRealtime(o, run, *server, cycle, drop_if_asked,
+                                                      lateness_ms, late, link, station.get());
   const bool stopped_early = !run.done();  // Finish makes the tick it is at the run's last
   const RunResult r = run.Finish(stop_reason);
   const control::plc::ModbusServer::Stats st =
@@ -313,11 +309,7 @@ int Serve(const ServeOptions& o) {
                                   {"stop_reason", stop_reason},
                                   {"simulated_time_s", run.time_s()},
                                   {"trace_digest", r.trace_digest}};
-  if (server)
-    serve["modbus"] = {
-        {"requests", st.requests_served},          {"exceptions", st.exceptions_sent},
-        {"clients_accepted", st.clients_accepted}, {"clients_dropped", st.clients_dropped},
-        {"clients_refused", st.clients_refused},   {"cycles", st.cycles}};
+  if (server) serve["modbus"] = ModbusStatsJson(st);
   if (station)
     serve["station"] = {{"port", station->port()}, {"operator_steps", run.operated().size()}};
   if (server && o.lockstep) {
@@ -326,6 +318,7 @@ int Serve(const ServeOptions& o) {
     serve["cycle_lateness_ms"] = {{"p50", Percentile(lateness_ms, 0.5)},
                                   {"p99", Percentile(lateness_ms, 0.99)},
                                   {"max", Percentile(lateness_ms, 1.0)}};
+    late.AddTo(serve);
     serve["plc_link"] = {{"timeout_ms", o.plc_timeout_ms},
                          {"timeout_cycles", link.timeout_cycles},
                          {"lost", link.losses}};
@@ -349,6 +342,10 @@ int Serve(const ServeOptions& o) {
                 Percentile(lateness_ms, 0.5), Percentile(lateness_ms, 0.99),
                 Percentile(lateness_ms, 1.0));
   for (const std::string& f : r.failures) std::fprintf(stderr, "FAILED: %s\n", f.c_str());
+  // Real time not held is a failed run, as a failed expectation is: what the PLC saw was not
+  // the machine's timing.
+  const bool late_failed = server && !o.lockstep && !late.held() && !o.allow_late;
+  if (late_failed) std::fprintf(stderr, "FAILED: %s\n", late.Failure().c_str());
   if (station && !stopped_early) {
     // The page keeps showing the end of the run; what it sends now has no run to act on.
     std::printf("vmt serve: the scene has ended; the operator station stays up until Ctrl-C\n");
@@ -367,7 +364,7 @@ int Serve(const ServeOptions& o) {
   }
   if (!write_errors.empty()) return 2;  // a lost file outweighs an early stop
   if (stopped_early) return kServeStoppedEarly;
-  return r.ok() ? 0 : 1;
+  return r.ok() && !late_failed ? 0 : 1;
 }
 
 }  // namespace vmt::sim

@@ -17,6 +17,7 @@
 // up, showing the final state, until SIGINT or SIGTERM.
 
 #include <string>
+#include <vector>
 
 namespace vmt::sim {
 
@@ -44,12 +45,25 @@ struct ServeOptions {
   bool wait_for_plc = true;
   /// Lockstep: wall time without a cycle write after which serve stops early (s, > 0).
   double idle_timeout_s = 30;
+  /// The Modbus unit id answered besides 0 and 255 (1..247); others get exception 0B.
+  int unit_id = 1;
+  /// A Modbus connection that sends no request for this long is closed (s, 0: never).
+  double client_timeout_s = 30;
+  /// --modbus on an address other than loopback needs it (a warning is printed).
+  bool allow_remote = false;
+  /// With allow_remote: the client addresses that may connect besides loopback; empty: any.
+  std::vector<std::string> allow_clients;
+  /// Real time: a cycle that starts later than this after its time is late (ms, > 0); a run
+  /// with a late cycle fails (exit 1) unless allow_late.
+  double late_limit_ms = 50;
+  bool allow_late = false;
 };
 
-/// Serves until the scene's end; returns the exit code (0 ok, 1 failed expectations,
-/// kServeStoppedEarly). Writes serve.json beside the run's files: mode, stopped_early,
-/// stop_reason ("end of scene", "signal", "idle timeout: no cycle written for 30 s"), Modbus
-/// counts, and in real time the cycle lateness and the PLC link's losses. Throws on bad input
+/// Serves until the scene's end; returns the exit code (0 ok, 1 failed expectations or, in real
+/// time, a cycle later than late_limit_ms without allow_late, kServeStoppedEarly). Writes
+/// serve.json beside the run's files: mode, stopped_early, stop_reason ("end of scene",
+/// "signal", "idle timeout: no cycle written for 30 s"), Modbus counts, and in real time the
+/// cycle lateness, whether real time was held and the PLC link's losses. Throws on bad input
 /// (scene, endpoint, timeouts) and when it cannot listen.
 int Serve(const ServeOptions& options);
 

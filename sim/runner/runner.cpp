@@ -460,6 +460,11 @@ void SceneRun::PlcLost(const std::string& reason) { state_->StopPlc(time_s(), re
 void SceneRun::PlcRunning() {
   state_->recorder.Event({{"t", time_s()}, {"event", "plc"}, {"state", "running"}});
 }
+void SceneRun::RecordEvent(const nlohmann::ordered_json& fields) {
+  nlohmann::ordered_json event = {{"t", time_s()}};
+  for (const auto& [key, value] : fields.items()) event[key] = value;
+  state_->recorder.Event(std::move(event));
+}
 // A latch event comes in the tick after the backend step whose contact the drive latched, so
 // the machine stands where that step left it: the sphere is in the part by the pre-travel and
 // at most one tick's travel, and the part's surface point nearest it is where it touched.

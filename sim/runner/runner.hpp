@@ -101,6 +101,8 @@ class SceneRun {
   /// The external PLC answers again after PlcLost: records {"event":"plc","state":"running"}.
   /// The NC stays in its error until Control-Reset, as after any immediate stop.
   void PlcRunning();
+  /// Records {"t": time_s(), ...fields} in events.jsonl (vmt serve: real time not held).
+  void RecordEvent(const nlohmann::ordered_json& fields);
   double time_s() const;
   /// The NC's machine data pages of fast measurement as the run has them now (what its
   /// instructions wrote); null without an nc: section.

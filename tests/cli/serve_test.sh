@@ -296,5 +296,96 @@ if start_serve "$out/gone-served" lockstep "$gone" --idle-timeout 20; then
   grep -q "fault: every Modbus client dropped" "$out/gone-served/serve.log" || fail "no drop logged"
 fi
 
+# Who may connect and write (tests/cli/modbus_clients.py): ten idle connections do not lock the
+# PLC out and are closed after --client-timeout; monitors read but cannot write, nobody writes
+# what vmt drives, another unit id gets exception 0B.
+clients=$src/tests/cli/modbus_clients.py
+if start_serve "$out/access" lockstep "$scene" --client-timeout 1 --idle-timeout 20; then
+  timeout 60 "$python" "$clients" access "$port" "$out/signals.json" >"$out/access/client.log" 2>&1 ||
+    { fail "Modbus access"; cat "$out/access/client.log"; }
+  kill $serve_pid; wait $serve_pid
+  json "$out/access/serve.json" 'd["modbus"]["clients_evicted"] >= 3 and d["modbus"]["clients_timed_out"] >= 7'
+  json "$out/access/serve.json" 'd["modbus"]["writes_refused"] == 3 and d["modbus"]["wrong_unit"] == 2'
+fi
+
+# Listening beyond loopback needs --allow-remote (exit 2 without, a warning with); an IPv6
+# loopback address in brackets works (skipped where the host has no IPv6).
+"$vmt" serve "$scene" --modbus 0.0.0.0:0 --out "$out/remote" >"$out/remote.log" 2>&1
+rc=$?
+[ $rc = 2 ] && grep -q -- "--allow-remote" "$out/remote.log" ||
+  { fail "--modbus 0.0.0.0 without --allow-remote: exit $rc"; cat "$out/remote.log"; }
+"$vmt" serve "$scene" --modbus 127.0.0.1:0 --allow-client 192.0.2.1 --out "$out/remote" \
+  >"$out/remote.log" 2>&1 && fail "--allow-client without --allow-remote accepted"
+mkdir -p "$out/remote"
+timeout 60 "$vmt" serve "$scene" --modbus 0.0.0.0:0 --allow-remote --allow-client 192.0.2.1 \
+  --idle-timeout 0.5 --out "$out/remote" >"$out/remote.log" 2>&1
+grep -q "warning: Modbus on 0.0.0.0:[0-9]* is reachable from the network; clients from 192.0.2.1" \
+  "$out/remote.log" || { fail "no warning off loopback"; cat "$out/remote.log"; }
+if "$python" -c 'import socket; s = socket.socket(socket.AF_INET6); s.bind(("::1", 0))' 2>/dev/null; then
+  mkdir -p "$out/ipv6"
+  timeout 300 "$vmt" serve "$scene" --modbus '[::1]:0' --out "$out/ipv6" >"$out/ipv6/serve.log" 2>&1 &
+  serve_pid=$!
+  v6_port=
+  for _ in $(seq 1200); do
+    v6_port=$(sed -n 's/.*Modbus TCP on \[::1\]:\([0-9]*\),.*/\1/p' "$out/ipv6/serve.log")
+    [ -n "$v6_port" ] && break
+    sleep 0.05
+  done
+  "$python" "$clients" read ::1 "$v6_port" || { fail "read over [::1]"; cat "$out/ipv6/serve.log"; }
+  kill $serve_pid; wait $serve_pid
+else
+  echo "serve test: no IPv6 loopback here, [::1] skipped"
+fi
+
+# Real time under pipelined reads: seven clients keep 300 reads each in flight while the PLC
+# writes. The cycle comes first: real time is held, or the late cycles are recorded and fail the
+# run. A scene without expectations, so that only real time decides the exit status.
+printf '%s\n' "scene: plain" "model: $src/models/lathe-c1/machine.yaml" "backend: kinematic" \
+  "duration: 30" "initial: {Z: 300, X: 150, T: 0, W: 200}" "nc:" \
+  "  program: $src/scenes/nc/turn_with_coolant.mtc" >"$out/plain.yaml"
+# realtime_run NAME CLIENTS OPTION...: serve --realtime on the plain scene with the clients of
+# modbus_clients.py (flood or plc); sets rc.
+realtime_run() {
+  local name=$1 what=$2
+  shift 2
+  mkdir -p "$out/$name"
+  timeout 300 "$vmt" serve "$out/plain.yaml" --modbus 127.0.0.1:0 --realtime --no-wait-for-plc \
+    --plc-timeout 1000 --out "$out/$name" "$@" >"$out/$name/serve.log" 2>&1 &
+  serve_pid=$!
+  local rt_port=
+  for _ in $(seq 1200); do
+    rt_port=$(sed -n 's/.*Modbus TCP on 127.0.0.1:\([0-9]*\),.*/\1/p' "$out/$name/serve.log")
+    [ -n "$rt_port" ] && break
+    sleep 0.05
+  done
+  timeout 120 "$python" "$clients" "$what" "$rt_port" "$out/signals.json" \
+    >"$out/$name/client.log" 2>&1
+  wait $serve_pid
+  rc=$?
+}
+realtime_run flood flood --until 2
+json "$out/flood/serve.json" 'd["modbus"]["requests"] > 1000 and d["plc_link"]["lost"] == 0'
+if grep -q '"realtime_held": true' "$out/flood/serve.json"; then
+  [ $rc = 0 ] || { fail "flood: real time held but exit $rc"; cat "$out/flood/serve.log"; }
+  json "$out/flood/serve.json" 'd["cycle_lateness_ms"]["max"] <= d["cycle_lateness_ms"]["limit"]'
+  grep -q '"event":"realtime"' "$out/flood/events.jsonl" && fail "flood: a late event while held"
+else
+  [ $rc = 1 ] || { fail "flood: real time not held but exit $rc"; cat "$out/flood/serve.log"; }
+  grep -q "FAILED: real time not held" "$out/flood/serve.log" || fail "flood: no FAILED line"
+  grep -q '"event":"realtime","state":"late"' "$out/flood/events.jsonl" || fail "flood: no late event"
+fi
+# A limit no machine keeps (1 us): the late cycles are recorded and the run fails; --allow-late
+# records them and passes.
+realtime_run late plc --until 0.3 --late-limit 0.001
+[ $rc = 1 ] || { fail "late: exit $rc, not 1"; cat "$out/late/serve.log"; }
+grep -q "FAILED: real time not held: [0-9]* cycles more than 0.001 ms late" "$out/late/serve.log" ||
+  { fail "late: no FAILED line"; cat "$out/late/serve.log"; }
+grep -q '"event":"realtime","state":"late","late_ms":' "$out/late/events.jsonl" ||
+  fail "late: no late event"
+json "$out/late/serve.json" 'not d["realtime_held"] and d["cycle_lateness_ms"]["late_cycles"] >= 1'
+realtime_run allow_late plc --until 0.3 --late-limit 0.001 --allow-late
+[ $rc = 0 ] || { fail "allow-late: exit $rc, not 0"; cat "$out/allow_late/serve.log"; }
+json "$out/allow_late/serve.json" 'not d["realtime_held"]'
+
 [ $fails = 0 ] && echo "serve test: all passed" || echo "serve test: $fails failed"
 exit $((fails > 0))
