@@ -85,7 +85,7 @@ std::optional<Eigen::Vector3d> StockCutter::CuttingPoint(const std::vector<doubl
 }
 
 bool StockCutter::Cut(const std::vector<double>& q, double t_s) {
-  if (spindle_joint_ < 0 || cutters_.empty() || stock_.radius_m.empty()) return false;
+  if (spindle_joint_ < 0 || cutters_.empty() || stock_.slices.empty()) return false;
   const double angle = q[spindle_joint_];
   const bool turning = last_t_ >= 0 && t_s > last_t_ &&
                        std::abs(angle - last_angle_) / (t_s - last_t_) >= kTurningSpeedRadS;
@@ -93,9 +93,10 @@ bool StockCutter::Cut(const std::vector<double>& q, double t_s) {
   if (!turning) return false;
   const std::vector<Eigen::Isometry3d> X_W = LinkPoses(*model_, q);
   const Eigen::Isometry3d X_PartWorld = X_W[link_].inverse();
-  const double r_max = *std::max_element(stock_.radius_m.begin(), stock_.radius_m.end());
+  double r_max = 0;
+  for (size_t k = 0; k < stock_.slices.size(); ++k) r_max = std::max(r_max, stock_.OuterRadius(k));
   const double z_lo = stock_.z0_m,
-               z_hi = stock_.z0_m + static_cast<double>(stock_.radius_m.size()) * stock_.slice_m;
+               z_hi = stock_.z0_m + static_cast<double>(stock_.slices.size()) * stock_.slice_m;
   bool changed = false;
   for (const Cutter& c : cutters_) {
     const Eigen::Isometry3d X = X_PartWorld * X_W[c.link];
@@ -103,10 +104,9 @@ bool StockCutter::Cut(const std::vector<double>& q, double t_s) {
     if (centre.head<2>().norm() - c.radius > r_max || centre.z() + c.radius < z_lo ||
         centre.z() - c.radius > z_hi)
       continue;
-    for (size_t i = 0; i + 2 < c.corners.size(); i += 3)
-      changed = stock_.CutTriangle(X * c.corners[i], X * c.corners[i + 1], X * c.corners[i + 2],
-                                   kCutAllowanceM) ||
-                changed;
+    corners_.clear();
+    for (const Eigen::Vector3d& p : c.corners) corners_.push_back(X * p);
+    changed = stock_.CutSolid(corners_, kCutAllowanceM) || changed;
   }
   return changed;
 }

@@ -1,9 +1,10 @@
 #pragma once
-// Turning, as far as PathGuard needs it: while the spindle turns, every triangle of a tool's
-// cutting part (machine.yaml `cutting_parts:`) inside the workpiece cuts the turned stock down
-// to where it passes, exactly per slice (a flank lies lowest between its edges). No cutting
-// forces, chips or tool wear: the part's shape is what PathGuard needs so that a tool standing
-// in its own cut is clear and an approach into the cut meets only what is left.
+// Turning, as far as PathGuard and the pictures need it: while the spindle turns, a tool's
+// cutting part (machine.yaml `cutting_parts:`) inside the workpiece cuts from the turned stock
+// the ring it sweeps, per slice: a turning insert lowers the surface, a boring bar or drill at
+// the axis bores, a grooving tool in the end face cuts a face groove. No cutting forces, chips
+// or tool wear: the part's shape is what PathGuard needs so that a tool standing in its own cut
+// is clear and an approach into the cut meets only what is left.
 
 #include <Eigen/Geometry>
 #include <optional>
@@ -60,6 +61,7 @@ class StockCutter {
   };
   std::vector<Holder> holders_;
   double last_angle_ = 0, last_t_ = -1;
+  std::vector<Eigen::Vector3d> corners_;  ///< a cutter's corners in the part's frame, reused
 };
 
 }  // namespace vmt::sim

@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace vmt::sim {
 namespace {
 
 // Far below any tolerance of the part, above the rounding of a point turned with the part.
 constexpr double kLowerM = 1e-9;
+// Material left thinner than this over a cut is no material: a ring of rounding errors.
+constexpr double kThinnestM = 1e-6;
 
 /// The part of a convex polygon between the planes z = lo and z = hi.
 std::vector<Eigen::Vector3d> ClipToSlab(std::vector<Eigen::Vector3d> poly, double lo, double hi) {
@@ -51,6 +54,31 @@ double AxisDistance(const std::vector<Eigen::Vector3d>& poly) {
   return inside && std::abs(area2) > kSquareMicron ? 0.0 : best;
 }
 
+/// The convex hull of the points' projections onto the xy plane, counter-clockwise (Andrew's
+/// monotone chain); z is dropped.
+std::vector<Eigen::Vector3d> Hull(std::vector<Eigen::Vector3d> points) {
+  std::sort(points.begin(), points.end(), [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  const auto turn = [](const Eigen::Vector3d& o, const Eigen::Vector3d& a,
+                       const Eigen::Vector3d& b) {
+    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+  };
+  std::vector<Eigen::Vector3d> hull(2 * points.size() + 1);
+  size_t k = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    while (k >= 2 && turn(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  for (size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && turn(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k > 1 ? k - 1 : k);
+  for (Eigen::Vector3d& p : hull) p.z() = 0;
+  return hull;
+}
+
 }  // namespace
 
 TurnedStock TurnedStock::FromCylinder(const CylinderPart& stock, double slice_m) {
@@ -60,7 +88,7 @@ TurnedStock TurnedStock::FromCylinder(const CylinderPart& stock, double slice_m)
   t.z0_m = stock.z_m;
   t.slice_m = slice_m;
   const size_t n = static_cast<size_t>(std::max(1.0, std::ceil(stock.length_m / slice_m - 1e-9)));
-  t.radius_m.assign(n, stock.radius_m);
+  t.slices.assign(n, {StockSpan{stock.inner_radius_m, stock.radius_m}});
   return t;
 }
 
@@ -69,73 +97,152 @@ TurnedStock TurnedStock::FromPart(const RevolvedPart& part, double slice_m) {
   t.name = part.name;
   t.link = part.link;
   t.slice_m = slice_m;
-  double z_end = 0;
-  bool any = false;
-  for (const RevolvedSection& s : part.sections) {
-    if (s.r_inner_m > 0) {
-      t.rings.push_back({part.name, part.link, s.r_outer_m, s.z1_m - s.z0_m, s.z0_m, s.r_inner_m});
-      continue;
-    }
-    t.z0_m = any ? std::min(t.z0_m, s.z0_m) : s.z0_m;
-    z_end = any ? std::max(z_end, s.z1_m) : s.z1_m;
-    any = true;
-  }
-  if (!any) return t;
+  if (part.sections.empty()) return t;
+  double z_end = part.sections[0].z1_m;
+  t.z0_m = part.sections[0].z0_m;
+  for (const RevolvedSection& s : part.sections)
+    t.z0_m = std::min(t.z0_m, s.z0_m), z_end = std::max(z_end, s.z1_m);
   const size_t n = static_cast<size_t>(std::max(1.0, std::ceil((z_end - t.z0_m) / slice_m - 1e-9)));
-  t.radius_m.assign(n, 0.0);
+  t.slices.resize(n);
   for (const RevolvedSection& s : part.sections) {
-    if (s.r_inner_m > 0) continue;
     // Slices the section overlaps by more than a rounding error.
     const double first = std::floor((s.z0_m - t.z0_m) / slice_m + 1e-9);
     const double last = std::ceil((s.z1_m - t.z0_m) / slice_m - 1e-9);
     for (size_t k = static_cast<size_t>(std::max(0.0, first));
          k < std::min(n, static_cast<size_t>(std::max(0.0, last))); ++k)
-      t.radius_m[k] = std::max(t.radius_m[k], s.r_outer_m);
+      t.Add(k, s.r_inner_m, s.r_outer_m);
   }
   return t;
 }
 
-bool TurnedStock::Cut(double z_m, double r_m, double allowance_m) {
+double TurnedStock::OuterRadius(size_t slice) const {
+  return slices[slice].empty() ? 0.0 : slices[slice].back().outer_m;
+}
+
+void TurnedStock::Add(size_t slice, double inner_m, double outer_m) {
+  std::vector<StockSpan>& spans = slices[slice];
+  std::vector<StockSpan> merged;
+  StockSpan added{inner_m, outer_m};
+  bool placed = false;
+  for (const StockSpan& s : spans) {
+    if (s.outer_m < added.inner_m) {
+      merged.push_back(s);
+    } else if (s.inner_m > added.outer_m) {
+      if (!placed) merged.push_back(added), placed = true;
+      merged.push_back(s);
+    } else {
+      added = {std::min(added.inner_m, s.inner_m), std::max(added.outer_m, s.outer_m)};
+    }
+  }
+  if (!placed) merged.push_back(added);
+  spans = std::move(merged);
+}
+
+bool TurnedStock::Remove(size_t slice, double inner_m, double outer_m) {
+  std::vector<StockSpan>& spans = slices[slice];
+  bool changed = false;
+  for (size_t i = 0; i < spans.size(); ++i) {
+    const StockSpan s = spans[i];
+    if (inner_m >= s.outer_m - kLowerM || outer_m <= s.inner_m + kLowerM) continue;
+    changed = true;
+    std::vector<StockSpan> left;
+    if (inner_m > s.inner_m) left.push_back({s.inner_m, inner_m});
+    if (s.outer_m - outer_m > kThinnestM) left.push_back({outer_m, s.outer_m});
+    spans.erase(spans.begin() + static_cast<std::ptrdiff_t>(i));
+    spans.insert(spans.begin() + static_cast<std::ptrdiff_t>(i), left.begin(), left.end());
+    i += left.size();
+    --i;
+  }
+  return changed;
+}
+
+bool TurnedStock::TurnDown(double z_m, double r_m, double allowance_m) {
   // The point cuts as a small ball of the allowance: every slice within it along z too, so the
   // slice ahead of a tool's leading face, which the face touches at their common boundary, is
   // cut as well.
-  const double n = static_cast<double>(radius_m.size());
+  const double n = static_cast<double>(slices.size());
   const double first = std::max(0.0, std::floor((z_m - allowance_m - z0_m) / slice_m));
   const double last = std::min(n - 1, std::floor((z_m + allowance_m - z0_m) / slice_m));
   if (!(first <= last)) return false;
   const double left = std::max(0.0, r_m - allowance_m);
   bool changed = false;
-  for (auto k = static_cast<size_t>(first); k <= static_cast<size_t>(last); ++k) {
-    if (left >= radius_m[k] - kLowerM) continue;
-    radius_m[k] = left;
-    changed = true;
-  }
+  for (auto k = static_cast<size_t>(first); k <= static_cast<size_t>(last); ++k)
+    changed = Remove(k, left, std::numeric_limits<double>::infinity()) || changed;
   return changed;
 }
 
-bool TurnedStock::CutTriangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                              const Eigen::Vector3d& c, double allowance_m) {
-  const double n = static_cast<double>(radius_m.size());
-  const double z_lo = std::min({a.z(), b.z(), c.z()}), z_hi = std::max({a.z(), b.z(), c.z()});
+bool TurnedStock::CutSolid(const std::vector<Eigen::Vector3d>& corners, double allowance_m) {
+  if (corners.size() < 3 || slices.empty()) return false;
+  const double n = static_cast<double>(slices.size());
+  double z_lo = corners[0].z(), z_hi = z_lo;
+  for (const Eigen::Vector3d& p : corners)
+    z_lo = std::min(z_lo, p.z()), z_hi = std::max(z_hi, p.z());
   const double first = std::max(0.0, std::floor((z_lo - allowance_m - z0_m) / slice_m));
   const double last = std::min(n - 1, std::floor((z_hi + allowance_m - z0_m) / slice_m));
   if (!(first <= last)) return false;
   const auto k0 = static_cast<size_t>(first), k1 = static_cast<size_t>(last);
-  // Most of a tool stands outside the part: one distance for the whole triangle tells.
-  const std::vector<Eigen::Vector3d> triangle{a, b, c};
-  const double highest = *std::max_element(radius_m.begin() + static_cast<std::ptrdiff_t>(k0),
-                                           radius_m.begin() + static_cast<std::ptrdiff_t>(k1) + 1);
-  if (AxisDistance(triangle) - allowance_m >= highest - kLowerM) return false;
-  bool changed = false;
+  double highest = 0;
+  for (size_t k = k0; k <= k1; ++k) highest = std::max(highest, OuterRadius(k));
+  // Most of a tool stands outside the part: each triangle's distance from the axis tells. A
+  // triangle wholly above the material says only that the sweep reaches above it, wherever it
+  // passes; the closed hull's nearest point lies on one of its triangles.
+  const size_t triangles = corners.size() / 3;
+  std::vector<char> above(triangles, 0);
+  double nearest = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < triangles; ++i) {
+    const double d = AxisDistance({corners[3 * i], corners[3 * i + 1], corners[3 * i + 2]});
+    nearest = std::min(nearest, d);
+    above[i] = d - allowance_m >= highest - kLowerM;
+  }
+  if (nearest - allowance_m >= highest - kLowerM) return false;
+  // Per slice the ring the hull sweeps there: from its nearest to its farthest point.
+  struct Sweep {
+    bool any = false;
+    double r_min = 0, r_max = 0;
+  };
+  std::vector<Sweep> sweeps(k1 - k0 + 1);
+  bool from_outside = false;
+  std::vector<Eigen::Vector3d> points;
   for (size_t k = k0; k <= k1; ++k) {
     const double lo = z0_m + static_cast<double>(k) * slice_m - allowance_m;
-    const std::vector<Eigen::Vector3d> piece =
-        ClipToSlab(triangle, lo, lo + slice_m + 2 * allowance_m);
-    if (piece.empty()) continue;
-    const double left = std::max(0.0, AxisDistance(piece) - allowance_m);
-    if (left >= radius_m[k] - kLowerM) continue;
-    radius_m[k] = left;
-    changed = true;
+    const double hi = lo + slice_m + 2 * allowance_m;
+    Sweep& sweep = sweeps[k - k0];
+    sweep.r_min = std::numeric_limits<double>::infinity();
+    Eigen::Vector2d box_lo = Eigen::Vector2d::Constant(sweep.r_min), box_hi = -box_lo;
+    points.clear();
+    for (size_t i = 0; i < triangles; ++i) {
+      const Eigen::Vector3d &a = corners[3 * i], &b = corners[3 * i + 1], &c = corners[3 * i + 2];
+      if (std::max({a.z(), b.z(), c.z()}) < lo || std::min({a.z(), b.z(), c.z()}) > hi) continue;
+      if (above[i]) {
+        sweep.r_max = std::numeric_limits<double>::infinity();
+        continue;
+      }
+      const std::vector<Eigen::Vector3d> piece = ClipToSlab({a, b, c}, lo, hi);
+      if (piece.empty()) continue;
+      sweep.any = true;
+      sweep.r_min = std::min(sweep.r_min, AxisDistance(piece));
+      for (const Eigen::Vector3d& p : piece) {
+        sweep.r_max = std::max(sweep.r_max, p.head<2>().norm());
+        box_lo = box_lo.cwiseMin(p.head<2>()), box_hi = box_hi.cwiseMax(p.head<2>());
+        points.push_back(p);
+      }
+    }
+    from_outside = from_outside || sweep.r_max + allowance_m >= OuterRadius(k);
+    if (!sweep.any) continue;  // only triangles above the material
+    // The slice's cut through the hull may hold the axis with no triangle across it (a drill's
+    // flank runs along the axis): the hull of the pieces tells.
+    if (sweep.r_min > 0 && (box_lo.array() <= 0).all() && (box_hi.array() >= 0).all())
+      sweep.r_min = std::min(sweep.r_min, AxisDistance(Hull(points)));
+  }
+  // A part that reaches out of the material came in from outside and took all above it; one
+  // wholly inside (in a bore, in the end face) takes only its ring.
+  bool changed = false;
+  for (size_t k = k0; k <= k1; ++k) {
+    const Sweep& sweep = sweeps[k - k0];
+    if (!sweep.any || sweep.r_min - allowance_m >= OuterRadius(k) - kLowerM) continue;
+    const double outer =
+        from_outside ? std::numeric_limits<double>::infinity() : sweep.r_max + allowance_m;
+    changed = Remove(k, std::max(0.0, sweep.r_min - allowance_m), outer) || changed;
   }
   return changed;
 }
@@ -143,20 +250,35 @@ bool TurnedStock::CutTriangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b
 std::vector<CylinderPart> TurnedStock::Cylinders(double tolerance_m) const {
   std::vector<CylinderPart> parts;
   size_t start = 0;
-  while (start < radius_m.size()) {
-    double lo = radius_m[start], hi = lo;
+  while (start < slices.size()) {
+    const std::vector<StockSpan>& first = slices[start];
+    // Per span of the run: the smallest and largest inner and outer radius.
+    std::vector<StockSpan> low = first, high = first;
     size_t end = start + 1;
-    for (; end < radius_m.size(); ++end) {
-      const double r = radius_m[end];
-      if (std::max(hi, r) - std::min(lo, r) > tolerance_m) break;
-      lo = std::min(lo, r), hi = std::max(hi, r);
+    for (; end < slices.size(); ++end) {
+      const std::vector<StockSpan>& next = slices[end];
+      if (next.size() != first.size()) break;
+      bool fits = true;
+      for (size_t j = 0; j < next.size() && fits; ++j) {
+        const StockSpan& s = next[j];
+        fits = std::max(high[j].outer_m, s.outer_m) - std::min(low[j].outer_m, s.outer_m) <=
+                   tolerance_m &&
+               std::max(high[j].inner_m, s.inner_m) - std::min(low[j].inner_m, s.inner_m) <=
+                   tolerance_m;
+      }
+      if (!fits) break;
+      for (size_t j = 0; j < next.size(); ++j) {
+        low[j] = {std::min(low[j].inner_m, next[j].inner_m),
+                  std::min(low[j].outer_m, next[j].outer_m)};
+        high[j] = {std::max(high[j].inner_m, next[j].inner_m),
+                   std::max(high[j].outer_m, next[j].outer_m)};
+      }
     }
-    if (hi > 0)
-      parts.push_back({name, link, hi, static_cast<double>(end - start) * slice_m,
-                       z0_m + static_cast<double>(start) * slice_m});
+    for (size_t j = 0; j < first.size(); ++j)
+      parts.push_back({name, link, high[j].outer_m, static_cast<double>(end - start) * slice_m,
+                       z0_m + static_cast<double>(start) * slice_m, low[j].inner_m});
     start = end;
   }
-  parts.insert(parts.end(), rings.begin(), rings.end());
   return parts;
 }
 

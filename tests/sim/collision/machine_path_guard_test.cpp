@@ -61,7 +61,7 @@ TEST(MachinePathGuard, ThePartAsTurnedReplacesTheStock) {
   // ... and, once the part is turned down to radius 25 over its whole length, that surface.
   TurnedStock stock =
       TurnedStock::FromCylinder({"workpiece", "spindle", 0.030, 0.160, 0.060}, 0.0005);
-  for (double& r : stock.radius_m) r = 0.025;
+  for (std::vector<StockSpan>& s : stock.slices) s = {{0, 0.025}};
   g.guard.world().SetAdded(stock.Cylinders(1e-6));
   const control::PathCheck after =
       g.guard.CheckMove(g.Drives(130, 250, 450), g.Drives(130, 0, 450));

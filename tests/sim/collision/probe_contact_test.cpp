@@ -121,7 +121,7 @@ TEST(ProbeContact, OnlyTheRubyMayTouchOnlyTheAddedParts) {
     EXPECT_FALSE(w.MayTouch(ruby, g.Part(part))) << part;
   // The part as turned replaces the stock: the rule holds for the new parts.
   TurnedStock stock = TurnedStock::FromCylinder(kStock, 0.0005);
-  for (size_t i = 0; i < stock.radius_m.size() / 2; ++i) stock.radius_m[i] = 0.025;
+  for (size_t i = 0; i < stock.slices.size() / 2; ++i) stock.slices[i] = {{0, 0.025}};
   g.guard.world().SetAdded(stock.Cylinders(1e-6));
   ASSERT_GE(w.size(), g.Part("probe_ruby") + 2);
   w.SetMeasuring(true);

@@ -1,10 +1,16 @@
 // Turning for PathGuard on lathe-c1: the turning tool's insert cuts the stock while the
-// spindle turns, and a tool standing in its own cut is clear of what is left.
+// spindle turns, and a tool standing in its own cut is clear of what is left. On a lathe with
+// axial tools, a drill at the axis bores the part and a grooving blade in the end face cuts a
+// face groove.
 
 #include "sim/collision/stock_cutter.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <memory>
+
+#include "render/mesh_primitives.hpp"
 #include "sim/collision/machine_path_guard.hpp"
 
 namespace vmt::sim {
@@ -37,10 +43,10 @@ TEST(StockCutter, TheInsertCutsOnlyWhileTheSpindleTurns) {
   EXPECT_TRUE(cutter.Cut(l.Joints(g, 130, 28, 9.01), 0.002));
   const TurnedStock& s = cutter.stock();
   const size_t tip = static_cast<size_t>((0.190 - s.z0_m) / s.slice_m);
-  EXPECT_NEAR(s.radius_m[tip], 0.028 - kCutAllowanceM, 1e-6);
+  EXPECT_NEAR(s.OuterRadius(tip), 0.028 - kCutAllowanceM, 1e-6);
   // Far from the tool the stock is untouched; again at the same place nothing more is cut.
-  EXPECT_EQ(s.radius_m[0], 0.030);
-  EXPECT_EQ(s.radius_m[s.radius_m.size() - 1], 0.030);
+  EXPECT_EQ(s.OuterRadius(0), 0.030);
+  EXPECT_EQ(s.OuterRadius(s.slices.size() - 1), 0.030);
   EXPECT_FALSE(cutter.Cut(l.Joints(g, 130, 28, 18.01), 0.003));
 }
 
@@ -84,6 +90,67 @@ TEST(StockCutter, AToolInItsCutIsClearAndAnApproachMeetsWhatIsLeft) {
   const control::PathCheck d = g.CheckMove(at, deeper);
   ASSERT_FALSE(d.clear);
   EXPECT_LT(d.distance, 0.05);
+}
+
+/// A lathe with axial tools only: the spindle (joint 0) and a slide along the spindle axis
+/// (joint 1) that carries a d 8 drill (a square bar of 8 mm) at the axis and a 3 mm grooving
+/// blade from radius 20 to 24 mm 10 mm behind it, each 100 mm long along +z.
+MachineModel AxialLathe() {
+  MachineModel m;
+  m.name = "axial";
+  m.links.resize(3);
+  m.links[0].name = "bed", m.links[1].name = "spindle", m.links[2].name = "slide";
+  m.joints.resize(2);
+  m.joints[0].name = "spindle", m.joints[0].type = JointType::kContinuous;
+  m.joints[1].name = "slide", m.joints[1].type = JointType::kPrismatic;
+  for (int j = 0; j < 2; ++j) m.joints[j].parent_link = 0, m.joints[j].child_link = j + 1;
+  m.links[1].parent_joint = 0, m.links[2].parent_joint = 1;
+  const auto bar = [&](const char* name, Eigen::Vector3d lo, Eigen::Vector3d hi) {
+    Visual v;
+    v.name = name;
+    v.mesh = std::make_shared<const render::Mesh>(render::MakeBox(lo, hi));
+    m.links[2].collisions.push_back(v);
+    m.cutting_parts.push_back({2, static_cast<int>(m.links[2].collisions.size()) - 1});
+  };
+  bar("drill", {-0.004, -0.004, 0}, {0.004, 0.004, 0.1});
+  bar("blade", {0.020, -0.0015, 0.01}, {0.024, 0.0015, 0.11});
+  return m;
+}
+
+TEST(StockCutter, AxialToolsBoreThePartAndCutAFaceGroove) {
+  const MachineModel m = AxialLathe();
+  // A bar d 60 from z 0 to 100 mm; the drill's tip comes in from z 120 down to 80 (20 mm
+  // deep) and the blade 10 mm into the face, at 1500 rpm, 0.1 mm per turn.
+  StockCutter cutter(m, {"workpiece", "spindle", {{0.0, 0.1, 0, 0.03}}});
+  double t = 0, angle = 0;
+  EXPECT_FALSE(cutter.Cut({0, 0.08}, t));  // not turning: a crash for PathGuard, no cut
+  for (double z = 0.12; z >= 0.08 - 1e-12; z -= 4e-6)
+    cutter.Cut({angle += 2 * M_PI / 25, z}, t += 0.04 / 25);
+  const TurnedStock& s = cutter.stock();
+  const auto slice = [&](double z_m) { return static_cast<size_t>((z_m - s.z0_m) / s.slice_m); };
+  const double bore = 0.004 * std::sqrt(2.0) + kCutAllowanceM;  // the drill's corners
+  const double groove_in = 0.02 - kCutAllowanceM, groove_out = std::hypot(0.024, 0.0015);
+  // Between the groove's floor (z 90) and the face: a core with the bore, and a ring outside.
+  const std::vector<StockSpan>& grooved = s.slices[slice(0.095)];
+  ASSERT_EQ(grooved.size(), 2u);
+  EXPECT_NEAR(grooved[0].inner_m, bore, 1e-7);
+  EXPECT_NEAR(grooved[0].outer_m, groove_in, 1e-7);
+  EXPECT_NEAR(grooved[1].inner_m, groove_out + kCutAllowanceM, 1e-7);
+  EXPECT_EQ(grooved[1].outer_m, 0.03);
+  // Below the groove's floor the bore goes on to the drill's tip; deeper the bar is solid.
+  const std::vector<StockSpan>& bored = s.slices[slice(0.085)];
+  ASSERT_EQ(bored.size(), 1u);
+  EXPECT_NEAR(bored[0].inner_m, bore, 1e-7);
+  ASSERT_EQ(s.slices[slice(0.075)].size(), 1u);
+  EXPECT_EQ(s.slices[slice(0.075)][0].inner_m, 0.0);
+  // The tools standing in their cuts are clear of what is left; each part stands in the
+  // cylinders and tubes PathGuard and the pictures take.
+  EXPECT_FALSE(cutter.Cut({angle += 2 * M_PI / 25, 0.08}, t += 0.04 / 25));
+  const std::vector<CylinderPart> parts = s.Cylinders(2e-6);
+  int tubes = 0;
+  for (const CylinderPart& c : parts) tubes += c.inner_radius_m > 0;
+  // The bored core and the ring outside the groove, then the bore below the groove's floor.
+  EXPECT_EQ(tubes, 3);
 }
 
 }  // namespace

@@ -4,11 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "../sim_test_support.hpp"
 #include "render/image.hpp"
+#include "render/mesh_primitives.hpp"
 #include "sim/collision/turned_stock.hpp"
 #include "sim/runner/runner.hpp"
 #include "sim/runner/scene_renderer.hpp"
@@ -44,8 +46,9 @@ TEST(TurnedPictures, TheRendererDrawsThePartAsTurned) {
   EXPECT_EQ(PixelsApart(renderer.Render(q, camera, 160, 120, &profile), raw), 0);
 
   // Turned down to 20 mm over its free half: the picture changes.
-  const double z0 = stock.z0_m, length = stock.slice_m * stock.radius_m.size();
-  for (double z = z0 + length / 2; z < z0 + length; z += stock.slice_m / 2) stock.Cut(z, 0.02, 0);
+  const double z0 = stock.z0_m, length = stock.slice_m * stock.slices.size();
+  for (double z = z0 + length / 2; z < z0 + length; z += stock.slice_m / 2)
+    stock.TurnDown(z, 0.02, 0);
   const TurnedProfile turned{2, stock.Cylinders(1e-6)};
   ASSERT_GT(turned.cylinders.size(), profile.cylinders.size());
   const render::Image cut = renderer.Render(q, camera, 160, 120, &turned);
@@ -56,6 +59,36 @@ TEST(TurnedPictures, TheRendererDrawsThePartAsTurned) {
   EXPECT_EQ(PixelsApart(renderer.Render(q, camera, 160, 120, &profile), cut), 0);
   profile.version = 3;
   EXPECT_EQ(PixelsApart(renderer.Render(q, camera, 160, 120, &profile), raw), 0);
+}
+
+TEST(TurnedPictures, ABoreAndAFaceGrooveShowInTheEndFace) {
+  const Scene scene = LoadScene(SourcePath("scenes/turning.yaml"));
+  SceneRenderer renderer(*scene.model, scene.workpiece);
+  std::vector<double> q(scene.model->joints.size(), 0.0);
+  q[scene.model->JointIndex("tailstock")] = 0.7;  // out of the way
+  // Looking at the bar's free end face from the tailstock's side, a little from above.
+  const NamedCamera camera{"face", {0.08, 0.06, 0.4}, {0.0, 0.0, 0.21}, {0, 1, 0}, 30};
+  TurnedStock stock = TurnedStock::FromPart(scene.workpiece.part, 0.0005);
+  const TurnedProfile solid{1, stock.Cylinders(1e-6)};
+  const render::Image before = renderer.Render(q, camera, 160, 120, &solid);
+  // A d 20 bore 10 mm deep and a face groove from radius 20 to 24 mm, 5 mm deep, into the
+  // face at z 220 mm, cut by boxes as a drill and a blade would be.
+  const auto box = [](const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+    const render::Mesh m = render::MakeBox(lo, hi);
+    std::vector<Eigen::Vector3d> corners;
+    for (const uint32_t i : m.indices)
+      corners.emplace_back(m.positions[3 * i], m.positions[3 * i + 1], m.positions[3 * i + 2]);
+    return corners;
+  };
+  ASSERT_TRUE(stock.CutSolid(box({-0.007, -0.007, 0.21}, {0.007, 0.007, 0.3}), 0));
+  ASSERT_TRUE(stock.CutSolid(box({0.02, -0.001, 0.215}, {0.024, 0.001, 0.3}), 0));
+  const TurnedProfile cut{2, stock.Cylinders(1e-6)};
+  const render::Image after = renderer.Render(q, camera, 160, 120, &cut);
+  EXPECT_GT(PixelsApart(after, before), 200);
+  if (const char* dir = std::getenv("VMT_TEST_PICTURES")) {
+    render::WritePng(std::string(dir) + "/face_before.png", before);
+    render::WritePng(std::string(dir) + "/face_after.png", after);
+  }
 }
 
 TEST(TurnedPictures, PicturesAfterTheRunShowThePartAsItWasAtTheirTick) {
