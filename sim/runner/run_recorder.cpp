@@ -10,6 +10,8 @@ void RunRecorder::Open(const std::string& out_dir) {
   std::error_code error;
   std::filesystem::create_directories(out_dir, error);
   if (error) throw common::WriteError(out_dir, error.value());
+  // summary.json is written when the run is over: one from an earlier run must not say so.
+  std::filesystem::remove(out_dir + "/summary.json", error);
   trace_file_ = std::make_unique<common::OutputFile>(out_dir + "/trace.csv");
   events_file_ = std::make_unique<common::OutputFile>(out_dir + "/events.jsonl",
                                                       common::OutputFile::Mode::kStream);
