@@ -4,6 +4,7 @@
 #include <assimp/scene.h>
 
 #include <assimp/Importer.hpp>
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
@@ -11,6 +12,11 @@
 #include "common/input_file.hpp"
 
 namespace vmt::sim {
+namespace {
+
+constexpr double kMaxMeshCoordinateM = 100;
+
+}  // namespace
 
 MeshCache& MeshCache::Shared() {
   static MeshCache cache;
@@ -50,6 +56,12 @@ std::shared_ptr<const render::Mesh> MeshCache::Load(const std::string& path,
     const auto base = static_cast<uint32_t>(mesh->positions.size() / 3);
     for (unsigned v = 0; v < am->mNumVertices; ++v) {
       const aiVector3D& p = am->mVertices[v];
+      // A machine part lies within metres of its link; a far or infinite vertex (1e200 in the
+      // file) stalls the collision geometry's fitting ("eigen: too many iterations").
+      for (const double c : {p.x * scale.x(), p.y * scale.y(), p.z * scale.z()})
+        if (!(std::abs(c) <= kMaxMeshCoordinateM))
+          throw std::runtime_error("mesh " + path +
+                                   ": a vertex lies beyond +-100 m of its link or is not finite");
       mesh->positions.insert(mesh->positions.end(), {static_cast<float>(p.x * scale.x()),
                                                      static_cast<float>(p.y * scale.y()),
                                                      static_cast<float>(p.z * scale.z())});

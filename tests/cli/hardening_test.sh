@@ -105,6 +105,12 @@ scene "$out/huge_section.yaml" "$model" "workpiece:
 bad huge_bore "huge_section.yaml:[0-9]+:[0-9]+: workpiece.sections\[0\].bore" -- \
   "$vmt" snapshot "$out/huge_section.yaml" --at 0 --out "$out/o.png"
 
+mkdir -p "$out/far_vertex"
+cp -r "$src/models/lathe-c1/." "$out/far_vertex/"
+sed -i '0,/^v /s/^v .*/v 1e200 1e200 1e200/' "$out/far_vertex/meshes/turret_st01_insert.obj"
+bad far_vertex "turret_st01_insert.obj: a vertex lies beyond \+-100 m of its link" -- \
+  "$vmt" signals "$out/far_vertex/machine.yaml"
+
 # FIFOs and directories: opening a FIFO waited forever for a writer.
 mkfifo "$out/fifo.yaml" "$out/fifo.mtc" "$out/fifo.png" "$out/fifo.urdf"
 bad fifo_scene "fifo.yaml: cannot open file: not a regular file" -- "$vmt" run "$out/fifo.yaml" --out "$out/o"
