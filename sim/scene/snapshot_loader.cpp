@@ -35,8 +35,7 @@ void ReadComparison(const YamlNode& n, SnapshotSpec& spec) {
     for (size_t j = 0; j < list.size(); ++j) {
       const YamlNode r = list[j];
       if (!r.IsSequence() || r.size() != 4) r.Fail("expected [x, y, width, height] in pixels");
-      const SnapshotMaskRect rect{r[0].Int(0, 4096), r[1].Int(0, 4096), r[2].Int(1, 4096),
-                                  r[3].Int(1, 4096)};
+      const SnapshotMaskRect rect{r[0].Int(), r[1].Int(), r[2].Int(), r[3].Int()};
       if (rect.x < 0 || rect.y < 0) r.Fail("x and y must be >= 0 (the top left corner is 0, 0)");
       if (rect.width < 1 || rect.height < 1) r.Fail("width and height must be >= 1");
       if (rect.x + rect.width > spec.width || rect.y + rect.height > spec.height)
@@ -82,9 +81,9 @@ std::string SeriesFile(const std::string& pattern, int index, int count, double 
 // (included when a step lands on it).
 std::vector<double> SeriesTimes(const YamlNode& n) {
   if (!n.Has("to")) n.Fail("a series (every:) needs to: (the last time, s)");
-  const double every = n["every"].Double(0, kMaxSceneSeconds);
-  const double from = n.Double("from", 0, 0, kMaxSceneSeconds);
-  const double to = n["to"].Double(0, kMaxSceneSeconds);
+  const double every = n["every"].Double();
+  const double from = n.Double("from", 0);
+  const double to = n["to"].Double();
   if (!(every > 0)) n["every"].Fail("must be > 0 s");
   if (!(from >= 0)) n["from"].Fail("must be >= 0 s");
   if (!(from <= to)) n["to"].Fail("must be >= from (" + Fmt(from) + " s)");
@@ -180,7 +179,7 @@ void ReadSnapshots(const YamlNode& list, Scene& scene) {
     }
     for (const char* key : {"from", "to", "sheet"})
       if (n.Has(key)) n[key].Fail("only with every: (a series)");
-    spec.at_s = n["at"].Double(0, scene.duration_s);
+    spec.at_s = n["at"].Double(0, kMaxSceneSeconds);
     std::ostringstream file;
     file << spec.camera << "_" << Fmt(spec.at_s) << "s.png";
     spec.file = n.String("file", file.str());

@@ -13,7 +13,7 @@ void Read(const StepSource& src, TimelineStep& s, std::ostringstream& text) {
   s.drive = RequireDrive(src.m, a["axis"]);
   s.target = a["to"].Double();
   RequireWithinTravel(src.m, s.drive, s.target, a["to"]);
-  s.feed = a["feed"].Double(0, kMaxFeed) / 60.0;  // mm/min | deg/min, as F words
+  s.feed = a["feed"].Double(-kMaxFeed, kMaxFeed) / 60.0;  // mm/min | deg/min, as F words
   if (s.feed <= 0) a["feed"].Fail("must be > 0");
   text << "move " << a["axis"].String() << " to " << Fmt(s.target) << " at F" << Fmt(s.feed * 60);
   s.parameter_set = ReadDriveParameterSet(a, text);

@@ -51,7 +51,7 @@ const StepKind& StepKindOf(TimelineStep::Kind kind) {
 }
 
 int ReadDriveParameterSet(const YamlNode& step, std::ostringstream& text) {
-  const int set = step.Int("parameter_set", 0, 0, 7);
+  const int set = step.Int("parameter_set", 0);
   if (set < 0 || set > 7) step["parameter_set"].Fail("expected 0..7");
   if (set != 0) text << " (parameter set " << set << ")";
   return set;
