@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/json_text.hpp"
 #include "common/output_file.hpp"
 
 namespace vmt::sim {
@@ -169,7 +170,7 @@ void WriteJson(const std::string& path, const std::vector<GoldenScene>& scenes) 
   doc["passed"] = passed;
   // "passed" first, for a reader that looks at the top only.
   nlohmann::ordered_json out = {{"passed", passed}, {"scenes", doc["scenes"]}};
-  WriteText(path, out.dump(2) + "\n");
+  WriteText(path, out.dump(2, ' ', false, common::kReplaceBadUtf8) + "\n");
 }
 
 void WriteFailurePage(const std::string& dir, const GoldenPicture& p, const std::string& run_dir) {

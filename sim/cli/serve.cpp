@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/json_text.hpp"
 #include "common/output_file.hpp"
 #include "control/gateway/nc_status_block.hpp"
 #include "control/plc/modbus_server.hpp"
@@ -326,7 +327,8 @@ int Serve(const ServeOptions& o) {
   std::vector<std::string> write_errors = r.write_errors;
   try {
     if (!o.out_dir.empty())
-      common::WriteFileAtomically(o.out_dir + "/serve.json", serve.dump(2) + '\n');
+      common::WriteFileAtomically(o.out_dir + "/serve.json",
+                                  serve.dump(2, ' ', false, common::kReplaceBadUtf8) + '\n');
   } catch (const common::WriteError& e) {
     write_errors.push_back(e.what());
   }

@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "common/json_text.hpp"
+
 namespace vmt::sim {
 
 void RunRecorder::Open(const std::string& out_dir) {
@@ -22,7 +24,7 @@ void RunRecorder::Event(nlohmann::ordered_json event) {
   event["t"] = std::round(event["t"].get<double>() * 1e6) / 1e6;
   // Line by line, so that a PLC engineer can follow events.jsonl while the run goes on (tail -f).
   if (events_file_) {
-    events_file_->Write(event.dump() + '\n');
+    events_file_->Write(event.dump(-1, ' ', false, common::kReplaceBadUtf8) + '\n');
     Checked(events_file_, false);
   }
   for (const EventObserver& observe : observers_) observe(event);

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/json_text.hpp"
 #include "sim/runner/runner_state.hpp"
 
 namespace vmt::sim {
@@ -88,13 +89,17 @@ void SceneRun::State::WriteOperatorSteps() {
   std::ostringstream f;
   f << "# The operator station's inputs, at the drive tick of the PLC cycle that took each.\n"
     << "# vmt run SCENE --operator operator.yaml repeats the run to the same trace digest.\n"
-    << "scene: " << nlohmann::json(scene.name).dump() << "\noperator:\n";
+    << "scene: " << nlohmann::json(scene.name).dump(-1, ' ', false, common::kReplaceBadUtf8)
+    << "\noperator:\n";
   for (const OperatorStep& o : operated) {
     if (o.handwheel.empty())
-      f << "  - {tick: " << o.tick << ", signal: " << nlohmann::json(o.signal).dump()
-        << ", value: " << nlohmann::json(o.value).dump() << "}\n";
+      f << "  - {tick: " << o.tick
+        << ", signal: " << nlohmann::json(o.signal).dump(-1, ' ', false, common::kReplaceBadUtf8)
+        << ", value: " << nlohmann::json(o.value).dump(-1, ' ', false, common::kReplaceBadUtf8)
+        << "}\n";
     else
-      f << "  - {tick: " << o.tick << ", handwheel: " << nlohmann::json(o.handwheel).dump()
+      f << "  - {tick: " << o.tick << ", handwheel: "
+        << nlohmann::json(o.handwheel).dump(-1, ' ', false, common::kReplaceBadUtf8)
         << ", counts: " << static_cast<int>(o.value) << "}\n";
   }
   WriteOutput(options.out_dir + "/operator.yaml", f.str());

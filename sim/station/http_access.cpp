@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "common/json_text.hpp"
 #include "sim/station/station_server.hpp"
 
 namespace vmt::sim::station {
@@ -14,7 +15,8 @@ void Reply(httplib::Response& res, int status, const std::string& body) {
 }
 
 void Fail(httplib::Response& res, int status, const std::string& error) {
-  Reply(res, status, nlohmann::json{{"error", error}}.dump());
+  Reply(res, status,
+        nlohmann::json{{"error", error}}.dump(-1, ' ', false, common::kReplaceBadUtf8));
 }
 
 void CheckAccess(const std::string& host, const std::string& token) {

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "common/json_text.hpp"
 #include "control/channel/channel.hpp"
 
 namespace vmt::sim::station {
@@ -13,7 +14,7 @@ using Clock = std::chrono::steady_clock;
 void StationSession::Event(const nlohmann::ordered_json& event) {
   marks_.Note(event);
   ++events_;
-  hub_.AddEvent(event.dump());
+  hub_.AddEvent(event.dump(-1, ' ', false, common::kReplaceBadUtf8));
 }
 
 void StationSession::Open(SceneRun& run, StationServerOptions options, const std::string& pace,

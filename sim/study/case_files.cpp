@@ -12,6 +12,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "common/json_text.hpp"
 #include "common/output_file.hpp"
 
 namespace vmt::sim::study {
@@ -142,7 +143,7 @@ void RewriteCaseFiles(const std::string& dir, const std::vector<CaseResult>& cas
   common::OutputFile csv(dir + "/cases.csv");
   csv.Write(CsvHeader());
   for (const CaseResult& r : cases) {
-    jsonl.Write(r.dump() + '\n');
+    jsonl.Write(r.dump(-1, ' ', false, common::kReplaceBadUtf8) + '\n');
     csv.Write(CsvRow(r));
   }
   jsonl.Commit();
@@ -167,7 +168,7 @@ CaseFiles::~CaseFiles() {
 }
 
 void CaseFiles::Write(const CaseResult& r) {
-  WriteAll(jsonl_, r.dump() + "\n", jsonl_path_);
+  WriteAll(jsonl_, r.dump(-1, ' ', false, common::kReplaceBadUtf8) + "\n", jsonl_path_);
   WriteAll(csv_, CsvRow(r), csv_path_);
 }
 

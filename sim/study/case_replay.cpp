@@ -7,6 +7,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "common/json_text.hpp"
 #include "common/output_file.hpp"
 #include "sim/study/case_files.hpp"
 #include "sim/study/reference_run.hpp"
@@ -37,7 +38,8 @@ void WriteStudySource(const std::string& dir, const std::string& scene_file,
   j["scene_file"] = std::filesystem::absolute(scene_file).lexically_normal().string();
   j["every_ms"] = plan.every_ms;
   j["per_mille"] = plan.per_mille;
-  common::WriteFileAtomically(dir + "/study.json", j.dump(1) + "\n");
+  common::WriteFileAtomically(dir + "/study.json",
+                              j.dump(1, ' ', false, common::kReplaceBadUtf8) + "\n");
 }
 
 std::string CaseFolderOf(const std::string& case_id) { return "cases/" + FileNameOf(case_id); }
@@ -82,7 +84,8 @@ std::string SaveCase(const std::string& dir, const std::string& case_id) {
   j["trace_digest"] = saved.trace_digest;
   j["timeline"] = saved.timeline;
   j["result"] = saved.result;
-  common::WriteFileAtomically(work + "/case.json", j.dump(1) + "\n");
+  common::WriteFileAtomically(work + "/case.json",
+                              j.dump(1, ' ', false, common::kReplaceBadUtf8) + "\n");
   std::error_code ec;
   std::filesystem::rename(work, folder, ec);  // failing, another request saved it meanwhile
   return folder;

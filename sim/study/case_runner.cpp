@@ -10,6 +10,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "common/json_text.hpp"
 #include "common/mapped_file.hpp"
 #include "control/nc/parser.hpp"
 #include "sim/model/yaml_reader.hpp"
@@ -350,29 +351,35 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
               for (size_t m = k; m < end; ++m) {
                 const StudyCase& c = *mine[m];
                 if (!obs.marker_seen()) {  // the retract ended the case (a refused jog)
-                  WriteAll(fd, obs.Result(plan, interruptions, c, run.time_s()).dump() + "\n");
+                  WriteAll(fd, obs.Result(plan, interruptions, c, run.time_s())
+                                       .dump(-1, ' ', false, common::kReplaceBadUtf8) +
+                                   "\n");
                   continue;
                 }
                 // The last mode needs no copy of this process: it runs here, on from the
                 // retract (a crash here is reported for it by the group, as for a child).
                 if (m + 1 == end) {
                   RunReturn(scene, run, obs, plan, plan.subroutines[sub], c.mode, limit);
-                  WriteAll(fd, obs.Result(plan, interruptions, c, run.time_s()).dump() + "\n");
+                  WriteAll(fd, obs.Result(plan, interruptions, c, run.time_s())
+                                       .dump(-1, ' ', false, common::kReplaceBadUtf8) +
+                                   "\n");
                   continue;
                 }
                 int mode_status = 0;
                 const std::vector<std::string> one = InChild(
                     [&](int mode_fd) {
                       RunReturn(scene, run, obs, plan, plan.subroutines[sub], c.mode, limit);
-                      WriteAll(mode_fd,
-                               obs.Result(plan, interruptions, c, run.time_s()).dump() + "\n");
+                      WriteAll(mode_fd, obs.Result(plan, interruptions, c, run.time_s())
+                                                .dump(-1, ' ', false, common::kReplaceBadUtf8) +
+                                            "\n");
                     },
                     &mode_status);
                 const bool ok =
                     WIFEXITED(mode_status) && WEXITSTATUS(mode_status) == 0 && one.size() == 1;
-                WriteAll(
-                    fd,
-                    (ok ? one[0] : DiedResult(plan, interruptions, c, mode_status).dump()) + "\n");
+                WriteAll(fd, (ok ? one[0]
+                                 : DiedResult(plan, interruptions, c, mode_status)
+                                       .dump(-1, ' ', false, common::kReplaceBadUtf8)) +
+                                 "\n");
               }
             },
             &status);
@@ -383,7 +390,7 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
                              : nlohmann::ordered_json();
           if (r.is_discarded() || !r.is_object() || r.value("case", "") != c.id)
             r = DiedResult(plan, interruptions, c, status);
-          WriteAll(lines[1], r.dump() + "\n");
+          WriteAll(lines[1], r.dump(-1, ' ', false, common::kReplaceBadUtf8) + "\n");
         }
         k = end;
       }

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "common/json_text.hpp"
 #include "common/output_file.hpp"
 #include "render/image.hpp"
 #include "sim/study/case_files.hpp"
@@ -39,7 +40,8 @@ SnapshotSpec Look(const Scene& scene) {
 void WriteSnapshotIndex(const std::string& dir, const std::map<std::string, std::string>& index) {
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
   for (const auto& [id, file] : index) j[id] = file;
-  common::WriteFileAtomically(dir + "/snapshots.json", j.dump(1) + "\n");
+  common::WriteFileAtomically(dir + "/snapshots.json",
+                              j.dump(1, ' ', false, common::kReplaceBadUtf8) + "\n");
 }
 
 std::vector<std::string> WorstCaseIds(const std::vector<CaseResult>& results, int collisions) {

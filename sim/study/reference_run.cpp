@@ -7,6 +7,7 @@
 #include <optional>
 #include <sstream>
 
+#include "common/json_text.hpp"
 #include "sim/collision/spindle_sweep.hpp"
 #include "sim/runner/runner.hpp"
 
@@ -187,7 +188,7 @@ std::string ReferenceJson(const Reference& r) {
     for (const ChuckOutline& c : r.chuck)
       chuck.push_back({{"name", c.name}, {"x1", c.x1}, {"z0", c.z0}, {"z1", c.z1}});
   }
-  return j.dump() + "\n";
+  return j.dump(-1, ' ', false, common::kReplaceBadUtf8) + "\n";
 }
 
 Reference ReferenceFromJson(const std::string& text) {

@@ -123,5 +123,14 @@ bad serve_plc_timeout "--plc-timeout: must be a finite number of ms" -- "$vmt" s
 bad serve_idle_timeout "--idle-timeout: must be a finite number of seconds" -- "$vmt" serve "$s" --idle-timeout -3
 bad golden_out_file "--out: .*: is not a directory" -- "$vmt" golden check "$s" --golden "$out/g" --out "$out/a_file"
 
+# A file name that is not UTF-8 reaches the JSON files as U+FFFD, never an exception after the run.
+latin1_name=$(printf 'caf\xe9')
+printf 'scene: named\nmodel: %s\nbackend: kinematic\nduration: 0.1\n' "$model" >"$out/$latin1_name.yaml"
+check_golden_json() {
+  "$vmt" golden check "$out/$latin1_name.yaml" --golden "$out/g" --out "$out/gout" --json "$out/golden.json"
+  [ $? = 1 ] && grep -q '"scene": "caf' "$out/golden.json" && exit 2
+}
+bad golden_json_latin1_name "FAIL caf" -- bash -c "$(declare -f check_golden_json); vmt=$vmt out=$out latin1_name=$latin1_name check_golden_json"
+
 echo "$passes passed, $fails failed"
 [ "$fails" = 0 ]
