@@ -80,15 +80,15 @@ int Run(const std::string& scene_path, const std::string& backend, double until,
   std::printf("\nexpectations: %zu passed, %zu failed\n",
               r.expectations.size() - static_cast<size_t>(failed), static_cast<size_t>(failed));
   for (const std::string& f : r.failures) std::fprintf(stderr, "FAILED: %s\n", f.c_str());
+  for (const std::string& e : r.write_errors) std::fprintf(stderr, "vmt: error: %s\n", e.c_str());
+  if (!r.stop_reason.empty())
+    std::fprintf(stderr, "vmt run: stopped early at %.4f s: %s\n", r.simulated_s,
+                 r.stop_reason.c_str());
+  if (!r.write_errors.empty()) return 2;
+  if (!r.stop_reason.empty()) return sim::kStoppedEarly;
   return r.ok() ? 0 : 1;
 }
 
-for (const std::string& e : r.write_errors) std::fprintf(stderr, "vmt: error: %s\n", e.c_str());
-if (!r.stop_reason.empty())
-  std::fprintf(stderr, "vmt run: stopped early at %.4f s: %s\n", r.simulated_s,
-               r.stop_reason.c_str());
-if (!r.write_errors.empty()) return 2;
-if (!r.stop_reason.empty()) return sim::kStoppedEarly;
 int Snapshot(const std::string& scene_path, double at, const std::string& camera,
              const std::string& out, int width, int height) {
   sim::Scene scene = sim::LoadScene(scene_path);
@@ -566,6 +566,9 @@ int main(int argc, char** argv) {
   // trace arenas repeatedly (studies, reloads).
   mallopt(M_MMAP_THRESHOLD, 1 << 30);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
+  // A file size limit (ulimit -f) is then a write error naming the file, as a full disk is,
+  // instead of a kill that leaves the files cut.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"vmt: a virtual machine tool (CNC kernel + simulated lathe)"};
   app.require_subcommand(1);
 
@@ -603,6 +606,3 @@ int main(int argc, char** argv) {
   }
   return 2;
 }
-// A file size limit (ulimit -f) is then a write error naming the file, as a full disk is,
-// instead of a kill that leaves the files cut.
-std::signal(SIGXFSZ, SIG_IGN);
