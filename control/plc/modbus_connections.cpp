@@ -61,17 +61,17 @@ bool ServerState::ServeOneBuffered(Client& c) {
 }
 
 // One request per client in turn, starting where the last round stopped, until no client has a
-// complete request left or the deadline has passed.
-void ServerState::ServeInTurn(Clock::time_point deadline) {
+// complete request left or the deadline has passed (after the first turn, with `first_turn`).
+void ServerState::ServeInTurn(Clock::time_point deadline, bool first_turn) {
   const size_t n = clients.size();
   if (n == 0) return;
-  for (bool more = true; more;) {
+  for (bool more = true; more; first_turn = false) {
     more = false;
     for (size_t k = 0; k < n; ++k) {
       const size_t i = (next_turn + k) % n;
       Client& c = clients[i];
       if (!HasFrame(c)) continue;
-      if (Clock::now() >= deadline) {
+      if (!first_turn && Clock::now() >= deadline) {
         next_turn = i;
         return;
       }
@@ -191,7 +191,7 @@ void ServerState::CloseIdle(Clock::time_point now) {
   }
 }
 
-void ServerState::PollOnce(int timeout_ms, Clock::time_point deadline) {
+void ServerState::PollOnce(int timeout_ms, Clock::time_point deadline, bool first_turn) {
   const Clock::time_point start = Clock::now();
   Clock::time_point until =
       timeout_ms < 0 ? Clock::time_point::max() : start + std::chrono::milliseconds(timeout_ms);
@@ -233,7 +233,7 @@ void ServerState::PollOnce(int timeout_ms, Clock::time_point deadline) {
     }
     if (fds[0].revents != 0) Accept();
   }
-  ServeInTurn(deadline);
+  ServeInTurn(deadline, first_turn);
   CloseIdle(Clock::now());
   const size_t before = clients.size();
   std::erase_if(clients, [](const Client& c) { return c.closed; });

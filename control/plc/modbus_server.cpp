@@ -276,8 +276,12 @@ void ModbusServer::Poll(int timeout_ms) {
 
 void ModbusServer::ServeUntil(std::chrono::steady_clock::time_point deadline) {
   Polling polling(state_->polling);
+  // A late caller (catching up on cycles) still has each client's next request answered: the
+  // PLC is heard, and a turn of requests is small.
+  bool first_turn = true;
   do {
-    state_->PollOnce(-1, deadline);
+    state_->PollOnce(-1, deadline, first_turn);
+    first_turn = false;
   } while (Clock::now() < deadline);
 }
 

@@ -142,9 +142,9 @@ struct ModbusServerStats {
   uint64_t clients_timed_out = 0;  ///< closed after client_timeout_ms idle (in clients_dropped)
   /// Writes refused with exception 01 because another connection holds the PLC role.
   uint64_t writes_refused = 0;
-  uint64_t wrong_unit = 0;       ///< requests answered with exception 0B (another unit id)
-  uint64_t cycles = 0;           ///< cycle register writes that ran a cycle
-  uint64_t axd_writes = 0;       ///< AXD_WR block writes that reached the drive
+  uint64_t wrong_unit = 0;  ///< requests answered with exception 0B (another unit id)
+  uint64_t cycles = 0;      ///< cycle register writes that ran a cycle
+  uint64_t axd_writes = 0;  ///< AXD_WR block writes that reached the drive
   /// Write requests answered normally (coils, holding registers): the PLC writing its outputs.
   /// A monitor that only reads never moves it.
   uint64_t writes = 0;
@@ -173,9 +173,10 @@ class ModbusServer {
   /// accepts new clients, serves the complete requests that have arrived, and returns.
   void Poll(int timeout_ms);
 
-  /// Accepts and serves until `deadline`, and returns then: a request is never started after
-  /// it, so the caller is late by one request's work at most (vmt serve --realtime: the next
-  /// cycle's time). Requests still waiting are served by the next call.
+  /// Accepts and serves until `deadline`, and returns then (vmt serve --realtime: the next
+  /// cycle's time). A request is started after it only in the call's first turn, one per client
+  /// that has one waiting, so that a late caller still hears its PLC; the caller is late by that
+  /// turn at most. Requests still waiting are served by the next call.
   void ServeUntil(std::chrono::steady_clock::time_point deadline);
 
   /// The status block's registers from now on; `words` has Options::status_count of them.

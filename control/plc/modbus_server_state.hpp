@@ -93,7 +93,8 @@ struct ServerState {
   void Drop(Client& c);
   // One round: waits up to `timeout_ms` (clipped to `deadline`), reads, accepts, serves the
   // buffered requests in turn until they are done or the deadline has passed, closes idle ones.
-  void PollOnce(int timeout_ms, Clock::time_point deadline);
+  // With `first_turn` every client with a request has one answered even past the deadline.
+  void PollOnce(int timeout_ms, Clock::time_point deadline, bool first_turn = false);
 
  private:
   // modbus_requests.cpp
@@ -114,7 +115,7 @@ struct ServerState {
   // modbus_connections.cpp
   bool ServeOneBuffered(Client& c);
   bool HasFrame(const Client& c) const;
-  void ServeInTurn(Clock::time_point deadline);
+  void ServeInTurn(Clock::time_point deadline, bool first_turn);
   void Read(Client& c);
   void Accept();
   bool Allowed(const sockaddr_storage& peer) const;

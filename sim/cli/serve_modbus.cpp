@@ -1,11 +1,22 @@
 #include "sim/cli/serve_modbus.hpp"
 
+#include <arpa/inet.h>
+
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
 namespace vmt::sim {
 namespace {
+
+// A numeric address other than loopback (a name is resolved, and checked, by the server).
+bool NumericRemote(const std::string& host) {
+  in_addr v4{};
+  in6_addr v6{};
+  if (inet_pton(AF_INET, host.c_str(), &v4) == 1) return (ntohl(v4.s_addr) >> 24) != 127;
+  if (inet_pton(AF_INET6, host.c_str(), &v6) == 1) return !IN6_IS_ADDR_LOOPBACK(&v6);
+  return false;
+}
 
 std::string Fmt(double v) {
   char buf[32];
@@ -51,6 +62,10 @@ control::plc::ModbusServerOptions ModbusServerOptionsOf(const ServeOptions& o) {
   // In real time a PLC that has written nothing for the link timeout is lost: a reconnecting
   // PLC may then write while its old connection still looks open.
   if (!o.lockstep) mb.plc_role_timeout_ms = static_cast<int>(std::ceil(o.plc_timeout_ms));
+  if (NumericRemote(host) && !o.allow_remote)
+    throw std::invalid_argument("--modbus " + e +
+                                ": not a loopback address, clients on the network could connect "
+                                "and write; give --allow-remote (and --allow-client ADDR)");
   mb.allow_remote = o.allow_remote;
   if (!o.allow_clients.empty() && !o.allow_remote)
     throw std::invalid_argument(

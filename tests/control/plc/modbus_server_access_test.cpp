@@ -308,5 +308,23 @@ TEST_F(ModbusServerTest, ServeUntilKeepsItsDeadlineUnderAFlood) {
   EXPECT_EQ(server_.stats().requests(), kFlood + 1u);
 }
 
+// A caller already late (catching up on cycles) still has each client's next request answered,
+// one per client and no more.
+TEST_F(ModbusServerTest, ALateCallAnswersOneRequestPerClient) {
+  Raw plc(server_.port());
+  Raw monitor(server_.port());
+  for (int i = 0; i < 200 && server_.clients() < 2; ++i) server_.Poll(5);
+  ASSERT_EQ(server_.clients(), 2);
+  const std::vector<uint8_t> f = Frame(1, Pdu(0x03, At(image_, "P00C.FOVR").address, 1));
+  ASSERT_TRUE(plc.Send(f));
+  ASSERT_TRUE(monitor.Send(f) && monitor.Send(f) && monitor.Send(f));
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  server_.ServeUntil(Clock::now() - std::chrono::milliseconds(10));
+  EXPECT_EQ(server_.stats().requests(), 2u);
+  EXPECT_EQ(plc.Receive(11).size(), 11u);
+  server_.ServeUntil(Clock::now() - std::chrono::milliseconds(10));
+  EXPECT_EQ(server_.stats().requests(), 3u);
+}
+
 }  // namespace
 }  // namespace vmt::control::plc
