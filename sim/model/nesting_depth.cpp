@@ -126,8 +126,10 @@ int YamlNestingBeyond(std::string_view text, int limit) {
         content_end = j;
         break;
       }
+      // A quote opens a scalar only where a token starts: after "a:" it may be plain text, and
+      // taking it for a quote could hide the nesting behind it.
       if ((c == '"' || c == '\'') &&
-          (j == pos || std::string_view(" \t[{,:").find(prev) != std::string_view::npos)) {
+          (j == pos || std::string_view(" \t[{,").find(prev) != std::string_view::npos)) {
         quote = c;
       } else if (c == '[' || c == '{') {
         if (static_cast<int>(block.size()) + ++flow > limit) return line;

@@ -49,6 +49,12 @@ TEST(YamlNesting, CountsBlockAndFlowCollections) {
   EXPECT_EQ(YamlNestingBeyond(scene, 4), 4);
 }
 
+// "a:\"" is plain text, not the start of a quoted scalar that would hide what follows.
+TEST(YamlNesting, AQuoteInsidePlainTextHidesNothing) {
+  EXPECT_EQ(YamlNestingBeyond("x: a:\"\ny: " + Repeat("[", 200) + Repeat("]", 200), 100), 2);
+  EXPECT_EQ(YamlNestingBeyond("x: it's\ny: " + Repeat("[", 200) + Repeat("]", 200), 100), 2);
+}
+
 TEST(YamlNesting, FindsDeepFlowBlockAndEntryNesting) {
   EXPECT_EQ(YamlNestingBeyond("a: " + Repeat("[", 100000) + Repeat("]", 100000), 100), 1);
   std::string block;
