@@ -54,5 +54,27 @@ TEST(study_files, AppendReadDeduplicate) {
   EXPECT_NE(html.find("[&quot;tool&quot;,&quot;chuck&quot;]"), std::string::npos);
 }
 
+TEST(study_files, ACorruptFileIsRefusedNamingEachBadLine) {
+  const std::string dir = std::string(VMT_BINARY_DIR) + "/test_output/study/corrupt";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/cases.jsonl";
+  std::ofstream(path) << "{\"case\":\"a\"}\nnot json\n[1]\n{\"verdict\":\"clear\"}\n";
+  try {
+    ReadCases(path);
+    FAIL() << "a corrupt cases.jsonl was read";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path + ": 3 of 4 lines are no case"), std::string::npos) << what;
+    EXPECT_NE(what.find(path + ":2: not JSON"), std::string::npos) << what;
+    EXPECT_NE(what.find(path + ":3: not a JSON object"), std::string::npos) << what;
+    EXPECT_NE(what.find(path + ":4: no \"case\" id"), std::string::npos) << what;
+  }
+  // A last line cut short: a study resuming runs that case again; merge and compare refuse it.
+  std::ofstream(path) << "{\"case\":\"a\"}\n{\"case\":\"b\",\"verd";
+  EXPECT_EQ(ReadCases(path).size(), 1u);
+  EXPECT_THROW(ReadCases(path, TornLine::kError), std::runtime_error);
+}
+
 }  // namespace
 }  // namespace vmt::sim::study
