@@ -103,6 +103,7 @@ StudySummary RunStudy(const StudyOptions& o) {
     plan.every_ms = 0;
   }
   std::filesystem::create_directories(o.out_dir);
+  RemoveDeadScratch(o.out_dir);
   WriteStudySource(o.out_dir, o.scene, plan);
   const Reference ref = LoadOrRunReference(scene, o.out_dir);
   const std::vector<Interruption> interruptions = Interruptions(plan, ref);

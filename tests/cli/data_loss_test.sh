@@ -163,6 +163,14 @@ else
   else ok "study kill -9: its $(echo $family | wc -w) worker processes end with it"; fi
 fi
 
+# What the killed study left (its scratch folder, a temporary) goes with the next run there.
+mkdir -p killed/.reference-999999999 && touch killed/cases.jsonl.tmp-999999999
+"$vmt" study repos "$study" --max-cases 1 --snapshots 0 --out killed >rerun.log 2>&1 ||
+  fail "study rerun after a kill: $(tail -3 rerun.log)"
+if ls -a killed | grep -qE '^\.reference-|\.tmp-'; then
+  fail "study rerun left what the killed study left: $(ls -a killed | tr '\n' ' ')"
+else ok "study rerun after kill -9: the dead study's scratch folder and temporaries are gone"; fi
+
 # --- study merge of a corrupt cases.jsonl --------------------------------------------------
 mkdir -p corrupt
 printf '{"case":"a","verdict":"clear"}\nnot json at all\n[1,2]\n{"case":"b"' >corrupt/cases.jsonl
