@@ -8,6 +8,8 @@ packages=(
   libgtest-dev libbenchmark-dev libmodbus-dev
   # pymodbus 3.0 imports serial_asyncio even for TCP; Debian only recommends it.
   python3 python3-pymodbus python3-serial-asyncio mbpoll
+  # tests/cli/bad_inputs.py reads the scene and machine files to vary them.
+  python3-yaml
   # vmt study shards on one machine without Slurm (tests/cli/study_test.sh uses it if there).
   parallel
   clang libclang-rt-14-dev

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "control/gateway/signal_table.hpp"
+#include "sim/model/gateway_layout.hpp"
 #include "sim/model/model_error.hpp"
 #include "sim/model/urdf_loader.hpp"
 #include "sim/model/yaml_reader.hpp"
@@ -382,6 +384,15 @@ MachineModel LoadMachineModel(const std::string& machine_yaml_path) {
   if (root.Has("probe")) {
     m.probes = ReadProbeStyluses(m, root["probe"]);
     CheckSwitchesDrivenOnce(m, root);
+  }
+  // The NC-PLC signals the machine gives (its io names, axis numbers) must make a signal table;
+  // said here, where the file is known, not when a scene first builds the table.
+  try {
+    (void)control::gateway::BuildSignalTable(GatewayLayoutOf(m));
+  } catch (const std::invalid_argument& e) {
+    std::string why = e.what();
+    if (why.rfind("GatewayLayout.", 0) == 0) why.erase(0, std::string("GatewayLayout.").size());
+    throw ModelError(machine_yaml_path, "", why);
   }
   return m;
 }
