@@ -262,6 +262,16 @@ TEST(ParserTest, DetectsTheDialect) {
   EXPECT_EQ(DetectDialect("N10 $IF P1 == 1\n", "a.nc"), Dialect::kIsg);
   EXPECT_EQ(DetectDialect("anything", "a.isg"), Dialect::kIsg);
   EXPECT_EQ(DetectDialect("%x", "a.mtc"), Dialect::kMtc200);
+  EXPECT_EQ(DetectDialect("\xEF\xBB\xBF%prog\nN10 X1\n", "a.nc"), Dialect::kIsg);
+}
+
+// A UTF-8 byte order mark (Windows editors write one) is no part of the program: the first
+// line parses, and its columns count from after the mark.
+TEST(ParserTest, SkipsAUtf8ByteOrderMark) {
+  const ParseResult r = Mtc("\xEF\xBB\xBFN1 G01 X10\nN2 M30\n");
+  EXPECT_TRUE(r.ok()) << Errors(r);
+  EXPECT_EQ(r.program.blocks.size(), 2u);
+  EXPECT_THAT(Errors(Mtc("\xEF\xBB\xBFN1 G01 X\n")), HasSubstr("t.mtc:1:8: error"));
 }
 
 }  // namespace
