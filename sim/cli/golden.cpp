@@ -170,8 +170,8 @@ GoldenScene GoldenOfScene(const std::string& scene_path, const GoldenOptions& o)
     run.out_dir = g.out_dir;
     fs::create_directories(g.out_dir);
     const RunResult r = RunScene(scene, run);
-    g.ran = true;
     if (!r.write_errors.empty()) throw std::runtime_error(r.write_errors.front());
+    g.ran = true;
     g.run_failures = r.failures;
     for (const std::string& f : r.failures) std::printf("FAIL %s: %s\n", g.name.c_str(), f.c_str());
   }
