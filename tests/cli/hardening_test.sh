@@ -5,28 +5,12 @@
 set -u
 vmt=$1 src=$2 out=$3
 rm -rf "$out" && mkdir -p "$out"
-fails=0 passes=0
-raw='basic_filebuf|terminate called|what\(\)|std::|yaml-cpp|bad file|Segmentation|Aborted|bad_alloc|json\.exception|filesystem error|stoi'
 # 2 GB of address space: every refusal here must come before a big allocation. A sanitizer's
 # shadow memory needs terabytes of address space: no limit there.
-vm_limit=2000000
-if ldd "$vmt" 2>/dev/null | grep -q 'lib[at]san'; then vm_limit=unlimited; fi
-bad() {  # bad NAME PATTERN -- command...: exit 2 within 20 s, PATTERN in stderr, no raw text
-  local name=$1 pattern=$2; shift 3
-  local log="$out/$name.log"
-  (ulimit -v "$vm_limit"; timeout 20 "$@") >"$log" 2>&1 </dev/null
-  local got=$?
-  if [ "$got" != 2 ]; then
-    echo "FAIL $name: exit $got, wanted 2"; sed 's/^/    /' "$log" | head -10; fails=$((fails+1)); return
-  fi
-  if ! grep -qE -- "$pattern" "$log"; then
-    echo "FAIL $name: output lacks /$pattern/"; sed 's/^/    /' "$log" | head -10; fails=$((fails+1)); return
-  fi
-  if grep -qE -- "$raw" "$log"; then
-    echo "FAIL $name: raw library text"; sed 's/^/    /' "$log" | head -10; fails=$((fails+1)); return
-  fi
-  echo "ok   $name"; passes=$((passes+1))
-}
+bad_vm_limit=2000000
+if ldd "$vmt" 2>/dev/null | grep -q 'lib[at]san'; then bad_vm_limit=unlimited; fi
+bad_timeout=20
+. "$(dirname "$0")/refusal_checks.sh"
 
 model=$src/models/lathe-c1/machine.yaml
 scene() {  # scene FILE EXTRA_YAML: a small valid scene on lathe-c1 plus EXTRA_YAML

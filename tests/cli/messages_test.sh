@@ -5,24 +5,7 @@
 set -u
 vmt=$1 src=$(cd "$2" && pwd) out=$3
 rm -rf "$out" && mkdir -p "$out"
-fails=0 passes=0
-raw='yaml-cpp|json\.exception|stoi|filesystem error|basic_filebuf|terminate called|what\(\)|std::|invalid node|bad conversion|At Most|not in range'
-bad() {  # bad NAME PATTERN -- command...: exit 2 within 60 s, PATTERN in the output, no raw text
-  local name=$1 pattern=$2; shift 3
-  local log="$out/$name.log"
-  timeout 60 "$@" >"$log" 2>&1 </dev/null
-  local got=$?
-  if [ "$got" != 2 ]; then
-    echo "FAIL $name: exit $got, wanted 2"; sed 's/^/    /' "$log" | head -10; fails=$((fails+1)); return
-  fi
-  if ! grep -qE -- "$pattern" "$log"; then
-    echo "FAIL $name: output lacks /$pattern/"; sed 's/^/    /' "$log" | head -10; fails=$((fails+1)); return
-  fi
-  if grep -qE -- "$raw" "$log"; then
-    echo "FAIL $name: raw library text"; sed 's/^/    /' "$log" | head -10; fails=$((fails+1)); return
-  fi
-  echo "ok   $name"; passes=$((passes+1))
-}
+. "$(dirname "$0")/refusal_checks.sh"
 good() {  # good NAME -- command...: exit 0
   local name=$1; shift 2
   if timeout 120 "$@" >"$out/$name.log" 2>&1 </dev/null; then
