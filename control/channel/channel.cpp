@@ -87,8 +87,7 @@ void Channel::ForgetEndedProgram() {
   work_.interpreter.reset();
   parked_ = ProgramInWork{};
   ClearRepos();
-  meas_.setting.reset();  // SETTING holds for one run of the program
-  meas_.reverse_vectors = {};
+  measuring_.ForgetProgram();  // SETTING holds for one run of the program
 }
 
 bool Channel::SelectProgram(size_t index) {
@@ -173,7 +172,7 @@ bool Channel::Reverse() {
   programmed_stop_.Leave();
   state_ = ChannelState::kRunning;
   // Fast measurement 4.4: the stylus first travels its reverse vectors back.
-  StartReversal();
+  measuring_.StartReversal(work_.block);
   return true;
 }
 
@@ -265,8 +264,10 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
     if (ToolStorageArrived()) tool_storage_wait_ = false;
     NcCycleOwner owner = CycleOwner();
     if (owner >= NcCycleOwner::kBlockSearch) {
-      WatchProbeCollision(at);  // fast measurement 6.1: a collision fails the channel here
-      owner = ProgramCycleOwner();  // ... and has ended the move and the dwell
+      // Fast measurement 6.1: a probe's collision fails the channel here, ending the move and
+      // the dwell.
+      measuring_.WatchCollision(MeasuringLinkNow(), at, reversing_);
+      owner = ProgramCycleOwner();
     }
     switch (owner) {
       case NcCycleOwner::kNone:

@@ -32,12 +32,12 @@
 #include "control/channel/channel_types.hpp"
 #include "control/channel/cycle_start.hpp"
 #include "control/channel/enabling_signals.hpp"
+#include "control/channel/fast_measurement.hpp"
 #include "control/channel/further_spindle_control.hpp"
 #include "control/channel/headstock_link.hpp"
 #include "control/channel/jog_state.hpp"
 #include "control/channel/look_ahead.hpp"
 #include "control/channel/main_spindle_state.hpp"
-#include "control/channel/measuring_run.hpp"
 #include "control/channel/nc_cycle_owner.hpp"
 #include "control/channel/operator_messages.hpp"
 #include "control/channel/path_guard_client.hpp"
@@ -208,13 +208,13 @@ class Channel {
 
   /// The machine data pages of fast measurement (MTD, the measuring instructions); null: none.
   /// They must outlive the channel.
-  void SetMeasuringPages(measure::MeasuringPages* pages) { meas_.pages = pages; }
+  void SetMeasuringPages(measure::MeasuringPages* pages) { measuring_.SetPages(pages); }
   /// The measuring setting of SETTING( ), until the program ends or Control-Reset.
   const std::optional<measure::MeasuringSetting>& measuring_setting() const {
-    return meas_.setting;
+    return measuring_.setting();
   }
   /// The stylus' way back for the reverse program (fast-measurement manual 4.4).
-  const measure::ReverseVectors& reverse_vectors() const { return meas_.reverse_vectors; }
+  const measure::ReverseVectors& reverse_vectors() const { return measuring_.reverse_vectors(); }
 
   /// The machine geometry's check of approach moves (ChannelConfig::path_guard says what a
   /// contact does); null: none. It must outlive the channel.
@@ -222,7 +222,7 @@ class Channel {
   /// The checks made since the last call, oldest first.
   std::vector<GuardRecord> TakeGuardRecords() { return guard_.TakeRecords(); }
   /// Warnings of the measuring instructions since the last call ("file:line:col: warning: ...").
-  std::vector<std::string> TakeMeasuringWarnings() { return std::exchange(meas_.warnings, {}); }
+  std::vector<std::string> TakeMeasuringWarnings() { return measuring_.TakeWarnings(); }
 
   /// Repositioning and NC-block restart (REPOS manual): the PLC's PxxC.REPOS and PxxC.RESTA,
   /// levels given every NC cycle. They count only while the program is interrupted and an axis
@@ -547,33 +547,14 @@ class Channel {
   void ClearRepos();
   /// The REPOS subroutine's @ variables back to the interrupted program (one set, 8.3).
   void HandBackVariables();
-  // Fast measurement (channel_measuring.cpp): a measuring instruction's block runs its plan.
-  MeasuringData meas_;
-  /// The block's measuring instruction: check it, plan it, start its steps. False on an error.
-  bool StartMeasuring(const AmplifierTelegram& at);
-  /// What `plan` leaves as state, in a run and in block search alike: SETTING's setting and its
-  /// G codes (modal in the interpreter), RESTORE's @100..@112 and feed.
-  void ApplyMeasuringState(const measure::MeasuringPlan& plan);
-  /// Advances the steps while no move is in work; true when the instruction is done.
-  bool MeasuringCycle(const AmplifierTelegram& at);
-  /// While a measuring move runs: the probe's contact stops it.
-  void WatchMeasuringMove(const AmplifierTelegram& at);
-  /// While event 29 (collision monitoring) is set in a program that has run SETTING: a probe
-  /// displaced outside the measuring path stops the axes, outputs Q9999 and fails (6.1).
-  void WatchProbeCollision(const AmplifierTelegram& at);
-  bool StartMeasuringMove(const measure::MeasuringStep& step);
-  /// After a move of the instruction: the reverse vectors reached, and a way back to a point
-  /// already recorded (the escape) ends the record there.
-  void TrackReverseVectors();
-  /// Ends the instruction: translation and the interpreter's position back to the program's.
-  void EndMeasuring();
-  /// Program -> axis translation with the stylus' sphere `sphere` as the tool edge.
-  std::vector<double> StylusTranslation(int sphere) const;
-  int SettingAxis(int n) const;  ///< channel axis of SETTING axis n (0..2), -1 if none
-  bool EventSet(int n) const;
-  measure::MeasuringContext MeasuringContextNow() const;
-  /// Reverse: the stylus travels its reverse vectors back before `.HOME` runs (4.4).
-  void StartReversal();
+  // Fast measurement (fast_measurement.hpp; the channel's side in channel_measuring.cpp).
+  FastMeasurement measuring_{config_};
+  /// What the fast measurement is handed for one call: the block in work, the axis output,
+  /// the events, the PLC's functions, PathGuard's check and the channel's error state.
+  MeasuringLink MeasuringLinkNow();
+  /// work_.block, a block a measuring instruction generated, planned from where the axes are
+  /// commanded: false, failed, for an axis without its reference or a plan's error.
+  bool PlanGeneratedMotion();
   // Block search (channel_block_search.cpp).
   std::optional<BlockSearchRun> search_;
   // #CAX TRACK (cax_track.hpp, channel_cax_track.cpp): on with its options, in a run and in
@@ -606,9 +587,6 @@ class Channel {
   bool SearchChangeover(const nc::PreparedBlock& b);
   /// The changeover `b` waited for has ended: `b` goes on from there, rotary axis rebased.
   void EndSearchChangeover(nc::PreparedBlock& b);
-  /// A measuring instruction before the continue position: state-only instructions run,
-  /// the others are simulated as their path without measuring (a warning).
-  bool SimulateMeasuringInstruction(const nc::PreparedBlock& b);
   /// The motion part of SimulateBlock; `boundary`: `b` is the block of the continue position.
   bool SimulateMotion(nc::PreparedBlock& b, bool boundary);
   /// The continue position is found at `b`, at u in its motion (planned from its start).

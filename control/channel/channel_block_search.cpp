@@ -283,7 +283,7 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
                       ": block search cannot measure without motion (section 8); continue at "
                       "the block after it",
                   kMsgBlockSearch);
-    return SimulateMeasuringInstruction(b);
+    return measuring_.Simulate(MeasuringLinkNow(), b, search_->position, bs_.warnings);
   }
   for (uint32_t index : b.instructions) {
     const nc::Statement& st = program.statements[index];

@@ -24,7 +24,7 @@ NcCycleOwner Channel::ProgramCycleOwner() const {
   if (work_.pending_motion) return NcCycleOwner::kMotionStart;
   if (work_.dwell_left_s > 0) return NcCycleOwner::kDwell;
   if (sp_.orienting) return NcCycleOwner::kSpindle;
-  if (meas_.run && !work_.active) return NcCycleOwner::kMeasuring;
+  if (measuring_.in_work() && !work_.active) return NcCycleOwner::kMeasuring;
   if (!work_.active && state_ == ChannelState::kRunning) return NcCycleOwner::kNextBlock;
   return NcCycleOwner::kBlockInWork;
 }
@@ -67,7 +67,7 @@ void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, doub
       finished = !sp_.orienting;
       break;
     case NcCycleOwner::kMeasuring:
-      finished = MeasuringCycle(at);
+      finished = measuring_.Cycle(MeasuringLinkNow());
       break;
     case NcCycleOwner::kNextBlock:
       if (programmed_stop_.Finish()) {
@@ -78,7 +78,7 @@ void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, doub
       }
       finished = NextBlock(at) && !work_.active && work_.dwell_left_s <= 0 && !sp_.orienting &&
                  hs_.waiting_for == axes::HeadstockMode::kNone;
-      if (finished && meas_.run) finished = MeasuringCycle(at);
+      if (finished && measuring_.in_work()) finished = measuring_.Cycle(MeasuringLinkNow());
       break;
     default:
       // The PLC's acknowledgement, MRY's tool storage axis (REPOS manual 4.2): the block
@@ -94,14 +94,14 @@ void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, doub
       SynchronousCycle(at, dt);
     else
       Interpolate(dt);
-    WatchMeasuringMove(at);
+    if (measuring_.in_work()) measuring_.WatchMove(MeasuringLinkNow(), at);
     finished = !work_.active;
     if (finished && bs_.breakpoint_pending) {
       HoldAtBreakpoint();
       finished = false;
     }
     // A measuring instruction's move has ended: its next step follows at once.
-    if (finished && meas_.run) finished = MeasuringCycle(at);
+    if (finished && measuring_.in_work()) finished = measuring_.Cycle(MeasuringLinkNow());
     if (finished && work_.homing) finished = !NextHomingStage();
     // C is aligned (#CAX TRACK): the block's own motion follows as one unit with it.
     if (finished && std::exchange(cax_.aligning, false))

@@ -167,7 +167,7 @@ nc::DataAccess Channel::MakeDataAccess() {
     }
 
     // MTD
-    if (!meas_.pages) return fail("no machine data pages (fast measurement is not set up)");
+    if (!measuring_.pages()) return fail("no machine data pages (fast measurement is not set up)");
     if (args.size() != 4) return fail("MTD has 4 arguments: (page, LV1, LV2, element)");
     if (Omitted(args[0]) || Omitted(args[3]))
       return fail("the page (argument 1) and the element (argument 4) must be given");
@@ -177,8 +177,8 @@ nc::DataAccess Channel::MakeDataAccess() {
     if (!Omitted(args[2])) address.lv2 = args[2].value;
     address.element = args[3].value;
     const int process = config_.process.number;
-    if (write) return measure::WriteMtd(*meas_.pages, address, process, value);
-    const measure::MtdRead read = measure::ReadMtd(*meas_.pages, address, process);
+    if (write) return measure::WriteMtd(*measuring_.pages(), address, process, value);
+    const measure::MtdRead read = measure::ReadMtd(*measuring_.pages(), address, process);
     value = read.value;
     return read.error;
   };

@@ -193,9 +193,7 @@ void Channel::Reset() {
   if (repos_.run) SwapProgramInWork();
   parked_ = ProgramInWork{};
   ClearRepos();
-  meas_.run.reset();
-  meas_.setting.reset();
-  meas_.reverse_vectors = {};
+  measuring_.Reset();
   // Block search 7: a reset leaves block search without the handshake.
   search_.reset();
   bs_.state = BlockSearchState::kInactive;

@@ -32,7 +32,7 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
   DistanceCommand(work_.block);
   if (!work_.block.calls.empty()) {
     PathBarrier();  // a probing move is no path to travel back along
-    return StartMeasuring(at);
+    return measuring_.Start(MeasuringLinkNow());
   }
   for (const auto& [n, set] : work_.block.events) {
     events_.own[n] = set;
