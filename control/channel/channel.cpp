@@ -52,7 +52,7 @@ const nc::ModalState& Channel::modal() const {
   return work_.interpreter ? work_.interpreter->modal() : last_modal_;
 }
 
-std::unique_ptr<nc::Interpreter> Channel::MakeInterpreter() {
+nc::Interpreter Channel::MakeInterpreter() {
   nc::InterpreterConfig ic;
   ic.axes.clear();
   for (const ChannelAxis& a : config_.axes) ic.axes.push_back(a.name);
@@ -67,18 +67,12 @@ std::unique_ptr<nc::Interpreter> Channel::MakeInterpreter() {
     mdi_.running = false;
   }
   DropLookahead();
-  auto interpreter = std::make_unique<nc::Interpreter>(std::move(programs), ic);
+  nc::Interpreter interpreter(std::move(programs), ic);
   // Incremental moves start from where the axes stand, in program coordinates.
   std::vector<double> position(out_.commanded.size());
   for (size_t a = 0; a < position.size(); ++a)
     position[a] = out_.commanded[a] - frames_.translation[a];
-  interpreter->SetPosition(position);
-  interpreter->SetEventSource([this](int n) {
-    if (events_.source) return events_.source(n);
-    auto it = events_.own.find(n);
-    return it != events_.own.end() && it->second;
-  });
-  interpreter->SetDataAccess(MakeDataAccess());
+  interpreter.SetPosition(position);
   return interpreter;
 }
 
@@ -105,7 +99,7 @@ bool Channel::SelectProgram(size_t index) {
 
 bool Channel::Mdi(const std::string& text) {
   const nc::Dialect dialect = programs_.empty() ? nc::Dialect::kMtc200 : programs_[0]->dialect;
-  auto parsed = std::make_shared<nc::ParseResult>(nc::ParseProgram(text, "MDI", dialect));
+  auto parsed = std::make_shared<const nc::ParseResult>(nc::ParseProgram(text, "MDI", dialect));
   if (!parsed->ok()) {
     Fail(nc::Format(parsed->errors[0], parsed->program.files), kMsgMdiSyntax);
     return false;

@@ -61,10 +61,15 @@ namespace vmt::control::channel {
 
 struct SpindleKeyMove;
 
+/// A channel is a value: a copy, made or assigned at any NC cycle, runs on bit for bit as the
+/// original would with the same inputs, and nothing either does reaches the other. What it was
+/// given from outside is shared, not copied, and must outlive every copy: the programs, the event
+/// source and sink, the measuring pages and PathGuard. A copy that is to run against others (a
+/// copied run's gateway, pages, geometry) is given them again with the setters below.
 class Channel {
  public:
   /// `programs`: the main program first, then the subprograms it may call; they must outlive
-  /// the channel.
+  /// the channel and its copies.
   Channel(ChannelConfig config, std::vector<const nc::Program*> programs);
 
   void Start();  ///< cycle start: run, or resume after a hold
@@ -388,7 +393,7 @@ class Channel {
   void Interpolate(double dt);
   void Fail(const std::string& message, int number = kMsgProgramError);
   void Fail(const nc::Program& program, int32_t block, const std::string& text, int number);
-  std::unique_ptr<nc::Interpreter> MakeInterpreter();
+  nc::Interpreter MakeInterpreter();
   /// After the program end: its interpreter, interruption and measuring setting are dropped, so
   /// that the next start (of it or of another selected program) begins at the first block.
   void ForgetEndedProgram();
@@ -412,7 +417,7 @@ class Channel {
   /// The drives Tick writes once the channel holds its axes (WritesDrive), by drive index;
   /// the tool storage axis' aside.
   std::vector<bool> DrivesWritten() const;
-  const std::vector<bool> drives_written_ = DrivesWritten();
+  std::vector<bool> drives_written_ = DrivesWritten();
   /// What Start() would do now; it changes nothing.
   CycleStart StartCase() const;
   /// Start() while the program holds on its path: it goes on if no axis has left the contour.

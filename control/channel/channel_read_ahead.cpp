@@ -202,7 +202,14 @@ bool Channel::ReadNext(nc::PreparedBlock& b) {
 
 bool Channel::ReadSource(nc::PreparedBlock& b) {
   if (search_ && search_->end_reached) return false;
-  if (!work_.interpreter->Next(b)) return false;
+  // BES/BEC and TLD/OTD/MTD reach this channel through what is handed in here, not through
+  // anything the interpreter keeps: a copy of the channel runs its copy of the interpreter.
+  const std::function<bool(int)> events = [this](int n) {
+    if (events_.source) return events_.source(n);
+    auto it = events_.own.find(n);
+    return it != events_.own.end() && it->second;
+  };
+  if (!work_.interpreter->Next(b, events, MakeDataAccess())) return false;
   // Block search type 1 (3.1): machining ends at the end position, before its block runs.
   // Tested where the blocks leave the interpreter, in their order and each once (the pass
   // count), so that it holds whatever path the channel makes of them afterwards: block by

@@ -314,8 +314,9 @@ void Channel::StartReposRun() {
   // The process' @ variables are one set (8.3): the subroutine starts with the program's (or,
   // run again, with its own) and hands them back at its RTS.
   std::map<std::string, double> variables;
-  if (const nc::Interpreter* owner =
-          work_.interpreter ? work_.interpreter.get() : parked_.interpreter.get())
+  if (const nc::Interpreter* owner = work_.interpreter     ? &*work_.interpreter
+                                     : parked_.interpreter ? &*parked_.interpreter
+                                                           : nullptr)
     variables = owner->variables();
   // The interrupted program waits, its block in work and what was read ahead, while the
   // subroutine runs in its place with its modal state (G(2), M(5) read the interrupted state).
@@ -341,17 +342,11 @@ void Channel::StartReposRun() {
     ic.initial = repos_.interruption->modal;
     std::vector<const nc::Program*> programs = programs_;
     if (mdi_.running) programs.insert(programs.begin(), &mdi_.blocks->program);
-    work_.interpreter = std::make_unique<nc::Interpreter>(std::move(programs), ic);
+    work_.interpreter.emplace(std::move(programs), ic);
     std::vector<double> position(out_.commanded.size());
     for (size_t a = 0; a < position.size(); ++a)
       position[a] = out_.commanded[a] - frames_.translation[a];
     work_.interpreter->SetPosition(position);
-    work_.interpreter->SetEventSource([this](int n) {
-      if (events_.source) return events_.source(n);
-      auto it = events_.own.find(n);
-      return it != events_.own.end() && it->second;
-    });
-    work_.interpreter->SetDataAccess(MakeDataAccess());
     work_.interpreter->SetVariables(std::move(variables));
     work_.interpreter->RunSubroutine(static_cast<uint32_t>(program), "REPOS");
   }

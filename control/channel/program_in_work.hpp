@@ -2,7 +2,7 @@
 // A program in work: its interpreter, the block in work with its motion and profile, dwell,
 // homing, look-ahead and tool radius compensation. The channel runs one; while the REPOS
 // subroutine runs in the interrupted program's place, that one is parked, and the two swap as
-// one value when the subroutine starts and ends.
+// one value when the subroutine starts and ends. It is a plain value: copying a channel copies it.
 
 #include <cstdint>
 #include <deque>
@@ -21,7 +21,7 @@
 namespace vmt::control::channel {
 
 struct ProgramInWork {
-  std::unique_ptr<nc::Interpreter> interpreter;
+  std::optional<nc::Interpreter> interpreter;
   nc::PreparedBlock block;  ///< the block in work
   BlockMotion motion;
   PathProfile profile;
@@ -50,7 +50,7 @@ struct ProgramInWork {
 
 /// MDI: the blocks the next start runs in MDI mode, and whether the program in work is theirs.
 struct MdiState {
-  std::shared_ptr<nc::ParseResult> blocks;
+  std::shared_ptr<const nc::ParseResult> blocks;  ///< shared by copies of the channel
   bool running = false;
 };
 

@@ -100,7 +100,7 @@ Interpreter::Interpreter(std::vector<const Program*> programs, InterpreterConfig
     : programs_(std::move(programs)), config_(std::move(config)), modal_(config_.initial) {
   for (size_t i = 0; i < programs_.size(); ++i) by_name_.emplace(Stem(programs_[i]->name), i);
   position_.assign(config_.axes.size(), 0.0);
-  var_cache_.resize(programs_.size());
+  var_cache_.per_program.resize(programs_.size());
   axis_cache_.resize(programs_.size());
   size_t stack = 1;
   for (const Program* p : programs_) stack = std::max<size_t>(stack, p->max_stack);
@@ -227,7 +227,7 @@ void Interpreter::SetVariable(const std::string& name, double value) {
 void Interpreter::SetVariables(std::map<std::string, double> variables) {
   variables_ = std::move(variables);
   // The cache points into the map's old nodes.
-  for (std::vector<double*>& cache : var_cache_) cache.clear();
+  for (std::vector<double*>& cache : var_cache_.per_program) cache.clear();
 }
 
 bool Interpreter::Fail(uint32_t offset, std::string message) {
@@ -294,6 +294,16 @@ bool Interpreter::EndlessLoop(uint32_t program, int32_t block) {
 [[gnu::noinline]] void Interpreter::BeginCold(PreparedBlock& out, uint32_t program,
                                               int32_t block) const {
   Begin(out, program, block);
+}
+
+bool Interpreter::Next(PreparedBlock& out, const std::function<bool(int)>& events,
+                       const DataAccess& data) {
+  call_event_ = &events;
+  call_data_ = &data;
+  const bool more = Next(out);
+  call_event_ = nullptr;
+  call_data_ = nullptr;
+  return more;
 }
 
 bool Interpreter::Next(PreparedBlock& out) {
@@ -427,10 +437,11 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
       if (st.data != kNoExpr) {
         std::vector<InstructionArg> args;
         if (!EvalArguments(st.data, args)) return check();
-        if (!data_.write)
+        const DataAccess& access = data();
+        if (!access.write)
           return Fail(st.pos.offset,
                       "writing " + p.symbols.Name(st.name) + "(...) data is not available here");
-        std::string error = data_.write(st.instruction, args, v);
+        std::string error = access.write(st.instruction, args, v);
         if (!error.empty()) return Fail(st.pos.offset, std::move(error));
         last_result_ = v;
         return true;
@@ -445,7 +456,8 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
     case Kind::kEventBranch: {
       const int event = static_cast<int>(eval(st.value));
       if (!check()) return false;
-      const bool set = (event_ && event_(event));
+      const std::function<bool(int)>& source = events();
+      const bool set = (source && source(event));
       if ((st.instruction == Instruction::kBes) == set) next = st.jump;
       return true;
     }

@@ -189,6 +189,10 @@ class Interpreter {
   /// Executes up to the next block with an effect (with SetEveryBlock(true): the next block).
   /// False at the end or after an error.
   bool Next(PreparedBlock& out);
+  /// Next() with the events and data access of this call in place of the ones set: an owner
+  /// that is copied (the channel) hands in its own each time, so that the interpreter holds
+  /// nothing that leads back into it and copies as a plain value.
+  bool Next(PreparedBlock& out, const std::function<bool(int)>& events, const DataAccess& data);
   /// While on, Next() hands out every line the block counter counts, also blocks without an
   /// effect (P1 = 0, $FOR, a block with only an N number, #BLOCKSEARCH ...): block search
   /// may continue at any of them (manual 10: N100 P100 = 1). A $ENDFOR that loops back is not
@@ -318,12 +322,31 @@ class Interpreter {
   ModalState modal_;
   std::vector<double> position_;
   std::map<std::string, double> variables_;
-  std::vector<std::vector<double*>> var_cache_;  ///< per program, per symbol id
+  /// Per program, per symbol id: the variable's node in variables_. A copy starts empty (its
+  /// pointers would lead into the other interpreter's map); a move keeps them, the nodes move
+  /// along with the map.
+  struct VariableCache {
+    std::vector<std::vector<double*>> per_program;
+    VariableCache() = default;
+    VariableCache(const VariableCache& o) : per_program(o.per_program.size()) {}
+    VariableCache& operator=(const VariableCache& o) {
+      per_program.assign(o.per_program.size(), {});
+      return *this;
+    }
+    VariableCache(VariableCache&&) noexcept = default;
+    VariableCache& operator=(VariableCache&&) noexcept = default;
+  };
+  VariableCache var_cache_;
   std::vector<std::vector<int8_t>> axis_cache_;  ///< per program, per symbol: axis, -1 none, -2 ?
   std::vector<Frame> calls_;
   std::vector<Loop> loops_;
   std::function<bool(int)> event_;
   DataAccess data_;
+  /// The events and data access of the Next() call in progress, null between calls.
+  const std::function<bool(int)>* call_event_ = nullptr;
+  const DataAccess* call_data_ = nullptr;
+  const std::function<bool(int)>& events() const { return call_event_ ? *call_event_ : event_; }
+  const DataAccess& data() const { return call_data_ ? *call_data_ : data_; }
   std::vector<InstructionArg>* capture_ = nullptr;  ///< EvalArguments: the call to capture
   uint32_t current_ = 0;
   int32_t pc_ = 0;
@@ -373,7 +396,7 @@ class Interpreter {
 // In the header: both the expressions' postfix loop and the assignments read variables through
 // it, and they are in two files.
 inline double& Interpreter::Var(uint32_t name) {
-  auto& cache = var_cache_[current_];
+  auto& cache = var_cache_.per_program[current_];
   if (cache.size() <= name) cache.resize(name + 1, nullptr);
   if (!cache[name]) cache[name] = &variables_[program().symbols.Name(name)];
   return *cache[name];

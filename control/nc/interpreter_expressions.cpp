@@ -105,12 +105,13 @@ double Interpreter::ReadData(uint32_t name, Instruction instruction,
       args[i].kind = InstructionArg::Kind::kValue;  // a bare name in data access is a variable
       args[i].value = values[i];
     }
-  if (!data_.read) {
+  const DataAccess& access = data();
+  if (!access.read) {
     Fault(rank, offset, program().symbols.Name(name) + "(...) data access is not available here");
     return 0;
   }
   double v = 0;
-  std::string error = data_.read(instruction, args, v);
+  std::string error = access.read(instruction, args, v);
   if (!error.empty()) Fault(rank, offset, std::move(error));
   return v;
 }
