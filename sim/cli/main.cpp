@@ -34,6 +34,7 @@
 #include "sim/study/case_replay.hpp"
 #include "sim/study/study.hpp"
 #include "sim/study/study_compare.hpp"
+#include "sim/study/study_plan.hpp"
 
 namespace {
 
@@ -148,7 +149,22 @@ int StudyRepos(sim::study::StudyOptions options, const std::string& shard,
     options.per_mille = points;
   }
   options.progress = options.progress && ::isatty(2);
+  sim::CatchStopSignals();
+  options.stop = sim::StopSignalName;
   const sim::study::StudySummary s = sim::study::RunStudy(options);
+  if (!s.stopped.empty()) {
+    if (s.cases == 0)
+      std::fprintf(stderr,
+                   "vmt study: stopped by %s during the reference run; %s holds %zu finished "
+                   "cases; the same command again resumes the study\n",
+                   s.stopped.c_str(), options.out_dir.c_str(), s.finished);
+    else
+      std::fprintf(stderr,
+                   "vmt study: stopped by %s: %zu of %zu cases finished (%zu in this run), kept "
+                   "in %s/cases.jsonl; the same command again resumes the study\n",
+                   s.stopped.c_str(), s.finished, s.cases, s.run, options.out_dir.c_str());
+    return sim::kStoppedEarly;
+  }
   std::printf(
       "%s: %zu cases (%zu run, %zu already there) in %.2f s: %.0f cases/min with %d "
       "job(s)\n%s",
@@ -458,11 +474,16 @@ std::vector<Command> AddStudy(CLI::App& app) {
   repos->add_option("--jobs", study_options.jobs, "Worker processes")
       ->check(WholeIn(1, 256))
       ->capture_default_str();
-  repos->add_option("--shard", o->shard, "K/N: this process runs shard K of N (every N-th group)");
-  repos->add_option("--every-ms", o->every_ms, "Interrupt every T ms of the program's run")
-      ->check(FiniteIn(1, 1e7, "number of ms"));
-  repos->add_option("--per-mille", o->per_mille,
-                    "Interrupt every motion block at these points, e.g. 250,750");
+  repos->add_option("--shard", o->shard, "K/N: this process runs shard K of N (every N-th group)")
+      ->check(sim::ShardOf(sim::study::kMaxShards));
+  CLI::Option* every_ms =
+      repos->add_option("--every-ms", o->every_ms, "Interrupt every T ms of the program's run")
+          ->check(FiniteIn(sim::study::kMinEveryMs, sim::study::kMaxEveryMs, "number of ms"));
+  repos
+      ->add_option("--per-mille", o->per_mille,
+                   "Interrupt every motion block at these points, e.g. 250,750")
+      ->check(sim::WholeListIn(0, 1000, sim::study::kMaxPerMillePoints))
+      ->excludes(every_ms);
   repos->add_option("--max-cases", o->max_cases, "Only the first N cases (of this shard)")
       ->check(WholeIn(1, 1000000000));
   repos->add_flag("--no-fork", o->no_fork,

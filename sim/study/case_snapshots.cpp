@@ -77,12 +77,14 @@ std::map<std::string, std::string> SnapshotCases(const Scene& base, const StudyP
                                                  const std::vector<StudyCase>& cases,
                                                  const std::vector<CaseResult>& results,
                                                  const std::vector<std::string>& ids,
-                                                 const std::string& dir) {
+                                                 const std::string& dir,
+                                                 const std::function<bool()>& stop) {
   std::map<std::string, std::string> index;
   if (ids.empty()) return index;
   std::filesystem::create_directories(dir + "/snapshots");
   const SnapshotSpec look = Look(base);
   for (const std::string& id : ids) {
+    if (stop && stop()) break;
     const auto c =
         std::find_if(cases.begin(), cases.end(), [&](const StudyCase& k) { return k.id == id; });
     const auto r = std::find_if(results.begin(), results.end(),

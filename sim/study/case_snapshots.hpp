@@ -5,6 +5,7 @@
 // pictures; the chosen cases run again from the start afterwards with the scene's camera on --
 // a case is deterministic, so the rerun is the case of cases.jsonl.
 
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -24,13 +25,15 @@ std::string SnapshotFileOf(const std::string& case_id);
 /// Renders the cases `ids` (of `cases`) into dir/snapshots/ with the camera and size of the
 /// scene's first snapshot (else its first camera, 320x240); a picture already there is kept.
 /// Returns case id -> file relative to dir, and writes it as dir/snapshots.json. A case whose
-/// rerun took no picture is left out.
+/// rerun took no picture is left out. When `stop` says so, no further picture is begun (a
+/// rerun takes the missing ones).
 std::map<std::string, std::string> SnapshotCases(const Scene& base, const StudyPlan& plan,
                                                  const std::vector<Interruption>& interruptions,
                                                  const std::vector<StudyCase>& cases,
                                                  const std::vector<CaseResult>& results,
                                                  const std::vector<std::string>& ids,
-                                                 const std::string& dir);
+                                                 const std::string& dir,
+                                                 const std::function<bool()>& stop = {});
 
 /// Writes `index` (case id -> file relative to dir) as dir/snapshots.json.
 void WriteSnapshotIndex(const std::string& dir, const std::map<std::string, std::string>& index);

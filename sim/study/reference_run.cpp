@@ -77,7 +77,8 @@ void MachineFrame(const Scene& scene, const SceneRun& run, Reference& ref) {
 
 }  // namespace
 
-Reference RunReference(const Scene& base, const std::string& work_dir) {
+Reference RunReference(const Scene& base, const std::string& work_dir,
+                       const std::function<bool()>& stop) {
   Scene scene = base;
   scene.timeline.clear();
   scene.expectations.clear();
@@ -99,7 +100,10 @@ Reference RunReference(const Scene& base, const std::string& work_dir) {
   Reference ref;
   {
     SceneRun run(scene, options);
-    while (!run.done() && state != "ended" && state != "error") run.Step();
+    while (!run.done() && state != "ended" && state != "error") {
+      if (stop && stop()) throw ReferenceStopped();
+      run.Step();
+    }
     MachineFrame(scene, run, ref);
     const RunResult r = run.Finish();
     if (!r.write_errors.empty()) throw std::runtime_error(r.write_errors.front());

@@ -4,6 +4,8 @@
 // interruption points lie), the program's end (where every-T-ms points stop) and the tool's
 // XZ path (the contour as turned, the report's background).
 
+#include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -43,8 +45,15 @@ struct Reference {
 
 /// Runs `scene`'s program alone (timeline: start, run to its end) and reads its trace in
 /// `work_dir` (created; the trace stays there). Throws std::runtime_error if the program does
-/// not end within the scene's duration without an error.
-Reference RunReference(const Scene& scene, const std::string& work_dir);
+/// not end within the scene's duration without an error, ReferenceStopped if `stop` (asked at
+/// every tick) says so first.
+Reference RunReference(const Scene& scene, const std::string& work_dir,
+                       const std::function<bool()>& stop = {});
+
+/// The reference run was asked to stop (a study stopped by SIGINT / SIGTERM): there is none.
+struct ReferenceStopped : std::runtime_error {
+  ReferenceStopped() : std::runtime_error("the reference run was stopped") {}
+};
 
 /// The reference as JSON (the study folder's reference.json) and back.
 std::string ReferenceJson(const Reference& r);

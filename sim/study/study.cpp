@@ -6,10 +6,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <thread>
@@ -32,7 +34,8 @@ std::string ReadText(const std::string& path) {
 }
 
 // The reference run is the scene's alone: a rerun (or another shard) in the folder reuses it.
-Reference LoadOrRunReference(const Scene& scene, const std::string& dir) {
+Reference LoadOrRunReference(const Scene& scene, const std::string& dir,
+                             const std::function<bool()>& stop) {
   const std::string file = dir + "/reference.json";
   if (std::filesystem::exists(file)) {
     try {
@@ -42,7 +45,7 @@ Reference LoadOrRunReference(const Scene& scene, const std::string& dir) {
   }
   const Reference ref = [&] {
     const ScratchFolder work(dir + "/.reference-" + std::to_string(::getpid()));
-    return RunReference(scene, work.path());
+    return RunReference(scene, work.path(), stop);
   }();
   common::WriteFileAtomically(file, ReferenceJson(ref));
   return ref;
@@ -82,21 +85,151 @@ double ChildrenCpuSeconds() {
          static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec) / 1e6;
 }
 
+// SIGINT and SIGTERM held back while it lives: a worker writes a case's lines whole, and a
+// worker forked now takes the default action on them before one can reach it.
+class StopSignalsHeld {
+ public:
+  StopSignalsHeld() {
+    sigset_t stops;
+    sigemptyset(&stops);
+    sigaddset(&stops, SIGINT);
+    sigaddset(&stops, SIGTERM);
+    ::sigprocmask(SIG_BLOCK, &stops, &before_);
+  }
+  StopSignalsHeld(const StopSignalsHeld&) = delete;
+  StopSignalsHeld& operator=(const StopSignalsHeld&) = delete;
+  ~StopSignalsHeld() { ::sigprocmask(SIG_SETMASK, &before_, nullptr); }
+
+ private:
+  sigset_t before_{};
+};
+
+struct WorkersEnd {
+  bool failed = false;  ///< a worker failed (not one ended because the study stopped)
+  std::string stopped;  ///< the stop's reason when the workers were ended for it
+};
+
+// A worker: its share of `todo` (whole groups), each result appended to the case files. It
+// ends on SIGINT or SIGTERM at once (the default action), between two writes.
+[[noreturn]] void Worker(const StudyOptions& o, int w, const Scene& scene, const StudyPlan& plan,
+                         const std::vector<Interruption>& interruptions,
+                         const std::vector<StudyCase>& todo,
+                         const std::map<size_t, int>& worker_of) {
+  int code = 0;
+  try {
+    std::vector<StudyCase> mine;
+    for (const StudyCase& c : todo)
+      if (worker_of.at(c.group) == w) mine.push_back(c);
+    CaseFiles files(o.out_dir);
+    for (size_t s = 0; s < plan.subroutines.size(); ++s)
+      RunSubroutineCases(scene, plan, interruptions, mine, s, o.fork_cases,
+                         [&](const CaseResult& r) {
+                           const StopSignalsHeld whole_lines;
+                           files.Write(r);
+                         });
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "vmt study: worker %d: %s\n", w, e.what());
+    code = 1;
+  }
+  std::fflush(nullptr);
+  ::_exit(code);
+}
+
+// Forks the workers and waits for them. Asked to stop (o.stop), it forks no more and ends them
+// (SIGTERM; SIGKILL to one that is still there after kEndWait) before it returns; the cases of
+// their processes (which die with them) go unfinished.
+WorkersEnd RunWorkers(const StudyOptions& o, const Scene& scene, const StudyPlan& plan,
+                      const std::vector<Interruption>& interruptions,
+                      const std::vector<StudyCase>& todo, size_t lines_before,
+                      std::chrono::steady_clock::time_point wall0) {
+  constexpr std::chrono::seconds kEndWait{5};
+  const auto stop = [&] { return o.stop ? o.stop() : std::string(); };
+  // Workers take whole groups (one interruption point of one subroutine) in turn.
+  std::map<size_t, int> worker_of;
+  for (const StudyCase& c : todo)
+    if (!worker_of.count(c.group)) {
+      const int w = static_cast<int>(worker_of.size() % static_cast<size_t>(o.jobs));
+      worker_of[c.group] = w;
+    }
+  std::vector<pid_t> workers;
+  std::fflush(nullptr);
+  const pid_t study_pid = ::getpid();
+  {
+    const StopSignalsHeld forking;
+    for (int w = 0; w < o.jobs && !todo.empty() && stop().empty(); ++w) {
+      const pid_t pid = ::fork();
+      if (pid < 0) throw std::runtime_error("fork failed");
+      if (pid > 0) {
+        workers.push_back(pid);
+        continue;
+      }
+      DieWithParent(study_pid);
+      std::signal(SIGINT, SIG_DFL);
+      std::signal(SIGTERM, SIG_DFL);
+      sigset_t stops;
+      sigemptyset(&stops);
+      sigaddset(&stops, SIGINT);
+      sigaddset(&stops, SIGTERM);
+      ::sigprocmask(SIG_UNBLOCK, &stops, nullptr);
+      Worker(o, w, scene, plan, interruptions, todo, worker_of);
+    }
+  }
+  WorkersEnd end;
+  std::chrono::steady_clock::time_point ended_at{};
+  bool killed = false;
+  for (size_t alive = workers.size(); alive > 0;) {
+    if (end.stopped.empty() && !(end.stopped = stop()).empty()) {
+      for (const pid_t pid : workers)
+        if (pid > 0) ::kill(pid, SIGTERM);
+      ended_at = std::chrono::steady_clock::now();
+    } else if (!end.stopped.empty() && !killed &&
+               std::chrono::steady_clock::now() - ended_at > kEndWait) {
+      for (const pid_t pid : workers)
+        if (pid > 0) ::kill(pid, SIGKILL);
+      killed = true;
+    }
+    for (pid_t& pid : workers) {
+      if (pid <= 0) continue;
+      int status = 0;
+      if (::waitpid(pid, &status, WNOHANG) == pid) {
+        const bool ended_by_us = !end.stopped.empty() && WIFSIGNALED(status);
+        end.failed =
+            end.failed || (!ended_by_us && (!WIFEXITED(status) || WEXITSTATUS(status) != 0));
+        pid = 0;
+        --alive;
+      }
+    }
+    if (o.progress) {
+      const double wall =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+      Bar(CountLines(o.out_dir + "/cases.jsonl") - lines_before, todo.size(), wall);
+    }
+    if (alive > 0) std::this_thread::sleep_for(std::chrono::milliseconds(o.progress ? 200 : 20));
+  }
+  if (o.progress) std::fprintf(stderr, "\n");
+  if (end.stopped.empty()) end.stopped = stop();
+  return end;
+}
+
 }  // namespace
 
 StudySummary RunStudy(const StudyOptions& o) {
   const auto wall0 = std::chrono::steady_clock::now();
-  if (o.shards < 1 || o.shard < 1 || o.shard > o.shards)
-    throw std::runtime_error("--shard K/N needs 1 <= K <= N");
+  if (o.shards < 1 || o.shard < 1 || o.shard > o.shards || o.shards > kMaxShards)
+    throw std::runtime_error("--shard K/N needs 1 <= K <= N <= " + std::to_string(kMaxShards));
   if (o.jobs < 1 || o.jobs > 256) throw std::runtime_error("--jobs needs 1..256");
   const Scene scene = LoadScene(o.scene);
   StudyPlan plan = LoadStudyPlan(o.scene, scene);
   if (o.every_ms) {
-    if (!(*o.every_ms >= 1)) throw std::runtime_error("--every-ms needs at least 1");
+    if (!(*o.every_ms >= kMinEveryMs && *o.every_ms <= kMaxEveryMs))
+      throw std::runtime_error("--every-ms needs 1..1e7 ms");
     plan.every_ms = *o.every_ms;
     plan.per_mille.clear();
   }
   if (o.per_mille) {
+    if (o.per_mille->empty() || o.per_mille->size() > kMaxPerMillePoints)
+      throw std::runtime_error("--per-mille needs 1.." + std::to_string(kMaxPerMillePoints) +
+                               " points");
     for (const int p : *o.per_mille)
       if (p < 0 || p > 1000) throw std::runtime_error("--per-mille points are 0..1000");
     plan.per_mille = *o.per_mille;
@@ -104,13 +237,23 @@ StudySummary RunStudy(const StudyOptions& o) {
   }
   std::filesystem::create_directories(o.out_dir);
   RemoveDeadScratch(o.out_dir);
-  WriteStudySource(o.out_dir, o.scene, plan);
-  const Reference ref = LoadOrRunReference(scene, o.out_dir);
-  const std::vector<Interruption> interruptions = Interruptions(plan, ref);
-  std::vector<StudyCase> cases;
-  for (const StudyCase& c : EnumerateCases(plan, interruptions))
-    if (InShard(c, o.shard, o.shards)) cases.push_back(c);
-  if (o.max_cases && cases.size() > *o.max_cases) cases.resize(*o.max_cases);
+  StudySource source = SourceOf(o.scene, plan);
+  source.shard = o.shard;
+  source.shards = o.shards;
+  source.max_cases = o.max_cases;
+  WriteStudySource(o.out_dir, source);
+  const auto stop_asked = [&] { return o.stop && !o.stop().empty(); };
+  StudySummary summary;
+  std::optional<Reference> ref;
+  try {
+    ref = LoadOrRunReference(scene, o.out_dir, stop_asked);
+  } catch (const ReferenceStopped&) {
+    summary.stopped = o.stop();
+    summary.finished = Deduplicated(ReadCases(o.out_dir + "/cases.jsonl")).size();
+    return summary;
+  }
+  const std::vector<Interruption> interruptions = Interruptions(plan, *ref);
+  const std::vector<StudyCase> cases = ShareOf(EnumerateCases(plan, interruptions), source);
 
   // What the folder holds already (whole lines only) is kept and skipped.
   const std::vector<CaseResult> held = Deduplicated(ReadCases(o.out_dir + "/cases.jsonl"));
@@ -121,80 +264,41 @@ StudySummary RunStudy(const StudyOptions& o) {
   for (const StudyCase& c : cases)
     if (!done.count(c.id)) todo.push_back(c);
 
-  StudySummary summary;
   summary.cases = cases.size();
   summary.skipped = cases.size() - todo.size();
   summary.run = todo.size();
-  // Workers take whole groups (one interruption point of one subroutine) in turn.
-  std::map<size_t, int> worker_of;
-  for (const StudyCase& c : todo)
-    if (!worker_of.count(c.group)) {
-      const int w = static_cast<int>(worker_of.size() % static_cast<size_t>(o.jobs));
-      worker_of[c.group] = w;
-    }
-  const size_t before = CountLines(o.out_dir + "/cases.jsonl");
   const double cpu0 = ChildrenCpuSeconds();
-  std::vector<pid_t> workers;
-  std::fflush(nullptr);
-  const pid_t study_pid = ::getpid();
-  for (int w = 0; w < o.jobs && !todo.empty(); ++w) {
-    const pid_t pid = ::fork();
-    if (pid < 0) throw std::runtime_error("fork failed");
-    if (pid > 0) {
-      workers.push_back(pid);
-      continue;
-    }
-    DieWithParent(study_pid);
-    int code = 0;
-    try {
-      std::vector<StudyCase> mine;
-      for (const StudyCase& c : todo)
-        if (worker_of[c.group] == w) mine.push_back(c);
-      CaseFiles files(o.out_dir);
-      for (size_t s = 0; s < plan.subroutines.size(); ++s)
-        RunSubroutineCases(scene, plan, interruptions, mine, s, o.fork_cases,
-                           [&](const CaseResult& r) { files.Write(r); });
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "vmt study: worker %d: %s\n", w, e.what());
-      code = 1;
-    }
-    std::fflush(nullptr);
-    ::_exit(code);
-  }
-  bool failed = false;
-  for (size_t alive = workers.size(); alive > 0;) {
-    for (pid_t& pid : workers) {
-      if (pid <= 0) continue;
-      int status = 0;
-      if (::waitpid(pid, &status, WNOHANG) == pid) {
-        failed = failed || !WIFEXITED(status) || WEXITSTATUS(status) != 0;
-        pid = 0;
-        --alive;
-      }
-    }
-    if (o.progress) {
-      const double wall =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-      Bar(CountLines(o.out_dir + "/cases.jsonl") - before, todo.size(), wall);
-    }
-    if (alive > 0) std::this_thread::sleep_for(std::chrono::milliseconds(o.progress ? 200 : 20));
-  }
-  if (o.progress) std::fprintf(stderr, "\n");
+  const WorkersEnd workers = RunWorkers(o, scene, plan, interruptions, todo,
+                                        CountLines(o.out_dir + "/cases.jsonl"), wall0);
   summary.cases_cpu_s = ChildrenCpuSeconds() - cpu0;
   // The files in case id order, whatever the workers' interleaving: the same study gives the
   // same bytes.
   const std::vector<CaseResult> all = Deduplicated(ReadCases(o.out_dir + "/cases.jsonl"));
   RewriteCaseFiles(o.out_dir, all);
-  if (!failed && o.snapshots > 0) {
+  std::set<std::string> finished;
+  for (const CaseResult& r : all) finished.insert(r["case"].get<std::string>());
+  summary.finished = static_cast<size_t>(std::count_if(
+      cases.begin(), cases.end(), [&](const StudyCase& c) { return finished.count(c.id) > 0; }));
+  summary.stopped = workers.stopped;
+  if (!summary.stopped.empty()) {
+    summary.run = summary.finished > summary.skipped ? summary.finished - summary.skipped : 0;
+    return summary;
+  }
+  if (!workers.failed && o.snapshots > 0) {
     const auto shots0 = std::chrono::steady_clock::now();
     summary.snapshots = SnapshotCases(scene, plan, interruptions, cases, all,
-                                      WorstCaseIds(all, o.snapshots), o.out_dir)
+                                      WorstCaseIds(all, o.snapshots), o.out_dir, stop_asked)
                             .size();
     summary.snapshots_wall_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - shots0).count();
+    if (stop_asked()) {
+      summary.stopped = o.stop();
+      return summary;
+    }
   }
   WriteReport(o.out_dir, "REPOS study: " + scene.name);
-  if (failed) throw std::runtime_error("a study worker failed; the finished cases are kept");
+  if (workers.failed)
+    throw std::runtime_error("a study worker failed; the finished cases are kept");
   summary.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   summary.cases_per_minute = summary.wall_s > 0 ? summary.run / summary.wall_s * 60 : 0;
   summary.text = Tally(all);
@@ -228,12 +332,12 @@ size_t MergeStudies(const std::vector<std::string>& dirs, const std::string& out
     }
   if (!shots.empty()) WriteSnapshotIndex(out_dir, shots);
   if (!reference.empty()) common::WriteFileAtomically(out_dir + "/reference.json", reference);
-  // The shards ran one study: the first's record of its scene serves them all.
+  // The shards ran one study: the first's record of its scene serves them all, as the whole.
   for (const std::string& d : dirs)
-    if (std::filesystem::exists(d + "/study.json")) {
-      std::error_code same;
-      if (!std::filesystem::equivalent(d + "/study.json", out_dir + "/study.json", same))
-        common::CopyFileAtomically(d + "/study.json", out_dir + "/study.json");
+    if (std::optional<StudySource> source = ReadStudySource(d)) {
+      source->shard = source->shards = 1;
+      source->max_cases.reset();
+      WriteStudySource(out_dir, *source);
       break;
     }
   WriteReport(out_dir, "REPOS study (merged)");

@@ -3,11 +3,15 @@
 // (sharded, in worker processes), cases.jsonl / cases.csv as they finish, report.html at the
 // end. A rerun into the same folder skips the cases it holds.
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace vmt::sim::study {
+
+/// --shard K/N: at most this many shards (a cluster's cores, with room).
+inline constexpr int kMaxShards = 100000;
 
 struct StudyOptions {
   std::string scene;
@@ -22,6 +26,10 @@ struct StudyOptions {
   /// Pictures of the worst cases, rendered after the study: per subroutine this many
   /// collisions and the tightest clear case (0: none).
   int snapshots = 3;
+  /// Asked as the study goes: a reason to stop (a signal's name), empty to go on. Stopped, the
+  /// study begins no further case or picture, ends its workers, keeps the finished cases (whole
+  /// lines, in case order) and writes no report: a rerun resumes it.
+  std::function<std::string()> stop;
 };
 
 struct StudySummary {
@@ -33,7 +41,9 @@ struct StudySummary {
   double cases_cpu_s = 0;       ///< CPU time (user + system) of the worker processes
   double snapshots_wall_s = 0;  ///< of wall_s, the worst cases' pictures
   size_t snapshots = 0;
-  std::string text;  ///< per subroutine: cases, clear, crashes, grazes, errors, retracts refused
+  std::string text;     ///< per subroutine: cases, clear, crashes, grazes, errors, retracts refused
+  std::string stopped;  ///< why the study stopped before its end (options.stop), else empty
+  size_t finished = 0;  ///< of `cases`, those in the folder when it ended
 };
 
 /// Throws ModelError (scene or plan) or std::runtime_error.

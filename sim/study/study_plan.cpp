@@ -15,6 +15,9 @@ const char* ToString(ReposMode m) {
 
 namespace {
 
+// A retract jog (a distance or a position, mm) within the reach of any lathe's axis.
+constexpr double kMaxJogMm = 10000;
+
 RetractPattern ReadRetract(const YamlNode& n, const Scene& scene) {
   if (!n.IsMap()) n.Fail("expected {name: ..., jogs: [{axis: X, mm: 20 | to: 150}, ...]}");
   n.AllowKeys({"name", "jogs"});
@@ -34,11 +37,10 @@ RetractPattern ReadRetract(const YamlNode& n, const Scene& scene) {
       j["axis"].Fail("no NC axis " + jog.axis + " in this scene");
     if (j.Has("to")) {
       if (j.Has("mm")) j["mm"].Fail("give mm (a distance) or to (a position), not both");
-      jog.to = j["to"].Double();
-      if (std::abs(*jog.to) > 10000) j["to"].Fail("expected a position within +-10000");
+      jog.to = j["to"].Double(-kMaxJogMm, kMaxJogMm);
     } else {
-      jog.mm = j["mm"].Double();
-      if (jog.mm == 0 || std::abs(jog.mm) > 10000) j["mm"].Fail("expected a distance, not 0");
+      jog.mm = j["mm"].Double(-kMaxJogMm, kMaxJogMm);
+      if (jog.mm == 0) j["mm"].Fail("expected a distance, not 0");
     }
     r.jogs.push_back(jog);
   }
@@ -91,15 +93,13 @@ StudyPlan LoadStudyPlan(const std::string& scene_path, const Scene& scene) {
   in.AllowKeys({"every_ms", "per_mille"});
   if (in.Has("every_ms") == in.Has("per_mille")) in.Fail("expected one of every_ms, per_mille");
   if (in.Has("every_ms")) {
-    plan.every_ms = in["every_ms"].Double();
-    if (!(plan.every_ms >= 1)) in["every_ms"].Fail("expected at least 1 ms");
+    plan.every_ms = in["every_ms"].Double(kMinEveryMs, kMaxEveryMs);
   } else {
     const YamlNode pm = in["per_mille"];
-    if (!pm.IsSequence() || pm.size() == 0) pm.Fail("expected a list of points 0..1000");
+    if (!pm.IsSequence() || pm.size() == 0 || pm.size() > kMaxPerMillePoints)
+      pm.Fail("expected a list of 1.." + std::to_string(kMaxPerMillePoints) + " points 0..1000");
     for (size_t i = 0; i < pm.size(); ++i) {
-      const int p = pm[i].Int();
-      if (p < 0 || p > 1000) pm[i].Fail("expected 0..1000");
-      plan.per_mille.push_back(p);
+      plan.per_mille.push_back(pm[i].Int(0, 1000));
     }
   }
   const YamlNode rs = s["retracts"];
@@ -146,10 +146,8 @@ StudyPlan LoadStudyPlan(const std::string& scene_path, const Scene& scene) {
         if (o.name == m.name) s["manual"].Fail("the order " + m.name + " listed twice");
       plan.subroutines.push_back(std::move(m));
     }
-  plan.hold_s = s.Double("hold", plan.hold_s);
-  if (!(plan.hold_s >= 0.01 && plan.hold_s <= 60)) s["hold"].Fail("expected 0.01..60 s");
-  plan.timeout_s = s.Double("timeout", plan.timeout_s);
-  if (!(plan.timeout_s >= 0.1 && plan.timeout_s <= 3600)) s["timeout"].Fail("expected 0.1..3600 s");
+  plan.hold_s = s.Double("hold", plan.hold_s, 0.01, 60);
+  plan.timeout_s = s.Double("timeout", plan.timeout_s, 0.1, 3600);
   return plan;
 }
 

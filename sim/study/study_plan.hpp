@@ -44,6 +44,13 @@ struct Subroutine {
   bool manual() const { return !manual_order.empty(); }
 };
 
+/// The interruption period (`every_ms:`, --every-ms), ms: from 1 ms (a control cycle's order)
+/// to 10^7 ms (2.8 h of a program's run, a single interruption for any real program).
+inline constexpr double kMinEveryMs = 1;
+inline constexpr double kMaxEveryMs = 1e7;
+/// Per-mille points (`per_mille:`, --per-mille): 0..1000, at most one of each.
+inline constexpr size_t kMaxPerMillePoints = 1001;
+
 struct StudyPlan {
   /// Interruption: every `every_ms` of the program's run (> 0), or else every motion block of
   /// the main program at these per-mille points of its time span in the reference run.
