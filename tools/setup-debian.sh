@@ -12,6 +12,8 @@ packages=(
   python3-yaml
   # vmt study shards on one machine without Slurm (tests/cli/study_test.sh uses it if there).
   parallel
+  # vmt study sbatch on a real Slurm cluster (tests/cli/slurm_test.sh starts a single-node one).
+  munge slurmctld slurmd slurm-client
   clang libclang-rt-14-dev
   # The operator station (vmt serve --http): its HTTP server, the page's three.js and Chart.js,
   # and the headless browser its tests drive.

@@ -25,6 +25,7 @@
 #include "sim/cli/option_checks.hpp"
 #include "sim/cli/serve.hpp"
 #include "sim/cli/stop_signals.hpp"
+#include "sim/cli/study_slurm.hpp"
 #include "sim/cli/view.hpp"
 #include "sim/model/gateway_layout.hpp"
 #include "sim/model/model_error.hpp"
@@ -546,7 +547,9 @@ std::vector<Command> AddStudy(CLI::App& app) {
                                   o->merge_out.c_str(), n, o->merge_out.c_str());
                       return 0;
                     }};
-  return {run_repos, run_merge, run_replay, AddStudyCompare(*study)};
+  std::vector<Command> commands = {run_repos, run_merge, run_replay, AddStudyCompare(*study)};
+  for (auto& [sub, action] : sim::AddStudySlurmCommands(*study)) commands.push_back({sub, action});
+  return commands;
 }
 
 Command AddImgdiff(CLI::App& app) {

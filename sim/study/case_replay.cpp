@@ -13,6 +13,7 @@
 #include "sim/study/reference_run.hpp"
 #include "sim/study/scratch_folder.hpp"
 #include "sim/study/study_cases.hpp"
+#include "sim/study/study_source.hpp"
 
 namespace vmt::sim::study {
 namespace {
@@ -25,22 +26,7 @@ nlohmann::json ReadJson(const std::string& path, const std::string& what) {
   return j;
 }
 
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), {});
-}
-
 }  // namespace
-
-void WriteStudySource(const std::string& dir, const std::string& scene_file,
-                      const StudyPlan& plan) {
-  nlohmann::ordered_json j;
-  j["scene_file"] = std::filesystem::absolute(scene_file).lexically_normal().string();
-  j["every_ms"] = plan.every_ms;
-  j["per_mille"] = plan.per_mille;
-  common::WriteFileAtomically(dir + "/study.json",
-                              j.dump(1, ' ', false, common::kReplaceBadUtf8) + "\n");
-}
 
 std::string CaseFolderOf(const std::string& case_id) { return "cases/" + FileNameOf(case_id); }
 
@@ -53,19 +39,8 @@ std::string SaveCase(const std::string& dir, const std::string& case_id) {
                                case_id);
     return folder;
   }
-  const nlohmann::json source = ReadJson(dir + "/study.json",
-                                         "not a study folder, or one made before cases could be "
-                                         "replayed: run the study again");
-  const std::string scene_file = source.value("scene_file", "");
-  const Scene scene = LoadScene(scene_file);
-  StudyPlan plan = LoadStudyPlan(scene_file, scene);
-  plan.every_ms = source.value("every_ms", 0.0);
-  plan.per_mille = source.value("per_mille", std::vector<int>{});
-  if (!std::filesystem::exists(dir + "/reference.json"))
-    throw std::runtime_error(dir + ": no reference.json (not a study folder)");
-  const Reference ref = ReferenceFromJson(ReadText(dir + "/reference.json"));
-  const std::vector<Interruption> interruptions = Interruptions(plan, ref);
-  const std::vector<StudyCase> cases = EnumerateCases(plan, interruptions);
+  const StudyCases study = LoadStudyCases(dir);
+  const std::vector<StudyCase>& cases = study.cases;
   const auto c =
       std::find_if(cases.begin(), cases.end(), [&](const StudyCase& k) { return k.id == case_id; });
   if (c == cases.end())
@@ -75,10 +50,10 @@ std::string SaveCase(const std::string& dir, const std::string& case_id) {
   // Saved under another name first and renamed, so that a folder is either whole or absent.
   const ScratchFolder scratch(folder + ".saving-" + std::to_string(::getpid()));
   const std::string& work = scratch.path();
-  const SavedCase saved = SaveCaseRun(scene, plan, interruptions, *c, work);
+  const SavedCase saved = SaveCaseRun(study.scene, study.plan, study.interruptions, *c, work);
   nlohmann::ordered_json j;
   j["case"] = case_id;
-  j["scene_file"] = std::filesystem::absolute(scene_file).lexically_normal().string();
+  j["scene_file"] = study.source.scene_file;
   j["subroutine_file"] = saved.subroutine_file;
   j["until_s"] = saved.until_s;
   j["trace_digest"] = saved.trace_digest;

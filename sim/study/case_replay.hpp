@@ -1,8 +1,9 @@
 #pragma once
 // Watching one case of a study: the folder records the scene and the interruption plan it was
-// run with (study.json), so any case can be run again from its id alone. Its run is saved on
-// demand in the folder's cases/<id>/ as vmt run writes a run (trace, events, summary) with
-// case.json, the steps the case ran, from which vmt view runs it again step for step.
+// run with (study.json, sim/study/study_source.hpp), so any case can be run again from its id
+// alone. Its run is saved on demand in the folder's cases/<id>/ as vmt run writes a run (trace,
+// events, summary) with case.json, the steps the case ran, from which vmt view runs it again step
+// for step.
 
 #include <optional>
 #include <stdexcept>
@@ -11,10 +12,6 @@
 #include "sim/study/case_runner.hpp"
 
 namespace vmt::sim::study {
-
-/// Writes dir/study.json: the scene file and the interruptions of `plan` (after the command
-/// line's overrides).
-void WriteStudySource(const std::string& dir, const std::string& scene_file, const StudyPlan& plan);
 
 /// `cases/<FileNameOf(case id)>`.
 std::string CaseFolderOf(const std::string& case_id);

@@ -24,6 +24,7 @@
 #include "sim/study/scratch_folder.hpp"
 #include "sim/study/study_conclusions.hpp"
 #include "sim/study/study_report.hpp"
+#include "sim/study/study_source.hpp"
 
 namespace vmt::sim::study {
 namespace {

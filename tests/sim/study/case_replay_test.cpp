@@ -13,6 +13,7 @@
 #include "sim/runner/runner.hpp"
 #include "sim/study/case_files.hpp"
 #include "sim/study/reference_run.hpp"
+#include "sim/study/study_source.hpp"
 
 namespace vmt::sim::study {
 namespace {
@@ -80,7 +81,7 @@ TEST(study_case_replay, ManualReturnRunsAgainToTheSameDigest) {
 TEST(study_case_replay, StudyFolderSavesACaseByItsId) {
   const Study s("tiny-study.yaml");
   const std::string dir = Out("study");
-  WriteStudySource(dir, s.file, s.plan);
+  WriteStudySource(dir, SourceOf(s.file, s.plan));
   std::ofstream(dir + "/reference.json", std::ios::binary) << ReferenceJson(s.ref);
   const StudyCase& c = s.cases[1];
   const std::string folder = SaveCase(dir, c.id);

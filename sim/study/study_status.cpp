@@ -1,0 +1,45 @@
+#include "sim/study/study_status.hpp"
+
+#include <filesystem>
+#include <set>
+
+#include "sim/study/case_files.hpp"
+
+namespace vmt::sim::study {
+
+StudyProgress ReadStudyProgress(const std::string& dir) {
+  StudyProgress p;
+  p.dir = dir;
+  p.source = ReadStudySource(dir);
+  if (!p.source) return p;
+  p.reference = std::filesystem::exists(dir + "/reference.json");
+  if (!p.reference) return p;
+  const StudyCases study = LoadStudyCases(dir);
+  std::set<std::string> held;
+  // A torn last line is a case to run again, as the study's own rerun counts it.
+  for (const CaseResult& r : ReadCases(dir + "/cases.jsonl", TornLine::kLeftOut))
+    held.insert(r["case"].get<std::string>());
+  for (const StudyCase& c : ShareOf(study.cases, study.source)) {
+    ++p.expected;
+    if (held.count(c.id))
+      ++p.done;
+    else
+      p.missing.push_back(c.id);
+  }
+  return p;
+}
+
+std::string ProgressLine(const StudyProgress& p) {
+  std::string share;
+  if (p.source && p.source->shards > 1)
+    share =
+        " (shard " + std::to_string(p.source->shard) + "/" + std::to_string(p.source->shards) + ")";
+  if (!p.source) return p.dir + ": not started (no study.json)";
+  if (!p.reference) return p.dir + share + ": started, its reference run has not ended";
+  std::string line = p.dir + share + ": " + std::to_string(p.done) + " of " +
+                     std::to_string(p.expected) + " cases";
+  if (!p.missing.empty()) line += ", " + std::to_string(p.missing.size()) + " missing";
+  return line;
+}
+
+}  // namespace vmt::sim::study
