@@ -81,6 +81,19 @@ METRICS = {
         "path_guard_bench", "BM_StraightMoveCheckLatheC1", "checks_per_s",
         "PathGuard straight-move checks (lathe-c1 collision parts)", "checks/s",
         (None, None, "a REPOS study's thousands of moves in seconds"), one_thread=True),
+    "whole_run_repos_automatic": gbench(
+        "whole_run_bench", "BM_WholeRun/repos_automatic/iterations:3", "share_of_backend",
+        "whole run / backend alone, repos-automatic (kinematic: NC, PLC, PathGuard, trace)", "",
+        (AT_LEAST, 0.30, ">= 0.30")),
+    "whole_run_measure_shaft": gbench(
+        "whole_run_bench", "BM_WholeRun/measure_shaft/iterations:3", "share_of_backend",
+        "whole run / backend alone, measure-shaft (kinematic)", "", (AT_LEAST, 0.30, ">= 0.30")),
+    "whole_run_turning": gbench(
+        "whole_run_bench", "BM_WholeRun/turning/iterations:2", "share_of_backend",
+        "whole run / backend alone, turning (physics)", "", (AT_LEAST, 0.70, ">= 0.70")),
+    "whole_run_c_axis_switching": gbench(
+        "whole_run_bench", "BM_WholeRun/c_axis_switching/iterations:2", "share_of_backend",
+        "whole run / backend alone, c-axis-switching (physics)", "", (AT_LEAST, 0.70, ">= 0.70")),
     "study_cases": path(
         "study", ["cases_per_minute"], "REPOS study cases (vmt study)", "cases/min",
         (AT_LEAST, 1000, ">= 1000"), missing_note=STUDY_MISSING),

@@ -9,7 +9,7 @@ export GALLIUM_DRIVER=llvmpipe
 mkdir -p out/bench
 for b in backend_bench snapshot_bench render_bench axis_chain_eval nc_decode_bench block_search_bench \
   modbus_bench \
-  path_guard_bench trace_write_bench; do
+  path_guard_bench trace_write_bench whole_run_bench; do
   [ -x "$build/bench/$b" ] || continue
   echo "== $b"
   "$build/bench/$b" --benchmark_format=json --benchmark_out="out/bench/$b.json" \
