@@ -58,7 +58,8 @@ void WriteAll(int fd, const std::string& s, const std::string& path) {
   }
 }
 
-// Why a line of cases.jsonl is no case, or "".
+}  // namespace
+
 std::string LineError(const std::string& line, CaseResult& r) {
   r = nlohmann::ordered_json::parse(line, nullptr, false);
   if (r.is_discarded()) return "not JSON";
@@ -67,7 +68,9 @@ std::string LineError(const std::string& line, CaseResult& r) {
   return "";
 }
 
-}  // namespace
+std::string CaseJsonLine(const CaseResult& r) {
+  return r.dump(-1, ' ', false, common::kReplaceBadUtf8) + '\n';
+}
 
 std::string FileNameOf(const std::string& case_id) {
   std::string name;
@@ -143,7 +146,7 @@ void RewriteCaseFiles(const std::string& dir, const std::vector<CaseResult>& cas
   common::OutputFile csv(dir + "/cases.csv");
   csv.Write(CsvHeader());
   for (const CaseResult& r : cases) {
-    jsonl.Write(r.dump(-1, ' ', false, common::kReplaceBadUtf8) + '\n');
+    jsonl.Write(CaseJsonLine(r));
     csv.Write(CsvRow(r));
   }
   jsonl.Commit();

@@ -20,6 +20,12 @@ enum class TornLine {
   kError,    ///< merge, compare: the shard was not finished
 };
 
+/// Why a line of cases.jsonl (without its line break) is no case, or "" (r is the case).
+std::string LineError(const std::string& line, CaseResult& r);
+
+/// A case as its line of cases.jsonl.
+std::string CaseJsonLine(const CaseResult& r);
+
 /// The cases of a cases.jsonl; none if the file is not there. Every line must be a case (a JSON
 /// object with a "case" id): otherwise throws std::runtime_error listing the bad lines as
 /// "FILE:LINE: REASON", so that a corrupt file is never taken for a study of fewer cases.

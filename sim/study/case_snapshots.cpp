@@ -44,28 +44,44 @@ void WriteSnapshotIndex(const std::string& dir, const std::map<std::string, std:
                               j.dump(1, ' ', false, common::kReplaceBadUtf8) + "\n");
 }
 
-std::vector<std::string> WorstCaseIds(const std::vector<CaseResult>& results, int collisions) {
-  std::map<std::string, std::vector<const CaseResult*>> by_sub;
-  for (const CaseResult& r : results) by_sub[Str(r, "subroutine")].push_back(&r);
-  std::vector<std::string> ids;
-  for (auto& [sub, list] : by_sub) {
-    // The most severe first: the deepest crashes, then grazes.
-    std::stable_sort(list.begin(), list.end(),
-                     [](const CaseResult* a, const CaseResult* b) { return MoreSevere(*a, *b); });
-    int n = 0;
-    const CaseResult* tightest = nullptr;
-    for (const CaseResult* r : list) {
-      const std::string v = Str(*r, "verdict");
-      if (v == "collision" && n < collisions) ++n, ids.push_back(Str(*r, "case"));
-      if (v == "clear" && (*r)["min_clearance_mm"].is_number() &&
-          (!tightest ||
-           (*r)["min_clearance_mm"].get<double>() < (*tightest)["min_clearance_mm"].get<double>()))
-        tightest = r;
+void WorstCasePicker::Add(const CaseResult& r) {
+  Picked& p = by_sub_[Str(r, "subroutine")];
+  const std::string v = Str(r, "verdict");
+  if (v == "collision" && collisions_ > 0) {
+    const auto at =
+        std::upper_bound(p.worst.begin(), p.worst.end(), r,
+                         [](const CaseResult& a, const CaseResult& b) { return MoreSevere(a, b); });
+    if (at - p.worst.begin() < collisions_) {
+      p.worst.insert(at, r);
+      if (p.worst.size() > static_cast<size_t>(collisions_)) p.worst.pop_back();
     }
-    if (tightest && collisions > 0) ids.push_back(Str(*tightest, "case"));
   }
+  if (v == "clear" && r["min_clearance_mm"].is_number() &&
+      (!p.tightest ||
+       r["min_clearance_mm"].get<double>() < (*p.tightest)["min_clearance_mm"].get<double>()))
+    p.tightest = r;
+}
+
+std::vector<std::string> WorstCasePicker::Ids() const {
+  std::vector<std::string> ids;
+  for (const CaseResult& r : Results()) ids.push_back(Str(r, "case"));
   std::sort(ids.begin(), ids.end());
   return ids;
+}
+
+std::vector<CaseResult> WorstCasePicker::Results() const {
+  std::vector<CaseResult> out;
+  for (const auto& [sub, p] : by_sub_) {
+    out.insert(out.end(), p.worst.begin(), p.worst.end());
+    if (p.tightest && collisions_ > 0) out.push_back(*p.tightest);
+  }
+  return out;
+}
+
+std::vector<std::string> WorstCaseIds(const std::vector<CaseResult>& results, int collisions) {
+  WorstCasePicker picker(collisions);
+  for (const CaseResult& r : results) picker.Add(r);
+  return picker.Ids();
 }
 
 std::string SnapshotFileOf(const std::string& case_id) {

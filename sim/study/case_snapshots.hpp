@@ -7,6 +7,7 @@
 
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,25 @@ namespace vmt::sim::study {
 /// collisions (MoreSevere: the deepest crashes first) and the clear case with the smallest
 /// clearance (the first by id of equals).
 std::vector<std::string> WorstCaseIds(const std::vector<CaseResult>& results, int collisions);
+
+/// WorstCaseIds over cases given one at a time in id order, keeping only the picked ones.
+class WorstCasePicker {
+ public:
+  explicit WorstCasePicker(int collisions) : collisions_(collisions) {}
+  void Add(const CaseResult& r);
+  /// As WorstCaseIds.
+  std::vector<std::string> Ids() const;
+  /// The picked cases.
+  std::vector<CaseResult> Results() const;
+
+ private:
+  struct Picked {
+    std::vector<CaseResult> worst;  ///< the most severe collisions, most severe first
+    std::optional<CaseResult> tightest;
+  };
+  int collisions_;
+  std::map<std::string, Picked> by_sub_;
+};
 
 /// `snapshots/<FileNameOf(case id)>.png`.
 std::string SnapshotFileOf(const std::string& case_id);

@@ -18,6 +18,7 @@
 
 #include "common/output_file.hpp"
 #include "sim/study/case_files.hpp"
+#include "sim/study/case_merge.hpp"
 #include "sim/study/case_replay.hpp"
 #include "sim/study/case_snapshots.hpp"
 #include "sim/study/die_with_parent.hpp"
@@ -66,9 +67,7 @@ void Bar(size_t done, size_t total, double wall_s) {
   std::fflush(stderr);
 }
 
-std::string Tally(const std::vector<CaseResult>& cases) {
-  std::map<std::string, ClassCount> by;
-  for (const CaseResult& r : cases) by[r.value("subroutine", "")].Add(r);
+std::string Tally(const std::map<std::string, ClassCount>& by) {
   std::string s;
   for (const auto& [sub, c] : by)
     s += sub + ": " + std::to_string(c.cases) + " cases, " + std::to_string(c.clear) + " clear, " +
@@ -250,17 +249,20 @@ StudySummary RunStudy(const StudyOptions& o) {
     ref = LoadOrRunReference(scene, o.out_dir, stop_asked);
   } catch (const ReferenceStopped&) {
     summary.stopped = o.stop();
-    summary.finished = Deduplicated(ReadCases(o.out_dir + "/cases.jsonl")).size();
+    std::set<std::string> ids;
+    ForEachCase(o.out_dir + "/cases.jsonl",
+                [&](const CaseResult& r) { ids.insert(r["case"].get<std::string>()); });
+    summary.finished = ids.size();
     return summary;
   }
   const std::vector<Interruption> interruptions = Interruptions(plan, *ref);
   const std::vector<StudyCase> cases = ShareOf(EnumerateCases(plan, interruptions), source);
 
   // What the folder holds already (whole lines only) is kept and skipped.
-  const std::vector<CaseResult> held = Deduplicated(ReadCases(o.out_dir + "/cases.jsonl"));
-  RewriteCaseFiles(o.out_dir, held);
+  const std::string jsonl = o.out_dir + "/cases.jsonl";
   std::set<std::string> done;
-  for (const CaseResult& r : held) done.insert(r["case"].get<std::string>());
+  MergeCaseFiles({jsonl}, o.out_dir, TornLine::kLeftOut,
+                 [&](const CaseResult& r) { done.insert(r["case"].get<std::string>()); });
   std::vector<StudyCase> todo;
   for (const StudyCase& c : cases)
     if (!done.count(c.id)) todo.push_back(c);
@@ -269,15 +271,20 @@ StudySummary RunStudy(const StudyOptions& o) {
   summary.skipped = cases.size() - todo.size();
   summary.run = todo.size();
   const double cpu0 = ChildrenCpuSeconds();
-  const WorkersEnd workers = RunWorkers(o, scene, plan, interruptions, todo,
-                                        CountLines(o.out_dir + "/cases.jsonl"), wall0);
+  const WorkersEnd workers =
+      RunWorkers(o, scene, plan, interruptions, todo, CountLines(jsonl), wall0);
   summary.cases_cpu_s = ChildrenCpuSeconds() - cpu0;
   // The files in case id order, whatever the workers' interleaving: the same study gives the
   // same bytes.
-  const std::vector<CaseResult> all = Deduplicated(ReadCases(o.out_dir + "/cases.jsonl"));
-  RewriteCaseFiles(o.out_dir, all);
+  // Merged as they stream by: the tally and the worst cases keep bounded state.
   std::set<std::string> finished;
-  for (const CaseResult& r : all) finished.insert(r["case"].get<std::string>());
+  std::map<std::string, ClassCount> tally;
+  WorstCasePicker worst(o.snapshots);
+  MergeCaseFiles({jsonl}, o.out_dir, TornLine::kLeftOut, [&](const CaseResult& r) {
+    finished.insert(r["case"].get<std::string>());
+    tally[r.value("subroutine", "")].Add(r);
+    worst.Add(r);
+  });
   summary.finished = static_cast<size_t>(std::count_if(
       cases.begin(), cases.end(), [&](const StudyCase& c) { return finished.count(c.id) > 0; }));
   summary.stopped = workers.stopped;
@@ -287,8 +294,8 @@ StudySummary RunStudy(const StudyOptions& o) {
   }
   if (!workers.failed && o.snapshots > 0) {
     const auto shots0 = std::chrono::steady_clock::now();
-    summary.snapshots = SnapshotCases(scene, plan, interruptions, cases, all,
-                                      WorstCaseIds(all, o.snapshots), o.out_dir, stop_asked)
+    summary.snapshots = SnapshotCases(scene, plan, interruptions, cases, worst.Results(),
+                                      worst.Ids(), o.out_dir, stop_asked)
                             .size();
     summary.snapshots_wall_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - shots0).count();
@@ -302,24 +309,22 @@ StudySummary RunStudy(const StudyOptions& o) {
     throw std::runtime_error("a study worker failed; the finished cases are kept");
   summary.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   summary.cases_per_minute = summary.wall_s > 0 ? summary.run / summary.wall_s * 60 : 0;
-  summary.text = Tally(all);
+  summary.text = Tally(tally);
   return summary;
 }
 
 size_t MergeStudies(const std::vector<std::string>& dirs, const std::string& out_dir) {
-  std::vector<CaseResult> all;
+  std::vector<std::string> inputs;
   std::string reference;
   for (const std::string& d : dirs) {
     if (!std::filesystem::exists(d + "/cases.jsonl"))
       throw std::runtime_error(d + ": no cases.jsonl (not a study folder)");
-    std::vector<CaseResult> some = ReadCases(d + "/cases.jsonl", TornLine::kError);
-    all.insert(all.end(), std::make_move_iterator(some.begin()),
-               std::make_move_iterator(some.end()));
+    inputs.push_back(d + "/cases.jsonl");
     if (reference.empty() && std::filesystem::exists(d + "/reference.json"))
       reference = ReadText(d + "/reference.json");
   }
-  all = Deduplicated(std::move(all));
-  RewriteCaseFiles(out_dir, all);
+  // Each shard's file is in case id order: a k-way merge, a case per shard in memory.
+  const size_t merged = MergeCaseFiles(inputs, out_dir, TornLine::kError);
   // The shards' pictures (each shard pictured its own worst cases).
   std::map<std::string, std::string> shots;
   for (const std::string& d : dirs)
@@ -342,7 +347,7 @@ size_t MergeStudies(const std::vector<std::string>& dirs, const std::string& out
       break;
     }
   WriteReport(out_dir, "REPOS study (merged)");
-  return all.size();
+  return merged;
 }
 
 }  // namespace vmt::sim::study
