@@ -50,7 +50,7 @@ struct PlcLinkWatch {
   int64_t timeout_cycles = 1;
   std::chrono::steady_clock::duration timeout{};
   uint64_t seen_requests = 0;  ///< the PLC's writes so far
-  int64_t heard_cycle = 0;  ///< cycle before which the last request was seen
+  int64_t heard_cycle = 0;     ///< cycle before which the last request was seen
   std::chrono::steady_clock::time_point heard_at;
   bool lost = false;
   int losses = 0;
@@ -176,6 +176,90 @@ std::string ServeStation(SceneRun& run, station::StationSession& station,
   return "end of scene";
 }
 
+// How the serving loop ended, and what it measured of real time and of the PLC's link.
+struct ServeOutcome {
+  std::string stop_reason;
+  bool stopped_early = false;
+  std::vector<double> lateness_ms;
+  RealtimeLateness late;
+  PlcLinkWatch link;
+};
+
+// serve.json: how the serve went, beside the run's own files.
+nlohmann::ordered_json ServeJson(const ServeOptions& o, const SceneRun& run, const RunResult& r,
+                                 const ServeOutcome& out, const control::plc::ModbusServer* server,
+                                 const station::StationSession* station) {
+  nlohmann::ordered_json serve = {
+      {"scene", run.scene().name},          {"mode", o.lockstep ? "lockstep" : "realtime"},
+      {"stopped_early", out.stopped_early}, {"stop_reason", out.stop_reason},
+      {"simulated_time_s", run.time_s()},   {"trace_digest", r.trace_digest}};
+  if (server) serve["modbus"] = ModbusStatsJson(server->stats());
+  if (station)
+    serve["station"] = {{"port", station->port()}, {"operator_steps", run.operated().size()}};
+  if (server && o.lockstep) {
+    serve["idle_timeout_s"] = o.idle_timeout_s;
+  } else if (server) {
+    serve["cycle_lateness_ms"] = {{"p50", Percentile(out.lateness_ms, 0.5)},
+                                  {"p99", Percentile(out.lateness_ms, 0.99)},
+                                  {"max", Percentile(out.lateness_ms, 1.0)}};
+    out.late.AddTo(serve);
+    serve["plc_link"] = {{"timeout_ms", o.plc_timeout_ms},
+                         {"timeout_cycles", out.link.timeout_cycles},
+                         {"lost", out.link.losses}};
+  }
+  return serve;
+}
+
+// After the loop: serve.json, the console's summary, the station kept up on the ended run
+// until Ctrl-C, and the exit code.
+int Conclude(const ServeOptions& o, SceneRun& run, const RunResult& r, const ServeOutcome& out,
+             const control::plc::ModbusServer* server, station::StationSession* station) {
+  std::vector<std::string> write_errors = r.write_errors;
+  try {
+    if (!o.out_dir.empty())
+      common::WriteFileAtomically(
+          o.out_dir + "/serve.json",
+          ServeJson(o, run, r, out, server, station).dump(2, ' ', false, common::kReplaceBadUtf8) +
+              '\n');
+  } catch (const common::WriteError& e) {
+    write_errors.push_back(e.what());
+  }
+  std::printf("%s: %.3f s simulated, trace digest %s", run.scene().name.c_str(), run.time_s(),
+              r.trace_digest.c_str());
+  if (server)
+    std::printf(", %llu Modbus requests, %llu exceptions",
+                static_cast<unsigned long long>(server->stats().requests_served),
+                static_cast<unsigned long long>(server->stats().exceptions_sent));
+  std::printf("\n");
+  if (server && !o.lockstep)
+    std::printf("cycle lateness: p50 %.3f ms, p99 %.3f ms, max %.3f ms\n",
+                Percentile(out.lateness_ms, 0.5), Percentile(out.lateness_ms, 0.99),
+                Percentile(out.lateness_ms, 1.0));
+  for (const std::string& f : r.failures) std::fprintf(stderr, "FAILED: %s\n", f.c_str());
+  // Real time not held is a failed run, as a failed expectation is: what the PLC saw was not
+  // the machine's timing.
+  const bool late_failed = server && !o.lockstep && !out.late.held() && !o.allow_late;
+  if (late_failed) std::fprintf(stderr, "FAILED: %s\n", out.late.Failure().c_str());
+  if (station && !out.stopped_early) {
+    // The page keeps showing the end of the run; what it sends now has no run to act on.
+    std::printf("vmt serve: the scene has ended; the operator station stays up until Ctrl-C\n");
+    std::fflush(stdout);
+    while (!g_stop) {
+      station->DropInputs();
+      station->Publish(run, "ended", true);
+      station->Wait(std::chrono::milliseconds(100));
+    }
+  }
+  for (const std::string& e : write_errors)
+    std::fprintf(stderr, "vmt serve: error: %s\n", e.c_str());
+  if (out.stopped_early)
+    std::fprintf(stderr, "vmt serve: stopped early at %.4f s: %s\n", run.time_s(),
+                 out.stop_reason.c_str());
+  if (!write_errors.empty()) return 2;  // a lost file outweighs an early stop
+  if (out.stopped_early) return kServeStoppedEarly;
+  return r.ok() && !late_failed ? 0 : 1;
+}
+
 }  // namespace
 
 int Serve(const ServeOptions& o) {
@@ -292,81 +376,14 @@ int Serve(const ServeOptions& o) {
     if (server) server->DropClients();
     std::fprintf(stderr, "vmt serve: %.4f s: fault: every Modbus client dropped\n", run.time_s());
   };
-  std::vector<double> lateness_ms;
-  RealtimeLateness late{.limit_ms = o.late_limit_ms};
-  PlcLinkWatch link;
-  const std::string stop_reason = !server ? ServeStation(run, *station, cycle)
-                                  : o.lockstep
-                                      ? ServeLockstep(o, run, *server, drop_if_asked, station.get())
-                                      : ServeRealtime(o, run, *server, cycle, drop_if_asked,
-                                                      lateness_ms, late, link, station.get());
-  const bool stopped_early = !run.done();  // Finish makes the tick it is at the run's last
-  const RunResult r = run.Finish(stop_reason);
-  const control::plc::ModbusServer::Stats st =
-      server ? server->stats() : control::plc::ModbusServer::Stats{};
-  nlohmann::ordered_json serve = {{"scene", scene.name},
-                                  {"mode", o.lockstep ? "lockstep" : "realtime"},
-                                  {"stopped_early", stopped_early},
-                                  {"stop_reason", stop_reason},
-                                  {"simulated_time_s", run.time_s()},
-                                  {"trace_digest", r.trace_digest}};
-  if (server) serve["modbus"] = ModbusStatsJson(st);
-  if (station)
-    serve["station"] = {{"port", station->port()}, {"operator_steps", run.operated().size()}};
-  if (server && o.lockstep) {
-    serve["idle_timeout_s"] = o.idle_timeout_s;
-  } else if (server) {
-    serve["cycle_lateness_ms"] = {{"p50", Percentile(lateness_ms, 0.5)},
-                                  {"p99", Percentile(lateness_ms, 0.99)},
-                                  {"max", Percentile(lateness_ms, 1.0)}};
-    late.AddTo(serve);
-    serve["plc_link"] = {{"timeout_ms", o.plc_timeout_ms},
-                         {"timeout_cycles", link.timeout_cycles},
-                         {"lost", link.losses}};
-  }
-  std::vector<std::string> write_errors = r.write_errors;
-  try {
-    if (!o.out_dir.empty())
-      common::WriteFileAtomically(o.out_dir + "/serve.json",
-                                  serve.dump(2, ' ', false, common::kReplaceBadUtf8) + '\n');
-  } catch (const common::WriteError& e) {
-    write_errors.push_back(e.what());
-  }
-  std::printf("%s: %.3f s simulated, trace digest %s", scene.name.c_str(), run.time_s(),
-              r.trace_digest.c_str());
-  if (server)
-    std::printf(", %llu Modbus requests, %llu exceptions",
-                static_cast<unsigned long long>(st.requests_served),
-                static_cast<unsigned long long>(st.exceptions_sent));
-  std::printf("\n");
-  if (server && !o.lockstep)
-    std::printf("cycle lateness: p50 %.3f ms, p99 %.3f ms, max %.3f ms\n",
-                Percentile(lateness_ms, 0.5), Percentile(lateness_ms, 0.99),
-                Percentile(lateness_ms, 1.0));
-  for (const std::string& f : r.failures) std::fprintf(stderr, "FAILED: %s\n", f.c_str());
-  // Real time not held is a failed run, as a failed expectation is: what the PLC saw was not
-  // the machine's timing.
-  const bool late_failed = server && !o.lockstep && !late.held() && !o.allow_late;
-  if (late_failed) std::fprintf(stderr, "FAILED: %s\n", late.Failure().c_str());
-  if (station && !stopped_early) {
-    // The page keeps showing the end of the run; what it sends now has no run to act on.
-    std::printf("vmt serve: the scene has ended; the operator station stays up until Ctrl-C\n");
-    std::fflush(stdout);
-    while (!g_stop) {
-      station->DropInputs();
-      station->Publish(run, "ended", true);
-      station->Wait(std::chrono::milliseconds(100));
-    }
-  }
-  for (const std::string& e : write_errors)
-    std::fprintf(stderr, "vmt serve: error: %s\n", e.c_str());
-  if (stopped_early) {
-    std::fprintf(stderr, "vmt serve: stopped early at %.4f s: %s\n", run.time_s(),
-                 stop_reason.c_str());
-  }
-  if (!write_errors.empty()) return 2;  // a lost file outweighs an early stop
-  if (stopped_early) return kServeStoppedEarly;
-  return r.ok() && !late_failed ? 0 : 1;
+  ServeOutcome out{.late = {.limit_ms = o.late_limit_ms}};
+  out.stop_reason = !server ? ServeStation(run, *station, cycle)
+                    : o.lockstep
+                        ? ServeLockstep(o, run, *server, drop_if_asked, station.get())
+                        : ServeRealtime(o, run, *server, cycle, drop_if_asked, out.lateness_ms,
+                                        out.late, out.link, station.get());
+  out.stopped_early = !run.done();  // Finish makes the tick it is at the run's last
+  return Conclude(o, run, run.Finish(out.stop_reason), out, server.get(), station.get());
 }
 
 }  // namespace vmt::sim
