@@ -262,6 +262,98 @@ int MachineModel::DriveIndex(const std::string& n) const {
   return -1;
 }
 
+namespace {
+
+// The machine's inputs, outputs, keys and selectors (`io:`).
+void ReadIo(MachineModel& m, const YamlNode& io) {
+  for (size_t i = 0; i < io.size(); ++i) {
+    io[i].AllowKeys({"name", "dir", "positions", "initial"});
+    const std::string dir = io[i]["dir"].String();
+    if (dir != "in" && dir != "out" && dir != "key" && dir != "selector")
+      io[i]["dir"].Fail("expected in, out, key or selector");
+    if (control::IndexOf(m.io, io[i]["name"].String()) >= 0) io[i]["name"].Fail("duplicate");
+    control::IoInfo point;
+    point.name = io[i]["name"].String();
+    point.is_output = dir == "out";
+    point.key = dir == "key" || dir == "selector";
+    if (dir == "selector") {
+      const YamlNode positions = io[i]["positions"];
+      if (!positions.IsSequence() || positions.size() < 2 || positions.size() > 64)
+        positions.Fail("expected a list of 2 to 64 positions (integers)");
+      for (size_t k = 0; k < positions.size(); ++k) {
+        const int v = positions[k].Int();
+        if (v < 0 || v > 32767) positions[k].Fail("expected a position 0..32767");
+        if (k > 0 && v <= point.positions.back())
+          positions[k].Fail("expected the positions in increasing order");
+        point.positions.push_back(v);
+      }
+      point.initial = io[i].Has("initial") ? io[i]["initial"].Int() : point.positions.front();
+      if (std::find(point.positions.begin(), point.positions.end(), point.initial) ==
+          point.positions.end())
+        io[i]["initial"].Fail("expected one of the positions");
+    } else {
+      for (const char* only : {"positions", "initial"})
+        if (io[i].Has(only)) io[i][only].Fail("only a selector (dir: selector) has it");
+    }
+    m.io.push_back(std::move(point));
+  }
+}
+
+// The <collision> parts that cut the workpiece (`cutting_parts:`).
+void ReadCuttingParts(MachineModel& m, const YamlNode& cs) {
+  if (!cs.IsSequence()) cs.Fail("expected a list of <collision> names");
+  for (size_t i = 0; i < cs.size(); ++i) {
+    const std::string name = cs[i].String();
+    CuttingPart found;
+    for (size_t l = 0; l < m.links.size() && found.link < 0; ++l)
+      for (size_t c = 0; c < m.links[l].collisions.size(); ++c)
+        if (m.links[l].collisions[c].name == name)
+          found = {static_cast<int>(l), static_cast<int>(c)};
+    if (found.link < 0) cs[i].Fail("no <collision name=\"" + name + "\"> in the URDF");
+    m.cutting_parts.push_back(found);
+  }
+}
+
+// Gears and dog clutches between joints (`couplings:`).
+void ReadCouplings(MachineModel& m, const YamlNode& cs) {
+  for (size_t i = 0; i < cs.size(); ++i) {
+    const YamlNode c = cs[i];
+    const std::string type = c["type"].String();
+    if (type == "gear") {
+      c.AllowKeys({"name", "type", "motor", "load", "ratio"});
+      GearCoupling g{c["name"].String(), RequireJoint(m, c["motor"]), RequireJoint(m, c["load"]),
+                     c["ratio"].Double()};
+      if (g.ratio == 0) c["ratio"].Fail("must not be 0");
+      m.gears.push_back(g);
+    } else if (type == "dog_clutch") {
+      c.AllowKeys({"name", "type", "motor", "load", "ratio", "teeth", "phase_tolerance",
+                   "max_relative_speed", "engage_time", "release_time", "valve_engage",
+                   "valve_release", "sensor_engaged", "sensor_released"});
+      DogClutch k;
+      k.name = c["name"].String();
+      k.motor_joint = RequireJoint(m, c["motor"]);
+      k.load_joint = RequireJoint(m, c["load"]);
+      k.ratio = c["ratio"].Double();
+      if (k.ratio == 0) c["ratio"].Fail("must not be 0");
+      k.teeth = c["teeth"].Int(1, 3600);
+      if (k.teeth < 1) c["teeth"].Fail("must be >= 1");
+      k.phase_tolerance_rad = c["phase_tolerance"].Double(0, 360) * kRadPerDeg;
+      k.max_relative_speed_rad_s = c["max_relative_speed"].Double() * kRadPerDeg;
+      k.engage_time_s = c["engage_time"].Double(0, kMaxActionSeconds);
+      k.release_time_s = c["release_time"].Double(0, kMaxActionSeconds);
+      k.valve_engage = RequireIo(m, c["valve_engage"], true);
+      k.valve_release = RequireIo(m, c["valve_release"], true);
+      k.sensor_engaged = RequireIo(m, c["sensor_engaged"], false);
+      k.sensor_released = RequireIo(m, c["sensor_released"], false);
+      m.clutches.push_back(k);
+    } else {
+      c["type"].Fail("expected gear or dog_clutch, got \"" + type + "\"");
+    }
+  }
+}
+
+}  // namespace
+
 MachineModel LoadMachineModel(const std::string& machine_yaml_path) {
   const YamlNode root = YamlNode::LoadFile(machine_yaml_path);
   root.AllowKeys({"machine", "urdf", "io", "drives", "couplings", "actuators", "position_switches",
@@ -273,57 +365,8 @@ MachineModel LoadMachineModel(const std::string& machine_yaml_path) {
   m.urdf_path = (std::filesystem::path(machine_yaml_path).parent_path() / urdf.String()).string();
   if (!std::filesystem::exists(m.urdf_path)) urdf.Fail("URDF file not found: " + m.urdf_path);
   LoadUrdf(m.urdf_path, m);
-
-  if (root.Has("io")) {
-    const YamlNode io = root["io"];
-    for (size_t i = 0; i < io.size(); ++i) {
-      io[i].AllowKeys({"name", "dir", "positions", "initial"});
-      const std::string dir = io[i]["dir"].String();
-      if (dir != "in" && dir != "out" && dir != "key" && dir != "selector")
-        io[i]["dir"].Fail("expected in, out, key or selector");
-      if (control::IndexOf(m.io, io[i]["name"].String()) >= 0) io[i]["name"].Fail("duplicate");
-      control::IoInfo point;
-      point.name = io[i]["name"].String();
-      point.is_output = dir == "out";
-      point.key = dir == "key" || dir == "selector";
-      if (dir == "selector") {
-        const YamlNode positions = io[i]["positions"];
-        if (!positions.IsSequence() || positions.size() < 2 || positions.size() > 64)
-          positions.Fail("expected a list of 2 to 64 positions (integers)");
-        for (size_t k = 0; k < positions.size(); ++k) {
-          const int v = positions[k].Int();
-          if (v < 0 || v > 32767) positions[k].Fail("expected a position 0..32767");
-          if (k > 0 && v <= point.positions.back())
-            positions[k].Fail("expected the positions in increasing order");
-          point.positions.push_back(v);
-        }
-        point.initial = io[i].Has("initial") ? io[i]["initial"].Int() : point.positions.front();
-        if (std::find(point.positions.begin(), point.positions.end(), point.initial) ==
-            point.positions.end())
-          io[i]["initial"].Fail("expected one of the positions");
-      } else {
-        for (const char* only : {"positions", "initial"})
-          if (io[i].Has(only)) io[i][only].Fail("only a selector (dir: selector) has it");
-      }
-      m.io.push_back(std::move(point));
-    }
-  }
-
-  if (root.Has("cutting_parts")) {
-    const YamlNode cs = root["cutting_parts"];
-    if (!cs.IsSequence()) cs.Fail("expected a list of <collision> names");
-    for (size_t i = 0; i < cs.size(); ++i) {
-      const std::string name = cs[i].String();
-      CuttingPart found;
-      for (size_t l = 0; l < m.links.size() && found.link < 0; ++l)
-        for (size_t c = 0; c < m.links[l].collisions.size(); ++c)
-          if (m.links[l].collisions[c].name == name)
-            found = {static_cast<int>(l), static_cast<int>(c)};
-      if (found.link < 0) cs[i].Fail("no <collision name=\"" + name + "\"> in the URDF");
-      m.cutting_parts.push_back(found);
-    }
-  }
-
+  if (root.Has("io")) ReadIo(m, root["io"]);
+  if (root.Has("cutting_parts")) ReadCuttingParts(m, root["cutting_parts"]);
   const YamlNode drives = root["drives"];
   for (size_t i = 0; i < drives.size(); ++i) {
     DriveParams p = ReadDrive(m, drives[i]);
@@ -331,44 +374,7 @@ MachineModel LoadMachineModel(const std::string& machine_yaml_path) {
     m.drives.push_back(std::move(p));
   }
 
-  if (root.Has("couplings")) {
-    const YamlNode cs = root["couplings"];
-    for (size_t i = 0; i < cs.size(); ++i) {
-      const YamlNode c = cs[i];
-      const std::string type = c["type"].String();
-      if (type == "gear") {
-        c.AllowKeys({"name", "type", "motor", "load", "ratio"});
-        GearCoupling g{c["name"].String(), RequireJoint(m, c["motor"]), RequireJoint(m, c["load"]),
-                       c["ratio"].Double()};
-        if (g.ratio == 0) c["ratio"].Fail("must not be 0");
-        m.gears.push_back(g);
-      } else if (type == "dog_clutch") {
-        c.AllowKeys({"name", "type", "motor", "load", "ratio", "teeth", "phase_tolerance",
-                     "max_relative_speed", "engage_time", "release_time", "valve_engage",
-                     "valve_release", "sensor_engaged", "sensor_released"});
-        DogClutch k;
-        k.name = c["name"].String();
-        k.motor_joint = RequireJoint(m, c["motor"]);
-        k.load_joint = RequireJoint(m, c["load"]);
-        k.ratio = c["ratio"].Double();
-        if (k.ratio == 0) c["ratio"].Fail("must not be 0");
-        k.teeth = c["teeth"].Int(1, 3600);
-        if (k.teeth < 1) c["teeth"].Fail("must be >= 1");
-        k.phase_tolerance_rad = c["phase_tolerance"].Double(0, 360) * kRadPerDeg;
-        k.max_relative_speed_rad_s = c["max_relative_speed"].Double() * kRadPerDeg;
-        k.engage_time_s = c["engage_time"].Double(0, kMaxActionSeconds);
-        k.release_time_s = c["release_time"].Double(0, kMaxActionSeconds);
-        k.valve_engage = RequireIo(m, c["valve_engage"], true);
-        k.valve_release = RequireIo(m, c["valve_release"], true);
-        k.sensor_engaged = RequireIo(m, c["sensor_engaged"], false);
-        k.sensor_released = RequireIo(m, c["sensor_released"], false);
-        m.clutches.push_back(k);
-      } else {
-        c["type"].Fail("expected gear or dog_clutch, got \"" + type + "\"");
-      }
-    }
-  }
-
+  if (root.Has("couplings")) ReadCouplings(m, root["couplings"]);
   if (root.Has("actuators")) ReadActuators(m, root["actuators"]);
   if (root.Has("position_switches")) ReadPositionSwitches(m, root["position_switches"]);
   CheckSwitchesDrivenOnce(m, root);
