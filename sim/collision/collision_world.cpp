@@ -174,11 +174,19 @@ void CollisionWorld::SetAdded(const std::vector<CylinderPart>& added) {
 
 void CollisionWorld::Pose(const std::vector<double>& q) {
   X_WorldLink_ = LinkPoses(*model_, q);
-  for (int i = 0; i < size(); ++i) {
-    const Eigen::Isometry3d X = X_WorldLink_[parts_[i].link] * parts_[i].X_LinkPart;
-    fcl_->objects[i]->setTransform(X);
-    fcl_->objects[i]->computeAABB();
-  }
+  for (int i = 0; i < size(); ++i) PosePart(i);
+}
+
+void CollisionWorld::PosePair(const std::vector<double>& q, int a, int b) {
+  X_WorldLink_ = LinkPoses(*model_, q);
+  PosePart(a);
+  PosePart(b);
+}
+
+void CollisionWorld::PosePart(int i) {
+  const Eigen::Isometry3d X = X_WorldLink_[parts_[i].link] * parts_[i].X_LinkPart;
+  fcl_->objects[i]->setTransform(X);
+  fcl_->objects[i]->computeAABB();
 }
 
 double CollisionWorld::Distance(int a, int b, Eigen::Vector3d* point_a,
@@ -194,6 +202,11 @@ double CollisionWorld::Distance(int a, int b, Eigen::Vector3d* point_a,
 
 double CollisionWorld::BoxDistance(int a, int b) const {
   return fcl_->objects[a]->getAABB().distance(fcl_->objects[b]->getAABB());
+}
+
+Eigen::AlignedBox3d CollisionWorld::Box(int i) const {
+  const fcl::AABBd& box = fcl_->objects[i]->getAABB();
+  return Eigen::AlignedBox3d(box.min_, box.max_);
 }
 
 bool CollisionWorld::Collide(int a, int b, Eigen::Vector3d* point) const {

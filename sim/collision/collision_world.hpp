@@ -72,6 +72,9 @@ class CollisionWorld {
 
   /// Poses every part for the joint positions (SI, one per model joint).
   void Pose(const std::vector<double>& q);
+  /// Poses only parts a and b (and the links) for q, to the same bits as Pose; the other parts
+  /// keep their poses. A pair's queries along a path need no more.
+  void PosePair(const std::vector<double>& q, int a, int b);
   const Eigen::Isometry3d& X_WorldLink(int link) const { return X_WorldLink_[link]; }
   /// Clearance between two parts at the current poses, m; 0 when they touch or overlap. The
   /// nearest points (world, m) when wanted.
@@ -79,6 +82,8 @@ class CollisionWorld {
                   Eigen::Vector3d* point_b = nullptr) const;
   /// A lower bound of Distance from the parts' world-aligned bounding boxes: cheap.
   double BoxDistance(int a, int b) const;
+  /// The part's world-aligned bounding box at its current pose (the one BoxDistance uses), m.
+  Eigen::AlignedBox3d Box(int i) const;
   /// Whether the two parts touch or overlap at the current poses; a contact point (world, m).
   bool Collide(int a, int b, Eigen::Vector3d* point = nullptr) const;
   int64_t queries() const { return queries_; }
@@ -93,6 +98,7 @@ class CollisionWorld {
   std::vector<char> aside_;  ///< per machine part
   bool measuring_ = false;
   std::vector<Eigen::Isometry3d> X_WorldLink_;
+  void PosePart(int i);
   mutable int64_t queries_ = 0;
 };
 

@@ -65,6 +65,65 @@ std::vector<double> Lerp(const std::vector<double>& a, const std::vector<double>
   return q;
 }
 
+struct Pair {
+  int a, b;
+  double bound;  ///< how fast the pair can approach, m per unit of u
+};
+
+/// The pairs that move relative to each other on the move, with the bound of their approach
+/// speed. `world` is posed at the start.
+std::vector<Pair> MovingPairs(const CollisionWorld& world, const std::vector<double>& dq) {
+  const MachineModel& m = world.model();
+  std::vector<std::vector<int>> chains(m.links.size());
+  size_t depth = 0;
+  for (size_t l = 0; l < m.links.size(); ++l) {
+    chains[l] = Chain(m, static_cast<int>(l));
+    depth = std::max(depth, chains[l].size());
+  }
+  // A part's bound depends only on where its chain parts from the other part's: worked out
+  // once per part and depth, not once per pair.
+  std::vector<double> bounds(static_cast<size_t>(world.size()) * (depth + 1), -1);
+  auto bound_of = [&](int part, size_t common) {
+    double& bound = bounds[static_cast<size_t>(part) * (depth + 1) + common];
+    if (bound < 0) bound = ChainBound(world, part, chains[world.part(part).link], common, dq);
+    return bound;
+  };
+  std::vector<Pair> pairs;
+  for (int a = 0; a < world.size(); ++a)
+    for (int b = a + 1; b < world.size(); ++b) {
+      if (world.MayTouch(a, b)) continue;
+      // A measuring sphere resting on the part as the move starts (the measurement just
+      // latched: the escape, or the next approach after a PROBE without escape) may leave it.
+      if (world.Measures(a, b) && world.Collide(a, b)) continue;
+      const size_t common = CommonDepth(chains[world.part(a).link], chains[world.part(b).link]);
+      const double bound = bound_of(a, common) + bound_of(b, common);
+      if (bound > 0) pairs.push_back({a, b, bound});
+    }
+  return pairs;
+}
+
+/// Where only slides move, every part keeps its rotation and its bounding box slides in a
+/// straight line with u: the box spanning its start and end boxes holds it all the way. Empty
+/// when a rotation moves. Leaves `world` posed at the start.
+std::vector<Eigen::AlignedBox3d> SlidingBoxes(CollisionWorld& world,
+                                              const std::vector<double>& q_from,
+                                              const std::vector<double>& q_to,
+                                              const std::vector<double>& dq) {
+  const MachineModel& m = world.model();
+  bool sliding = true;
+  for (size_t j = 0; j < dq.size() && j < m.joints.size(); ++j)
+    sliding = sliding && (dq[j] == 0 || m.joints[j].type == JointType::kPrismatic ||
+                          m.joints[j].type == JointType::kFixed);
+  std::vector<Eigen::AlignedBox3d> boxes;
+  if (sliding) {
+    world.Pose(q_to);
+    for (int i = 0; i < world.size(); ++i) boxes.push_back(world.Box(i));
+  }
+  world.Pose(q_from);
+  for (size_t i = 0; i < boxes.size(); ++i) boxes[i].extend(world.Box(static_cast<int>(i)));
+  return boxes;
+}
+
 }  // namespace
 
 double MotionBound(const CollisionWorld& world, int part, const std::vector<double>& q_from,
@@ -77,33 +136,11 @@ double MotionBound(const CollisionWorld& world, int part, const std::vector<doub
 StraightMoveCheck CheckStraightMove(CollisionWorld& world, const std::vector<double>& q_from,
                                     const std::vector<double>& q_to,
                                     const StraightMoveOptions& options) {
-  const MachineModel& m = world.model();
   StraightMoveCheck out;
   std::vector<double> dq(q_from.size());
   for (size_t i = 0; i < dq.size(); ++i) dq[i] = q_to[i] - q_from[i];
-  std::vector<std::vector<int>> chains(m.links.size());
-  for (size_t l = 0; l < m.links.size(); ++l) chains[l] = Chain(m, static_cast<int>(l));
-
-  // The pairs that move relative to each other, with the bound of their approach speed.
-  struct Pair {
-    int a, b;
-    double bound;
-  };
-  std::vector<Pair> pairs;
-  world.Pose(q_from);
-  for (int a = 0; a < world.size(); ++a)
-    for (int b = a + 1; b < world.size(); ++b) {
-      if (world.MayTouch(a, b)) continue;
-      // A measuring sphere resting on the part as the move starts (the measurement just
-      // latched: the escape, or the next approach after a PROBE without escape) may leave it.
-      if (world.Measures(a, b) && world.Collide(a, b)) continue;
-      const auto& ca = chains[world.part(a).link];
-      const auto& cb = chains[world.part(b).link];
-      const size_t common = CommonDepth(ca, cb);
-      const double bound =
-          ChainBound(world, a, ca, common, dq) + ChainBound(world, b, cb, common, dq);
-      if (bound > 0) pairs.push_back({a, b, bound});
-    }
+  const std::vector<Eigen::AlignedBox3d> swept = SlidingBoxes(world, q_from, q_to, dq);
+  const std::vector<Pair> pairs = MovingPairs(world, dq);
 
   auto tolerance = [&](double clearance) {
     return std::max(options.clearance_absolute_m, options.clearance_relative * clearance);
@@ -131,11 +168,18 @@ StraightMoveCheck CheckStraightMove(CollisionWorld& world, const std::vector<dou
   double u_end = 1;  // nothing after the first contact found so far matters
   for (const auto& [p, box0] : start) {
     if (box0 - p.bound * u_end > out.min_clearance_m) continue;  // never closer than the minimum
+    // Boxes that stay apart all the way by more than any clearance the pair could still note,
+    // or step to a contact check at: the pair would make no query and change nothing. (The
+    // margin covers rounding in the boxes, far below it.)
+    const double tol = std::abs(tolerance(out.min_clearance_m));
+    if (!swept.empty() && swept[p.a].exteriorDistance(swept[p.b]) >
+                              out.min_clearance_m + 2 * tol + std::abs(options.resolution_m) + 1e-9)
+      continue;
     ++out.pairs_checked;
     double u = 0;
     bool contact = false;
     while (u < u_end) {
-      if (u > 0) world.Pose(Lerp(q_from, q_to, u));
+      if (u > 0) world.PosePair(Lerp(q_from, q_to, u), p.a, p.b);
       // A lower bound of the clearance here: the boxes' while they are far, else the exact one.
       double d = world.BoxDistance(p.a, p.b);
       if (d <= out.min_clearance_m + tolerance(out.min_clearance_m)) {
@@ -153,13 +197,13 @@ StraightMoveCheck CheckStraightMove(CollisionWorld& world, const std::vector<dou
       const double gap = std::min(d, d - out.min_clearance_m + tolerance(out.min_clearance_m));
       const double u_next = std::min(u_end, u + std::max(gap, options.resolution_m) / p.bound);
       if (gap < options.resolution_m) {
-        world.Pose(Lerp(q_from, q_to, u_next));
+        world.PosePair(Lerp(q_from, q_to, u_next), p.a, p.b);
         if (world.Collide(p.a, p.b)) {
           // Bisect: u clear, u_next touching.
           double lo = u, hi = u_next;
           while (hi - lo > du_resolution) {
             const double mid = (lo + hi) / 2;
-            world.Pose(Lerp(q_from, q_to, mid));
+            world.PosePair(Lerp(q_from, q_to, mid), p.a, p.b);
             (world.Collide(p.a, p.b) ? hi : lo) = mid;
           }
           u = hi;
@@ -175,7 +219,7 @@ StraightMoveCheck CheckStraightMove(CollisionWorld& world, const std::vector<dou
       out.clear = false;
       out.part_a = p.a, out.part_b = p.b, out.u = u;
     }
-    world.Pose(q_from);
+    world.PosePair(q_from, p.a, p.b);
   }
   if (!out.clear) {
     out.q = Lerp(q_from, q_to, out.u);
