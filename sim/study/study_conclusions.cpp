@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cstdio>
 #include <map>
+#include <memory>
 #include <set>
 
 namespace vmt::sim::study {
@@ -188,70 +189,106 @@ std::string ContactAxes(const CaseResult& r) {
   return s;
 }
 
+namespace {
+
+// What the conclusions keep of one subroutine in one mode: counts and sets of names, no case.
+struct SubTally {
+  ClassCount n;
+  std::set<std::string> blocks, retracts;
+  std::vector<Cause> causes;
+};
+
+struct ModeTally {
+  std::map<std::string, SubTally> subs;
+  std::set<std::string> refused_retracts;
+  size_t refused = 0;
+};
+
+}  // namespace
+
+struct ConclusionTally::State {
+  std::set<std::string> standing{"workpiece"};
+  std::vector<std::string> modes;  ///< in order of first appearance
+  std::map<std::string, ModeTally> by;
+};
+
+ConclusionTally::ConclusionTally(const Reference* reference)
+    : reference_(reference), state_(std::make_unique<State>()) {
+  if (reference)
+    for (const ChuckOutline& c : reference->chuck) state_->standing.insert(c.name);
+}
+
+ConclusionTally::~ConclusionTally() = default;
+
+void ConclusionTally::Add(const CaseResult& r) {
+  const std::string mode = Str(r, "mode");
+  if (std::find(state_->modes.begin(), state_->modes.end(), mode) == state_->modes.end())
+    state_->modes.push_back(mode);
+  ModeTally& mt = state_->by[mode];
+  SubTally& st = mt.subs[Str(r, "subroutine")];
+  const std::set<std::string>& standing = state_->standing;
+  std::vector<Cause>& causes = st.causes;
+  st.n.Add(r);
+  const std::string cls = ClassOf(r);
+  if (cls == "retract_refused") {
+    ++mt.refused;
+    mt.refused_retracts.insert(Str(r, "retract"));
+    return;
+  }
+  st.blocks.insert(Str(r, "block"));
+  st.retracts.insert(Str(r, "retract"));
+  if (cls == "clear") return;
+  std::string a, b;
+  const auto& parts = Field(r, "parts");
+  if (cls != "error" && parts.is_array() && parts.size() == 2 && parts[0].is_string() &&
+      parts[1].is_string()) {
+    a = parts[0].get<std::string>(), b = parts[1].get<std::string>();
+    // What stands (the chuck's parts, the workpiece) is hit by what moves.
+    if (standing.count(a) && !standing.count(b)) std::swap(a, b);
+  }
+  // Else the order the cause was first named in.
+  if (std::none_of(causes.begin(), causes.end(),
+                   [&](const Cause& c) { return c.a == Family(a) && c.b == Family(b); }))
+    for (const Cause& c : causes)
+      if (c.a == Family(b) && c.b == Family(a)) std::swap(a, b);
+  auto it = std::find_if(causes.begin(), causes.end(),
+                         [&](const Cause& c) { return c.a == Family(a) && c.b == Family(b); });
+  if (it == causes.end()) {
+    causes.emplace_back();
+    it = causes.end() - 1;
+    it->a = Family(a), it->b = Family(b);
+  }
+  if (!a.empty()) it->parts_a.insert(a), it->parts_b.insert(b);
+  ++it->cases;
+  it->crash += cls == "crash", it->graze += cls == "graze";
+  it->deepest = std::max(it->deepest, Num(r, "past_contact_mm", 0));
+  if (it->first_error.empty()) it->first_error = Str(r, "error");
+  it->blocks.insert(Str(r, "block"));
+  it->retracts.insert(Str(r, "retract"));
+}
+
 std::vector<ModeConclusion> Conclusions(const std::vector<CaseResult>& cases,
                                         const Reference* reference) {
-  const BlockOrder order(reference);
-  std::set<std::string> standing{"workpiece"};
-  if (reference)
-    for (const ChuckOutline& c : reference->chuck) standing.insert(c.name);
-  std::vector<std::string> modes;
-  std::map<std::string, std::map<std::string, std::vector<const CaseResult*>>> by;
-  for (const CaseResult& r : cases) {
-    const std::string mode = Str(r, "mode");
-    if (std::find(modes.begin(), modes.end(), mode) == modes.end()) modes.push_back(mode);
-    by[mode][Str(r, "subroutine")].push_back(&r);
-  }
+  ConclusionTally tally(reference);
+  for (const CaseResult& r : cases) tally.Add(r);
+  return tally.Conclusions();
+}
+
+std::vector<ModeConclusion> ConclusionTally::Conclusions() const {
+  const BlockOrder order(reference_);
   std::vector<ModeConclusion> out;
-  for (const std::string& mode : modes) {
+  for (const std::string& mode : state_->modes) {
     ModeConclusion m;
     m.mode = mode;
     std::vector<std::string> all_clear;
-    std::set<std::string> refused_retracts;
-    size_t refused = 0;
-    for (const auto& [sub, list] : by[mode]) {
-      ClassCount n;
-      std::set<std::string> blocks, retracts;
-      std::vector<Cause> causes;
-      for (const CaseResult* r : list) {
-        n.Add(*r);
-        const std::string cls = ClassOf(*r);
-        if (cls == "retract_refused") {
-          ++refused;
-          refused_retracts.insert(Str(*r, "retract"));
-          continue;
-        }
-        blocks.insert(Str(*r, "block"));
-        retracts.insert(Str(*r, "retract"));
-        if (cls == "clear") continue;
-        std::string a, b;
-        const auto& parts = Field(*r, "parts");
-        if (cls != "error" && parts.is_array() && parts.size() == 2 && parts[0].is_string() &&
-            parts[1].is_string()) {
-          a = parts[0].get<std::string>(), b = parts[1].get<std::string>();
-          // What stands (the chuck's parts, the workpiece) is hit by what moves.
-          if (standing.count(a) && !standing.count(b)) std::swap(a, b);
-        }
-        // Else the order the cause was first named in.
-        if (std::none_of(causes.begin(), causes.end(),
-                         [&](const Cause& c) { return c.a == Family(a) && c.b == Family(b); }))
-          for (const Cause& c : causes)
-            if (c.a == Family(b) && c.b == Family(a)) std::swap(a, b);
-        auto it = std::find_if(causes.begin(), causes.end(), [&](const Cause& c) {
-          return c.a == Family(a) && c.b == Family(b);
-        });
-        if (it == causes.end()) {
-          causes.emplace_back();
-          it = causes.end() - 1;
-          it->a = Family(a), it->b = Family(b);
-        }
-        if (!a.empty()) it->parts_a.insert(a), it->parts_b.insert(b);
-        ++it->cases;
-        it->crash += cls == "crash", it->graze += cls == "graze";
-        it->deepest = std::max(it->deepest, Num(*r, "past_contact_mm", 0));
-        if (it->first_error.empty()) it->first_error = Str(*r, "error");
-        it->blocks.insert(Str(*r, "block"));
-        it->retracts.insert(Str(*r, "retract"));
-      }
+    ModeTally mt = state_->by.at(mode);
+    const std::set<std::string>& refused_retracts = mt.refused_retracts;
+    const size_t refused = mt.refused;
+    for (auto& [sub, st] : mt.subs) {
+      const ClassCount& n = st.n;
+      const std::set<std::string>& blocks = st.blocks;
+      const std::set<std::string>& retracts = st.retracts;
+      std::vector<Cause>& causes = st.causes;
       const size_t judged = n.judged();
       const size_t failed = judged - n.clear;
       if (judged == 0) {

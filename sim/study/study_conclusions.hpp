@@ -5,6 +5,7 @@
 // others which two parts meet, how often and how badly, and where in the program the
 // interruptions lay. Generated from the results alone (plain data in, text out).
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,25 @@ struct ModeConclusion {
   std::string mode;
   std::string headline;
   std::vector<std::string> sentences;
+};
+
+/// The conclusions over cases given one at a time (in id order), keeping counts and the names
+/// of blocks, retracts and parts, not the cases: a study of any size in bounded memory.
+class ConclusionTally {
+ public:
+  /// `reference` (may be null) must outlive the tally.
+  explicit ConclusionTally(const Reference* reference);
+  ~ConclusionTally();
+  ConclusionTally(const ConclusionTally&) = delete;
+  ConclusionTally& operator=(const ConclusionTally&) = delete;
+  void Add(const CaseResult& r);
+  /// As Conclusions() of the cases added.
+  std::vector<ModeConclusion> Conclusions() const;
+
+ private:
+  struct State;
+  const Reference* reference_;
+  std::unique_ptr<State> state_;
 };
 
 /// Per mode (in order of first appearance), from `cases`; `reference` (may be null) names the

@@ -4,14 +4,18 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <sstream>
 
+#include "common/json_text.hpp"
 #include "common/output_file.hpp"
 #include "sim/study/case_files.hpp"
+#include "sim/study/case_merge.hpp"
 #include "sim/study/case_snapshots.hpp"
 #include "sim/study/study_conclusions.hpp"
 #include "sim/study/study_plane.hpp"
@@ -70,9 +74,9 @@ std::string ClassName(const std::string& cls) {
   return cls == "retract_refused" ? "retract refused" : cls;
 }
 
-void Conclude(std::ostringstream& o, const std::vector<CaseResult>& cases, const Reference* ref) {
+void Conclude(std::ostringstream& o, const std::vector<ModeConclusion>& conclusions) {
   o << "<h2>Conclusions</h2>\n";
-  for (const ModeConclusion& m : Conclusions(cases, ref)) {
+  for (const ModeConclusion& m : conclusions) {
     o << "<h3>" << Esc(m.mode) << "</h3>\n<p class=\"headline\"><b>" << Esc(m.headline)
       << "</b></p>\n<ul>\n";
     for (const std::string& s : m.sentences) o << "<li>" << Esc(s) << "</li>\n";
@@ -80,13 +84,179 @@ void Conclude(std::ostringstream& o, const std::vector<CaseResult>& cases, const
   }
 }
 
+// The `n` most severe of the cases added (MoreSevere), most severe first.
+class MostSevere {
+ public:
+  explicit MostSevere(size_t n) : n_(n) {}
+  void Add(const CaseResult& r) {
+    if (n_ == 0 || (kept_.size() == n_ && !MoreSevere(r, kept_.back()))) return;
+    kept_.insert(std::upper_bound(kept_.begin(), kept_.end(), r, MoreSevere), r);
+    if (kept_.size() > n_) kept_.pop_back();
+  }
+  const std::vector<CaseResult>& kept() const { return kept_; }
+
+ private:
+  size_t n_;
+  std::vector<CaseResult> kept_;
+};
+
+// A row of the summary: one subroutine in one mode (or all its modes).
+struct SummaryRow {
+  ClassCount n;
+  double worst = std::numeric_limits<double>::infinity(), deepest = -1;
+  void Add(const CaseResult& r) {
+    n.Add(r);
+    const std::string cls = ClassOf(r);
+    if (cls == "clear" && Field(r, "min_clearance_mm").is_number())
+      worst = std::min(worst, Field(r, "min_clearance_mm").get<double>());
+    if ((cls == "crash" || cls == "graze") && Field(r, "past_contact_mm").is_number())
+      deepest = std::max(deepest, Field(r, "past_contact_mm").get<double>());
+  }
+};
+
+// What the report keeps of one subroutine's cases.
+struct SubroutineTally {
+  std::map<std::string, SummaryRow> by_mode;
+  SummaryRow all;
+  MostSevere plane{kPlaneCases};
+  MostSevere worst{20};  // the failures
+  MostSevere tight{5};   // the clear cases with a clearance
+  std::vector<CaseResult> pictured;
+};
+
+// The table of all cases: an empty table the page's script fills a page file at a time
+// (cases-pages/N.js, each calling vmtCasesPage(N, rows)): a <script> element loads from a file://
+// report and from `vmt view` alike, and the browser holds one page of rows, not the study.
+void AllCases(std::ostringstream& o, size_t cases, size_t pages) {
+  o << "<h2>All cases</h2>\n<p>" << cases << " cases in case id order, " << kCasesPerPage
+    << " to a page (cases.csv and cases.jsonl beside this report hold them all).</p>\n"
+       "<p><button id=\"prev\">&#8592; previous</button> page <input id=\"page\" type=\"number\" "
+       "min=\"1\" max=\""
+    << pages << "\" value=\"1\" style=\"width:6em\"> of " << pages
+    << " <button id=\"next\">next &#8594;</button> <span id=\"status\"></span></p>\n"
+       "<table id=\"cases\"><thead><tr><th class=\"l\">case</th><th class=\"l\">subroutine</th>"
+       "<th class=\"l\">mode</th><th class=\"l\">block</th><th class=\"l\">retract</th>"
+       "<th class=\"l\">class</th><th>clearance, mm</th><th>past contact, mm</th>"
+       "<th class=\"l\">NC message</th><th class=\"l\">replay</th></tr></thead>"
+       "<tbody id=\"rows\"></tbody></table>\n<script>\n(function() {\n  var pages = "
+    << pages << R"JS(, shown = 0;
+  var rows = document.getElementById('rows'), page = document.getElementById('page');
+  var status = document.getElementById('status');
+  window.vmtCasesPage = function(n, list) {
+    if (n !== shown) return;
+    rows.textContent = '';
+    list.forEach(function(r) {
+      var tr = document.createElement('tr');
+      r.forEach(function(v, i) {
+        var td = document.createElement('td');
+        if (i < 6 || i === 8) td.className = 'l';
+        if (i === 5) td.className += ' ' + v.replace(' ', '_');
+        td.textContent = v === null ? '' : String(v);
+        tr.appendChild(td);
+      });
+      var td = document.createElement('td'), a = document.createElement('a');
+      td.className = 'l';
+      a.className = 'replay';
+      a.href = 'replay?case=' + encodeURIComponent(r[0]);
+      a.textContent = 'watch';
+      td.appendChild(a);
+      tr.appendChild(td);
+      rows.appendChild(tr);
+    });
+    status.textContent = '';
+  };
+  function show(n) {
+    n = Math.max(1, Math.min(pages, Math.floor(Number(n)) || 1));
+    shown = n;
+    page.value = n;
+    status.textContent = 'loading...';
+    var s = document.createElement('script');
+    s.src = 'cases-pages/' + n + '.js';
+    s.onload = function() { s.remove(); };
+    s.onerror = function() { status.textContent = 'page file ' + s.src + ' missing'; };
+    document.body.appendChild(s);
+  }
+  document.getElementById('prev').onclick = function() { show(shown - 1); };
+  document.getElementById('next').onclick = function() { show(shown + 1); };
+  page.onchange = function() { show(page.value); };
+  show(1);
+})();
+</script>
+)JS";
+}
+
+// Writes dir/cases-pages/N.js, kCasesPerPage cases each, as the cases stream by.
+class CasePages {
+ public:
+  explicit CasePages(const std::string& dir) : dir_(dir + "/cases-pages") {
+    std::filesystem::remove_all(dir_);  // a page left from a larger study would be shown
+    std::filesystem::create_directories(dir_);
+  }
+  void Add(const CaseResult& r) {
+    const nlohmann::ordered_json& clearance = Field(r, "min_clearance_mm");
+    const nlohmann::ordered_json& past = Field(r, "past_contact_mm");
+    nlohmann::ordered_json row = {Str(r, "case"),
+                                  Str(r, "subroutine"),
+                                  Str(r, "mode"),
+                                  Str(r, "block"),
+                                  Str(r, "retract"),
+                                  ClassName(ClassOf(r)),
+                                  clearance.is_number() ? Num(clearance.get<double>()) : "",
+                                  past.is_number() ? Num(past.get<double>()) : "",
+                                  Message(r)};
+    text_ += (rows_ ? ",\n" : "") + row.dump(-1, ' ', false, common::kReplaceBadUtf8);
+    if (++rows_ == kCasesPerPage) Flush();
+  }
+  /// The pages written.
+  size_t Finish() {
+    Flush();
+    return pages_;
+  }
+
+ private:
+  void Flush() {
+    if (rows_ == 0) return;
+    ++pages_;
+    common::WriteFileAtomically(
+        dir_ + "/" + std::to_string(pages_) + ".js",
+        "vmtCasesPage(" + std::to_string(pages_) + ", [\n" + text_ + "]);\n");
+    text_.clear();
+    rows_ = 0;
+  }
+  std::string dir_, text_;
+  size_t rows_ = 0, pages_ = 0;
+};
+
 }  // namespace
 
-std::string ReportHtml(const std::string& title, const std::vector<CaseResult>& cases,
-                       const Reference* reference,
-                       const std::map<std::string, std::string>& snapshots) {
-  std::map<std::string, std::vector<const CaseResult*>> by_sub;
-  for (const CaseResult& r : cases) by_sub[Str(r, "subroutine")].push_back(&r);
+struct ReportBuilder::State {
+  std::map<std::string, SubroutineTally> by_sub;
+  ConclusionTally conclusions;
+  explicit State(const Reference* ref) : conclusions(ref) {}
+};
+
+ReportBuilder::ReportBuilder(const Reference* reference,
+                             const std::map<std::string, std::string>& snapshots)
+    : reference_(reference), snapshots_(snapshots), state_(std::make_unique<State>(reference)) {}
+
+ReportBuilder::~ReportBuilder() = default;
+
+void ReportBuilder::Add(const CaseResult& r) {
+  ++cases_;
+  state_->conclusions.Add(r);
+  SubroutineTally& t = state_->by_sub[Str(r, "subroutine")];
+  t.by_mode[Str(r, "mode")].Add(r);
+  t.all.Add(r);
+  t.plane.Add(r);
+  const std::string cls = ClassOf(r);
+  if (cls != "clear" && cls != "retract_refused") t.worst.Add(r);
+  if (cls == "clear" && Field(r, "min_clearance_mm").is_number()) t.tight.Add(r);
+  if (snapshots_.count(Str(r, "case"))) t.pictured.push_back(r);
+}
+
+std::string ReportBuilder::Html(const std::string& title, size_t pages) const {
+  const Reference* reference = reference_;
+  const std::map<std::string, std::string>& snapshots = snapshots_;
   std::ostringstream o;
   o << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << Esc(title)
     << "</title>\n<style>body{font-family:sans-serif;margin:2em;max-width:80em}"
@@ -94,8 +264,8 @@ std::string ReportHtml(const std::string& title, const std::vector<CaseResult>& 
        "text-align:right}td.l,th.l{text-align:left}.clear{color:#2a9d3f}.crash{color:#d62828}"
        ".graze{color:#7b2cbf}.error{color:#f08c00}.retract_refused{color:#6c757d}"
        "dt{font-weight:bold}</style></head><body>\n";
-  o << "<h1>" << Esc(title) << "</h1>\n<p>" << cases.size() << " cases.</p>\n";
-  Conclude(o, cases, reference);
+  o << "<h1>" << Esc(title) << "</h1>\n<p>" << cases_ << " cases.</p>\n";
+  Conclude(o, state_->conclusions.Conclusions());
   o << "<h2>How to read this report</h2>\n<dl>"
        "<dt>Classes</dt><dd><span class=\"clear\">clear</span>: the REPOS subroutine returned "
        "(or the operator's manual jogs restored the conditions, PxxS.CREST) with every move "
@@ -133,52 +303,42 @@ std::string ReportHtml(const std::string& title, const std::vector<CaseResult>& 
        "PathGuard found on the REPOS moves of the clear cases\">worst clearance, mm</th>"
        "<th title=\"how far a refused move would have gone on past its first contact, the "
        "largest\">deepest past contact, mm</th></tr>\n";
-  for (const auto& [sub, list] : by_sub) {
-    std::map<std::string, std::vector<const CaseResult*>> by_mode;
-    for (const CaseResult* r : list) by_mode[Str(*r, "mode")].push_back(r);
-    by_mode["all"] = list;
-    for (const auto& [mode, ms] : by_mode) {
-      ClassCount n;
-      double worst = std::numeric_limits<double>::infinity(), deepest = -1;
-      for (const CaseResult* r : ms) {
-        n.Add(*r);
-        const std::string cls = ClassOf(*r);
-        if (cls == "clear" && Field(*r, "min_clearance_mm").is_number())
-          worst = std::min(worst, Field(*r, "min_clearance_mm").get<double>());
-        if ((cls == "crash" || cls == "graze") && Field(*r, "past_contact_mm").is_number())
-          deepest = std::max(deepest, Field(*r, "past_contact_mm").get<double>());
-      }
+  for (const auto& [sub, t] : state_->by_sub) {
+    std::map<std::string, SummaryRow> rows = t.by_mode;
+    rows["all"] = t.all;
+    for (const auto& [mode, row] : rows) {
+      const ClassCount& n = row.n;
       o << "<tr><td class=\"l\">" << Esc(sub) << "</td><td class=\"l\">" << Esc(mode) << "</td><td>"
         << n.cases << "</td><td class=\"clear\">" << n.clear << "</td><td class=\"crash\">"
         << n.crash << "</td><td class=\"graze\">" << n.graze << "</td><td class=\"error\">"
         << n.error << "</td><td class=\"retract_refused\">" << n.retract_refused << "</td><td>"
-        << (std::isfinite(worst) ? Num(worst) : "&#8211;") << "</td><td>"
-        << (deepest >= 0 ? Num(deepest) : "&#8211;") << "</td></tr>\n";
+        << (std::isfinite(row.worst) ? Num(row.worst) : "&#8211;") << "</td><td>"
+        << (row.deepest >= 0 ? Num(row.deepest) : "&#8211;") << "</td></tr>\n";
     }
   }
   o << "</table>\n";
-  for (const auto& [sub, list] : by_sub) {
+  const auto severe = [](const CaseResult* a, const CaseResult* b) { return MoreSevere(*a, *b); };
+  for (const auto& [sub, t] : state_->by_sub) {
+    // The plane draws the cases in id order; a subroutine of more than kPlaneCases its most
+    // severe ones (the page stays light whatever the study's size).
+    std::vector<const CaseResult*> drawn;
+    for (const CaseResult& r : t.plane.kept()) drawn.push_back(&r);
+    std::sort(drawn.begin(), drawn.end(), [](const CaseResult* a, const CaseResult* b) {
+      return Str(*a, "case") < Str(*b, "case");
+    });
     o << "<h2>" << Esc(sub) << ": approach paths in the XZ plane</h2>\n"
       << "<p>Machine coordinates, mm. Grey: the program's tool path (the contour as turned); "
          "dashed: the chuck's parts as the envelopes they sweep while the spindle turns (what "
          "PathGuard checks against). Each case's REPOS path from where the operator left the "
          "tool, coloured by class; a dot marks where the tool stood at a first contact, a cross "
-         "the contact point (hover for the case, click to watch it).</p>\n"
-      << PlaneSvg(list, reference, [](const std::string& id) { return ReplayHref(id); });
+         "the contact point (hover for the case, click to watch it).";
+    if (t.all.n.cases > drawn.size())
+      o << " Drawn: the " << drawn.size() << " most severe of its " << t.all.n.cases << " cases.";
+    o << "</p>\n"
+      << PlaneSvg(drawn, reference, [](const std::string& id) { return ReplayHref(id); });
     std::vector<const CaseResult*> worst;
-    for (const CaseResult* r : list) {
-      const std::string cls = ClassOf(*r);
-      if (cls != "clear" && cls != "retract_refused") worst.push_back(r);
-    }
-    std::vector<const CaseResult*> tight;
-    for (const CaseResult* r : list)
-      if (ClassOf(*r) == "clear" && Field(*r, "min_clearance_mm").is_number()) tight.push_back(r);
-    const auto severe = [](const CaseResult* a, const CaseResult* b) { return MoreSevere(*a, *b); };
-    std::stable_sort(worst.begin(), worst.end(), severe);
-    std::stable_sort(tight.begin(), tight.end(), severe);
-    if (tight.size() > 5) tight.resize(5);
-    if (worst.size() > 20) worst.resize(20);
-    worst.insert(worst.end(), tight.begin(), tight.end());
+    for (const CaseResult& r : t.worst.kept()) worst.push_back(&r);
+    for (const CaseResult& r : t.tight.kept()) worst.push_back(&r);
     o << "<h3>Worst cases, most severe first</h3>\n<table><tr><th class=\"l\">case</th>"
          "<th class=\"l\">class</th><th class=\"l\">first contact</th><th class=\"l\">"
          "move</th><th class=\"l\">axes at the contact</th><th class=\"l\">contact point</th>"
@@ -211,8 +371,7 @@ std::string ReportHtml(const std::string& title, const std::vector<CaseResult>& 
     // The pictures of this subroutine's worst cases: a collision at its first contact, the
     // tightest clear case at its end.
     std::vector<const CaseResult*> pictured;
-    for (const CaseResult* r : list)
-      if (snapshots.count(Str(*r, "case"))) pictured.push_back(r);
+    for (const CaseResult& r : t.pictured) pictured.push_back(&r);
     std::stable_sort(pictured.begin(), pictured.end(), severe);
     if (!pictured.empty())
       o << "<h3>Pictures of the worst cases</h3>\n<p>A collision is pictured with the axes "
@@ -232,12 +391,20 @@ std::string ReportHtml(const std::string& title, const std::vector<CaseResult>& 
     }
     if (!pictured.empty()) o << "</div>\n";
   }
+  if (pages > 0) AllCases(o, cases_, pages);
   o << "</body></html>\n";
   return o.str();
 }
 
+std::string ReportHtml(const std::string& title, const std::vector<CaseResult>& cases,
+                       const Reference* reference,
+                       const std::map<std::string, std::string>& snapshots) {
+  ReportBuilder report(reference, snapshots);
+  for (const CaseResult& r : cases) report.Add(r);
+  return report.Html(title, 0);
+}
+
 void WriteReport(const std::string& dir, const std::string& title) {
-  const std::vector<CaseResult> cases = Deduplicated(ReadCases(dir + "/cases.jsonl"));
   std::optional<Reference> ref;
   std::ifstream in(dir + "/reference.json", std::ios::binary);
   if (in) {
@@ -247,8 +414,21 @@ void WriteReport(const std::string& dir, const std::string& title) {
     } catch (const std::exception&) {  // a torn reference only loses the contour
     }
   }
-  common::WriteFileAtomically(dir + "/report.html", ReportHtml(title, cases, ref ? &*ref : nullptr,
-                                                               ReadSnapshotIndex(dir)));
+  const std::map<std::string, std::string> snapshots = ReadSnapshotIndex(dir);
+  ReportBuilder report(ref ? &*ref : nullptr, snapshots);
+  CasePages pages(dir);
+  std::string last;
+  bool first = true;
+  ForEachCase(dir + "/cases.jsonl", [&](const CaseResult& r) {
+    const std::string& id = r["case"].get_ref<const std::string&>();
+    if (!first && id == last) return;  // a repeated id: the first counts
+    first = false;
+    last = id;
+    report.Add(r);
+    pages.Add(r);
+  });
+  const size_t n = pages.Finish();
+  common::WriteFileAtomically(dir + "/report.html", report.Html(title, n));
 }
 
 }  // namespace vmt::sim::study

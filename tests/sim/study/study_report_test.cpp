@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -150,6 +151,48 @@ TEST(study_report, ATornReferenceOnlyLosesTheContour) {
   EXPECT_NE(html.find("<h1>torn</h1>"), std::string::npos);
   EXPECT_NE(html.find(Row("s", "all", 1, 1, 0, 0, "1.000")), std::string::npos);
   EXPECT_EQ(html.find("reference run"), std::string::npos);
+}
+
+// A study of any size gives a report of bounded size: the plane draws a subroutine's most
+// severe kPlaneCases, and every case is in the paged table's files (cases-pages/N.js), a page
+// left from a larger study removed.
+TEST(study_report, LargeStudyPagesItsCasesAndBoundsThePage) {
+  const std::string dir = std::string(VMT_BINARY_DIR) + "/test_output/study/report_pages";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir + "/cases-pages");
+  std::ofstream(dir + "/cases-pages/9.js") << "vmtCasesPage(9, []);\n";
+  const size_t n = 2 * kCasesPerPage + 200;
+  {
+    CaseFiles files(dir);
+    char id[16];
+    for (size_t i = 0; i < n; ++i) {
+      std::snprintf(id, sizeof id, "c%05zu", i);
+      files.Write(Case(id, "s", "m", i % 7 == 0 ? "collision" : "clear", 1.0 + i));
+    }
+  }
+  WriteReport(dir, "big");
+  std::ifstream in(dir + "/report.html");
+  const std::string html((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(html.find(Row("s", "all", static_cast<int>(n), static_cast<int>(n - n / 7 - 1),
+                          static_cast<int>(n / 7 + 1), 0, "2.000")),
+            std::string::npos);
+  EXPECT_NE(html.find("Drawn: the " + std::to_string(kPlaneCases) + " most severe of its " +
+                      std::to_string(n) + " cases."),
+            std::string::npos);
+  EXPECT_EQ(Count(html, "</polyline></a>"), kPlaneCases);  // a case's path
+  EXPECT_NE(html.find("<h2>All cases</h2>"), std::string::npos);
+  EXPECT_NE(html.find("of 3 <button"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(dir + "/cases-pages/3.js"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/cases-pages/4.js"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/cases-pages/9.js"));
+  std::ifstream last(dir + "/cases-pages/3.js");
+  const std::string page((std::istreambuf_iterator<char>(last)), {});
+  EXPECT_EQ(page.rfind("vmtCasesPage(3, [\n[\"c01000\",\"s\",\"m\"", 0), 0u) << page.substr(0, 80);
+  EXPECT_EQ(Count(page, "\n["), 200u);
+  EXPECT_NE(page.find("[\"c01199\""), std::string::npos);
+  // The page built in memory (no files) has no table of all cases.
+  EXPECT_EQ(ReportHtml("t", {Case("a", "s", "m", "clear", 1)}, nullptr).find("All cases"),
+            std::string::npos);
 }
 
 }  // namespace
