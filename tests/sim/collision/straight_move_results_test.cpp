@@ -2,7 +2,9 @@
 // it asks FCL about, how it poses the parts on the way) may be made faster, what it answers may
 // not change. Random moves on lathe-c1 of carriage, cross slide, turret, tailstock and spindle,
 // with a solid workpiece, a bored one, the chuck as its sweep and the probe on its measuring
-// path; every field of every answer goes into one digest.
+// path; every field of every answer goes into one digest. A change of lathe-c1's geometry or
+// of what the check answers (its tolerances, its bisection) changes the digest on purpose: pin
+// the new one then, and say why in the commit.
 
 #include <gtest/gtest.h>
 
