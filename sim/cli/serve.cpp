@@ -376,7 +376,8 @@ int Serve(const ServeOptions& o) {
     if (server) server->DropClients();
     std::fprintf(stderr, "vmt serve: %.4f s: fault: every Modbus client dropped\n", run.time_s());
   };
-  ServeOutcome out{.late = {.limit_ms = o.late_limit_ms}};
+  ServeOutcome out;
+  out.late.limit_ms = o.late_limit_ms;
   out.stop_reason = !server ? ServeStation(run, *station, cycle)
                     : o.lockstep
                         ? ServeLockstep(o, run, *server, drop_if_asked, station.get())
