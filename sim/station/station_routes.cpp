@@ -100,14 +100,16 @@ void RouteInputs(httplib::Server& http, StationHub& hub, const StationServerOpti
     if (!body) return;
     const auto axis = body->find("axis");
     const auto counts_member = body->find("counts");
-    const std::optional<int64_t> counts =
-        counts_member == body->end() ? std::nullopt : WholeNumberIn(*counts_member, -10000, 10000);
-    if (axis == body->end() || !axis->is_string() || !counts || *counts == 0)
+    int64_t counts = 0;  // missing or out of range: refused below as 0 is
+    if (counts_member != body->end())
+      if (const std::optional<int64_t> n = WholeNumberIn(*counts_member, -10000, 10000))
+        counts = *n;
+    if (axis == body->end() || !axis->is_string() || counts == 0)
       return Fail(res, 400, R"(expected {"axis": AXIS, "counts": -10000..10000, not 0})");
     if (!refused.empty()) return Fail(res, 403, refused);
     if (std::find(axes.begin(), axes.end(), axis->get<std::string>()) == axes.end())
       return Fail(res, 404, "no handwheel axis " + axis->get<std::string>());
-    if (!hub.Push({StationInput::Kind::kHandwheel, *axis, static_cast<double>(*counts)}))
+    if (!hub.Push({StationInput::Kind::kHandwheel, *axis, static_cast<double>(counts)}))
       return Fail(res, 429, "too many inputs waiting for the next PLC cycle");
     Reply(res, 200, R"({"ok":true})");
   });
