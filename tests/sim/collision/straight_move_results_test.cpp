@@ -93,7 +93,7 @@ TEST(StraightMoveResults, AreTheSameBitForBit) {
   // Both outcomes, many times over.
   EXPECT_GE(contacts, 40);
   EXPECT_LE(contacts, 220);
-  EXPECT_EQ(d.Hex(), "18483900ab6becdc");
+  EXPECT_EQ(d.Hex(), "7c4ebb2227660e4e");
 }
 
 }  // namespace
