@@ -22,8 +22,11 @@ void StylusContacts::SetPart(const RevolvedPart& part) {
 void StylusContacts::Step(const std::vector<double>& q_before, const std::vector<double>& q_now,
                           const std::vector<uint8_t>& inputs, double t_s, ProbeWiring& wiring) {
   if (!any_) return;
-  const std::vector<Eigen::Isometry3d> before = LinkPoses(*model_, q_before);
+  std::vector<Eigen::Isometry3d> before =
+      q_before == q_last_ ? std::move(X_last_) : LinkPoses(*model_, q_before);
   const std::vector<Eigen::Isometry3d> now = LinkPoses(*model_, q_now);
+  q_last_ = q_now;
+  X_last_ = now;
   // Both ends in the part's frame of this tick: a turning part's angle does not matter (it is a
   // solid of revolution), and two different angles would bend a straight move into a chord.
   const Eigen::Isometry3d X_PartW = now[part_link_].inverse();
@@ -41,7 +44,8 @@ void StylusContacts::Step(const std::vector<double>& q_before, const std::vector
     o.sphere = tick.over_travel_sphere;
     // One part per sphere where the model names as many; a single part covers them all.
     if (!stylus.sphere_parts.empty())
-      o.sphere_part = stylus.sphere_parts[std::min<size_t>(o.sphere, stylus.sphere_parts.size() - 1)];
+      o.sphere_part =
+          stylus.sphere_parts[std::min<size_t>(o.sphere, stylus.sphere_parts.size() - 1)];
     o.part = part_.name;
     o.point_m = now[part_link_] * tick.over_travel_point_m;
     over_travels_.push_back(o);

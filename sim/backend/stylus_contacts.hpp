@@ -22,11 +22,11 @@ namespace vmt::sim {
 /// A stylus deflected beyond its over-travel: the stylus crashed into the part (once per stylus
 /// and run, StylusState::damaged).
 struct StylusOverTravel {
-  double t_s = 0;            ///< the instant within the tick where it passed the over-travel
-  int t_number = 0;          ///< the stylus' T (TASTWERKZEUGPAGE 00001)
-  int sphere = -1;           ///< the measuring sphere pushed deepest (0-based)
-  std::string sphere_part;   ///< its <collision> part (probe: sphere_parts), "" if none named
-  std::string part;          ///< the workpiece's name
+  double t_s = 0;           ///< the instant within the tick where it passed the over-travel
+  int t_number = 0;         ///< the stylus' T (TASTWERKZEUGPAGE 00001)
+  int sphere = -1;          ///< the measuring sphere pushed deepest (0-based)
+  std::string sphere_part;  ///< its <collision> part (probe: sphere_parts), "" if none named
+  std::string part;         ///< the workpiece's name
   Eigen::Vector3d point_m = Eigen::Vector3d::Zero();  ///< nearest point on the part, world
 };
 
@@ -58,6 +58,9 @@ class StylusContacts {
   bool any_ = false;
   std::vector<StylusState> states_;  ///< per stylus of the model
   std::vector<StylusOverTravel> over_travels_;
+  /// The last step's joint positions and link poses: the next step's "before", as a rule.
+  std::vector<double> q_last_;
+  std::vector<Eigen::Isometry3d> X_last_;
 };
 
 }  // namespace vmt::sim

@@ -407,12 +407,15 @@ std::vector<Eigen::Isometry3d> LinkPoses(const MachineModel& model, const std::v
   std::vector<Eigen::Isometry3d> X_W(model.links.size(), Eigen::Isometry3d::Identity());
   for (size_t j = 0; j < model.joints.size(); ++j) {
     const Joint& joint = model.joints[j];
-    Eigen::Isometry3d X_JointChild = Eigen::Isometry3d::Identity();
+    // The joint's own motion is a pure translation or a pure rotation: only that half of the
+    // product is formed. The other half is multiplied by an identity or adds zeros, which changes
+    // no bit.
+    Eigen::Isometry3d& X = X_W[joint.child_link];
+    X = X_W[joint.parent_link] * joint.X_ParentJoint;
     if (joint.type == JointType::kPrismatic)
-      X_JointChild.translation() = joint.axis * q[j];
+      X.translation() = X.linear() * (joint.axis * q[j]) + X.translation();
     else if (joint.type != JointType::kFixed)
-      X_JointChild.linear() = Eigen::AngleAxisd(q[j], joint.axis).toRotationMatrix();
-    X_W[joint.child_link] = X_W[joint.parent_link] * joint.X_ParentJoint * X_JointChild;
+      X.linear() = X.linear() * Eigen::AngleAxisd(q[j], joint.axis).toRotationMatrix();
   }
   return X_W;
 }
