@@ -7,6 +7,15 @@
 #include "sim/model/model_error.hpp"
 
 namespace vmt::sim {
+namespace {
+
+double LargestOuterRadius(const TurnedStock& stock) {
+  double r_max = 0;
+  for (size_t k = 0; k < stock.slices.size(); ++k) r_max = std::max(r_max, stock.OuterRadius(k));
+  return r_max;
+}
+
+}  // namespace
 
 StockCutter::StockCutter(const MachineModel& model, const RevolvedPart& part)
     : model_(&model), stock_(TurnedStock::FromPart(part, kStockSliceM)) {
@@ -49,6 +58,7 @@ StockCutter::StockCutter(const MachineModel& model, const RevolvedPart& part)
     }
     holders_.push_back(std::move(holder));
   }
+  r_max_ = LargestOuterRadius(stock_);
 }
 
 std::optional<Eigen::Vector3d> StockCutter::CuttingPoint(const std::vector<double>& q) const {
@@ -93,8 +103,7 @@ bool StockCutter::Cut(const std::vector<double>& q, double t_s) {
   if (!turning) return false;
   const std::vector<Eigen::Isometry3d> X_W = LinkPoses(*model_, q);
   const Eigen::Isometry3d X_PartWorld = X_W[link_].inverse();
-  double r_max = 0;
-  for (size_t k = 0; k < stock_.slices.size(); ++k) r_max = std::max(r_max, stock_.OuterRadius(k));
+  const double r_max = r_max_;
   const double z_lo = stock_.z0_m,
                z_hi = stock_.z0_m + static_cast<double>(stock_.slices.size()) * stock_.slice_m;
   bool changed = false;
@@ -108,6 +117,7 @@ bool StockCutter::Cut(const std::vector<double>& q, double t_s) {
     for (const Eigen::Vector3d& p : c.corners) corners_.push_back(X * p);
     changed = stock_.CutSolid(corners_, kCutAllowanceM) || changed;
   }
+  if (changed) r_max_ = LargestOuterRadius(stock_);
   return changed;
 }
 

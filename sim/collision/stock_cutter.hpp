@@ -61,6 +61,9 @@ class StockCutter {
   };
   std::vector<Holder> holders_;
   double last_angle_ = 0, last_t_ = -1;
+  /// The stock's largest outer radius, kept with the stock: a tick's cull needs it and the
+  /// slices are thousands.
+  double r_max_ = 0;
   std::vector<Eigen::Vector3d> corners_;  ///< a cutter's corners in the part's frame, reused
 };
 
