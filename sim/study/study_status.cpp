@@ -1,9 +1,10 @@
 #include "sim/study/study_status.hpp"
 
 #include <filesystem>
-#include <set>
+#include <unordered_set>
 
 #include "sim/study/case_files.hpp"
+#include "sim/study/case_merge.hpp"
 
 namespace vmt::sim::study {
 
@@ -15,10 +16,11 @@ StudyProgress ReadStudyProgress(const std::string& dir) {
   p.reference = std::filesystem::exists(dir + "/reference.json");
   if (!p.reference) return p;
   const StudyCases study = LoadStudyCases(dir);
-  std::set<std::string> held;
-  // A torn last line is a case to run again, as the study's own rerun counts it.
-  for (const CaseResult& r : ReadCases(dir + "/cases.jsonl", TornLine::kLeftOut))
-    held.insert(r["case"].get<std::string>());
+  // Line by line, keeping only the ids: a study of 100,000 cases is hundreds of MB of JSON. A
+  // torn last line is a case to run again, as the study's own rerun counts it.
+  std::unordered_set<std::string> held;
+  ForEachCase(dir + "/cases.jsonl",
+              [&](const CaseResult& r) { held.insert(r["case"].get<std::string>()); });
   for (const StudyCase& c : ShareOf(study.cases, study.source)) {
     ++p.expected;
     if (held.count(c.id))
