@@ -159,4 +159,42 @@ Mesh MakeBox(const Eigen::Vector3d& min, const Eigen::Vector3d& max) {
   return mesh;
 }
 
+Mesh MakeSphere(double radius_m, int rings, int segments) {
+  if (!(radius_m > 0) || rings < 2 || segments < 3) {
+    throw std::runtime_error("MakeSphere: need radius > 0, rings >= 2 and segments >= 3, got " +
+                             std::to_string(radius_m) + ", " + std::to_string(rings) + ", " +
+                             std::to_string(segments));
+  }
+  Mesh mesh;
+  const auto n = uint32_t(segments), r = uint32_t(rings);
+  // Rows of latitude from the south pole (row 0) to the north pole (row r); a pole is one
+  // vertex, every other row n.
+  auto row_start = [&](uint32_t row) { return row == 0 ? 0u : 1 + (row - 1) * n; };
+  for (uint32_t row = 0; row <= r; ++row) {
+    const double polar = std::numbers::pi * double(row) / double(r);
+    const double z = -std::cos(polar), ring_radius = std::sin(polar);
+    const uint32_t count = (row == 0 || row == r) ? 1 : n;
+    for (uint32_t i = 0; i < count; ++i) {
+      const double angle = 2 * std::numbers::pi * double(i) / double(n);
+      const Eigen::Vector3d dir = count == 1 ? Eigen::Vector3d(0, 0, z)
+                                             : Eigen::Vector3d(ring_radius * std::cos(angle),
+                                                               ring_radius * std::sin(angle), z);
+      AddVertex(mesh, radius_m * dir, dir);
+    }
+  }
+  const uint32_t north = row_start(r);
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t j = (i + 1) % n;
+    AddTriangle(mesh, 0, row_start(1) + j, row_start(1) + i);
+    AddTriangle(mesh, north, row_start(r - 1) + i, row_start(r - 1) + j);
+    for (uint32_t row = 1; row + 1 < r; ++row) {
+      const uint32_t a = row_start(row) + i, b = row_start(row) + j;
+      const uint32_t c = row_start(row + 1) + j, d = row_start(row + 1) + i;
+      AddTriangle(mesh, a, b, c);
+      AddTriangle(mesh, a, c, d);
+    }
+  }
+  return mesh;
+}
+
 }  // namespace vmt::render

@@ -20,4 +20,9 @@ Mesh MakeTube(double inner_radius_m, double outer_radius_m, double length_m, int
 /// Throws std::runtime_error if max < min in any coordinate.
 Mesh MakeBox(const Eigen::Vector3d& min, const Eigen::Vector3d& max);
 
+/// A sphere about the origin: `rings` bands of latitude by `segments` of longitude, smooth
+/// normals, vertices on the sphere. Throws std::runtime_error unless radius_m > 0, rings >= 2
+/// and segments >= 3.
+Mesh MakeSphere(double radius_m, int rings, int segments);
+
 }  // namespace vmt::render

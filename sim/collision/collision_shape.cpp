@@ -3,6 +3,8 @@
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/convex.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
 
 #include <algorithm>
 #include <array>
@@ -92,6 +94,27 @@ CollisionShape ShapeOfMesh(const render::Mesh& mesh) {
     return shape;
   }
   shape.geometry = TriangleTree(points, mesh.indices);
+  return shape;
+}
+
+CollisionShape ShapeOfPrimitive(const Primitive& primitive) {
+  CollisionShape shape;
+  switch (primitive.kind) {
+    case Primitive::Kind::kBox:
+      shape.geometry = std::make_shared<fcl::Boxd>(primitive.box_m);
+      shape.radius = primitive.box_m.norm() / 2;
+      break;
+    case Primitive::Kind::kCylinder:
+      shape.geometry = std::make_shared<fcl::Cylinderd>(primitive.radius_m, primitive.length_m);
+      shape.radius = std::hypot(primitive.radius_m, primitive.length_m / 2);
+      break;
+    case Primitive::Kind::kSphere:
+      shape.geometry = std::make_shared<fcl::Sphered>(primitive.radius_m);
+      shape.radius = primitive.radius_m;
+      break;
+    case Primitive::Kind::kNone:
+      break;
+  }
   return shape;
 }
 

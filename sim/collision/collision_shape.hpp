@@ -13,6 +13,7 @@
 #include <memory>
 
 #include "render/mesh.hpp"
+#include "sim/model/machine_model.hpp"
 
 namespace vmt::sim {
 
@@ -26,5 +27,8 @@ struct CollisionShape {
 
 /// The solid of `mesh` (closed and outward-wound, as the model's collision meshes are).
 CollisionShape ShapeOfMesh(const render::Mesh& mesh);
+
+/// The URDF primitive's own solid (not its mesh: a cylinder's facets lie inside it).
+CollisionShape ShapeOfPrimitive(const Primitive& primitive);
 
 }  // namespace vmt::sim

@@ -63,7 +63,15 @@ CollisionWorld::CollisionWorld(const MachineModel& model, const std::vector<Cyli
           for (const std::string& sphere : s.sphere_parts)
             if (sphere == v.name) stylus = &s;
       p.measures = stylus != nullptr;
-      std::shared_ptr<fcl::CollisionGeometryd> geometry = MeshGeometry(*v.mesh, v.X_LinkVisual, p);
+      std::shared_ptr<fcl::CollisionGeometryd> geometry;
+      if (v.primitive.kind != Primitive::Kind::kNone) {
+        const CollisionShape shape = ShapeOfPrimitive(v.primitive);
+        p.X_LinkPart = v.X_LinkVisual;
+        p.radius = shape.radius;
+        geometry = shape.geometry;
+      } else {
+        geometry = MeshGeometry(*v.mesh, v.X_LinkVisual, p);
+      }
       if (const MeasuringSphere* ball = stylus ? BallOf(*stylus, p) : nullptr) {
         // A ruby's mesh has its vertices on the sphere and its faces inside it: a sharp edge
         // (a bore's rim) would come up to the sagitta (tens of um) closer than PathGuard saw,

@@ -20,9 +20,19 @@ namespace vmt::sim {
 inline constexpr double kMmPerM = 1000.0;
 inline constexpr double kDegPerRad = 57.295779513082320876798;
 
+/// A URDF <box>, <cylinder> or <sphere>, centred on its element's origin (a cylinder along z).
+/// The element's mesh is made from it for the pictures; PathGuard takes the solid itself.
+struct Primitive {
+  enum class Kind { kNone, kBox, kCylinder, kSphere };
+  Kind kind = Kind::kNone;
+  Eigen::Vector3d box_m = Eigen::Vector3d::Zero();  ///< a box's sides
+  double radius_m = 0, length_m = 0;                ///< a cylinder's; a sphere's radius
+};
+
 struct Visual {
   std::string name;                          ///< the URDF element's name="" (may be empty)
-  std::string mesh_file;                     ///< path as written in the URDF
+  std::string mesh_file;                     ///< path as written in the URDF; empty for a primitive
+  Primitive primitive;                       ///< kNone for a <mesh>
   std::shared_ptr<const render::Mesh> mesh;  ///< loaded and scaled to metres
   Eigen::Isometry3d X_LinkVisual = Eigen::Isometry3d::Identity();
   render::Rgba colour{0.7f, 0.7f, 0.7f, 1.0f};

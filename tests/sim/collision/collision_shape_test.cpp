@@ -64,7 +64,9 @@ void ExpectSameSolid(const render::Mesh& mesh) {
     const Pair want = Query(tree, Eigen::Isometry3d::Identity(), probe, X_probe);
     const Pair got = Query(shape.geometry, shape.X_MeshShape, probe, X_probe);
     EXPECT_NEAR(got.distance, want.distance, 1e-12 + 1e-9 * want.distance) << k;
-    if (want.distance > 1e-5 || got.distance > 1e-5) EXPECT_EQ(got.contact, want.contact) << k;
+    if (want.distance > 1e-5 || got.distance > 1e-5) {
+      EXPECT_EQ(got.contact, want.contact) << k;
+    }
     contacts += want.contact;
   }
   EXPECT_GT(contacts, 200);
