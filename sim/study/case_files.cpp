@@ -99,28 +99,31 @@ std::string CsvRow(const CaseResult& r) {
   return row + "\n";
 }
 
-std::vector<CaseResult> ReadCases(const std::string& jsonl_path, TornLine torn) {
+std::vector<CaseResult> ReadCases(const std::string& jsonl_path, TornLine torn,
+                                  const std::function<CaseResult(CaseResult&&)>& keep) {
   std::vector<CaseResult> out;
   std::ifstream in(jsonl_path, std::ios::binary);
-  std::string text((std::istreambuf_iterator<char>(in)), {});
-  std::string errors;
-  size_t bad = 0, line = 0, begin = 0;
+  std::string errors, text;
+  size_t bad = 0, line = 0;
   const auto fault = [&](const std::string& why) {
     if (++bad <= kErrorsShown)
       errors += "\n" + jsonl_path + ":" + std::to_string(line) + ": " + why;
   };
-  for (size_t end; (end = text.find('\n', begin)) != std::string::npos; begin = end + 1) {
+  while (std::getline(in, text)) {
+    if (in.eof()) {  // no line break after it
+      if (torn == TornLine::kError) {
+        ++line;
+        fault("the last line is cut short (the study was stopped while writing it; run it again)");
+      }
+      break;
+    }
     ++line;
     CaseResult r;
-    const std::string why = LineError(text.substr(begin, end - begin), r);
-    if (why.empty())
-      out.push_back(std::move(r));
-    else
+    const std::string why = LineError(text, r);
+    if (!why.empty())
       fault(why);
-  }
-  if (begin < text.size() && torn == TornLine::kError) {
-    ++line;
-    fault("the last line is cut short (the study was stopped while writing it; run it again)");
+    else
+      out.push_back(keep ? keep(std::move(r)) : std::move(r));
   }
   if (bad > kErrorsShown) errors += "\n... and " + std::to_string(bad - kErrorsShown) + " more";
   if (bad > 0)

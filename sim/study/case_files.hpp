@@ -4,6 +4,7 @@
 // the workers of one study write side by side without tearing lines, and a study stopped
 // half-way keeps every case it finished.
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -29,8 +30,10 @@ std::string CaseJsonLine(const CaseResult& r);
 /// The cases of a cases.jsonl; none if the file is not there. Every line must be a case (a JSON
 /// object with a "case" id): otherwise throws std::runtime_error listing the bad lines as
 /// "FILE:LINE: REASON", so that a corrupt file is never taken for a study of fewer cases.
-std::vector<CaseResult> ReadCases(const std::string& jsonl_path,
-                                  TornLine torn = TornLine::kLeftOut);
+/// Read line by line; `keep`, when given, makes of each case what is held of it (a reader of a
+/// few fields of 100,000 cases holds those, not the cases).
+std::vector<CaseResult> ReadCases(const std::string& jsonl_path, TornLine torn = TornLine::kLeftOut,
+                                  const std::function<CaseResult(CaseResult&&)>& keep = {});
 
 /// One result per id (the first), sorted by id.
 std::vector<CaseResult> Deduplicated(std::vector<CaseResult> cases);

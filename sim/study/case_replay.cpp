@@ -40,17 +40,17 @@ std::string SaveCase(const std::string& dir, const std::string& case_id) {
     return folder;
   }
   const StudyCases study = LoadStudyCases(dir);
-  const std::vector<StudyCase>& cases = study.cases;
-  const auto c =
-      std::find_if(cases.begin(), cases.end(), [&](const StudyCase& k) { return k.id == case_id; });
-  if (c == cases.end())
+  const CaseSpace space = study.space();
+  const std::optional<size_t> k = space.IndexOf(case_id);
+  if (!k)
     throw UnknownCase("the study in " + dir + " has no case " + case_id +
                       " (cases.csv lists them)");
 
   // Saved under another name first and renamed, so that a folder is either whole or absent.
   const ScratchFolder scratch(folder + ".saving-" + std::to_string(::getpid()));
   const std::string& work = scratch.path();
-  const SavedCase saved = SaveCaseRun(study.scene, study.plan, study.interruptions, *c, work);
+  const SavedCase saved =
+      SaveCaseRun(study.scene, study.plan, study.interruptions, space.At(*k), work);
   nlohmann::ordered_json j;
   j["case"] = case_id;
   j["scene_file"] = study.source.scene_file;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <stdexcept>
 
@@ -293,18 +294,28 @@ std::vector<std::string> InChild(const std::function<void(int)>& work, int* stat
 }  // namespace
 
 void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
-                        const std::vector<Interruption>& interruptions,
-                        const std::vector<StudyCase>& cases, size_t sub, bool fork,
+                        const std::vector<Interruption>& interruptions, size_t sub,
+                        const std::function<bool(const StudyCase&)>& chosen, bool fork,
                         const std::function<void(const CaseResult&)>& sink) {
-  std::vector<const StudyCase*> mine;
-  for (const StudyCase& c : cases)
-    if (c.subroutine == sub) mine.push_back(&c);
-  if (mine.empty()) return;
-  std::stable_sort(mine.begin(), mine.end(), [&](const StudyCase* a, const StudyCase* b) {
-    return interruptions[a->interruption].t_s < interruptions[b->interruption].t_s;
-  });
+  // Made group by group, so that a worker holds one group's cases, not its share's.
+  const CaseSpace space(plan, interruptions);
+  const auto group_at = [&](size_t i) {
+    std::vector<StudyCase> group;
+    for (size_t r = 0; r < plan.retracts.size(); ++r)
+      for (size_t m = 0; m < plan.modes.size(); ++m)
+        if (StudyCase c = space.At(space.Index(sub, i, r, m)); chosen(c))
+          group.push_back(std::move(c));
+    return group;
+  };
+  std::vector<size_t> order(interruptions.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return interruptions[a].t_s < interruptions[b].t_s; });
+  if (std::none_of(order.begin(), order.end(), [&](size_t i) { return !group_at(i).empty(); }))
+    return;
   if (!fork) {
-    for (const StudyCase* c : mine) sink(RunCaseFromStart(base, plan, interruptions, *c));
+    for (const size_t i : order)
+      for (const StudyCase& c : group_at(i)) sink(RunCaseFromStart(base, plan, interruptions, c));
     return;
   }
   // The scene lives here; the run reads its timeline by reference, and each child appends to
@@ -315,10 +326,11 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
   // Forks a little before the step's time, so that the appended step runs on the same tick as
   // in a run from the start (a step waits for its `at:`).
   constexpr double kAhead = 0.002;
-  for (size_t first = 0; first < mine.size();) {
-    const Interruption& in = interruptions[mine[first]->interruption];
-    size_t last = first;
-    while (last < mine.size() && mine[last]->interruption == mine[first]->interruption) ++last;
+  for (const size_t i : order) {
+    const std::vector<StudyCase> mine = group_at(i);
+    if (mine.empty()) continue;
+    const Interruption& in = interruptions[i];
+    const size_t first = 0, last = mine.size();
     while (!run.done() && run.time_s() < in.t_s - kAhead) run.Step();
     // The group's results come back a line each through a pipe, so that `sink` runs here.
     int lines[2];
@@ -334,9 +346,9 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
       while (!run.done() && run.time_s() < in.t_s + plan.hold_s - kAhead) run.Step();
       // The cases of one retract share it: a child per retract runs it, a grandchild per mode.
       for (size_t k = first; k < last;) {
-        const RetractPattern& retract = plan.retracts[mine[k]->retract];
+        const RetractPattern& retract = plan.retracts[mine[k].retract];
         size_t end = k;
-        while (end < last && mine[end]->retract == mine[k]->retract) ++end;
+        while (end < last && mine[end].retract == mine[k].retract) ++end;
         int status = 0;
         const std::vector<std::string> got = InChild(
             [&](int fd) {
@@ -349,7 +361,7 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
                 run.Step();
               for (int w = 0; w < 8 && obs.error_pending() && !run.done(); ++w) run.Step();
               for (size_t m = k; m < end; ++m) {
-                const StudyCase& c = *mine[m];
+                const StudyCase& c = mine[m];
                 if (!obs.marker_seen()) {  // the retract ended the case (a refused jog)
                   WriteAll(fd, obs.Result(plan, interruptions, c, run.time_s())
                                        .dump(-1, ' ', false, common::kReplaceBadUtf8) +
@@ -384,7 +396,7 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
             },
             &status);
         for (size_t m = k; m < end; ++m) {
-          const StudyCase& c = *mine[m];
+          const StudyCase& c = mine[m];
           CaseResult r = m - k < got.size()
                              ? nlohmann::ordered_json::parse(got[m - k], nullptr, false)
                              : nlohmann::ordered_json();
@@ -413,7 +425,6 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
       throw std::runtime_error("a study process at " + in.label + " died (wait status " +
                                std::to_string(status) + ")");
-    first = last;
   }
 }
 

@@ -31,11 +31,12 @@ Scene SubroutineScene(const Scene& base, const std::string& subroutine_file);
 
 /// The feed hold at t (timeline step `index`).
 TimelineStep HoldStep(const Scene& scene, double t_s, size_t index);
-/// Runs the cases of `cases` that belong to subroutine `sub` (sorted by interruption), calling
-/// `sink` with each result as it finishes. With `fork` false each case runs from the start.
+/// Runs the cases of subroutine `sub` that `chosen` picks, group by group in the time order of
+/// their interruption points, calling `sink` with each result as it finishes. With `fork`
+/// false each case runs from the start.
 void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
-                        const std::vector<Interruption>& interruptions,
-                        const std::vector<StudyCase>& cases, size_t sub, bool fork,
+                        const std::vector<Interruption>& interruptions, size_t sub,
+                        const std::function<bool(const StudyCase&)>& chosen, bool fork,
                         const std::function<void(const CaseResult&)>& sink);
 
 /// One case from the program's start, without fork. With `shots`, the run renders them (the

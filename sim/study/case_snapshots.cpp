@@ -90,22 +90,22 @@ std::string SnapshotFileOf(const std::string& case_id) {
 
 std::map<std::string, std::string> SnapshotCases(const Scene& base, const StudyPlan& plan,
                                                  const std::vector<Interruption>& interruptions,
-                                                 const std::vector<StudyCase>& cases,
                                                  const std::vector<CaseResult>& results,
                                                  const std::vector<std::string>& ids,
                                                  const std::string& dir,
                                                  const std::function<bool()>& stop) {
   std::map<std::string, std::string> index;
   if (ids.empty()) return index;
+  const CaseSpace space(plan, interruptions);
   std::filesystem::create_directories(dir + "/snapshots");
   const SnapshotSpec look = Look(base);
   for (const std::string& id : ids) {
     if (stop && stop()) break;
-    const auto c =
-        std::find_if(cases.begin(), cases.end(), [&](const StudyCase& k) { return k.id == id; });
+    const std::optional<size_t> k = space.IndexOf(id);
     const auto r = std::find_if(results.begin(), results.end(),
                                 [&](const CaseResult& k) { return Str(k, "case") == id; });
-    if (c == cases.end() || r == results.end()) continue;
+    if (!k || r == results.end()) continue;
+    const StudyCase c = space.At(*k);
     const std::string file = SnapshotFileOf(id);
     if (std::filesystem::exists(dir + "/" + file)) {
       index[id] = file;
@@ -118,7 +118,7 @@ std::map<std::string, std::string> SnapshotCases(const Scene& base, const StudyP
       // At the first contact: PathGuard refused the move before it started, so the machine
       // stands where it would have begun until the case ends; posed at the contact from there.
       ContactStage stage;
-      RunCaseFromStart(base, plan, interruptions, *c, {}, "", nullptr, [&](const SceneRun& run) {
+      RunCaseFromStart(base, plan, interruptions, c, {}, "", nullptr, [&](const SceneRun& run) {
         stage.joints = run.joint_positions();
         stage.stock = run.TurnedStockCylinders();
       });
@@ -128,11 +128,11 @@ std::map<std::string, std::string> SnapshotCases(const Scene& base, const StudyP
     } else {
       // The clear case at its end: first learn when that is, then picture it.
       double t_end = 0;
-      RunCaseFromStart(base, plan, interruptions, *c, {}, "", &t_end);
+      RunCaseFromStart(base, plan, interruptions, c, {}, "", &t_end);
       shot.at_s = t_end;
       shot.file = "end.png";
     }
-    RunCaseFromStart(base, plan, interruptions, *c, {shot}, work);
+    RunCaseFromStart(base, plan, interruptions, c, {shot}, work);
     for (const auto& entry : std::filesystem::directory_iterator(work))
       if (entry.path().extension() == ".png") {
         std::filesystem::rename(entry.path(), dir + "/" + file);

@@ -42,14 +42,13 @@ class WorstCasePicker {
 /// `snapshots/<FileNameOf(case id)>.png`.
 std::string SnapshotFileOf(const std::string& case_id);
 
-/// Renders the cases `ids` (of `cases`) into dir/snapshots/ with the camera and size of the
+/// Renders the cases `ids` (of the plan's) into dir/snapshots/ with the camera and size of the
 /// scene's first snapshot (else its first camera, 320x240); a picture already there is kept.
 /// Returns case id -> file relative to dir, and writes it as dir/snapshots.json. A case whose
 /// rerun took no picture is left out. When `stop` says so, no further picture is begun (a
 /// rerun takes the missing ones).
 std::map<std::string, std::string> SnapshotCases(const Scene& base, const StudyPlan& plan,
                                                  const std::vector<Interruption>& interruptions,
-                                                 const std::vector<StudyCase>& cases,
                                                  const std::vector<CaseResult>& results,
                                                  const std::vector<std::string>& ids,
                                                  const std::string& dir,

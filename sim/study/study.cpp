@@ -113,16 +113,13 @@ struct WorkersEnd {
 // ends on SIGINT or SIGTERM at once (the default action), between two writes.
 [[noreturn]] void Worker(const StudyOptions& o, int w, const Scene& scene, const StudyPlan& plan,
                          const std::vector<Interruption>& interruptions,
-                         const std::vector<StudyCase>& todo,
-                         const std::map<size_t, int>& worker_of) {
+                         const std::vector<bool>& todo, const std::vector<int>& worker_of) {
   int code = 0;
   try {
-    std::vector<StudyCase> mine;
-    for (const StudyCase& c : todo)
-      if (worker_of.at(c.group) == w) mine.push_back(c);
     CaseFiles files(o.out_dir);
+    const auto mine = [&](const StudyCase& c) { return todo[c.index] && worker_of[c.group] == w; };
     for (size_t s = 0; s < plan.subroutines.size(); ++s)
-      RunSubroutineCases(scene, plan, interruptions, mine, s, o.fork_cases,
+      RunSubroutineCases(scene, plan, interruptions, s, mine, o.fork_cases,
                          [&](const CaseResult& r) {
                            const StopSignalsHeld whole_lines;
                            files.Write(r);
@@ -139,24 +136,28 @@ struct WorkersEnd {
 // (SIGTERM; SIGKILL to one that is still there after kEndWait) before it returns; the cases of
 // their processes (which die with them) go unfinished.
 WorkersEnd RunWorkers(const StudyOptions& o, const Scene& scene, const StudyPlan& plan,
-                      const std::vector<Interruption>& interruptions,
-                      const std::vector<StudyCase>& todo, size_t lines_before,
+                      const std::vector<Interruption>& interruptions, const CaseSpace& space,
+                      const std::vector<bool>& todo, size_t todo_count, size_t lines_before,
                       std::chrono::steady_clock::time_point wall0) {
   constexpr std::chrono::seconds kEndWait{5};
   const auto stop = [&] { return o.stop ? o.stop() : std::string(); };
-  // Workers take whole groups (one interruption point of one subroutine) in turn.
-  std::map<size_t, int> worker_of;
-  for (const StudyCase& c : todo)
-    if (!worker_of.count(c.group)) {
-      const int w = static_cast<int>(worker_of.size() % static_cast<size_t>(o.jobs));
-      worker_of[c.group] = w;
+  // Workers take whole groups (one interruption point of one subroutine) in turn, of the
+  // groups with a case to run.
+  std::vector<int> worker_of(space.groups(), -1);
+  int next = 0;
+  for (size_t k = 0; k < space.size(); ++k) {
+    const size_t group = k / space.cases_per_group();
+    if (todo[k] && worker_of[group] < 0) {
+      worker_of[group] = next;
+      next = (next + 1) % o.jobs;
     }
+  }
   std::vector<pid_t> workers;
   std::fflush(nullptr);
   const pid_t study_pid = ::getpid();
   {
     const StopSignalsHeld forking;
-    for (int w = 0; w < o.jobs && !todo.empty() && stop().empty(); ++w) {
+    for (int w = 0; w < o.jobs && todo_count > 0 && stop().empty(); ++w) {
       const pid_t pid = ::fork();
       if (pid < 0) throw std::runtime_error("fork failed");
       if (pid > 0) {
@@ -202,7 +203,7 @@ WorkersEnd RunWorkers(const StudyOptions& o, const Scene& scene, const StudyPlan
     if (o.progress) {
       const double wall =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-      Bar(CountLines(o.out_dir + "/cases.jsonl") - lines_before, todo.size(), wall);
+      Bar(CountLines(o.out_dir + "/cases.jsonl") - lines_before, todo_count, wall);
     }
     if (alive > 0) std::this_thread::sleep_for(std::chrono::milliseconds(o.progress ? 200 : 20));
   }
@@ -256,37 +257,41 @@ StudySummary RunStudy(const StudyOptions& o) {
     return summary;
   }
   const std::vector<Interruption> interruptions = Interruptions(plan, *ref);
-  const std::vector<StudyCase> cases = ShareOf(EnumerateCases(plan, interruptions), source);
+  const CaseSpace space(plan, interruptions);
+  const std::vector<bool> share = ShareOf(space, source);
 
-  // What the folder holds already (whole lines only) is kept and skipped.
+  // What the folder holds already (whole lines only) is kept and skipped. A bit per case: the
+  // study's memory does not grow with its cases.
   const std::string jsonl = o.out_dir + "/cases.jsonl";
-  std::set<std::string> done;
-  MergeCaseFiles({jsonl}, o.out_dir, TornLine::kLeftOut,
-                 [&](const CaseResult& r) { done.insert(r["case"].get<std::string>()); });
-  std::vector<StudyCase> todo;
-  for (const StudyCase& c : cases)
-    if (!done.count(c.id)) todo.push_back(c);
+  std::vector<bool> todo = share;
+  MergeCaseFiles({jsonl}, o.out_dir, TornLine::kLeftOut, [&](const CaseResult& r) {
+    if (const std::optional<size_t> k = space.IndexOf(r["case"].get<std::string>()))
+      todo[*k] = false;
+  });
+  const size_t share_count = static_cast<size_t>(std::count(share.begin(), share.end(), true));
+  const size_t todo_count = static_cast<size_t>(std::count(todo.begin(), todo.end(), true));
 
-  summary.cases = cases.size();
-  summary.skipped = cases.size() - todo.size();
-  summary.run = todo.size();
+  summary.cases = share_count;
+  summary.skipped = share_count - todo_count;
+  summary.run = todo_count;
   const double cpu0 = ChildrenCpuSeconds();
   const WorkersEnd workers =
-      RunWorkers(o, scene, plan, interruptions, todo, CountLines(jsonl), wall0);
+      RunWorkers(o, scene, plan, interruptions, space, todo, todo_count, CountLines(jsonl), wall0);
   summary.cases_cpu_s = ChildrenCpuSeconds() - cpu0;
   // The files in case id order, whatever the workers' interleaving: the same study gives the
   // same bytes.
   // Merged as they stream by: the tally and the worst cases keep bounded state.
-  std::set<std::string> finished;
+  std::vector<bool> finished(space.size(), false);
   std::map<std::string, ClassCount> tally;
   WorstCasePicker worst(o.snapshots);
   MergeCaseFiles({jsonl}, o.out_dir, TornLine::kLeftOut, [&](const CaseResult& r) {
-    finished.insert(r["case"].get<std::string>());
+    if (const std::optional<size_t> k = space.IndexOf(r["case"].get<std::string>()))
+      finished[*k] = true;
     tally[r.value("subroutine", "")].Add(r);
     worst.Add(r);
   });
-  summary.finished = static_cast<size_t>(std::count_if(
-      cases.begin(), cases.end(), [&](const StudyCase& c) { return finished.count(c.id) > 0; }));
+  summary.finished = 0;
+  for (size_t k = 0; k < space.size(); ++k) summary.finished += share[k] && finished[k];
   summary.stopped = workers.stopped;
   if (!summary.stopped.empty()) {
     summary.run = summary.finished > summary.skipped ? summary.finished - summary.skipped : 0;
@@ -294,8 +299,8 @@ StudySummary RunStudy(const StudyOptions& o) {
   }
   if (!workers.failed && o.snapshots > 0) {
     const auto shots0 = std::chrono::steady_clock::now();
-    summary.snapshots = SnapshotCases(scene, plan, interruptions, cases, worst.Results(),
-                                      worst.Ids(), o.out_dir, stop_asked)
+    summary.snapshots = SnapshotCases(scene, plan, interruptions, worst.Results(), worst.Ids(),
+                                      o.out_dir, stop_asked)
                             .size();
     summary.snapshots_wall_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - shots0).count();

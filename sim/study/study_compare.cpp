@@ -73,6 +73,23 @@ std::string What(const CaseChange& c, double threshold) {
   return s;
 }
 
+// What a comparison reads of a case (identity, class, distances, first contact; of the path
+// only its last corner, which ContactAxes takes): a few hundred bytes where a whole case with its
+// path holds kilobytes.
+CaseResult ComparedFields(CaseResult&& r) {
+  CaseResult kept = CaseResult::object();
+  for (const char* key :
+       {"case", "subroutine", "interrupt", "retract", "mode", "verdict", "retract_contact",
+        "contact_class", "min_clearance_mm", "past_contact_mm", "parts", "contact_position"}) {
+    const auto it = r.find(key);
+    if (it != r.end()) kept[key] = std::move(*it);
+  }
+  const auto path = r.find("path");
+  if (path != r.end() && path->is_array() && !path->empty())
+    kept["path"] = CaseResult::array({std::move(path->back())});
+  return kept;
+}
+
 }  // namespace
 
 std::string CaseIdentity(const CaseResult& r) {
@@ -229,9 +246,9 @@ std::string CompareStudies(const std::string& dir_a, const std::string& dir_b,
       throw std::runtime_error(d + ": no cases.jsonl (not a study folder)");
   if (!(threshold_mm >= 0)) throw std::runtime_error("--threshold needs a distance >= 0 mm");
   const std::vector<CaseResult> a =
-      Deduplicated(ReadCases(dir_a + "/cases.jsonl", TornLine::kError));
+      Deduplicated(ReadCases(dir_a + "/cases.jsonl", TornLine::kError, ComparedFields));
   const std::vector<CaseResult> b =
-      Deduplicated(ReadCases(dir_b + "/cases.jsonl", TornLine::kError));
+      Deduplicated(ReadCases(dir_b + "/cases.jsonl", TornLine::kError, ComparedFields));
   const Comparison c = CompareCases(a, b, threshold_mm, dir_a, dir_b);
   common::WriteFileAtomically(html_path, CompareHtml(c, a, b));
   return CompareText(c, a, b);

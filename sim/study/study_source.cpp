@@ -9,6 +9,7 @@
 
 #include "common/json_text.hpp"
 #include "common/output_file.hpp"
+#include "sim/study/case_merge.hpp"
 #include "sim/study/reference_run.hpp"
 
 namespace vmt::sim::study {
@@ -81,12 +82,26 @@ std::optional<StudySource> ReadStudySource(const std::string& dir) {
   return s;
 }
 
-std::vector<StudyCase> ShareOf(const std::vector<StudyCase>& all, const StudySource& source) {
-  std::vector<StudyCase> mine;
-  for (const StudyCase& c : all)
-    if (InShard(c, source.shard, source.shards)) mine.push_back(c);
-  if (source.max_cases && mine.size() > *source.max_cases) mine.resize(*source.max_cases);
+std::vector<bool> ShareOf(const CaseSpace& space, const StudySource& source) {
+  std::vector<bool> mine(space.size(), false);
+  size_t n = 0;
+  for (size_t k = 0; k < space.size() && (!source.max_cases || n < *source.max_cases); ++k) {
+    if (InShard(k / space.cases_per_group(), source.shard, source.shards)) {
+      mine[k] = true;
+      ++n;
+    }
+  }
   return mine;
+}
+
+std::vector<bool> HeldCases(const CaseSpace& space, const std::string& jsonl_path) {
+  std::vector<bool> held(space.size(), false);
+  if (!std::filesystem::exists(jsonl_path)) return held;
+  ForEachCase(jsonl_path, [&](const CaseResult& r) {
+    if (const std::optional<size_t> k = space.IndexOf(r["case"].get<std::string>()))
+      held[*k] = true;
+  });
+  return held;
 }
 
 StudyCases LoadStudyCases(const std::string& dir) {
@@ -108,9 +123,7 @@ StudyCases LoadStudyCases(const std::string& dir) {
     throw std::runtime_error(dir + "/reference.json: " + e.what());
   }
   std::vector<Interruption> interruptions = Interruptions(plan, ref);
-  std::vector<StudyCase> cases = EnumerateCases(plan, interruptions);
-  return {std::move(*source), std::move(scene), std::move(plan), std::move(interruptions),
-          std::move(cases)};
+  return {std::move(*source), std::move(scene), std::move(plan), std::move(interruptions)};
 }
 
 }  // namespace vmt::sim::study

@@ -29,8 +29,13 @@ void WriteStudySource(const std::string& dir, const StudySource& source);
 /// nullopt where `dir` has no study.json; throws std::runtime_error for a damaged one.
 std::optional<StudySource> ReadStudySource(const std::string& dir);
 
-/// The cases of `all` that a folder with this source holds: its shard, then its first N.
-std::vector<StudyCase> ShareOf(const std::vector<StudyCase>& all, const StudySource& source);
+/// Which cases of `space` a folder with this source holds, a bit per case index: its shard,
+/// then of that its first N.
+std::vector<bool> ShareOf(const CaseSpace& space, const StudySource& source);
+
+/// Which cases of `space` the cases.jsonl at `jsonl_path` holds (whole lines; none where the
+/// file is missing), a bit per case index, read line by line.
+std::vector<bool> HeldCases(const CaseSpace& space, const std::string& jsonl_path);
 
 /// A study folder's cases as its source and reference run give them.
 struct StudyCases {
@@ -38,7 +43,8 @@ struct StudyCases {
   Scene scene;
   StudyPlan plan;
   std::vector<Interruption> interruptions;
-  std::vector<StudyCase> cases;  ///< every case of the study, whatever the folder's share
+  /// Every case of the study, whatever the folder's share (valid while this lives unmoved).
+  CaseSpace space() const { return CaseSpace(plan, interruptions); }
 };
 
 /// Throws std::runtime_error (`dir` has no study.json or no reference.json, or a damaged one),

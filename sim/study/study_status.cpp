@@ -1,7 +1,6 @@
 #include "sim/study/study_status.hpp"
 
 #include <filesystem>
-#include <unordered_set>
 
 #include "sim/study/case_files.hpp"
 #include "sim/study/case_merge.hpp"
@@ -16,17 +15,18 @@ StudyProgress ReadStudyProgress(const std::string& dir) {
   p.reference = std::filesystem::exists(dir + "/reference.json");
   if (!p.reference) return p;
   const StudyCases study = LoadStudyCases(dir);
-  // Line by line, keeping only the ids: a study of 100,000 cases is hundreds of MB of JSON. A
+  const CaseSpace space = study.space();
+  // Line by line, keeping a bit per case: a study of 100,000 cases is hundreds of MB of JSON. A
   // torn last line is a case to run again, as the study's own rerun counts it.
-  std::unordered_set<std::string> held;
-  ForEachCase(dir + "/cases.jsonl",
-              [&](const CaseResult& r) { held.insert(r["case"].get<std::string>()); });
-  for (const StudyCase& c : ShareOf(study.cases, study.source)) {
+  const std::vector<bool> held = HeldCases(space, dir + "/cases.jsonl");
+  const std::vector<bool> share = ShareOf(space, study.source);
+  for (size_t k = 0; k < space.size(); ++k) {
+    if (!share[k]) continue;
     ++p.expected;
-    if (held.count(c.id))
+    if (held[k])
       ++p.done;
     else
-      p.missing.push_back(c.id);
+      p.missing.push_back(space.At(k).id);
   }
   return p;
 }

@@ -115,7 +115,10 @@ expect_write_error "run, events.jsonl on /dev/full" events.jsonl devfull.log $? 
 for sig in TERM INT; do
   "$vmt" run "$jog" --until 300 --out "sig$sig" >"sig$sig.log" 2>&1 &
   pid=$!
-  sleep 1
+  # Signalled once the run's ticks go (its first event is written): a signal before vmt catches
+  # it is ignored by a background job of this shell (SIGINT) or ends it outright (SIGTERM).
+  for _ in $(seq 1 600); do [ -s "sig$sig/events.jsonl" ] && break; sleep 0.1; done
+  sleep 0.3
   kill -"$sig" "$pid"
   wait "$pid"
   code=$?

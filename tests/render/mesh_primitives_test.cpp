@@ -75,6 +75,25 @@ TEST(MeshPrimitivesTest, BoxShapeAndWinding) {
   EXPECT_EQ(high, Eigen::Vector3d(1, 0.5, 3));
 }
 
+TEST(MeshPrimitivesTest, SphereShapeAndWinding) {
+  const int rings = 8, segments = 12;
+  const Mesh mesh = MakeSphere(0.02, rings, segments);
+  // A fan of triangles round each pole, two per quad in the rows between.
+  EXPECT_EQ(mesh.indices.size(), size_t(2 * segments + 2 * segments * (rings - 2)) * 3);
+  EXPECT_EQ(mesh.positions.size() / 3, size_t(2 + segments * (rings - 1)));
+  ExpectConsistent(mesh);
+  Eigen::Vector3d low = Position(mesh, 0), high = low;
+  for (uint32_t i = 0; i < mesh.positions.size() / 3; ++i) {
+    const Eigen::Vector3d p = Position(mesh, i);
+    EXPECT_NEAR(p.norm(), 0.02, 1e-6);
+    EXPECT_TRUE(Normal(mesh, i).isApprox(p.normalized(), 1e-6));
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+  EXPECT_NEAR(low.z(), -0.02, 1e-7);  // both poles are vertices
+  EXPECT_NEAR(high.z(), 0.02, 1e-7);
+}
+
 TEST(MeshPrimitivesTest, BadArgumentsThrow) {
   EXPECT_THROW(MakeCylinder(0, 1, 8), std::runtime_error);
   EXPECT_THROW(MakeCylinder(1, -1, 8), std::runtime_error);
@@ -82,6 +101,9 @@ TEST(MeshPrimitivesTest, BadArgumentsThrow) {
   EXPECT_THROW(MakeTube(0, 1, 1, 8), std::runtime_error);
   EXPECT_THROW(MakeTube(1, 1, 1, 8), std::runtime_error);
   EXPECT_THROW(MakeBox({0, 0, 0}, {1, -1, 1}), std::runtime_error);
+  EXPECT_THROW(MakeSphere(0, 8, 8), std::runtime_error);
+  EXPECT_THROW(MakeSphere(1, 1, 8), std::runtime_error);
+  EXPECT_THROW(MakeSphere(1, 8, 2), std::runtime_error);
 }
 
 }  // namespace

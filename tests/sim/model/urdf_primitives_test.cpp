@@ -114,6 +114,53 @@ TEST(UrdfPrimitives, PathGuardMeasuresTheSolids) {
   EXPECT_GT(near, 10);  // the poses come close, not only far apart
 }
 
+std::string QuillAsSphere(std::string urdf, const std::string& radius) {
+  return ReplaceOnce(
+      urdf,
+      "<collision name=\"tailstock_quill\">\n      <origin xyz=\"0 0 0\" rpy=\"0 0 0\"/>\n"
+      "      <geometry><mesh filename=\"meshes/tailstock_quill.obj\"/></geometry>",
+      "<collision name=\"tailstock_quill\">\n      <origin xyz=\"0 0 0.09\"/>\n"
+      "      <geometry><sphere radius=\"" +
+          radius + "\"/></geometry>");
+}
+
+// A sphere's distance to anything is its centre's less its radius: two spheres on one centre
+// are measured the difference of their radii apart, pose by pose.
+TEST(UrdfPrimitives, ASphereLoadsAsASphere) {
+  const MachineModel small =
+      LatheWithUrdf("sphere_small", [](std::string u) { return QuillAsSphere(u, "0.03"); });
+  const MachineModel large =
+      LatheWithUrdf("sphere_large", [](std::string u) { return QuillAsSphere(u, "0.04"); });
+  const Visual& ball = Collision(small, "tailstock_quill");
+  ASSERT_EQ(ball.primitive.kind, Primitive::Kind::kSphere);
+  EXPECT_DOUBLE_EQ(ball.primitive.radius_m, 0.03);
+  ASSERT_TRUE(ball.mesh);
+  for (size_t i = 0; i < ball.mesh->positions.size(); i += 3) {
+    const Eigen::Vector3f p(ball.mesh->positions[i], ball.mesh->positions[i + 1],
+                            ball.mesh->positions[i + 2]);
+    EXPECT_NEAR(p.norm(), 0.03f, 1e-6f);
+  }
+  CollisionWorld a(small), b(large);
+  const int z = small.JointIndex("z_carriage"), x = small.JointIndex("x_slide");
+  const int w = small.JointIndex("tailstock");
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> zd(-0.05, 0.65), xd(-0.05, 0.3), wd(0.1, 0.7);
+  int measured = 0;
+  for (int k = 0; k < 200; ++k) {
+    std::vector<double> q(small.joints.size(), 0.0);
+    q[z] = zd(rng), q[x] = xd(rng), q[w] = wd(rng);
+    a.Pose(q), b.Pose(q);
+    const double d_small =
+        a.Distance(PartIndex(a, "tailstock_quill"), PartIndex(a, "turret_st01_insert"));
+    const double d_large =
+        b.Distance(PartIndex(b, "tailstock_quill"), PartIndex(b, "turret_st01_insert"));
+    if (d_large <= 0) continue;
+    EXPECT_NEAR(d_small - d_large, 0.01, 1e-7 + 1e-5 * d_small) << k;
+    ++measured;
+  }
+  EXPECT_GT(measured, 100);
+}
+
 TEST(UrdfPrimitives, ASizeOfZeroIsAnError) {
   try {
     LatheWithUrdf("zero", [](std::string u) {

@@ -17,6 +17,8 @@ namespace {
 
 const std::string kTiny = std::string(VMT_SOURCE_DIR) + "/tests/sim/study/tiny-study.yaml";
 
+bool FirstInterruption(const StudyCase& c) { return c.interruption == 0; }
+
 struct Tiny {
   Scene scene = LoadScene(kTiny);
   StudyPlan plan = LoadStudyPlan(kTiny, scene);
@@ -50,7 +52,7 @@ TEST(study_cases, TinyStudyVerdicts) {
   const Tiny t;
   ASSERT_EQ(t.cases.size(), 2u);
   std::map<std::string, CaseResult> by_retract;
-  RunSubroutineCases(t.scene, t.plan, t.interruptions, t.cases, 0, true,
+  RunSubroutineCases(t.scene, t.plan, t.interruptions, 0, FirstInterruption, true,
                      [&](const CaseResult& r) { by_retract[r["retract"].get<std::string>()] = r; });
   ASSERT_EQ(by_retract.size(), 2u);
   const CaseResult& up = by_retract["X+ then Z+"];
@@ -74,7 +76,7 @@ TEST(study_cases, TinyStudyVerdicts) {
 TEST(study_cases, ForkedCaseEqualsTheCaseRunFromTheStart) {
   const Tiny t;
   std::vector<CaseResult> forked;
-  RunSubroutineCases(t.scene, t.plan, t.interruptions, t.cases, 0, true,
+  RunSubroutineCases(t.scene, t.plan, t.interruptions, 0, FirstInterruption, true,
                      [&](const CaseResult& r) { forked.push_back(r); });
   ASSERT_EQ(forked.size(), t.cases.size());
   for (size_t i = 0; i < t.cases.size(); ++i)
