@@ -124,7 +124,7 @@ bad missing_png "nope.png': No such file or directory" -- "$vmt" imgdiff "$out/n
 sed 's#^  subroutines: .*#  subroutines: [""]#; s#\.\./models#'"$src"'/models#; s#program: nc/#program: '"$src"'/scenes/nc/#' \
   "$src/scenes/study-repos-turning.yaml" >"$out/study_empty_sub.yaml"
 bad study_empty_subroutine "study.subroutines\[0\]: cannot open NC program .*: Is a directory" -- \
-  timeout 5 "$vmt" study repos "$out/study_empty_sub.yaml" --out "$out/study"
+  timeout "$bad_timeout" "$vmt" study repos "$out/study_empty_sub.yaml" --out "$out/study"
 
 # PNG bombs: a 200-byte file may claim 16384 x 16384 pixels (1 GiB to allocate).
 python3 - "$out/bomb.png" <<'PY'
