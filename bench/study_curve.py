@@ -17,10 +17,11 @@ program on, then 99_safe's: every size is a prefix of the same study.
 import argparse
 import json
 import os
-import re
 import shutil
 import subprocess
 import sys
+
+from study_scale import timed  # wall seconds and peak memory (MB) under /usr/bin/time -v
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -66,16 +67,6 @@ study:
   modes: [repositioning, restart]
   subroutines: [{scenes}/nc/99.mtc, {scenes}/nc/99_safe.mtc]
 """
-
-
-def timed(cmd):
-    r = subprocess.run(["/usr/bin/time", "-v"] + cmd, cwd=ROOT, capture_output=True, text=True)
-    if r.returncode != 0:
-        sys.exit(f"{' '.join(cmd)} failed ({r.returncode}):\n{r.stderr[-3000:]}")
-    rss = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", r.stderr).group(1))
-    wall = re.search(r"Elapsed \(wall clock\) time.*: (?:(\d+):)?(\d+):([\d.]+)", r.stderr)
-    seconds = int(wall.group(1) or 0) * 3600 + int(wall.group(2)) * 60 + float(wall.group(3))
-    return seconds, rss / 1024
 
 
 def main():
