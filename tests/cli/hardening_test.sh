@@ -8,7 +8,10 @@ rm -rf "$out" && mkdir -p "$out"
 # 2 GB of address space: every refusal here must come before a big allocation. A sanitizer's
 # shadow memory needs terabytes of address space: no limit there.
 bad_vm_limit=2000000
-if ldd "$vmt" 2>/dev/null | grep -q 'lib[at]san'; then bad_vm_limit=unlimited; fi
+# gcc links the runtime as a shared library, clang into the executable.
+if ldd "$vmt" 2>/dev/null | grep -q 'lib[at]san' || nm -D "$vmt" 2>/dev/null | grep -q ' __[at]san_init$'; then
+  bad_vm_limit=unlimited
+fi
 bad_timeout=20
 . "$(dirname "$0")/refusal_checks.sh"
 
