@@ -20,6 +20,7 @@
 #include <numbers>
 
 #include "control/channel/channel.hpp"
+#include "control/channel/fictive_jog.hpp"
 #include "control/channel/jog_follow.hpp"
 
 namespace vmt::control::channel {
@@ -66,7 +67,7 @@ bool Channel::HandwheelFictive(int axis, int counts) {
 
 void Channel::FictiveJogging(double dt) {
   int x = -1, c = -1;
-  FictiveJog* jogs = jog_.fictive;
+  FictiveJog(&jogs)[2] = jog_.fictive;
   if (!FictiveJogAxes(x, c)) {
     for (int k = 0; k < 2; ++k) jogs[k] = FictiveJog{};
     return;
@@ -82,10 +83,11 @@ void Channel::FictiveJogging(double dt) {
   // handwheel), either slower where C would pass its own jogging rapid.
   const double c_limit =
       JogRapid(ac) * std::numbers::pi / 180 * std::max(radius, kFictiveJogCentre);
-  const double speed = std::min(jog_rules().Speed(ax), c_limit);
-  const double handwheel_speed = std::min(JogRapid(ax) * override_, c_limit);
+  FictiveJogContext context;
+  context.enabled = enabled;
+  context.speed = std::min(jog_rules().Speed(ax), c_limit);
+  context.handwheel_speed = std::min(JogRapid(ax) * override_, c_limit);
   // 3.2: the zone of each fictive axis while a REPOS function is called.
-  double low[2] = {-HUGE_VAL, -HUGE_VAL}, high[2] = {HUGE_VAL, HUGE_VAL};
   int rx = -1, rc = -1;
   if (repos_.function != ReposFunction::kNone && FictiveRepos(rx, rc)) {
     const nc::FictivePoint target = FictiveOf(ReposTarget(), rx, rc);
@@ -94,58 +96,16 @@ void Channel::FictiveJogging(double dt) {
                  from[2] = {start.x1, start.y1};
     for (int k = 0; k < 2; ++k) {
       const ReposZone zone = FictiveZoneOf(to[k], from[k]);
-      low[k] = std::min(zone.low, now[k]);
-      high[k] = std::max(zone.high, now[k]);
+      context.low[k] = std::min(zone.low, now[k]);
+      context.high[k] = std::max(zone.high, now[k]);
     }
   }
-  double pos[2] = {p.x1, p.y1};
-  const double increment = jog_rules().Increment(ax);
-  const double step = ax.acceleration * dt;
-  bool moved = false;
-  for (int k = 0; k < 2; ++k) {
-    FictiveJog& j = jogs[k];
-    const auto within = [&](double v) { return std::clamp(v, low[k], high[k]); };
-    if (jog_.mode == JogMode::kHandwheel) j.key = 0;
-    // An increment under way runs to its end at the jogging speed (below), the handwheel then
-    // on from its end (SetJogMode made that its target).
-    if (jog_.mode == JogMode::kHandwheel && !j.stepping) {
-      if (!j.handwheel) {
-        j.velocity = 0;
-        continue;
-      }
-      j.handwheel_target = within(j.handwheel_target);
-      if (FollowTarget(pos[k], j.velocity, j.handwheel_target, handwheel_speed, ax.acceleration,
-                       dt))
-        j.handwheel = false;
-      moved = true;
-      continue;
-    }
-    if (jog_.mode != JogMode::kHandwheel) j.handwheel = false;
-    if (JogStepping(j.stepping, increment, j.velocity)) {
-      if (!j.stepping && j.key != 0 && enabled) {
-        j.stepping = true;
-        j.target = within(pos[k] + j.key * increment);
-        j.key = 0;  // one increment per press
-      }
-      if (!j.stepping) continue;
-      if (FollowTarget(pos[k], j.velocity, j.target, speed, ax.acceleration, dt))
-        j.stepping = false;
-      moved = true;
-      continue;
-    }
-    const int key = enabled && increment == 0 ? j.key : 0;
-    const double room = key > 0 ? high[k] - pos[k] : pos[k] - low[k];
-    const double target_velocity =
-        key * std::min(speed, std::sqrt(2 * ax.acceleration * std::max(0.0, room)));
-    j.velocity = std::clamp(target_velocity, j.velocity - step, j.velocity + step);
-    if (j.velocity == 0) continue;
-    const double next = within(pos[k] + j.velocity * dt);
-    if (next != pos[k] + j.velocity * dt) j.velocity = 0;
-    pos[k] = next;
-    moved = true;
-  }
+  context.mode = jog_.mode;
+  context.increment = jog_rules().Increment(ax);
+  context.acceleration = ax.acceleration;
+  const std::optional<nc::FictivePoint> moved = FictiveJogCycle(jogs, p, context, dt);
   if (!moved) return;
-  const nc::FictivePoint q{pos[0], pos[1]};
+  const nc::FictivePoint q = *moved;
   // Not through the centre: the jog stops short of it.
   if (std::hypot(q.x1, q.y1) < kFictiveJogCentre) {
     for (int k = 0; k < 2; ++k) jogs[k].velocity = 0, jogs[k].stepping = jogs[k].handwheel = false;
@@ -171,19 +131,9 @@ bool Channel::GuardFictiveJog(int x, int c, nc::FictivePoint next) {
   const double dt = config_.tick_s * config_.ticks_per_cycle;
   const double interval = config_.path_guard_every * dt + dt;
   const double a = config_.axes[x].acceleration;
-  // The handwheel's: its target (it brakes to be there), as for the real axes.
-  double stop[2] = {next.x1, next.y1};
-  for (int k = 0; k < 2; ++k) {
-    const FictiveJog& j = jog_.fictive[k];
-    if (jog_.mode == JogMode::kHandwheel) {
-      if (j.handwheel) stop[k] = j.handwheel_target;
-      continue;
-    }
-    stop[k] += j.velocity * std::abs(j.velocity) / (2 * a) + j.velocity * interval;
-  }
   const nc::FictivePoint p = nc::MachineToFace(out_.commanded[x] - frames_.translation[x],
                                                out_.commanded[c] - frames_.translation[c]);
-  const nc::FictivePoint s{stop[0], stop[1]};
+  const nc::FictivePoint s = FictiveJogStop(jog_.fictive, jog_.mode, next, a, interval);
   const std::string move = jog_.mode == JogMode::kHandwheel ? "handwheel X1/Y1" : "jog X1/Y1";
   // Chords of the line p-s, straight in the drives, within kChordTolerance of it (a
   // handwheel's target may be far; the line may bend much in X and C near the centre).

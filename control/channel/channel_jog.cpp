@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "control/channel/channel.hpp"
+#include "control/channel/fictive_jog.hpp"
 #include "control/channel/jog_follow.hpp"
 
 namespace vmt::control::channel {
@@ -49,14 +50,7 @@ void Channel::RestartHandwheel() {
   if (!FictiveJogAxes(x, c)) return;
   const nc::FictivePoint p = nc::MachineToFace(out_.commanded[x] - frames_.translation[x],
                                                out_.commanded[c] - frames_.translation[c]);
-  const double at[2] = {p.x1, p.y1};
-  for (int k = 0; k < 2; ++k) {
-    FictiveJog& f = jog_.fictive[k];
-    f.handwheel = jog_.mode == JogMode::kHandwheel && (f.stepping || f.velocity != 0);
-    if (!f.handwheel) continue;
-    f.handwheel_target =
-        f.stepping ? f.target : JogStopPoint(at[k], f.velocity, config_.axes[x].acceleration);
-  }
+  RestartFictiveHandwheel(jog_.fictive, jog_.mode, p, config_.axes[x].acceleration);
 }
 
 JogRules Channel::jog_rules() const { return {jog_.mode, jog_.increment, override_}; }

@@ -2,7 +2,8 @@
 // What a jog key press leaves between NC cycles: per channel axis (continuous, increment,
 // handwheel, homing by AxxC.HOME, PathGuard's block of a direction) and per fictive axis X1/Y1
 // under G31. A feed axis' cycle is JogAxisCycle (axis_jog.hpp); the keys reach it through the
-// channel (channel_jog.cpp), X1/Y1's moves are the channel's (channel_fictive_jog.cpp).
+// channel (channel_jog.cpp); X1/Y1's cycle is FictiveJogCycle (fictive_jog.hpp), which the channel
+// turns into moves of X and C (channel_fictive_jog.cpp).
 
 #include <vector>
 
