@@ -1,0 +1,99 @@
+// The trace's rows are the bytes the scene digests pin: every value written as printf's "%.6f"
+// writes it (a field cut at 31 characters with its comma), -0 as 0, the spindle's rpm and the
+// parameter set where the drive has them.
+
+#include "sim/runner/trace_rows.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace vmt::sim {
+namespace {
+
+/// The reference: the row as snprintf formats it.
+std::string Printf(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, ",%.6f", v == 0 ? 0.0 : v);
+  return buf;
+}
+
+MachineModel TwoDrives() {
+  MachineModel m;
+  DriveParams x;
+  x.info.name = "X";
+  x.info.kind = control::AxisKind::kLinear;
+  DriveParams s;
+  s.info.name = "S1";
+  s.spindle = true;
+  s.parameter_sets.resize(2);
+  m.drives = {x, s};
+  return m;
+}
+
+TEST(TraceRows, ValuesAreWrittenAsPrintfWritesThem) {
+  const MachineModel m = TwoDrives();
+  EXPECT_EQ(TraceHeader(m, false), "t,X.cmd,X.pos,X.vel,S1.cmd,S1.pos,S1.vel,S1.rpm,S1.set\n");
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<double> values = {0.0,
+                                      -0.0,
+                                      1e-7,
+                                      -1e-7,
+                                      5e-7,
+                                      -5e-7,
+                                      1.5e-6,
+                                      0.1,
+                                      -2.5,
+                                      123.4567895,
+                                      -987654.3210001,
+                                      1e22,
+                                      1e23,
+                                      -1e25,
+                                      1e300,
+                                      -1.7976931348623157e308,
+                                      4.9e-324,
+                                      nan,
+                                      -nan,
+                                      inf,
+                                      -inf,
+                                      2.0000005,
+                                      1234567.0000005};
+  for (double v : values) {
+    control::AmplifierTelegram at;
+    at.feedback.resize(2);
+    at.feedback[0].position = v;
+    at.feedback[0].velocity = -v;
+    at.feedback[1].velocity = v;
+    at.feedback[1].parameter_set = 1;
+    control::MasterTelegram mdt;
+    mdt.setpoints.resize(2);
+    mdt.setpoints[0] = {control::DriveMode::kPosition, v, 0};
+    mdt.setpoints[1] = {control::DriveMode::kOff, v, 0};
+    char t[32];
+    std::snprintf(t, sizeof t, "%.6f", v);
+    const std::string want = std::string(t) + Printf(v) + Printf(v) + Printf(-v) + Printf(0) +
+                             Printf(0) + Printf(v) + Printf(v / 6.0) + Printf(1) + "\n";
+    EXPECT_EQ(TraceRow(v, m, at, mdt, {}, nullptr), want) << "value " << v;
+  }
+}
+
+TEST(TraceRows, ClutchesAndTheChannelCloseTheRow) {
+  MachineModel m = TwoDrives();
+  m.drives.resize(1);
+  control::AmplifierTelegram at;
+  at.feedback.resize(1);
+  at.feedback[0].position = 12.25;
+  control::MasterTelegram mdt;
+  mdt.setpoints.resize(1);
+  const std::vector<ClutchState> clutches = {static_cast<ClutchState>(2)};
+  EXPECT_EQ(TraceRow(0.001, m, at, mdt, clutches, nullptr),
+            "0.001000,0.000000,12.250000,0.000000,2.000000\n");
+}
+
+}  // namespace
+}  // namespace vmt::sim
