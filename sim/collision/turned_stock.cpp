@@ -1,6 +1,7 @@
 #include "sim/collision/turned_stock.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -12,36 +13,51 @@ constexpr double kLowerM = 1e-9;
 // Material left thinner than this over a cut is no material: a ring of rounding errors.
 constexpr double kThinnestM = 1e-6;
 
-/// The part of a convex polygon between the planes z = lo and z = hi.
-std::vector<Eigen::Vector3d> ClipToSlab(std::vector<Eigen::Vector3d> poly, double lo, double hi) {
+/// A triangle cut by two planes, on the stack: CutSolid clips every triangle in every slice it
+/// crosses, each tick the tool cuts. Each plane at most doubles the corners (a corner and a
+/// crossing per edge), so twelve hold any triangle's piece, even one rounding bent.
+struct Piece {
+  std::array<Eigen::Vector3d, 12> corners;
+  size_t size = 0;
+  const Eigen::Vector3d* begin() const { return corners.data(); }
+  const Eigen::Vector3d* end() const { return corners.data() + size; }
+};
+
+/// The part of a triangle between the planes z = lo and z = hi.
+Piece ClipToSlab(const Eigen::Vector3d* triangle, double lo, double hi) {
+  Piece poly;
+  std::copy(triangle, triangle + 3, poly.corners.begin());
+  poly.size = 3;
   for (const double sign : {1.0, -1.0}) {
     const double bound = sign > 0 ? lo : hi;  // keep sign * (z - bound) >= 0
-    std::vector<Eigen::Vector3d> out;
-    for (size_t i = 0; i < poly.size(); ++i) {
-      const Eigen::Vector3d& p = poly[i];
-      const Eigen::Vector3d& q = poly[(i + 1) % poly.size()];
+    Piece out;
+    for (size_t i = 0; i < poly.size; ++i) {
+      const Eigen::Vector3d& p = poly.corners[i];
+      const Eigen::Vector3d& q = poly.corners[(i + 1) % poly.size];
       const double dp = sign * (p.z() - bound), dq = sign * (q.z() - bound);
-      if (dp >= 0) out.push_back(p);
-      if ((dp >= 0) != (dq >= 0)) out.push_back(p + (q - p) * (dp / (dp - dq)));
+      if (dp >= 0) out.corners[out.size++] = p;
+      if ((dp >= 0) != (dq >= 0)) out.corners[out.size++] = p + (q - p) * (dp / (dp - dq));
     }
-    poly = std::move(out);
-    if (poly.empty()) break;
+    poly = out;
+    if (poly.size == 0) break;
   }
   return poly;
 }
 
-/// The smallest distance from the z axis of a convex planar polygon: of its projection onto the
-/// xy plane from the origin, 0 if the projection covers it.
-double AxisDistance(const std::vector<Eigen::Vector3d>& poly) {
-  double best = 1e300;
+/// The smallest distance from the z axis of a convex planar polygon of `n` corners: of its
+/// projection onto the xy plane from the origin, 0 if the projection covers it.
+double AxisDistance(const Eigen::Vector3d* poly, size_t n) {
+  // Squared distances compared, one square root taken: the root is monotonic and correctly
+  // rounded, so the result is the same bits as the least of the roots.
+  double best_squared = std::numeric_limits<double>::infinity();
   double sign = 0, area2 = 0;
   bool inside = true;
-  for (size_t i = 0; i < poly.size(); ++i) {
-    const Eigen::Vector2d p = poly[i].head<2>(), q = poly[(i + 1) % poly.size()].head<2>();
+  for (size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d p = poly[i].head<2>(), q = poly[(i + 1) % n].head<2>();
     const Eigen::Vector2d e = q - p;
     const double len2 = e.squaredNorm();
     const double t = len2 > 0 ? std::clamp(-p.dot(e) / len2, 0.0, 1.0) : 0.0;
-    best = std::min(best, (p + e * t).norm());
+    best_squared = std::min(best_squared, (p + e * t).squaredNorm());
     area2 += p.x() * q.y() - q.x() * p.y();
     const double cross = e.x() * -p.y() - e.y() * -p.x();
     if (cross != 0) {
@@ -51,6 +67,7 @@ double AxisDistance(const std::vector<Eigen::Vector3d>& poly) {
   }
   // A face seen edge-on projects to a segment: rounding must not make it cover the axis.
   constexpr double kSquareMicron = 1e-12;
+  const double best = std::isinf(best_squared) ? 1e300 : std::sqrt(best_squared);
   return inside && std::abs(area2) > kSquareMicron ? 0.0 : best;
 }
 
@@ -145,12 +162,14 @@ bool TurnedStock::Remove(size_t slice, double inner_m, double outer_m) {
     const StockSpan s = spans[i];
     if (inner_m >= s.outer_m - kLowerM || outer_m <= s.inner_m + kLowerM) continue;
     changed = true;
-    std::vector<StockSpan> left;
-    if (inner_m > s.inner_m) left.push_back({s.inner_m, inner_m});
-    if (s.outer_m - outer_m > kThinnestM) left.push_back({outer_m, s.outer_m});
+    std::array<StockSpan, 2> left;
+    size_t kept = 0;
+    if (inner_m > s.inner_m) left[kept++] = {s.inner_m, inner_m};
+    if (s.outer_m - outer_m > kThinnestM) left[kept++] = {outer_m, s.outer_m};
     spans.erase(spans.begin() + static_cast<std::ptrdiff_t>(i));
-    spans.insert(spans.begin() + static_cast<std::ptrdiff_t>(i), left.begin(), left.end());
-    i += left.size();
+    spans.insert(spans.begin() + static_cast<std::ptrdiff_t>(i), left.begin(),
+                 left.begin() + static_cast<std::ptrdiff_t>(kept));
+    i += kept;
     --i;
   }
   return changed;
@@ -187,12 +206,18 @@ bool TurnedStock::CutSolid(const std::vector<Eigen::Vector3d>& corners, double a
   // triangle wholly above the material says only that the sweep reaches above it, wherever it
   // passes; the closed hull's nearest point lies on one of its triangles.
   const size_t triangles = corners.size() / 3;
-  std::vector<char> above(triangles, 0);
+  struct Triangle {
+    bool above = false;
+    double z_lo = 0, z_hi = 0;
+  };
+  std::vector<Triangle> tri(triangles);
   double nearest = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < triangles; ++i) {
-    const double d = AxisDistance({corners[3 * i], corners[3 * i + 1], corners[3 * i + 2]});
+    const Eigen::Vector3d &a = corners[3 * i], &b = corners[3 * i + 1], &c = corners[3 * i + 2];
+    const double d = AxisDistance(&corners[3 * i], 3);
     nearest = std::min(nearest, d);
-    above[i] = d - allowance_m >= highest - kLowerM;
+    tri[i] = {d - allowance_m >= highest - kLowerM, std::min({a.z(), b.z(), c.z()}),
+              std::max({a.z(), b.z(), c.z()})};
   }
   if (nearest - allowance_m >= highest - kLowerM) return false;
   // Per slice the ring the hull sweeps there: from its nearest to its farthest point.
@@ -210,29 +235,32 @@ bool TurnedStock::CutSolid(const std::vector<Eigen::Vector3d>& corners, double a
     sweep.r_min = std::numeric_limits<double>::infinity();
     Eigen::Vector2d box_lo = Eigen::Vector2d::Constant(sweep.r_min), box_hi = -box_lo;
     points.clear();
+    double r_max_squared = 0;  // one root at the end, as in AxisDistance
     for (size_t i = 0; i < triangles; ++i) {
-      const Eigen::Vector3d &a = corners[3 * i], &b = corners[3 * i + 1], &c = corners[3 * i + 2];
-      if (std::max({a.z(), b.z(), c.z()}) < lo || std::min({a.z(), b.z(), c.z()}) > hi) continue;
-      if (above[i]) {
-        sweep.r_max = std::numeric_limits<double>::infinity();
+      if (tri[i].z_hi < lo || tri[i].z_lo > hi) continue;
+      if (tri[i].above) {
+        r_max_squared = std::numeric_limits<double>::infinity();
         continue;
       }
-      const std::vector<Eigen::Vector3d> piece = ClipToSlab({a, b, c}, lo, hi);
-      if (piece.empty()) continue;
+      const Piece piece = ClipToSlab(&corners[3 * i], lo, hi);
+      if (piece.size == 0) continue;
       sweep.any = true;
-      sweep.r_min = std::min(sweep.r_min, AxisDistance(piece));
+      sweep.r_min = std::min(sweep.r_min, AxisDistance(piece.begin(), piece.size));
       for (const Eigen::Vector3d& p : piece) {
-        sweep.r_max = std::max(sweep.r_max, p.head<2>().norm());
+        r_max_squared = std::max(r_max_squared, p.head<2>().squaredNorm());
         box_lo = box_lo.cwiseMin(p.head<2>()), box_hi = box_hi.cwiseMax(p.head<2>());
         points.push_back(p);
       }
     }
+    sweep.r_max = std::sqrt(r_max_squared);
     from_outside = from_outside || sweep.r_max + allowance_m >= OuterRadius(k);
     if (!sweep.any) continue;  // only triangles above the material
     // The slice's cut through the hull may hold the axis with no triangle across it (a drill's
     // flank runs along the axis): the hull of the pieces tells.
-    if (sweep.r_min > 0 && (box_lo.array() <= 0).all() && (box_hi.array() >= 0).all())
-      sweep.r_min = std::min(sweep.r_min, AxisDistance(Hull(points)));
+    if (sweep.r_min > 0 && (box_lo.array() <= 0).all() && (box_hi.array() >= 0).all()) {
+      const std::vector<Eigen::Vector3d> hull = Hull(points);
+      sweep.r_min = std::min(sweep.r_min, AxisDistance(hull.data(), hull.size()));
+    }
   }
   // A part that reaches out of the material came in from outside and took all above it; one
   // wholly inside (in a bore, in the end face) takes only its ring.
