@@ -9,7 +9,7 @@ runs `vmt study repos --max-cases N --jobs 2 --snapshots 0` for each size from s
 /usr/bin/time -v and prints JSON: one record per size (cases, wall_s, cases_per_minute,
 peak_rss_mb, cases_jsonl_mb).
 
-    bench/study_curve.py --cases 1000,10000,100000          # about 40 min on 2 cores
+    bench/study_curve.py --cases 1000,10000,100000          # about an hour on 2 cores
 
 The first N cases in case order are subroutine 99's interruption points from the start of the
 program on, then 99_safe's: every size is a prefix of the same study.
