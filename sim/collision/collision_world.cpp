@@ -6,7 +6,9 @@
 #include <fcl/narrowphase/distance.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 #include "render/mesh_primitives.hpp"
@@ -43,6 +45,16 @@ const MeasuringSphere* BallOf(const ProbeStylus& stylus, const CollisionPart& p)
         (!best || (ball.centre_m - centre).norm() < (best->centre_m - centre).norm()))
       best = &ball;
   return best;
+}
+
+// Bit for bit: a part whose numbers differ only in the sign of a zero is built anew.
+bool SameCylinder(const CylinderPart& a, const CylinderPart& b) {
+  const auto same = [](double x, double y) {
+    return std::bit_cast<uint64_t>(x) == std::bit_cast<uint64_t>(y);
+  };
+  return a.name == b.name && a.link == b.link && same(a.radius_m, b.radius_m) &&
+         same(a.length_m, b.length_m) && same(a.z_m, b.z_m) &&
+         same(a.inner_radius_m, b.inner_radius_m);
 }
 
 }  // namespace
@@ -87,6 +99,10 @@ CollisionWorld::CollisionWorld(const MachineModel& model, const std::vector<Cyli
     }
   }
   machine_parts_ = size();
+  for (auto& g : fcl_->geometry) {
+    g->computeLocalAABB();
+    fcl_->objects.push_back(std::make_unique<fcl::CollisionObjectd>(g));
+  }
   aside_.assign(machine_parts_, 0);
   SetAdded(added);
   queries_ = 0;
@@ -97,10 +113,33 @@ CollisionWorld::~CollisionWorld() = default;
 void CollisionWorld::SetAdded(const std::vector<CylinderPart>& added) {
   const MachineModel& model = *model_;
   const int old_size = size();
+  // A part added again unchanged keeps its solid, its object and its pairs: the stock as it is
+  // turned changes a few of its cylinders at a time, the spindle's sweep none, and building a
+  // tube's mesh and testing the new part against every machine part in the zero pose is most
+  // of the cost. The same solid gives every query the same bits.
+  const std::vector<CylinderPart> old_added = std::move(added_);
+  std::vector<CollisionPart> old_parts(parts_.begin() + machine_parts_, parts_.end());
+  std::vector<std::shared_ptr<fcl::CollisionGeometryd>> old_geometry(
+      fcl_->geometry.begin() + machine_parts_, fcl_->geometry.end());
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> old_objects;
+  for (size_t i = machine_parts_; i < fcl_->objects.size(); ++i)
+    old_objects.push_back(std::move(fcl_->objects[i]));
   parts_.resize(machine_parts_);
   fcl_->geometry.resize(machine_parts_);
-  fcl_->objects.clear();
-  for (const CylinderPart& c : added) {
+  fcl_->objects.resize(machine_parts_);
+  added_ = added;
+  std::vector<int> was(added.size(), -1);  // per added part, its index among the old ones
+  std::vector<char> taken(old_added.size(), 0);
+  for (size_t k = 0; k < added.size(); ++k) {
+    const CylinderPart& c = added[k];
+    for (size_t j = 0; j < old_added.size() && was[k] < 0; ++j)
+      if (!taken[j] && SameCylinder(old_added[j], c)) was[k] = static_cast<int>(j), taken[j] = 1;
+    if (was[k] >= 0) {
+      parts_.push_back(old_parts[was[k]]);
+      fcl_->geometry.push_back(old_geometry[was[k]]);
+      fcl_->objects.push_back(std::move(old_objects[was[k]]));
+      continue;
+    }
     CollisionPart p;
     p.name = c.name;
     p.link = model.LinkIndex(c.link);
@@ -120,10 +159,8 @@ void CollisionWorld::SetAdded(const std::vector<CylinderPart>& added) {
       fcl_->geometry.push_back(std::make_shared<fcl::Cylinderd>(c.radius_m, c.length_m));
     }
     parts_.push_back(p);
-  }
-  for (auto& g : fcl_->geometry) {
-    g->computeLocalAABB();
-    fcl_->objects.push_back(std::make_unique<fcl::CollisionObjectd>(g));
+    fcl_->geometry.back()->computeLocalAABB();
+    fcl_->objects.push_back(std::make_unique<fcl::CollisionObjectd>(fcl_->geometry.back()));
   }
 
   // The machine's own contacts: same link, links joined by a joint, and parts that touch in the
@@ -154,8 +191,18 @@ void CollisionWorld::SetAdded(const std::vector<CylinderPart>& added) {
     for (int b = 0; b < machine_parts_ && !before.empty(); ++b)
       may_touch_[a * n + b] = before[a * old_size + b];
   Pose(std::vector<double>(model.joints.size(), 0.0));
+  // A pair of a machine part or a kept part with a kept part: as it was.
+  const auto old_index = [&](int i) {
+    return i < machine_parts_            ? i
+           : was[i - machine_parts_] < 0 ? -1
+                                         : machine_parts_ + was[i - machine_parts_];
+  };
   for (int a = 0; a < n; ++a)
     for (int b = std::max(a, before.empty() ? 0 : machine_parts_); b < n; ++b) {
+      if (const int oa = old_index(a), ob = old_index(b); oa >= 0 && ob >= machine_parts_) {
+        may_touch_[a * n + b] = may_touch_[b * n + a] = before[oa * old_size + ob];
+        continue;
+      }
       const int la = parts_[a].link, lb = parts_[b].link;
       bool own = la == lb;
       for (const Joint& j : model.joints)

@@ -66,8 +66,8 @@ class CollisionWorld {
   void SetAside(int part, bool aside) { aside_[part] = aside; }
 
   /// Replaces the parts the scene added (the workpiece, as it is turned): the machine's parts
-  /// stay, the added ones are rebuilt with their own-contact rule. The world must be posed
-  /// again afterwards.
+  /// stay, an added part the same as one before stays with its pairs, the others are built with
+  /// their own-contact rule. The world must be posed again afterwards.
   void SetAdded(const std::vector<CylinderPart>& added);
 
   /// Poses every part for the joint positions (SI, one per model joint).
@@ -94,8 +94,9 @@ class CollisionWorld {
   std::vector<CollisionPart> parts_;
   std::unique_ptr<Fcl> fcl_;
   std::vector<char> may_touch_;
-  int machine_parts_ = 0;    ///< the model's parts come first, the added ones after them
-  std::vector<char> aside_;  ///< per machine part
+  std::vector<CylinderPart> added_;  ///< as SetAdded got them (parts_ after the machine's)
+  int machine_parts_ = 0;            ///< the model's parts come first, the added ones after them
+  std::vector<char> aside_;          ///< per machine part
   bool measuring_ = false;
   std::vector<Eigen::Isometry3d> X_WorldLink_;
   void PosePart(int i);
