@@ -14,6 +14,9 @@ namespace {
 constexpr int kSteps = 16;
 // Bisection stops when the spheres move less than this within the bracket: 0.01 nm.
 constexpr double kSolvedM = 1e-11;
+// What the bounding cylinder's test leaves beyond the rounding of the exact distances (a few
+// ulps of a machine's size).
+constexpr double kFarMarginM = 1e-9;
 
 struct Deepest {
   double depth_m = -1e300;  ///< largest (sphere radius - signed distance); < 0: clear
@@ -61,6 +64,23 @@ StylusTick StepStylus(const ProbeStylus& stylus, const RevolvedPart& part, Stylu
   double travel_m = 0;  // the farthest any centre moves: bounds how fast the depth changes
   for (size_t i = 0; i < stylus.spheres.size(); ++i)
     travel_m = std::max(travel_m, (after[i] - before[i]).norm());
+
+  // Far from the part (the common case) the bounding cylinder alone shows that no sphere comes
+  // near any threshold in this tick: the tick is the quiet one the exact depths would give.
+  double lowest = std::min(0.0, stylus.pre_travel_m);
+  if (!state.damaged) lowest = std::min(lowest, stylus.over_travel_m);
+  bool far = true;
+  for (size_t i = 0; i < stylus.spheres.size() && far; ++i)
+    for (const Eigen::Vector3d* c : {&before[i], &after[i]})
+      far = far && stylus.spheres[i].radius_m - DistanceLowerBound(part, *c) + travel_m <
+                       lowest - kFarMarginM;
+  if (far) {
+    const bool level = Level(stylus, false, ready);
+    tick.changed = level != state.level;
+    tick.level = level;  // a level that changes here changes at the tick's start (ready)
+    state = {false, level, state.damaged, 0.0};
+    return tick;
+  }
 
   // Depth along the tick at u = k / kSteps. The depth changes no faster than the centres
   // move, so when both ends lie far enough on one side of a threshold the tick cannot cross

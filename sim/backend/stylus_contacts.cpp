@@ -17,16 +17,21 @@ void StylusContacts::SetPart(const RevolvedPart& part) {
   part_ = part;
   part_link_ = link;
   any_ = !model_->probes.empty() && !part_.sections.empty();
+  std::vector<int> links{link};
+  for (const ProbeStylus& stylus : model_->probes) links.push_back(stylus.link);
+  needed_ = LinkChains(*model_, links);
+  q_last_.clear();
 }
 
 void StylusContacts::Step(const std::vector<double>& q_before, const std::vector<double>& q_now,
                           const std::vector<uint8_t>& inputs, double t_s, ProbeWiring& wiring) {
   if (!any_) return;
-  std::vector<Eigen::Isometry3d> before =
-      q_before == q_last_ ? std::move(X_last_) : LinkPoses(*model_, q_before);
-  const std::vector<Eigen::Isometry3d> now = LinkPoses(*model_, q_now);
-  q_last_ = q_now;
-  X_last_ = now;
+  // Only the styluses' and the part's links are posed: the rest of the machine does not matter
+  // here, and this runs every drive tick.
+  if (q_before != q_last_) LinkPoses(*model_, q_before, needed_, X_last_);
+  LinkPoses(*model_, q_now, needed_, X_now_);
+  const std::vector<Eigen::Isometry3d>& before = X_last_;
+  const std::vector<Eigen::Isometry3d>& now = X_now_;
   // Both ends in the part's frame of this tick: a turning part's angle does not matter (it is a
   // solid of revolution), and two different angles would bend a straight move into a chord.
   const Eigen::Isometry3d X_PartW = now[part_link_].inverse();
@@ -50,6 +55,8 @@ void StylusContacts::Step(const std::vector<double>& q_before, const std::vector
     o.point_m = now[part_link_] * tick.over_travel_point_m;
     over_travels_.push_back(o);
   }
+  q_last_ = q_now;
+  X_last_.swap(X_now_);
 }
 
 std::vector<StylusOverTravel> StylusContacts::TakeOverTravels() {

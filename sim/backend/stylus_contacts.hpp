@@ -58,9 +58,10 @@ class StylusContacts {
   bool any_ = false;
   std::vector<StylusState> states_;  ///< per stylus of the model
   std::vector<StylusOverTravel> over_travels_;
+  std::vector<bool> needed_;  ///< the links posed (LinkChains of the styluses' and the part's)
   /// The last step's joint positions and link poses: the next step's "before", as a rule.
   std::vector<double> q_last_;
-  std::vector<Eigen::Isometry3d> X_last_;
+  std::vector<Eigen::Isometry3d> X_last_, X_now_;
 };
 
 }  // namespace vmt::sim

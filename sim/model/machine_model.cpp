@@ -405,8 +405,26 @@ MachineModel LoadMachineModel(const std::string& machine_yaml_path) {
 
 std::vector<Eigen::Isometry3d> LinkPoses(const MachineModel& model, const std::vector<double>& q) {
   std::vector<Eigen::Isometry3d> X_W(model.links.size(), Eigen::Isometry3d::Identity());
+  LinkPoses(model, q, std::vector<bool>(model.links.size(), true), X_W);
+  return X_W;
+}
+
+std::vector<bool> LinkChains(const MachineModel& model, const std::vector<int>& links) {
+  std::vector<bool> needed(model.links.size(), false);
+  for (const int link : links) needed.at(static_cast<size_t>(link)) = true;
+  // Children come after their parents: walking back carries a need up to the root.
+  for (size_t j = model.joints.size(); j-- > 0;)
+    if (needed[model.joints[j].child_link]) needed[model.joints[j].parent_link] = true;
+  return needed;
+}
+
+void LinkPoses(const MachineModel& model, const std::vector<double>& q,
+               const std::vector<bool>& needed, std::vector<Eigen::Isometry3d>& X_W) {
+  if (X_W.size() != model.links.size())
+    X_W.assign(model.links.size(), Eigen::Isometry3d::Identity());
   for (size_t j = 0; j < model.joints.size(); ++j) {
     const Joint& joint = model.joints[j];
+    if (!needed[joint.child_link]) continue;
     // The joint's own motion is a pure translation or a pure rotation: only that half of the
     // product is formed. The other half is multiplied by an identity or adds zeros, which changes
     // no bit.
@@ -417,7 +435,6 @@ std::vector<Eigen::Isometry3d> LinkPoses(const MachineModel& model, const std::v
     else if (joint.type != JointType::kFixed)
       X.linear() = X.linear() * Eigen::AngleAxisd(q[j], joint.axis).toRotationMatrix();
   }
-  return X_W;
 }
 
 }  // namespace vmt::sim

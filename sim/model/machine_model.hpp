@@ -201,4 +201,14 @@ MachineModel LoadMachineModel(const std::string& machine_yaml_path);
 /// World poses of every link for the given joint positions (SI, one per joint).
 std::vector<Eigen::Isometry3d> LinkPoses(const MachineModel& model, const std::vector<double>& q);
 
+/// The links whose poses those of `links` are built from: themselves and every link between
+/// them and the root (marked by link index).
+std::vector<bool> LinkChains(const MachineModel& model, const std::vector<int>& links);
+
+/// LinkPoses for the links `needed` marks (LinkChains), into X_W (one per link, identities when
+/// it has another size; the others are left as they are): the same bits as LinkPoses gives them,
+/// for a caller that needs a few links every tick.
+void LinkPoses(const MachineModel& model, const std::vector<double>& q,
+               const std::vector<bool>& needed, std::vector<Eigen::Isometry3d>& X_W);
+
 }  // namespace vmt::sim

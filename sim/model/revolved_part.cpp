@@ -96,6 +96,20 @@ RevolvedDistance SignedDistance(const RevolvedPart& part, const Eigen::Vector3d&
   return out;
 }
 
+double DistanceLowerBound(const RevolvedPart& part, const Eigen::Vector3d& p_Link_m) {
+  if (part.sections.empty()) return std::numeric_limits<double>::infinity();
+  double r_max = 0, z_min = std::numeric_limits<double>::infinity(), z_max = -z_min;
+  for (const RevolvedSection& s : part.sections) {
+    r_max = std::max(r_max, s.r_outer_m);
+    z_min = std::min(z_min, s.z0_m);
+    z_max = std::max(z_max, s.z1_m);
+  }
+  const double r = std::hypot(p_Link_m.x(), p_Link_m.y());
+  const double dr = r - r_max, dz = std::max(z_min - p_Link_m.z(), p_Link_m.z() - z_max);
+  if (dr <= 0 && dz <= 0) return -std::numeric_limits<double>::infinity();
+  return std::hypot(std::max(dr, 0.0), std::max(dz, 0.0));
+}
+
 std::string RevolvedPartError(const RevolvedPart& part) {
   for (size_t i = 0; i < part.sections.size(); ++i) {
     const RevolvedSection& s = part.sections[i];

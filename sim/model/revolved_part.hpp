@@ -44,6 +44,12 @@ struct RevolvedDistance {
 /// is no surface.
 RevolvedDistance SignedDistance(const RevolvedPart& part, const Eigen::Vector3d& p_Link_m);
 
+/// A bound SignedDistance never falls below (but for rounding, a few ulps), from the part's
+/// bounding cylinder alone (no outline is walked): the distance to that cylinder, or -infinity
+/// for a point within it (where the point may lie inside the part) and +infinity for a part
+/// without sections.
+double DistanceLowerBound(const RevolvedPart& part, const Eigen::Vector3d& p_Link_m);
+
 /// What is wrong with the part's sections ("" when nothing): a section with z1 <= z0, r_inner
 /// < 0, r_outer <= r_inner or a number that is not finite, or two sections that share material.
 /// The message names the section by its index.

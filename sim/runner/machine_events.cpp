@@ -45,6 +45,12 @@ void MachineEventWatch::WatchSignals(double t, const control::gateway::SignalIma
   const bool first = last_cells_.empty();
   last_signals_.resize(image.size(), std::nan(""));
   last_cells_.resize(cells.size());
+  if (wanted_.size() != static_cast<size_t>(image.size())) {
+    wanted_.assign(image.size(), true);
+    if (signal_events_)
+      for (int id = 0; id < image.size(); ++id)
+        wanted_[id] = signal_events_(image.table()[id].name);
+  }
   constexpr int kBlock = 64;
   for (int id = 0; id < image.size(); ++id) {
     // Whole blocks of unchanged cells are passed over by memcmp (vectorised) at once.
@@ -55,6 +61,7 @@ void MachineEventWatch::WatchSignals(double t, const control::gateway::SignalIma
     }
     if (!first && cells[id] == last_cells_[id]) continue;
     last_cells_[id] = cells[id];
+    if (!wanted_[id]) continue;
     const double v = SignalNumber(image, id);
     if (v != last_signals_[id] && !(std::isnan(v) && std::isnan(last_signals_[id]))) {
       if (!std::isnan(last_signals_[id]) || v != 0)

@@ -5,6 +5,7 @@
 // watch keeps what it saw last and hands each change to the recorder.
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,13 @@ class MachineEventWatch {
  public:
   explicit MachineEventWatch(const MachineModel& model) : m_(&model) {}
 
+  /// Only the signals `wanted` accepts (by name) make events from now on (RunOptions::
+  /// signal_events); the clutches, inputs and drives are watched as ever.
+  void SetSignalEvents(std::function<bool(const std::string&)> wanted) {
+    signal_events_ = std::move(wanted);
+    wanted_.clear();
+  }
+
   /// This tick's changes at time `t`: `at` as the control sees it, `clutches` the backend's
   /// states; `image` null without a gateway.
   void Watch(double t, const control::AmplifierTelegram& at,
@@ -46,6 +54,8 @@ class MachineEventWatch {
   void WatchDrives(double t, const control::AmplifierTelegram& at, RunRecorder& recorder);
 
   const MachineModel* m_;
+  std::function<bool(const std::string&)> signal_events_;
+  std::vector<bool> wanted_;  ///< per signal of the image: signal_events_ accepts it
   std::vector<double> last_signals_;
   std::vector<int64_t> last_cells_;  ///< the image's cells when last_signals_ was taken
   std::vector<ClutchState> last_clutches_;

@@ -129,6 +129,8 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
   recorder.AddObserver([this](const nlohmann::ordered_json& e) { NoteSnapshotEvent(e); });
   recorder.AddObserver([this](const nlohmann::ordered_json& e) { NoteProbeLatch(e); });
   if (options.on_event) recorder.AddObserver(options.on_event);
+  if (options.signal_events && options.out_dir.empty())
+    machine_events.SetSignalEvents(options.signal_events);
   backend = MakeBackend(options.backend.value_or(scene.backend), m, scene.initial);
   if (scene.workpiece.present) backend->SetWorkpiece(scene.workpiece.part);
   backend->SetProbeSamplingPhase(scene.probe_sampling);
@@ -158,9 +160,9 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
       MachineBackend* b = backend.get();
       path_guard =
           std::make_unique<MachinePathGuard>(m, parts, [b] { return b->JointPositions(); });
-      path_guard->SetSweep(
-          SweepOf(path_guard->world(),
-                  scene.workpiece.present ? scene.workpiece.part.link : std::string("spindle")));
+      path_guard->SetSweep(SweepOf(path_guard->world(), scene.workpiece.present
+                                                            ? scene.workpiece.part.link
+                                                            : std::string("spindle")));
       path_guard->before_check = [this](CollisionWorld&) {
         if (!guard_parts_stale || !cutter) return;
         path_guard->SetAdded(cutter->stock().Cylinders(kStockTolerance));
@@ -215,9 +217,8 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     probe_glue = std::make_unique<ProbeGlue>(m, *image);
     ProbeGlue* glue = probe_glue.get();
     if (plc)
-      plc->SetAxdWriter([glue](int axis, int ident, int64_t value) {
-        return glue->Write(axis, ident, value);
-      });
+      plc->SetAxdWriter(
+          [glue](int axis, int ident, int64_t value) { return glue->Write(axis, ident, value); });
   }
   field_bus = image && (plc || options.external_plc);
   if (field_bus) {
@@ -333,9 +334,9 @@ void SceneRun::State::TakeDueSnapshots(double t) {
   // the last physics step), in the order they came.
   for (const auto& [i, n] : std::exchange(pending_shots, {})) {
     const SnapshotSpec& s = scene.snapshots[i];
-    TakeSnapshot(s, EventSnapshotFile(s, n, t),
-                 {{"t", t}, {"event", "snapshot"}, {"on", ToString(s.on)}, {"n", n},
-                  {"camera", s.camera}});
+    TakeSnapshot(
+        s, EventSnapshotFile(s, n, t),
+        {{"t", t}, {"event", "snapshot"}, {"on", ToString(s.on)}, {"n", n}, {"camera", s.camera}});
   }
 }
 

@@ -41,6 +41,10 @@ struct RunOptions {
   /// Every event as events.jsonl records it (also when nothing is written), in order, from
   /// the tick that makes it: a study reads its cases' path_guard and repos events here.
   std::function<void(const nlohmann::ordered_json&)> on_event;
+  /// When set and the run writes no events.jsonl: the gateway signals (by name) whose changes
+  /// make events; the others make none. A study's case reads one or two signals, while the
+  /// path's distance signals alone change every NC cycle of a motion.
+  std::function<bool(const std::string& signal)> signal_events;
   /// The operator inputs of an earlier run (operator.yaml, vmt run --operator), taken at their
   /// ticks as SceneRun::Operate took them: the run repeats that one to the same trace digest.
   std::vector<OperatorStep> operator_steps;
@@ -59,7 +63,7 @@ struct RunResult {
   std::vector<ExpectationResult> expectations;
   std::vector<std::string> failures;  ///< failed expectations and timed-out waits
   std::vector<std::string> snapshot_files;
-  std::vector<std::string> contact_sheets;  ///< one per snapshot series that took pictures
+  std::vector<std::string> contact_sheets;    ///< one per snapshot series that took pictures
   std::vector<double> final_joint_positions;  ///< m | rad, at the end of the run
   /// "cannot write FILE: REASON" for each output that could not be written (a full disk): the
   /// file is missing (events.jsonl: its whole lines kept), the others are complete.

@@ -32,7 +32,7 @@ double PastContact(const nlohmann::ordered_json& position, const nlohmann::order
 void CaseObserver::OnEvent(const nlohmann::ordered_json& e) {
   const std::string kind = e.value("event", "");
   const double t = e.value("t", 0.0);
-  if (kind == "signal" && e.value("name", "").ends_with("S.ERRNR")) {
+  if (kind == "signal" && SignalRead(e.value("name", ""))) {
     error_number_ = static_cast<int>(e.value("value", 0.0));  // the message's number (507)
     return;
   }

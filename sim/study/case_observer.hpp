@@ -44,6 +44,9 @@ class CaseObserver {
   /// clear if the conditions are restored then (PxxS.CREST, 7.3).
   void SetManualEnd(size_t step) { manual_end_ = step; }
   void OnEvent(const nlohmann::ordered_json& e);
+  /// The gateway signals whose events OnEvent reads (RunOptions::signal_events): the NC's
+  /// message number.
+  static bool SignalRead(const std::string& name) { return name.ends_with("S.ERRNR"); }
 
   bool done() const { return done_; }
   bool step_seen(size_t step) const { return steps_seen_ > step; }

@@ -59,6 +59,7 @@ RunOptions CaseOptions(CaseObserver** observer) {
   o.on_event = [observer](const nlohmann::ordered_json& e) {
     if (*observer) (*observer)->OnEvent(e);
   };
+  o.signal_events = CaseObserver::SignalRead;
   return o;
 }
 

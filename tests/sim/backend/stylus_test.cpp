@@ -177,6 +177,35 @@ TEST(Stylus, BeyondTheOverTravelTheStylusIsDamagedOnce) {
   EXPECT_TRUE(a.last.level);
 }
 
+// From beyond the part's bounding cylinder (where a tick is answered without the exact
+// distance) the approach trips where one from near the part does.
+TEST(Stylus, AnApproachFromFarTripsWhereTheSurfaceIs) {
+  const double v = MmPerMinToMPerS(24000);  // the rapid: 0.1 mm per tick
+  const Approach a(Ruby(), {40 * kMm, 0, 25 * kMm}, {-v, 0, 0}, 75);
+  ASSERT_EQ(a.changes.size(), 1u);
+  EXPECT_TRUE(a.changes[0].level);
+  EXPECT_NEAR(a.changes[0].at_m.x(), 33 * kMm - 5e-6, kAnalyticTolM);
+  EXPECT_TRUE(a.over_travel.empty());
+}
+
+// One tick from far outside to beyond the over-travel: neither crossing is passed over.
+TEST(Stylus, OneTickFromFarIntoThePartTripsAndCrashes) {
+  const ProbeStylus s = Ruby();
+  StylusState state;
+  const Eigen::Vector3d from(60 * kMm, 0, 25 * kMm), to(31 * kMm, 0, 25 * kMm);
+  const StylusTick quiet = StepStylus(s, SteppedShaft(), state, {from}, {from}, true);
+  EXPECT_FALSE(quiet.changed);
+  EXPECT_EQ(quiet.sphere, -1);
+  const StylusTick tick = StepStylus(s, SteppedShaft(), state, {from}, {to}, true);
+  EXPECT_TRUE(tick.changed);
+  EXPECT_TRUE(tick.level);
+  EXPECT_NEAR((from + tick.tick_fraction * (to - from)).x(), 33 * kMm - 5e-6, kAnalyticTolM);
+  EXPECT_TRUE(tick.over_travel);
+  EXPECT_NEAR((from + tick.over_travel_fraction * (to - from)).x(), 32 * kMm, kAnalyticTolM);
+  EXPECT_NEAR(tick.deflection_m, 2 * kMm, 1e-12);
+  EXPECT_TRUE(state.damaged);
+}
+
 TEST(Stylus, ASphereDeflectedAtTheStartSetsTheSwitchFromTheFirstTick) {
   const ProbeStylus s = Ruby();
   const RevolvedPart part = SteppedShaft();
