@@ -10,6 +10,7 @@
 #include <numeric>
 #include <optional>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "common/json_text.hpp"
 #include "common/mapped_file.hpp"
@@ -22,11 +23,40 @@
 namespace vmt::sim::study {
 namespace {
 
+// The steps read so far for one machine, signal table, program list and axis list (the
+// pointers held, so that their addresses name them while kept). Every case appends the same few
+// lines (its retract's jogs and waits, the call, AUTO, start); read once in the worker (WarmSteps),
+// a forked case only copies them, where reading them anew would also write across heap pages the
+// case must then copy. A step's index only names it in its text.
+struct ReadSteps {
+  std::shared_ptr<const MachineModel> model;
+  std::shared_ptr<const std::vector<control::gateway::Signal>> signals;
+  std::vector<std::shared_ptr<const control::nc::ParseResult>> programs;
+  std::vector<int> axis_drives;
+  std::unordered_map<std::string, TimelineStep> by_line;  ///< read as timeline[0]
+};
+
+std::string StepName(size_t index) { return "timeline[" + std::to_string(index) + "]"; }
+
 // The operator's steps are written as a scene would write them and read by the scene's own
 // step reader: a case's timeline means what the same lines in a scene file mean.
 TimelineStep Step(const Scene& scene, const std::string& yaml, size_t index) {
-  const YamlNode n(YAML::Load(yaml), "study case", "timeline[" + std::to_string(index) + "]");
-  return ReadStep(*scene.model, n, index, scene.nc, false);
+  static ReadSteps read;
+  if (read.model != scene.model || read.signals != scene.nc.signals ||
+      read.programs != scene.nc.programs || read.axis_drives != scene.nc.axis_drives)
+    read = {scene.model, scene.nc.signals, scene.nc.programs, scene.nc.axis_drives, {}};
+  auto it = read.by_line.find(yaml);
+  if (it == read.by_line.end()) {
+    const YamlNode n(YAML::Load(yaml), "study case", StepName(index));
+    TimelineStep step = ReadStep(*scene.model, n, index, scene.nc, false);
+    TimelineStep first = step;
+    first.text.replace(0, StepName(index).size(), StepName(0));
+    read.by_line.emplace(yaml, std::move(first));
+    return step;
+  }
+  TimelineStep step = it->second;
+  step.text.replace(0, StepName(0).size(), StepName(index));
+  return step;
 }
 
 std::string Fixed(double v) {
@@ -259,6 +289,20 @@ void RunReturn(Scene& scene, SceneRun& run, CaseObserver& obs, const StudyPlan& 
   RunCase(run, obs, plan, limit);
 }
 
+// Reads the lines every case of `way` appends (its retracts but for their start, the calls,
+// AUTO, start), so that the forked cases find them read (Step).
+void WarmSteps(const Scene& scene, const StudyPlan& plan, const Interruption& any,
+               const Subroutine& way) {
+  std::vector<std::string> lines;
+  for (const RetractPattern& r : plan.retracts)
+    for (const std::string& l : RetractLines(scene, plan, any, r)) lines.push_back(l);
+  for (const ReposMode mode : plan.modes)
+    for (const std::string& l :
+         way.manual() ? ManualCallLines(scene, mode) : ModeLines(scene, mode))
+      lines.push_back(l);
+  for (const std::string& l : lines) (void)Step(scene, l, 0);
+}
+
 // Runs `work` in a forked child that writes result lines to the fd it gets; the lines, and in
 // *status how the child ended.
 std::vector<std::string> InChild(const std::function<void(int)>& work, int* status) {
@@ -324,6 +368,7 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
   Scene scene = SubroutineScene(base, plan.subroutines[sub]);
   CaseObserver* observer = nullptr;
   SceneRun run(scene, CaseOptions(&observer));
+  WarmSteps(scene, plan, interruptions[order.front()], plan.subroutines[sub]);
   // Forks a little before the step's time, so that the appended step runs on the same tick as
   // in a run from the start (a step waits for its `at:`).
   constexpr double kAhead = 0.002;
