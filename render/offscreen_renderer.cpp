@@ -6,6 +6,7 @@
 #include <GL/osmesa.h>
 
 #include <algorithm>
+#include <atomic>
 #include <climits>
 #include <cmath>
 #include <cstdio>
@@ -148,7 +149,10 @@ void DownsampleAndFlip(const uint8_t* source, Image& image) {
   }
 }
 
+std::atomic<bool> started{false};
+
 OSMesaContext CreateContext() {
+  started = true;
   // Pictures must not depend on the machine's GL: softpipe and hardware drivers give other
   // bytes. Someone who sets the variable on purpose keeps their choice.
   setenv("GALLIUM_DRIVER", "llvmpipe", 0);
@@ -174,6 +178,8 @@ OSMesaContext CreateContext() {
 }
 
 }  // namespace
+
+bool RendererStarted() { return started; }
 
 struct OffscreenRenderer::Impl {
   OSMesaContext context = nullptr;

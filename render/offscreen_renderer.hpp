@@ -19,6 +19,10 @@ struct DrawItem {
   Rgba colour;
 };
 
+/// Whether this process has made a GL context. Its renderer's threads then stand, and fork()
+/// copies none of them: a forked copy that renders would wait for them forever.
+bool RendererStarted();
+
 /// Draws lit, coloured meshes into an offscreen picture with OSMesa (llvmpipe on the CPU). The
 /// same scene gives the same bytes on every run and for any LP_NUM_THREADS.
 ///

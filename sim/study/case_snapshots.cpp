@@ -1,17 +1,21 @@
 #include "sim/study/case_snapshots.hpp"
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
 #include "common/json_text.hpp"
 #include "common/output_file.hpp"
 #include "render/image.hpp"
+#include "render/offscreen_renderer.hpp"
 #include "sim/study/case_files.hpp"
 #include "sim/study/contact_picture.hpp"
+#include "sim/study/die_with_parent.hpp"
 #include "sim/study/scratch_folder.hpp"
 #include "sim/study/study_conclusions.hpp"
 
@@ -93,24 +97,21 @@ std::map<std::string, std::string> SnapshotCases(const Scene& base, const StudyP
                                                  const std::vector<CaseResult>& results,
                                                  const std::vector<std::string>& ids,
                                                  const std::string& dir,
-                                                 const std::function<bool()>& stop) {
+                                                 const std::function<bool()>& stop, int jobs) {
   std::map<std::string, std::string> index;
   if (ids.empty()) return index;
   const CaseSpace space(plan, interruptions);
   std::filesystem::create_directories(dir + "/snapshots");
   const SnapshotSpec look = Look(base);
-  for (const std::string& id : ids) {
-    if (stop && stop()) break;
+  // The picture of case `id` into its file unless it is there: the file, "" if none was taken.
+  const auto take = [&](const std::string& id) -> std::string {
     const std::optional<size_t> k = space.IndexOf(id);
     const auto r = std::find_if(results.begin(), results.end(),
                                 [&](const CaseResult& k) { return Str(k, "case") == id; });
-    if (!k || r == results.end()) continue;
+    if (!k || r == results.end()) return "";
     const StudyCase c = space.At(*k);
     const std::string file = SnapshotFileOf(id);
-    if (std::filesystem::exists(dir + "/" + file)) {
-      index[id] = file;
-      continue;
-    }
+    if (std::filesystem::exists(dir + "/" + file)) return file;
     const ScratchFolder scratch(dir + "/.snapshot-" + std::to_string(::getpid()));
     const std::string& work = scratch.path();
     SnapshotSpec shot = look;
@@ -123,22 +124,56 @@ std::map<std::string, std::string> SnapshotCases(const Scene& base, const StudyP
         stage.stock = run.TurnedStockCylinders();
       });
       render::WritePng(dir + "/" + file, ContactImage(base, stage, *r, look));
-      index[id] = file;
-      continue;
-    } else {
-      // The clear case at its end: first learn when that is, then picture it.
-      double t_end = 0;
-      RunCaseFromStart(base, plan, interruptions, c, {}, "", &t_end);
-      shot.at_s = t_end;
-      shot.file = "end.png";
+      return file;
     }
+    // The clear case at its end: first learn when that is, then picture it.
+    double t_end = 0;
+    RunCaseFromStart(base, plan, interruptions, c, {}, "", &t_end);
+    shot.at_s = t_end;
+    shot.file = "end.png";
     RunCaseFromStart(base, plan, interruptions, c, {shot}, work);
     for (const auto& entry : std::filesystem::directory_iterator(work))
       if (entry.path().extension() == ".png") {
         std::filesystem::rename(entry.path(), dir + "/" + file);
-        index[id] = file;
-        break;
+        return file;
       }
+    return "";
+  };
+  // With jobs > 1, that many processes take the pictures side by side, each every jobs-th
+  // (each case's run is the longest part of a picture). This process then finds them there
+  // and takes only those a process left out (it failed or was ended). A process that has
+  // rendered already takes them alone (RendererStarted).
+  if (jobs > 1 && ids.size() > 1 && !render::RendererStarted()) {
+    std::vector<pid_t> helpers;
+    std::fflush(nullptr);
+    const pid_t parent = ::getpid();
+    for (int w = 0; w < jobs && static_cast<size_t>(w) < ids.size(); ++w) {
+      const pid_t pid = ::fork();
+      if (pid < 0) break;
+      if (pid > 0) {
+        helpers.push_back(pid);
+        continue;
+      }
+      DieWithParent(parent);
+      int code = 0;
+      try {
+        for (size_t i = static_cast<size_t>(w); i < ids.size() && !(stop && stop()); i += jobs)
+          (void)take(ids[i]);
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "vmt study: a picture failed: %s\n", e.what());
+        code = 1;
+      }
+      std::fflush(nullptr);
+      ::_exit(code);
+    }
+    for (const pid_t pid : helpers) {
+      int status = 0;
+      ::waitpid(pid, &status, 0);
+    }
+  }
+  for (const std::string& id : ids) {
+    if (stop && stop()) break;
+    if (const std::string file = take(id); !file.empty()) index[id] = file;
   }
   WriteSnapshotIndex(dir, index);
   return index;

@@ -46,13 +46,11 @@ std::string SnapshotFileOf(const std::string& case_id);
 /// scene's first snapshot (else its first camera, 320x240); a picture already there is kept.
 /// Returns case id -> file relative to dir, and writes it as dir/snapshots.json. A case whose
 /// rerun took no picture is left out. When `stop` says so, no further picture is begun (a
-/// rerun takes the missing ones).
-std::map<std::string, std::string> SnapshotCases(const Scene& base, const StudyPlan& plan,
-                                                 const std::vector<Interruption>& interruptions,
-                                                 const std::vector<CaseResult>& results,
-                                                 const std::vector<std::string>& ids,
-                                                 const std::string& dir,
-                                                 const std::function<bool()>& stop = {});
+/// rerun takes the missing ones). `jobs` processes (forked) take them side by side.
+std::map<std::string, std::string> SnapshotCases(
+    const Scene& base, const StudyPlan& plan, const std::vector<Interruption>& interruptions,
+    const std::vector<CaseResult>& results, const std::vector<std::string>& ids,
+    const std::string& dir, const std::function<bool()>& stop = {}, int jobs = 1);
 
 /// Writes `index` (case id -> file relative to dir) as dir/snapshots.json.
 void WriteSnapshotIndex(const std::string& dir, const std::map<std::string, std::string>& index);

@@ -300,7 +300,7 @@ StudySummary RunStudy(const StudyOptions& o) {
   if (!workers.failed && o.snapshots > 0) {
     const auto shots0 = std::chrono::steady_clock::now();
     summary.snapshots = SnapshotCases(scene, plan, interruptions, worst.Results(), worst.Ids(),
-                                      o.out_dir, stop_asked)
+                                      o.out_dir, stop_asked, o.jobs)
                             .size();
     summary.snapshots_wall_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - shots0).count();

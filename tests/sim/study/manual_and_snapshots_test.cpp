@@ -7,12 +7,16 @@
 #include <fstream>
 #include <map>
 
+#include "../sim_test_support.hpp"
+#include "render/offscreen_renderer.hpp"
 #include "sim/study/case_snapshots.hpp"
 #include "sim/study/study.hpp"
 #include "sim/study/study_report.hpp"
 
 namespace vmt::sim::study {
 namespace {
+
+using vmt::sim::testing::ReadBytes;
 
 const std::string kManual = std::string(VMT_SOURCE_DIR) + "/tests/sim/study/tiny-manual-study.yaml";
 const std::string kTiny = std::string(VMT_SOURCE_DIR) + "/tests/sim/study/tiny-study.yaml";
@@ -120,6 +124,28 @@ TEST(study_snapshots, WorstCasesPicturedAndLinked) {
     EXPECT_THAT(html, ::testing::HasSubstr("<a href=\"" + file + "\">")) << id;
   // Deterministic names: the same cases give the same files again (kept, not rendered twice).
   EXPECT_EQ(SnapshotCases(t.scene, t.plan, t.interruptions, results, ids, dir), index);
+}
+
+// Two processes side by side take the same pictures, to the byte, as one alone. Only a process
+// that has not rendered yet forks them: a suite of its own, which ctest runs in a process of
+// its own.
+TEST(study_pictures_side_by_side, AreThePicturesTakenOneByOne) {
+  if (render::RendererStarted()) GTEST_SKIP() << "this process has rendered: run the test alone";
+  const TinyManual t;
+  std::vector<CaseResult> results;
+  for (const auto& [order, r] : t.Run(true)) results.push_back(r);
+  const std::vector<std::string> ids = WorstCaseIds(results, 3);
+  ASSERT_EQ(ids.size(), 2u);
+  const std::string one = Out("snapshots-one"), two = Out("snapshots-two");
+  const std::map<std::string, std::string> side_by_side =
+      SnapshotCases(t.scene, t.plan, t.interruptions, results, ids, two, {}, 2);
+  EXPECT_FALSE(render::RendererStarted());  // the helpers rendered, not this process
+  const std::map<std::string, std::string> alone =
+      SnapshotCases(t.scene, t.plan, t.interruptions, results, ids, one);
+  ASSERT_EQ(side_by_side, alone);
+  for (const auto& [id, file] : alone)
+    EXPECT_EQ(ReadBytes(two + "/" + file), ReadBytes(one + "/" + file)) << file;
+  EXPECT_EQ(ReadSnapshotIndex(two), alone);
 }
 
 TEST(study_determinism, SameStudyTwiceGivesTheSameBytes) {
