@@ -183,6 +183,130 @@ std::vector<double> BlockMotion::Direction(double u) const {
   return d;
 }
 
+namespace {
+
+// A feed move's limits along a straight path (not G00): path feed, acceleration and
+// jerk. `axis_rate` is the least rapid rate over the axes that move.
+void PlanStraightFeed(const nc::PreparedBlock& block, const std::vector<double>& delta,
+                      const std::vector<axes::AxisParameters>& axes, double feed, double axis_rate,
+                      BlockMotion& out) {
+  const size_t n = axes.size();
+  // Feed moves accelerate along the path at the least limit of the linear axes that move,
+  // whatever the direction, so that the look-ahead sees the same limits in every block of a
+  // contour (look_ahead.hpp); each axis stays within its own limit, as its share of the path
+  // is at most 1. Rotary axes keep their own share.
+  double span2 = 0;
+  for (size_t a = 0; a < n; ++a) span2 += delta[a] * delta[a];
+  const double span = std::sqrt(span2);
+  double path_accel = std::numeric_limits<double>::infinity();
+  double path_jerk = std::numeric_limits<double>::infinity();
+  for (size_t a = 0; a < n; ++a) {
+    if (std::abs(delta[a]) < 1e-12) continue;
+    const double share = axes[a].rotary ? std::abs(delta[a]) : span;
+    path_accel = std::min(path_accel, axes[a].acceleration / share);
+    if (axes[a].jerk > 0) path_jerk = std::min(path_jerk, axes[a].jerk / share);
+  }
+  out.max_jerk = std::isfinite(path_jerk) ? path_jerk : 0;
+  // Path length over the linear axes; a rotary axis counts with its effective distance
+  // (C-axis manual 1.2: RX, RY, RZ, the tool contact point's position vector, constant over
+  // the block): the tool moves at the rotation times the vector's distance from the rotation
+  // axis (A about X, B about Y, C about Z). Without effective distances a rotary axis counts
+  // alone, in degrees.
+  double length2 = 0, rotary2 = 0;
+  for (size_t a = 0; a < n; ++a) {
+    if (!axes[a].rotary) {
+      length2 += delta[a] * delta[a];
+      continue;
+    }
+    const char about = axes[a].name.empty() ? 'C' : axes[a].name[0];
+    const int along = about == 'A' ? 0 : about == 'B' ? 1 : 2;
+    double radius2 = 0;
+    bool effective = false;
+    for (int k = 0; k < 3; ++k) {
+      if (k == along || !(block.has_effective_distance >> k & 1)) continue;
+      effective = true;
+      radius2 += block.effective_distance[k] * block.effective_distance[k];
+    }
+    if (effective)
+      length2 += radius2 * std::pow(delta[a] * std::numbers::pi / 180, 2);
+    else
+      rotary2 += delta[a] * delta[a];
+  }
+  const double length = std::sqrt(length2 > 0 ? length2 : rotary2);
+  out.max_rate = std::min(feed / length, axis_rate);
+  out.max_accel = path_accel;
+}
+
+// G02/G03 in the block's plane: centre from I/J/K or R, radius, sweep, and its limits.
+std::optional<MotionError> PlanArc(const nc::PreparedBlock& block, const std::vector<double>& start,
+                                   const std::vector<axes::AxisParameters>& axes, double feed,
+                                   BlockMotion& out) {
+  const size_t n = axes.size();
+  const char *first, *second;
+  char i_first, i_second;
+  PlaneAxes(block.modal.plane, first, second, i_first, i_second);
+  for (size_t a = 0; a < n; ++a) {
+    if (axes[a].name == first) out.arc_axes[0] = static_cast<int>(a);
+    if (axes[a].name == second) out.arc_axes[1] = static_cast<int>(a);
+  }
+  if (out.arc_axes[0] < 0 || out.arc_axes[1] < 0)
+    return MotionError{std::string("the arc plane G") +
+                           std::to_string(nc::GCode(block.modal.plane)) + " needs axes " + first +
+                           " and " + second,
+                       kMsgArcPlane};
+  const int a0 = out.arc_axes[0], a1 = out.arc_axes[1];
+  const double s0 = start[a0], s1 = start[a1], e0 = out.end[a0], e1 = out.end[a1];
+  const bool cw = block.motion == nc::Motion::kArcCw;
+  double c0, c1;
+  if (block.has_centre) {
+    c0 = s0 + block.centre[i_first - 'I'];
+    c1 = s1 + block.centre[i_second - 'I'];
+  } else if (block.radius != 0) {
+    // Centre from R: on the chord's bisector; R < 0 picks the arc over 180 degrees.
+    const double dx = e0 - s0, dy = e1 - s1, chord = std::hypot(dx, dy);
+    const double r = std::abs(block.radius);
+    if (chord < 1e-12 || chord > 2 * r + kArcTolerance)
+      return MotionError{"radius R too small for the end point", kMsgArcGeometry};
+    const double h = std::sqrt(std::max(0.0, r * r - chord * chord / 4));
+    const double side = ((block.radius > 0) == cw) ? -1 : 1;
+    c0 = (s0 + e0) / 2 - side * h * dy / chord;
+    c1 = (s1 + e1) / 2 + side * h * dx / chord;
+  } else {
+    return MotionError{"G02/G03 needs a centre (I/J/K) or a radius R", kMsgArcGeometry};
+  }
+  const double r_start = std::hypot(s0 - c0, s1 - c1), r_end = std::hypot(e0 - c0, e1 - c1);
+  if (std::abs(r_start - r_end) > kArcTolerance || r_start < 1e-9)
+    return MotionError{"end point not on the arc (radius " + std::to_string(r_start) +
+                           " at the start, " + std::to_string(r_end) + " at the end)",
+                       kMsgArcGeometry};
+  out.arc_centre[0] = c0;
+  out.arc_centre[1] = c1;
+  out.arc_radius = r_start;
+  out.arc_start_angle = std::atan2(s1 - c1, s0 - c0);
+  double sweep = std::atan2(e1 - c1, e0 - c0) - out.arc_start_angle;
+  if (cw) {
+    while (sweep >= -1e-12) sweep -= 2 * std::numbers::pi;
+  } else {
+    while (sweep <= 1e-12) sweep += 2 * std::numbers::pi;
+  }
+  if (std::abs(std::abs(sweep) - 2 * std::numbers::pi) < 1e-9 &&
+      std::hypot(e0 - s0, e1 - s1) > 1e-9)
+    sweep = std::fmod(sweep, 2 * std::numbers::pi);
+  out.arc_sweep = sweep;
+  const double length = out.arc_radius * std::abs(sweep);
+  const double accel = std::min(axes[a0].acceleration, axes[a1].acceleration);
+  // Centripetal acceleration v^2/r must stay within the axes' limit too.
+  const double v = std::min(feed, std::sqrt(accel * out.arc_radius));
+  out.max_rate = v / length;
+  out.max_accel = accel / length;
+  const double jerk = std::min(axes[a0].jerk > 0 ? axes[a0].jerk : HUGE_VAL,
+                               axes[a1].jerk > 0 ? axes[a1].jerk : HUGE_VAL);
+  out.max_jerk = std::isfinite(jerk) ? jerk / length : 0;
+  return std::nullopt;
+}
+
+}  // namespace
+
 std::optional<MotionError> PlanBlockMotion(const nc::PreparedBlock& block,
                                            const std::vector<double>& start,
                                            const std::vector<double>& translation,
@@ -242,111 +366,9 @@ std::optional<MotionError> PlanBlockMotion(const nc::PreparedBlock& block,
     out.max_rate = axis_rate;
     out.max_accel = axis_accel;
   } else if (!arc) {
-    // Feed moves accelerate along the path at the least limit of the linear axes that move,
-    // whatever the direction, so that the look-ahead sees the same limits in every block of a
-    // contour (look_ahead.hpp); each axis stays within its own limit, as its share of the path
-    // is at most 1. Rotary axes keep their own share.
-    double span2 = 0;
-    for (size_t a = 0; a < n; ++a) span2 += delta[a] * delta[a];
-    const double span = std::sqrt(span2);
-    double path_accel = std::numeric_limits<double>::infinity();
-    double path_jerk = std::numeric_limits<double>::infinity();
-    for (size_t a = 0; a < n; ++a) {
-      if (std::abs(delta[a]) < 1e-12) continue;
-      const double share = axes[a].rotary ? std::abs(delta[a]) : span;
-      path_accel = std::min(path_accel, axes[a].acceleration / share);
-      if (axes[a].jerk > 0) path_jerk = std::min(path_jerk, axes[a].jerk / share);
-    }
-    axis_accel = path_accel;
-    out.max_jerk = std::isfinite(path_jerk) ? path_jerk : 0;
-    // Path length over the linear axes; a rotary axis counts with its effective distance
-    // (C-axis manual 1.2: RX, RY, RZ, the tool contact point's position vector, constant over
-    // the block): the tool moves at the rotation times the vector's distance from the rotation
-    // axis (A about X, B about Y, C about Z). Without effective distances a rotary axis counts
-    // alone, in degrees.
-    double length2 = 0, rotary2 = 0;
-    for (size_t a = 0; a < n; ++a) {
-      if (!axes[a].rotary) {
-        length2 += delta[a] * delta[a];
-        continue;
-      }
-      const char about = axes[a].name.empty() ? 'C' : axes[a].name[0];
-      const int along = about == 'A' ? 0 : about == 'B' ? 1 : 2;
-      double radius2 = 0;
-      bool effective = false;
-      for (int k = 0; k < 3; ++k) {
-        if (k == along || !(block.has_effective_distance >> k & 1)) continue;
-        effective = true;
-        radius2 += block.effective_distance[k] * block.effective_distance[k];
-      }
-      if (effective)
-        length2 += radius2 * std::pow(delta[a] * std::numbers::pi / 180, 2);
-      else
-        rotary2 += delta[a] * delta[a];
-    }
-    const double length = std::sqrt(length2 > 0 ? length2 : rotary2);
-    out.max_rate = std::min(feed / length, axis_rate);
-    out.max_accel = axis_accel;
+    PlanStraightFeed(block, delta, axes, feed, axis_rate, out);
   } else {
-    const char *first, *second;
-    char i_first, i_second;
-    PlaneAxes(block.modal.plane, first, second, i_first, i_second);
-    for (size_t a = 0; a < n; ++a) {
-      if (axes[a].name == first) out.arc_axes[0] = static_cast<int>(a);
-      if (axes[a].name == second) out.arc_axes[1] = static_cast<int>(a);
-    }
-    if (out.arc_axes[0] < 0 || out.arc_axes[1] < 0)
-      return MotionError{std::string("the arc plane G") + std::to_string(nc::GCode(block.modal.plane)) +
-                             " needs axes " + first + " and " + second,
-                         kMsgArcPlane};
-    const int a0 = out.arc_axes[0], a1 = out.arc_axes[1];
-    const double s0 = start[a0], s1 = start[a1], e0 = out.end[a0], e1 = out.end[a1];
-    const bool cw = block.motion == nc::Motion::kArcCw;
-    double c0, c1;
-    if (block.has_centre) {
-      c0 = s0 + block.centre[i_first - 'I'];
-      c1 = s1 + block.centre[i_second - 'I'];
-    } else if (block.radius != 0) {
-      // Centre from R: on the chord's bisector; R < 0 picks the arc over 180 degrees.
-      const double dx = e0 - s0, dy = e1 - s1, chord = std::hypot(dx, dy);
-      const double r = std::abs(block.radius);
-      if (chord < 1e-12 || chord > 2 * r + kArcTolerance)
-        return MotionError{"radius R too small for the end point", kMsgArcGeometry};
-      const double h = std::sqrt(std::max(0.0, r * r - chord * chord / 4));
-      const double side = ((block.radius > 0) == cw) ? -1 : 1;
-      c0 = (s0 + e0) / 2 - side * h * dy / chord;
-      c1 = (s1 + e1) / 2 + side * h * dx / chord;
-    } else {
-      return MotionError{"G02/G03 needs a centre (I/J/K) or a radius R", kMsgArcGeometry};
-    }
-    const double r_start = std::hypot(s0 - c0, s1 - c1), r_end = std::hypot(e0 - c0, e1 - c1);
-    if (std::abs(r_start - r_end) > kArcTolerance || r_start < 1e-9)
-      return MotionError{"end point not on the arc (radius " + std::to_string(r_start) +
-                             " at the start, " + std::to_string(r_end) + " at the end)",
-                         kMsgArcGeometry};
-    out.arc_centre[0] = c0;
-    out.arc_centre[1] = c1;
-    out.arc_radius = r_start;
-    out.arc_start_angle = std::atan2(s1 - c1, s0 - c0);
-    double sweep = std::atan2(e1 - c1, e0 - c0) - out.arc_start_angle;
-    if (cw) {
-      while (sweep >= -1e-12) sweep -= 2 * std::numbers::pi;
-    } else {
-      while (sweep <= 1e-12) sweep += 2 * std::numbers::pi;
-    }
-    if (std::abs(std::abs(sweep) - 2 * std::numbers::pi) < 1e-9 &&
-        std::hypot(e0 - s0, e1 - s1) > 1e-9)
-      sweep = std::fmod(sweep, 2 * std::numbers::pi);
-    out.arc_sweep = sweep;
-    const double length = out.arc_radius * std::abs(sweep);
-    const double accel = std::min(axes[a0].acceleration, axes[a1].acceleration);
-    // Centripetal acceleration v^2/r must stay within the axes' limit too.
-    const double v = std::min(feed, std::sqrt(accel * out.arc_radius));
-    out.max_rate = v / length;
-    out.max_accel = accel / length;
-    const double jerk = std::min(axes[a0].jerk > 0 ? axes[a0].jerk : HUGE_VAL,
-                                 axes[a1].jerk > 0 ? axes[a1].jerk : HUGE_VAL);
-    out.max_jerk = std::isfinite(jerk) ? jerk / length : 0;
+    if (std::optional<MotionError> e = PlanArc(block, start, axes, feed, out)) return e;
   }
   out.length = Length(out);
   out.moves = true;

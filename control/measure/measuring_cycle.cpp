@@ -403,19 +403,28 @@ MeasuringPlan PlanMove(Arguments& args, const MeasuringContext& context, Measuri
   return plan;
 }
 
-MeasuringPlan PlanProbe(Arguments& args, const MeasuringContext& context, MeasuringPages& pages,
-                        ReverseVectors& reverse) {
+// PROBE's arguments (2.1), each checked; those that may be omitted are nullopt then.
+struct ProbeCall {
+  std::optional<int> calibration;  ///< 0: a calibration, 1: a measurement
+  std::optional<int> point;        ///< the point page entry
+  std::array<std::optional<double>, 3> position;
+  int axis = -1;  ///< the measuring axis, an index into the SETTING's axes
+  std::optional<double> path, feed;
+  std::optional<int> sphere, approach, variant;
+};
+
+// False with args.error set if an argument is wrong or the process may not measure.
+bool ReadProbeCall(Arguments& args, const MeasuringContext& context, MeasuringPages& pages,
+                   ProbeCall& call) {
   const char* kSection = "2.1 PROBE";
   args.AtMost(11);
-  if (!NeedSetting(context, args) || !NeedG40(context, args)) return Failed(args.error);
+  if (!NeedSetting(context, args) || !NeedG40(context, args)) return false;
   const MeasuringSetting& s = *context.setting;
-  const std::optional<int> calibration = args.Whole(1, "calibration/measurement", 0, 1, true,
-                                                    kSection);
+  call.calibration = args.Whole(1, "calibration/measurement", 0, 1, true, kSection);
   // A: the point page entry; a calibration point is not written there and may omit it (5.1).
-  std::optional<int> point;
-  if (calibration && (*calibration == 1 || !args.Omitted(0)))
-    point = args.Whole(0, "point number", 1, pages.config.points, true, kSection);
-  std::array<std::optional<double>, 3> position;
+  if (call.calibration && (*call.calibration == 1 || !args.Omitted(0)))
+    call.point = args.Whole(0, "point number", 1, pages.config.points, true, kSection);
+  std::array<std::optional<double>, 3>& position = call.position;
   const char* what[] = {"measuring position of axis 1", "measuring position of axis 2",
                         "measuring position of axis 3"};
   for (int n = 0; n < 3; ++n) {
@@ -429,7 +438,7 @@ MeasuringPlan PlanProbe(Arguments& args, const MeasuringContext& context, Measur
       args.Fail(std::string(what[n]) + " (" + s.axis[n] + ") is missing", kSection);
   }
   const std::optional<char> axis_name = args.Axis(5, "measuring axis", true);
-  int axis = -1;
+  int& axis = call.axis;
   if (axis_name) {
     for (int n = 0; n < 3; ++n)
       if (s.axis[n] == *axis_name) axis = n;
@@ -437,40 +446,49 @@ MeasuringPlan PlanProbe(Arguments& args, const MeasuringContext& context, Measur
       args.Fail(std::string("measuring axis ") + *axis_name + " is not an axis of the SETTING",
                 "4.1 Programmable NC Axes");
   }
-  const std::optional<double> path = args.Number(6, "measuring path", -kMaxPosition, kMaxPosition,
-                                                 true, kSection);
-  if (path && *path == 0) args.Fail("G (measuring path) 0: there is no measuring move", kSection);
-  const std::optional<double> feed = args.Number(7, "measuring feed", 0, 1e9, true, kSection);
-  if (feed && *feed <= 0) args.Fail("H (measuring feed) must be above 0", kSection);
-  const std::optional<int> sphere = args.Whole(8, "measuring sphere number", 1, kSpheres, true,
-                                               kSection);
-  const std::optional<int> approach = args.Whole(9, "approach variant", 1, 4, true, kSection);
-  const std::optional<int> variant = ReverseVariant(args, 10, kSection);
-  if (!args.error.empty()) return Failed(args.error);
-  if (*calibration == 0 && *variant != 0)
+  call.path = args.Number(6, "measuring path", -kMaxPosition, kMaxPosition, true, kSection);
+  if (call.path && *call.path == 0)
+    args.Fail("G (measuring path) 0: there is no measuring move", kSection);
+  call.feed = args.Number(7, "measuring feed", 0, 1e9, true, kSection);
+  if (call.feed && *call.feed <= 0) args.Fail("H (measuring feed) must be above 0", kSection);
+  call.sphere = args.Whole(8, "measuring sphere number", 1, kSpheres, true, kSection);
+  call.approach = args.Whole(9, "approach variant", 1, 4, true, kSection);
+  call.variant = ReverseVariant(args, 10, kSection);
+  if (!args.error.empty()) return false;
+  if (*call.calibration == 0 && *call.variant != 0)
     args.Fail("a calibration PROBE may not be in a linear path sequence (K " +
-                  std::to_string(*variant) + ")",
+                  std::to_string(*call.variant) + ")",
               "4.4");
-  if (!args.error.empty() || !ValidProcess(context, pages, args)) return Failed(args.error);
+  return args.error.empty() && ValidProcess(context, pages, args);
+}
 
+MeasuringPlan PlanProbe(Arguments& args, const MeasuringContext& context, MeasuringPages& pages,
+                        ReverseVectors& reverse) {
+  ProbeCall call;
+  if (!ReadProbeCall(args, context, pages, call)) return Failed(args.error);
+  const MeasuringSetting& s = *context.setting;
+  const int axis = call.axis;
+  const double path = *call.path, feed = *call.feed;
+  const int sphere = *call.sphere, approach = *call.approach, variant = *call.variant;
+  const int calibration = *call.calibration;
   MeasuringPlan plan;
   // 3.1 ZWISCHENSPEICHERPAGE element 1 "enables the user to hide the programmed calibration
   // points": such a PROBE does nothing at all.
-  if (*calibration == 0 && pages.buffer[context.process].calibration_off) return plan;
+  if (calibration == 0 && pages.buffer[context.process].calibration_off) return plan;
 
   SaveGGroups(context, pages);
-  const double radius = SphereRadius(pages, s, *sphere);
+  const double radius = SphereRadius(pages, s, sphere);
   const uint8_t all = SettingAxes(s);
   const uint8_t measuring = static_cast<uint8_t>(1u << axis);
   const uint8_t across = static_cast<uint8_t>(all & ~measuring);
   // 4.5: the programmed measuring path is the distance to the surface, in the program's
   // measure: under G16 a path along X is a diameter and the stylus stands half of it away.
-  const double gap = std::abs(Radius(s, axis, *path));
-  const int direction = *path > 0 ? 1 : -1;
+  const double gap = std::abs(Radius(s, axis, path));
+  const int direction = path > 0 ? 1 : -1;
 
   std::array<double, 3> surface{};
   for (int n = 0; n < 3; ++n)
-    if (s.axis[n]) surface[n] = Radius(s, n, *position[n]);
+    if (s.axis[n]) surface[n] = Radius(s, n, *call.position[n]);
   // Setup position (4.2, 4.5): the sphere centre stands the measuring path plus the sphere
   // radius before the surface, against the measuring direction.
   std::array<double, 3> setup = surface;
@@ -479,8 +497,8 @@ MeasuringPlan PlanProbe(Arguments& args, const MeasuringContext& context, Measur
   // beyond its command value is still found.
   std::array<double, 3> end = setup;
   end[axis] = setup[axis] + direction * 2 * gap;
-  const bool indirect = *approach == 2 || *approach == 4;
-  const bool escape = *approach == 1 || *approach == 2;
+  const bool indirect = approach == 2 || approach == 4;
+  const bool escape = approach == 1 || approach == 2;
   const std::array<double, 3> start = context.position;
   // 4.2 positioning logic: first parallel to the measuring path into the plane through the
   // setup position perpendicular to the measuring direction, then across to the setup position.
@@ -490,11 +508,11 @@ MeasuringPlan PlanProbe(Arguments& args, const MeasuringContext& context, Measur
   plan.steps.push_back(Event(29, true));  // 6.2: collision monitoring
   std::vector<std::array<double, 3>> passed;
   if (indirect) {
-    plan.steps.push_back(Rapid(plane_point, measuring, *sphere));
-    if (across) plan.steps.push_back(Rapid(setup, across, *sphere));
+    plan.steps.push_back(Rapid(plane_point, measuring, sphere));
+    if (across) plan.steps.push_back(Rapid(setup, across, sphere));
     passed.push_back(plane_point);
   } else {
-    plan.steps.push_back(Rapid(setup, all, *sphere));  // 4.2: all axes together
+    plan.steps.push_back(Rapid(setup, all, sphere));  // 4.2: all axes together
   }
   passed.push_back(setup);
   // 6.2 Event 30 / figure 6-25: at the setup position the measuring path begins; the PLC
@@ -510,19 +528,19 @@ MeasuringPlan PlanProbe(Arguments& args, const MeasuringContext& context, Measur
   measure.kind = MeasuringStep::Kind::kMeasure;
   measure.target = end;
   measure.axes = measuring;
-  measure.feed = *feed;
-  measure.sphere = *sphere;
+  measure.feed = feed;
+  measure.sphere = sphere;
   plan.steps.push_back(measure);
   plan.steps.push_back(Event(30, false));
   // Off the surface again: back to the setup position, where the variants without escape stay.
-  plan.steps.push_back(Rapid(setup, measuring, *sphere));
+  plan.steps.push_back(Rapid(setup, measuring, sphere));
   if (escape) {
     // 4.2: escape in the reverse order of the approach.
     if (indirect) {
-      if (across) plan.steps.push_back(Rapid(plane_point, across, *sphere));
-      plan.steps.push_back(Rapid(start, measuring, *sphere));
+      if (across) plan.steps.push_back(Rapid(plane_point, across, sphere));
+      plan.steps.push_back(Rapid(start, measuring, sphere));
     } else {
-      plan.steps.push_back(Rapid(start, all, *sphere));
+      plan.steps.push_back(Rapid(start, all, sphere));
     }
   }
   // 3.1 EICHWERTEPAGE keeps each direction's calibration value beside the feed it was found
@@ -530,20 +548,20 @@ MeasuringPlan PlanProbe(Arguments& args, const MeasuringContext& context, Measur
   // at another feed the measured value is off by the difference. The manual has no message
   // for it (its PROBE does not check the feed, 4.1 Feed Programming): vmt warns and measures.
   const double calibration_feed =
-      pages.calibration[static_cast<size_t>(s.stylus - 1)][static_cast<size_t>(*sphere - 1)]
+      pages.calibration[static_cast<size_t>(s.stylus - 1)][static_cast<size_t>(sphere - 1)]
           .measuring_feed[static_cast<size_t>(2 * axis + (direction < 0 ? 1 : 0))];
-  if (*calibration == 1 && calibration_feed > 0 && *feed != calibration_feed) {
+  if (calibration == 1 && calibration_feed > 0 && feed != calibration_feed) {
     std::ostringstream w;
-    w << "PROBE measures at F" << *feed << " but axis " << s.axis[axis]
-      << (direction < 0 ? '-' : '+') << " of sphere " << *sphere << " was calibrated at F"
+    w << "PROBE measures at F" << feed << " but axis " << s.axis[axis]
+      << (direction < 0 ? '-' : '+') << " of sphere " << sphere << " was calibrated at F"
       << calibration_feed << ": the measured value is off by the latch delay's difference (3.1)";
     plan.warning = w.str();
   }
   plan.measuring_axis = axis;
   plan.direction = direction;
   plan.command = surface[axis];
-  plan.reverse_variant = *variant;
-  Record(reverse, *variant, *sphere, start, passed);
+  plan.reverse_variant = variant;
+  Record(reverse, variant, sphere, start, passed);
   return plan;
 }
 

@@ -420,10 +420,179 @@ bool Interpreter::Execute(const Block& block, PreparedBlock& out, int32_t& next)
 
 bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& out,
                              int32_t& next) {
-  const Program& p = program();
   eval_failed_ = false;
-  auto eval = [&](ExprId id) { return Eval(id); };
-  auto check = [&]() { return eval_failed_ ? Fail(eval_fail_offset_, eval_fail_message_) : true; };
+  switch (st.kind) {
+    case Kind::kAssign:
+      return Assign(st);
+    case Kind::kBranch:
+      if (BranchTaken(st.instruction, last_result_)) next = st.jump;
+      return true;
+    case Kind::kEventBranch: {
+      const int event = static_cast<int>(Eval(st.value));
+      if (!EvalSucceeded()) return false;
+      const std::function<bool(int)>& source = events();
+      const bool set = (source && source(event));
+      if ((st.instruction == Instruction::kBes) == set) next = st.jump;
+      return true;
+    }
+    case Kind::kCall:
+      return CallSubprogram(st, next);
+    case Kind::kReturn:
+      return Return(st, block, out, next);
+    case Kind::kReverse:
+      reverse_ = {static_cast<int32_t>(current_), st.jump};
+      out.reverse = reverse_;
+      return true;
+    case Kind::kInstruction:
+      return InstructionStatement(st, out);
+    case Kind::kHashCommand:
+      return HashCommand(st, out);
+    case Kind::kIf:
+    case Kind::kElseIf:
+    case Kind::kElse:
+    case Kind::kEndIf:
+      return IfStructure(st, next);
+    case Kind::kFor:
+    case Kind::kEndFor:
+    case Kind::kWhile:
+    case Kind::kEndWhile:
+      return LoopStructure(st, block, next);
+    case Kind::kProgramEnd:
+      out.end = true;
+      return true;
+  }
+  return true;
+}
+
+bool Interpreter::EvalSucceeded() {
+  return eval_failed_ ? Fail(eval_fail_offset_, eval_fail_message_) : true;
+}
+
+bool Interpreter::Assign(const Statement& st) {
+  const Program& p = program();
+  const double v = Eval(st.value);
+  if (!EvalSucceeded()) return false;
+  if (st.data != kNoExpr) {
+    std::vector<InstructionArg> args;
+    if (!EvalArguments(st.data, args)) return EvalSucceeded();
+    const DataAccess& access = data();
+    if (!access.write)
+      return Fail(st.pos.offset,
+                  "writing " + p.symbols.Name(st.name) + "(...) data is not available here");
+    std::string error = access.write(st.instruction, args, v);
+    if (!error.empty()) return Fail(st.pos.offset, std::move(error));
+    last_result_ = v;
+    return true;
+  }
+  Var(st.name) = v;
+  last_result_ = v;
+  return true;
+}
+
+bool Interpreter::CallSubprogram(const Statement& st, int32_t& next) {
+  const Program& p = program();
+  if (static_cast<int>(calls_.size()) >= config_.max_call_depth)
+    return Fail(st.pos.offset,
+                "subprogram calls nested deeper than " + std::to_string(config_.max_call_depth));
+  if (p.dialect == Dialect::kMtc200) {
+    calls_.push_back({current_, next});
+    next = st.jump;
+    return true;
+  }
+  const std::string& target = p.symbols.Name(st.target);
+  const auto it = by_name_.find(Stem(target));
+  if (it == by_name_.end())
+    return Fail(st.pos.offset, "subprogram " + target + " is not in the program store");
+  calls_.push_back({current_, next});
+  current_ = it->second;
+  next = 0;
+  count_events_ |= kEnteredFile;
+  return true;
+}
+
+bool Interpreter::Return(const Statement& st, int32_t block, PreparedBlock& out, int32_t& next) {
+  if (!calls_.empty()) {
+    current_ = calls_.back().program;
+    next = calls_.back().return_block;
+    calls_.pop_back();
+    return true;
+  }
+  if (reverse_part_) {
+    // The part at the reverse label is over: the NC goes on at `.HOME` (REPOS manual 4.1).
+    // RET too: there it would end the program before the reverse program has run.
+    EndReversePart(next);
+    return true;
+  }
+  if (subroutine_) {
+    // REPOS manual 4.1: only RTS returns from a subroutine run on its own and keeps the
+    // state of the program it serves; RET is a program end, which would reset that state.
+    if (st.instruction == Instruction::kRet)
+      return Fail(st.pos.offset,
+                  "RET ends a program: a subroutine run on its own (.REPOS) ends with RTS");
+    out.returned = true;  // the subroutine run on its own is over (RunSubroutine)
+    ended_ = true;
+    next = block;
+    return true;
+  }
+  if (st.instruction == Instruction::kRts) return Fail(st.pos.offset, "RTS without JSR");
+  out.end = true;  // RET: end of the main program
+  return true;
+}
+
+bool Interpreter::InstructionStatement(const Statement& st, PreparedBlock& out) {
+  const Program& p = program();
+  // SE n / RE n: set or reset event n (MTC200; fast-measurement 4.1: SE 30, RE 29).
+  const bool set = st.instruction == Instruction::kSe;
+  if ((set || st.instruction == Instruction::kRe) && st.value != kNoExpr) {
+    const double n = Eval(st.value);
+    if (eval_failed_) return Fail(eval_fail_offset_, eval_fail_message_);
+    if (n < 0 || n > 999 || n != std::floor(n))
+      return Fail(st.pos.offset, p.symbols.Name(st.name) + ": event number " + std::to_string(n) +
+                                     " is not in 0..999");
+    out.events.emplace_back(static_cast<int>(n), set);
+    return true;
+  }
+  const auto index = static_cast<uint32_t>(&st - p.statements.data());
+  out.instructions.push_back(index);
+  if (IsMeasuringCall(st.instruction)) {
+    // Evaluated here, where the program's variables have the values the call sees.
+    InstructionCall call{st.instruction, {}, index};
+    if (st.value != kNoExpr && !EvalArguments(st.value, call.args))
+      return Fail(eval_fail_offset_, eval_fail_message_);
+    out.calls.push_back(std::move(call));
+  }
+  return true;
+}
+
+bool Interpreter::HashCommand(const Statement& st, PreparedBlock& out) {
+  const Program& p = program();
+  // They stay instructions as well: the channel sees the block in any case.
+  out.instructions.push_back(static_cast<uint32_t>(&st - p.statements.data()));
+  const SearchCommand c = ReadSearchCommand(p.texts[st.text]);
+  switch (c.kind) {
+    // Both commands' own blocks belong to the region (manual 6, example 1: "im Bereich der
+    // NC-Sätze N40-N100", N40 LOCKED and N100 RELEASED): a LOCKED block is locked, a
+    // RELEASED one keeps the state before it. A second LOCKED changes nothing: the first
+    // RELEASED ends the region (example 2).
+    case SearchCommand::Kind::kLock:
+      search_lock_ = out.search_locked = true;
+      break;
+    case SearchCommand::Kind::kRelease:
+      search_lock_ = false;
+      break;
+    case SearchCommand::Kind::kDistance:
+      out.distance_command = c.distance;
+      break;
+    case SearchCommand::Kind::kInvalid:  // the parser reports it; a program built by hand
+      return Fail(st.pos.offset, c.message);
+    case SearchCommand::Kind::kOther:
+      break;
+  }
+  return true;
+}
+
+bool Interpreter::IfStructure(const Statement& st, int32_t& next) {
+  const Program& p = program();
   // The statement that opens or continues a $-structure in a block.
   auto structure_at = [&](int32_t b) -> const Statement* {
     for (const Statement& s : p.Statements(p.blocks[b]))
@@ -431,134 +600,6 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
     return nullptr;
   };
   switch (st.kind) {
-    case Kind::kAssign: {
-      const double v = eval(st.value);
-      if (!check()) return false;
-      if (st.data != kNoExpr) {
-        std::vector<InstructionArg> args;
-        if (!EvalArguments(st.data, args)) return check();
-        const DataAccess& access = data();
-        if (!access.write)
-          return Fail(st.pos.offset,
-                      "writing " + p.symbols.Name(st.name) + "(...) data is not available here");
-        std::string error = access.write(st.instruction, args, v);
-        if (!error.empty()) return Fail(st.pos.offset, std::move(error));
-        last_result_ = v;
-        return true;
-      }
-      Var(st.name) = v;
-      last_result_ = v;
-      return true;
-    }
-    case Kind::kBranch:
-      if (BranchTaken(st.instruction, last_result_)) next = st.jump;
-      return true;
-    case Kind::kEventBranch: {
-      const int event = static_cast<int>(eval(st.value));
-      if (!check()) return false;
-      const std::function<bool(int)>& source = events();
-      const bool set = (source && source(event));
-      if ((st.instruction == Instruction::kBes) == set) next = st.jump;
-      return true;
-    }
-    case Kind::kCall: {
-      if (static_cast<int>(calls_.size()) >= config_.max_call_depth)
-        return Fail(st.pos.offset, "subprogram calls nested deeper than " +
-                                       std::to_string(config_.max_call_depth));
-      if (p.dialect == Dialect::kMtc200) {
-        calls_.push_back({current_, next});
-        next = st.jump;
-        return true;
-      }
-      const std::string& target = p.symbols.Name(st.target);
-      const auto it = by_name_.find(Stem(target));
-      if (it == by_name_.end())
-        return Fail(st.pos.offset, "subprogram " + target + " is not in the program store");
-      calls_.push_back({current_, next});
-      current_ = it->second;
-      next = 0;
-      count_events_ |= kEnteredFile;
-      return true;
-    }
-    case Kind::kReturn:
-      if (calls_.empty()) {
-        if (reverse_part_) {
-          // The part at the reverse label is over: the NC goes on at `.HOME` (REPOS manual 4.1).
-          // RET too: there it would end the program before the reverse program has run.
-          EndReversePart(next);
-          return true;
-        }
-        if (subroutine_) {
-          // REPOS manual 4.1: only RTS returns from a subroutine run on its own and keeps the
-          // state of the program it serves; RET is a program end, which would reset that state.
-          if (st.instruction == Instruction::kRet)
-            return Fail(st.pos.offset,
-                        "RET ends a program: a subroutine run on its own (.REPOS) ends with RTS");
-          out.returned = true;  // the subroutine run on its own is over (RunSubroutine)
-          ended_ = true;
-          next = block;
-          return true;
-        }
-        if (st.instruction == Instruction::kRts) return Fail(st.pos.offset, "RTS without JSR");
-        out.end = true;  // RET: end of the main program
-        return true;
-      }
-      current_ = calls_.back().program;
-      next = calls_.back().return_block;
-      calls_.pop_back();
-      return true;
-    case Kind::kReverse:
-      reverse_ = {static_cast<int32_t>(current_), st.jump};
-      out.reverse = reverse_;
-      return true;
-    case Kind::kInstruction: {
-      // SE n / RE n: set or reset event n (MTC200; fast-measurement 4.1: SE 30, RE 29).
-      const bool set = st.instruction == Instruction::kSe;
-      if ((set || st.instruction == Instruction::kRe) && st.value != kNoExpr) {
-        const double n = Eval(st.value);
-        if (eval_failed_) return Fail(eval_fail_offset_, eval_fail_message_);
-        if (n < 0 || n > 999 || n != std::floor(n))
-          return Fail(st.pos.offset, p.symbols.Name(st.name) + ": event number " +
-                                         std::to_string(n) + " is not in 0..999");
-        out.events.emplace_back(static_cast<int>(n), set);
-        return true;
-      }
-      const auto index = static_cast<uint32_t>(&st - p.statements.data());
-      out.instructions.push_back(index);
-      if (IsMeasuringCall(st.instruction)) {
-        // Evaluated here, where the program's variables have the values the call sees.
-        InstructionCall call{st.instruction, {}, index};
-        if (st.value != kNoExpr && !EvalArguments(st.value, call.args))
-          return Fail(eval_fail_offset_, eval_fail_message_);
-        out.calls.push_back(std::move(call));
-      }
-      return true;
-    }
-    case Kind::kHashCommand: {
-      // They stay instructions as well: the channel sees the block in any case.
-      out.instructions.push_back(static_cast<uint32_t>(&st - p.statements.data()));
-      const SearchCommand c = ReadSearchCommand(p.texts[st.text]);
-      switch (c.kind) {
-        // Both commands' own blocks belong to the region (manual 6, example 1: "im Bereich der
-        // NC-Sätze N40-N100", N40 LOCKED and N100 RELEASED): a LOCKED block is locked, a
-        // RELEASED one keeps the state before it. A second LOCKED changes nothing: the first
-        // RELEASED ends the region (example 2).
-        case SearchCommand::Kind::kLock:
-          search_lock_ = out.search_locked = true;
-          break;
-        case SearchCommand::Kind::kRelease:
-          search_lock_ = false;
-          break;
-        case SearchCommand::Kind::kDistance:
-          out.distance_command = c.distance;
-          break;
-        case SearchCommand::Kind::kInvalid:  // the parser reports it; a program built by hand
-          return Fail(st.pos.offset, c.message);
-        case SearchCommand::Kind::kOther:
-          break;
-      }
-      return true;
-    }
     case Kind::kIf:
     case Kind::kElseIf: {
       if (st.kind == Kind::kElseIf && !entering_) {
@@ -571,8 +612,8 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
         return true;
       }
       entering_ = false;
-      const bool condition = eval(st.value) != 0;
-      if (!check()) return false;
+      const bool condition = Eval(st.value) != 0;
+      if (!EvalSucceeded()) return false;
       if (!condition) {
         next = st.jump;
         entering_ = true;
@@ -583,13 +624,18 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
       if (!entering_) next = st.jump;
       entering_ = false;
       return true;
-    case Kind::kEndIf:
+    default:  // $ENDIF
       entering_ = false;
       return true;
+  }
+}
+
+bool Interpreter::LoopStructure(const Statement& st, int32_t block, int32_t& next) {
+  switch (st.kind) {
     case Kind::kFor: {
-      const double start = eval(st.value), limit = eval(st.limit);
-      const double step = st.step == kNoExpr ? 1.0 : eval(st.step);
-      if (!check()) return false;
+      const double start = Eval(st.value), limit = Eval(st.limit);
+      const double step = st.step == kNoExpr ? 1.0 : Eval(st.step);
+      if (!EvalSucceeded()) return false;
       if (step == 0) return Fail(st.pos.offset, "$FOR with step 0 never ends");
       Var(st.name) = start;
       if (step > 0 ? start > limit : start < limit)
@@ -616,8 +662,8 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
     case Kind::kWhile: {
       const bool back = while_back_;
       while_back_ = false;
-      const bool condition = eval(st.value) != 0;
-      if (!check()) return false;
+      const bool condition = Eval(st.value) != 0;
+      if (!EvalSucceeded()) return false;
       if (!condition) {
         next = st.jump + 1;
         if (back) {
@@ -627,15 +673,11 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
       }
       return true;
     }
-    case Kind::kEndWhile:
+    default:  // $ENDWHILE
       next = st.jump;
       while_back_ = true;
       return true;
-    case Kind::kProgramEnd:
-      out.end = true;
-      return true;
   }
-  return true;
 }
 
 }  // namespace vmt::control::nc

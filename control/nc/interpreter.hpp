@@ -285,6 +285,17 @@ class Interpreter {
   void EndReversePart(int32_t& next);
   bool Execute(const Block& block, PreparedBlock& out, int32_t& next);
   bool Statement_(const Statement& st, int32_t block, PreparedBlock& out, int32_t& next);
+  // One kind of statement each (Statement_ dispatches on the kind).
+  bool Assign(const Statement& st);
+  bool CallSubprogram(const Statement& st, int32_t& next);  ///< JSR, L, a named call
+  bool Return(const Statement& st, int32_t block, PreparedBlock& out, int32_t& next);
+  bool InstructionStatement(const Statement& st, PreparedBlock& out);
+  bool HashCommand(const Statement& st, PreparedBlock& out);  ///< ISG #-commands
+  bool IfStructure(const Statement& st, int32_t& next);       ///< $IF, $ELSEIF, $ELSE, $ENDIF
+  /// $FOR, $WHILE and their ends.
+  bool LoopStructure(const Statement& st, int32_t block, int32_t& next);
+  /// False (the program fails at the fault) if the last evaluation faulted.
+  bool EvalSucceeded();
   bool Words(const Block& block, PreparedBlock& out);
   /// A G word of value `v` at `offset`: its modal group, or the block's G04/G74/G77/G92/G100.
   bool GWord(double v, uint32_t offset, PreparedBlock& out);

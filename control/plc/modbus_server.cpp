@@ -60,16 +60,8 @@ in6_addr ClientAddress(const std::string& text) {
                               " is not a numeric IPv4 or IPv6 address");
 }
 
-}  // namespace
-
-struct ModbusServer::State : modbus_detail::ServerState {};
-
-ModbusServer::ModbusServer(SignalImage& image, Options options)
-    : state_(std::make_unique<State>()) {
-  State& s = *state_;
-  s.image = &image;
-  s.options = std::move(options);
-  const Options& o = s.options;
+// Options outside their ranges are refused before anything is opened.
+void CheckOptions(const ModbusServer::Options& o) {
   if (o.port < 0 || o.port > 65535) {
     throw std::invalid_argument("ModbusServer: port " + std::to_string(o.port) +
                                 " outside 0..65535");
@@ -85,8 +77,11 @@ ModbusServer::ModbusServer(SignalImage& image, Options options)
   if (o.client_timeout_ms < 0 || o.plc_role_timeout_ms < 0) {
     throw std::invalid_argument("ModbusServer: a negative timeout");
   }
-  for (const std::string& a : o.allowed_clients) s.allowed.push_back(ClientAddress(a));
+}
 
+// Which signal owns each coil, input and register; a signal whose Modbus place does not fit its
+// type or direction, or that shares a place with another, is refused.
+void MapSignals(modbus_detail::ServerState& s, const SignalImage& image) {
   for (int id = 0; id < image.size(); ++id) {
     const gateway::Signal& sig = image.table()[id];
     const ModbusAddress& m = sig.modbus;
@@ -119,6 +114,12 @@ ModbusServer::ModbusServer(SignalImage& image, Options options)
       owner[a] = id;
     }
   }
+}
+
+// The cycle register and the AXD_WR block among the holding registers; the holding registers
+// the mapping needs.
+int PlaceHoldingBlocks(modbus_detail::ServerState& s) {
+  const ModbusServer::Options& o = s.options;
   int holding = static_cast<int>(s.owner[ModbusAddress::kHoldingRegister].size());
   if (o.cycle_register) {
     const int r = *o.cycle_register;
@@ -158,7 +159,12 @@ ModbusServer::ModbusServer(SignalImage& image, Options options)
     s.axd_register = b;
     holding = std::max(holding, b + kAxdRegisters);
   }
+  return holding;
+}
 
+// The NC status block among the input registers; the input registers the mapping needs.
+int PlaceStatusBlock(modbus_detail::ServerState& s) {
+  const ModbusServer::Options& o = s.options;
   int input = static_cast<int>(s.owner[ModbusAddress::kInputRegister].size());
   if (o.status_register) {
     const int b = *o.status_register;
@@ -177,26 +183,12 @@ ModbusServer::ModbusServer(SignalImage& image, Options options)
     s.status_words.assign(static_cast<size_t>(o.status_count), 0);
     input = std::max(input, b + o.status_count);
   }
+  return input;
+}
 
-  s.ctx = modbus_new_tcp("127.0.0.1", MODBUS_TCP_DEFAULT_PORT);
-  if (s.ctx == nullptr) {
-    throw std::runtime_error(std::string("ModbusServer: modbus_new_tcp: ") +
-                             modbus_strerror(errno));
-  }
-  // libmodbus sleeps for the response timeout before some of its own exception replies; every
-  // request is checked before libmodbus sees it, but keep that sleep negligible regardless.
-  if (modbus_set_response_timeout(s.ctx, 0, 1000) != 0) {
-    throw std::runtime_error(std::string("ModbusServer: modbus_set_response_timeout: ") +
-                             modbus_strerror(errno));
-  }
-  s.mapping = modbus_mapping_new(static_cast<int>(s.owner[ModbusAddress::kCoil].size()),
-                                 static_cast<int>(s.owner[ModbusAddress::kDiscreteInput].size()),
-                                 holding, input);
-  if (s.mapping == nullptr) {
-    throw std::runtime_error(std::string("ModbusServer: modbus_mapping_new: ") +
-                             modbus_strerror(errno));
-  }
-
+// The listening socket on the options' host and port (port 0: one the system picks).
+void Listen(modbus_detail::ServerState& s) {
+  const ModbusServer::Options& o = s.options;
   const std::string where = HostPort(o.host, o.port);
   addrinfo hints{};
   hints.ai_flags = AI_PASSIVE | AI_NUMERICSERV;
@@ -254,6 +246,44 @@ ModbusServer::ModbusServer(SignalImage& image, Options options)
   }
   s.port = bound.ss_family == AF_INET6 ? ntohs(reinterpret_cast<sockaddr_in6*>(&bound)->sin6_port)
                                        : ntohs(reinterpret_cast<sockaddr_in*>(&bound)->sin_port);
+}
+
+}  // namespace
+
+struct ModbusServer::State : modbus_detail::ServerState {};
+
+ModbusServer::ModbusServer(SignalImage& image, Options options)
+    : state_(std::make_unique<State>()) {
+  State& s = *state_;
+  s.image = &image;
+  s.options = std::move(options);
+  const Options& o = s.options;
+  CheckOptions(o);
+  for (const std::string& a : o.allowed_clients) s.allowed.push_back(ClientAddress(a));
+
+  MapSignals(s, image);
+  const int holding = PlaceHoldingBlocks(s);
+  const int input = PlaceStatusBlock(s);
+  s.ctx = modbus_new_tcp("127.0.0.1", MODBUS_TCP_DEFAULT_PORT);
+  if (s.ctx == nullptr) {
+    throw std::runtime_error(std::string("ModbusServer: modbus_new_tcp: ") +
+                             modbus_strerror(errno));
+  }
+  // libmodbus sleeps for the response timeout before some of its own exception replies; every
+  // request is checked before libmodbus sees it, but keep that sleep negligible regardless.
+  if (modbus_set_response_timeout(s.ctx, 0, 1000) != 0) {
+    throw std::runtime_error(std::string("ModbusServer: modbus_set_response_timeout: ") +
+                             modbus_strerror(errno));
+  }
+  s.mapping = modbus_mapping_new(static_cast<int>(s.owner[ModbusAddress::kCoil].size()),
+                                 static_cast<int>(s.owner[ModbusAddress::kDiscreteInput].size()),
+                                 holding, input);
+  if (s.mapping == nullptr) {
+    throw std::runtime_error(std::string("ModbusServer: modbus_mapping_new: ") +
+                             modbus_strerror(errno));
+  }
+
+  Listen(s);
 }
 
 ModbusServer::~ModbusServer() = default;

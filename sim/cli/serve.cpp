@@ -260,6 +260,36 @@ int Conclude(const ServeOptions& o, SceneRun& run, const RunResult& r, const Ser
   return r.ok() && !late_failed ? 0 : 1;
 }
 
+station::StationServerOptions StationServerOptionsOf(const ServeOptions& o) {
+  station::StationServerOptions http;
+  std::tie(http.host, http.port) = HostPort("--http", o.http);
+  http.token = o.http_token;
+  http.web_dir = station::DefaultWebDir();
+  return http;
+}
+
+void CheckTimeouts(const ServeOptions& o) {
+  if (!(o.plc_timeout_ms > 0) || o.plc_timeout_ms > 3.6e6)
+    throw std::invalid_argument("--plc-timeout " + Fmt(o.plc_timeout_ms) +
+                                ": expected milliseconds, > 0 and at most an hour");
+  if (!(o.idle_timeout_s > 0) || o.idle_timeout_s > 8.64e4)
+    throw std::invalid_argument("--idle-timeout " + Fmt(o.idle_timeout_s) +
+                                ": expected seconds, > 0 and at most a day");
+}
+
+// Where the external PLC finds the server and its blocks, on standard output.
+void AnnounceModbus(const std::string& scene, const control::plc::ModbusServerOptions& mb, int port,
+                    bool lockstep, int64_t ticks) {
+  std::printf("vmt serve: %s, Modbus TCP on %s, %s", scene.c_str(),
+              ModbusEndpointText(mb, port).c_str(), lockstep ? "lockstep" : "real time");
+  if (lockstep)
+    std::printf(" (write cycle n+1 to holding register %d to run a PLC cycle of %.1f ms)",
+                *mb.cycle_register, ticks * 0.25);
+  std::printf("; AXD_WR block at holding register %d", *mb.axd_wr_register);
+  std::printf("; NC status block at input register %d", *mb.status_register);
+  std::printf("\n");
+}
+
 }  // namespace
 
 int Serve(const ServeOptions& o) {
@@ -268,18 +298,8 @@ int Serve(const ServeOptions& o) {
   control::plc::ModbusServerOptions mb;
   if (o.modbus) mb = ModbusServerOptionsOf(o);
   station::StationServerOptions http;
-  if (!o.http.empty()) {
-    std::tie(http.host, http.port) = HostPort("--http", o.http);
-    http.token = o.http_token;
-    http.web_dir = station::DefaultWebDir();
-  }
-
-  if (!(o.plc_timeout_ms > 0) || o.plc_timeout_ms > 3.6e6)
-    throw std::invalid_argument("--plc-timeout " + Fmt(o.plc_timeout_ms) +
-                                ": expected milliseconds, > 0 and at most an hour");
-  if (!(o.idle_timeout_s > 0) || o.idle_timeout_s > 8.64e4)
-    throw std::invalid_argument("--idle-timeout " + Fmt(o.idle_timeout_s) +
-                                ": expected seconds, > 0 and at most a day");
+  if (!o.http.empty()) http = StationServerOptionsOf(o);
+  CheckTimeouts(o);
 
   const Scene scene = LoadScene(o.scene);
   std::unique_ptr<station::StationSession> station;
@@ -344,15 +364,7 @@ int Serve(const ServeOptions& o) {
     server = std::make_unique<control::plc::ModbusServer>(*image, mb);
     refresh_nc_status();
     WarnIfRemote(*server, mb);
-    std::printf("vmt serve: %s, Modbus TCP on %s, %s", scene.name.c_str(),
-                ModbusEndpointText(mb, server->port()).c_str(),
-                o.lockstep ? "lockstep" : "real time");
-    if (o.lockstep)
-      std::printf(" (write cycle n+1 to holding register %d to run a PLC cycle of %.1f ms)",
-                  *mb.cycle_register, ticks * 0.25);
-    std::printf("; AXD_WR block at holding register %d", *mb.axd_wr_register);
-    std::printf("; NC status block at input register %d", nc_status.address);
-    std::printf("\n");
+    AnnounceModbus(scene.name, mb, server->port(), o.lockstep, ticks);
   }
   if (station) {
     const std::string pace = o.modbus ? (o.lockstep ? "external PLC, lockstep" : "real time")

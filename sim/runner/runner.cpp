@@ -134,63 +134,90 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
   backend = MakeBackend(options.backend.value_or(scene.backend), m, scene.initial);
   if (scene.workpiece.present) backend->SetWorkpiece(scene.workpiece.part);
   backend->SetProbeSamplingPhase(scene.probe_sampling);
-  // The NC channel, if the scene has one: its axes move at the drives' rapid and acceleration.
-  if (scene.nc.present) {
-    const control::channel::ChannelConfig& config = scene.nc.channel;
-    std::vector<const control::nc::Program*> programs;
-    for (const auto& parsed : scene.nc.programs) programs.push_back(&parsed->program);
-    channel = std::make_unique<control::channel::Channel>(config, programs);
-    channel->SetFeedOverride(scene.nc.override);
-    if (scene.nc.jog_of_path) {
-      jog_of_path = std::make_unique<control::channel::Channel>(
-          control::channel::JogOfPathConfig(config),
-          std::vector<const control::nc::Program*>{&scene.nc.jog_of_path->program});
-      jog_of_path->SetFeedOverride(scene.nc.override);
-    }
-    measuring_pages = scene.nc.measuring_pages;
-    channel->SetMeasuringPages(&measuring_pages);
-    if (config.path_guard != control::GuardReaction::kOff) {
-      // The machine's collision geometry with the scene's workpiece, posed where the backend
-      // stands; the channel asks it before its approach moves.
-      std::vector<CylinderPart> parts;
-      if (scene.workpiece.present) {
-        cutter = std::make_unique<StockCutter>(m, scene.workpiece.part);
-        parts = cutter->stock().Cylinders(kStockTolerance);
-      }
-      MachineBackend* b = backend.get();
-      path_guard =
-          std::make_unique<MachinePathGuard>(m, parts, [b] { return b->JointPositions(); });
-      path_guard->SetSweep(SweepOf(path_guard->world(), scene.workpiece.present
-                                                            ? scene.workpiece.part.link
-                                                            : std::string("spindle")));
-      path_guard->before_check = [this](CollisionWorld&) {
-        if (!guard_parts_stale || !cutter) return;
-        path_guard->SetAdded(cutter->stock().Cylinders(kStockTolerance));
-        guard_parts_stale = false;
-      };
-      channel->SetPathGuard(path_guard.get());
-      if (jog_of_path) jog_of_path->SetPathGuard(path_guard.get());
-    }
+  if (scene.nc.present) MakeChannels();
+  if (channel && scene.nc.signals) MakeGateway();
+  MakePlc();
+  timeline = std::make_unique<TimelinePlayer>(scene, backend->Read(), channel.get(), image.get());
+  channel_drive.assign(m.drives.size(), 0);
+  for (const control::channel::Channel* c : {channel.get(), jog_of_path.get()})
+    for (size_t d = 0; c && d < channel_drive.size(); ++d)
+      if (c->MayWriteDrive(d)) channel_drive[d] = 1;
+  for (size_t d = 0; d < channel_drive.size(); ++d)
+    if (channel_drive[d]) timeline->LeaveEnableToChannel(d);
+  if (field_bus) ReadFieldBus();
+
+  last_tick = std::llround(options.until_s.value_or(scene.duration_s) / kDriveTickS);
+  trace_every = std::max<int64_t>(1, std::llround(scene.trace_period_s / kDriveTickS));
+  if (!options.out_dir.empty()) recorder.Open(options.out_dir);
+  recorder.Trace(TraceHeader(m, channel != nullptr));
+
+  snapped.assign(scene.snapshots.size(), false);
+  event_shots.assign(scene.snapshots.size(), 0);
+  checked.assign(scene.expectations.size(), false);
+  checks.resize(scene.expectations.size());
+  clutches.resize(m.clutches.size());
+}
+
+// The NC channel (and the JogOfPath channel): its axes move at the drives' rapid and
+// acceleration; with PathGuard, the machine's collision geometry and the scene's workpiece.
+void SceneRun::State::MakeChannels() {
+  const control::channel::ChannelConfig& config = scene.nc.channel;
+  std::vector<const control::nc::Program*> programs;
+  for (const auto& parsed : scene.nc.programs) programs.push_back(&parsed->program);
+  channel = std::make_unique<control::channel::Channel>(config, programs);
+  channel->SetFeedOverride(scene.nc.override);
+  if (scene.nc.jog_of_path) {
+    jog_of_path = std::make_unique<control::channel::Channel>(
+        control::channel::JogOfPathConfig(config),
+        std::vector<const control::nc::Program*>{&scene.nc.jog_of_path->program});
+    jog_of_path->SetFeedOverride(scene.nc.override);
   }
-  // The gateway: the channel reads its control signals and writes its status each NC cycle.
-  if (channel && scene.nc.signals) {
-    image = std::make_unique<control::gateway::SignalImage>(*scene.nc.signals);
-    std::vector<int> numbers;
-    for (const auto& a : scene.nc.data.axes) numbers.push_back(a.number);
-    int spindle_number = -1;
-    const int sd = scene.nc.data.spindle_drive;
-    for (const auto& a : GatewayLayoutOf(m).axes)
-      if (a.spindle_capable && sd >= 0 &&
-          (a.name == m.drives[sd].info.name || scene.nc.data.spindle_number == a.number))
-        spindle_number = a.number;
-    const int ra = scene.nc.data.rotary_axis;
-    gateway = std::make_unique<control::gateway::ChannelGateway>(
-        *image, scene.nc.data.process.number, numbers, spindle_number, sd,
-        ra >= 0 ? numbers[ra] : -1);
-    control::gateway::ChannelGateway* gw = gateway.get();
-    channel->SetEventSource([gw](int n) { return gw->Event(n); });
-    channel->SetEventSink([gw](int n, bool v) { gw->SetEvent(n, v); });
+  measuring_pages = scene.nc.measuring_pages;
+  channel->SetMeasuringPages(&measuring_pages);
+  if (config.path_guard != control::GuardReaction::kOff) {
+    // The machine's collision geometry with the scene's workpiece, posed where the backend
+    // stands; the channel asks it before its approach moves.
+    std::vector<CylinderPart> parts;
+    if (scene.workpiece.present) {
+      cutter = std::make_unique<StockCutter>(m, scene.workpiece.part);
+      parts = cutter->stock().Cylinders(kStockTolerance);
+    }
+    MachineBackend* b = backend.get();
+    path_guard = std::make_unique<MachinePathGuard>(m, parts, [b] { return b->JointPositions(); });
+    path_guard->SetSweep(SweepOf(path_guard->world(), scene.workpiece.present
+                                                          ? scene.workpiece.part.link
+                                                          : std::string("spindle")));
+    path_guard->before_check = [this](CollisionWorld&) {
+      if (!guard_parts_stale || !cutter) return;
+      path_guard->SetAdded(cutter->stock().Cylinders(kStockTolerance));
+      guard_parts_stale = false;
+    };
+    channel->SetPathGuard(path_guard.get());
+    if (jog_of_path) jog_of_path->SetPathGuard(path_guard.get());
   }
+}
+
+// The gateway: the channel reads its control signals and writes its status each NC cycle.
+void SceneRun::State::MakeGateway() {
+  image = std::make_unique<control::gateway::SignalImage>(*scene.nc.signals);
+  std::vector<int> numbers;
+  for (const auto& a : scene.nc.data.axes) numbers.push_back(a.number);
+  int spindle_number = -1;
+  const int sd = scene.nc.data.spindle_drive;
+  for (const auto& a : GatewayLayoutOf(m).axes)
+    if (a.spindle_capable && sd >= 0 &&
+        (a.name == m.drives[sd].info.name || scene.nc.data.spindle_number == a.number))
+      spindle_number = a.number;
+  const int ra = scene.nc.data.rotary_axis;
+  gateway = std::make_unique<control::gateway::ChannelGateway>(*image, scene.nc.data.process.number,
+                                                               numbers, spindle_number, sd,
+                                                               ra >= 0 ? numbers[ra] : -1);
+  control::gateway::ChannelGateway* gw = gateway.get();
+  channel->SetEventSource([gw](int n) { return gw->Event(n); });
+  channel->SetEventSink([gw](int n, bool v) { gw->SetEvent(n, v); });
+}
+
+void SceneRun::State::MakePlc() {
   // The embedded PLC: scanned at its period against the gateway; the machine's sensors reach
   // it through the image (as over a field bus) and its valves go out to the machine.
   // An external PLC (vmt serve) takes the embedded program's place.
@@ -238,25 +265,6 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     if (default_headstock_plc && channel->headstock()->config().separate_servo())
       StartHeadstockPlc();
   }
-  timeline = std::make_unique<TimelinePlayer>(scene, backend->Read(), channel.get(), image.get());
-  channel_drive.assign(m.drives.size(), 0);
-  for (const control::channel::Channel* c : {channel.get(), jog_of_path.get()})
-    for (size_t d = 0; c && d < channel_drive.size(); ++d)
-      if (c->MayWriteDrive(d)) channel_drive[d] = 1;
-  for (size_t d = 0; d < channel_drive.size(); ++d)
-    if (channel_drive[d]) timeline->LeaveEnableToChannel(d);
-  if (field_bus) ReadFieldBus();
-
-  last_tick = std::llround(options.until_s.value_or(scene.duration_s) / kDriveTickS);
-  trace_every = std::max<int64_t>(1, std::llround(scene.trace_period_s / kDriveTickS));
-  if (!options.out_dir.empty()) recorder.Open(options.out_dir);
-  recorder.Trace(TraceHeader(m, channel != nullptr));
-
-  snapped.assign(scene.snapshots.size(), false);
-  event_shots.assign(scene.snapshots.size(), 0);
-  checked.assign(scene.expectations.size(), false);
-  checks.resize(scene.expectations.size());
-  clutches.resize(m.clutches.size());
 }
 
 void SceneRun::State::Step() {

@@ -32,6 +32,11 @@ namespace vmt::sim {
 // Everything a run holds between ticks.
 struct SceneRun::State {
   State(const Scene& scene, const RunOptions& options);
+  // The construction's parts, in this order: the NC channels with PathGuard, the gateway, the
+  // embedded PLC with the signals it starts from and the field bus.
+  void MakeChannels();
+  void MakeGateway();
+  void MakePlc();
   void Step();
   RunResult Finish(const std::string& stop_reason);
   void ReadFieldBus();

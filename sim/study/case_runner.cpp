@@ -9,6 +9,7 @@
 #include <limits>
 #include <numeric>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -18,6 +19,7 @@
 #include "sim/model/yaml_reader.hpp"
 #include "sim/runner/runner.hpp"
 #include "sim/scene/scene_steps.hpp"
+#include "sim/study/case_files.hpp"
 #include "sim/study/die_with_parent.hpp"
 
 namespace vmt::sim::study {
@@ -336,6 +338,59 @@ std::vector<std::string> InChild(const std::function<void(int)>& work, int* stat
   return lines;
 }
 
+// In a child at the interruption, held: the retract the cases share, then each case's way
+// back, a result line each to `fd` in the cases' order. Every mode but the last runs in a
+// grandchild of its own; the last runs on here (a crash in it is reported by the caller, as
+// for a grandchild).
+void RunRetractCases(Scene& scene, SceneRun& run, CaseObserver*& observer, const StudyPlan& plan,
+                     const std::vector<Interruption>& interruptions, const Interruption& in,
+                     size_t sub, std::span<const StudyCase> cases, int fd) {
+  const RetractPattern& retract = plan.retracts[cases.front().retract];
+  Append(scene, RetractLines(scene, plan, in, retract));
+  const size_t marker = scene.timeline.size() - 1;
+  CaseObserver obs(CaseObserver::kNoStep, marker);
+  observer = &obs;
+  const double limit = CaseLimit(plan, in, retract);
+  while (!run.done() && !obs.done() && !obs.marker_seen() && run.time_s() < limit) run.Step();
+  for (int w = 0; w < 8 && obs.error_pending() && !run.done(); ++w) run.Step();
+  for (size_t m = 0; m < cases.size(); ++m) {
+    const StudyCase& c = cases[m];
+    if (!obs.marker_seen()) {  // the retract ended the case (a refused jog)
+      WriteAll(fd, CaseJsonLine(obs.Result(plan, interruptions, c, run.time_s())));
+      continue;
+    }
+    if (m + 1 == cases.size()) {
+      RunReturn(scene, run, obs, plan, plan.subroutines[sub], c.mode, limit);
+      WriteAll(fd, CaseJsonLine(obs.Result(plan, interruptions, c, run.time_s())));
+      continue;
+    }
+    int mode_status = 0;
+    const std::vector<std::string> one = InChild(
+        [&](int mode_fd) {
+          RunReturn(scene, run, obs, plan, plan.subroutines[sub], c.mode, limit);
+          WriteAll(mode_fd, CaseJsonLine(obs.Result(plan, interruptions, c, run.time_s())));
+        },
+        &mode_status);
+    const bool ok = WIFEXITED(mode_status) && WEXITSTATUS(mode_status) == 0 && one.size() == 1;
+    WriteAll(fd,
+             ok ? one[0] + "\n" : CaseJsonLine(DiedResult(plan, interruptions, c, mode_status)));
+  }
+}
+
+// Hands each result line read from `fd` to `sink` as it arrives, until the writer closes.
+void ForwardResults(int fd, const std::function<void(const CaseResult&)>& sink) {
+  std::string pending;
+  char buf[4096];
+  for (ssize_t n; (n = ::read(fd, buf, sizeof buf)) > 0;) {
+    pending.append(buf, static_cast<size_t>(n));
+    for (size_t eol; (eol = pending.find('\n')) != std::string::npos;) {
+      const CaseResult r = nlohmann::ordered_json::parse(pending.substr(0, eol), nullptr, false);
+      pending.erase(0, eol + 1);
+      if (!r.is_discarded()) sink(r);
+    }
+  }
+}
+
 }  // namespace
 
 void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
@@ -376,7 +431,6 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
     const std::vector<StudyCase> mine = group_at(i);
     if (mine.empty()) continue;
     const Interruption& in = interruptions[i];
-    const size_t first = 0, last = mine.size();
     while (!run.done() && run.time_s() < in.t_s - kAhead) run.Step();
     // The group's results come back a line each through a pipe, so that `sink` runs here.
     int lines[2];
@@ -391,80 +445,30 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
       scene.timeline.push_back(HoldStep(scene, in.t_s, scene.timeline.size()));
       while (!run.done() && run.time_s() < in.t_s + plan.hold_s - kAhead) run.Step();
       // The cases of one retract share it: a child per retract runs it, a grandchild per mode.
-      for (size_t k = first; k < last;) {
-        const RetractPattern& retract = plan.retracts[mine[k].retract];
+      for (size_t k = 0; k < mine.size();) {
         size_t end = k;
-        while (end < last && mine[end].retract == mine[k].retract) ++end;
+        while (end < mine.size() && mine[end].retract == mine[k].retract) ++end;
+        const std::span<const StudyCase> cases(mine.data() + k, end - k);
         int status = 0;
         const std::vector<std::string> got = InChild(
             [&](int fd) {
-              Append(scene, RetractLines(scene, plan, in, retract));
-              const size_t marker = scene.timeline.size() - 1;
-              CaseObserver obs(CaseObserver::kNoStep, marker);
-              observer = &obs;
-              const double limit = CaseLimit(plan, in, retract);
-              while (!run.done() && !obs.done() && !obs.marker_seen() && run.time_s() < limit)
-                run.Step();
-              for (int w = 0; w < 8 && obs.error_pending() && !run.done(); ++w) run.Step();
-              for (size_t m = k; m < end; ++m) {
-                const StudyCase& c = mine[m];
-                if (!obs.marker_seen()) {  // the retract ended the case (a refused jog)
-                  WriteAll(fd, obs.Result(plan, interruptions, c, run.time_s())
-                                       .dump(-1, ' ', false, common::kReplaceBadUtf8) +
-                                   "\n");
-                  continue;
-                }
-                // The last mode needs no copy of this process: it runs here, on from the
-                // retract (a crash here is reported for it by the group, as for a child).
-                if (m + 1 == end) {
-                  RunReturn(scene, run, obs, plan, plan.subroutines[sub], c.mode, limit);
-                  WriteAll(fd, obs.Result(plan, interruptions, c, run.time_s())
-                                       .dump(-1, ' ', false, common::kReplaceBadUtf8) +
-                                   "\n");
-                  continue;
-                }
-                int mode_status = 0;
-                const std::vector<std::string> one = InChild(
-                    [&](int mode_fd) {
-                      RunReturn(scene, run, obs, plan, plan.subroutines[sub], c.mode, limit);
-                      WriteAll(mode_fd, obs.Result(plan, interruptions, c, run.time_s())
-                                                .dump(-1, ' ', false, common::kReplaceBadUtf8) +
-                                            "\n");
-                    },
-                    &mode_status);
-                const bool ok =
-                    WIFEXITED(mode_status) && WEXITSTATUS(mode_status) == 0 && one.size() == 1;
-                WriteAll(fd, (ok ? one[0]
-                                 : DiedResult(plan, interruptions, c, mode_status)
-                                       .dump(-1, ' ', false, common::kReplaceBadUtf8)) +
-                                 "\n");
-              }
+              RunRetractCases(scene, run, observer, plan, interruptions, in, sub, cases, fd);
             },
             &status);
-        for (size_t m = k; m < end; ++m) {
-          const StudyCase& c = mine[m];
-          CaseResult r = m - k < got.size()
-                             ? nlohmann::ordered_json::parse(got[m - k], nullptr, false)
-                             : nlohmann::ordered_json();
+        for (size_t m = 0; m < cases.size(); ++m) {
+          const StudyCase& c = cases[m];
+          CaseResult r = m < got.size() ? nlohmann::ordered_json::parse(got[m], nullptr, false)
+                                        : nlohmann::ordered_json();
           if (r.is_discarded() || !r.is_object() || r.value("case", "") != c.id)
             r = DiedResult(plan, interruptions, c, status);
-          WriteAll(lines[1], r.dump(-1, ' ', false, common::kReplaceBadUtf8) + "\n");
+          WriteAll(lines[1], CaseJsonLine(r));
         }
         k = end;
       }
       ::_exit(0);
     }
     ::close(lines[1]);
-    std::string pending;
-    char buf[4096];
-    for (ssize_t n; (n = ::read(lines[0], buf, sizeof buf)) > 0;) {
-      pending.append(buf, static_cast<size_t>(n));
-      for (size_t eol; (eol = pending.find('\n')) != std::string::npos;) {
-        const CaseResult r = nlohmann::ordered_json::parse(pending.substr(0, eol), nullptr, false);
-        pending.erase(0, eol + 1);
-        if (!r.is_discarded()) sink(r);
-      }
-    }
+    ForwardResults(lines[0], sink);
     ::close(lines[0]);
     int status = 0;
     ::waitpid(group, &status, 0);

@@ -227,6 +227,141 @@ class CasePages {
   size_t rows_ = 0, pages_ = 0;
 };
 
+// What the classes, the severity, the clearance and the coordinates mean.
+void HowToRead(std::ostringstream& o, const Reference* reference) {
+  o << "<h2>How to read this report</h2>\n<dl>"
+       "<dt>Classes</dt><dd><span class=\"clear\">clear</span>: the REPOS subroutine returned "
+       "(or the operator's manual jogs restored the conditions, PxxS.CREST) with every move "
+       "checked clear by PathGuard. <span class=\"crash\">crash</span>: PathGuard found a "
+       "contact on a REPOS move or a manual return jog, farther than "
+    << Num(kGrazeMm, "%.1f")
+    << " mm before the move's end. <span class=\"graze\">graze</span>: the first contact lies "
+       "within "
+    << Num(kGrazeMm, "%.1f")
+    << " mm of the move's end: the parts only meet where the move stops (typically the tool "
+       "set back onto the contour it was cutting). <span class=\"error\">error</span>: another "
+       "NC error or a timeout. <span class=\"retract_refused\">retract refused</span>: PathGuard "
+       "refused the operator's own retract jog, so no return was tried: the operator's problem, "
+       "counted apart and not against the subroutine. The rows <i>manual X,Z</i> are the "
+       "operator jogging back in manual mode in that order of axes (repositioning manual 3)."
+       "</dd><dt>Severity</dt><dd>For a contact: how far the refused move would have gone on "
+       "past its first contact (the axes' distance from the contact position to the move's end, "
+       "mm): the depth the parts would have run into each other along the move. Worst cases are "
+       "sorted by it: crashes deepest first, then grazes, then errors, then the clear cases with "
+       "the smallest clearance.</dd><dt>Clearance</dt><dd>The smallest distance PathGuard found "
+       "between two parts that move against each other (tool, turret and slides against the "
+       "chuck, its jaws, the tailstock and the part as turned) over the REPOS moves it checked "
+       "clear, mm; exact to 10 &#181;m or 10 %, never reported larger than it is. For a contact: "
+       "over the moves before the refused one.</dd><dt>Coordinates</dt><dd>Machine coordinates "
+       "throughout: X and Z are the axes' positions as the NC shows them (mm). Points in space "
+       "(a contact point, the chuck's parts) are given where the tool tip touches them at those "
+       "axis positions";
+  if (reference && reference->has_tip)
+    o << " (the model frame shifted by the tool tip's offset: x &#8722; " << Num(reference->tip_x)
+      << " mm, z &#8722; " << Num(reference->tip_z) << " mm)";
+  o << ".</dd></dl>\n";
+}
+
+// A row per subroutine (or manual order) and mode, and one for all its modes.
+void SummaryTable(std::ostringstream& o, const std::map<std::string, SubroutineTally>& by_sub) {
+  o << "<h2>Summary per REPOS subroutine or manual order</h2>\n<table><tr><th class=\"l\">"
+       "subroutine</th><th class=\"l\">mode</th><th>cases</th><th>clear</th><th>crash</th>"
+       "<th>graze</th><th>errors</th><th>retract refused</th><th title=\"the smallest clearance "
+       "PathGuard found on the REPOS moves of the clear cases\">worst clearance, mm</th>"
+       "<th title=\"how far a refused move would have gone on past its first contact, the "
+       "largest\">deepest past contact, mm</th></tr>\n";
+  for (const auto& [sub, t] : by_sub) {
+    std::map<std::string, SummaryRow> rows = t.by_mode;
+    rows["all"] = t.all;
+    for (const auto& [mode, row] : rows) {
+      const ClassCount& n = row.n;
+      o << "<tr><td class=\"l\">" << Esc(sub) << "</td><td class=\"l\">" << Esc(mode) << "</td><td>"
+        << n.cases << "</td><td class=\"clear\">" << n.clear << "</td><td class=\"crash\">"
+        << n.crash << "</td><td class=\"graze\">" << n.graze << "</td><td class=\"error\">"
+        << n.error << "</td><td class=\"retract_refused\">" << n.retract_refused << "</td><td>"
+        << (std::isfinite(row.worst) ? Num(row.worst) : "&#8211;") << "</td><td>"
+        << (row.deepest >= 0 ? Num(row.deepest) : "&#8211;") << "</td></tr>\n";
+    }
+  }
+  o << "</table>\n";
+}
+
+// One subroutine's approach paths in the XZ plane, its worst cases and their pictures.
+void SubroutineSection(std::ostringstream& o, const std::string& sub, const SubroutineTally& t,
+                       const Reference* reference,
+                       const std::map<std::string, std::string>& snapshots) {
+  const auto severe = [](const CaseResult* a, const CaseResult* b) { return MoreSevere(*a, *b); };
+  // The plane draws the cases in id order; a subroutine of more than kPlaneCases its most
+  // severe ones (the page stays light whatever the study's size).
+  std::vector<const CaseResult*> drawn;
+  for (const CaseResult& r : t.plane.kept()) drawn.push_back(&r);
+  std::sort(drawn.begin(), drawn.end(), [](const CaseResult* a, const CaseResult* b) {
+    return Str(*a, "case") < Str(*b, "case");
+  });
+  o << "<h2>" << Esc(sub) << ": approach paths in the XZ plane</h2>\n"
+    << "<p>Machine coordinates, mm. Grey: the program's tool path (the contour as turned); "
+       "dashed: the chuck's parts as the envelopes they sweep while the spindle turns (what "
+       "PathGuard checks against). Each case's REPOS path from where the operator left the "
+       "tool, coloured by class; a dot marks where the tool stood at a first contact, a cross "
+       "the contact point (hover for the case, click to watch it).";
+  if (t.all.n.cases > drawn.size())
+    o << " Drawn: the " << drawn.size() << " most severe of its " << t.all.n.cases << " cases.";
+  o << "</p>\n" << PlaneSvg(drawn, reference, [](const std::string& id) { return ReplayHref(id); });
+  std::vector<const CaseResult*> worst;
+  for (const CaseResult& r : t.worst.kept()) worst.push_back(&r);
+  for (const CaseResult& r : t.tight.kept()) worst.push_back(&r);
+  o << "<h3>Worst cases, most severe first</h3>\n<table><tr><th class=\"l\">case</th>"
+       "<th class=\"l\">class</th><th class=\"l\">first contact</th><th class=\"l\">"
+       "move</th><th class=\"l\">axes at the contact</th><th class=\"l\">contact point</th>"
+       "<th title=\"how far the refused move would have gone on past its first contact\">past "
+       "contact, mm</th><th title=\"the smallest clearance PathGuard found on the REPOS moves "
+       "(before the refused one)\">clearance, mm</th><th class=\"l\">NC message</th>"
+       "<th class=\"l\">picture</th><th class=\"l\">replay</th></tr>\n";
+  for (const CaseResult* r : worst) {
+    const std::string cls = ClassOf(*r);
+    o << "<tr><td class=\"l\">" << Esc(Str(*r, "case")) << "</td><td class=\"l " << Esc(cls)
+      << "\">" << Esc(ClassName(cls)) << "</td><td class=\"l\">"
+      << (Field(*r, "parts").is_array() ? Esc(Field(*r, "parts").dump()) : "")
+      << "</td><td class=\"l\">" << Esc(Str(*r, "contact_move")) << "</td><td class=\"l\">"
+      << Esc(ContactAxes(*r)) << "</td><td class=\"l\">" << Esc(ContactPoint(*r, reference))
+      << "</td><td>"
+      << (Field(*r, "past_contact_mm").is_number() ? Num(Field(*r, "past_contact_mm").get<double>())
+                                                   : "")
+      << "</td><td>"
+      << (Field(*r, "min_clearance_mm").is_number()
+              ? Num(Field(*r, "min_clearance_mm").get<double>())
+              : "")
+      << "</td><td class=\"l\">" << Esc(Message(*r)) << "</td><td class=\"l\">";
+    const auto shot = snapshots.find(Str(*r, "case"));
+    if (shot != snapshots.end()) o << "<a href=\"" << Esc(shot->second) << "\">picture</a>";
+    o << "</td><td class=\"l\"><a class=\"replay\" href=\"" << Esc(ReplayHref(Str(*r, "case")))
+      << "\">watch</a></td></tr>\n";
+  }
+  o << "</table>\n";
+  // The pictures of this subroutine's worst cases: a collision at its first contact, the
+  // tightest clear case at its end.
+  std::vector<const CaseResult*> pictured;
+  for (const CaseResult& r : t.pictured) pictured.push_back(&r);
+  std::stable_sort(pictured.begin(), pictured.end(), severe);
+  if (!pictured.empty())
+    o << "<h3>Pictures of the worst cases</h3>\n<p>A collision is pictured with the axes "
+         "at its first contact: the two parts that meet are drawn magenta, a cyan cross marks "
+         "the contact point, the workpiece as turned.</p>\n<div>\n";
+  for (const CaseResult* r : pictured) {
+    const std::string& file = snapshots.at(Str(*r, "case"));
+    const std::string cls = ClassOf(*r);
+    const bool contact = cls == "crash" || cls == "graze";
+    o << "<figure style=\"display:inline-block;margin:4px\"><a href=\"" << Esc(file)
+      << "\"><img src=\"" << Esc(file) << "\" width=\"320\" alt=\"" << Esc(Str(*r, "case"))
+      << "\"></a><figcaption class=\"" << Esc(cls) << "\">" << Esc(Str(*r, "case")) << ": "
+      << Esc(ClassName(cls))
+      << (contact ? " (first contact: " + Esc(Field(*r, "parts").dump()) + ")"
+                  : " (end of the return)")
+      << "</figcaption></figure>\n";
+  }
+  if (!pictured.empty()) o << "</div>\n";
+}
+
 }  // namespace
 
 struct ReportBuilder::State {
@@ -266,131 +401,9 @@ std::string ReportBuilder::Html(const std::string& title, size_t pages) const {
        "dt{font-weight:bold}</style></head><body>\n";
   o << "<h1>" << Esc(title) << "</h1>\n<p>" << cases_ << " cases.</p>\n";
   Conclude(o, state_->conclusions.Conclusions());
-  o << "<h2>How to read this report</h2>\n<dl>"
-       "<dt>Classes</dt><dd><span class=\"clear\">clear</span>: the REPOS subroutine returned "
-       "(or the operator's manual jogs restored the conditions, PxxS.CREST) with every move "
-       "checked clear by PathGuard. <span class=\"crash\">crash</span>: PathGuard found a "
-       "contact on a REPOS move or a manual return jog, farther than "
-    << Num(kGrazeMm, "%.1f")
-    << " mm before the move's end. <span class=\"graze\">graze</span>: the first contact lies "
-       "within "
-    << Num(kGrazeMm, "%.1f")
-    << " mm of the move's end: the parts only meet where the move stops (typically the tool "
-       "set back onto the contour it was cutting). <span class=\"error\">error</span>: another "
-       "NC error or a timeout. <span class=\"retract_refused\">retract refused</span>: PathGuard "
-       "refused the operator's own retract jog, so no return was tried: the operator's problem, "
-       "counted apart and not against the subroutine. The rows <i>manual X,Z</i> are the "
-       "operator jogging back in manual mode in that order of axes (repositioning manual 3)."
-       "</dd><dt>Severity</dt><dd>For a contact: how far the refused move would have gone on "
-       "past its first contact (the axes' distance from the contact position to the move's end, "
-       "mm): the depth the parts would have run into each other along the move. Worst cases are "
-       "sorted by it: crashes deepest first, then grazes, then errors, then the clear cases with "
-       "the smallest clearance.</dd><dt>Clearance</dt><dd>The smallest distance PathGuard found "
-       "between two parts that move against each other (tool, turret and slides against the "
-       "chuck, its jaws, the tailstock and the part as turned) over the REPOS moves it checked "
-       "clear, mm; exact to 10 &#181;m or 10 %, never reported larger than it is. For a contact: "
-       "over the moves before the refused one.</dd><dt>Coordinates</dt><dd>Machine coordinates "
-       "throughout: X and Z are the axes' positions as the NC shows them (mm). Points in space "
-       "(a contact point, the chuck's parts) are given where the tool tip touches them at those "
-       "axis positions";
-  if (reference && reference->has_tip)
-    o << " (the model frame shifted by the tool tip's offset: x &#8722; " << Num(reference->tip_x)
-      << " mm, z &#8722; " << Num(reference->tip_z) << " mm)";
-  o << ".</dd></dl>\n";
-  o << "<h2>Summary per REPOS subroutine or manual order</h2>\n<table><tr><th class=\"l\">"
-       "subroutine</th><th class=\"l\">mode</th><th>cases</th><th>clear</th><th>crash</th>"
-       "<th>graze</th><th>errors</th><th>retract refused</th><th title=\"the smallest clearance "
-       "PathGuard found on the REPOS moves of the clear cases\">worst clearance, mm</th>"
-       "<th title=\"how far a refused move would have gone on past its first contact, the "
-       "largest\">deepest past contact, mm</th></tr>\n";
-  for (const auto& [sub, t] : state_->by_sub) {
-    std::map<std::string, SummaryRow> rows = t.by_mode;
-    rows["all"] = t.all;
-    for (const auto& [mode, row] : rows) {
-      const ClassCount& n = row.n;
-      o << "<tr><td class=\"l\">" << Esc(sub) << "</td><td class=\"l\">" << Esc(mode) << "</td><td>"
-        << n.cases << "</td><td class=\"clear\">" << n.clear << "</td><td class=\"crash\">"
-        << n.crash << "</td><td class=\"graze\">" << n.graze << "</td><td class=\"error\">"
-        << n.error << "</td><td class=\"retract_refused\">" << n.retract_refused << "</td><td>"
-        << (std::isfinite(row.worst) ? Num(row.worst) : "&#8211;") << "</td><td>"
-        << (row.deepest >= 0 ? Num(row.deepest) : "&#8211;") << "</td></tr>\n";
-    }
-  }
-  o << "</table>\n";
-  const auto severe = [](const CaseResult* a, const CaseResult* b) { return MoreSevere(*a, *b); };
-  for (const auto& [sub, t] : state_->by_sub) {
-    // The plane draws the cases in id order; a subroutine of more than kPlaneCases its most
-    // severe ones (the page stays light whatever the study's size).
-    std::vector<const CaseResult*> drawn;
-    for (const CaseResult& r : t.plane.kept()) drawn.push_back(&r);
-    std::sort(drawn.begin(), drawn.end(), [](const CaseResult* a, const CaseResult* b) {
-      return Str(*a, "case") < Str(*b, "case");
-    });
-    o << "<h2>" << Esc(sub) << ": approach paths in the XZ plane</h2>\n"
-      << "<p>Machine coordinates, mm. Grey: the program's tool path (the contour as turned); "
-         "dashed: the chuck's parts as the envelopes they sweep while the spindle turns (what "
-         "PathGuard checks against). Each case's REPOS path from where the operator left the "
-         "tool, coloured by class; a dot marks where the tool stood at a first contact, a cross "
-         "the contact point (hover for the case, click to watch it).";
-    if (t.all.n.cases > drawn.size())
-      o << " Drawn: the " << drawn.size() << " most severe of its " << t.all.n.cases << " cases.";
-    o << "</p>\n"
-      << PlaneSvg(drawn, reference, [](const std::string& id) { return ReplayHref(id); });
-    std::vector<const CaseResult*> worst;
-    for (const CaseResult& r : t.worst.kept()) worst.push_back(&r);
-    for (const CaseResult& r : t.tight.kept()) worst.push_back(&r);
-    o << "<h3>Worst cases, most severe first</h3>\n<table><tr><th class=\"l\">case</th>"
-         "<th class=\"l\">class</th><th class=\"l\">first contact</th><th class=\"l\">"
-         "move</th><th class=\"l\">axes at the contact</th><th class=\"l\">contact point</th>"
-         "<th title=\"how far the refused move would have gone on past its first contact\">past "
-         "contact, mm</th><th title=\"the smallest clearance PathGuard found on the REPOS moves "
-         "(before the refused one)\">clearance, mm</th><th class=\"l\">NC message</th>"
-         "<th class=\"l\">picture</th><th class=\"l\">replay</th></tr>\n";
-    for (const CaseResult* r : worst) {
-      const std::string cls = ClassOf(*r);
-      o << "<tr><td class=\"l\">" << Esc(Str(*r, "case")) << "</td><td class=\"l " << Esc(cls)
-        << "\">" << Esc(ClassName(cls)) << "</td><td class=\"l\">"
-        << (Field(*r, "parts").is_array() ? Esc(Field(*r, "parts").dump()) : "")
-        << "</td><td class=\"l\">" << Esc(Str(*r, "contact_move")) << "</td><td class=\"l\">"
-        << Esc(ContactAxes(*r)) << "</td><td class=\"l\">" << Esc(ContactPoint(*r, reference))
-        << "</td><td>"
-        << (Field(*r, "past_contact_mm").is_number()
-                ? Num(Field(*r, "past_contact_mm").get<double>())
-                : "")
-        << "</td><td>"
-        << (Field(*r, "min_clearance_mm").is_number()
-                ? Num(Field(*r, "min_clearance_mm").get<double>())
-                : "")
-        << "</td><td class=\"l\">" << Esc(Message(*r)) << "</td><td class=\"l\">";
-      const auto shot = snapshots.find(Str(*r, "case"));
-      if (shot != snapshots.end()) o << "<a href=\"" << Esc(shot->second) << "\">picture</a>";
-      o << "</td><td class=\"l\"><a class=\"replay\" href=\"" << Esc(ReplayHref(Str(*r, "case")))
-        << "\">watch</a></td></tr>\n";
-    }
-    o << "</table>\n";
-    // The pictures of this subroutine's worst cases: a collision at its first contact, the
-    // tightest clear case at its end.
-    std::vector<const CaseResult*> pictured;
-    for (const CaseResult& r : t.pictured) pictured.push_back(&r);
-    std::stable_sort(pictured.begin(), pictured.end(), severe);
-    if (!pictured.empty())
-      o << "<h3>Pictures of the worst cases</h3>\n<p>A collision is pictured with the axes "
-           "at its first contact: the two parts that meet are drawn magenta, a cyan cross marks "
-           "the contact point, the workpiece as turned.</p>\n<div>\n";
-    for (const CaseResult* r : pictured) {
-      const std::string& file = snapshots.at(Str(*r, "case"));
-      const std::string cls = ClassOf(*r);
-      const bool contact = cls == "crash" || cls == "graze";
-      o << "<figure style=\"display:inline-block;margin:4px\"><a href=\"" << Esc(file)
-        << "\"><img src=\"" << Esc(file) << "\" width=\"320\" alt=\"" << Esc(Str(*r, "case"))
-        << "\"></a><figcaption class=\"" << Esc(cls) << "\">" << Esc(Str(*r, "case")) << ": "
-        << Esc(ClassName(cls))
-        << (contact ? " (first contact: " + Esc(Field(*r, "parts").dump()) + ")"
-                    : " (end of the return)")
-        << "</figcaption></figure>\n";
-    }
-    if (!pictured.empty()) o << "</div>\n";
-  }
+  HowToRead(o, reference);
+  SummaryTable(o, state_->by_sub);
+  for (const auto& [sub, t] : state_->by_sub) SubroutineSection(o, sub, t, reference, snapshots);
   if (pages > 0) AllCases(o, cases_, pages);
   o << "</body></html>\n";
   return o.str();
