@@ -20,7 +20,6 @@ Channel::Channel(ChannelConfig config, std::vector<const nc::Program*> programs)
   frames_.homed.resize(n);
   for (size_t a = 0; a < n; ++a) frames_.homed[a] = config_.axes[a].homed_at_start;
   sp_.command = {DriveMode::kVelocity, 0, 0};
-  if (config_.headstock) headstock_.emplace(*config_.headstock);
   sp_.homed = config_.spindle.homed_at_start;
   last_modal_ = config_.initial;
   for (size_t a = 0; a < n; ++a) {
@@ -143,8 +142,7 @@ bool Channel::Reverse() {
   }
   // The interrupted block is abandoned where the axes stand; the reverse program starts there.
   // A changeover in progress is given up and the original mode restored (C-axis manual 2.3).
-  if (headstock_) headstock_->Abandon();
-  hs_.waiting_for = axes::HeadstockMode::kNone;
+  headstock_.Abandon();
   DropLookahead();
   work_.active = false;
   work_.homing = false;
@@ -216,7 +214,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
         !repos_.run && bs_.state == BlockSearchState::kInactive)
       CaptureInterruption();
   }
-  if (headstock_ && !hs_.known) HeadstockPowerOn();
+  headstock_.PowerOn();
   if (drives_.trip_reset_pending) CollectTrips(at);
   if (out_.take_over_pending && !out_.holding) {
     for (size_t a = 0; a < config_.axes.size(); ++a)
@@ -310,7 +308,7 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
       mdt.setpoints[config_.axes[a].drive] = axis_setpoint(a);
   const DriveSetpoint spindle = SpindleSetpoint();
   if (headstock_)
-    headstock_->WriteSetpoints(spindle, axis_setpoint(config_.rotary_axis), mdt);
+    headstock_.WriteSetpoints(spindle, axis_setpoint(config_.rotary_axis), mdt);
   else if (config_.spindle_drive >= 0)
     mdt.setpoints[config_.spindle_drive] = spindle;
   further_.WriteSetpoints(mdt);
@@ -370,8 +368,8 @@ bool Channel::UpdateTranslation(const nc::ModalState& modal, const nc::Program& 
     // The rotary axis' offsets act in rotary axis mode only (C-axis manual 2.3 Zero Point
     // Shifts); they stay selected meanwhile and come back with it (see RotaryOffsetsActive).
     const size_t r = static_cast<size_t>(config_.rotary_axis);
-    hs_.rotary_translation = frames_.translation[r];
-    if (!RotaryOffsetsActive()) frames_.translation[r] = 0;
+    headstock_.set_rotary_translation(frames_.translation[r]);
+    if (!headstock_.RotaryOffsetsActive()) frames_.translation[r] = 0;
   }
   return true;
 }

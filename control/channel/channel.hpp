@@ -34,7 +34,7 @@
 #include "control/channel/enabling_signals.hpp"
 #include "control/channel/fast_measurement.hpp"
 #include "control/channel/further_spindle_control.hpp"
-#include "control/channel/headstock_link.hpp"
+#include "control/channel/headstock_control.hpp"
 #include "control/channel/jog_state.hpp"
 #include "control/channel/look_ahead.hpp"
 #include "control/channel/main_spindle_state.hpp"
@@ -183,9 +183,9 @@ class Channel {
   void SafetyStop(const std::string& text, int number);
   /// The PLC's side of the headstock changeover (ROTMOD_Q, SPMOD_Q, enables, AXD idents),
   /// given by the gateway every NC cycle.
-  void SetHeadstockPlc(const axes::HeadstockPlc& plc) { hs_.plc = plc; }
+  void SetHeadstockPlc(const axes::HeadstockPlc& plc) { headstock_.SetPlc(plc); }
   /// The headstock changeover, null without one.
-  const axes::HeadstockChangeover* headstock() const { return headstock_ ? &*headstock_ : nullptr; }
+  const axes::HeadstockChangeover* headstock() const { return headstock_.changeover(); }
   /// The channel writes drive `d`'s setpoint at its next Tick: once started (or given the axes
   /// of another channel) it is the one owner of its feed axes', spindles' and headstock's
   /// drives, and of an NC-controlled tool storage axis it has taken. Before, the scene holds
@@ -621,25 +621,22 @@ class Channel {
   void UpdateBlockSearchStatus();
   /// M3/M4/M5/M19 and S of `b` on the spindle setpoint `sp`; true if M19 (orientation) came.
   bool SpindleFunctions(const nc::PreparedBlock& b, DriveSetpoint& sp) const;
-  // Headstock changeover: the mode a block needs, the one the block in work waits for.
-  axes::HeadstockMode ModeNeeded(const nc::PreparedBlock& b) const;
+  /// The headstock mode block `b` needs (HeadstockControl::ModeNeeded).
+  axes::HeadstockMode ModeNeeded(const nc::PreparedBlock& b) const {
+    return HeadstockControl::ModeNeeded(b, config_.rotary_axis);
+  }
   /// The rotary axis as a PlanBlockMotion follow_up bit while the NC does not position it.
   uint64_t FollowUpAxes(const nc::PreparedBlock& b) const;
+  /// The headstock's NC cycle (HeadstockControl::Cycle) and what it means for the channel: its
+  /// error, the rotary axis' offsets, the rotary axis' command following its actual position.
   void HeadstockCycle(const AmplifierTelegram& at, double dt);
-  /// 2.3 / 3.3 Power-On State: the mode the PLC presents at the first NC cycle.
-  void HeadstockPowerOn();
   /// 4.2: the one drive of a spindle with rotary axis capability is monitored by its axis'
   /// AxxC.READY in both modes.
   void CheckAxisReady();
-  /// AxxC.READY of the drive that positions the rotary axis: the servo's (section 3), or the
-  /// one axis' (section 2, the spindle's signal).
-  bool RotaryReady() const;
   /// A changeover commanded by a manual key (jog of the rotary axis, spindle keys).
   void ManualChangeover(axes::HeadstockMode target);
   /// Takes a main spindle key's move (main_spindle_keys.hpp) as the spindle's command.
   void ApplySpindleKey(const SpindleKeyMove& move);
-  /// The rotary axis' zero offsets and G92 shift act (rotary axis mode, 2.3).
-  bool RotaryOffsetsActive() const;
   /// References of spindle and rotary axis: M19, encoder frequency (2.3, 3.3).
   void TrackReferences(const AmplifierTelegram& at, double dt);
   /// Drives: faults stop the channel; Control-Reset acknowledges trips.
@@ -653,7 +650,7 @@ class Channel {
   bool StartSynchronous(const AmplifierTelegram& at);
   void SynchronousCycle(const AmplifierTelegram& at, double dt);
   bool InSynchronousBlock() const { return work_.active && sync_.active(); }
-  std::optional<axes::HeadstockChangeover> headstock_;
+  HeadstockControl headstock_{config_.headstock};  ///< none without a headstock
   PlcMessage plc_message_;
   /// A changeover to rotary axis mode has ended: the block in work and the interpreter take
   /// the rotary axis' actual position.
@@ -663,7 +660,6 @@ class Channel {
   DriveWatch drives_;    ///< encoder positions and Control-Reset's trip acknowledgement
   LookAheadState look_;  ///< the blocks read ahead and the speed carried into the next block
   JogData jog_;          ///< the jog keys, the handwheel, X1/Y1, the jog mode
-  HeadstockLink hs_;     ///< the channel's side of the headstock changeover (headstock_)
 };
 
 }  // namespace vmt::control::channel

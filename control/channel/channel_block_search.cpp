@@ -111,9 +111,9 @@ bool Channel::SearchCycle(const AmplifierTelegram& at) {
       [[fallthrough]];
     case BlockSearchState::kActive:
       if (state_ != ChannelState::kRunning) return true;
-      if (hs_.waiting_for != axes::HeadstockMode::kNone) {
+      if (headstock_.waiting()) {
         // The block waits for its changeover as in a run (channel_block_search_technology.cpp).
-        if (headstock_->mode() != hs_.waiting_for) return true;
+        if (headstock_->mode() != headstock_.waiting_for()) return true;
         EndSearchChangeover(work_.block);
         if (!SimulateBlock(work_.block) || !SearchGoesOn()) return true;
       }
@@ -183,7 +183,7 @@ bool Channel::SimulateBlocks() {
 bool Channel::SearchGoesOn() const {
   // Technology waits for the PLC: its acknowledgement, or the end of a changeover.
   return bs_.state == BlockSearchState::kActive && aux_.functions.empty() &&
-         hs_.waiting_for == axes::HeadstockMode::kNone && state_ == ChannelState::kRunning;
+         !headstock_.waiting() && state_ == ChannelState::kRunning;
 }
 
 bool Channel::NextSearchBlock() {
@@ -319,7 +319,7 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
         frames_.shift[a] += s.position[a] - (b.target[a] + frames_.translation[a]);
         frames_.translation[a] = s.position[a] - b.target[a];
         if (headstock_ && static_cast<int>(a) == config_.rotary_axis)
-          hs_.rotary_translation = frames_.translation[a];
+          headstock_.set_rotary_translation(frames_.translation[a]);
       }
   SpindleFunctions(b, s.spindle);
   // An NC-controlled turret is technology too: the T word indexes it now, as in a run.
@@ -598,9 +598,8 @@ void Channel::UpdateBlockSearchStatus() {
   // search as in a run: a technology function's acknowledgement. Meanwhile, as while MRY waits
   // for the tool storage axis, block preparation delivers nothing: the interpolator's input
   // is empty.
-  if (hs_.waiting_for != axes::HeadstockMode::kNone) sc |= kWaitTechnoAck;
-  if (running && !work_.active &&
-      (hs_.waiting_for != axes::HeadstockMode::kNone || tool_storage_wait_))
+  if (headstock_.waiting()) sc |= kWaitTechnoAck;
+  if (running && !work_.active && (headstock_.waiting() || tool_storage_wait_))
     sc |= kIpoInputEmpty;
   // Block search 4.2.1: the axes change hands at standstill only; until then the channel
   // waits for the exchange it asked for. While its output is suspended a program (not a

@@ -32,16 +32,13 @@ bool Channel::SearchChangeover(const nc::PreparedBlock& b) {
   if (need == axes::HeadstockMode::kNone || headstock_->mode() == need) return true;
   // C-axis manual 1.2: block preparation waits until the changeover ends; the PLC's sequence
   // runs as in normal running (HeadstockCycle repeats the request if a key turned it round).
-  headstock_->Request(need);
-  hs_.manual = false;
-  hs_.waiting_for = need;
+  headstock_.RequestForBlock(need);
   return false;
 }
 
 void Channel::EndSearchChangeover(nc::PreparedBlock& b) {
   BlockSearchRun& s = *search_;
-  const axes::HeadstockMode mode = hs_.waiting_for;
-  hs_.waiting_for = axes::HeadstockMode::kNone;
+  const axes::HeadstockMode mode = headstock_.EndWait();
   s.changed_over = true;
   if (mode != axes::HeadstockMode::kRotary) return;
   // Rotary axis mode starts where C stands (HeadstockCycle keeps its command value on the

@@ -69,8 +69,7 @@ bool Channel::TrackC(nc::PreparedBlock& b, const std::vector<double>& from, doub
     return false;
   }
   // In a run C must be a positioned axis; in the search the headstock's mode is the program's.
-  if (headstock_ && bs_.state == BlockSearchState::kInactive &&
-      headstock_->mode() != axes::HeadstockMode::kRotary) {
+  if (headstock_.RotaryAxisOff() && bs_.state == BlockSearchState::kInactive) {
     Fail(program, b.block, "#CAX TRACK needs C in rotary axis mode", kMsgNotAvailable);
     return false;
   }

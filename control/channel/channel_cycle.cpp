@@ -19,7 +19,7 @@ NcCycleOwner Channel::ProgramCycleOwner() const {
   // Block search owns the cycle while it is under way, its return to the contour included.
   if (search_ && bs_.state != BlockSearchState::kInactive) return NcCycleOwner::kBlockSearch;
   if (!aux_.functions.empty()) return NcCycleOwner::kAuxAcknowledge;
-  if (hs_.waiting_for != axes::HeadstockMode::kNone) return NcCycleOwner::kChangeover;
+  if (headstock_.waiting()) return NcCycleOwner::kChangeover;
   if (tool_storage_wait_) return NcCycleOwner::kToolStorage;
   if (work_.pending_motion) return NcCycleOwner::kMotionStart;
   if (work_.dwell_left_s > 0) return NcCycleOwner::kDwell;
@@ -38,11 +38,11 @@ void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, doub
       break;
     case NcCycleOwner::kChangeover:
       // Block preparation and execution wait until the changeover ends (C-axis manual 1.2).
-      if (headstock_->mode() == hs_.waiting_for)
+      if (headstock_->mode() == headstock_.waiting_for())
         finished = RunBlock(at) && !work_.active && work_.dwell_left_s <= 0 && !sp_.orienting &&
-                   hs_.waiting_for == axes::HeadstockMode::kNone;
+                   !headstock_.waiting();
       else if (state_ == ChannelState::kRunning)
-        headstock_->Request(hs_.waiting_for);  // again, if a jog key turned the changeover round
+        headstock_.RequestAgain();  // again, if a jog key turned the changeover round
       break;
     case NcCycleOwner::kMotionStart:
       work_.pending_motion = false;
@@ -77,7 +77,7 @@ void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, doub
         break;
       }
       finished = NextBlock(at) && !work_.active && work_.dwell_left_s <= 0 && !sp_.orienting &&
-                 hs_.waiting_for == axes::HeadstockMode::kNone;
+                 !headstock_.waiting();
       if (finished && measuring_.in_work()) finished = measuring_.Cycle(MeasuringLinkNow());
       break;
     default:

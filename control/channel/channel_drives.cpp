@@ -88,8 +88,7 @@ void Channel::CheckDrives(const AmplifierTelegram& at) {
   if (failed_drive >= 0 && headstock_ && headstock_->busy() &&
       (failed_drive == headstock_->config().spindle_drive ||
        failed_drive == headstock_->config().rotary_drive)) {
-    headstock_->TakeModeFromPlc(hs_.plc);
-    hs_.waiting_for = axes::HeadstockMode::kNone;
+    headstock_.TakeModeFromPlc();
   }
 }
 
@@ -102,7 +101,7 @@ void Channel::CheckAxisReady() {
   // spindle commanded to turn or to position, the rotary axis jogged, a changeover -- stops
   // with 503 rather than lose the motion unseen. Section 3's two READY are the PLC's controller
   // enables (4.3): removing one puts that drive in follow-up, without a message.
-  if (!headstock_ || headstock_->config().separate_servo() || RotaryReady()) return;
+  if (!headstock_ || headstock_->config().separate_servo() || headstock_.RotaryReady()) return;
   const size_t r = static_cast<size_t>(config_.rotary_axis);
   const JogAxis& jog = jog_.axes[r];
   const bool spindle_commanded = sp_.command.mode == DriveMode::kPosition || sp_.command.value != 0;
@@ -115,8 +114,7 @@ void Channel::CheckAxisReady() {
   Fail("axis " + HeadstockAxisName() + ": not ready (" + signal + " removed)", kMsgDriveFault);
   // 2.3 Errors: during a changeover the NC proceeds as at power-on.
   if (changing) {
-    headstock_->TakeModeFromPlc(hs_.plc);
-    hs_.waiting_for = axes::HeadstockMode::kNone;
+    headstock_.TakeModeFromPlc();
   }
 }
 

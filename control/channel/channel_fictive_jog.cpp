@@ -30,7 +30,7 @@ bool Channel::FictiveJogAxes(int& x, int& c) const {
   const nc::Transformation transformation =
       repos_.interruption ? repos_.interruption->modal.transformation : modal().transformation;
   if (transformation != nc::Transformation::kFace) return false;
-  if (headstock_ && headstock_->mode() != axes::HeadstockMode::kRotary) return false;
+  if (headstock_.RotaryAxisOff()) return false;
   for (size_t a = 0; a < config_.axes.size(); ++a) {
     if (config_.axes[a].name == "X") x = static_cast<int>(a);
     if (config_.axes[a].name == "C") c = static_cast<int>(a);

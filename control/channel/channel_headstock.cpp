@@ -8,85 +8,25 @@
 #include "control/channel/main_spindle_keys.hpp"
 
 namespace vmt::control::channel {
-void Channel::HeadstockPowerOn() {
-  // 2.3 / 3.3 Power-On State: at the first NC cycle, whether or not the channel has taken its
-  // axes over yet, the NC assumes the mode the PLC presents by ROTMOD_Q / SPMOD_Q and makes its
-  // drive parameter set the one in force (HeadstockChangeover). Neither (or both) presented:
-  // no mode, and a changeover at the next occasion that needs one.
-  headstock_->TakeModeFromPlc(hs_.plc);
-  hs_.known = true;
-  if (headstock_->mode() != axes::HeadstockMode::kNone) hs_.shown_mode = headstock_->mode();
-}
-
-bool Channel::RotaryReady() const {
-  return headstock_->config().separate_servo() ? hs_.plc.rotary_ready : hs_.plc.spindle_ready;
-}
-
 void Channel::HeadstockCycle(const AmplifierTelegram& at, double dt) {
-  // Immediate stop (2.3, 3.3): the PLC's motion functions halt and ROTMOD / SPMOD stay pending
-  // while the program is stopped, an error is pending or the process enabling signal is
-  // missing. A changeover a manual key commanded after the program was interrupted is manual
-  // mode's own and runs.
-  axes::HeadstockPlc plc = hs_.plc;
-  // Section 2: one axis, one AxxC.READY (4.2), whichever signal a caller filled in.
-  plc.rotary_ready = RotaryReady();
-  const bool interrupted = state_ == ChannelState::kHold && !hs_.manual;
-  plc.stop = plc.stop || interrupted || state_ == ChannelState::kError || !enable_.process;
-  if (!headstock_->Cycle(plc, at, dt) && state_ != ChannelState::kError)
-    Fail(headstock_->error(), kMsgChangeoverAck);
-  if (!headstock_->busy()) hs_.manual = false;
-  // A key may have left the other mode, or neither (2.3 Jogging Movements): the block that
-  // waits commands its changeover again at the next opportunity.
-  if (hs_.waiting_for != axes::HeadstockMode::kNone && state_ == ChannelState::kRunning &&
-      !headstock_->busy() && headstock_->mode() != hs_.waiting_for)
-    headstock_->Request(hs_.waiting_for);
-  // Position indication (2.3): the designation of the new mode once the changeover is done.
-  if (headstock_->mode() != axes::HeadstockMode::kNone) hs_.shown_mode = headstock_->mode();
+  HeadstockCycleInput in;
+  in.hold = state_ == ChannelState::kHold;
+  in.failed = state_ == ChannelState::kError;
+  in.process_enabled = enable_.process;
+  in.running = state_ == ChannelState::kRunning;
+  if (const std::optional<std::string> error = headstock_.Cycle(in, at, dt))
+    Fail(*error, kMsgChangeoverAck);
   const size_t r = static_cast<size_t>(config_.rotary_axis);
-  frames_.translation[r] = RotaryOffsetsActive() ? hs_.rotary_translation : 0;
-  // The rotary axis follows its actual position wherever the NC does not position it: its
-  // command value is up to date when rotary axis mode begins (5).
-  const bool positioned =
-      headstock_->mode() == axes::HeadstockMode::kRotary ||
-      (headstock_->config().separate_servo() && !headstock_->busy() && plc.rotary_ready);
-  if (headstock_->TakeOverRotary() || !positioned || !plc.rotary_ready) {
+  frames_.translation[r] = headstock_.RotaryOffsetsActive() ? headstock_.rotary_translation() : 0;
+  if (headstock_.RotaryFollowsFeedback()) {
     out_.commanded[r] = out_.previous[r] = at.feedback[config_.axes[r].drive].position;
     jog_.axes[r].handwheel_target = out_.commanded[r];
   }
 }
 
-axes::HeadstockMode Channel::ModeNeeded(const nc::PreparedBlock& b) const {
-  // C-axis manual 4.2: G00/G01/G02/G03 with the rotary axis' name select rotary axis mode;
-  // M3, M4, M5, M19 (and G33, G63, G64) spindle mode.
-  for (const nc::AuxFunction& f : b.aux)
-    if (f.letter == 'M' && SpindleIndex(f.index) == 1 &&
-        (f.value == 3 || f.value == 4 || f.value == 5 || f.value == 19))
-      return axes::HeadstockMode::kSpindle;
-  if (nc::SpindleSynchronous(b.motion)) return axes::HeadstockMode::kSpindle;
-  // G77 S1=0 restores the spindle in spindle mode, G77 C0 the rotary axis in rotary axis mode
-  // (REPOS manual 4.2).
-  if (b.repos)
-    for (const nc::AuxFunction& f : b.aux)
-      if (f.letter == 'S' && f.index <= 1) return axes::HeadstockMode::kSpindle;
-  // X1/Y1 of a coordinate transformation need rotary axis mode but do not select it: without
-  // it the block is an error (block_motion.cpp).
-  if (b.fictive) return axes::HeadstockMode::kNone;
-  const bool interpolates = b.motion == nc::Motion::kRapid || b.motion == nc::Motion::kLinear ||
-                            b.motion == nc::Motion::kArcCw || b.motion == nc::Motion::kArcCcw;
-  // G74 of the rotary axis homes it in position control: rotary axis mode too (the manual
-  // names G74 as a way to home, 2.3, but not its mode; only rotary mode positions C).
-  if ((interpolates || b.homing || b.repos) && (b.programmed >> config_.rotary_axis & 1))
-    return axes::HeadstockMode::kRotary;
-  return axes::HeadstockMode::kNone;
-}
-
 void Channel::ManualChangeover(axes::HeadstockMode target) {
-  // 2.3 / 3.3 Jogging Movements: the keys abort a changeover an immediate stop interrupted
-  // before the NC commands the new one.
-  const bool stopped = state_ == ChannelState::kHold || state_ == ChannelState::kError;
-  if (headstock_->busy() && !hs_.manual && stopped) headstock_->Abandon();
-  headstock_->Request(target);
-  if (headstock_->busy()) hs_.manual = true;
+  headstock_.ManualChangeover(target,
+                              state_ == ChannelState::kHold || state_ == ChannelState::kError);
 }
 
 void Channel::ManualSpindle(int m) {
@@ -181,15 +121,6 @@ void Channel::SetProcessEnable(bool on) {
   if (!on) Stop();
 }
 
-bool Channel::RotaryOffsetsActive() const {
-  // 2.3 Zero Point Shifts: offsets of the rotary axis cannot act in spindle operation;
-  // changing over to it cancels them, changing back to rotary axis mode re-activates them
-  // unless G53 cleared them meanwhile. The selection (G54..G59) and the G92 shift stay modal
-  // through spindle mode, so a G53 programmed there is what rotary axis mode finds. (The
-  // manual's own example, 1.2, selects G54 in a spindle block and then positions C90.)
-  return headstock_ && headstock_->mode() == axes::HeadstockMode::kRotary;
-}
-
 void Channel::TrackReferences(const AmplifierTelegram& at, double dt) {
   // 2.3 / 3.3 Homing: the reference is kept while the encoder's frequency,
   //   speed [1/s] * impulses or oscillations per revolution,
@@ -235,7 +166,8 @@ bool Channel::spindle_homed() const {
 
 std::string Channel::HeadstockAxisName() const {
   if (!headstock_) return "";
-  if (hs_.shown_mode == axes::HeadstockMode::kRotary) return config_.axes[config_.rotary_axis].name;
+  if (headstock_.shown_mode() == axes::HeadstockMode::kRotary)
+    return config_.axes[config_.rotary_axis].name;
   return config_.spindle.name.empty() ? "S1" : config_.spindle.name;
 }
 
@@ -244,7 +176,7 @@ double Channel::HeadstockPosition() const {
   // 2.3 Position Indication: the representation usual for a rotary axis, 0..360 deg, though
   // the program's C runs on past a turn (C-270, the manual's 1.2).
   const size_t r = static_cast<size_t>(config_.rotary_axis);
-  const double shown = hs_.shown_mode == axes::HeadstockMode::kRotary
+  const double shown = headstock_.shown_mode() == axes::HeadstockMode::kRotary
                            ? out_.commanded[r] - frames_.translation[r]
                            : sp_.position;
   const double a = std::fmod(shown, 360.0);
@@ -257,8 +189,8 @@ SpindleStatus Channel::spindle_status() const {
   st.feed_override = override_;
   // 2.3 / 3.3 Status Indication: lines instead of the speeds while the display shows the rotary
   // axis (the same switch as the position indication's designation).
-  st.speeds_shown =
-      config_.spindle_drive >= 0 && !(headstock_ && hs_.shown_mode == axes::HeadstockMode::kRotary);
+  st.speeds_shown = config_.spindle_drive >= 0 &&
+                    !(headstock_ && headstock_.shown_mode() == axes::HeadstockMode::kRotary);
   if (!st.speeds_shown) return st;
   // Programmed: what M3 / M4 and S (or the manual keys' jogging speed) command, before the
   // spindle override; a spindle that positions (M19) has no speed programmed. Not in spindle

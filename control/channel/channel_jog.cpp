@@ -117,8 +117,7 @@ void Channel::Jogging(double dt) {
   for (; a < jog_.axes.size(); ++a) {
     JogAxis& j = jog_.axes[a];
     // Outside rotary axis mode the rotary axis follows the spindle: it has no jog to go on with.
-    if (headstock_ && static_cast<int>(a) == config_.rotary_axis &&
-        headstock_->mode() != axes::HeadstockMode::kRotary) {
+    if (headstock_.RotaryAxisOff() && static_cast<int>(a) == config_.rotary_axis) {
       j.velocity = 0, j.stepping = j.homing = false;
       continue;
     }

@@ -150,9 +150,7 @@ void Channel::ContinueHeldProgram() {
   // repositioned to the interruption point.
   for (size_t a = 0; a < out_.commanded.size() && repos_.interruption; ++a) {
     // The rotary axis outside rotary axis mode follows the spindle: no contour to leave.
-    if (headstock_ && static_cast<int>(a) == config_.rotary_axis &&
-        headstock_->mode() != axes::HeadstockMode::kRotary)
-      continue;
+    if (headstock_.RotaryAxisOff() && static_cast<int>(a) == config_.rotary_axis) continue;
     const double point = repos_.interruption->point[a];
     if (std::isnan(point)) continue;  // not on the contour (CaptureInterruption)
     if (std::abs(out_.commanded[a] - point) > 1e-6) {
@@ -174,8 +172,7 @@ void Channel::Stop() {
 
 void Channel::Reset() {
   // Control-Reset aborts a changeover; the mode is again what the PLC acknowledges (2.3).
-  if (headstock_) headstock_->TakeModeFromPlc(hs_.plc);
-  hs_.waiting_for = axes::HeadstockMode::kNone;
+  headstock_.TakeModeFromPlc();
   state_ = ChannelState::kIdle;
   error_.clear();
   error_number_ = 0;
@@ -214,7 +211,7 @@ void Channel::Reset() {
   sp_.command = {DriveMode::kVelocity, 0, 0};
   further_.Reset();
   sp_.referencing = false;
-  hs_.manual = false;
+  headstock_.ForgetManual();
   // A real control acknowledges its drives' errors with Control-Reset: the drives that tripped
   // get their controller enable removed for a cycle (the drive's fault reset), see Tick.
   drives_.trip_reset_pending = true;
@@ -225,8 +222,8 @@ void Channel::Reset() {
     frames_.translation[a] = config_.zero_offsets.Offset(config_.initial.zero_offset, a);
   if (headstock_) {
     const size_t r = static_cast<size_t>(config_.rotary_axis);
-    hs_.rotary_translation = frames_.translation[r];
-    if (!RotaryOffsetsActive()) frames_.translation[r] = 0;
+    headstock_.set_rotary_translation(frames_.translation[r]);
+    if (!headstock_.RotaryOffsetsActive()) frames_.translation[r] = 0;
   }
 }
 

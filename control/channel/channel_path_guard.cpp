@@ -134,9 +134,7 @@ void Channel::GuardJog(double dt) {
   const double interval = config_.path_guard_every * dt + dt;
   bool moving = false;
   for (size_t a = 0; a < jog_.axes.size(); ++a) {
-    if (headstock_ && static_cast<int>(a) == config_.rotary_axis &&
-        headstock_->mode() != axes::HeadstockMode::kRotary)
-      continue;
+    if (headstock_.RotaryAxisOff() && static_cast<int>(a) == config_.rotary_axis) continue;
     const JogAxis& j = jog_.axes[a];
     const ChannelAxis& axis = config_.axes[a];
     double stop = out_.commanded[a];

@@ -29,7 +29,7 @@ bool Channel::StartReturnToContour() {
   // axes return; the tracking goes on with the continue block.
   s.return_rest = false;
   // Outside rotary axis mode C is not positioned: it stays where the spindle has it.
-  if (headstock_ && headstock_->mode() != axes::HeadstockMode::kRotary) {
+  if (headstock_.RotaryAxisOff()) {
     const size_t r = static_cast<size_t>(config_.rotary_axis);
     s.restart[r] = out_.commanded[r];
   }

@@ -10,8 +10,7 @@ namespace vmt::control::channel {
 bool Channel::RunBlock(const AmplifierTelegram& at) {
   const nc::Program& program = *ProgramOf(work_.block.program);
   // G77 (REPOS manual 4.2) is refused at the start of its block, before any changeover.
-  if (work_.block.repos && hs_.waiting_for == axes::HeadstockMode::kNone && !CheckReposBlock())
-    return false;
+  if (work_.block.repos && !headstock_.waiting() && !CheckReposBlock()) return false;
   if (const std::optional<bool> waiting = HeadstockBlockStart(program)) return *waiting;
   auto unsupported = [&](const std::string& what) {
     Fail(program, work_.block.block, what + " is not supported by vmt (docs/conformance.md)",
@@ -65,13 +64,10 @@ std::optional<bool> Channel::HeadstockBlockStart(const nc::Program& program) {
   if (!headstock_) return std::nullopt;
   const axes::HeadstockMode need = ModeNeeded(work_.block);
   if (need != axes::HeadstockMode::kNone && headstock_->mode() != need) {
-    headstock_->Request(need);
-    hs_.manual = false;
-    hs_.waiting_for = need;
+    headstock_.RequestForBlock(need);
     return true;
   }
-  if (hs_.waiting_for == axes::HeadstockMode::kRotary) RebaseRotaryAxis();
-  hs_.waiting_for = axes::HeadstockMode::kNone;
+  if (headstock_.EndWait() == axes::HeadstockMode::kRotary) RebaseRotaryAxis();
   // X1/Y1 of G31/G32 position C, which the NC does only in rotary axis mode; unlike C they
   // do not select it (coordinate_transformation.hpp).
   if (work_.block.fictive && headstock_->mode() != axes::HeadstockMode::kRotary) {
@@ -170,7 +166,7 @@ bool Channel::BlockOffsets(const nc::Program& program) {
         frames_.shift[a] += out_.commanded[a] - (work_.block.target[a] + frames_.translation[a]);
         frames_.translation[a] = out_.commanded[a] - work_.block.target[a];
         if (headstock_ && static_cast<int>(a) == config_.rotary_axis)
-          hs_.rotary_translation = frames_.translation[a];
+          headstock_.set_rotary_translation(frames_.translation[a]);
       }
   }
   const bool arc =
