@@ -44,9 +44,13 @@ Piece ClipToSlab(const Eigen::Vector3d* triangle, double lo, double hi) {
   return poly;
 }
 
+// A face seen edge-on projects to a segment: rounding must not make it cover the axis.
+constexpr double kSquareMicron = 1e-12;
+
 /// The smallest distance from the z axis of a convex planar polygon of `n` corners: of its
-/// projection onto the xy plane from the origin, 0 if the projection covers it.
-double AxisDistance(const Eigen::Vector3d* poly, size_t n) {
+/// projection onto the xy plane from the origin, 0 if the projection covers it with more than
+/// `edge_on_m2` of area (twice the area, m^2).
+double AxisDistance(const Eigen::Vector3d* poly, size_t n, double edge_on_m2 = kSquareMicron) {
   // Squared distances compared, one square root taken: the root is monotonic and correctly
   // rounded, so the result is the same bits as the least of the roots.
   double best_squared = std::numeric_limits<double>::infinity();
@@ -65,10 +69,8 @@ double AxisDistance(const Eigen::Vector3d* poly, size_t n) {
       if (cross * sign < 0) inside = false;
     }
   }
-  // A face seen edge-on projects to a segment: rounding must not make it cover the axis.
-  constexpr double kSquareMicron = 1e-12;
   const double best = std::isinf(best_squared) ? 1e300 : std::sqrt(best_squared);
-  return inside && std::abs(area2) > kSquareMicron ? 0.0 : best;
+  return inside && std::abs(area2) > edge_on_m2 ? 0.0 : best;
 }
 
 /// The convex hull of the points' projections onto the xy plane, counter-clockwise (Andrew's
@@ -94,6 +96,65 @@ std::vector<Eigen::Vector3d> Hull(std::vector<Eigen::Vector3d> points) {
   hull.resize(k > 1 ? k - 1 : k);
   for (Eigen::Vector3d& p : hull) p.z() = 0;
   return hull;
+}
+
+/// A triangle of a cutting part: whether it stands wholly above the material the part spans,
+/// and its extent along the axis.
+struct SolidTriangle {
+  bool above = false;
+  double z_lo = 0, z_hi = 0;
+};
+
+/// The ring a cutting part's hull sweeps in a slab of the axis, from its nearest to its
+/// farthest point, without the triangles above the material; `above`: one of those reaches
+/// into the slab, so the sweep reaches above the material there.
+struct Sweep {
+  bool any = false, above = false;
+  double r_min = 0, r_max = 0;
+};
+
+// The rounding of a piece's corners and distances is below 1e-15 m; bounds carry this much.
+constexpr double kBoundM = 1e-10;
+// Slices swept as one slab first (CutSolid).
+constexpr size_t kSlicesPerBlock = 8;
+
+/// The hull's sweep between the planes z = lo and z = hi. As a `bound` (for a block of
+/// slices), r_min is at most and r_max at least what any slab inside it sweeps, to the
+/// rounding: every polygon covering the axis counts, and the hull of the pieces is taken
+/// wherever their box comes near the axis.
+Sweep SweepSlab(const std::vector<Eigen::Vector3d>& corners, const std::vector<SolidTriangle>& tri,
+                double lo, double hi, bool bound, std::vector<Eigen::Vector3d>& points) {
+  const double edge_on = bound ? 0.0 : kSquareMicron, near_axis = bound ? kBoundM : 0.0;
+  Sweep sweep;
+  sweep.r_min = std::numeric_limits<double>::infinity();
+  Eigen::Vector2d box_lo = Eigen::Vector2d::Constant(sweep.r_min), box_hi = -box_lo;
+  points.clear();
+  double r_max_squared = 0;  // one root at the end, as in AxisDistance
+  for (size_t i = 0; i < tri.size(); ++i) {
+    if (tri[i].z_hi < lo || tri[i].z_lo > hi) continue;
+    if (tri[i].above) {
+      sweep.above = true;
+      continue;
+    }
+    const Piece piece = ClipToSlab(&corners[3 * i], lo, hi);
+    if (piece.size == 0) continue;
+    sweep.any = true;
+    sweep.r_min = std::min(sweep.r_min, AxisDistance(piece.begin(), piece.size, edge_on));
+    for (const Eigen::Vector3d& p : piece) {
+      r_max_squared = std::max(r_max_squared, p.head<2>().squaredNorm());
+      box_lo = box_lo.cwiseMin(p.head<2>()), box_hi = box_hi.cwiseMax(p.head<2>());
+      points.push_back(p);
+    }
+  }
+  sweep.r_max = std::sqrt(r_max_squared);
+  // The slab's cut through the hull may hold the axis with no triangle across it (a drill's
+  // flank runs along the axis): the hull of the pieces tells.
+  if (sweep.any && sweep.r_min > 0 && (box_lo.array() <= near_axis).all() &&
+      (box_hi.array() >= -near_axis).all()) {
+    const std::vector<Eigen::Vector3d> hull = Hull(points);
+    sweep.r_min = std::min(sweep.r_min, AxisDistance(hull.data(), hull.size(), edge_on));
+  }
+  return sweep;
 }
 
 }  // namespace
@@ -206,11 +267,7 @@ bool TurnedStock::CutSolid(const std::vector<Eigen::Vector3d>& corners, double a
   // triangle wholly above the material says only that the sweep reaches above it, wherever it
   // passes; the closed hull's nearest point lies on one of its triangles.
   const size_t triangles = corners.size() / 3;
-  struct Triangle {
-    bool above = false;
-    double z_lo = 0, z_hi = 0;
-  };
-  std::vector<Triangle> tri(triangles);
+  std::vector<SolidTriangle> tri(triangles);
   double nearest = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < triangles; ++i) {
     const Eigen::Vector3d &a = corners[3 * i], &b = corners[3 * i + 1], &c = corners[3 * i + 2];
@@ -220,46 +277,36 @@ bool TurnedStock::CutSolid(const std::vector<Eigen::Vector3d>& corners, double a
               std::max({a.z(), b.z(), c.z()})};
   }
   if (nearest - allowance_m >= highest - kLowerM) return false;
-  // Per slice the ring the hull sweeps there: from its nearest to its farthest point.
-  struct Sweep {
-    bool any = false;
-    double r_min = 0, r_max = 0;
+  const auto slab_lo = [&](size_t k) {
+    return z0_m + static_cast<double>(k) * slice_m - allowance_m;
   };
+  // Most slices a tool spans lie where it stands clear of what is left or in its own cut. A
+  // block of slices is swept as one slab first: what the hull sweeps in a slice lies within
+  // what it sweeps in the block, so the block's ring bounds the slice's. Only the slices the
+  // bounds cannot settle are swept one by one; the result is the same to the last bit.
   std::vector<Sweep> sweeps(k1 - k0 + 1);
   bool from_outside = false;
   std::vector<Eigen::Vector3d> points;
-  for (size_t k = k0; k <= k1; ++k) {
-    const double lo = z0_m + static_cast<double>(k) * slice_m - allowance_m;
-    const double hi = lo + slice_m + 2 * allowance_m;
-    Sweep& sweep = sweeps[k - k0];
-    sweep.r_min = std::numeric_limits<double>::infinity();
-    Eigen::Vector2d box_lo = Eigen::Vector2d::Constant(sweep.r_min), box_hi = -box_lo;
-    points.clear();
-    double r_max_squared = 0;  // one root at the end, as in AxisDistance
-    for (size_t i = 0; i < triangles; ++i) {
-      if (tri[i].z_hi < lo || tri[i].z_lo > hi) continue;
-      if (tri[i].above) {
-        r_max_squared = std::numeric_limits<double>::infinity();
-        continue;
+  for (size_t b0 = k0; b0 <= k1; b0 += kSlicesPerBlock) {
+    const size_t b1 = std::min(k1, b0 + kSlicesPerBlock - 1);
+    const Sweep block =
+        SweepSlab(corners, tri, slab_lo(b0), slab_lo(b1) + slice_m + 2 * allowance_m, true, points);
+    for (size_t k = b0; k <= b1; ++k) {
+      const double lo = slab_lo(k), hi = lo + slice_m + 2 * allowance_m;
+      const double outer = OuterRadius(k);
+      const bool may_cut = block.any && block.r_min - kBoundM - allowance_m < outer - kLowerM;
+      // Whether a slice shows the part coming in from outside counts only while none has.
+      bool may_come_in = false;
+      if (!from_outside) {
+        from_outside = std::any_of(tri.begin(), tri.end(), [&](const SolidTriangle& t) {
+          return t.above && t.z_hi >= lo && t.z_lo <= hi;
+        });
+        may_come_in = !from_outside && block.r_max + kBoundM + allowance_m >= outer;
       }
-      const Piece piece = ClipToSlab(&corners[3 * i], lo, hi);
-      if (piece.size == 0) continue;
-      sweep.any = true;
-      sweep.r_min = std::min(sweep.r_min, AxisDistance(piece.begin(), piece.size));
-      for (const Eigen::Vector3d& p : piece) {
-        r_max_squared = std::max(r_max_squared, p.head<2>().squaredNorm());
-        box_lo = box_lo.cwiseMin(p.head<2>()), box_hi = box_hi.cwiseMax(p.head<2>());
-        points.push_back(p);
-      }
-    }
-    sweep.r_max = std::sqrt(r_max_squared);
-    from_outside = from_outside || sweep.r_max + allowance_m >= OuterRadius(k);
-    if (!sweep.any) continue;  // only triangles above the material
-    // The slice's cut through the hull may hold the axis with no triangle across it (a drill's
-    // flank runs along the axis): the hull of the pieces tells.
-    if (sweep.r_min > 0 && (box_lo.array() <= 0).all() && (box_hi.array() >= 0).all()) {
-      const std::vector<Eigen::Vector3d> hull = Hull(points);
-      sweep.r_min = std::min(sweep.r_min, AxisDistance(hull.data(), hull.size()));
+      if (!may_cut && !may_come_in) continue;
+      Sweep& sweep = sweeps[k - k0];
+      sweep = SweepSlab(corners, tri, lo, hi, false, points);
+      from_outside = from_outside || sweep.above || sweep.r_max + allowance_m >= outer;
     }
   }
   // A part that reaches out of the material came in from outside and took all above it; one

@@ -130,6 +130,56 @@ void ExpectCovered(const TurnedStock& t, const std::vector<CylinderPart>& parts)
     }
 }
 
+/// A prism over the triangle (x, z) = a, b, c, from y = -half_width to +half_width, as its
+/// eight triangles (spindle frame, m): an insert seen from its side.
+std::vector<Eigen::Vector3d> Wedge(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                                   const Eigen::Vector2d& c, double half_width) {
+  const Eigen::Vector2d xz[3] = {a, b, c};
+  const auto corner = [&](int i, double y) { return Eigen::Vector3d(xz[i].x(), y, xz[i].y()); };
+  std::vector<Eigen::Vector3d> t;
+  for (const double y : {-half_width, half_width})
+    for (int i = 0; i < 3; ++i) t.push_back(corner(i, y));
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    for (const auto& [k, y] : {std::pair{i, -1}, {j, -1}, {j, 1}, {i, -1}, {j, 1}, {i, 1}})
+      t.push_back(corner(k, y * half_width));
+  }
+  return t;
+}
+
+TEST(TurnedStock, ASlantedFlankLowersEverySliceItPassesToItsRadiusThere) {
+  // Slices of 0.1 mm: the insert spans a hundred and fifty of them. Its tip at radius 20, z 10
+  // mm; its flank rises at 45 degrees to radius 35 at z 25 mm; its leading face is z = 10 mm.
+  TurnedStock t = TurnedStock::FromCylinder({"w", "spindle", 0.03, 0.03, 0}, 1e-4);
+  const double allowance = 1e-5;
+  const auto insert = [](double dz) {
+    return Wedge({0.020, 0.010 + dz}, {0.035, 0.025 + dz}, {0.035, 0.010 + dz}, 0.0025);
+  };
+  ASSERT_TRUE(t.CutSolid(insert(0), allowance));
+  const auto expected = [&](size_t k, double dz) {
+    // The slice's lowest face, widened by the allowance, meets the flank nearest the axis.
+    const double lo = static_cast<double>(k) * 1e-4 - allowance;
+    const double r = 0.020 + std::max(0.0, lo - (0.010 + dz));
+    return std::min(0.03, r - allowance);
+  };
+  for (size_t k = 0; k < t.slices.size(); ++k) {
+    const bool under = (static_cast<double>(k) + 1) * 1e-4 + allowance >= 0.010;
+    EXPECT_NEAR(t.OuterRadius(k), under ? expected(k, 0) : 0.03, 1e-12) << "slice " << k;
+  }
+  // In its own cut it takes nothing more; fed 2.35 mm along z in steps, each slice keeps the
+  // lowest of the cuts that passed over it.
+  EXPECT_FALSE(t.CutSolid(insert(0), allowance));
+  constexpr int kSteps = 47;
+  for (int step = 1; step <= kSteps; ++step) t.CutSolid(insert(step * 5e-5), allowance);
+  EXPECT_FALSE(t.CutSolid(insert(kSteps * 5e-5), allowance));
+  for (size_t k = 0; k < t.slices.size(); ++k) {
+    double want = 0.03;
+    if ((static_cast<double>(k) + 1) * 1e-4 + allowance >= 0.010)
+      for (int step = 0; step <= kSteps; ++step) want = std::min(want, expected(k, step * 5e-5));
+    EXPECT_NEAR(t.OuterRadius(k), want, 1e-12) << "slice " << k;
+  }
+}
+
 TEST(TurnedStock, ATurningToolAboveTheSurfaceLowersIt) {
   TurnedStock t = TurnedStock::FromCylinder({"w", "spindle", 0.03, 0.02, 0}, 0.001);
   // An insert from radius 28 to 42 over z 2..6 mm, beside the axis at y -2.5..2.5 mm.
