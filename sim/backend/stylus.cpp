@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 
 #include "common/demand.hpp"
 
@@ -39,7 +40,35 @@ bool Level(const ProbeStylus& stylus, bool tripped, bool ready) {
   return ready && (tripped != stylus.normally_closed);
 }
 
+/// The depth (sphere radius - distance) a sphere must stay below, with the travel in the tick
+/// added, for the tick to be a quiet one.
+double FarDepth(const ProbeStylus& stylus, const StylusState& state) {
+  double lowest = std::min(0.0, stylus.pre_travel_m);
+  if (!state.damaged) lowest = std::min(lowest, stylus.over_travel_m);
+  return lowest - kFarMarginM;
+}
+
 }  // namespace
+
+double FarRoom(const ProbeStylus& stylus, const RevolvedPart& part, const StylusState& state,
+               const std::vector<Eigen::Vector3d>& centres) {
+  const double far_depth = FarDepth(stylus, state);
+  double room = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < stylus.spheres.size(); ++i)
+    room = std::min(
+        room, far_depth - (stylus.spheres[i].radius_m - DistanceLowerBound(part, centres[i])));
+  return room;
+}
+
+StylusTick QuietTick(const ProbeStylus& stylus, StylusState& state, bool ready) {
+  StylusTick tick;
+  tick.io_input = stylus.contact_input;
+  const bool level = Level(stylus, false, ready);
+  tick.changed = level != state.level;
+  tick.level = level;  // a level that changes here changes at the tick's start (ready)
+  state = {false, level, state.damaged, 0.0};
+  return tick;
+}
 
 std::vector<Eigen::Vector3d> SphereCentres(const ProbeStylus& stylus,
                                            const Eigen::Isometry3d& X_PartLink) {
@@ -67,20 +96,12 @@ StylusTick StepStylus(const ProbeStylus& stylus, const RevolvedPart& part, Stylu
 
   // Far from the part (the common case) the bounding cylinder alone shows that no sphere comes
   // near any threshold in this tick: the tick is the quiet one the exact depths would give.
-  double lowest = std::min(0.0, stylus.pre_travel_m);
-  if (!state.damaged) lowest = std::min(lowest, stylus.over_travel_m);
+  const double far_depth = FarDepth(stylus, state);
   bool far = true;
   for (size_t i = 0; i < stylus.spheres.size() && far; ++i)
     for (const Eigen::Vector3d* c : {&before[i], &after[i]})
-      far = far && stylus.spheres[i].radius_m - DistanceLowerBound(part, *c) + travel_m <
-                       lowest - kFarMarginM;
-  if (far) {
-    const bool level = Level(stylus, false, ready);
-    tick.changed = level != state.level;
-    tick.level = level;  // a level that changes here changes at the tick's start (ready)
-    state = {false, level, state.damaged, 0.0};
-    return tick;
-  }
+      far = far && stylus.spheres[i].radius_m - DistanceLowerBound(part, *c) + travel_m < far_depth;
+  if (far) return QuietTick(stylus, state, ready);
 
   // Depth along the tick at u = k / kSteps. The depth changes no faster than the centres
   // move, so when both ends lie far enough on one side of a threshold the tick cannot cross

@@ -51,6 +51,16 @@ struct StylusTick {
 std::vector<Eigen::Vector3d> SphereCentres(const ProbeStylus& stylus,
                                            const Eigen::Isometry3d& X_PartLink);
 
+/// How much nearer the part every sphere at `centres` (part frame) could come, m, and a tick
+/// ending there would still be a quiet one for StepStylus: the least, over the spheres, of the
+/// room its bounding-cylinder test leaves. <= 0 when a sphere is near.
+double FarRoom(const ProbeStylus& stylus, const RevolvedPart& part, const StylusState& state,
+               const std::vector<Eigen::Vector3d>& centres);
+
+/// A tick far from the part (what StepStylus does when no sphere comes near): the mount at
+/// rest, the input set by the ready message alone.
+StylusTick QuietTick(const ProbeStylus& stylus, StylusState& state, bool ready);
+
 /// How far the part pushes sphere `index` back at `centre_m` (part frame): the depth the
 /// undeflected sphere would sink in, 0 when it is clear.
 double SphereDeflection(const ProbeStylus& stylus, const RevolvedPart& part, int index,

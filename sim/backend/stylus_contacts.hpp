@@ -52,6 +52,10 @@ class StylusContacts {
   std::vector<StylusOverTravel> TakeOverTravels();
 
  private:
+  /// The tick from `q_before` to `q_now` is a quiet one for every stylus, shown by the joints'
+  /// motion since the last posed tick alone.
+  bool StaysFar(const std::vector<double>& q_before, const std::vector<double>& q_now) const;
+
   const MachineModel* model_;
   RevolvedPart part_;
   int part_link_ = -1;
@@ -59,6 +63,13 @@ class StylusContacts {
   std::vector<StylusState> states_;  ///< per stylus of the model
   std::vector<StylusOverTravel> over_travels_;
   std::vector<bool> needed_;  ///< the links posed (LinkChains of the styluses' and the part's)
+  /// Per joint: how far one unit of its motion can move a sphere centre relative to the part
+  /// (its axis' turn aside), m per m or rad; infinite where no bound is known.
+  std::vector<double> reach_;
+  /// Where the last posed tick ended, and how much nearer the spheres could come from there
+  /// with every tick still a quiet one (FarRoom; <= 0: each tick is posed).
+  std::vector<double> q_far_;
+  double far_room_ = 0;
   /// The last step's joint positions and link poses: the next step's "before", as a rule.
   std::vector<double> q_last_;
   std::vector<Eigen::Isometry3d> X_last_, X_now_;

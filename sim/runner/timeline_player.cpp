@@ -45,16 +45,18 @@ void TimelinePlayer::Tick(double t_s, const control::AmplifierTelegram& at,
       step_since_s_ = t_s;
       events.push_back({t_s, "step", step.text});
     }
-    const std::vector<control::DriveSetpoint> before = play_.setpoints;
-    const std::vector<bool> profiling_before = play_.profiling;
+    setpoints_before_ = play_.setpoints;
+    profiling_before_ = play_.profiling;
     const bool done =
         StepKindOf(step.kind).play(step, {t_s, step_since_s_, at, clutches, events}, play_);
-    for (size_t d = 0; d < held_.size(); ++d)
+    for (size_t d = 0; d < held_.size(); ++d) {
+      const control::DriveSetpoint& before = setpoints_before_[d];
       if (held_[d] &&
-          (play_.profiling[d] != profiling_before[d] || play_.setpoints[d].mode != before[d].mode ||
-           play_.setpoints[d].value != before[d].value ||
-           play_.setpoints[d].parameter_set != before[d].parameter_set))
+          (play_.profiling[d] != profiling_before_[d] || play_.setpoints[d].mode != before.mode ||
+           play_.setpoints[d].value != before.value ||
+           play_.setpoints[d].parameter_set != before.parameter_set))
         held_[d] = false;
+    }
     if (!done) break;
     ++next_;
     step_since_s_ = -1;

@@ -62,6 +62,10 @@ class TimelinePlayer {
   std::vector<int> encoder_clutch_;
   std::vector<bool> held_;
   double step_since_s_ = -1;  ///< when the current blocking step began
+  /// The setpoints before a step played, to tell which drives it commanded (kept, so that the
+  /// step a run waits on does not allocate every tick).
+  std::vector<control::DriveSetpoint> setpoints_before_;
+  std::vector<bool> profiling_before_;
 };
 
 }  // namespace vmt::sim

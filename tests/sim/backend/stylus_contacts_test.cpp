@@ -83,6 +83,56 @@ TEST(StylusContactsTest, XReadsTheRadiusOfTheRubysLowestPoint) {
   EXPECT_DOUBLE_EQ(s.over_travel_m, 1 * kMm);
 }
 
+// Far from the part a tick is shown quiet from the joints' motion alone, without posing a link:
+// across rapid approaches, a turning spindle and a turning turret the switches and the crashes
+// are those of posing every tick (a fresh SetPart poses the next tick).
+TEST(StylusContactsTest, TicksShownQuietFromTheJointsAloneAreThoseOfPosingEveryTick) {
+  const MachineModel& m = Lathe();
+  const auto q_at = [&](double x_mm, double t) {
+    return KinematicBackend(m, {{{"X", x_mm}, {"Z", kZMm}, {"T", t}}, {}}).JointPositions();
+  };
+  const std::vector<double> far = q_at(45, kStation3), deep = q_at(28.5, kStation3);
+  const size_t spindle = static_cast<size_t>(m.JointIndex("spindle"));
+  const size_t turret = static_cast<size_t>(m.JointIndex("turret"));
+  StylusContacts quick(m), posed(m);
+  quick.SetPart(kShaft);
+  ProbeWiring quick_wiring(m), posed_wiring(m);
+  std::vector<uint8_t> inputs(m.io.size(), 1);  // every ready message on
+  std::vector<uint8_t> quick_shown(m.io.size()), posed_shown(m.io.size());
+  std::vector<double> q_before = far;
+  int contact_ticks = 0;
+  for (int tick = 0; tick < 6000; ++tick) {
+    // In at a rapid, out, in at a feed; the turret swings away and back on the way in.
+    const double phase = tick < 2000   ? tick / 2000.0
+                         : tick < 3000 ? (3000 - tick) / 1000.0
+                                       : (tick - 3000) / 3000.0;
+    std::vector<double> q = far;
+    for (size_t j = 0; j < q.size(); ++j)
+      q[j] = far[j] + std::min(1.0, 1.2 * phase) * (deep[j] - far[j]);
+    q[spindle] = 0.07 * tick;
+    if (tick > 200 && tick < 600) q[turret] += 0.3 * std::sin((tick - 200) * M_PI / 400);
+    const double t = tick * kDriveTickS;
+    quick.Step(q_before, q, inputs, t, quick_wiring);
+    posed.SetPart(kShaft);
+    posed.Step(q_before, q, inputs, t, posed_wiring);
+    quick_wiring.ShowInputs(quick_shown);
+    posed_wiring.ShowInputs(posed_shown);
+    ASSERT_EQ(quick_shown, posed_shown) << "tick " << tick;
+    contact_ticks +=
+        quick_shown[m.probes[0].contact_input] != (m.probes[0].normally_closed ? 1 : 0);
+    q_before = q;
+  }
+  EXPECT_GT(contact_ticks, 100);  // the ruby did touch
+  const std::vector<StylusOverTravel> quick_crashes = quick.TakeOverTravels();
+  const std::vector<StylusOverTravel> posed_crashes = posed.TakeOverTravels();
+  ASSERT_EQ(quick_crashes.size(), posed_crashes.size());
+  ASSERT_FALSE(quick_crashes.empty());  // 1.5 mm deep: beyond the over-travel
+  for (size_t i = 0; i < quick_crashes.size(); ++i) {
+    EXPECT_EQ(quick_crashes[i].t_s, posed_crashes[i].t_s);
+    EXPECT_EQ(quick_crashes[i].point_m, posed_crashes[i].point_m);
+  }
+}
+
 class StylusContactsBackendTest : public ::testing::TestWithParam<BackendKind> {};
 
 TEST_P(StylusContactsBackendTest, TheDriveLatchesXWhereThePreTravelIsReached) {
