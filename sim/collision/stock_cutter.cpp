@@ -59,6 +59,9 @@ StockCutter::StockCutter(const MachineModel& model, const RevolvedPart& part)
     holders_.push_back(std::move(holder));
   }
   r_max_ = LargestOuterRadius(stock_);
+  std::vector<int> posed{link_};
+  for (const Cutter& c : cutters_) posed.push_back(c.link);
+  posed_links_ = LinkChains(model, posed);
 }
 
 std::optional<Eigen::Vector3d> StockCutter::CuttingPoint(const std::vector<double>& q) const {
@@ -101,7 +104,8 @@ bool StockCutter::Cut(const std::vector<double>& q, double t_s) {
                        std::abs(angle - last_angle_) / (t_s - last_t_) >= kTurningSpeedRadS;
   last_angle_ = angle, last_t_ = t_s;
   if (!turning) return false;
-  const std::vector<Eigen::Isometry3d> X_W = LinkPoses(*model_, q);
+  LinkPoses(*model_, q, posed_links_, X_W_);
+  const std::vector<Eigen::Isometry3d>& X_W = X_W_;
   const Eigen::Isometry3d X_PartWorld = X_W[link_].inverse();
   const double r_max = r_max_;
   const double z_lo = stock_.z0_m,

@@ -65,6 +65,10 @@ class StockCutter {
   /// slices are thousands.
   double r_max_ = 0;
   std::vector<Eigen::Vector3d> corners_;  ///< a cutter's corners in the part's frame, reused
+  /// The links Cut poses (the part's and the cutters' chains, LinkChains), and their poses,
+  /// reused: the rest of the machine does not matter to a cut.
+  std::vector<bool> posed_links_;
+  std::vector<Eigen::Isometry3d> X_W_;
 };
 
 }  // namespace vmt::sim
