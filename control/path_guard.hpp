@@ -42,6 +42,13 @@ class PathGuard {
                                        const std::vector<double>& to) {
     return CheckMove(from, to);
   }
+  /// A straight move that an earlier check may answer for without a new query (a jog checked
+  /// ahead again a little further on): true and `check` (clear, the clearance still proven) if
+  /// it does; false if the move needs its own CheckMove.
+  virtual bool Proves(const std::vector<double>& /*from*/, const std::vector<double>& /*to*/,
+                      PathCheck& /*check*/) {
+    return false;
+  }
   /// Spindle drive `spindle` starting to turn with every drive standing at `at`: whatever turns
   /// with it (chuck, jaws, workpiece) checked as the solid it sweeps against everything else,
   /// where that stands. A guard that knows no sweep of that spindle has nothing to check.

@@ -477,6 +477,8 @@ class Channel {
   /// A straight move of the drives; while the NC turret indexes, against it as it turns on.
   PathCheck GuardCheck(const std::vector<double>& from, const std::vector<double>& to,
                        bool measuring_path = false);
+  /// The NC turret indexes while the drives move from `from` to `to` (its drive standing).
+  bool IndexingBeside(const std::vector<double>& from, const std::vector<double>& to) const;
   /// The turret's index from `from` to `to` (deg), its sweep checked whole before it starts:
   /// false if stopped.
   bool GuardTurretIndex(const std::string& move, double from, double to);

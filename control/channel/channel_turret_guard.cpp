@@ -12,17 +12,22 @@
 
 namespace vmt::control::channel {
 
+bool Channel::IndexingBeside(const std::vector<double>& from, const std::vector<double>& to) const {
+  const size_t t = static_cast<size_t>(config_.tool_storage_drive);
+  const ToolStorageAxis& ts = tool_storage_.axis();
+  return ToolStorageNc() && (ts.positioning || ts.stepping) && t < from.size() && t < to.size() &&
+         from[t] == to[t] && ts.target != from[t];
+}
+
 PathCheck Channel::GuardCheck(const std::vector<double>& from, const std::vector<double>& to,
                               bool measuring_path) {
   auto check = [&](const std::vector<double>& a, const std::vector<double>& b) {
     return measuring_path ? guard_.guard().CheckMeasuringPath(a, b)
                           : guard_.guard().CheckMove(a, b);
   };
+  if (!IndexingBeside(from, to)) return check(from, to);
   const size_t t = static_cast<size_t>(config_.tool_storage_drive);
   const ToolStorageAxis& ts = tool_storage_.axis();
-  const bool indexing = ToolStorageNc() && (ts.positioning || ts.stepping) && t < from.size() &&
-                        t < to.size() && from[t] == to[t] && ts.target != from[t];
-  if (!indexing) return check(from, to);
   // The two motions run side by side, each at its own pace: vmt checks the edges of what they
   // span together - the axis move with the turret where it stands and at its target station
   // (where it will be once the index ends, most likely before the axes arrive), and the rest

@@ -59,6 +59,8 @@ class PathGuardClient {
     r.countdown = every_;
     return true;
   }
+  /// Whether continuous move `m` runs with its record open (its first check ahead made).
+  bool Open(ContinuousMove m) const { return running_[static_cast<int>(m)].record.has_value(); }
   /// The due check ahead of `m` (Due): clear, it is summed into the move's record; a contact
   /// closes the record and is a Contact. True if it stops the move.
   bool Ahead(ContinuousMove m, const std::string& move, const std::vector<double>& from,
@@ -76,6 +78,14 @@ class PathGuardClient {
     }
     Close(r);
     return Contact(move, from, to, check);
+  }
+  /// A due check ahead of `m` that the last query proves clear (PathGuard::Proves): counted,
+  /// the record reaching on to `to`; its smallest clearance stays the queries' (what a proof
+  /// reports is a bound, not a measure).
+  void Proven(ContinuousMove m, const std::vector<double>& to) {
+    Running& r = running_[static_cast<int>(m)];
+    r.record->to = to;
+    ++r.record->checks;
   }
   /// X1/Y1's jog (each check a record of its own): whether its check is due this NC cycle.
   bool FictiveDue() {

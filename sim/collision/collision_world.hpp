@@ -64,6 +64,9 @@ class CollisionWorld {
   /// Sets a machine part aside (a chuck jaw while the spindle turns: an added part stands for
   /// the ring it sweeps) or back.
   void SetAside(int part, bool aside) { aside_[part] = aside; }
+  bool aside(int part) const { return part < machine_parts_ && aside_[part]; }
+  /// Whether the part is one the scene added (SetAdded), not the machine's.
+  bool added(int part) const { return part >= machine_parts_; }
 
   /// Replaces the parts the scene added (the workpiece, as it is turned): the machine's parts
   /// stay, an added part the same as one before stays with its pairs, the others are built with

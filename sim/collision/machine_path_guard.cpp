@@ -1,5 +1,6 @@
 #include "sim/collision/machine_path_guard.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace vmt::sim {
@@ -29,6 +30,7 @@ void MachinePathGuard::Refresh(bool swept) {
   for (const int part : sweep_.parts) world_.SetAside(part, swept);
   world_swept_ = swept;
   stale_ = false;
+  ++world_version_;
 }
 
 std::vector<double> MachinePathGuard::JointPositions(const std::vector<double>& base,
@@ -60,8 +62,11 @@ std::vector<double> MachinePathGuard::JointPositions(const std::vector<double>& 
 control::PathCheck MachinePathGuard::CheckMeasuringPath(const std::vector<double>& from,
                                                         const std::vector<double>& to) {
   world_.SetMeasuring(true);
+  // What a measuring path proves leaves its spheres' touching of the workpiece out.
+  std::optional<Proof> proof = std::move(proof_);
   const control::PathCheck c = CheckMove(from, to);
   world_.SetMeasuring(false);
+  proof_ = std::move(proof);
   return c;
 }
 
@@ -69,6 +74,7 @@ control::PathCheck MachinePathGuard::CheckSpindleStart(const std::vector<double>
                                                        int spindle) {
   if (sweep_.joint < 0 || spindle < 0) return {};
   if (before_check) before_check(world_);
+  proof_.reset();
   Refresh(true);
   const std::vector<char> standing(at.size(), 0);
   const StraightMoveCheck c =
@@ -100,13 +106,20 @@ control::PathCheck MachinePathGuard::CheckMove(const std::vector<double>& from,
       path += (to[d] - from[d]) * (to[d] - from[d]);
   }
   const std::vector<double> base = current_();
-  const StraightMoveCheck c = CheckStraightMove(world_, JointPositions(base, from, moving),
-                                                JointPositions(base, to, moving), options);
+  std::vector<double> q_from = JointPositions(base, from, moving);
+  std::vector<double> q_to = JointPositions(base, to, moving);
+  const StraightMoveCheck c = CheckStraightMove(world_, q_from, q_to, options);
   control::PathCheck out;
   out.clear = c.clear;
   out.min_clearance = c.min_clearance_m * kMmPerM;
   if (c.closest_a >= 0) out.closest_a = world_.part(c.closest_a).name;
   if (c.closest_b >= 0) out.closest_b = world_.part(c.closest_b).name;
+  proof_.reset();
+  if (c.clear && c.closest_a >= 0 && c.pairs_resting == 0)
+    proof_ = Proof{{std::move(q_from), std::move(q_to), c.min_clearance_m},
+                   world_version_,
+                   out.closest_a,
+                   out.closest_b};
   if (c.clear) return out;
   out.part_a = world_.part(c.part_a).name;
   out.part_b = world_.part(c.part_b).name;
@@ -116,6 +129,46 @@ control::PathCheck MachinePathGuard::CheckMove(const std::vector<double>& from,
   for (size_t d = 0; d < from.size(); ++d)
     out.position[d] = moving[d] ? from[d] + (to[d] - from[d]) * c.u : from[d];
   return out;
+}
+
+bool MachinePathGuard::Proves(const std::vector<double>& from, const std::vector<double>& to,
+                              control::PathCheck& check) {
+  if (!proof_) return false;
+  if (before_check) before_check(world_);
+  Refresh(turning_);
+  if (world_version_ != proof_->world_version) return false;
+  std::vector<char> moving(from.size(), 0);
+  for (size_t d = 0; d < from.size() && d < to.size(); ++d) moving[d] = from[d] != to[d];
+  const std::vector<double> base = current_();
+  const std::vector<double> q_from = JointPositions(base, from, moving);
+  const std::vector<double> q_to = JointPositions(base, to, moving);
+  const std::optional<Stray> stray =
+      StrayFrom(world_, proof_->move, q_from, q_to, world_swept_ ? sweep_.joint : -1);
+  // The proven move's clearance may be that much less than reported. A move that strays by at
+  // most as much again is proven, and its clearance reported as the query's with that margin.
+  const double reported = proof_->move.clearance_m;
+  const double tolerance =
+      std::max(options.clearance_absolute_m, options.clearance_relative * reported);
+  if (!stray || !(stray->slides_m <= options.clearance_relative * (reported - tolerance)))
+    return false;
+  double clearance_m = reported - stray->slides_m;
+  std::string closest_a = proof_->closest_a, closest_b = proof_->closest_b;
+  if (stray->any_turned) {
+    // The pairs of the parts a rotation moved are queried, the rest stand proven.
+    const PairScope scope{&stray->turned, clearance_m};
+    const StraightMoveCheck c = CheckStraightMove(world_, q_from, q_to, options, &scope);
+    if (!c.clear || c.pairs_resting > 0) return false;  // the whole move's query tells
+    if (c.closest_a >= 0) {
+      clearance_m = c.min_clearance_m;
+      closest_a = world_.part(c.closest_a).name;
+      closest_b = world_.part(c.closest_b).name;
+    }
+  }
+  check = {};
+  check.min_clearance = clearance_m * kMmPerM;
+  check.closest_a = std::move(closest_a);
+  check.closest_b = std::move(closest_b);
+  return true;
 }
 
 }  // namespace vmt::sim

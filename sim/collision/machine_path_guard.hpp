@@ -6,10 +6,14 @@
 // (the backend's poses). While the spindle turns, or before it starts, the chuck is checked as
 // the solid it sweeps (spindle_sweep.hpp).
 
+#include <cstdint>
 #include <functional>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "control/path_guard.hpp"
+#include "sim/collision/clearance_proof.hpp"
 #include "sim/collision/spindle_sweep.hpp"
 #include "sim/collision/straight_move_check.hpp"
 
@@ -27,6 +31,11 @@ class MachinePathGuard : public control::PathGuard {
   /// The main spindle's `sweep` (the workpiece's link) against the rest: `spindle` is the
   /// channel's main spindle drive, the one whose chuck `sweep` is.
   control::PathCheck CheckSpindleStart(const std::vector<double>& at, int spindle) override;
+  /// The last clear CheckMove as proof (clearance_proof.hpp): with the world unchanged since,
+  /// it answers for a move whose slides stray from it by no more than its clearance may be off
+  /// (options.clearance_relative), querying only the pairs of the parts a rotation moved.
+  bool Proves(const std::vector<double>& from, const std::vector<double>& to,
+              control::PathCheck& check) override;
   /// The joint positions (SI) for the drives' positions on top of `base`; where two drives
   /// read one joint, the one `moving` marks wins.
   std::vector<double> JointPositions(const std::vector<double>& base,
@@ -55,6 +64,13 @@ class MachinePathGuard : public control::PathGuard {
   bool turning_ = false;
   bool world_swept_ = false;  ///< the world holds the sweep in the chuck's place
   bool stale_ = false;        ///< added_ or the sweep changed since the world was built
+  int64_t world_version_ = 0;  ///< counts the world's rebuilds (Refresh)
+  struct Proof {
+    ClearMove move;
+    int64_t world_version = -1;
+    std::string closest_a, closest_b;
+  };
+  std::optional<Proof> proof_;  ///< the last CheckMove, when it was clear
 };
 
 }  // namespace vmt::sim

@@ -72,7 +72,8 @@ struct Pair {
 
 /// The pairs that move relative to each other on the move, with the bound of their approach
 /// speed. `world` is posed at the start.
-std::vector<Pair> MovingPairs(const CollisionWorld& world, const std::vector<double>& dq) {
+std::vector<Pair> MovingPairs(const CollisionWorld& world, const std::vector<double>& dq,
+                              int& resting) {
   const MachineModel& m = world.model();
   std::vector<std::vector<int>> chains(m.links.size());
   size_t depth = 0;
@@ -94,7 +95,10 @@ std::vector<Pair> MovingPairs(const CollisionWorld& world, const std::vector<dou
       if (world.MayTouch(a, b)) continue;
       // A measuring sphere resting on the part as the move starts (the measurement just
       // latched: the escape, or the next approach after a PROBE without escape) may leave it.
-      if (world.Measures(a, b) && world.Collide(a, b)) continue;
+      if (world.Measures(a, b) && world.Collide(a, b)) {
+        ++resting;
+        continue;
+      }
       const size_t common = CommonDepth(chains[world.part(a).link], chains[world.part(b).link]);
       const double bound = bound_of(a, common) + bound_of(b, common);
       if (bound > 0) pairs.push_back({a, b, bound});
@@ -135,12 +139,17 @@ double MotionBound(const CollisionWorld& world, int part, const std::vector<doub
 
 StraightMoveCheck CheckStraightMove(CollisionWorld& world, const std::vector<double>& q_from,
                                     const std::vector<double>& q_to,
-                                    const StraightMoveOptions& options) {
+                                    const StraightMoveOptions& options, const PairScope* scope) {
   StraightMoveCheck out;
   std::vector<double> dq(q_from.size());
   for (size_t i = 0; i < dq.size(); ++i) dq[i] = q_to[i] - q_from[i];
   const std::vector<Eigen::AlignedBox3d> swept = SlidingBoxes(world, q_from, q_to, dq);
-  const std::vector<Pair> pairs = MovingPairs(world, dq);
+  std::vector<Pair> pairs = MovingPairs(world, dq, out.pairs_resting);
+  if (scope) {
+    const std::vector<char>& in = *scope->parts;
+    std::erase_if(pairs, [&in](const Pair& p) { return !in[p.a] && !in[p.b]; });
+    out.min_clearance_m = scope->clearance_m;
+  }
 
   auto tolerance = [&](double clearance) {
     return std::max(options.clearance_absolute_m, options.clearance_relative * clearance);

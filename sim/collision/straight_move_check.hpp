@@ -39,12 +39,22 @@ struct StraightMoveCheck {
   int closest_a = -1, closest_b = -1;
   double closest_u = 0;
   int pairs_checked = 0;
+  int pairs_resting = 0;  ///< left out: a measuring sphere resting on the part at the start
+};
+
+/// A check of some of the pairs only: those with a part `parts` marks (one flag per part),
+/// the others known to stay `clearance_m` apart at least (clearance_proof.hpp). The smallest
+/// clearance reported is then that, unless a checked pair comes nearer (closest_a -1 if none).
+struct PairScope {
+  const std::vector<char>* parts = nullptr;
+  double clearance_m = 0;
 };
 
 /// Poses `world` along the way (it is left at the end pose or the contact).
 StraightMoveCheck CheckStraightMove(CollisionWorld& world, const std::vector<double>& q_from,
                                     const std::vector<double>& q_to,
-                                    const StraightMoveOptions& options = {});
+                                    const StraightMoveOptions& options = {},
+                                    const PairScope* scope = nullptr);
 
 /// The fastest any point of the part can move per unit of u on the move (m): translations plus
 /// rotations times the farthest the part gets from their axis. An upper bound.

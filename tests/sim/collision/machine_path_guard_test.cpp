@@ -124,5 +124,68 @@ TEST(MachinePathGuard, ATurretIndexSweepsItsToolsThroughThePart) {
   EXPECT_TRUE(g.guard.CheckMove(at(0, 31), at(30, 31)).clear);
 }
 
+// A jog checked ahead every millimetre as X plunges towards the part: a check the last clear
+// one proves is clear to a query as well, and its clearance is as exact as a query's (it may
+// be up to the tolerance more than there is, and a query says at least what there is). Near
+// the part the proofs run out and the query finds the contact.
+TEST(MachinePathGuard, AJogCheckedAheadIsProvenClearOnlyWhereAQueryFindsItClear) {
+  Guarded g, reference;
+  int proven = 0, queried = 0;
+  bool contact = false;
+  for (double x = 250; x > 0 && !contact; x -= 1) {
+    const std::vector<double> from = g.Drives(130, x, 450), to = g.Drives(130, x - 5, 450);
+    control::PathCheck c;
+    if (g.guard.Proves(from, to, c)) {
+      ++proven;
+      const control::PathCheck r = reference.guard.CheckMove(from, to);
+      ASSERT_TRUE(r.clear) << "X " << x;
+      EXPECT_TRUE(c.clear);
+      EXPECT_GT(c.min_clearance, 0);
+      // The proven move's tolerance (10 % of its clearance, which is at most 1/0.9 of this).
+      const double tolerance = std::max(0.01, c.min_clearance / 9);
+      EXPECT_LE(c.min_clearance - tolerance, r.min_clearance) << "X " << x;
+    } else {
+      ++queried;
+      contact = !g.guard.CheckMove(from, to).clear;
+    }
+  }
+  EXPECT_TRUE(contact);
+  EXPECT_GT(proven, 150);
+  EXPECT_GT(queried, 5);
+}
+
+// What the last check did not measure, it proves nothing of: a slide it held still (the pairs
+// that slide moves against each other), a world changed since.
+TEST(MachinePathGuard, ACheckProvesNothingOfWhatItDidNotMeasure) {
+  Guarded g;
+  ASSERT_TRUE(g.guard.CheckMove(g.Drives(300, 250, 450), g.Drives(300, 240, 450)).clear);
+  control::PathCheck c;
+  EXPECT_TRUE(g.guard.Proves(g.Drives(300, 249, 450), g.Drives(300, 239, 450), c));
+  EXPECT_FALSE(g.guard.Proves(g.Drives(300, 249, 450), g.Drives(299, 239, 450), c));
+  g.guard.SetAdded({{"workpiece", "spindle", 0.020, 0.160, 0.060}});
+  EXPECT_FALSE(g.guard.Proves(g.Drives(300, 249, 450), g.Drives(300, 239, 450), c));
+}
+
+// A rotation moves a part by as much as it is wide: the turret turning beside a proven move
+// has its tools' pairs queried. Over the part at X 6 a holder's corner dips into it between
+// stations 8 and 9: no proof; above the part the turn is clear, as the whole query says.
+TEST(MachinePathGuard, TheTurretTurningBesideAProvenMoveIsQueried) {
+  Guarded g, reference;
+  const int t = g.model.DriveIndex("T");
+  auto at = [&](double turret, double x_mm) {
+    std::vector<double> d = g.Drives(130, x_mm, 450);
+    d[t] = turret;
+    return d;
+  };
+  control::PathCheck c;
+  ASSERT_TRUE(g.guard.CheckMove(at(210, 6.001), at(210, 6)).clear);
+  EXPECT_FALSE(g.guard.Proves(at(210, 6.001), at(240, 6), c));
+  ASSERT_TRUE(g.guard.CheckMove(at(0, 31.001), at(0, 31)).clear);
+  ASSERT_TRUE(g.guard.Proves(at(0, 31.001), at(30, 31), c));
+  const control::PathCheck r = reference.guard.CheckMove(at(0, 31.001), at(30, 31));
+  ASSERT_TRUE(r.clear);
+  EXPECT_NEAR(c.min_clearance, r.min_clearance, 0.1 * r.min_clearance + 0.01);
+}
+
 }  // namespace
 }  // namespace vmt::sim
