@@ -512,7 +512,8 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
   return true;
 }
 
-[[gnu::always_inline]] inline bool Interpreter::Return(const Statement& st, int32_t block, PreparedBlock& out, int32_t& next) {
+[[gnu::always_inline]] inline bool Interpreter::Return(const Statement& st, int32_t block,
+                                                       PreparedBlock& out, int32_t& next) {
   if (!calls_.empty()) {
     current_ = calls_.back().program;
     next = calls_.back().return_block;
@@ -541,7 +542,8 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
   return true;
 }
 
-[[gnu::always_inline]] inline bool Interpreter::InstructionStatement(const Statement& st, PreparedBlock& out) {
+[[gnu::always_inline]] inline bool Interpreter::InstructionStatement(const Statement& st,
+                                                                     PreparedBlock& out) {
   const Program& p = program();
   // SE n / RE n: set or reset event n (MTC200; fast-measurement 4.1: SE 30, RE 29).
   const bool set = st.instruction == Instruction::kSe;
@@ -566,7 +568,8 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
   return true;
 }
 
-[[gnu::always_inline]] inline bool Interpreter::HashCommand(const Statement& st, PreparedBlock& out) {
+[[gnu::always_inline]] inline bool Interpreter::HashCommand(const Statement& st,
+                                                            PreparedBlock& out) {
   const Program& p = program();
   // They stay instructions as well: the channel sees the block in any case.
   out.instructions.push_back(static_cast<uint32_t>(&st - p.statements.data()));
@@ -632,7 +635,8 @@ bool Interpreter::Statement_(const Statement& st, int32_t block, PreparedBlock& 
   }
 }
 
-[[gnu::always_inline]] inline bool Interpreter::LoopStructure(const Statement& st, int32_t block, int32_t& next) {
+[[gnu::always_inline]] inline bool Interpreter::LoopStructure(const Statement& st, int32_t block,
+                                                              int32_t& next) {
   switch (st.kind) {
     case Kind::kFor: {
       const double start = Eval(st.value), limit = Eval(st.limit);

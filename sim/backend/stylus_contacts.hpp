@@ -64,7 +64,8 @@ class StylusContacts {
   std::vector<StylusOverTravel> over_travels_;
   std::vector<bool> needed_;  ///< the links posed (LinkChains of the styluses' and the part's)
   /// Per joint: how far one unit of its motion can move a sphere centre relative to the part
-  /// (its axis' turn aside), m per m or rad; infinite where no bound is known.
+  /// (1 for a slide, a sphere's distance from the axis for a turn, 0 for the part turning about
+  /// its own axis), m per m or rad; infinite where no bound is known.
   std::vector<double> reach_;
   /// Where the last posed tick ended, and how much nearer the spheres could come from there
   /// with every tick still a quiet one (FarRoom; <= 0: each tick is posed).

@@ -64,9 +64,7 @@ void MachineEventWatch::WatchSignals(double t, const control::gateway::SignalIma
     if (!wanted_[id]) continue;
     const double v = SignalNumber(image, id);
     if (v != last_signals_[id] && !(std::isnan(v) && std::isnan(last_signals_[id]))) {
-      if (!std::isnan(last_signals_[id]) || v != 0)
-        recorder.Event(
-            {{"t", t}, {"event", "signal"}, {"name", image.table()[id].name}, {"value", v}});
+      if (!std::isnan(last_signals_[id]) || v != 0) recorder.Signal(t, image.table()[id].name, v);
       last_signals_[id] = v;
     }
   }

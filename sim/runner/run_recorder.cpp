@@ -1,5 +1,6 @@
 #include "sim/runner/run_recorder.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
@@ -27,7 +28,27 @@ void RunRecorder::Event(nlohmann::ordered_json event) {
     events_file_->Write(event.dump(-1, ' ', false, common::kReplaceBadUtf8) + '\n');
     Checked(events_file_, false);
   }
-  for (const EventObserver& observe : observers_) observe(event);
+  for (const Observer& o : observers_) o.observe(event);
+}
+
+void RunRecorder::Signal(double t, const std::string& name, double value) {
+  const bool observed = std::any_of(observers_.begin(), observers_.end(),
+                                    [](const Observer& o) { return o.signals; });
+  if (!events_file_ && !observed) return;
+  t = std::round(t * 1e6) / 1e6;
+  if (events_file_) {
+    // The line Event writes, without building the object: its members' text in its order.
+    using Json = nlohmann::ordered_json;
+    events_file_->Write("{\"t\":" + Json(t).dump() + ",\"event\":\"signal\",\"name\":" +
+                        Json(name).dump(-1, ' ', false, common::kReplaceBadUtf8) +
+                        ",\"value\":" + Json(value).dump() + "}\n");
+    Checked(events_file_, false);
+  }
+  if (!observed) return;
+  const nlohmann::ordered_json event = {
+      {"t", t}, {"event", "signal"}, {"name", name}, {"value", value}};
+  for (const Observer& o : observers_)
+    if (o.signals) o.observe(event);
 }
 
 void RunRecorder::Checked(std::unique_ptr<common::OutputFile>& file, bool close) {

@@ -35,8 +35,11 @@ class RunRecorder {
  public:
   using EventObserver = std::function<void(const nlohmann::ordered_json&)>;
 
-  /// Observers see every event in the order they were added, after it is written.
-  void AddObserver(EventObserver observer) { observers_.push_back(std::move(observer)); }
+  /// Observers see every event in the order they were added, after it is written; with
+  /// `signals` false, all but the signal events (thousands in a run, and built for nobody else).
+  void AddObserver(EventObserver observer, bool signals = true) {
+    observers_.push_back({std::move(observer), signals});
+  }
 
   /// Writes trace.csv and events.jsonl into `out_dir` (created) from here on; without it the
   /// run only digests its trace and hands events to the observers. Throws common::WriteError
@@ -51,6 +54,9 @@ class RunRecorder {
   /// Rounds the event's time to the tick grid (3.4995, not 3.4995000000000003), writes it (a
   /// whole line to the file at once, as it happens) and hands it to the observers.
   void Event(nlohmann::ordered_json event);
+  /// A signal's new value (an event "signal"), as Event would write and hand it on; built only
+  /// when it is written or an observer takes signal events.
+  void Signal(double t, const std::string& name, double value);
 
   std::string DigestHex() const { return digest_.Hex(); }
   /// What is written so far handed to the system (the run goes on). A file that failed is
@@ -73,7 +79,11 @@ class RunRecorder {
   // whole line at a time, so that it can be followed as the run goes on.
   std::unique_ptr<common::OutputFile> trace_file_, events_file_;
   std::vector<std::string> write_errors_;
-  std::vector<EventObserver> observers_;
+  struct Observer {
+    EventObserver observe;
+    bool signals;
+  };
+  std::vector<Observer> observers_;
 };
 
 }  // namespace vmt::sim

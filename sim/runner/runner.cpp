@@ -126,8 +126,8 @@ nlohmann::ordered_json SpindleStatusJson(const control::channel::Channel& ch,
 
 SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     : scene(scene_), options(options_), m(*scene_.model) {
-  recorder.AddObserver([this](const nlohmann::ordered_json& e) { NoteSnapshotEvent(e); });
-  recorder.AddObserver([this](const nlohmann::ordered_json& e) { NoteProbeLatch(e); });
+  recorder.AddObserver([this](const nlohmann::ordered_json& e) { NoteSnapshotEvent(e); }, false);
+  recorder.AddObserver([this](const nlohmann::ordered_json& e) { NoteProbeLatch(e); }, false);
   if (options.on_event) recorder.AddObserver(options.on_event);
   if (options.signal_events && options.out_dir.empty())
     machine_events.SetSignalEvents(options.signal_events);
