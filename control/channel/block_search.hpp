@@ -37,6 +37,8 @@ struct FilePosition {
   std::string name;
   int path = 0;   ///< mc_cmd_bs_pos_*_type_w: 0 HP, 1 UP
   int count = 1;  ///< mc_cmd_bs_pos_*_count_w, 1..MAX_SGN16
+
+  bool operator==(const FilePosition&) const = default;
 };
 
 /// The block search parameters (5.1-5.4), in the manual's units as the CNC objects carry them
@@ -60,6 +62,7 @@ struct BlockSearchParameters {
   bool searches() const {
     return type != BlockSearchType::kNone && type != BlockSearchType::kBreakpointOnly;
   }
+  bool operator==(const BlockSearchParameters&) const = default;
 };
 
 /// What is wrong with the parameters, "" if nothing (the ranges of 5.1-5.4).

@@ -238,8 +238,11 @@ class Channel {
   /// PxxS.CREST (7.3), as of the last NC cycle.
   bool conditions_restored() const { return repos_.crest; }
   ReposFunction repos_function() const { return repos_.function; }
-  /// The REPOS screen's data (2.2); empty axes when nothing is interrupted.
-  ReposStatus repos_status(const AmplifierTelegram* at = nullptr) const;
+  /// The REPOS screen's data (2.2); empty axes when nothing is interrupted. Without `whole`
+  /// only the function, the status and the axes' and spindles' values and adjust symbols: not
+  /// the program, line, tool, technology and G codes shown beside them (for a watcher that
+  /// compares the screen every NC cycle).
+  ReposStatus repos_status(const AmplifierTelegram* at = nullptr, bool whole = true) const;
   /// Operator edits during an interruption (2.5): a zero offset G54..G59 of a channel axis, and
   /// a tool edge's length along a channel axis. They move the interruption point and the block
   /// start with the contour. False if there is no such table entry.

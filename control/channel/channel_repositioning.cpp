@@ -197,7 +197,7 @@ void Channel::ReposCycle(const AmplifierTelegram& at) {
   repos_.crest = restored && ToolStorageRestored();
 }
 
-ReposStatus Channel::repos_status(const AmplifierTelegram* at) const {
+ReposStatus Channel::repos_status(const AmplifierTelegram* at, bool whole) const {
   ReposStatus s;
   s.allowed = repos_allowed();
   s.function = repos_.function;
@@ -263,6 +263,7 @@ ReposStatus Channel::repos_status(const AmplifierTelegram* at) const {
   s.further_spindles = further_.ReposStatus(i.further_spindles, at);
   s.tool_storage_relevant = config_.process.reposition_tool_storage && ToolStorageKnown();
   s.tool_storage_adjust = !ToolStorageRestored();
+  if (!whole) return s;
   s.programmed_feed = i.modal.feed;
   s.program = i.program < programs_.size() || mdi_.running ? ProgramOf(i.program)->files[0] : "";
   s.line = i.line;

@@ -430,38 +430,6 @@ void ChannelGateway::WriteStatus(const channel::Channel& ch, const AmplifierTele
   axis_monitor_.WriteStatus(ch, at);
 }
 
-double ChannelGateway::Number(int id) const {
-  if (id < 0) return 0;
-  switch (image_->table()[id].type) {
-    case SignalType::kBool:
-      return image_->Bool(id) ? 1 : 0;
-    case SignalType::kReal:
-    case SignalType::kLreal:
-      return image_->Real(id);
-    case SignalType::kString:
-      return 0;
-    default:
-      return static_cast<double>(image_->Int(id));
-  }
-}
-
-void ChannelGateway::SetNumber(int id, double value) {
-  if (id < 0) return;
-  switch (image_->table()[id].type) {
-    case SignalType::kBool:
-      image_->SetBool(id, value != 0);
-      return;
-    case SignalType::kReal:
-    case SignalType::kLreal:
-      image_->SetReal(id, value);
-      return;
-    case SignalType::kString:
-      return;
-    default:
-      image_->SetInt(id, static_cast<int64_t>(std::llround(value)));
-  }
-}
-
 void ChannelGateway::ReadBlockSearch(channel::Channel& ch) {
   const BlockSearch& b = bs_;
   if (b.type_w < 0) return;  // a machine without the block search objects
@@ -492,7 +460,8 @@ void ChannelGateway::ReadBlockSearch(channel::Channel& ch) {
   p.block_number = static_cast<uint32_t>(integer(b.block_number_w, 0));
   p.block_number_pass = static_cast<uint32_t>(integer(b.pass_w, 1));
   p.block_nbr_prog_name = text(b.prog_name_w);
-  ch.SetBlockSearch(p);
+  // Handed over as they change: the channel checks them on each hand-over.
+  if (p != bs_parameters_) ch.SetBlockSearch(bs_parameters_ = p);
   ch.SetBlockSearchPlc(Number(b.enable) != 0, Number(b.plc_state) != 0);
   ch.SetBackward(Number(b.backward_w) != 0);
   ch.SetSuspendOutput(Number(b.suspend_w) != 0);

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "control/channel/block_search.hpp"
 #include "control/channel/channel_types.hpp"
 #include "control/drive_bus.hpp"
 #include "control/gateway/axis_monitor.hpp"
@@ -143,9 +144,12 @@ class ChannelGateway {
     int jop_start_w = -1, jop_stop_w = -1, jop_state_r = -1, jop_output_r = -1;  ///< vmt's
     bool jop_start = false, jop_stop = false;  ///< the levels last seen, for their edges
   } bs_;
+  channel::BlockSearchParameters bs_parameters_;  ///< as last handed to the channel
   /// Any signal as a number (BOOL 0/1, integers, REAL/LREAL); 0 for a missing one.
-  double Number(int id) const;
-  void SetNumber(int id, double value);
+  double Number(int id) const { return id >= 0 ? image_->Number(id) : 0; }
+  void SetNumber(int id, double value) {
+    if (id >= 0) image_->SetNumber(id, value);
+  }
   void ReadBlockSearch(channel::Channel& ch);
   void WriteBlockSearch(const channel::Channel& ch);
   /// Q functions with their own signal and acknowledgement (Pxx.Qnnnn / Pxx.Qnnnn_Q).

@@ -83,21 +83,12 @@ int SignalImage::Require(std::string_view name) const {
   return id;
 }
 
-void SignalImage::Check(int id, bool ok_type, const char* accessor) const {
+void SignalImage::Refuse(int id, const char* accessor) const {
   VMT_DEMAND(id >= 0 && id < size(), "gateway: %s(%d): no such signal id (table has %d)",
              accessor, id, size());
-  VMT_DEMAND(ok_type, "gateway: %s(%s): the signal is %s", accessor, table_[id].name.c_str(),
-             ToString(types_[id]));
-}
-
-bool SignalImage::Bool(int id) const {
-  Check(id, id >= 0 && id < size() && types_[id] == SignalType::kBool, "Bool");
-  return cells_[id] != 0;
-}
-
-void SignalImage::SetBool(int id, bool v) {
-  Check(id, id >= 0 && id < size() && types_[id] == SignalType::kBool, "SetBool");
-  cells_[id] = v ? 1 : 0;
+  common::DemandFailed(__FILE__, __LINE__, "an accessor of the signal's type",
+                       "gateway: %s(%s): the signal is %s", accessor, table_[id].name.c_str(),
+                       ToString(types_[id]));
 }
 
 int64_t SignalImage::Int(int id) const {
@@ -135,6 +126,38 @@ void SignalImage::SetString(int id, std::string_view v) {
              "gateway: SetString(%s): %zu bytes or an embedded NUL; a STRING holds at most %d",
              table_[id].name.c_str(), v.size(), kStringBytes - 1);
   strings_[cells_[id]].assign(v);
+}
+
+double SignalImage::Number(int id) const {
+  Check(id, true, "Number");
+  switch (type(id)) {
+    case SignalType::kBool:
+      return Bool(id) ? 1 : 0;
+    case SignalType::kReal:
+    case SignalType::kLreal:
+      return Real(id);
+    case SignalType::kString:
+      return 0;
+    default:
+      return static_cast<double>(Int(id));
+  }
+}
+
+void SignalImage::SetNumber(int id, double value) {
+  Check(id, true, "SetNumber");
+  switch (type(id)) {
+    case SignalType::kBool:
+      SetBool(id, value != 0);
+      return;
+    case SignalType::kReal:
+    case SignalType::kLreal:
+      SetReal(id, value);
+      return;
+    case SignalType::kString:
+      return;
+    default:
+      SetInt(id, static_cast<int64_t>(std::llround(value)));
+  }
 }
 
 namespace {

@@ -26,12 +26,21 @@ class SignalImage {
 
   const std::vector<Signal>& table() const { return table_; }
   int size() const { return static_cast<int>(table_.size()); }
+  /// table()[id].type from a dense array: the type dispatch of a per-cycle access touches no
+  /// signal's name or description. `id` must be within the table.
+  SignalType type(int id) const { return types_[id]; }
 
   // Accessors abort (with the signal's name) on an id out of range, on the wrong type (Bool
   // for kBool; Int for the integer types; Real for kReal and kLreal; String for kString) and
   // on an integer outside its type's range or a string longer than 83 bytes.
-  bool Bool(int id) const;
-  void SetBool(int id, bool v);
+  bool Bool(int id) const {
+    Check(id, id >= 0 && id < size() && types_[id] == SignalType::kBool, "Bool");
+    return cells_[id] != 0;
+  }
+  void SetBool(int id, bool v) {
+    Check(id, id >= 0 && id < size() && types_[id] == SignalType::kBool, "SetBool");
+    cells_[id] = v ? 1 : 0;
+  }
   int64_t Int(int id) const;
   void SetInt(int id, int64_t v);
   /// kReal values are stored rounded to binary32, as a REAL variable and its registers hold them.
@@ -39,6 +48,11 @@ class SignalImage {
   void SetReal(int id, double v);
   const std::string& String(int id) const;
   void SetString(int id, std::string_view v);
+  /// Any signal as a number: BOOL 0/1, the integers, REAL/LREAL; a STRING reads 0.
+  double Number(int id) const;
+  /// A number into a signal of any numeric type (BOOL: != 0; integers rounded); a STRING is
+  /// left as it is.
+  void SetNumber(int id, double value);
 
   /// Every signal's stored cell (BOOL/integer value, REAL/LREAL bits, a STRING's slot), by id.
   /// A cell that compares equal to an earlier copy holds the same value (strings aside), so a
@@ -54,7 +68,13 @@ class SignalImage {
   void CopyValue(int id, const SignalImage& other);
 
  private:
-  void Check(int id, bool ok_type, const char* accessor) const;
+  // Inline, because the NC, the PLC and the watchers make tens of these accesses each NC cycle;
+  // the refusal, with its message, out of line.
+  void Check(int id, bool ok_type, const char* accessor) const {
+    if (id < 0 || id >= size() || !ok_type) [[unlikely]]
+      Refuse(id, accessor);
+  }
+  [[noreturn]] void Refuse(int id, const char* accessor) const;
 
   std::vector<Signal> table_;
   std::vector<SignalType> types_;     // by id: the type check without touching table_

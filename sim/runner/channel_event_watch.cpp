@@ -19,12 +19,12 @@ void ChannelEventWatch::Watch(double t, bool nc_cycle, const control::AmplifierT
   if (jog_of_path) WatchJogOfPath(t, *jog_of_path, recorder);
   if (nc_cycle) {
     // The REPOS screen (repositioning manual 2.2) when its function, status or an adjust
-    // symbol changes.
-    const control::channel::ReposStatus rs = channel.repos_status(&at);
-    std::string key = ReposEventKey(rs);
-    if (key != repos_key_) {
+    // symbol changes. The screen's parts that no key holds are read only for the event.
+    ReposEventKey(channel.repos_status(&at, false), repos_key_next_);
+    if (repos_key_next_ != repos_key_) {
+      const control::channel::ReposStatus rs = channel.repos_status(&at);
       if (!repos_key_.empty() || rs.allowed) recorder.Event(ReposEvent(t, rs));
-      repos_key_ = std::move(key);
+      repos_key_.swap(repos_key_next_);
     }
     // Block search: its state as the PLC sees it change, and each warning once.
     const control::channel::BlockSearchStatus& bs = channel.block_search();

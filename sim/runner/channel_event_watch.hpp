@@ -37,7 +37,8 @@ class ChannelEventWatch {
   control::axes::HeadstockMode headstock_target_ = control::axes::HeadstockMode::kNone;
   bool rotmod_ = false, spmod_ = false;  ///< the pre-selections the PLC was last shown
   control::channel::ChannelState jog_of_path_state_ = control::channel::ChannelState::kIdle;
-  std::string repos_key_;  ///< the REPOS screen last emitted (ReposEventKey)
+  std::string repos_key_;       ///< the REPOS screen last emitted (ReposEventKey)
+  std::string repos_key_next_;  ///< this cycle's, in storage kept
   control::channel::BlockSearchState block_search_state_ =
       control::channel::BlockSearchState::kInactive;
   size_t block_search_warnings_ = 0;  ///< warnings of the block search already emitted

@@ -114,8 +114,8 @@ nlohmann::ordered_json ReposEvent(double t, const control::channel::ReposStatus&
   return e;
 }
 
-std::string ReposEventKey(const control::channel::ReposStatus& s) {
-  std::string key = ToString(s.function);
+void ReposEventKey(const control::channel::ReposStatus& s, std::string& key) {
+  key = ToString(s.function);
   key += s.allowed ? "A" : "a";
   key += s.conditions_restored ? "C" : "c";
   key += s.left_contour ? "L" : "l";
@@ -125,7 +125,6 @@ std::string ReposEventKey(const control::channel::ReposStatus& s) {
   for (const control::channel::ReposFurtherSpindleStatus& f : s.further_spindles)
     key += f.adjust ? "1" : "0";
   key += s.tool_storage_adjust ? "1" : "0";
-  return key;
 }
 
 nlohmann::ordered_json BlockSearchEvent(double t, const control::channel::Channel& channel,

@@ -35,7 +35,8 @@ nlohmann::ordered_json ReposEvent(double t, const control::channel::ReposStatus&
 
 /// What of the REPOS screen is worth an event when it changes: the function, the status
 /// signals and the adjust symbols (not every cycle's command values).
-std::string ReposEventKey(const control::channel::ReposStatus& s);
+/// Written into `key` (its storage kept from cycle to cycle).
+void ReposEventKey(const control::channel::ReposStatus& s, std::string& key);
 
 /// Block search (twincat-cnc-block-search-de.md 5.6): a change of its state HLI_BS_*, with the
 /// status the PLC reads then (line count, distance from program start, the continue position

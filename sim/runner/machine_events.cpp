@@ -27,14 +27,17 @@ void MachineEventWatch::Watch(double t, const control::AmplifierTelegram& at,
                               const control::gateway::SignalImage* image, RunRecorder& recorder) {
   if (image) WatchSignals(t, *image, recorder);
   WatchClutches(t, clutches, backend, recorder);
-  for (size_t i = 0; i < at.inputs.size(); ++i)
-    if (!m_->io[i].is_output && !m_->io[i].key &&
-        (last_inputs_.empty() || at.inputs[i] != last_inputs_[i]))
-      recorder.Event(
-          {{"t", t}, {"event", "input"}, {"name", m_->io[i].name}, {"value", at.inputs[i]}});
+  // Nearly every tick changes no input: the machine's io points are visited only when one did.
+  if (last_inputs_.empty() || at.inputs != last_inputs_) {
+    for (size_t i = 0; i < at.inputs.size(); ++i)
+      if (!m_->io[i].is_output && !m_->io[i].key &&
+          (last_inputs_.empty() || at.inputs[i] != last_inputs_[i]))
+        recorder.Event(
+            {{"t", t}, {"event", "input"}, {"name", m_->io[i].name}, {"value", at.inputs[i]}});
+    last_inputs_ = at.inputs;
+  }
   WatchDrives(t, at, recorder);
-  last_clutches_ = clutches;
-  last_inputs_ = at.inputs;
+  if (clutches != last_clutches_) last_clutches_ = clutches;
 }
 
 void MachineEventWatch::WatchSignals(double t, const control::gateway::SignalImage& image,
@@ -62,7 +65,7 @@ void MachineEventWatch::WatchSignals(double t, const control::gateway::SignalIma
     if (!first && cells[id] == last_cells_[id]) continue;
     last_cells_[id] = cells[id];
     if (!wanted_[id]) continue;
-    const double v = SignalNumber(image, id);
+    const double v = image.Number(id);
     if (v != last_signals_[id] && !(std::isnan(v) && std::isnan(last_signals_[id]))) {
       if (!std::isnan(last_signals_[id]) || v != 0) recorder.Signal(t, image.table()[id].name, v);
       last_signals_[id] = v;

@@ -51,7 +51,7 @@ double Measured(const Expectation& e, const control::AmplifierTelegram& at,
   using Q = Expectation::Quantity;
   switch (e.quantity) {
     case Q::kSignal:
-      return image ? SignalNumber(*image, e.index) : std::nan("");
+      return image ? image->Number(e.index) : std::nan("");
     case Q::kPosition:
       return at.feedback[e.index].position;
     case Q::kVelocity:
@@ -231,14 +231,14 @@ void SceneRun::State::MakePlc() {
     if (!made) throw std::runtime_error("no PLC program '" + scene.plc.program + "'");
     plc = std::make_unique<control::plc::PlcRuntime>(*image, std::move(*made),
                                                      control::plc::PlcTime(plc_every * 250));
-    for (const auto& [id, value] : scene.plc.constants) SetSignalNumber(*image, id, value);
+    for (const auto& [id, value] : scene.plc.constants) image->SetNumber(id, value);
   }
   if (image)
     for (const NcSetup::SignalPreset& p : scene.nc.presets) {
       if (image->table()[p.id].type == control::gateway::SignalType::kString)
         image->SetString(p.id, p.text);
       else
-        SetSignalNumber(*image, p.id, p.number);
+        image->SetNumber(p.id, p.number);
     }
   if (image) {
     probe_glue = std::make_unique<ProbeGlue>(m, *image);

@@ -44,7 +44,7 @@ std::string SceneRun::State::Operate(const std::string& signal, double value) {
   State& s = *this;
   if (std::string error = ValueError(signal, value); !error.empty()) return error;
   const int id = s.image->Find(signal);
-  SetSignalNumber(*s.image, id, value);
+  s.image->SetNumber(id, value);
   s.recorder.Event(
       {{"t", s.tick * kDriveTickS}, {"event", "operator"}, {"signal", signal}, {"value", value}});
   s.operated.push_back({s.tick, signal, value, ""});

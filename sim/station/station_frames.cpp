@@ -397,7 +397,7 @@ std::string SignalsJson(SceneRun& run) {
       if (s.type == control::gateway::SignalType::kString)
         value = image->String(id);
       else
-        value = SignalNumber(*image, id);
+        value = image->Number(id);
       list.push_back({{"name", s.name},
                       {"area", s.name.substr(0, s.name.find('.'))},
                       {"direction", ToString(s.direction)},

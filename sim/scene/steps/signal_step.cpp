@@ -32,7 +32,7 @@ void Read(const StepSource& src, TimelineStep& s, std::ostringstream& text) {
 }
 
 bool Play(const TimelineStep& s, const StepTick&, TimelinePlay& play) {
-  if (play.image) SetSignalNumber(*play.image, s.signal, s.target);
+  if (play.image) play.image->SetNumber(s.signal, s.target);
   return true;
 }
 

@@ -33,45 +33,13 @@ double TrapezoidProfile::At(double t_s) const {
   return start + sign * s;
 }
 
-double SignalNumber(const control::gateway::SignalImage& image, int id) {
-  using control::gateway::SignalType;
-  switch (image.table()[id].type) {
-    case SignalType::kBool:
-      return image.Bool(id) ? 1 : 0;
-    case SignalType::kReal:
-    case SignalType::kLreal:
-      return image.Real(id);
-    case SignalType::kString:
-      return 0;
-    default:
-      return static_cast<double>(image.Int(id));
-  }
-}
-
-void SetSignalNumber(control::gateway::SignalImage& image, int id, double value) {
-  using control::gateway::SignalType;
-  switch (image.table()[id].type) {
-    case SignalType::kBool:
-      image.SetBool(id, value != 0);
-      return;
-    case SignalType::kReal:
-    case SignalType::kLreal:
-      image.SetReal(id, value);
-      return;
-    case SignalType::kString:
-      return;
-    default:
-      image.SetInt(id, std::llround(value));
-  }
-}
-
 bool Holds(const Condition& c, const control::AmplifierTelegram& at,
            const std::vector<ClutchState>& clutches, const control::channel::Channel* channel,
            const control::gateway::SignalImage* image) {
   using namespace control::drive_status;
   switch (c.kind) {
     case Condition::Kind::kSignal:
-      return image && SignalNumber(*image, c.index) == c.signal_value;
+      return image && image->Number(c.index) == c.signal_value;
     case Condition::Kind::kInput:
       return (at.inputs[c.index] != 0) == c.value;
     case Condition::Kind::kInPosition:

@@ -68,9 +68,4 @@ bool Holds(const Condition& c, const control::AmplifierTelegram& at,
            const std::vector<ClutchState>& clutches, const control::channel::Channel* channel,
            const control::gateway::SignalImage* image);
 
-/// A signal's value as a number (BOOL 0/1; STRING 0).
-double SignalNumber(const control::gateway::SignalImage& image, int id);
-/// Writes a number into a signal of any numeric type (BOOL: != 0).
-void SetSignalNumber(control::gateway::SignalImage& image, int id, double value);
-
 }  // namespace vmt::sim

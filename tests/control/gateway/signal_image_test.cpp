@@ -81,6 +81,31 @@ TEST_F(SignalImageTest, StringGetSet) {
   EXPECT_EQ(image_.String(id), longest);
 }
 
+TEST_F(SignalImageTest, NumberOfEveryType) {
+  const int b = image_.Require("P00S.CREST");            // BOOL
+  const int i16 = image_.Require("QMFB1A00.FEHLER_NR");  // INT
+  const int i32 = image_.Require("A03.AXD.65013");       // DINT
+  const int lreal = image_.Require("P00.mc_cmd_bs_covered_distance_w");
+  const int s = image_.Require("P00.mc_cmd_bs_block_nbr_prog_name_w");  // STRING
+  image_.SetNumber(b, 0.25);                                            // != 0: true
+  EXPECT_TRUE(image_.Bool(b));
+  EXPECT_EQ(image_.Number(b), 1);
+  image_.SetNumber(b, 0);
+  EXPECT_EQ(image_.Number(b), 0);
+  image_.SetNumber(i16, -2.5);  // rounded half away from zero
+  EXPECT_EQ(image_.Int(i16), -3);
+  EXPECT_EQ(image_.Number(i16), -3);
+  image_.SetNumber(i32, 123456.4);
+  EXPECT_EQ(image_.Number(i32), 123456);
+  image_.SetNumber(lreal, 540.125);
+  EXPECT_EQ(image_.Real(lreal), 540.125);
+  EXPECT_EQ(image_.Number(lreal), 540.125);
+  image_.SetString(s, "%t.nc");
+  image_.SetNumber(s, 7);  // a STRING is left as it is and reads 0
+  EXPECT_EQ(image_.String(s), "%t.nc");
+  EXPECT_EQ(image_.Number(s), 0);
+}
+
 TEST_F(SignalImageTest, PresetsAndReset) {
   const int q = image_.Require("QMFB1A00.Q_Nummer");
   const int fovr = image_.Require("P00C.FOVR");
@@ -142,6 +167,7 @@ TEST_F(SignalImageDeathTest, OutOfRangeAborts) {
   EXPECT_DEATH(image_.SetInt(u16, -1), "outside the range of UINT");
   EXPECT_DEATH(image_.Bool(-1), "no such signal id");
   EXPECT_DEATH(image_.Bool(image_.size()), "no such signal id");
+  EXPECT_DEATH((void)image_.Number(-1), "Number\\(-1\\): no such signal id");
   EXPECT_DEATH(image_.Require("P00C.NOSUCH"), "no signal called 'P00C.NOSUCH'");
   const int s = image_.Require("P00.mc_cmd_bs_pos_end_name_w");
   EXPECT_DEATH(image_.SetString(s, std::string(kStringBytes, 'x')), "at most 83");
