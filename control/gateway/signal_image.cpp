@@ -39,6 +39,7 @@ SignalImage::SignalImage(std::vector<Signal> table) : table_(std::move(table)) {
 }
 
 void SignalImage::Reset() {
+  ++changes_;
   strings_.clear();
   for (int id = 0; id < size(); ++id) {
     const SignalType t = types_[id];
@@ -58,14 +59,15 @@ void SignalImage::CopyValuesFrom(const SignalImage& other) {
   VMT_DEMAND(other.size() == size(), "gateway: CopyValuesFrom: an image of another table");
   cells_ = other.cells_;
   strings_ = other.strings_;
+  ++changes_;
 }
 
 void SignalImage::CopyValue(int id, const SignalImage& other) {
   Check(id, other.size() == size(), "CopyValue");
   if (types_[id] == SignalType::kString)
-    strings_[cells_[id]] = other.strings_[other.cells_[id]];
+    SetString(id, other.strings_[other.cells_[id]]);
   else
-    cells_[id] = other.cells_[id];
+    Store(id, other.cells_[id]);
 }
 
 int SignalImage::Find(std::string_view name) const {
@@ -101,7 +103,7 @@ void SignalImage::SetInt(int id, int64_t v) {
   const SignalType t = types_[id];
   VMT_DEMAND(v >= MinValue(t) && v <= MaxValue(t), "gateway: SetInt(%s, %lld): outside the range of %s",
              table_[id].name.c_str(), static_cast<long long>(v), ToString(t));
-  cells_[id] = v;
+  Store(id, v);
 }
 
 double SignalImage::Real(int id) const {
@@ -111,7 +113,7 @@ double SignalImage::Real(int id) const {
 
 void SignalImage::SetReal(int id, double v) {
   Check(id, id >= 0 && id < size() && IsReal(types_[id]), "SetReal");
-  cells_[id] = RealBits(types_[id], v);
+  Store(id, RealBits(types_[id], v));
 }
 
 const std::string& SignalImage::String(int id) const {
@@ -125,7 +127,10 @@ void SignalImage::SetString(int id, std::string_view v) {
                  v.find('\0') == std::string_view::npos,
              "gateway: SetString(%s): %zu bytes or an embedded NUL; a STRING holds at most %d",
              table_[id].name.c_str(), v.size(), kStringBytes - 1);
-  strings_[cells_[id]].assign(v);
+  std::string& s = strings_[cells_[id]];
+  if (s == v) return;
+  s.assign(v);
+  ++changes_;
 }
 
 double SignalImage::Number(int id) const {

@@ -39,7 +39,7 @@ class SignalImage {
   }
   void SetBool(int id, bool v) {
     Check(id, id >= 0 && id < size() && types_[id] == SignalType::kBool, "SetBool");
-    cells_[id] = v ? 1 : 0;
+    Store(id, v ? 1 : 0);
   }
   int64_t Int(int id) const;
   void SetInt(int id, int64_t v);
@@ -58,6 +58,9 @@ class SignalImage {
   /// A cell that compares equal to an earlier copy holds the same value (strings aside), so a
   /// watcher of thousands of signals finds the few that changed without a typed read of each.
   std::span<const int64_t> cells() const { return cells_; }
+  /// Counts the writes that changed a value (a string's too; a reset or a copy of all values
+  /// counts as one): a watcher that finds the count it saw last has nothing new to read.
+  uint64_t changes() const { return changes_; }
 
   /// Every signal back to its preset (Control-Reset of a simulation, not of the NC).
   void Reset();
@@ -75,12 +78,18 @@ class SignalImage {
       Refuse(id, accessor);
   }
   [[noreturn]] void Refuse(int id, const char* accessor) const;
+  void Store(int id, int64_t cell) {
+    if (cells_[id] == cell) return;
+    cells_[id] = cell;
+    ++changes_;
+  }
 
   std::vector<Signal> table_;
   std::vector<SignalType> types_;     // by id: the type check without touching table_
   std::vector<int64_t> cells_;        // by id: BOOL/integer value, REAL/LREAL bits, string slot
   std::vector<std::string> strings_;  // by string slot
   std::vector<int> by_name_;          // ids sorted by name, for Find
+  uint64_t changes_ = 0;
 };
 
 /// Modbus register image of a non-BOOL signal; `out.size()` must be its modbus.count. Words are

@@ -46,6 +46,9 @@ void MachineEventWatch::WatchSignals(double t, const control::gateway::SignalIma
   // tick over thousands of signals, of which a handful change.
   const std::span<const int64_t> cells = image.cells();
   const bool first = last_cells_.empty();
+  // Most ticks write no signal (the NC's status changes on its cycle, the PLC's on its scan).
+  if (!first && image.changes() == last_changes_) return;
+  last_changes_ = image.changes();
   last_signals_.resize(image.size(), std::nan(""));
   last_cells_.resize(cells.size());
   if (wanted_.size() != static_cast<size_t>(image.size())) {

@@ -58,6 +58,7 @@ class MachineEventWatch {
   std::vector<bool> wanted_;  ///< per signal of the image: signal_events_ accepts it
   std::vector<double> last_signals_;
   std::vector<int64_t> last_cells_;  ///< the image's cells when last_signals_ was taken
+  uint64_t last_changes_ = 0;        ///< the image's change count then
   std::vector<ClutchState> last_clutches_;
   std::vector<int> last_clashes_;  ///< clashes of each clutch reported so far
   std::vector<uint8_t> last_inputs_;

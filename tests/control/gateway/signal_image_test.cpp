@@ -5,6 +5,7 @@
 #include <array>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "tests/control/gateway/lathe_layout.hpp"
 
@@ -104,6 +105,39 @@ TEST_F(SignalImageTest, NumberOfEveryType) {
   image_.SetNumber(s, 7);  // a STRING is left as it is and reads 0
   EXPECT_EQ(image_.String(s), "%t.nc");
   EXPECT_EQ(image_.Number(s), 0);
+}
+
+TEST_F(SignalImageTest, ChangesCountOnlyWritesThatChangeAValue) {
+  const int b = image_.Require("P00S.CREST");
+  const int i16 = image_.Require("QMFB1A00.FEHLER_NR");
+  const int lreal = image_.Require("P00.mc_cmd_bs_covered_distance_w");
+  const int s = image_.Require("P00.mc_cmd_bs_block_nbr_prog_name_w");
+  uint64_t seen = image_.changes();
+  const auto changed = [&] {
+    const uint64_t before = std::exchange(seen, image_.changes());
+    return before != seen;
+  };
+  image_.SetBool(b, false);  // as it was
+  image_.SetInt(i16, image_.Int(i16));
+  image_.SetString(s, "");
+  EXPECT_FALSE(changed());
+  image_.SetBool(b, true);
+  EXPECT_TRUE(changed());
+  image_.SetInt(i16, 7);
+  EXPECT_TRUE(changed());
+  image_.SetReal(lreal, 0.5);
+  EXPECT_TRUE(changed());
+  image_.SetReal(lreal, 0.5);
+  EXPECT_FALSE(changed());
+  image_.SetString(s, "%a.nc");  // a string changes no cell, but counts
+  EXPECT_TRUE(changed());
+  SignalImage other{image_.table()};
+  image_.CopyValue(s, other);
+  EXPECT_TRUE(changed());
+  image_.CopyValuesFrom(other);
+  EXPECT_TRUE(changed());
+  image_.Reset();
+  EXPECT_TRUE(changed());
 }
 
 TEST_F(SignalImageTest, PresetsAndReset) {
