@@ -184,6 +184,7 @@ void CaseObserver::End(double t) {
   if (done_) return;
   done_ = true;
   t_end_ = t;
+  if (on_end_) on_end_();
 }
 
 }  // namespace vmt::sim::study

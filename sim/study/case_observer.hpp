@@ -4,6 +4,7 @@
 // path corner by corner from their records), the NC's error, and when the case is over -- at
 // the REPOS subroutine's RTS (program-driven, 4.1) or at the end of the operator's jogs (3).
 
+#include <functional>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -43,6 +44,8 @@ class CaseObserver {
   /// Manual mode: the case is over when this step starts (after the last jog's standstill);
   /// clear if the conditions are restored then (PxxS.CREST, 7.3).
   void SetManualEnd(size_t step) { manual_end_ = step; }
+  /// Called once, inside the tick the case ends in (before the machine steps on).
+  void SetOnEnd(std::function<void()> on_end) { on_end_ = std::move(on_end); }
   void OnEvent(const nlohmann::ordered_json& e);
   /// The gateway signals whose events OnEvent reads (RunOptions::signal_events): the NC's
   /// message number.
@@ -81,6 +84,7 @@ class CaseObserver {
   int error_number_ = 0;
   std::vector<std::pair<double, double>> path_;
   size_t travelled_ = 0;  ///< with a contact: the path's points up to the refused move's start
+  std::function<void()> on_end_;
 };
 
 }  // namespace vmt::sim::study

@@ -344,7 +344,7 @@ std::vector<std::string> InChild(const std::function<void(int)>& work, int* stat
 // for a grandchild).
 void RunRetractCases(Scene& scene, SceneRun& run, CaseObserver*& observer, const StudyPlan& plan,
                      const std::vector<Interruption>& interruptions, const Interruption& in,
-                     size_t sub, std::span<const StudyCase> cases, int fd) {
+                     size_t sub, std::span<const StudyCase> cases, const CaseWatch* watch, int fd) {
   const RetractPattern& retract = plan.retracts[cases.front().retract];
   Append(scene, RetractLines(scene, plan, in, retract));
   const size_t marker = scene.timeline.size() - 1;
@@ -353,24 +353,30 @@ void RunRetractCases(Scene& scene, SceneRun& run, CaseObserver*& observer, const
   const double limit = CaseLimit(plan, in, retract);
   while (!run.done() && !obs.done() && !obs.marker_seen() && run.time_s() < limit) run.Step();
   for (int w = 0; w < 8 && obs.error_pending() && !run.done(); ++w) run.Step();
+  // The case's result, seen by the watch, as its line.
+  const auto result_line = [&](const StudyCase& c) {
+    const CaseResult r = obs.Result(plan, interruptions, c, run.time_s());
+    if (watch && watch->after) watch->after(run, c, r);
+    return CaseJsonLine(r);
+  };
+  const auto way_back = [&](const StudyCase& c) {
+    if (watch && watch->at_end) obs.SetOnEnd([&] { watch->at_end(run, c); });
+    RunReturn(scene, run, obs, plan, plan.subroutines[sub], c.mode, limit);
+    return result_line(c);
+  };
   for (size_t m = 0; m < cases.size(); ++m) {
     const StudyCase& c = cases[m];
     if (!obs.marker_seen()) {  // the retract ended the case (a refused jog)
-      WriteAll(fd, CaseJsonLine(obs.Result(plan, interruptions, c, run.time_s())));
+      WriteAll(fd, result_line(c));
       continue;
     }
     if (m + 1 == cases.size()) {
-      RunReturn(scene, run, obs, plan, plan.subroutines[sub], c.mode, limit);
-      WriteAll(fd, CaseJsonLine(obs.Result(plan, interruptions, c, run.time_s())));
+      WriteAll(fd, way_back(c));
       continue;
     }
     int mode_status = 0;
-    const std::vector<std::string> one = InChild(
-        [&](int mode_fd) {
-          RunReturn(scene, run, obs, plan, plan.subroutines[sub], c.mode, limit);
-          WriteAll(mode_fd, CaseJsonLine(obs.Result(plan, interruptions, c, run.time_s())));
-        },
-        &mode_status);
+    const std::vector<std::string> one =
+        InChild([&](int mode_fd) { WriteAll(mode_fd, way_back(c)); }, &mode_status);
     const bool ok = WIFEXITED(mode_status) && WEXITSTATUS(mode_status) == 0 && one.size() == 1;
     WriteAll(fd,
              ok ? one[0] + "\n" : CaseJsonLine(DiedResult(plan, interruptions, c, mode_status)));
@@ -396,7 +402,8 @@ void ForwardResults(int fd, const std::function<void(const CaseResult&)>& sink) 
 void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
                         const std::vector<Interruption>& interruptions, size_t sub,
                         const std::function<bool(const StudyCase&)>& chosen, bool fork,
-                        const std::function<void(const CaseResult&)>& sink) {
+                        const std::function<void(const CaseResult&)>& sink,
+                        const CaseWatch* watch) {
   // Made group by group, so that a worker holds one group's cases, not its share's.
   const CaseSpace space(plan, interruptions);
   const auto group_at = [&](size_t i) {
@@ -415,7 +422,8 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
     return;
   if (!fork) {
     for (const size_t i : order)
-      for (const StudyCase& c : group_at(i)) sink(RunCaseFromStart(base, plan, interruptions, c));
+      for (const StudyCase& c : group_at(i))
+        sink(RunCaseFromStart(base, plan, interruptions, c, watch));
     return;
   }
   // The scene lives here; the run reads its timeline by reference, and each child appends to
@@ -452,7 +460,7 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
         int status = 0;
         const std::vector<std::string> got = InChild(
             [&](int fd) {
-              RunRetractCases(scene, run, observer, plan, interruptions, in, sub, cases, fd);
+              RunRetractCases(scene, run, observer, plan, interruptions, in, sub, cases, watch, fd);
             },
             &status);
         for (size_t m = 0; m < cases.size(); ++m) {
@@ -480,27 +488,21 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
 
 CaseResult RunCaseFromStart(const Scene& base, const StudyPlan& plan,
                             const std::vector<Interruption>& interruptions, const StudyCase& c,
-                            const std::vector<SnapshotSpec>& shots, const std::string& out_dir,
-                            double* t_end_s, const std::function<void(const SceneRun&)>& after) {
+                            const CaseWatch* watch) {
   Scene scene = SubroutineScene(base, plan.subroutines[c.subroutine]);
-  scene.snapshots = shots;
   const Interruption& in = interruptions[c.interruption];
   const RetractPattern& retract = plan.retracts[c.retract];
   scene.timeline.push_back(HoldStep(scene, in.t_s, scene.timeline.size()));
   Append(scene, RetractLines(scene, plan, in, retract));
   CaseObserver obs;
   CaseObserver* observer = &obs;
-  RunOptions options = CaseOptions(&observer);
-  options.snapshots = !shots.empty();
-  options.out_dir = out_dir;
-  SceneRun run(scene, options);
+  SceneRun run(scene, CaseOptions(&observer));
+  if (watch && watch->at_end) obs.SetOnEnd([&] { watch->at_end(run, c); });
   RunReturn(scene, run, obs, plan, plan.subroutines[c.subroutine], c.mode,
             CaseLimit(plan, in, retract));
-  // A picture due at the end (an `at:` of the case's end) is taken at the next tick.
-  for (int k = 0; k < 2 && !shots.empty() && !run.done(); ++k) run.Step();
-  if (t_end_s) *t_end_s = obs.t_end();
-  if (after) after(run);
-  return obs.Result(plan, interruptions, c, run.time_s());
+  const CaseResult r = obs.Result(plan, interruptions, c, run.time_s());
+  if (watch && watch->after) watch->after(run, c, r);
+  return r;
 }
 
 SavedCase SaveCaseRun(const Scene& base, const StudyPlan& plan,

@@ -31,24 +31,27 @@ Scene SubroutineScene(const Scene& base, const std::string& subroutine_file);
 
 /// The feed hold at t (timeline step `index`).
 TimelineStep HoldStep(const Scene& scene, double t_s, size_t index);
+/// What a caller sees of a case's run besides its result (the study's pictures): `at_end`
+/// inside the tick the case ends in, before the machine steps on; `after` once the case's run
+/// is over (an NC error's number shown), with the result. Both run in the case's own process.
+struct CaseWatch {
+  std::function<void(const SceneRun&, const StudyCase&)> at_end;
+  std::function<void(const SceneRun&, const StudyCase&, const CaseResult&)> after;
+};
+
 /// Runs the cases of subroutine `sub` that `chosen` picks, group by group in the time order of
 /// their interruption points, calling `sink` with each result as it finishes. With `fork`
 /// false each case runs from the start.
 void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
                         const std::vector<Interruption>& interruptions, size_t sub,
                         const std::function<bool(const StudyCase&)>& chosen, bool fork,
-                        const std::function<void(const CaseResult&)>& sink);
+                        const std::function<void(const CaseResult&)>& sink,
+                        const CaseWatch* watch = nullptr);
 
-/// One case from the program's start, without fork. With `shots`, the run renders them (the
-/// scene's `snapshots:` entries, e.g. {on: collision}) into `out_dir`, where it also writes its
-/// trace and events; *t_end_s gets the time the case ended.
-/// `after`, when set, sees the run as the case ended (the machine where it stood, the workpiece
-/// as turned).
+/// One case from the program's start, without fork.
 CaseResult RunCaseFromStart(const Scene& base, const StudyPlan& plan,
                             const std::vector<Interruption>& interruptions, const StudyCase& c,
-                            const std::vector<SnapshotSpec>& shots = {},
-                            const std::string& out_dir = "", double* t_end_s = nullptr,
-                            const std::function<void(const SceneRun&)>& after = {});
+                            const CaseWatch* watch = nullptr);
 
 /// A case's run as saved for watching it: the timeline steps it ran after the program's start
 /// (as a scene writes them), the subroutine's file and the time it ended.

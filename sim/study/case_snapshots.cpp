@@ -8,15 +8,17 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <stdexcept>
 
 #include "common/json_text.hpp"
 #include "common/output_file.hpp"
 #include "render/image.hpp"
 #include "render/offscreen_renderer.hpp"
+#include "sim/runner/scene_renderer.hpp"
 #include "sim/study/case_files.hpp"
 #include "sim/study/contact_picture.hpp"
 #include "sim/study/die_with_parent.hpp"
-#include "sim/study/scratch_folder.hpp"
 #include "sim/study/study_conclusions.hpp"
 
 namespace vmt::sim::study {
@@ -92,6 +94,58 @@ std::string SnapshotFileOf(const std::string& case_id) {
   return "snapshots/" + FileNameOf(case_id) + ".png";
 }
 
+namespace {
+
+// The picture of a clear case at its end: the machine at that tick as the scene's own snapshot
+// draws it, the workpiece as turned (as the picture an `at:` of that time would show).
+render::Image EndImage(const Scene& scene, const SceneRun& run, const SnapshotSpec& look) {
+  const NamedCamera* camera = scene.Camera(look.camera);
+  if (!camera) throw std::runtime_error("the scene has no camera " + look.camera);
+  SceneRenderer renderer(*scene.model, scene.workpiece);
+  if (run.stock_cuts() == 0)
+    return renderer.Render(run.joint_positions(), *camera, look.width, look.height);
+  const TurnedProfile turned{run.stock_cuts(), run.TurnedStockCylinders()};
+  return renderer.Render(run.joint_positions(), *camera, look.width, look.height, &turned);
+}
+
+// Pictures the cases of subroutine `sub` in `wanted` (by index) whose file is not in `dir` yet.
+// They run as the study ran them (RunSubroutineCases: one run-up, forked at each interruption
+// point), each picture taken in its case's process: a collision at its first contact
+// (contact_picture.hpp), a clear case at the tick it ended.
+void PictureSubroutine(const Scene& base, const StudyPlan& plan,
+                       const std::vector<Interruption>& interruptions, size_t sub,
+                       const std::map<size_t, const CaseResult*>& wanted, const std::string& dir,
+                       const std::function<bool()>& stop) {
+  const SnapshotSpec look = Look(base);
+  const auto file_of = [&](const StudyCase& c) {
+    return dir + "/" + SnapshotFileOf(Str(*wanted.at(c.index), "case"));
+  };
+  const auto collision = [&](const StudyCase& c) {
+    return Str(*wanted.at(c.index), "verdict") == "collision";
+  };
+  const auto chosen = [&](const StudyCase& c) {
+    return wanted.count(c.index) && !std::filesystem::exists(file_of(c)) && !(stop && stop());
+  };
+  CaseWatch watch;
+  watch.at_end = [&](const SceneRun& run, const StudyCase& c) {
+    if (!collision(c)) render::WritePng(file_of(c), EndImage(base, run, look));
+  };
+  // PathGuard refused the move before it started, so the machine stands where it would have
+  // begun until the case ends; the picture poses it at the contact from there.
+  watch.after = [&](const SceneRun& run, const StudyCase& c, const CaseResult&) {
+    if (!collision(c)) return;
+    const ContactStage stage{run.joint_positions(), run.TurnedStockCylinders()};
+    render::WritePng(file_of(c), ContactImage(base, stage, *wanted.at(c.index), look));
+  };
+  // A process that has rendered must not fork a renderer (render::RendererStarted): its cases
+  // then run from the start here.
+  RunSubroutineCases(
+      base, plan, interruptions, sub, chosen, !render::RendererStarted(), [](const CaseResult&) {},
+      &watch);
+}
+
+}  // namespace
+
 std::map<std::string, std::string> SnapshotCases(const Scene& base, const StudyPlan& plan,
                                                  const std::vector<Interruption>& interruptions,
                                                  const std::vector<CaseResult>& results,
@@ -102,52 +156,24 @@ std::map<std::string, std::string> SnapshotCases(const Scene& base, const StudyP
   if (ids.empty()) return index;
   const CaseSpace space(plan, interruptions);
   std::filesystem::create_directories(dir + "/snapshots");
-  const SnapshotSpec look = Look(base);
-  // The picture of case `id` into its file unless it is there: the file, "" if none was taken.
-  const auto take = [&](const std::string& id) -> std::string {
+  // Per subroutine, the cases to picture (by index) and their results.
+  std::vector<std::map<size_t, const CaseResult*>> wanted(plan.subroutines.size());
+  for (const std::string& id : ids) {
     const std::optional<size_t> k = space.IndexOf(id);
     const auto r = std::find_if(results.begin(), results.end(),
                                 [&](const CaseResult& k) { return Str(k, "case") == id; });
-    if (!k || r == results.end()) return "";
-    const StudyCase c = space.At(*k);
-    const std::string file = SnapshotFileOf(id);
-    if (std::filesystem::exists(dir + "/" + file)) return file;
-    const ScratchFolder scratch(dir + "/.snapshot-" + std::to_string(::getpid()));
-    const std::string& work = scratch.path();
-    SnapshotSpec shot = look;
-    if (Str(*r, "verdict") == "collision") {
-      // At the first contact: PathGuard refused the move before it started, so the machine
-      // stands where it would have begun until the case ends; posed at the contact from there.
-      ContactStage stage;
-      RunCaseFromStart(base, plan, interruptions, c, {}, "", nullptr, [&](const SceneRun& run) {
-        stage.joints = run.joint_positions();
-        stage.stock = run.TurnedStockCylinders();
-      });
-      render::WritePng(dir + "/" + file, ContactImage(base, stage, *r, look));
-      return file;
-    }
-    // The clear case at its end: first learn when that is, then picture it.
-    double t_end = 0;
-    RunCaseFromStart(base, plan, interruptions, c, {}, "", &t_end);
-    shot.at_s = t_end;
-    shot.file = "end.png";
-    RunCaseFromStart(base, plan, interruptions, c, {shot}, work);
-    for (const auto& entry : std::filesystem::directory_iterator(work))
-      if (entry.path().extension() == ".png") {
-        std::filesystem::rename(entry.path(), dir + "/" + file);
-        return file;
-      }
-    return "";
-  };
-  // With jobs > 1, that many processes take the pictures side by side, each every jobs-th
-  // (each case's run is the longest part of a picture). This process then finds them there
-  // and takes only those a process left out (it failed or was ended). A process that has
-  // rendered already takes them alone (RendererStarted).
-  if (jobs > 1 && ids.size() > 1 && !render::RendererStarted()) {
+    if (k && r != results.end()) wanted[space.At(*k).subroutine][*k] = &*r;
+  }
+  std::vector<size_t> subs;
+  for (size_t s = 0; s < wanted.size(); ++s)
+    if (!wanted[s].empty()) subs.push_back(s);
+  // With jobs > 1, that many processes take the subroutines side by side, each every jobs-th.
+  // This process then takes only what a process left out (it failed or was ended).
+  if (jobs > 1 && subs.size() > 1 && !render::RendererStarted()) {
     std::vector<pid_t> helpers;
     std::fflush(nullptr);
     const pid_t parent = ::getpid();
-    for (int w = 0; w < jobs && static_cast<size_t>(w) < ids.size(); ++w) {
+    for (int w = 0; w < jobs && static_cast<size_t>(w) < subs.size(); ++w) {
       const pid_t pid = ::fork();
       if (pid < 0) break;
       if (pid > 0) {
@@ -157,8 +183,8 @@ std::map<std::string, std::string> SnapshotCases(const Scene& base, const StudyP
       DieWithParent(parent);
       int code = 0;
       try {
-        for (size_t i = static_cast<size_t>(w); i < ids.size() && !(stop && stop()); i += jobs)
-          (void)take(ids[i]);
+        for (size_t i = static_cast<size_t>(w); i < subs.size() && !(stop && stop()); i += jobs)
+          PictureSubroutine(base, plan, interruptions, subs[i], wanted[subs[i]], dir, stop);
       } catch (const std::exception& e) {
         std::fprintf(stderr, "vmt study: a picture failed: %s\n", e.what());
         code = 1;
@@ -171,10 +197,12 @@ std::map<std::string, std::string> SnapshotCases(const Scene& base, const StudyP
       ::waitpid(pid, &status, 0);
     }
   }
-  for (const std::string& id : ids) {
+  for (const size_t s : subs) {
     if (stop && stop()) break;
-    if (const std::string file = take(id); !file.empty()) index[id] = file;
+    PictureSubroutine(base, plan, interruptions, s, wanted[s], dir, stop);
   }
+  for (const std::string& id : ids)
+    if (std::filesystem::exists(dir + "/" + SnapshotFileOf(id))) index[id] = SnapshotFileOf(id);
   WriteSnapshotIndex(dir, index);
   return index;
 }

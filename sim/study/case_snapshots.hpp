@@ -2,8 +2,9 @@
 // Pictures of a study's worst cases (report.html links them): per subroutine the most severe
 // collisions at their first contact (contact_picture.hpp: the two parts magenta, the point
 // marked), and the clear case with the smallest clearance at its end. The study runs without
-// pictures; the chosen cases run again from the start afterwards with the scene's camera on --
-// a case is deterministic, so the rerun is the case of cases.jsonl.
+// pictures; the chosen cases run again afterwards, as the study ran them (one run-up per
+// subroutine, forked at their interruption points) -- a case is deterministic, so the rerun is
+// the case of cases.jsonl -- and each takes its picture in its own process.
 
 #include <functional>
 #include <map>
@@ -46,7 +47,7 @@ std::string SnapshotFileOf(const std::string& case_id);
 /// scene's first snapshot (else its first camera, 320x240); a picture already there is kept.
 /// Returns case id -> file relative to dir, and writes it as dir/snapshots.json. A case whose
 /// rerun took no picture is left out. When `stop` says so, no further picture is begun (a
-/// rerun takes the missing ones). `jobs` processes (forked) take them side by side.
+/// rerun takes the missing ones). `jobs` processes (forked) take the subroutines side by side.
 std::map<std::string, std::string> SnapshotCases(
     const Scene& base, const StudyPlan& plan, const std::vector<Interruption>& interruptions,
     const std::vector<CaseResult>& results, const std::vector<std::string>& ids,

@@ -84,6 +84,56 @@ TEST(study_cases, ForkedCaseEqualsTheCaseRunFromTheStart) {
               RunCaseFromStart(t.scene, t.plan, t.interruptions, t.cases[i]).dump());
 }
 
+// The watch sees each case in the case's own process: at the tick it ended (the machine not
+// stepped on), then once it is over, with its result; the same forked as from the start. It
+// writes what it saw to files, so that a forked case's process tells too.
+TEST(study_cases, WatchSeesTheCaseAtItsEndForkedOrNot) {
+  const Tiny t;
+  const auto watch_into = [](const std::string& dir) {
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    CaseWatch w;
+    const auto write = [dir](const StudyCase& c, const std::string& what, const std::string& s) {
+      std::ofstream(dir + "/" + std::to_string(c.index) + "." + what) << s;
+    };
+    w.at_end = [write](const SceneRun& run, const StudyCase& c) {
+      nlohmann::ordered_json j = {{"t", run.time_s()}, {"q", run.joint_positions()}};
+      write(c, "end", j.dump());
+    };
+    w.after = [write](const SceneRun& run, const StudyCase& c, const CaseResult& r) {
+      write(c, "after", nlohmann::ordered_json({{"t", run.time_s()}, {"case", r["case"]}}).dump());
+    };
+    return w;
+  };
+  const auto read = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return nlohmann::ordered_json::parse(in, nullptr, false);
+  };
+  const std::string forked = std::string(VMT_BINARY_DIR) + "/test_output/study/watch-forked";
+  const std::string alone = std::string(VMT_BINARY_DIR) + "/test_output/study/watch-alone";
+  const CaseWatch in_fork = watch_into(forked), from_start = watch_into(alone);
+  std::vector<CaseResult> results;
+  RunSubroutineCases(
+      t.scene, t.plan, t.interruptions, 0, FirstInterruption, true,
+      [&](const CaseResult& r) { results.push_back(r); }, &in_fork);
+  for (const StudyCase& c : t.cases)
+    (void)RunCaseFromStart(t.scene, t.plan, t.interruptions, c, &from_start);
+  ASSERT_EQ(results.size(), t.cases.size());
+  for (size_t i = 0; i < t.cases.size(); ++i) {
+    const std::string n = std::to_string(t.cases[i].index);
+    const nlohmann::ordered_json end = read(forked + "/" + n + ".end");
+    const nlohmann::ordered_json after = read(forked + "/" + n + ".after");
+    ASSERT_TRUE(end.is_object()) << n;
+    ASSERT_TRUE(after.is_object()) << n;
+    EXPECT_EQ(end.dump(), read(alone + "/" + n + ".end").dump()) << n;
+    EXPECT_EQ(after.dump(), read(alone + "/" + n + ".after").dump()) << n;
+    EXPECT_EQ(after["case"], results[i]["case"]);
+    EXPECT_GT(end["t"].get<double>(), results[i]["t_interrupt_s"].get<double>());
+    EXPECT_GE(after["t"].get<double>(), end["t"].get<double>());
+    EXPECT_EQ(end["q"].size(), t.scene.model->joints.size());
+  }
+}
+
 TEST(study_runner_hook, OnEventSeesWhatEventsJsonlRecords) {
   const Scene scene = LoadScene(std::string(VMT_SOURCE_DIR) + "/scenes/repos-collision.yaml");
   RunOptions options;
