@@ -22,51 +22,28 @@ void ChannelGateway::Bind(int number,
   }
 }
 
-ChannelGateway::ChannelGateway(SignalImage& image, int process,
-                               const std::vector<int>& axis_numbers, int spindle_number,
-                               int spindle_drive, int rotary_number)
-    : image_(&image),
-      spindle_drive_(spindle_drive),
-      axis_monitor_(image, axis_numbers, spindle_number) {
-  prefix_ = InstanceName("Pxx", process);
+void ChannelGateway::BindProcess(int process) {
   Bind(process,
        {
            // Operator panel and process signals (repositioning 7, c-axis 2.3 and 4.2, vmt's panel).
-           {"PxxC.AUTO", &auto_.id},
-           {"PxxC.MANU", &manu_.id},
-           {"PxxC.MDI", &mdi_.id},
-           {"PxxC.START", &start_.id},
-           {"PxxC.RESET", &reset_.id},
-           {"PxxC.REV", &rev_.id},
-           {"PxxC.AUXACK", &auxack_.id},
-           {"PxxC.STOP", &stop_},
-           {"PxxC.SBL", &sbl_},
-           {"PxxC.OPSTP", &opstp_},
-           {"PxxC.FOVR", &fovr_},
-           {"PxxC.ENABL", &enabl_},
-           {"PxxC.JOGM0", &jogm_[0]},
-           {"PxxC.JOGM1", &jogm_[1]},
-           {"PxxC.JOGM2", &jogm_[2]},
-           {"PxxC.REPOS", &repos_},
-           {"PxxC.RESTA", &resta_},
-           {"PxxC.MGPOS", &mgpos_},
-           {"PxxC.MGNEG", &mgneg_},
-           {"PxxS.AUTO", &s_auto_},
-           {"PxxS.MANU", &s_manu_},
-           {"PxxS.MDI", &s_mdi_},
-           {"PxxS.RUN", &s_run_},
-           {"PxxS.STOP", &s_stop_},
-           {"PxxS.REPOS", &s_repos_},
-           {"PxxS.CREST", &s_crest_},
-           {"PxxS.REV", &s_rev_},
-           {"PxxS.ERROR", &s_error_},
-           {"PxxS.ERRNR", &s_errnr_},
-           {"PxxS.AUXSTB", &s_auxstb_},
-           {"PxxS.MFUNC", &s_mfunc_},
-           {"PxxS.HFUNC", &s_hfunc_},
-           {"PxxS.TFUNC", &s_tfunc_},
-           {"Pxx.MSG_WR", &msg_wr_},
-           {"Pxx.MSG_WR_N", &msg_wr_n_},
+           {"PxxC.AUTO", &auto_.id},     {"PxxC.MANU", &manu_.id},     {"PxxC.MDI", &mdi_.id},
+           {"PxxC.START", &start_.id},   {"PxxC.RESET", &reset_.id},   {"PxxC.REV", &rev_.id},
+           {"PxxC.AUXACK", &auxack_.id}, {"PxxC.STOP", &stop_},        {"PxxC.SBL", &sbl_},
+           {"PxxC.OPSTP", &opstp_},      {"PxxC.FOVR", &fovr_},        {"PxxC.ENABL", &enabl_},
+           {"PxxC.JOGM0", &jogm_[0]},    {"PxxC.JOGM1", &jogm_[1]},    {"PxxC.JOGM2", &jogm_[2]},
+           {"PxxC.REPOS", &repos_},      {"PxxC.RESTA", &resta_},      {"PxxC.MGPOS", &mgpos_},
+           {"PxxC.MGNEG", &mgneg_},      {"PxxS.AUTO", &s_auto_},      {"PxxS.MANU", &s_manu_},
+           {"PxxS.MDI", &s_mdi_},        {"PxxS.RUN", &s_run_},        {"PxxS.STOP", &s_stop_},
+           {"PxxS.REPOS", &s_repos_},    {"PxxS.CREST", &s_crest_},    {"PxxS.REV", &s_rev_},
+           {"PxxS.ERROR", &s_error_},    {"PxxS.ERRNR", &s_errnr_},    {"PxxS.AUXSTB", &s_auxstb_},
+           {"PxxS.MFUNC", &s_mfunc_},    {"PxxS.HFUNC", &s_hfunc_},    {"PxxS.TFUNC", &s_tfunc_},
+           {"Pxx.MSG_WR", &msg_wr_},     {"Pxx.MSG_WR_N", &msg_wr_n_},
+       });
+}
+
+void ChannelGateway::BindBlockSearch(int process) {
+  Bind(process,
+       {
            // Block search of the ISG kernel (block search 5, 7): the CNC objects, the HLI status,
            // the on/off handshake, and vmt's objects of backward travel and JogOfPath.
            {"Pxx.mc_cmd_bs_type_w", &bs_.type_w},
@@ -128,9 +105,9 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
            {"Pxx.jog_of_path.state_r", &bs_.jop_state_r},
            {"Pxx.jog_of_path.axis_output_r", &bs_.jop_output_r},
        });
-  // Only changes of these levels act (ReadControls): the preset is the last value seen.
-  if (fovr_ >= 0) last_fovr_ = image.Int(fovr_);
-  if (enabl_ >= 0) last_enabl_ = image.Bool(enabl_);
+}
+
+void ChannelGateway::BindAxes(const std::vector<int>& axis_numbers) {
   axes_.resize(axis_numbers.size());
   for (size_t k = 0; k < axis_numbers.size(); ++k) {
     AxisSignals& sig = axes_[k];
@@ -145,65 +122,88 @@ ChannelGateway::ChannelGateway(SignalImage& image, int process,
                               {"AxxS.BBDIG", &sig.bbdig},
                               {"AxxC.HOME", &sig.home.id},
                           });
-    if (sig.enabl >= 0) sig.last_enabl = image.Bool(sig.enabl);
-    if (sig.home.id >= 0) sig.home.last = image.Bool(sig.home.id);
+    if (sig.enabl >= 0) sig.last_enabl = image_->Bool(sig.enabl);
+    if (sig.home.id >= 0) sig.home.last = image_->Bool(sig.home.id);
   }
-  if (spindle_number > 0) {
-    Bind(spindle_number, {
-                             {"AxxC.M3", &spindle_m_[0].id},
-                             {"AxxC.M4", &spindle_m_[1].id},
-                             {"AxxC.M5", &spindle_m_[2].id},
-                             {"AxxC.M19", &spindle_m_[3].id},
-                             {"AxxC.JGPOS", &spindle_jgpos_},
-                             {"AxxC.JGNEG", &spindle_jgneg_},
-                             {"AxxC.ENABL", &spindle_enabl_},
-                             {"AxxC.SOVR", &sovr_},
-                             {"AxxS.RF", &spindle_rf_},
-                             {"AxxS.BBDIG", &spindle_bbdig_},
-                             {"AxxS.NC_NMAX", &nc_nmax_},
-                             {"AxxS.HOMED", &spindle_homed_},
-                             {"AxxS.N_NCMD", &n_ncmd_},
-                             {"AxxS.N_NMIN", &n_nmin_},
-                             {"AxxS.INPOS", &inpos_},
-                             {"AxxS.MD_MDX", &md_mdx_},
-                             {"AxxS.P_PX", &p_px_},
-                             {"AxxS.LOAD90", &load90_},
-                         });
-    // One axis with rotary axis capability (c-axis 2): its HOME is the rotary axis' key.
-    if (std::find(axis_numbers.begin(), axis_numbers.end(), spindle_number) == axis_numbers.end())
-      Bind(spindle_number, {{"AxxC.HOME", &spindle_home_.id}});
-    if (spindle_enabl_ >= 0) last_spindle_enabl_ = image.Bool(spindle_enabl_);
-    if (sovr_ >= 0) last_sovr_ = image.Int(sovr_);
-  }
-  if (spindle_number > 0 && rotary_number > 0) {
-    Headstock& h = headstock_;
-    Bind(spindle_number, {
-                             {"Axx.ROTMOD", &h.rotmod},
-                             {"Axx.SPMOD", &h.spmod},
-                             {"Axx.ROTMOD_Q", &h.rotmod_q},
-                             {"Axx.SPMOD_Q", &h.spmod_q},
-                             {"AxxC.READY", &h.spindle_ready},
-                             {"Axx.AXD.65012", &h.spindle_axd[0]},
-                             {"Axx.AXD.65013", &h.spindle_axd[1]},
-                             {"Axx.AXD.65014", &h.spindle_axd[2]},
-                             {"Axx.AXD.65015", &h.spindle_axd[3]},
-                         });
-    Bind(rotary_number, {
-                            {"AxxC.READY", &h.rotary_ready},
-                            {"Axx.AXD.65012", &h.rotary_axd[0]},
-                            {"Axx.AXD.65013", &h.rotary_axd[1]},
-                            {"Axx.AXD.65014", &h.rotary_axd[2]},
-                            {"Axx.AXD.65015", &h.rotary_axd[3]},
-                        });
-  }
+}
+
+void ChannelGateway::BindSpindle(int spindle_number, const std::vector<int>& axis_numbers) {
+  Bind(spindle_number, {
+                           {"AxxC.M3", &spindle_m_[0].id},
+                           {"AxxC.M4", &spindle_m_[1].id},
+                           {"AxxC.M5", &spindle_m_[2].id},
+                           {"AxxC.M19", &spindle_m_[3].id},
+                           {"AxxC.JGPOS", &spindle_jgpos_},
+                           {"AxxC.JGNEG", &spindle_jgneg_},
+                           {"AxxC.ENABL", &spindle_enabl_},
+                           {"AxxC.SOVR", &sovr_},
+                           {"AxxS.RF", &spindle_rf_},
+                           {"AxxS.BBDIG", &spindle_bbdig_},
+                           {"AxxS.NC_NMAX", &nc_nmax_},
+                           {"AxxS.HOMED", &spindle_homed_},
+                           {"AxxS.N_NCMD", &n_ncmd_},
+                           {"AxxS.N_NMIN", &n_nmin_},
+                           {"AxxS.INPOS", &inpos_},
+                           {"AxxS.MD_MDX", &md_mdx_},
+                           {"AxxS.P_PX", &p_px_},
+                           {"AxxS.LOAD90", &load90_},
+                       });
+  // One axis with rotary axis capability (c-axis 2): its HOME is the rotary axis' key.
+  if (std::find(axis_numbers.begin(), axis_numbers.end(), spindle_number) == axis_numbers.end())
+    Bind(spindle_number, {{"AxxC.HOME", &spindle_home_.id}});
+  if (spindle_enabl_ >= 0) last_spindle_enabl_ = image_->Bool(spindle_enabl_);
+  if (sovr_ >= 0) last_sovr_ = image_->Int(sovr_);
+}
+
+void ChannelGateway::BindHeadstock(int spindle_number, int rotary_number) {
+  Headstock& h = headstock_;
+  Bind(spindle_number, {
+                           {"Axx.ROTMOD", &h.rotmod},
+                           {"Axx.SPMOD", &h.spmod},
+                           {"Axx.ROTMOD_Q", &h.rotmod_q},
+                           {"Axx.SPMOD_Q", &h.spmod_q},
+                           {"AxxC.READY", &h.spindle_ready},
+                           {"Axx.AXD.65012", &h.spindle_axd[0]},
+                           {"Axx.AXD.65013", &h.spindle_axd[1]},
+                           {"Axx.AXD.65014", &h.spindle_axd[2]},
+                           {"Axx.AXD.65015", &h.spindle_axd[3]},
+                       });
+  Bind(rotary_number, {
+                          {"AxxC.READY", &h.rotary_ready},
+                          {"Axx.AXD.65012", &h.rotary_axd[0]},
+                          {"Axx.AXD.65013", &h.rotary_axd[1]},
+                          {"Axx.AXD.65014", &h.rotary_axd[2]},
+                          {"Axx.AXD.65015", &h.rotary_axd[3]},
+                      });
+}
+
+void ChannelGateway::FindQFunctions() {
   // Q functions the table knows: Pxx.Qnnnn out, Pxx.Qnnnn_Q acknowledgement.
   const std::string q = prefix_ + ".Q";
-  for (int id = 0; id < image.size(); ++id) {
-    const std::string& name = image.table()[id].name;
+  for (int id = 0; id < image_->size(); ++id) {
+    const std::string& name = image_->table()[id].name;
     if (name.rfind(q, 0) != 0 || name.find('_') != std::string::npos) continue;
     const int ack = Id(name + "_Q");
     if (ack >= 0) q_.push_back({std::atoi(name.c_str() + q.size()), id, ack});
   }
+}
+
+ChannelGateway::ChannelGateway(SignalImage& image, int process,
+                               const std::vector<int>& axis_numbers, int spindle_number,
+                               int spindle_drive, int rotary_number)
+    : image_(&image),
+      spindle_drive_(spindle_drive),
+      axis_monitor_(image, axis_numbers, spindle_number) {
+  prefix_ = InstanceName("Pxx", process);
+  BindProcess(process);
+  BindBlockSearch(process);
+  // Only changes of these levels act (ReadControls): the preset is the last value seen.
+  if (fovr_ >= 0) last_fovr_ = image.Int(fovr_);
+  if (enabl_ >= 0) last_enabl_ = image.Bool(enabl_);
+  BindAxes(axis_numbers);
+  if (spindle_number > 0) BindSpindle(spindle_number, axis_numbers);
+  if (spindle_number > 0 && rotary_number > 0) BindHeadstock(spindle_number, rotary_number);
+  FindQFunctions();
 }
 
 bool ChannelGateway::Event(int n) const {

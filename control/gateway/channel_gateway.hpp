@@ -70,6 +70,15 @@ class ChannelGateway {
   /// Each pattern's instance for process or axis `number` into its id field: the binding
   /// table, in the catalog's spelling.
   void Bind(int number, std::initializer_list<std::pair<std::string_view, int*>> table);
+  // The constructor's bindings, part by part: the process' panel and status signals, the block
+  // search objects, each axis', the spindle's, the headstock's (a spindle with rotary axis
+  // capability), and the Q functions the signal table holds.
+  void BindProcess(int process);
+  void BindBlockSearch(int process);
+  void BindAxes(const std::vector<int>& axis_numbers);
+  void BindSpindle(int spindle_number, const std::vector<int>& axis_numbers);
+  void BindHeadstock(int spindle_number, int rotary_number);
+  void FindQFunctions();
 
   SignalImage* image_;
   Edge auto_, manu_, mdi_, start_, reset_, rev_, auxack_;
