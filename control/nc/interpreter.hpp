@@ -299,6 +299,9 @@ class Interpreter {
   bool Words(const Block& block, PreparedBlock& out);
   /// A G word of value `v` at `offset`: its modal group, or the block's G04/G74/G77/G92/G100.
   bool GWord(double v, uint32_t offset, PreparedBlock& out);
+  /// An auxiliary function word (M, S, T, D, H, Q; `index` its j of Mj=) into the block's
+  /// output and the modal state it sets; false for any other letter.
+  bool AuxWord(char letter, int index, double v, PreparedBlock& out);
   /// X1/Y1 of G31/G32 (values in `fictive`, NaN: not programmed) into the targets of X and C.
   bool FictiveWords(const double fictive[2], uint32_t offset, uint8_t ijk,
                     const uint32_t ijk_offset[3], PreparedBlock& out);
@@ -317,6 +320,11 @@ class Interpreter {
   /// TLD/OTD/MTD(...) in an expression, through data_.
   double ReadData(uint32_t name, Instruction instruction, std::vector<InstructionArg> args,
                   std::span<const double> values, uint32_t offset, uint32_t rank);
+  /// The value a call or argument list leaves on the expression stack: `call` its code unit's
+  /// index in expression `id`, `op` kCall or kArgs, `operands` its count, function, offset and
+  /// rank units (followed by the next operation), `values` its arguments.
+  double CallValue(ExprId id, size_t call, ExprOp op, uint32_t name, const uint32_t* operands,
+                   std::span<const double> values);
   /// A built-in function (`name` for the messages).
   double Call(uint32_t name, Function function, std::span<const double> args, uint32_t offset,
               uint32_t rank);

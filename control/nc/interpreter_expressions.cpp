@@ -218,29 +218,32 @@ double Interpreter::Eval(ExprId id) {
       case Op::kArgs: {
         const size_t at = static_cast<size_t>(pc - 1 - p.code.data());
         const uint32_t name = immediate(unit);
-        const uint32_t count = CountOf(pc[0]), offset = pc[1], rank = pc[2];
-        const Function function = FunctionOfUnit(pc[0]);
-        pc += 3;
+        const uint32_t count = CountOf(pc[0]);
         sp -= count;
-        const std::span<const double> values{sp, count};
-        if (capture_ && OpOf(*pc) == Op::kEnd) {
-          // EvalArguments: the call that ends the expression is not made, its arguments are.
-          *capture_ = ArgumentForms(id, at);
-          for (size_t i = 0; i < capture_->size() && i < count; ++i)
-            if ((*capture_)[i].kind == InstructionArg::Kind::kValue) (*capture_)[i].value = values[i];
-          *sp = 0;
-        } else if (OpOf(unit) == Op::kArgs) {
-          *sp = 0;
-        } else if (const Instruction data = DataAccessOf(function); data != Instruction::kNone) {
-          *sp = ReadData(name, data, ArgumentForms(id, at), values, offset, rank);
-        } else {
-          *sp = Call(name, function, values, offset, rank);
-        }
+        *sp = CallValue(id, at, OpOf(unit), name, pc, {sp, count});
+        pc += 3;
         ++sp;
         break;
       }
     }
   }
+}
+
+double Interpreter::CallValue(ExprId id, size_t call, ExprOp op, uint32_t name,
+                              const uint32_t* operands, std::span<const double> values) {
+  const uint32_t offset = operands[1], rank = operands[2];
+  const Function function = FunctionOfUnit(operands[0]);
+  if (capture_ && OpOf(operands[3]) == ExprOp::kEnd) {
+    // EvalArguments: the call that ends the expression is not made, its arguments are.
+    *capture_ = ArgumentForms(id, call);
+    for (size_t i = 0; i < capture_->size() && i < values.size(); ++i)
+      if ((*capture_)[i].kind == InstructionArg::Kind::kValue) (*capture_)[i].value = values[i];
+    return 0;
+  }
+  if (op == ExprOp::kArgs) return 0;
+  if (const Instruction data = DataAccessOf(function); data != Instruction::kNone)
+    return ReadData(name, data, ArgumentForms(id, call), values, offset, rank);
+  return Call(name, function, values, offset, rank);
 }
 
 double Interpreter::Call(uint32_t id, Function function, std::span<const double> args,

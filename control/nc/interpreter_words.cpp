@@ -126,6 +126,41 @@ bool Interpreter::GWord(double v, uint32_t offset, PreparedBlock& out) {
   return true;
 }
 
+bool Interpreter::AuxWord(char letter, int index, double v, PreparedBlock& out) {
+  switch (letter) {
+    case 'M': {
+      const int m = static_cast<int>(std::lround(v));
+      // Mj= with j >= 2 addresses spindle j (channel further_spindles.hpp), never the
+      // main spindle's, the coolant's or the program's functions.
+      const bool own = index <= 1;
+      if (own && (m == 3 || m == 4 || m == 5 || m == 19)) modal_.spindle = m;
+      if (own && (m == 7 || m == 8 || m == 9)) modal_.coolant = m;
+      if (own && (m == 30 || m == 2)) out.end = true;
+      out.aux.push_back({'M', index, v});
+      return true;
+    }
+    case 'S':
+      // S and S1= are the main spindle's speed; Sj= with j >= 2 spindle j's.
+      if (index <= 1 && !out.repos) modal_.spindle_speed = v;
+      out.aux.push_back({'S', index, v});
+      return true;
+    case 'T':
+      modal_.tool = static_cast<int>(v);
+      out.aux.push_back({'T', index, v});
+      return true;
+    case 'D':
+      modal_.correction = static_cast<int>(v);
+      out.aux.push_back({'D', index, v});
+      return true;
+    case 'H':
+    case 'Q':
+      out.aux.push_back({letter, index, v});
+      return true;
+    default:
+      return false;
+  }
+}
+
 bool Interpreter::Words(const Block& block, PreparedBlock& out) {
   const Program& p = program();
   eval_failed_ = false;
@@ -176,6 +211,7 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
         if (!GWord(v, w.offset, out)) return false;
         continue;
       }
+      if (AuxWord(letter, index, v, out)) continue;
       switch (letter) {
         case 'F':
           if (out.dwell_s < 0)
@@ -197,34 +233,6 @@ bool Interpreter::Words(const Block& block, PreparedBlock& out) {
             continue;
           }
           break;  // RX RY RZ below
-        case 'M': {
-          const int m = static_cast<int>(std::lround(v));
-          // Mj= with j >= 2 addresses spindle j (channel further_spindles.hpp), never the
-          // main spindle's, the coolant's or the program's functions.
-          const bool own = index <= 1;
-          if (own && (m == 3 || m == 4 || m == 5 || m == 19)) modal_.spindle = m;
-          if (own && (m == 7 || m == 8 || m == 9)) modal_.coolant = m;
-          if (own && (m == 30 || m == 2)) out.end = true;
-          out.aux.push_back({'M', index, v});
-          continue;
-        }
-        case 'S':
-          // S and S1= are the main spindle's speed; Sj= with j >= 2 spindle j's.
-          if (index <= 1 && !out.repos) modal_.spindle_speed = v;
-          out.aux.push_back({'S', index, v});
-          continue;
-        case 'T':
-          modal_.tool = static_cast<int>(v);
-          out.aux.push_back({'T', index, v});
-          continue;
-        case 'D':
-          modal_.correction = static_cast<int>(v);
-          out.aux.push_back({'D', index, v});
-          continue;
-        case 'H':
-        case 'Q':
-          out.aux.push_back({letter, index, v});
-          continue;
         default:
           break;
       }
