@@ -10,8 +10,6 @@
 namespace vmt::control::gateway {
 namespace {
 
-bool IsReal(SignalType t) { return t == SignalType::kReal || t == SignalType::kLreal; }
-
 int64_t RealBits(SignalType type, double v) {
   // A REAL cell holds the binary32 value widened, so that Real() equals what the PLC reads.
   if (type == SignalType::kReal) v = static_cast<double>(static_cast<float>(v));
@@ -63,7 +61,8 @@ void SignalImage::CopyValuesFrom(const SignalImage& other) {
 }
 
 void SignalImage::CopyValue(int id, const SignalImage& other) {
-  Check(id, other.size() == size(), "CopyValue");
+  VMT_DEMAND(other.size() == size(), "gateway: CopyValue: an image of another table");
+  Check(id, AnyType, "CopyValue");
   if (types_[id] == SignalType::kString)
     SetString(id, other.strings_[other.cells_[id]]);
   else
@@ -94,12 +93,12 @@ void SignalImage::Refuse(int id, const char* accessor) const {
 }
 
 int64_t SignalImage::Int(int id) const {
-  Check(id, id >= 0 && id < size() && IsInteger(types_[id]), "Int");
+  Check(id, IsInteger, "Int");
   return cells_[id];
 }
 
 void SignalImage::SetInt(int id, int64_t v) {
-  Check(id, id >= 0 && id < size() && IsInteger(types_[id]), "SetInt");
+  Check(id, IsInteger, "SetInt");
   const SignalType t = types_[id];
   VMT_DEMAND(v >= MinValue(t) && v <= MaxValue(t), "gateway: SetInt(%s, %lld): outside the range of %s",
              table_[id].name.c_str(), static_cast<long long>(v), ToString(t));
@@ -107,22 +106,22 @@ void SignalImage::SetInt(int id, int64_t v) {
 }
 
 double SignalImage::Real(int id) const {
-  Check(id, id >= 0 && id < size() && IsReal(types_[id]), "Real");
+  Check(id, IsReal, "Real");
   return std::bit_cast<double>(cells_[id]);
 }
 
 void SignalImage::SetReal(int id, double v) {
-  Check(id, id >= 0 && id < size() && IsReal(types_[id]), "SetReal");
+  Check(id, IsReal, "SetReal");
   Store(id, RealBits(types_[id], v));
 }
 
 const std::string& SignalImage::String(int id) const {
-  Check(id, id >= 0 && id < size() && types_[id] == SignalType::kString, "String");
+  Check(id, IsString, "String");
   return strings_[cells_[id]];
 }
 
 void SignalImage::SetString(int id, std::string_view v) {
-  Check(id, id >= 0 && id < size() && types_[id] == SignalType::kString, "SetString");
+  Check(id, IsString, "SetString");
   VMT_DEMAND(v.size() <= static_cast<size_t>(kStringBytes - 1) &&
                  v.find('\0') == std::string_view::npos,
              "gateway: SetString(%s): %zu bytes or an embedded NUL; a STRING holds at most %d",
@@ -134,29 +133,30 @@ void SignalImage::SetString(int id, std::string_view v) {
 }
 
 double SignalImage::Number(int id) const {
-  Check(id, true, "Number");
-  switch (type(id)) {
+  Check(id, AnyType, "Number");
+  const int64_t cell = cells_[id];
+  switch (types_[id]) {
     case SignalType::kBool:
-      return Bool(id) ? 1 : 0;
+      return cell != 0 ? 1 : 0;
     case SignalType::kReal:
     case SignalType::kLreal:
-      return Real(id);
+      return std::bit_cast<double>(cell);
     case SignalType::kString:
       return 0;
     default:
-      return static_cast<double>(Int(id));
+      return static_cast<double>(cell);
   }
 }
 
 void SignalImage::SetNumber(int id, double value) {
-  Check(id, true, "SetNumber");
-  switch (type(id)) {
+  Check(id, AnyType, "SetNumber");
+  switch (types_[id]) {
     case SignalType::kBool:
-      SetBool(id, value != 0);
+      Store(id, value != 0 ? 1 : 0);
       return;
     case SignalType::kReal:
     case SignalType::kLreal:
-      SetReal(id, value);
+      Store(id, RealBits(types_[id], value));
       return;
     case SignalType::kString:
       return;

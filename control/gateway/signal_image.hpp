@@ -34,11 +34,11 @@ class SignalImage {
   // for kBool; Int for the integer types; Real for kReal and kLreal; String for kString) and
   // on an integer outside its type's range or a string longer than 83 bytes.
   bool Bool(int id) const {
-    Check(id, id >= 0 && id < size() && types_[id] == SignalType::kBool, "Bool");
+    Check(id, IsBool, "Bool");
     return cells_[id] != 0;
   }
   void SetBool(int id, bool v) {
-    Check(id, id >= 0 && id < size() && types_[id] == SignalType::kBool, "SetBool");
+    Check(id, IsBool, "SetBool");
     Store(id, v ? 1 : 0);
   }
   int64_t Int(int id) const;
@@ -72,11 +72,16 @@ class SignalImage {
 
  private:
   // Inline, because the NC, the PLC and the watchers make tens of these accesses each NC cycle;
-  // the refusal, with its message, out of line.
-  void Check(int id, bool ok_type, const char* accessor) const {
-    if (id < 0 || id >= size() || !ok_type) [[unlikely]]
+  // the refusal, with its message, out of line. `accepts` is the accessor's test of the type.
+  template <class TypeTest>
+  void Check(int id, TypeTest accepts, const char* accessor) const {
+    if (id < 0 || id >= size() || !accepts(types_[id])) [[unlikely]]
       Refuse(id, accessor);
   }
+  static bool IsBool(SignalType t) { return t == SignalType::kBool; }
+  static bool IsReal(SignalType t) { return t == SignalType::kReal || t == SignalType::kLreal; }
+  static bool IsString(SignalType t) { return t == SignalType::kString; }
+  static bool AnyType(SignalType) { return true; }
   [[noreturn]] void Refuse(int id, const char* accessor) const;
   void Store(int id, int64_t cell) {
     if (cells_[id] == cell) return;

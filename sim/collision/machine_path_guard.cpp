@@ -4,6 +4,25 @@
 #include <cmath>
 
 namespace vmt::sim {
+namespace {
+
+/// A move's two ends as joint positions, and which drives move between them.
+struct MoveJoints {
+  std::vector<char> moving;
+  std::vector<double> q_from, q_to;
+};
+
+MoveJoints JointsOfMove(const MachinePathGuard& guard, const std::vector<double>& base,
+                        const std::vector<double>& from, const std::vector<double>& to) {
+  MoveJoints m;
+  m.moving.assign(from.size(), 0);
+  for (size_t d = 0; d < from.size() && d < to.size(); ++d) m.moving[d] = from[d] != to[d];
+  m.q_from = guard.JointPositions(base, from, m.moving);
+  m.q_to = guard.JointPositions(base, to, m.moving);
+  return m;
+}
+
+}  // namespace
 
 MachinePathGuard::MachinePathGuard(const MachineModel& model,
                                    const std::vector<CylinderPart>& added,
@@ -97,18 +116,8 @@ control::PathCheck MachinePathGuard::CheckMove(const std::vector<double>& from,
                                                const std::vector<double>& to) {
   if (before_check) before_check(world_);
   Refresh(turning_);
-  std::vector<char> moving(from.size(), 0);
-  double path = 0;
-  for (size_t d = 0; d < from.size() && d < to.size(); ++d) {
-    moving[d] = from[d] != to[d];
-    if (moving[d] && d < model_->drives.size() &&
-        model_->drives[d].info.kind == control::AxisKind::kLinear)
-      path += (to[d] - from[d]) * (to[d] - from[d]);
-  }
-  const std::vector<double> base = current_();
-  std::vector<double> q_from = JointPositions(base, from, moving);
-  std::vector<double> q_to = JointPositions(base, to, moving);
-  const StraightMoveCheck c = CheckStraightMove(world_, q_from, q_to, options);
+  MoveJoints m = JointsOfMove(*this, current_(), from, to);
+  const StraightMoveCheck c = CheckStraightMove(world_, m.q_from, m.q_to, options);
   control::PathCheck out;
   out.clear = c.clear;
   out.min_clearance = c.min_clearance_m * kMmPerM;
@@ -116,7 +125,7 @@ control::PathCheck MachinePathGuard::CheckMove(const std::vector<double>& from,
   if (c.closest_b >= 0) out.closest_b = world_.part(c.closest_b).name;
   proof_.reset();
   if (c.clear && c.closest_a >= 0 && c.pairs_resting == 0)
-    proof_ = Proof{{std::move(q_from), std::move(q_to), c.min_clearance_m},
+    proof_ = Proof{{std::move(m.q_from), std::move(m.q_to), c.min_clearance_m},
                    world_version_,
                    out.closest_a,
                    out.closest_b};
@@ -124,10 +133,14 @@ control::PathCheck MachinePathGuard::CheckMove(const std::vector<double>& from,
   out.part_a = world_.part(c.part_a).name;
   out.part_b = world_.part(c.part_b).name;
   for (int i = 0; i < 3; ++i) out.point[i] = c.point[i] * kMmPerM;
+  double path = 0;  // the linear axes' path length
+  for (size_t d = 0; d < from.size() && d < model_->drives.size(); ++d)
+    if (m.moving[d] && model_->drives[d].info.kind == control::AxisKind::kLinear)
+      path += (to[d] - from[d]) * (to[d] - from[d]);
   out.distance = std::sqrt(path) * c.u;
   out.position.resize(from.size());
   for (size_t d = 0; d < from.size(); ++d)
-    out.position[d] = moving[d] ? from[d] + (to[d] - from[d]) * c.u : from[d];
+    out.position[d] = m.moving[d] ? from[d] + (to[d] - from[d]) * c.u : from[d];
   return out;
 }
 
@@ -137,13 +150,9 @@ bool MachinePathGuard::Proves(const std::vector<double>& from, const std::vector
   if (before_check) before_check(world_);
   Refresh(turning_);
   if (world_version_ != proof_->world_version) return false;
-  std::vector<char> moving(from.size(), 0);
-  for (size_t d = 0; d < from.size() && d < to.size(); ++d) moving[d] = from[d] != to[d];
-  const std::vector<double> base = current_();
-  const std::vector<double> q_from = JointPositions(base, from, moving);
-  const std::vector<double> q_to = JointPositions(base, to, moving);
+  const MoveJoints m = JointsOfMove(*this, current_(), from, to);
   const std::optional<Stray> stray =
-      StrayFrom(world_, proof_->move, q_from, q_to, world_swept_ ? sweep_.joint : -1);
+      StrayFrom(world_, proof_->move, m.q_from, m.q_to, world_swept_ ? sweep_.joint : -1);
   // The proven move's clearance may be that much less than reported. A move that strays by at
   // most as much again is proven, and its clearance reported as the query's with that margin.
   const double reported = proof_->move.clearance_m;
@@ -156,7 +165,7 @@ bool MachinePathGuard::Proves(const std::vector<double>& from, const std::vector
   if (stray->any_turned) {
     // The pairs of the parts a rotation moved are queried, the rest stand proven.
     const PairScope scope{&stray->turned, clearance_m};
-    const StraightMoveCheck c = CheckStraightMove(world_, q_from, q_to, options, &scope);
+    const StraightMoveCheck c = CheckStraightMove(world_, m.q_from, m.q_to, options, &scope);
     if (!c.clear || c.pairs_resting > 0) return false;  // the whole move's query tells
     if (c.closest_a >= 0) {
       clearance_m = c.min_clearance_m;
