@@ -222,6 +222,19 @@ void ChannelGateway::SetEvent(int n, bool value) {
 }
 
 void ChannelGateway::ReadControls(channel::Channel& ch) {
+  ReadProcessControls(ch);
+  // C-axis manual 4.2: a safety limit or thermal protection switch that opens stops all first.
+  axis_monitor_.ReadControls(ch);
+  ReadEnablesAndKeys(ch);
+  ReadAuxAcknowledge(ch);
+  // Fast-measurement 6.3: the PLC's messages to the NC go to its message list.
+  if (msg_wr_ >= 0)
+    ch.SetPlcMessage(
+        {static_cast<int>(image_->Int(msg_wr_)), msg_wr_n_ >= 0 ? image_->Int(msg_wr_n_) : 0});
+  if (ch.headstock()) ReadHeadstock(ch);
+}
+
+void ChannelGateway::ReadProcessControls(channel::Channel& ch) {
   SignalImage& im = *image_;
   // Mode selection: the rising edge asks for a mode; the channel refuses while a program runs,
   // and PxxS.AUTO/MANU/MDI show what it is in.
@@ -260,8 +273,10 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
     if (percent != last_sovr_)
       ch.SetSpindleOverride(static_cast<double>(percent) / 100), last_sovr_ = percent;
   }
-  // C-axis manual 4.2: a safety limit or thermal protection switch that opens stops all first.
-  axis_monitor_.ReadControls(ch);
+}
+
+void ChannelGateway::ReadEnablesAndKeys(channel::Channel& ch) {
+  SignalImage& im = *image_;
   // C-axis manual 4.2: the axis enabling signals, before the keys they gate. Like the process
   // enabling signal they act when they change: a PLC that never writes them (a machine
   // without one, a scene's timeline) leaves the axes enabled.
@@ -302,6 +317,10 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
     const int key = pos == neg ? 0 : pos ? 1 : -1;
     if (key != last_mg_key_) ch.JogToolStorage(key), last_mg_key_ = key;
   }
+}
+
+void ChannelGateway::ReadAuxAcknowledge(channel::Channel& ch) {
+  const SignalImage& im = *image_;
   // Acknowledgement of the auxiliary functions: AUXACK's edge while the strobe is out, or every
   // pending Q function acknowledged on its own signal.
   bool ack = auxack_.Rising(im) && aux_strobe_;
@@ -318,24 +337,22 @@ void ChannelGateway::ReadControls(channel::Channel& ch) {
     ack = all_q;
   }
   if (ack) ch.AcknowledgeAux();
-  // Fast-measurement 6.3: the PLC's messages to the NC go to its message list.
-  if (msg_wr_ >= 0)
-    ch.SetPlcMessage({static_cast<int>(im.Int(msg_wr_)), msg_wr_n_ >= 0 ? im.Int(msg_wr_n_) : 0});
+}
 
-  if (ch.headstock()) {
-    const Headstock& h = headstock_;
-    axes::HeadstockPlc plc;
-    const auto level = [&](int id, bool missing) { return id >= 0 ? im.Bool(id) : missing; };
-    plc.rotmod_q = level(h.rotmod_q, false);
-    plc.spmod_q = level(h.spmod_q, false);
-    plc.spindle_ready = level(h.spindle_ready, true);
-    plc.rotary_ready = level(h.rotary_ready, true);
-    for (int k = 0; k < 4; ++k) {
-      plc.spindle_axd[k] = h.spindle_axd[k] >= 0 ? im.Int(h.spindle_axd[k]) : 0;
-      plc.rotary_axd[k] = h.rotary_axd[k] >= 0 ? im.Int(h.rotary_axd[k]) : 0;
-    }
-    ch.SetHeadstockPlc(plc);
+void ChannelGateway::ReadHeadstock(channel::Channel& ch) {
+  const SignalImage& im = *image_;
+  const Headstock& h = headstock_;
+  axes::HeadstockPlc plc;
+  const auto level = [&](int id, bool missing) { return id >= 0 ? im.Bool(id) : missing; };
+  plc.rotmod_q = level(h.rotmod_q, false);
+  plc.spmod_q = level(h.spmod_q, false);
+  plc.spindle_ready = level(h.spindle_ready, true);
+  plc.rotary_ready = level(h.rotary_ready, true);
+  for (int k = 0; k < 4; ++k) {
+    plc.spindle_axd[k] = h.spindle_axd[k] >= 0 ? im.Int(h.spindle_axd[k]) : 0;
+    plc.rotary_axd[k] = h.rotary_axd[k] >= 0 ? im.Int(h.rotary_axd[k]) : 0;
   }
+  ch.SetHeadstockPlc(plc);
 }
 
 void ChannelGateway::WriteStatus(const channel::Channel& ch, const AmplifierTelegram& at) {

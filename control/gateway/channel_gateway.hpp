@@ -159,6 +159,13 @@ class ChannelGateway {
   void SetNumber(int id, double value) {
     if (id >= 0) image_->SetNumber(id, value);
   }
+  // ReadControls' parts, in their order: mode, reset, block search, start/stop, overrides;
+  // the axes' and spindle's enabling signals and keys; the auxiliary functions'
+  // acknowledgement; the headstock's PLC signals.
+  void ReadProcessControls(channel::Channel& ch);
+  void ReadEnablesAndKeys(channel::Channel& ch);
+  void ReadAuxAcknowledge(channel::Channel& ch);
+  void ReadHeadstock(channel::Channel& ch);
   void ReadBlockSearch(channel::Channel& ch);
   void WriteBlockSearch(const channel::Channel& ch);
   /// Q functions with their own signal and acknowledgement (Pxx.Qnnnn / Pxx.Qnnnn_Q).
