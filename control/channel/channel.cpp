@@ -79,7 +79,7 @@ void Channel::ForgetEndedProgram() {
   if (work_.interpreter) last_modal_ = work_.interpreter->modal();
   work_.interpreter.reset();
   parked_ = ProgramInWork{};
-  ClearRepos();
+  repos_.Clear();
   measuring_.ForgetProgram();  // SETTING holds for one run of the program
 }
 
@@ -116,12 +116,12 @@ bool Channel::Reverse() {
   // program's reverse vector was written for, so without a REV of its own it has none.
   const nc::ReverseLabel label =
       work_.interpreter && work_.block.block >= 0 ? work_.block.reverse : nc::ReverseLabel{};
-  if (repos_.run) {  // the REPOS subroutine is given up (4.1); its variables are the program's
+  if (repos_.run()) {  // the REPOS subroutine is given up (4.1); its variables are the program's
     HandBackVariables();
     SwapProgramInWork();
   }
   parked_ = ProgramInWork{};
-  ClearRepos();
+  repos_.Clear();
   if (!work_.interpreter) work_.interpreter = MakeInterpreter();
   if (!work_.interpreter->Reverse(label)) {
     Fail(programs_[0]->files[0] + ": error: the program has no reverse program .HOME",
@@ -210,8 +210,8 @@ void Channel::Tick(const AmplifierTelegram& at, MasterTelegram& mdt) {
     out_.suspended = suspend;
     // A held program whose axes go to the other channel is left as in manual mode (REPOS 2.1):
     // where it was interrupted is the contour to come back to. Block search has no contour yet.
-    if (suspend && state_ == ChannelState::kHold && work_.interpreter && !repos_.interruption &&
-        !repos_.run && bs_.state == BlockSearchState::kInactive)
+    if (suspend && state_ == ChannelState::kHold && work_.interpreter && !repos_.interruption() &&
+        !repos_.run() && bs_.state == BlockSearchState::kInactive)
       CaptureInterruption();
   }
   headstock_.PowerOn();
@@ -344,26 +344,15 @@ uint64_t Channel::FollowUpAxes(const nc::PreparedBlock& b) const {
 
 bool Channel::UpdateTranslation(const nc::ModalState& modal, const nc::Program& program,
                                 int32_t block) {
-  // Tool length: G48 adds the edge's lengths, G49 subtracts them, G47 ignores the tool list.
-  const axes::ToolEdge* edge = nullptr;
-  std::optional<axes::ToolEdge> found;
-  if (modal.tool_length != nc::ToolLength::kOff && modal.correction != 0) {
-    found = config_.tools.Find(modal.tool, modal.correction);
-    if (!found) {
-      Fail(program, block,
-           "T" + std::to_string(modal.tool) + " D" + std::to_string(modal.correction) +
-               " is not in the tool list (G" + std::to_string(nc::GCode(modal.tool_length)) + ")",
-           kMsgToolNotInList);
-      return false;
-    }
-    edge = &*found;
+  const std::optional<axes::ToolEdge> edge = ActiveEdge(config_, modal);
+  if (!edge && modal.tool_length != nc::ToolLength::kOff && modal.correction != 0) {
+    Fail(program, block,
+         "T" + std::to_string(modal.tool) + " D" + std::to_string(modal.correction) +
+             " is not in the tool list (G" + std::to_string(nc::GCode(modal.tool_length)) + ")",
+         kMsgToolNotInList);
+    return false;
   }
-  const double sign = modal.tool_length == nc::ToolLength::kSubtract ? -1 : 1;
-  for (size_t a = 0; a < frames_.translation.size(); ++a) {
-    const double length = edge ? edge->Length(a, config_.axes[a].name) : 0;
-    frames_.translation[a] =
-        config_.zero_offsets.Offset(modal.zero_offset, a) + frames_.shift[a] - sign * length;
-  }
+  frames_.translation = channel::TranslationOf(config_, frames_.shift, modal, edge);
   if (headstock_) {
     // The rotary axis' offsets act in rotary axis mode only (C-axis manual 2.3 Zero Point
     // Shifts); they stay selected meanwhile and come back with it (see RotaryOffsetsActive).
@@ -436,7 +425,7 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
     }
     std::sort(work_.homing_stages.begin(), work_.homing_stages.end());
     work_.homing = true;
-    if (!repos_.run) PathBarrier();
+    if (!repos_.run()) PathBarrier();
     return NextHomingStage();
   }
   for (size_t a = 0; a < out_.commanded.size(); ++a)
@@ -461,7 +450,7 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
     planned = &tracked;
   }
   if (nc::SpindleSynchronous(work_.block.motion)) {
-    if (!repos_.run) PathBarrier();  // the spindle cannot be turned back in step
+    if (!repos_.run()) PathBarrier();  // the spindle cannot be turned back in step
     return StartSynchronous(at);
   }
   sync_.Clear();
@@ -480,14 +469,14 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
   // Issue 6: the REPOS subroutine's moves are approach moves, checked whole before they start
   // as G77's are (its blocks are reached at rest for that: LookAhead), and so are a JogOfPath
   // channel's. The program's own cuts are not: the stock is theirs to cut.
-  if ((repos_.run || config_.approach_program) &&
-      !GuardBlockMove(repos_.run ? "REPOS subroutine" : "JogOfPath"))
+  if ((repos_.run() || config_.approach_program) &&
+      !GuardBlockMove(repos_.run() ? "REPOS subroutine" : "JogOfPath"))
     return false;
   work_.profile.max_rate = work_.motion.max_rate;
   work_.profile.max_accel = work_.motion.max_accel;
   work_.profile.max_jerk = work_.motion.max_jerk;
   work_.active = true;
-  if (!repos_.run) RecordPath(work_.motion, work_.block.motion == nc::Motion::kRapid);
+  if (!repos_.run()) RecordPath(work_.motion, work_.block.motion == nc::Motion::kRapid);
   if (look_.carry_speed > 0) {
     // Continuing at speed from the block before (look-ahead): same path speed and
     // acceleration, from where the last cycle's remainder takes it.

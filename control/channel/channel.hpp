@@ -234,10 +234,10 @@ class Channel {
   /// has been jogged off the contour (2.1, 7.1); both at once ask for neither.
   void SetReposition(bool repositioning, bool restart);
   /// PxxS.REPOS (7.2): the program is interrupted, until it resumes or Control-Reset.
-  bool repos_allowed() const { return state_ == ChannelState::kHold || repos_.run; }
+  bool repos_allowed() const { return state_ == ChannelState::kHold || repos_.run(); }
   /// PxxS.CREST (7.3), as of the last NC cycle.
-  bool conditions_restored() const { return repos_.crest; }
-  ReposFunction repos_function() const { return repos_.function; }
+  bool conditions_restored() const { return repos_.conditions_restored(); }
+  ReposFunction repos_function() const { return repos_.function(); }
   /// The REPOS screen's data (2.2); empty axes when nothing is interrupted. Without `whole`
   /// only the function, the status and the axes' and spindles' values and adjust symbols: not
   /// the program, line, tool, technology and G codes shown beside them (for a watcher that
@@ -494,8 +494,11 @@ class Channel {
   FurtherSpindleControl further_{config_.spindles};  ///< spindles j >= 2
   PathGuardClient guard_{config_.path_guard, config_.path_guard_every};
   std::vector<double> drive_positions_;  ///< every drive's actual position, this NC cycle
-  // Repositioning and NC-block restart (channel_repositioning.cpp).
-  ReposData repos_;
+  // Repositioning and NC-block restart (repositioning.hpp); the REPOS subroutine's run in
+  // channel_repositioning.cpp.
+  Repositioning repos_;
+  /// What repositioning reads of the channel now.
+  ReposView ReposViewNow() const;
   // Backward travel (backward_travel.hpp; the channel's side in channel_backward.cpp).
   BackwardTravel backward_;
   /// A block's motion starts: remembered for backward travel (`rapid`: G00).
@@ -515,17 +518,7 @@ class Channel {
   void CaptureInterruption();
   /// Program -> axis translation of `modal` with the tables as they are now (no G92 check).
   std::vector<double> TranslationOf(const nc::ModalState& modal) const;
-  /// Per axis the function's target (machine coordinates); NaN: no target.
-  std::vector<double> ReposTarget() const;
-  /// G31 was active at the interruption: the channel axes X and C, whose window (6.1) and
-  /// screen values (5.2) go by the fictive point.
-  bool FictiveRepos(int& x, int& c) const;
-  /// The fictive point of axis positions `position` in the interrupted block's frame.
-  nc::FictivePoint FictiveOf(const std::vector<double>& position, int x, int c) const;
-  bool SpindleRestored(const AmplifierTelegram& at) const;
-  bool SpindleRelevant() const;
   bool ToolStorageKnown() const;
-  bool ToolStorageRestored() const;
   // An NC-controlled tool storage axis (tool_storage_control.hpp); the program's side of it in
   // channel_tool_storage.cpp.
   ToolStorageControl tool_storage_{config_};
@@ -554,7 +547,6 @@ class Channel {
   bool CheckReposBlock();
   bool StartReposMotion(const AmplifierTelegram& at);
   bool FinishReposRun(const AmplifierTelegram& at);
-  void ClearRepos();
   /// The REPOS subroutine's @ variables back to the interrupted program (one set, 8.3).
   void HandBackVariables();
   // Fast measurement (fast_measurement.hpp; the channel's side in channel_measuring.cpp).

@@ -46,7 +46,7 @@ void Channel::StartReplay() {
   if (!backward_.away()) {
     // Where on the path the axes stand: inside the block in work, inside the continue block of
     // a block search, or at the end of the last block.
-    if (repos_.run || (repos_.interruption && repos_.interruption->left_contour)) {
+    if (repos_.run() || (repos_.interruption() && repos_.interruption()->left_contour)) {
       RefuseBackward("the axes are being repositioned; return them to the contour first");
       return;
     }
@@ -79,7 +79,7 @@ void Channel::StartReplay() {
       return;
     }
     // Not jogged off: the interruption of a visit to manual mode is over.
-    if (repos_.interruption) ClearRepos();
+    if (repos_.interruption()) repos_.Clear();
     backward_.BeginAt(out_.commanded, u);
   }
   ReplayArrived(backward_.Back(out_.commanded, ReplayGuardOf()));

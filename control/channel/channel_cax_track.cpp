@@ -118,7 +118,7 @@ bool Channel::StartCaxAlignment(double to) {
   work_.motion.max_accel = axis.acceleration / distance;
   work_.profile.max_rate = work_.motion.max_rate;
   work_.profile.max_accel = work_.motion.max_accel;
-  if (!repos_.run) RecordPath(work_.motion, true);
+  if (!repos_.run()) RecordPath(work_.motion, true);
   work_.active = true;
   return true;
 }

@@ -87,8 +87,8 @@ void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, doub
   }
   // A block interrupted and jogged away from stays where the program left it until the
   // axes are repositioned (REPOS manual 2.1): interpolating it would take them back.
-  const bool frozen = state_ == ChannelState::kHold && repos_.interruption &&
-                      repos_.interruption->left_contour && !repos_.run;
+  const bool frozen = state_ == ChannelState::kHold && repos_.interruption() &&
+                      repos_.interruption()->left_contour && !repos_.run();
   if (work_.active && !frozen) {
     if (sync_.active())
       SynchronousCycle(at, dt);

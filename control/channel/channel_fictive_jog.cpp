@@ -28,7 +28,7 @@ namespace vmt::control::channel {
 bool Channel::FictiveJogAxes(int& x, int& c) const {
   x = c = -1;
   const nc::Transformation transformation =
-      repos_.interruption ? repos_.interruption->modal.transformation : modal().transformation;
+      repos_.interruption() ? repos_.interruption()->modal.transformation : modal().transformation;
   if (transformation != nc::Transformation::kFace) return false;
   if (headstock_.RotaryAxisOff()) return false;
   for (size_t a = 0; a < config_.axes.size(); ++a) {
@@ -89,9 +89,9 @@ void Channel::FictiveJogging(double dt) {
   context.handwheel_speed = std::min(JogRapid(ax) * override_, c_limit);
   // 3.2: the zone of each fictive axis while a REPOS function is called.
   int rx = -1, rc = -1;
-  if (repos_.function != ReposFunction::kNone && FictiveRepos(rx, rc)) {
-    const nc::FictivePoint target = FictiveOf(ReposTarget(), rx, rc);
-    const nc::FictivePoint start = FictiveOf(repos_.start, rx, rc);
+  if (const ReposView v = ReposViewNow(); repos_.called() && repos_.Fictive(v, rx, rc)) {
+    const nc::FictivePoint target = repos_.FictiveOf(v, repos_.Target(v), rx, rc);
+    const nc::FictivePoint start = repos_.FictiveOf(v, repos_.start(), rx, rc);
     const double now[2] = {p.x1, p.y1}, to[2] = {target.x1, target.y1},
                  from[2] = {start.x1, start.y1};
     for (int k = 0; k < 2; ++k) {

@@ -40,10 +40,10 @@ void Channel::ManualSpindle(int m) {
   if (headstock_) ManualChangeover(axes::HeadstockMode::kSpindle);
   // REPOS manual 3.3: during repositioning or NC-block restart the key of the table restores
   // the spindle's state before the interruption (M03 / M04 at the programmed speed, M05, M19).
-  if (repos_.function != ReposFunction::kNone && SpindleRelevant() &&
-      KeyRestoresSpindle(repos_.interruption->spindle_m, m)) {
-    if (!GuardSpindleStart("spindle start", repos_.interruption->spindle)) return;
-    sp_.command = repos_.interruption->spindle;
+  if (repos_.called() && repos_.SpindleRelevant(ReposViewNow()) &&
+      KeyRestoresSpindle(repos_.interruption()->spindle_m, m)) {
+    if (!GuardSpindleStart("spindle start", repos_.interruption()->spindle)) return;
+    sp_.command = repos_.interruption()->spindle;
     sp_.referencing = m == 19;
     out_.take_over_pending = true;
     return;

@@ -108,7 +108,7 @@ void Channel::Jogging(double dt) {
   // (an endless rotary axis excepted). An axis outside that zone (a zero offset edit moved its
   // target) may only come back towards it.
   const std::vector<double> repos_target =
-      repos_.function != ReposFunction::kNone ? ReposTarget() : std::vector<double>{};
+      repos_.called() ? repos_.Target(ReposViewNow()) : std::vector<double>{};
   AxisJogContext context;
   context.rules = jog_rules();
   context.manual = mode_ == ChannelMode::kManual;
@@ -126,7 +126,7 @@ void Channel::Jogging(double dt) {
     JogWindow& window = context.window;
     window = {axis.travel_max > axis.travel_min, axis.travel_min, axis.travel_max};
     if (!repos_target.empty()) {
-      const ReposZone zone = ZoneOf(axis, repos_target[a], repos_.start[a]);
+      const ReposZone zone = ZoneOf(axis, repos_target[a], repos_.start()[a]);
       if (zone.limited) {
         const double zone_low = std::min(zone.low, out_.commanded[a]);
         const double zone_high = std::max(zone.high, out_.commanded[a]);

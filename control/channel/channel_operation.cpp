@@ -40,16 +40,16 @@ bool Channel::SetMode(ChannelMode mode) {
     for (FictiveJog& f : jog_.fictive) f.key = 0;
     tool_storage_.ReleaseKey();
     // Where the program was interrupted: the contour the axes must come back to (REPOS 2.1).
-    if (mode == ChannelMode::kManual && !repos_.interruption && state_ == ChannelState::kHold &&
-        !repos_.run)
+    if (mode == ChannelMode::kManual && !repos_.interruption() && state_ == ChannelState::kHold &&
+        !repos_.run())
       CaptureInterruption();
     // Travelled back: the program was interrupted at the point the travel started from, and
     // the way back to it is now repositioning's (the axes have left it).
     if (std::optional<std::vector<double>> home = backward_.Leave())
-      if (repos_.interruption) repos_.interruption->point = *home;
+      repos_.MoveInterruptionPoint(*home);
     // Manual mode during the REPOS subroutine's hold: the next start runs it again.
-    if (mode == ChannelMode::kManual && repos_.run && state_ == ChannelState::kHold)
-      repos_.rerun = true;
+    if (mode == ChannelMode::kManual && repos_.run() && state_ == ChannelState::kHold)
+      repos_.Rerun();
     // REPOS manual 2.1: interrupted MDI blocks keep their interpreter through manual mode.
     if ((mode == ChannelMode::kMdi || mode_ == ChannelMode::kMdi) && !interrupted) {
       if (work_.interpreter) last_modal_ = work_.interpreter->modal();
@@ -72,9 +72,8 @@ CycleStart Channel::StartCase() const {
       return CycleStart::kReplay;
     if (bs_.breakpoint_hold || (search_ && bs_.state != BlockSearchState::kInactive))
       return CycleStart::kBlockSearchHold;
-    if (repos_.run) return repos_.rerun ? CycleStart::kReposRerun : CycleStart::kReposContinue;
-    if (repos_.interruption && repos_.function != ReposFunction::kNone)
-      return CycleStart::kReposCall;
+    if (repos_.run()) return repos_.rerun() ? CycleStart::kReposRerun : CycleStart::kReposContinue;
+    if (repos_.interruption() && repos_.called()) return CycleStart::kReposCall;
     return CycleStart::kContinue;
   }
   // REPOS manual 4.2 and 7.1 call the REPOS subroutine's errors (G77 without F or without the
@@ -84,7 +83,7 @@ CycleStart Channel::StartCase() const {
   // manual mode if need be, and Start acknowledges the error and runs the subroutine again from
   // `.REPOS`. Faults of the machine (drives, PLC, a changeover acknowledgement) and the measuring
   // faults only the reverse program leaves still need Control-Reset (or the reverse program).
-  if (state_ == ChannelState::kError && repos_.run && ReposErrorInterrupts(error_number_))
+  if (state_ == ChannelState::kError && repos_.run() && ReposErrorInterrupts(error_number_))
     return CycleStart::kReposAfterError;
   if (state_ == ChannelState::kRunning || state_ == ChannelState::kError)
     return CycleStart::kRefused;
@@ -148,10 +147,10 @@ void Channel::Start() {
 void Channel::ContinueHeldProgram() {
   // Continuing from off the contour would jump back to the path: the axes must first be
   // repositioned to the interruption point.
-  for (size_t a = 0; a < out_.commanded.size() && repos_.interruption; ++a) {
+  for (size_t a = 0; a < out_.commanded.size() && repos_.interruption(); ++a) {
     // The rotary axis outside rotary axis mode follows the spindle: no contour to leave.
     if (headstock_.RotaryAxisOff() && static_cast<int>(a) == config_.rotary_axis) continue;
-    const double point = repos_.interruption->point[a];
+    const double point = repos_.interruption()->point[a];
     if (std::isnan(point)) continue;  // not on the contour (CaptureInterruption)
     if (std::abs(out_.commanded[a] - point) > 1e-6) {
       Fail("axis " + config_.axes[a].name +
@@ -160,7 +159,7 @@ void Channel::ContinueHeldProgram() {
       return;
     }
   }
-  ClearRepos();
+  repos_.Clear();
   state_ = ChannelState::kRunning;
 }
 
@@ -187,9 +186,9 @@ void Channel::Reset() {
   programmed_stop_.Leave();
   tool_storage_.ForgetProgramTraverse();
   tool_storage_wait_ = false;
-  if (repos_.run) SwapProgramInWork();
+  if (repos_.run()) SwapProgramInWork();
   parked_ = ProgramInWork{};
-  ClearRepos();
+  repos_.Clear();
   measuring_.Reset();
   // Block search 7: a reset leaves block search without the handshake.
   search_.reset();

@@ -10,7 +10,7 @@ namespace vmt::control::channel {
 
 bool Channel::NextBlock(const AmplifierTelegram& at) {
   // The REPOS subroutine has returned (or there is none): close in and continue the program.
-  if (repos_.run && (repos_.finish || repos_.closing || work_.block.returned))
+  if (repos_.run() && (repos_.finish() || repos_.closing() || work_.block.returned))
     return FinishReposRun(at);
   if (work_.compensating) return NextCompensated(at);
   const bool read = ReadNext(work_.block);
@@ -331,7 +331,7 @@ void Channel::LookAhead(const AmplifierTelegram& at) {
   // A block with M00 / M01 ends at rest: the stop is decided at its end.
   if (single_block_ || programmed_stop_.pending != ProgrammedStop::Kind::kNone ||
       state_ != ChannelState::kRunning || !feed_move(work_.block.motion) || work_.block.end ||
-      work_.homing || !work_.motion.moves || repos_.run || config_.approach_program ||
+      work_.homing || !work_.motion.moves || repos_.run() || config_.approach_program ||
       cax_.command)  // tracking sets each block's C as it starts: the look-ahead cannot know it
     return;
   const double cycle_s = config_.tick_s * config_.ticks_per_cycle;

@@ -12,34 +12,15 @@
 #include "control/nc/modal_g_codes.hpp"
 
 namespace vmt::control::channel {
-namespace {
-
-int SpindleM(const DriveSetpoint& sp) {
-  if (sp.mode == DriveMode::kPosition) return 19;
-  return sp.value > 0 ? 3 : sp.value < 0 ? 4 : 5;
-}
-
-/// 7.3: a rotary axis positioned in rotary axis mode before the interruption has its state back
-/// only in that mode: in spindle mode (a spindle key selected it, C-axis manual 4.2) it is no
-/// positioned axis, whatever angle the spindle stands at.
-bool OutOfItsMode(const axes::HeadstockChangeover* headstock, int rotary_axis, size_t a) {
-  return headstock && static_cast<int>(a) == rotary_axis &&
-         headstock->mode() != axes::HeadstockMode::kRotary;
-}
-
-}  // namespace
 
 std::vector<double> Channel::TranslationOf(const nc::ModalState& modal) const {
-  std::optional<axes::ToolEdge> edge;
-  if (modal.tool_length != nc::ToolLength::kOff && modal.correction != 0)
-    edge = config_.tools.Find(modal.tool, modal.correction);
-  const double sign = modal.tool_length == nc::ToolLength::kSubtract ? -1 : 1;
-  std::vector<double> t(config_.axes.size());
-  for (size_t a = 0; a < t.size(); ++a) {
-    const double length = edge ? edge->Length(a, config_.axes[a].name) : 0;
-    t[a] = config_.zero_offsets.Offset(modal.zero_offset, a) + frames_.shift[a] - sign * length;
-  }
-  return t;
+  return channel::TranslationOf(config_, frames_.shift, modal, ActiveEdge(config_, modal));
+}
+
+ReposView Channel::ReposViewNow() const {
+  const double* tool_storage =
+      ToolStorageKnown() ? &drive_positions_[config_.tool_storage_drive] : nullptr;
+  return {config_, frames_.shift, out_.commanded, headstock(), sp_, further_, tool_storage};
 }
 
 void Channel::CaptureInterruption() {
@@ -51,7 +32,7 @@ void Channel::CaptureInterruption() {
   i.program = work_.block.program;
   i.line = line();
   i.spindle = sp_.command;
-  i.spindle_m = SpindleM(sp_.command);
+  i.spindle_m = SpindleMOf(sp_.command);
   i.further_spindles = further_.states();
   if (headstock_) {
     i.headstock_mode = headstock_->mode();
@@ -70,40 +51,7 @@ void Channel::CaptureInterruption() {
   // before the program) leaves the turret where the operator put it.
   if (ToolStorageNc() && tool_storage_.axis().programmed)
     i.tool_storage = tool_storage_.axis().target;
-  repos_.interruption = std::move(i);
-  repos_.start = out_.commanded;
-}
-
-bool Channel::FictiveRepos(int& x, int& c) const {
-  x = c = -1;
-  if (!repos_.interruption ||
-      repos_.interruption->modal.transformation != nc::Transformation::kFace)
-    return false;
-  for (size_t a = 0; a < config_.axes.size(); ++a) {
-    if (config_.axes[a].name == "X") x = static_cast<int>(a);
-    if (config_.axes[a].name == "C") c = static_cast<int>(a);
-  }
-  return x >= 0 && c >= 0 && !std::isnan(repos_.interruption->point[x]) &&
-         !std::isnan(repos_.interruption->point[c]);
-}
-
-nc::FictivePoint Channel::FictiveOf(const std::vector<double>& position, int x, int c) const {
-  // Program coordinates of the interrupted block's frame, as its X1/Y1 were programmed.
-  const std::vector<double> t = TranslationOf(repos_.interruption->modal);
-  return nc::MachineToFace(position[x] - t[x], position[c] - t[c]);
-}
-
-std::vector<double> Channel::ReposTarget() const {
-  std::vector<double> target(config_.axes.size(), std::nan(""));
-  if (!repos_.interruption) return target;
-  const Interruption& i = *repos_.interruption;
-  const std::vector<double>& base =
-      repos_.function == ReposFunction::kRestart ? i.block_start : i.point;
-  // 2.5: zero offset and tool edits during the interruption move the interruption point and
-  // the block start with the contour.
-  const std::vector<double> now = TranslationOf(i.modal);
-  for (size_t a = 0; a < target.size(); ++a) target[a] = base[a] + (now[a] - i.translation[a]);
-  return target;
+  repos_.Interrupt(std::move(i), out_.commanded);
 }
 
 bool Channel::ToolStorageKnown() const {
@@ -111,174 +59,26 @@ bool Channel::ToolStorageKnown() const {
          static_cast<size_t>(config_.tool_storage_drive) < drive_positions_.size();
 }
 
-bool Channel::ToolStorageRestored() const {
-  // 6.2 / 7.3: only with Bxx.045 'Reposition Tool Storage Axis' = yes.
-  if (!config_.process.reposition_tool_storage || !ToolStorageKnown() || !repos_.interruption)
-    return true;
-  // 3.4: an endless one compares the short way round, however often it has turned.
-  return std::abs(ReposDistanceToGo(config_.tool_storage, repos_.interruption->tool_storage,
-                                    drive_positions_[config_.tool_storage_drive])) <=
-         kToolStorageWindow;
-}
-
-bool Channel::SpindleRelevant() const {
-  // 7.3: all spindles; a spindle with rotary axis capability if it was in spindle mode.
-  if (config_.spindle_drive < 0 || !repos_.interruption) return false;
-  return !headstock_ || repos_.interruption->headstock_mode != axes::HeadstockMode::kRotary;
-}
-
-bool Channel::SpindleRestored(const AmplifierTelegram& at) const {
-  const DriveSetpoint& before = repos_.interruption->spindle;
-  if (headstock_ && headstock_->mode() != axes::HeadstockMode::kSpindle) return false;
-  if (sp_.command.mode != before.mode || std::abs(sp_.command.value - before.value) > 1e-9)
-    return false;
-  const uint32_t status = static_cast<size_t>(config_.spindle_drive) < at.feedback.size()
-                              ? at.feedback[config_.spindle_drive].status
-                              : 0;
-  if (before.mode == DriveMode::kPosition) return status & drive_status::kInPosition;
-  // The status bit of the last tick may still answer the command before this cycle's.
-  const double actual = at.feedback[config_.spindle_drive].velocity;
-  const double command = before.value * sp_.override;
-  if (std::abs(actual - command) > std::max(6.0, 0.02 * std::abs(command))) return false;
-  return before.value == 0 || (status & drive_status::kAtSpeed);
-}
-
 void Channel::ReposCycle(const AmplifierTelegram& at) {
-  if (!repos_.interruption) {
-    repos_.function = ReposFunction::kNone;
-    repos_.crest = false;
-    return;
-  }
-  Interruption& i = *repos_.interruption;
-  for (size_t a = 0; a < out_.commanded.size() && !i.left_contour; ++a)
-    if (!std::isnan(i.point[a]) && std::abs(out_.commanded[a] - i.point[a]) > 1e-6)
-      i.left_contour = true;
-  // 7.1: the signals count only in the situation of 2.1 (interrupted, left by jogging, no
-  // Control-Reset), and only if the program may be continued other than by the reverse
-  // program (Bxx.032, 6.1).
-  const bool evaluated = (state_ == ChannelState::kHold || repos_.run) && i.left_contour &&
-                         !config_.process.reverse_program_required;
-  const ReposFunction function = evaluated ? repos_.request : ReposFunction::kNone;
-  // 7.3: updated only while a function is called; the relevant axes within their windows, the
-  // spindle in its former state. Withdrawing the function drops it at once.
-  repos_.crest = false;
-  // 7.1 instruction: withdrawn in manual mode, repositioning ends once the motion under way has
-  // ended: a jog still moving, or its key still held, keeps its zone and stops at the target;
-  // the next press is a plain jog.
   bool key_held = false;
   for (const JogAxis& j : jog_.axes) key_held |= j.key != 0;
   for (const FictiveJog& f : jog_.fictive) key_held |= f.key != 0;
-  if (evaluated && function == ReposFunction::kNone && repos_.function != ReposFunction::kNone &&
-      mode_ == ChannelMode::kManual && (key_held || JogsMoving()))
-    return;
-  if (function != repos_.function && function != ReposFunction::kNone)
-    repos_.start = out_.commanded;
-  repos_.function = function;
-  if (repos_.function == ReposFunction::kNone) return;
-  const std::vector<double> target = ReposTarget();
-  bool restored = true;
-  // 6.1 instruction: under G31 X and C count as the fictive point, with X's window.
-  int fx = -1, fc = -1;
-  const bool fictive = FictiveRepos(fx, fc);
-  for (size_t a = 0; a < target.size() && restored; ++a) {
-    const ChannelAxis& axis = config_.axes[a];
-    if (fictive && (static_cast<int>(a) == fx || static_cast<int>(a) == fc)) continue;
-    if (std::isnan(target[a]) || axis.repos_window <= 0) continue;
-    restored = WithinReposWindow(axis, target[a], out_.commanded[a]) &&
-               !OutOfItsMode(headstock(), config_.rotary_axis, a);
-  }
-  if (fictive && restored && config_.axes[fx].repos_window > 0)
-    restored = WithinFictiveWindow(config_.axes[fx], FictiveOf(target, fx, fc),
-                                   FictiveOf(out_.commanded, fx, fc)) &&
-               !OutOfItsMode(headstock(), config_.rotary_axis, fc);
-  if (restored && SpindleRelevant()) restored = SpindleRestored(at);
-  if (restored && repos_.interruption)
-    restored = further_.AllRestored(repos_.interruption->further_spindles, at);
-  repos_.crest = restored && ToolStorageRestored();
+  repos_.Cycle(ReposViewNow(), at, state_ == ChannelState::kHold || repos_.run(),
+               mode_ == ChannelMode::kManual && (key_held || JogsMoving()));
 }
 
 ReposStatus Channel::repos_status(const AmplifierTelegram* at, bool whole) const {
-  ReposStatus s;
+  ReposStatus s = repos_.Status(ReposViewNow(), at, whole);
   s.allowed = repos_allowed();
-  s.function = repos_.function;
-  s.conditions_restored = repos_.crest;
-  s.subroutine_running = repos_.run;
   s.feed_override = override_;
-  if (!repos_.interruption) return s;
-  const Interruption& i = *repos_.interruption;
-  s.left_contour = i.left_contour;
-  const std::vector<double> target = ReposTarget();
-  for (size_t a = 0; a < config_.axes.size(); ++a) {
-    const ChannelAxis& axis = config_.axes[a];
-    ReposAxisStatus x;
-    x.name = axis.name;
-    x.command_value = out_.commanded[a];
-    x.relevant = !std::isnan(target[a]) && axis.repos_window > 0;
-    if (!std::isnan(target[a])) {
-      x.final_value = target[a];
-      x.distance_to_go = ReposDistanceToGo(axis, target[a], out_.commanded[a]);
-      x.adjust = x.relevant && (!WithinReposWindow(axis, target[a], out_.commanded[a]) ||
-                                OutOfItsMode(headstock(), config_.rotary_axis, a));
-    }
-    s.axes.push_back(x);
-  }
-  // 5.2: under G31 the screen shows the fictive axes X1, Y1 as well, and X and C are adjusted
-  // as the fictive point is, with X's window (6.1).
-  int fx = -1, fc = -1;
-  if (FictiveRepos(fx, fc)) {
-    const nc::FictivePoint to = FictiveOf(target, fx, fc), now = FictiveOf(out_.commanded, fx, fc);
-    const bool relevant = config_.axes[fx].repos_window > 0;
-    const bool adjust = relevant && (!WithinFictiveWindow(config_.axes[fx], to, now) ||
-                                     OutOfItsMode(headstock(), config_.rotary_axis, fc));
-    s.axes[fx].relevant = s.axes[fc].relevant = relevant;
-    s.axes[fx].adjust = s.axes[fc].adjust = adjust;
-    static const std::string kNames[2] = {"X1", "Y1"};
-    for (int k = 0; k < 2; ++k) {
-      ReposAxisStatus f;
-      f.name = kNames[k];
-      f.final_value = k == 0 ? to.x1 : to.y1;
-      f.command_value = k == 0 ? now.x1 : now.y1;
-      f.distance_to_go = f.final_value - f.command_value;
-      f.relevant = relevant;
-      f.adjust = adjust;
-      s.axes.push_back(f);
-    }
-  }
-  ReposSpindleStatus& sp = s.spindle;
-  sp.relevant = SpindleRelevant();
-  sp.override = sp_.override;
-  sp.actual_m = SpindleM(sp_.command);
-  sp.command_m = i.spindle_m;
-  sp.command_rpm = i.spindle.mode == DriveMode::kVelocity ? i.spindle.value / 6 : 0;
-  if (at && static_cast<size_t>(config_.spindle_drive) < at->feedback.size())
-    sp.actual_rpm = at->feedback[config_.spindle_drive].velocity / 6;
-  else
-    sp.actual_rpm = sp_.rpm;
-  // Without the drives' feedback: the command restored, in spindle mode.
-  sp.adjust =
-      sp.relevant && !(at ? SpindleRestored(*at)
-                          : (!headstock_ || headstock_->mode() == axes::HeadstockMode::kSpindle) &&
-                                sp_.command.mode == i.spindle.mode &&
-                                std::abs(sp_.command.value - i.spindle.value) < 1e-9);
-  s.further_spindles = further_.ReposStatus(i.further_spindles, at);
-  s.tool_storage_relevant = config_.process.reposition_tool_storage && ToolStorageKnown();
-  s.tool_storage_adjust = !ToolStorageRestored();
-  if (!whole) return s;
-  s.programmed_feed = i.modal.feed;
-  s.program = i.program < programs_.size() || mdi_.running ? ProgramOf(i.program)->files[0] : "";
-  s.line = i.line;
-  s.tool = i.modal.tool;
-  s.correction = i.modal.correction;
-  s.spindle_m = i.modal.spindle;
-  s.coolant = i.modal.coolant;
-  s.g_codes = nc::ActiveGCodes(i.modal);  // G31 / G32 too (5.2)
+  if (const Interruption* i = repos_.interruption(); i && whole)
+    s.program =
+        i->program < programs_.size() || mdi_.running ? ProgramOf(i->program)->files[0] : "";
   return s;
 }
 
 void Channel::SetReposition(bool repositioning, bool restart) {
-  repos_.request = repositioning && !restart   ? ReposFunction::kRepositioning
-                   : restart && !repositioning ? ReposFunction::kRestart
-                                               : ReposFunction::kNone;
+  repos_.Request(repositioning, restart);
 }
 
 bool Channel::SetZeroOffset(int g, size_t axis, double value) {
@@ -305,7 +105,7 @@ void Channel::SwapProgramInWork() { std::swap(work_, parked_); }
 void Channel::StartReposRun() {
   // 4.1: the REPOS subroutine in the current program, in program 99 or in the cycle memory.
   const int program = work_.interpreter ? work_.interpreter->FindSubroutine("REPOS") : -1;
-  if (program < 0 && !repos_.crest) {
+  if (program < 0 && !repos_.conditions_restored()) {
     Fail(programs_[0]->files[0] +
              ": error: the state before the interruption is not restored and no program has a "
              "REPOS subroutine (.REPOS)",
@@ -323,8 +123,7 @@ void Channel::StartReposRun() {
   // subroutine runs in its place with its modal state (G(2), M(5) read the interrupted state).
   // Run again after a stop and manual mode during it, the subroutine's progress is dropped:
   // the interrupted program stays parked and the targets stay the interruption's.
-  if (!repos_.run) SwapProgramInWork();
-  repos_.rerun = false;
+  if (!repos_.run()) SwapProgramInWork();
   sp_.orienting = false;
   further_.StopRestoring();
   work_.active = work_.pending_motion = work_.homing = false;
@@ -332,15 +131,13 @@ void Channel::StartReposRun() {
   DropLookahead();
   work_.block = nc::PreparedBlock{};
   work_.block.program = parked_.block.program;
-  work_.block.modal = repos_.interruption->modal;
-  repos_.run = true;
-  repos_.closing = false;
-  repos_.finish = program < 0;
+  work_.block.modal = repos_.interruption()->modal;
+  repos_.StartRun(program >= 0);
   if (program >= 0) {
     nc::InterpreterConfig ic;
     ic.axes.clear();
     for (const ChannelAxis& a : config_.axes) ic.axes.push_back(a.name);
-    ic.initial = repos_.interruption->modal;
+    ic.initial = repos_.interruption()->modal;
     std::vector<const nc::Program*> programs = programs_;
     if (mdi_.running) programs.insert(programs.begin(), &mdi_.blocks->program);
     work_.interpreter.emplace(std::move(programs), ic);
@@ -357,7 +154,7 @@ void Channel::StartReposRun() {
 bool Channel::CheckReposBlock() {
   const nc::Program& program = *ProgramOf(work_.block.program);
   // 7.1: G77 while the PLC has withdrawn the function interrupts the program.
-  if (repos_.function == ReposFunction::kNone || !repos_.interruption) {
+  if (!repos_.called() || !repos_.interruption()) {
     Fail(program, work_.block.block,
          "G77 without repositioning or NC-block restart (PxxC.REPOS / PxxC.RESTA is 0)",
          kMsgReposNotActive);
@@ -383,7 +180,8 @@ bool Channel::CheckReposBlock() {
   // sentence names the modes the other way round; its own example, 8.3, tests rotary axis
   // mode to choose G77 C0).
   if (headstock_) {
-    const bool rotary_before = repos_.interruption->headstock_mode == axes::HeadstockMode::kRotary;
+    const bool rotary_before =
+        repos_.interruption()->headstock_mode == axes::HeadstockMode::kRotary;
     const size_t r = static_cast<size_t>(config_.rotary_axis);
     if ((feed_axes >> r & 1) && !rotary_before) {
       Fail(program, work_.block.block,
@@ -411,20 +209,20 @@ bool Channel::StartReposMotion(const AmplifierTelegram& at) {
   // it has reached it. Spindles the channel does not command have nothing to restore.
   for (const nc::AuxFunction& f : work_.block.aux)
     if (f.letter == 'S' && f.index <= 1 && config_.spindle_drive >= 0) {
-      if (!GuardSpindleStart("spindle start G77 S1", repos_.interruption->spindle)) return false;
-      sp_.command = repos_.interruption->spindle;
+      if (!GuardSpindleStart("spindle start G77 S1", repos_.interruption()->spindle)) return false;
+      sp_.command = repos_.interruption()->spindle;
       sp_.referencing = sp_.command.mode == DriveMode::kPosition;
       sp_.orienting = true;
     }
   // The further spindles have no rotary axis mode and no PathGuard sweep (channel_turret_guard).
-  further_.Restore(work_.block, repos_.interruption->further_spindles, at);
+  further_.Restore(work_.block, repos_.interruption()->further_spindles, at);
   sp_.orienting |= further_.restoring();
   // 4.2 Feed axes: the distance to go between target and actual position, G00-like (all axes
   // reach the target together) at F, without the G functions of interpolation and without tool
   // radius compensation.
-  const std::vector<double> target = ReposTarget();
+  const std::vector<double> target = repos_.Target(ReposViewNow());
   nc::PreparedBlock b = work_.block;
-  b.motion = repos_.closing ? nc::Motion::kRapid : nc::Motion::kLinear;
+  b.motion = repos_.closing() ? nc::Motion::kRapid : nc::Motion::kLinear;
   b.modal.feed_per_revolution = false;
   b.modal.compensation = nc::Compensation::kOff;
   b.has_centre = false;
@@ -445,7 +243,7 @@ bool Channel::StartReposMotion(const AmplifierTelegram& at) {
       work_.interpreter->SetAxisPosition(a, b.target[a]);
   work_.profile = PathProfile{};
   if (!work_.motion.moves) return true;
-  if (!GuardBlockMove(repos_.closing ? "repositioning" : "G77")) return false;
+  if (!GuardBlockMove(repos_.closing() ? "repositioning" : "G77")) return false;
   work_.profile.max_rate = work_.motion.max_rate;
   work_.profile.max_accel = work_.motion.max_accel;
   work_.profile.max_jerk = work_.motion.max_jerk;
@@ -454,8 +252,9 @@ bool Channel::StartReposMotion(const AmplifierTelegram& at) {
 }
 
 bool Channel::FinishReposRun(const AmplifierTelegram& at) {
-  const std::vector<double> target = ReposTarget();
-  if (!repos_.closing) {
+  const ReposView v = ReposViewNow();
+  const std::vector<double> target = repos_.Target(v);
+  if (!repos_.closing()) {
     // The subroutine (or the operator) has left the axes within their windows, or has not
     // returned some at all (Cxx.086 = 0): a closing move takes every axis to its exact target,
     // so that the program goes on from the point it left, checked like every approach move.
@@ -463,14 +262,15 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
     for (size_t a = 0; a < target.size(); ++a)
       if (!std::isnan(target[a]) && std::abs(out_.commanded[a] - target[a]) > 1e-9)
         bits |= uint64_t{1} << a;
-    if (SpindleRelevant() && !SpindleRestored(at)) {
+    if (repos_.SpindleRelevant(v) && !repos_.SpindleRestored(v, at)) {
       Fail(ProgramOf(work_.block.program)->files[0] +
                ": error: the REPOS subroutine has returned with the spindle not in its state "
                "before the interruption (G77 S1=0)",
            kMsgReposNotRestored);
       return false;
     }
-    if (repos_.interruption && !further_.AllRestored(repos_.interruption->further_spindles, at)) {
+    if (repos_.interruption() &&
+        !further_.AllRestored(repos_.interruption()->further_spindles, at)) {
       Fail(ProgramOf(work_.block.program)->files[0] +
                ": error: the REPOS subroutine has returned with a further spindle not in its "
                "state before the interruption (G77 Sj=0)",
@@ -486,7 +286,7 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
            kMsgReposNotRestored);
       return false;
     }
-    repos_.closing = true;
+    repos_.StartClosing();
     if (bits) {
       nc::PreparedBlock closing = work_.block;
       closing.repos = true;
@@ -504,17 +304,17 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
   }
   // Back to the interrupted program: it continues at the interruption point, or its block
   // starts again (restart), shifted with the contour by any offset or tool edit (2.5).
-  const ReposFunction function = repos_.function;
+  const ReposFunction function = repos_.function();
   const std::vector<double> shift = [&] {
     std::vector<double> d(target.size(), 0.0);
-    const std::vector<double> now = TranslationOf(repos_.interruption->modal);
-    for (size_t a = 0; a < d.size(); ++a) d[a] = now[a] - repos_.interruption->translation[a];
+    const std::vector<double> now = TranslationOf(repos_.interruption()->modal);
+    for (size_t a = 0; a < d.size(); ++a) d[a] = now[a] - repos_.interruption()->translation[a];
     return d;
   }();
   HandBackVariables();
   SwapProgramInWork();
   parked_ = ProgramInWork{};
-  ClearRepos();
+  repos_.Clear();
   if (work_.active) {
     for (size_t a = 0; a < shift.size(); ++a) {
       work_.motion.start[a] += shift[a];
@@ -543,15 +343,8 @@ bool Channel::FinishReposRun(const AmplifierTelegram& at) {
 
 void Channel::HandBackVariables() {
   // 8.3: what the subroutine wrote the program reads after RTS (one set per process).
-  if (repos_.run && work_.interpreter && parked_.interpreter)
+  if (repos_.run() && work_.interpreter && parked_.interpreter)
     parked_.interpreter->SetVariables(work_.interpreter->variables());
-}
-
-void Channel::ClearRepos() {
-  repos_.interruption.reset();
-  repos_.function = ReposFunction::kNone;
-  repos_.crest = false;
-  repos_.run = repos_.closing = repos_.finish = repos_.rerun = false;
 }
 
 }  // namespace vmt::control::channel

@@ -125,11 +125,11 @@ bool Channel::BlockInstructions(const nc::Program& program, bool& mry) {
     // interruption again. MRY waits for the tool storage axis, which the acknowledgement of
     // that T word already does.
     // An NC-controlled tool storage axis the NC traverses back itself, and MRY waits for it.
-    if (repos_.run && repos_.interruption && (mtp || waits)) {
+    if (repos_.run() && repos_.interruption() && (mtp || waits)) {
       if (mtp && ToolStorageNc()) {
         if (!ReturnToolStorage()) return false;
       } else if (mtp) {
-        work_.block.aux.push_back({'T', 0, static_cast<double>(repos_.interruption->modal.tool)});
+        work_.block.aux.push_back({'T', 0, static_cast<double>(repos_.interruption()->modal.tool)});
       } else {
         mry = true;
       }

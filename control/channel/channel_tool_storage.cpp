@@ -27,8 +27,8 @@ TurretGuard Channel::TurretGuardOf() {
 }
 
 bool Channel::ReturnToolStorage() {
-  if (!ToolStorageNc() || !repos_.interruption) return true;
-  return tool_storage_.TraverseTo(repos_.interruption->tool_storage, "turret index MTP",
+  if (!ToolStorageNc() || !repos_.interruption()) return true;
+  return tool_storage_.TraverseTo(repos_.interruption()->tool_storage, "turret index MTP",
                                   drive_positions_[config_.tool_storage_drive], TurretGuardOf());
 }
 

@@ -120,7 +120,7 @@ bool FurtherSpindleControl::Restored(size_t k, const std::vector<FurtherSpindleS
   if (std::abs(states_[k].Command().value - command.value) > 1e-9) return false;
   const int d = spindles_[k].drive;
   if (!at || d < 0 || static_cast<size_t>(d) >= at->feedback.size()) return true;
-  // As the main spindle (Channel::SpindleRestored): the actual speed close to the command, at
+  // As the main spindle (Repositioning::SpindleRestored): the actual speed close to the command, at
   // speed.
   const double actual = at->feedback[d].velocity;
   if (std::abs(actual - command.value) > std::max(6.0, 0.02 * std::abs(command.value)))

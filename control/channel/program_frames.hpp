@@ -5,12 +5,28 @@
 
 #include <vector>
 
+#include "control/axes/tool_table.hpp"
+#include "control/nc/interpreter.hpp"
+
 namespace vmt::control::channel {
+
+struct ChannelConfig;
 
 struct ProgramFrames {
   std::vector<double> translation;  ///< axis = program + translation
   std::vector<double> shift;        ///< G92's part of it
   std::vector<bool> homed;
 };
+
+/// The tool edge whose lengths `modal` applies (G47 none; T0 / D0 none); nullopt also for one
+/// the tool list does not hold.
+std::optional<axes::ToolEdge> ActiveEdge(const ChannelConfig& config, const nc::ModalState& modal);
+
+/// The translation program -> axis of `modal` with the zero offsets as they are now, the G92
+/// shift `shift` and `edge`'s lengths (ActiveEdge): the zero offset, plus the shift, less the
+/// length (G48 adds the edge's lengths to the tool's reach, G49 subtracts them).
+std::vector<double> TranslationOf(const ChannelConfig& config, const std::vector<double>& shift,
+                                  const nc::ModalState& modal,
+                                  const std::optional<axes::ToolEdge>& edge);
 
 }  // namespace vmt::control::channel
