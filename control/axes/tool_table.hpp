@@ -53,10 +53,15 @@ struct ToolEdge {
 struct ToolTable {
   std::vector<ToolEdge> edges;
 
-  /// The edge of tool `t` with correction `d`; nullopt if the list has none.
-  std::optional<ToolEdge> Find(int t, int d) const {
+  /// The edge of tool `t` with correction `d`; null if the list has none.
+  const ToolEdge* Edge(int t, int d) const {
     for (const ToolEdge& e : edges)
-      if (e.tool == t && e.edge == d) return e;
+      if (e.tool == t && e.edge == d) return &e;
+    return nullptr;
+  }
+  /// The same as a copy; nullopt if the list has none.
+  std::optional<ToolEdge> Find(int t, int d) const {
+    if (const ToolEdge* e = Edge(t, d)) return *e;
     return std::nullopt;
   }
 };

@@ -344,7 +344,7 @@ uint64_t Channel::FollowUpAxes(const nc::PreparedBlock& b) const {
 
 bool Channel::UpdateTranslation(const nc::ModalState& modal, const nc::Program& program,
                                 int32_t block) {
-  const std::optional<axes::ToolEdge> edge = ActiveEdge(config_, modal);
+  const axes::ToolEdge* edge = ActiveEdge(config_, modal);
   if (!edge && modal.tool_length != nc::ToolLength::kOff && modal.correction != 0) {
     Fail(program, block,
          "T" + std::to_string(modal.tool) + " D" + std::to_string(modal.correction) +
@@ -352,7 +352,7 @@ bool Channel::UpdateTranslation(const nc::ModalState& modal, const nc::Program& 
          kMsgToolNotInList);
     return false;
   }
-  frames_.translation = channel::TranslationOf(config_, frames_.shift, modal, edge);
+  channel::TranslationOf(config_, frames_.shift, modal, edge, frames_.translation);
   if (headstock_) {
     // The rotary axis' offsets act in rotary axis mode only (C-axis manual 2.3 Zero Point
     // Shifts); they stay selected meanwhile and come back with it (see RotaryOffsetsActive).

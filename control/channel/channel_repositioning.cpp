@@ -14,7 +14,9 @@
 namespace vmt::control::channel {
 
 std::vector<double> Channel::TranslationOf(const nc::ModalState& modal) const {
-  return channel::TranslationOf(config_, frames_.shift, modal, ActiveEdge(config_, modal));
+  std::vector<double> t;
+  channel::TranslationOf(config_, frames_.shift, modal, ActiveEdge(config_, modal), t);
+  return t;
 }
 
 ReposView Channel::ReposViewNow() const {

@@ -4,21 +4,20 @@
 
 namespace vmt::control::channel {
 
-std::optional<axes::ToolEdge> ActiveEdge(const ChannelConfig& config, const nc::ModalState& modal) {
-  if (modal.tool_length == nc::ToolLength::kOff || modal.correction == 0) return std::nullopt;
-  return config.tools.Find(modal.tool, modal.correction);
+const axes::ToolEdge* ActiveEdge(const ChannelConfig& config, const nc::ModalState& modal) {
+  if (modal.tool_length == nc::ToolLength::kOff || modal.correction == 0) return nullptr;
+  return config.tools.Edge(modal.tool, modal.correction);
 }
 
-std::vector<double> TranslationOf(const ChannelConfig& config, const std::vector<double>& shift,
-                                  const nc::ModalState& modal,
-                                  const std::optional<axes::ToolEdge>& edge) {
+void TranslationOf(const ChannelConfig& config, const std::vector<double>& shift,
+                   const nc::ModalState& modal, const axes::ToolEdge* edge,
+                   std::vector<double>& translation) {
   const double sign = modal.tool_length == nc::ToolLength::kSubtract ? -1 : 1;
-  std::vector<double> t(config.axes.size());
-  for (size_t a = 0; a < t.size(); ++a) {
+  translation.resize(config.axes.size());
+  for (size_t a = 0; a < translation.size(); ++a) {
     const double length = edge ? edge->Length(a, config.axes[a].name) : 0;
-    t[a] = config.zero_offsets.Offset(modal.zero_offset, a) + shift[a] - sign * length;
+    translation[a] = config.zero_offsets.Offset(modal.zero_offset, a) + shift[a] - sign * length;
   }
-  return t;
 }
 
 }  // namespace vmt::control::channel

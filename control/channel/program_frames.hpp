@@ -18,15 +18,16 @@ struct ProgramFrames {
   std::vector<bool> homed;
 };
 
-/// The tool edge whose lengths `modal` applies (G47 none; T0 / D0 none); nullopt also for one
+/// The tool edge whose lengths `modal` applies (G47 none; T0 / D0 none); null also for one
 /// the tool list does not hold.
-std::optional<axes::ToolEdge> ActiveEdge(const ChannelConfig& config, const nc::ModalState& modal);
+const axes::ToolEdge* ActiveEdge(const ChannelConfig& config, const nc::ModalState& modal);
 
-/// The translation program -> axis of `modal` with the zero offsets as they are now, the G92
-/// shift `shift` and `edge`'s lengths (ActiveEdge): the zero offset, plus the shift, less the
-/// length (G48 adds the edge's lengths to the tool's reach, G49 subtracts them).
-std::vector<double> TranslationOf(const ChannelConfig& config, const std::vector<double>& shift,
-                                  const nc::ModalState& modal,
-                                  const std::optional<axes::ToolEdge>& edge);
+/// Into `translation` (one per channel axis), the translation program -> axis of `modal` with
+/// the zero offsets as they are now, the G92 shift `shift` and `edge`'s lengths (ActiveEdge):
+/// the zero offset, plus the shift, less the length (G48 adds the edge's lengths to the tool's
+/// reach, G49 subtracts them). Written in place: a block's start sets it without allocating.
+void TranslationOf(const ChannelConfig& config, const std::vector<double>& shift,
+                   const nc::ModalState& modal, const axes::ToolEdge* edge,
+                   std::vector<double>& translation);
 
 }  // namespace vmt::control::channel

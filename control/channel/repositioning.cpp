@@ -123,7 +123,9 @@ namespace {
 // The interrupted block's translation with the tables as they are now (2.5: an edit during the
 // interruption moves the contour).
 std::vector<double> TranslationNow(const ReposView& v, const Interruption& i) {
-  return TranslationOf(v.config, v.shift, i.modal, ActiveEdge(v.config, i.modal));
+  std::vector<double> t;
+  TranslationOf(v.config, v.shift, i.modal, ActiveEdge(v.config, i.modal), t);
+  return t;
 }
 
 }  // namespace
