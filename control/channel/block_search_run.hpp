@@ -10,6 +10,7 @@
 
 #include "control/channel/block_motion.hpp"
 #include "control/channel/block_search.hpp"
+#include "control/channel/program_distance.hpp"
 #include "control/drive_bus.hpp"
 
 namespace vmt::control::channel {
@@ -58,16 +59,8 @@ struct BlockSearchData {
   bool plc_enable = false, plc_state = false, command = false;  ///< the on/off handshake (7)
   BlockSearchStatus status;                                     ///< as of the last NC cycle
   std::vector<std::string> warnings;
-  /// Distance from program start (4.1.2): counted while #DISTANCE PROG START is ON, up to the
-  /// end of the block in work; the block in work's own start and length.
-  bool distance_on = true;
-  double distance = 0, block_distance_start = 0, block_distance = 0;
-  /// The breakpoint (3.5): the rest of the block it cut, held until the start.
-  double breakpoint = 0;  ///< mm from program start; 0: none or passed
-  std::optional<BlockMotion> breakpoint_rest;
-  double breakpoint_u = 0;
-  bool breakpoint_hold = false;
-  bool breakpoint_pending = false;  ///< the block in work ends at the breakpoint
+  /// The distance from program start (4.1.2) and the breakpoint (3.5).
+  ProgramDistance distance;
   /// Manual return (4.2): actual minus continue position, kept until the program ends.
   std::vector<double> offset;
 };

@@ -137,8 +137,7 @@ bool Channel::Reverse() {
     bs_.state = BlockSearchState::kInactive;
     bs_.command = false;
     cax_.aligning = false;
-    bs_.breakpoint_rest.reset();
-    bs_.breakpoint_hold = bs_.breakpoint_pending = false;
+    bs_.distance.Drop();
   }
   // The interrupted block is abandoned where the axes stand; the reverse program starts there.
   // A changeover in progress is given up and the original mode restored (C-axis manual 2.3).
@@ -460,13 +459,13 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
     Fail(program, work_.block.block, error->text, error->number);
     return false;
   }
-  CountDistance();
+  bs_.distance.BlockStarts(work_.motion, config_.axes);
   work_.profile = PathProfile{};
   if (!work_.motion.moves) {
-    if (bs_.breakpoint_pending) HoldAtBreakpoint();  // at the very start of the block
+    if (bs_.distance.pending()) HoldAtBreakpoint();  // at the very start of the block
     return true;
   }
-  // Issue 6: the REPOS subroutine's moves are approach moves, checked whole before they start
+  // The REPOS subroutine's moves are approach moves, checked whole before they start
   // as G77's are (its blocks are reached at rest for that: LookAhead), and so are a JogOfPath
   // channel's. The program's own cuts are not: the stock is theirs to cut.
   if ((repos_.run() || config_.approach_program) &&
@@ -487,7 +486,7 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
     work_.motion.PointAt(work_.profile.u, out_.commanded);
   }
   LookAhead(at);
-  if (bs_.breakpoint_pending) work_.continuation_ready = false;  // stop at the breakpoint
+  if (bs_.distance.pending()) work_.continuation_ready = false;  // stop at the breakpoint
   return true;
 }
 

@@ -606,12 +606,6 @@ class Channel {
   void ContinueAfterSearch();
   /// A start while the search or the breakpoint holds.
   void StartBlockSearchHold();
-  /// Distance bookkeeping and the breakpoint cut, when a block's motion starts (StartMotion).
-  void CountDistance();
-  /// The breakpoint's cut of work_.motion if it lies in the block from `from_u` on (0: its start;
-  /// the continue position's u after block search): work_.motion ends there, its rest is kept.
-  void CutAtBreakpoint(double from_u);
-  void DistanceCommand(const nc::PreparedBlock& b);
   void RemoveSearchOffset();
   /// Block search 3.5: the breakpoint stops the path like an M0 until the next start.
   void HoldAtBreakpoint();

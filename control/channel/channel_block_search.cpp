@@ -7,8 +7,8 @@
 // radius compensation as the run does, so the continue position is on the tip path and the
 // run goes on from the compensation's state; with #CAX TRACK on, the return aligns C first
 // (4.2.2). A spindle / rotary axis changeover and measuring instructions of the skipped part:
-// channel_block_search_technology.cpp. The breakpoint (3.5) and the distance from program start (4.1.2) live here too:
-// they count in normal runs as well.
+// channel_block_search_technology.cpp. The breakpoint (3.5) and the distance from program start
+// (4.1.2), which count in normal runs as well, are program_distance.hpp's.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -24,24 +24,6 @@ namespace {
 /// Blocks decoded per NC cycle in search mode: fast, yet a program looping for ever with
 /// motion still leaves the cycle (and the scene's end) in charge.
 constexpr int kSearchBlocksPerCycle = 20000;
-
-/// `motion` up to u (0 < u <= 1): the same path, ending at u, with its limits rescaled to the
-/// shorter parameter range.
-BlockMotion Truncated(const BlockMotion& motion, double u) {
-  BlockMotion m = motion;
-  if (u <= 1e-12) {
-    m.end = m.start;
-    m.moves = false;
-    return m;
-  }
-  motion.PointAt(u, m.end);
-  m.arc_sweep *= u;
-  m.length *= u;
-  m.max_rate /= u;
-  m.max_accel /= u;
-  m.max_jerk /= u;
-  return m;
-}
 
 constexpr const char* kNotFound =
     "P-ERR-20704: the continue position was not found; the program ended in block search mode";
@@ -62,21 +44,16 @@ void Channel::BeginBlockSearch() {
   bs_.state = BlockSearchState::kInactive;
   bs_.command = false;
   bs_.warnings.clear();
-  bs_.distance_on = true;  // 4.1.2: ON and CLEAR are the state at program start
+  bs_.distance.Restart();  // 4.1.2: ON and CLEAR are the state at program start
   cax_.command.reset();
   cax_.aligning = false;
-  bs_.distance = bs_.block_distance_start = bs_.block_distance = 0;
-  bs_.breakpoint_rest.reset();
-  bs_.breakpoint_hold = false;
-  bs_.breakpoint_pending = false;
-  bs_.breakpoint = 0;
   RemoveSearchOffset();
   if (mode_ != ChannelMode::kAutomatic || !work_.interpreter) return;
   if (const std::string e = CheckBlockSearch(bs_.started); !e.empty()) {
     Fail("block search: " + e, kMsgBlockSearch);
     return;
   }
-  bs_.breakpoint = bs_.started.breakpoint_position * 1e-4;
+  bs_.distance.SetBreakpoint(bs_.started.breakpoint_position * 1e-4);
   if (bs_.started.file_offset > 0 &&
       !work_.interpreter->StartAt(static_cast<uint32_t>(bs_.started.file_offset))) {
     Fail(programs_[0]->files[0] + ": error: the entry point mc_command_file_offset_w " +
@@ -160,7 +137,7 @@ bool Channel::SearchCycle(const AmplifierTelegram& at) {
       bs_.state = BlockSearchState::kWaitForContinueContour;
       return true;
     case BlockSearchState::kWaitForContinueContour:
-      if (bs_.breakpoint_hold || !s.start_requested || state_ != ChannelState::kRunning)
+      if (bs_.distance.holding() || !s.start_requested || state_ != ChannelState::kRunning)
         return true;
       ContinueAfterSearch();
       return true;
@@ -311,7 +288,7 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
     events_.own[n] = set;
     if (events_.sink) events_.sink(n, set);
   }
-  DistanceCommand(b);
+  bs_.distance.Command(b.distance_command);
   if (!UpdateTranslation(b.modal, program, b.block)) return false;
   if (b.set_position)
     for (size_t a = 0; a < s.position.size(); ++a)
@@ -369,7 +346,7 @@ bool Channel::SimulateMotion(nc::PreparedBlock& b, bool boundary) {
       if (b.programmed >> a & 1)
         work_.interpreter->SetAxisPosition(a, s.position[a] - frames_.translation[a]);
   }
-  const double length = bs_.distance_on ? DistanceOf(motion, config_.axes) : 0;
+  const double length = bs_.distance.LengthOf(motion, config_.axes);
   const double permille = bs_.started.covered_distance / 1000;
   if (s.await_own_piece && !s.inserted_piece) {
     // The continue block's own piece after the corner the compensation inserted before it.
@@ -386,11 +363,12 @@ bool Channel::SimulateMotion(nc::PreparedBlock& b, bool boundary) {
     } else if (wanted <= 0) {
       // 4.1.1 / 10: the covered distance splits a motion block; a block without motion is not.
       return FoundContinuePosition(b, motion, motion.moves ? permille : 0);
-    } else if (wanted < bs_.distance - 1e-9) {
+    } else if (wanted < bs_.distance.distance() - 1e-9) {
       // 4.1.2, figure 18: never back into blocks the search has passed.
       bs_.warnings.push_back("the distance from program start " + Mm(wanted) +
                              " mm lies before the block of the continue position (" +
-                             Mm(bs_.distance) + " mm): machining continues at its start");
+                             Mm(bs_.distance.distance()) +
+                             " mm): machining continues at its start");
       return FoundContinuePosition(b, motion, 0);
     } else {
       s.by_distance = true;
@@ -398,14 +376,14 @@ bool Channel::SimulateMotion(nc::PreparedBlock& b, bool boundary) {
   }
   if (s.by_distance && motion.moves && length > 0) {
     const double wanted = bs_.started.distance_prog_start * 1e-4;
-    if (wanted <= bs_.distance + length + 1e-9) {
-      return FoundContinuePosition(b, motion,
-                                   std::clamp((wanted - bs_.distance) / length, 0.0, 1.0));
+    const double passed = bs_.distance.distance();
+    if (wanted <= passed + length + 1e-9) {
+      return FoundContinuePosition(b, motion, std::clamp((wanted - passed) / length, 0.0, 1.0));
     }
   }
   if (motion.moves) s.position = motion.end;
-  bs_.distance += length;
-  if (!BreakpointAfter(bs_.distance, b)) return false;
+  bs_.distance.Pass(length);
+  if (!BreakpointAfter(bs_.distance.distance(), b)) return false;
   // The decoded path, for backward travel from the continue position (4.3); not to the
   // program's end (type 5), where the program ends in search mode.
   if (b.homing || b.measuring || nc::SpindleSynchronous(b.motion))
@@ -426,9 +404,9 @@ bool Channel::BreakpointAfter(double continue_mm, const nc::PreparedBlock& b) {
   // for a stop and machining must not run on without it. The search stops with an error where
   // it meets the breakpoint, before any axis moves; a breakpoint at the continue position
   // itself holds as soon as machining goes on there (ContinueAfterSearch).
-  if (bs_.breakpoint <= 0 || bs_.breakpoint >= continue_mm - 1e-9) return true;
+  if (!bs_.distance.BreakpointBefore(continue_mm)) return true;
   Fail(*ProgramOf(b.program), b.block,
-       "the breakpoint mc_cmd_bs_breakpoint_position_w at " + Mm(bs_.breakpoint) +
+       "the breakpoint mc_cmd_bs_breakpoint_position_w at " + Mm(bs_.distance.breakpoint()) +
            " mm from program start lies before the continue position of block search (" +
            Mm(continue_mm) + " mm and on): it must lie after it (block search 3.5)",
        kMsgBlockSearch);
@@ -438,12 +416,12 @@ bool Channel::BreakpointAfter(double continue_mm, const nc::PreparedBlock& b) {
 bool Channel::FoundContinuePosition(const nc::PreparedBlock& b, const BlockMotion& motion,
                                     double u) {
   BlockSearchRun& s = *search_;
-  const double length = bs_.distance_on ? DistanceOf(motion, config_.axes) : 0;
-  if (!BreakpointAfter(bs_.distance + u * length, b)) return false;
+  const double length = bs_.distance.LengthOf(motion, config_.axes);
+  if (!BreakpointAfter(bs_.distance.distance() + u * length, b)) return false;
   s.face_return = b.modal.transformation == nc::Transformation::kFace;
   s.restart_motion = motion;
   s.restart_u = u;
-  s.restart_distance = bs_.distance;
+  s.restart_distance = bs_.distance.distance();
   s.restart_length = length;
   s.restart = s.position;
   if (motion.moves) motion.PointAt(u, s.restart);
@@ -473,50 +451,8 @@ void Channel::EndSearchMode() {
   s.start_requested = false;
 }
 
-void Channel::DistanceCommand(const nc::PreparedBlock& b) {
-  switch (b.distance_command) {
-    case nc::DistanceCommand::kOn:
-      bs_.distance_on = true;
-      break;
-    case nc::DistanceCommand::kOff:
-      bs_.distance_on = false;
-      break;
-    case nc::DistanceCommand::kClear:
-      bs_.distance = bs_.block_distance_start = 0;
-      bs_.block_distance = 0;
-      break;
-    case nc::DistanceCommand::kNone:
-      break;
-  }
-}
-
-void Channel::CountDistance() {
-  bs_.block_distance_start = bs_.distance;
-  bs_.block_distance = bs_.distance_on ? DistanceOf(work_.motion, config_.axes) : 0;
-  bs_.distance += bs_.block_distance;
-  bs_.breakpoint_rest.reset();
-  CutAtBreakpoint(0);
-}
-
-void Channel::CutAtBreakpoint(double from_u) {
-  // 3.5: the breakpoint stops the first time the path reaches it going forward.
-  if (bs_.breakpoint <= 0 || bs_.block_distance <= 0 || bs_.breakpoint > bs_.distance + 1e-9 ||
-      bs_.breakpoint < bs_.block_distance_start + from_u * bs_.block_distance - 1e-9)
-    return;
-  const double u =
-      std::clamp((bs_.breakpoint - bs_.block_distance_start) / bs_.block_distance, from_u, 1.0);
-  bs_.breakpoint = 0;
-  bs_.breakpoint_pending = true;
-  bs_.breakpoint_u = u;
-  if (u < 1 - 1e-12) {
-    bs_.breakpoint_rest = work_.motion;
-    work_.motion = Truncated(work_.motion, u);
-  }
-}
-
 void Channel::HoldAtBreakpoint() {
-  bs_.breakpoint_pending = false;
-  bs_.breakpoint_hold = true;
+  bs_.distance.Hold();
   state_ = ChannelState::kHold;
   bs_.state = BlockSearchState::kWaitForContinueContour;
 }
@@ -544,22 +480,22 @@ void Channel::UpdateBlockSearchStatus() {
   BlockSearchStatus& st = bs_.status;
   st.state = bs_.state;
   st.command = bs_.command;
-  const bool moving = work_.motion.moves && (work_.active || bs_.breakpoint_hold);
+  const bool holding = bs_.distance.holding();
+  const bool moving = work_.motion.moves && (work_.active || holding);
   // A corner the compensation inserted before its block is not yet the block's own path: the
   // per mille the search takes is measured in that (SimulateMotion); nor is the C-only turn of
   // #CAX TRACK before its block, which has not started counting its distance yet.
   const bool aside = inserted_piece_ || cax_.aligning;
   double u = moving && !aside ? std::clamp(work_.profile.u, 0.0, 1.0) : 0;
   // The breakpoint cut the block: its profile runs over the first part only.
-  if (moving && bs_.breakpoint_rest) u *= bs_.breakpoint_u;
+  if (moving) u *= bs_.distance.CutFraction();
   st.covered_distance = u * 1000;
-  st.dist_prog_start = (work_.active || bs_.breakpoint_hold) && !cax_.aligning
-                           ? bs_.block_distance_start + u * bs_.block_distance
-                           : bs_.distance;
+  st.dist_prog_start = (work_.active || holding) && !cax_.aligning ? bs_.distance.DistanceAt(u)
+                                                                   : bs_.distance.distance();
   st.block_count = work_.block.block_count;
   st.path_deviation = 0;
   st.continue_position.clear();
-  if (search_ && !search_->restart.empty() && !bs_.breakpoint_hold &&
+  if (search_ && !search_->restart.empty() && !holding &&
       (bs_.state == BlockSearchState::kWaitForPlcOff ||
        bs_.state == BlockSearchState::kWaitReturnToContour ||
        bs_.state == BlockSearchState::kReturningToContour ||
@@ -576,7 +512,7 @@ void Channel::UpdateBlockSearchStatus() {
   using namespace stop_condition;
   const bool running = state_ == ChannelState::kRunning;
   const bool hold = state_ == ChannelState::kHold;
-  if (bs_.breakpoint_hold) sc |= kBreakpointStop;
+  if (holding) sc |= kBreakpointStop;
   if (hold && single_block_) sc |= kSingleBlock;
   // M00 / M01 (programmed_stop.hpp). STOP_REVERSIBLE: at an M00 the program may still be
   // travelled back (channel_backward.cpp) while the path memory holds a path to take.
@@ -590,7 +526,7 @@ void Channel::UpdateBlockSearchStatus() {
   if (measuring_fault) sc |= kChannelError;
   const bool search_hold = bs_.state == BlockSearchState::kWaitReturnToContour ||
                            bs_.state == BlockSearchState::kWaitForContinueContour;
-  if (hold && !bs_.breakpoint_hold && !single_block_ && !search_hold &&
+  if (hold && !holding && !single_block_ && !search_hold &&
       programmed == ProgrammedStop::Kind::kNone && !measuring_fault)
     sc |= kFeedhold;
   if (!aux_.functions.empty()) sc |= kPlcAcknowledge | kWaitTechnoAck;

@@ -143,17 +143,12 @@ void Channel::ContinueAfterSearch() {
   s.start_requested = false;
   if (sp_.command.mode == DriveMode::kPosition) sp_.referencing = true;
   if (!s.restart_motion.moves) return;  // the next block starts the real run
-  // The rest of the continue block, from the continue position on.
+  // The rest of the continue block, from the continue position on; a breakpoint in the rest
+  // cuts it as it would cut the block whole.
   work_.motion = s.restart_motion;
-  bs_.block_distance_start = s.restart_distance;
-  bs_.block_distance = s.restart_length;
-  bs_.distance = s.restart_distance + bs_.block_distance;
+  const double u =
+      bs_.distance.ContinueInBlock(s.restart_distance, s.restart_length, s.restart_u, work_.motion);
   if (s.restart_u >= 1) return;
-  // A breakpoint in the rest of the continue block cuts it as it would cut the block whole.
-  bs_.breakpoint_rest.reset();
-  CutAtBreakpoint(s.restart_u);
-  double u = s.restart_u;
-  if (bs_.breakpoint_rest) u = bs_.breakpoint_u > 1e-12 ? s.restart_u / bs_.breakpoint_u : 1;
   work_.profile = ProfileFrom(work_.motion, u);
   work_.continuation_ready = false;
   look_.carry_speed = look_.carry_accel = look_.carry_leftover = 0;
@@ -161,19 +156,18 @@ void Channel::ContinueAfterSearch() {
 }
 
 void Channel::StartBlockSearchHold() {
-  if (bs_.breakpoint_hold) {
+  if (bs_.distance.holding()) {
     // 3.5: after the breakpoint the rest of its block runs on.
-    bs_.breakpoint_hold = false;
+    double u = 0;
+    std::optional<BlockMotion> rest = bs_.distance.Resume(u);
     if (bs_.state == BlockSearchState::kWaitForContinueContour)
       bs_.state = BlockSearchState::kInactive;
     state_ = ChannelState::kRunning;
-    if (bs_.breakpoint_rest) {
-      work_.motion = *bs_.breakpoint_rest;
-      bs_.breakpoint_rest.reset();
-      work_.profile = ProfileFrom(work_.motion, bs_.breakpoint_u);
+    if (rest) {
+      work_.motion = std::move(*rest);
+      work_.profile = ProfileFrom(work_.motion, u);
       work_.active = true;
     }
-    bs_.breakpoint_u = 0;
     return;
   }
   if (bs_.state == BlockSearchState::kWaitReturnToContour ||
