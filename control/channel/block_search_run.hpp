@@ -60,7 +60,7 @@ struct BlockSearchData {
   BlockSearchStatus status;                                     ///< as of the last NC cycle
   std::vector<std::string> warnings;
   /// The distance from program start (4.1.2) and the breakpoint (3.5).
-  ProgramDistance distance;
+  ProgramDistance program_distance;
   /// Manual return (4.2): actual minus continue position, kept until the program ends.
   std::vector<double> offset;
 };

@@ -137,7 +137,7 @@ bool Channel::Reverse() {
     bs_.state = BlockSearchState::kInactive;
     bs_.command = false;
     cax_.aligning = false;
-    bs_.distance.Drop();
+    bs_.program_distance.Drop();
   }
   // The interrupted block is abandoned where the axes stand; the reverse program starts there.
   // A changeover in progress is given up and the original mode restored (C-axis manual 2.3).
@@ -459,10 +459,10 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
     Fail(program, work_.block.block, error->text, error->number);
     return false;
   }
-  bs_.distance.BlockStarts(work_.motion, config_.axes);
+  bs_.program_distance.BlockStarts(work_.motion, config_.axes);
   work_.profile = PathProfile{};
   if (!work_.motion.moves) {
-    if (bs_.distance.pending()) HoldAtBreakpoint();  // at the very start of the block
+    if (bs_.program_distance.pending()) HoldAtBreakpoint();  // at the very start of the block
     return true;
   }
   // The REPOS subroutine's moves are approach moves, checked whole before they start
@@ -486,7 +486,7 @@ bool Channel::StartMotion(const AmplifierTelegram& at) {
     work_.motion.PointAt(work_.profile.u, out_.commanded);
   }
   LookAhead(at);
-  if (bs_.distance.pending()) work_.continuation_ready = false;  // stop at the breakpoint
+  if (bs_.program_distance.pending()) work_.continuation_ready = false;  // stop at the breakpoint
   return true;
 }
 

@@ -44,7 +44,7 @@ void Channel::BeginBlockSearch() {
   bs_.state = BlockSearchState::kInactive;
   bs_.command = false;
   bs_.warnings.clear();
-  bs_.distance.Restart();  // 4.1.2: ON and CLEAR are the state at program start
+  bs_.program_distance.Restart();  // 4.1.2: ON and CLEAR are the state at program start
   cax_.command.reset();
   cax_.aligning = false;
   RemoveSearchOffset();
@@ -53,7 +53,7 @@ void Channel::BeginBlockSearch() {
     Fail("block search: " + e, kMsgBlockSearch);
     return;
   }
-  bs_.distance.SetBreakpoint(bs_.started.breakpoint_position * 1e-4);
+  bs_.program_distance.SetBreakpoint(bs_.started.breakpoint_position * 1e-4);
   if (bs_.started.file_offset > 0 &&
       !work_.interpreter->StartAt(static_cast<uint32_t>(bs_.started.file_offset))) {
     Fail(programs_[0]->files[0] + ": error: the entry point mc_command_file_offset_w " +
@@ -137,7 +137,7 @@ bool Channel::SearchCycle(const AmplifierTelegram& at) {
       bs_.state = BlockSearchState::kWaitForContinueContour;
       return true;
     case BlockSearchState::kWaitForContinueContour:
-      if (bs_.distance.holding() || !s.start_requested || state_ != ChannelState::kRunning)
+      if (bs_.program_distance.holding() || !s.start_requested || state_ != ChannelState::kRunning)
         return true;
       ContinueAfterSearch();
       return true;
@@ -288,7 +288,7 @@ bool Channel::SimulateBlock(nc::PreparedBlock& b) {
     events_.own[n] = set;
     if (events_.sink) events_.sink(n, set);
   }
-  bs_.distance.Command(b.distance_command);
+  bs_.program_distance.Command(b.distance_command);
   if (!UpdateTranslation(b.modal, program, b.block)) return false;
   if (b.set_position)
     for (size_t a = 0; a < s.position.size(); ++a)
@@ -346,7 +346,7 @@ bool Channel::SimulateMotion(nc::PreparedBlock& b, bool boundary) {
       if (b.programmed >> a & 1)
         work_.interpreter->SetAxisPosition(a, s.position[a] - frames_.translation[a]);
   }
-  const double length = bs_.distance.LengthOf(motion, config_.axes);
+  const double length = bs_.program_distance.LengthOf(motion, config_.axes);
   const double permille = bs_.started.covered_distance / 1000;
   if (s.await_own_piece && !s.inserted_piece) {
     // The continue block's own piece after the corner the compensation inserted before it.
@@ -363,11 +363,11 @@ bool Channel::SimulateMotion(nc::PreparedBlock& b, bool boundary) {
     } else if (wanted <= 0) {
       // 4.1.1 / 10: the covered distance splits a motion block; a block without motion is not.
       return FoundContinuePosition(b, motion, motion.moves ? permille : 0);
-    } else if (wanted < bs_.distance.distance() - 1e-9) {
+    } else if (wanted < bs_.program_distance.distance() - 1e-9) {
       // 4.1.2, figure 18: never back into blocks the search has passed.
       bs_.warnings.push_back("the distance from program start " + Mm(wanted) +
                              " mm lies before the block of the continue position (" +
-                             Mm(bs_.distance.distance()) +
+                             Mm(bs_.program_distance.distance()) +
                              " mm): machining continues at its start");
       return FoundContinuePosition(b, motion, 0);
     } else {
@@ -376,14 +376,14 @@ bool Channel::SimulateMotion(nc::PreparedBlock& b, bool boundary) {
   }
   if (s.by_distance && motion.moves && length > 0) {
     const double wanted = bs_.started.distance_prog_start * 1e-4;
-    const double passed = bs_.distance.distance();
+    const double passed = bs_.program_distance.distance();
     if (wanted <= passed + length + 1e-9) {
       return FoundContinuePosition(b, motion, std::clamp((wanted - passed) / length, 0.0, 1.0));
     }
   }
   if (motion.moves) s.position = motion.end;
-  bs_.distance.Pass(length);
-  if (!BreakpointAfter(bs_.distance.distance(), b)) return false;
+  bs_.program_distance.Pass(length);
+  if (!BreakpointAfter(bs_.program_distance.distance(), b)) return false;
   // The decoded path, for backward travel from the continue position (4.3); not to the
   // program's end (type 5), where the program ends in search mode.
   if (b.homing || b.measuring || nc::SpindleSynchronous(b.motion))
@@ -404,9 +404,10 @@ bool Channel::BreakpointAfter(double continue_mm, const nc::PreparedBlock& b) {
   // for a stop and machining must not run on without it. The search stops with an error where
   // it meets the breakpoint, before any axis moves; a breakpoint at the continue position
   // itself holds as soon as machining goes on there (ContinueAfterSearch).
-  if (!bs_.distance.BreakpointBefore(continue_mm)) return true;
+  if (!bs_.program_distance.BreakpointBefore(continue_mm)) return true;
   Fail(*ProgramOf(b.program), b.block,
-       "the breakpoint mc_cmd_bs_breakpoint_position_w at " + Mm(bs_.distance.breakpoint()) +
+       "the breakpoint mc_cmd_bs_breakpoint_position_w at " +
+           Mm(bs_.program_distance.breakpoint()) +
            " mm from program start lies before the continue position of block search (" +
            Mm(continue_mm) + " mm and on): it must lie after it (block search 3.5)",
        kMsgBlockSearch);
@@ -416,12 +417,12 @@ bool Channel::BreakpointAfter(double continue_mm, const nc::PreparedBlock& b) {
 bool Channel::FoundContinuePosition(const nc::PreparedBlock& b, const BlockMotion& motion,
                                     double u) {
   BlockSearchRun& s = *search_;
-  const double length = bs_.distance.LengthOf(motion, config_.axes);
-  if (!BreakpointAfter(bs_.distance.distance() + u * length, b)) return false;
+  const double length = bs_.program_distance.LengthOf(motion, config_.axes);
+  if (!BreakpointAfter(bs_.program_distance.distance() + u * length, b)) return false;
   s.face_return = b.modal.transformation == nc::Transformation::kFace;
   s.restart_motion = motion;
   s.restart_u = u;
-  s.restart_distance = bs_.distance.distance();
+  s.restart_distance = bs_.program_distance.distance();
   s.restart_length = length;
   s.restart = s.position;
   if (motion.moves) motion.PointAt(u, s.restart);
@@ -452,7 +453,7 @@ void Channel::EndSearchMode() {
 }
 
 void Channel::HoldAtBreakpoint() {
-  bs_.distance.Hold();
+  bs_.program_distance.Hold();
   state_ = ChannelState::kHold;
   bs_.state = BlockSearchState::kWaitForContinueContour;
 }
@@ -480,7 +481,7 @@ void Channel::UpdateBlockSearchStatus() {
   BlockSearchStatus& st = bs_.status;
   st.state = bs_.state;
   st.command = bs_.command;
-  const bool holding = bs_.distance.holding();
+  const bool holding = bs_.program_distance.holding();
   const bool moving = work_.motion.moves && (work_.active || holding);
   // A corner the compensation inserted before its block is not yet the block's own path: the
   // per mille the search takes is measured in that (SimulateMotion); nor is the C-only turn of
@@ -488,10 +489,11 @@ void Channel::UpdateBlockSearchStatus() {
   const bool aside = inserted_piece_ || cax_.aligning;
   double u = moving && !aside ? std::clamp(work_.profile.u, 0.0, 1.0) : 0;
   // The breakpoint cut the block: its profile runs over the first part only.
-  if (moving) u *= bs_.distance.CutFraction();
+  if (moving) u *= bs_.program_distance.CutFraction();
   st.covered_distance = u * 1000;
-  st.dist_prog_start = (work_.active || holding) && !cax_.aligning ? bs_.distance.DistanceAt(u)
-                                                                   : bs_.distance.distance();
+  st.dist_prog_start = (work_.active || holding) && !cax_.aligning
+                           ? bs_.program_distance.DistanceAt(u)
+                           : bs_.program_distance.distance();
   st.block_count = work_.block.block_count;
   st.path_deviation = 0;
   st.continue_position.clear();

@@ -96,7 +96,7 @@ void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, doub
       Interpolate(dt);
     if (measuring_.in_work()) measuring_.WatchMove(MeasuringLinkNow(), at);
     finished = !work_.active;
-    if (finished && bs_.distance.pending()) {
+    if (finished && bs_.program_distance.pending()) {
       HoldAtBreakpoint();
       finished = false;
     }

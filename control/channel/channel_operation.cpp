@@ -70,7 +70,7 @@ CycleStart Channel::StartCase() const {
   if (state_ == ChannelState::kHold) {
     if (backward_.moving() || backward_.backward_requested() || backward_.away())
       return CycleStart::kReplay;
-    if (bs_.distance.holding() || (search_ && bs_.state != BlockSearchState::kInactive))
+    if (bs_.program_distance.holding() || (search_ && bs_.state != BlockSearchState::kInactive))
       return CycleStart::kBlockSearchHold;
     if (repos_.run()) return repos_.rerun() ? CycleStart::kReposRerun : CycleStart::kReposContinue;
     if (repos_.interruption() && repos_.called()) return CycleStart::kReposCall;
@@ -199,7 +199,7 @@ void Channel::Reset() {
   bs_.plc_state = false;
   cax_.command.reset();
   cax_.aligning = false;
-  bs_.distance.Drop();
+  bs_.program_distance.Drop();
   bs_.offset.clear();  // the G92 shift goes below
   backward_.Reset();
   if (work_.interpreter) last_modal_ = work_.interpreter->modal();

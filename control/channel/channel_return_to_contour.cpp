@@ -146,8 +146,8 @@ void Channel::ContinueAfterSearch() {
   // The rest of the continue block, from the continue position on; a breakpoint in the rest
   // cuts it as it would cut the block whole.
   work_.motion = s.restart_motion;
-  const double u =
-      bs_.distance.ContinueInBlock(s.restart_distance, s.restart_length, s.restart_u, work_.motion);
+  const double u = bs_.program_distance.ContinueInBlock(s.restart_distance, s.restart_length,
+                                                        s.restart_u, work_.motion);
   if (s.restart_u >= 1) return;
   work_.profile = ProfileFrom(work_.motion, u);
   work_.continuation_ready = false;
@@ -156,10 +156,10 @@ void Channel::ContinueAfterSearch() {
 }
 
 void Channel::StartBlockSearchHold() {
-  if (bs_.distance.holding()) {
+  if (bs_.program_distance.holding()) {
     // 3.5: after the breakpoint the rest of its block runs on.
     double u = 0;
-    std::optional<BlockMotion> rest = bs_.distance.Resume(u);
+    std::optional<BlockMotion> rest = bs_.program_distance.Resume(u);
     if (bs_.state == BlockSearchState::kWaitForContinueContour)
       bs_.state = BlockSearchState::kInactive;
     state_ = ChannelState::kRunning;

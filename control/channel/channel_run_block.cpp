@@ -28,7 +28,7 @@ bool Channel::RunBlock(const AmplifierTelegram& at) {
   if (!BlockInstructions(program, mry)) return false;
   // MRY: until the drive stands at the place, not only its command (a following error lags).
   if (mry) tool_storage_wait_ = !ToolStorageArrived();
-  bs_.distance.Command(work_.block.distance_command);
+  bs_.program_distance.Command(work_.block.distance_command);
   if (!work_.block.calls.empty()) {
     PathBarrier();  // a probing move is no path to travel back along
     return measuring_.Start(MeasuringLinkNow());
