@@ -315,9 +315,13 @@ void SceneRun::State::Step() {
 }
 
 void SceneRun::State::CheckExpectations(double t, const control::AmplifierTelegram& at) {
+  if (t < next_expectation_s - 1e-9 && tick != last_tick) return;
+  next_expectation_s = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < scene.expectations.size(); ++i) {
     const Expectation& e = scene.expectations[i];
     const bool due = e.at_s < 0 ? tick == last_tick : t >= e.at_s - 1e-9;
+    if (!checked[i] && !due && e.at_s >= 0)
+      next_expectation_s = std::min(next_expectation_s, e.at_s);
     if (checked[i] || !due) continue;
     checked[i] = true;
     checks[i] = e.quantity == Expectation::Quantity::kDriveTrip

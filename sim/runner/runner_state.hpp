@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -115,6 +116,9 @@ struct SceneRun::State {
   RunResult result;
   std::unique_ptr<SceneRenderer> renderer;
   std::vector<bool> snapped, checked;
+  /// The earliest time an unchecked timed expectation is due: before it (and before the last
+  /// tick) no expectation needs a look.
+  double next_expectation_s = -std::numeric_limits<double>::infinity();
   std::vector<int> event_shots;  ///< per snapshot: occurrences of its event so far
   /// Event snapshots due at this tick's pictures: snapshot index and occurrence (1, 2, ...).
   std::vector<std::pair<size_t, int>> pending_shots;
