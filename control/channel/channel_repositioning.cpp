@@ -62,11 +62,15 @@ bool Channel::ToolStorageKnown() const {
 }
 
 void Channel::ReposCycle(const AmplifierTelegram& at) {
-  bool key_held = false;
-  for (const JogAxis& j : jog_.axes) key_held |= j.key != 0;
-  for (const FictiveJog& f : jog_.fictive) key_held |= f.key != 0;
-  repos_.Cycle(ReposViewNow(), at, state_ == ChannelState::kHold || repos_.run(),
-               mode_ == ChannelMode::kManual && (key_held || JogsMoving()));
+  // The jogs matter only to a function already called (its withdrawal waits for them): looked
+  // at then, not on every NC cycle.
+  bool motion = false;
+  if (repos_.called() && mode_ == ChannelMode::kManual) {
+    for (const JogAxis& j : jog_.axes) motion |= j.key != 0;
+    for (const FictiveJog& f : jog_.fictive) motion |= f.key != 0;
+    motion = motion || JogsMoving();
+  }
+  repos_.Cycle(ReposViewNow(), at, state_ == ChannelState::kHold || repos_.run(), motion);
 }
 
 ReposStatus Channel::repos_status(const AmplifierTelegram* at, bool whole) const {

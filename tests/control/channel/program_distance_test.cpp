@@ -30,6 +30,13 @@ BlockMotion LineZ(double z0, double z1) {
   return m;
 }
 
+// A block of Z from `z0` to `z1` starts: its motion as the distance left it (perhaps cut).
+BlockMotion Starts(ProgramDistance& d, double z0, double z1) {
+  BlockMotion m = LineZ(z0, z1);
+  d.BlockStarts(m, AxesXZ());
+  return m;
+}
+
 TEST(ProgramDistance, CountsWhileOnAndClears) {
   const auto axes = AxesXZ();
   ProgramDistance d;
@@ -51,14 +58,11 @@ TEST(ProgramDistance, CountsWhileOnAndClears) {
 }
 
 TEST(ProgramDistance, TheBreakpointCutsTheBlockAndItsRestRunsAfterTheHold) {
-  const auto axes = AxesXZ();
   ProgramDistance d;
   d.SetBreakpoint(40);
-  BlockMotion first = LineZ(0, 30);
-  d.BlockStarts(first, axes);
+  Starts(d, 0, 30);
   EXPECT_FALSE(d.pending());  // not reached in the first 30 mm
-  BlockMotion second = LineZ(30, 70);
-  d.BlockStarts(second, axes);
+  const BlockMotion second = Starts(d, 30, 70);
   ASSERT_TRUE(d.pending());
   EXPECT_DOUBLE_EQ(second.end[1], 40);  // the motion ends at the breakpoint
   EXPECT_DOUBLE_EQ(second.max_rate, 2 / 0.25);
@@ -77,11 +81,9 @@ TEST(ProgramDistance, TheBreakpointCutsTheBlockAndItsRestRunsAfterTheHold) {
 }
 
 TEST(ProgramDistance, ABreakpointAtABlocksEndHoldsAfterItWithNothingLeft) {
-  const auto axes = AxesXZ();
   ProgramDistance d;
   d.SetBreakpoint(30);
-  BlockMotion first = LineZ(0, 30);
-  d.BlockStarts(first, axes);
+  const BlockMotion first = Starts(d, 0, 30);
   // At the end of the first block: that block runs whole and the path holds after it.
   EXPECT_TRUE(d.pending());
   EXPECT_DOUBLE_EQ(first.end[1], 30);
