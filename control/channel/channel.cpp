@@ -29,16 +29,9 @@ Channel::Channel(ChannelConfig config, std::vector<const nc::Program*> programs)
 }
 
 void Channel::DropLookahead() {
-  work_.peeked.clear();
-  work_.unpushed.reset();
-  work_.source_returned_false = false;
+  work_.feed.Drop();
   work_.continuation_ready = false;
   look_.carry_speed = look_.carry_accel = look_.carry_leftover = 0;
-  work_.compensating = false;
-  work_.source_done = false;
-  work_.trc.Reset();
-  work_.ahead.clear();
-  work_.ready.clear();
 }
 
 const nc::Program* Channel::ProgramOf(uint32_t index) const {
@@ -195,10 +188,6 @@ std::vector<OperatorMessage> Channel::messages() const {
 }
 
 void Channel::Fail(const nc::Program& program, int32_t block, const std::string& text, int number) {
-  if (look_.planning_only) {
-    look_.plan_failed = true;  // read ahead under G41/G42: the block's error comes in its turn
-    return;
-  }
   Fail(nc::Format({program.blocks[block].pos, text}, program.files), number);
 }
 

@@ -364,20 +364,21 @@ class Channel {
   bool BlockOffsets(const nc::Program& program);
   /// Its functions of the main and further spindles.
   bool BlockSpindles(const nc::Program& program);
+  // The blocks after the one in work (block_feed.hpp; the channel's side in
+  // channel_read_ahead.cpp). The feed's context and reporting a block's error it found.
+  FeedContext FeedContextNow() const;
+  void FailAt(const BlockError& e);
   bool NextCompensated(const AmplifierTelegram& at);
   /// Under G41/G42, reads on (through ReadNext, or straight from the interpreter while
   /// `searching`) until the compensation has a final piece ready (kPiece), has given out all it
-  /// read (kDrained: work_.compensating is off, work_.source_done says whether the text ended) or
-  /// failed.
+  /// read (kDrained: the feed compensates no more; its source_done says whether the text ended)
+  /// or failed.
   enum class Compensated { kPiece, kDrained, kFailed };
   Compensated FillReadyPiece(bool searching);
-  /// The next ready piece of the tip path into work_.block, built on its block.
-  ContourElement TakeReadyPiece();
   /// G41/G42 begins with work_.block: from here on the channel reads ahead, so that each
   /// block's path is offset with its successor in view. `position`: where the program has the
   /// axes (machine coordinates), the start of the contour.
   bool StartCompensation(const std::vector<double>& position);
-  bool PushAhead(const nc::PreparedBlock& b);
   void DropLookahead();
   bool StartMotion(const AmplifierTelegram& at);
   void LookAhead(const AmplifierTelegram& at);
@@ -386,10 +387,6 @@ class Channel {
   /// block, the look-ahead, the G41/G42 read-ahead, the search) goes through here. False at
   /// the text's end, on an interpreter error, and at block search type 1's end position (3.1).
   bool ReadSource(nc::PreparedBlock& b);
-  bool Peek(size_t k);
-  void FillCompensated(size_t elements);
-  bool PeekCompensated(size_t k, nc::PreparedBlock& out);
-  nc::PreparedBlock ElementBlock(const ContourElement& e, nc::PreparedBlock base) const;
   double SpindleRevPerS(const AmplifierTelegram& at) const;
   bool UpdateTranslation(const nc::ModalState& modal, const nc::Program& program, int32_t block);
   bool NextHomingStage();
@@ -447,9 +444,6 @@ class Channel {
   AuxOutput aux_;         ///< M, H, Q, T waiting for the PLC, and their strobe
   bool reversing_ = false;
 
-  // Look-ahead between feed moves: the next blocks read early, the speed carried into them.
-
-  // Tool nose radius compensation (G41/G42): blocks read ahead and the tip path made of them.
   bool inserted_piece_ = false;    ///< work_.block is a corner the compensation inserted before it
   int axis_z_ = -1, axis_x_ = -1;  ///< channel axes of the G18 plane
   MdiState mdi_;
@@ -649,7 +643,7 @@ class Channel {
   EnablingSignals enable_;  ///< PxxC.ENABL, AxxC.ENABL
   MainSpindleState sp_;  ///< the main spindle: command, override, keys, reference, feedback
   DriveWatch drives_;    ///< encoder positions and Control-Reset's trip acknowledgement
-  LookAheadState look_;  ///< the blocks read ahead and the speed carried into the next block
+  LookAheadState look_;  ///< the block in work's speed targets and the speed carried on
   JogData jog_;          ///< the jog keys, the handwheel, X1/Y1, the jog mode
 };
 

@@ -179,7 +179,7 @@ bool Channel::NextSearchBlock() {
     work_.block.block = -1;
     return true;
   };
-  if (!work_.compensating) {
+  if (!work_.feed.compensating()) {
     if (headstock_) s.rotary_start = work_.interpreter->position()[config_.rotary_axis];
     if (!ReadSource(work_.block)) return text_ended();
     if (work_.block.modal.compensation == nc::Compensation::kOff ||
@@ -195,18 +195,17 @@ bool Channel::NextSearchBlock() {
     case Compensated::kFailed:
       return false;
     case Compensated::kDrained:
-      if (work_.source_done) {
-        work_.source_done = false;
+      if (work_.feed.source_done()) {
+        work_.feed.ForgetSourceDone();
         return text_ended();
       }
       return NextSearchBlock();
     case Compensated::kPiece:
       break;
   }
-  const ContourElement e = TakeReadyPiece();
-  s.further_piece = e.tag == work_.last_run_tag;
-  s.inserted_piece = inserted_piece_ = e.inserted;
-  work_.last_run_tag = e.tag;
+  const TakenPiece piece = work_.feed.TakePiece(FeedContextNow(), work_.block);
+  s.further_piece = piece.further;
+  s.inserted_piece = inserted_piece_ = piece.element.inserted;
   return true;
 }
 

@@ -47,7 +47,7 @@ void Channel::EndSearchChangeover(nc::PreparedBlock& b) {
   s.position[r] = out_.commanded[r];
   // RebaseRotaryAxis: an increment counts from here; the interpreter goes on from the block's
   // corrected end. Under G41/G42 the blocks ahead are prepared already, as in a run.
-  if (work_.compensating || b.homing) return;
+  if (work_.feed.compensating() || b.homing) return;
   const double actual = out_.commanded[r] - frames_.translation[r];
   if (b.modal.incremental && (b.programmed >> r & 1)) b.target[r] += actual - s.rotary_start;
   work_.interpreter->SetAxisPosition(r, b.target[r]);

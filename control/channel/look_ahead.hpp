@@ -57,12 +57,10 @@ void PlanTargets(double length, double max_speed, double accel, double jerk,
 void ProfileTargets(std::span<const SpeedTarget> targets, double length, double override,
                     std::vector<ProfileTarget>& out);
 
-/// The channel's look-ahead between feed moves: the blocks read early (scratch, reused) and the
-/// speed and acceleration carried into the next block.
+/// The channel's look-ahead between feed moves as the block in work runs: its speed targets in
+/// the profile's u (scratch, reused) and the speed and acceleration carried into the next block.
 struct LookAheadState {
-  std::vector<LookAheadLeg> legs;              ///< the blocks read ahead
-  std::vector<ProfileTarget> profile_targets;  ///< the same in the profile's u
-  bool planning_only = false, plan_failed = false;
+  std::vector<ProfileTarget> profile_targets;
   double carry_speed = 0, carry_accel = 0, carry_leftover = 0;
 };
 

@@ -1,20 +1,19 @@
 #pragma once
 // A program in work: its interpreter, the block in work with its motion and profile, dwell,
-// homing, look-ahead and tool radius compensation. The channel runs one; while the REPOS
+// homing, and the blocks after it (block_feed.hpp). The channel runs one; while the REPOS
 // subroutine runs in the interrupted program's place, that one is parked, and the two swap as
 // one value when the subroutine starts and ends. It is a plain value: copying a channel copies it.
 
 #include <cstdint>
-#include <deque>
 #include <memory>
 #include <optional>
 #include <utility>
 #include <vector>
 
+#include "control/channel/block_feed.hpp"
 #include "control/channel/block_motion.hpp"
 #include "control/channel/look_ahead.hpp"
 #include "control/channel/path_profile.hpp"
-#include "control/channel/tool_radius_compensation.hpp"
 #include "control/nc/interpreter.hpp"
 #include "control/nc/program.hpp"
 
@@ -30,20 +29,9 @@ struct ProgramInWork {
   bool homing = false;
   double dwell_left_s = 0;
   std::vector<std::pair<int, uint64_t>> homing_stages;  ///< G74: order, axes bits
-  // Look-ahead between feed moves: the next blocks read early, the speed carried into them.
-  std::deque<nc::PreparedBlock> peeked;       ///< read from the interpreter, not run yet
-  std::vector<SpeedTarget> targets;           ///< speed limits ahead of the block in work
-  bool continuation_ready = false;            ///< this block ends at speed into the next
-  bool source_returned_false = false;         ///< the read-ahead met the end or an error
-  std::optional<nc::PreparedBlock> unpushed;  ///< read ahead under G41/G42, not taken yet
-  // Tool nose radius compensation (G41/G42): blocks read ahead and the tip path made of them.
-  ToolRadiusCompensation trc;
-  bool compensating = false;
-  bool source_done = false;             ///< the program's end has been read ahead
-  std::deque<nc::PreparedBlock> ahead;  ///< blocks read ahead; ahead[0] has tag first_tag
-  std::deque<ContourElement> ready;     ///< tip path elements ready to run
-  int64_t first_tag = 0, next_tag = 0, last_run_tag = -1;
-  Vec2 contour_point;  ///< end of the last programmed element pushed (program coords)
+  BlockFeed feed;  ///< the blocks after the one in work: read early, or the G41/G42 tip path
+  std::vector<SpeedTarget> targets;  ///< speed limits ahead of the block in work
+  bool continuation_ready = false;   ///< this block ends at speed into the next
   /// The interpreter's rotary axis position before the block last read (ReadNext), and after it.
   double rotary_start = 0, rotary_next_start = 0;
 };
