@@ -37,6 +37,9 @@ struct BlockSearchRun {
   /// before its block. The per mille lies in the block's own piece: found at an inserted
   /// corner, the search runs it and takes the own piece that follows.
   bool further_piece = false, inserted_piece = false, await_own_piece = false;
+  /// After the continue block's boundary, the continue position is still to be placed
+  /// (DecideContinue): on the block's own piece, or by the distance from program start.
+  bool Deciding() const { return await_own_piece || by_distance; }
   /// Type 1's end position was read (3.1): the program ends before its block.
   bool end_reached = false;
   bool return_rest = false;  ///< C is being aligned; the other axes' return follows (4.2.2)

@@ -2,8 +2,9 @@
 // channel decodes the program without axis motion up to the continue position (types 1, 3, 4;
 // 5 to the program end), rebuilding modal state, variables, offsets, tool and spindle, with
 // every technology function going to the PLC and acknowledged as in a normal run. Found, it
-// hands over to the PLC (7); the return to the contour and the continuation inside the block
-// are channel_return_to_contour.cpp's. Under G41/G42 the search runs the tool nose
+// hands over to the PLC (7); where in its block machining goes on is continue_position.hpp's,
+// the return to the contour and the continuation inside the block are
+// channel_return_to_contour.cpp's. Under G41/G42 the search runs the tool nose
 // radius compensation as the run does, so the continue position is on the tip path and the
 // run goes on from the compensation's state; with #CAX TRACK on, the return aligns C first
 // (4.2.2). A spindle / rotary axis changeover and measuring instructions of the skipped part:
@@ -16,6 +17,7 @@
 
 #include "control/channel/block_search_support.hpp"
 #include "control/channel/channel.hpp"
+#include "control/channel/continue_position.hpp"
 #include "control/nc/coordinate_transformation.hpp"
 
 namespace vmt::control::channel {
@@ -346,39 +348,12 @@ bool Channel::SimulateMotion(nc::PreparedBlock& b, bool boundary) {
         work_.interpreter->SetAxisPosition(a, s.position[a] - frames_.translation[a]);
   }
   const double length = bs_.program_distance.LengthOf(motion, config_.axes);
-  const double permille = bs_.started.covered_distance / 1000;
-  if (s.await_own_piece && !s.inserted_piece) {
-    // The continue block's own piece after the corner the compensation inserted before it.
-    s.await_own_piece = false;
-    return FoundContinuePosition(b, motion, motion.moves ? permille : 0);
-  }
-  if (boundary) {
-    s.found = true;
-    const double wanted = bs_.started.distance_prog_start * 1e-4;
-    if (wanted <= 0 && s.inserted_piece) {
-      // The per mille measures the block's own piece of the tip path, not the corner arc
-      // before it: the same point whatever the nose radius (4.1.1, note to figure 10).
-      s.await_own_piece = true;
-    } else if (wanted <= 0) {
-      // 4.1.1 / 10: the covered distance splits a motion block; a block without motion is not.
-      return FoundContinuePosition(b, motion, motion.moves ? permille : 0);
-    } else if (wanted < bs_.program_distance.distance() - 1e-9) {
-      // 4.1.2, figure 18: never back into blocks the search has passed.
-      bs_.warnings.push_back("the distance from program start " + Mm(wanted) +
-                             " mm lies before the block of the continue position (" +
-                             Mm(bs_.program_distance.distance()) +
-                             " mm): machining continues at its start");
-      return FoundContinuePosition(b, motion, 0);
-    } else {
-      s.by_distance = true;
-    }
-  }
-  if (s.by_distance && motion.moves && length > 0) {
-    const double wanted = bs_.started.distance_prog_start * 1e-4;
-    const double passed = bs_.program_distance.distance();
-    if (wanted <= passed + length + 1e-9) {
-      return FoundContinuePosition(b, motion, std::clamp((wanted - passed) / length, 0.0, 1.0));
-    }
+  if (boundary || s.Deciding()) {
+    const ContinueStep step =
+        DecideContinue(s, bs_.started, motion, length, bs_.program_distance.distance(), boundary);
+    if (step.distance_passed)
+      bs_.warnings.push_back(DistancePassedWarning(bs_.started, bs_.program_distance.distance()));
+    if (step.found) return FoundContinuePosition(b, motion, step.u);
   }
   if (motion.moves) s.position = motion.end;
   bs_.program_distance.Pass(length);
