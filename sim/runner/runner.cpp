@@ -25,6 +25,7 @@
 #include "sim/runner/channel_events.hpp"
 #include "sim/runner/contact_sheets.hpp"
 #include "sim/runner/event_snapshots.hpp"
+#include "sim/runner/expectation_watch.hpp"
 #include "sim/runner/make_backend.hpp"
 #include "sim/runner/probe_glue.hpp"
 #include "sim/runner/runner_state.hpp"
@@ -38,71 +39,6 @@ namespace {
 /// Turned stock slices whose radii differ by less make one cylinder for PathGuard: well below
 /// the cut's allowance, so a merged run never stands above a tool in its cut.
 constexpr double kStockTolerance = 2e-6;
-
-std::string Seconds(double t_s) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g s", t_s);
-  return buf;
-}
-
-double Measured(const Expectation& e, const control::AmplifierTelegram& at,
-                const std::vector<ClutchState>& clutches,
-                const control::gateway::SignalImage* image) {
-  using Q = Expectation::Quantity;
-  switch (e.quantity) {
-    case Q::kSignal:
-      return image ? image->Number(e.index) : std::nan("");
-    case Q::kPosition:
-      return at.feedback[e.index].position;
-    case Q::kVelocity:
-      return at.feedback[e.index].velocity;
-    case Q::kRpm:
-      return at.feedback[e.index].velocity / 6.0;
-    case Q::kFollowingError:
-      return at.feedback[e.index].following_error;
-    case Q::kParameterSet:
-      return at.feedback[e.index].parameter_set;
-    case Q::kInput:
-      return at.inputs[e.index];
-    case Q::kClutch:
-      return static_cast<double>(clutches[e.index]);
-    case Q::kNc:
-    case Q::kDriveTrip:
-      return 0;  // a state, compared in Check; the trips so far, in CheckExpectations
-  }
-  return 0;
-}
-
-// `{drive:, trip:}`: has the drive tripped, for one of the causes meant, by now?
-ExpectationResult CheckTrip(const Expectation& e, const std::vector<DriveTrip>& trips,
-                            const MachineModel& m) {
-  for (const DriveTrip& trip : trips)
-    if (trip.drive == e.index && (trip.faults & e.trip))
-      return {e.text, true, "tripped: " + TripCauses(trip.faults) + " at " + Seconds(trip.t_s)};
-  return {e.text, false, "drive " + m.drives[e.index].info.name + " has not tripped"};
-}
-
-ExpectationResult Check(const Expectation& e, const control::AmplifierTelegram& at,
-                        const std::vector<ClutchState>& clutches,
-                        const control::channel::Channel* channel,
-                        const control::gateway::SignalImage* image) {
-  ExpectationResult r{e.text, false, ""};
-  const double got = Measured(e, at, clutches, image);
-  if (e.quantity == Expectation::Quantity::kNc) {
-    r.passed = channel && channel->state() == e.nc;
-    r.detail = std::string("got ") + (channel ? ToString(channel->state()) : "no channel");
-    if (channel && !channel->error().empty()) r.detail += ": " + channel->error();
-  } else if (e.quantity == Expectation::Quantity::kClutch) {
-    r.passed = clutches[e.index] == e.clutch;
-    r.detail = std::string("got ") + ToString(clutches[e.index]);
-  } else {
-    r.passed = std::abs(got - e.value) <= e.tolerance;
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "got %.6f", got);
-    r.detail = buf;
-  }
-  return r;
-}
 
 // The main spindle's status indication as a user interface shows it (C-axis manual 2.3 / 3.3):
 // the designation, the speeds or -- in rotary axis mode -- lines (null), the overrides always.
@@ -153,8 +89,6 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
 
   snapped.assign(scene.snapshots.size(), false);
   event_shots.assign(scene.snapshots.size(), 0);
-  checked.assign(scene.expectations.size(), false);
-  checks.resize(scene.expectations.size());
   clutches.resize(m.clutches.size());
 }
 
@@ -315,24 +249,9 @@ void SceneRun::State::Step() {
 }
 
 void SceneRun::State::CheckExpectations(double t, const control::AmplifierTelegram& at) {
-  if (t < next_expectation_s - 1e-9 && tick != last_tick) return;
-  next_expectation_s = std::numeric_limits<double>::infinity();
-  for (size_t i = 0; i < scene.expectations.size(); ++i) {
-    const Expectation& e = scene.expectations[i];
-    const bool due = e.at_s < 0 ? tick == last_tick : t >= e.at_s - 1e-9;
-    if (!checked[i] && !due && e.at_s >= 0)
-      next_expectation_s = std::min(next_expectation_s, e.at_s);
-    if (checked[i] || !due) continue;
-    checked[i] = true;
-    checks[i] = e.quantity == Expectation::Quantity::kDriveTrip
-                    ? CheckTrip(e, machine_events.trips(), m)
-                    : Check(e, at, clutches, channel.get(), image.get());
-    recorder.Event({{"t", t},
-                    {"event", "expectation"},
-                    {"text", e.text},
-                    {"passed", checks[i].passed},
-                    {"detail", checks[i].detail}});
-  }
+  if (!expectations.Due(t, tick == last_tick)) return;
+  expectations.Check(t, tick == last_tick,
+                     {at, clutches, channel.get(), image.get(), machine_events.trips()}, recorder);
 }
 
 void SceneRun::State::TakeDueSnapshots(double t) {
@@ -374,38 +293,12 @@ RunResult SceneRun::State::Finish(const std::string& stop_reason) {
   result.simulated_s = last_tick * kDriveTickS;
   result.final_joint_positions = backend->JointPositions();
   result.trace_digest = recorder.DigestHex();
-  for (size_t i = 0; i < checks.size(); ++i) {
-    if (!checked[i]) {
-      checks[i] = {scene.expectations[i].text, false, "not reached: the run ended first"};
-    }
-    if (!checks[i].passed)
-      result.failures.push_back(checks[i].text + " (" + checks[i].detail + ")");
-  }
+  result.expectations = expectations.Close();
+  for (std::string& f : expectations.NotHeld()) result.failures.push_back(std::move(f));
   for (const std::string& f : timeline->failures()) result.failures.push_back(f);
-  // An NC error fails the run unless the scene expects it.
-  if (channel && !channel->error().empty()) {
-    bool expected = false;
-    for (const Expectation& e : scene.expectations)
-      expected = expected || (e.quantity == Expectation::Quantity::kNc &&
-                              e.nc == control::channel::ChannelState::kError);
-    if (!expected) result.failures.push_back("NC error: " + channel->error());
-  }
-  // So does a drive trip: a protection that takes a power stage off is a fault of the machine
-  // or of the program unless the scene means it (`expect: {drive:, trip:}`).
-  for (const DriveTrip& trip : machine_events.trips()) {
-    uint32_t expected = 0;
-    for (const Expectation& e : scene.expectations)
-      if (e.quantity == Expectation::Quantity::kDriveTrip && e.index == trip.drive)
-        expected |= e.trip;
-    if (const uint32_t unexpected = trip.faults & ~expected) {
-      const std::string& name = m.drives[trip.drive].info.name;
-      result.failures.push_back("drive " + name + " tripped on " + TripCauses(unexpected) + " at " +
-                                Seconds(trip.t_s) +
-                                ", which the scene does not expect (expect: {drive: " + name +
-                                ", trip: " + TripCauses(unexpected & (0u - unexpected)) + "})");
-    }
-  }
-  result.expectations = checks;
+  for (std::string& f :
+       expectations.Unexpected(machine_events.trips(), channel ? channel->error() : std::string()))
+    result.failures.push_back(std::move(f));
   result.wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   // The files are complete now, whether or not the run object lives on.
@@ -427,12 +320,14 @@ RunResult SceneRun::State::Finish(const std::string& stop_reason) {
     summary["real_time_factor"] = result.wall_s > 0 ? result.simulated_s / result.wall_s : 0.0;
     summary["trace_digest"] = result.trace_digest;
     summary["expectations_passed"] =
-        result.expectations.size() -
-        std::count_if(checks.begin(), checks.end(), [](const auto& c) { return !c.passed; });
+        result.expectations.size() - std::count_if(result.expectations.begin(),
+                                                   result.expectations.end(),
+                                                   [](const auto& c) { return !c.passed; });
     summary["expectations_failed"] =
-        std::count_if(checks.begin(), checks.end(), [](const auto& c) { return !c.passed; });
+        std::count_if(result.expectations.begin(), result.expectations.end(),
+                      [](const auto& c) { return !c.passed; });
     auto& list = summary["expectations"] = nlohmann::ordered_json::array();
-    for (const ExpectationResult& c : checks)
+    for (const ExpectationResult& c : result.expectations)
       list.push_back({{"text", c.text}, {"passed", c.passed}, {"detail", c.detail}});
     summary["failures"] = result.failures;
     summary["snapshots"] = result.snapshot_files;

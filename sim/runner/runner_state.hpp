@@ -21,6 +21,7 @@
 #include "sim/collision/spindle_sweep.hpp"
 #include "sim/collision/stock_cutter.hpp"
 #include "sim/runner/channel_event_watch.hpp"
+#include "sim/runner/expectation_watch.hpp"
 #include "sim/runner/machine_events.hpp"
 #include "sim/runner/probe_glue.hpp"
 #include "sim/runner/run_recorder.hpp"
@@ -115,14 +116,12 @@ struct SceneRun::State {
   RunRecorder recorder;
   RunResult result;
   std::unique_ptr<SceneRenderer> renderer;
-  std::vector<bool> snapped, checked;
-  /// The earliest time an unchecked timed expectation is due: before it (and before the last
-  /// tick) no expectation needs a look.
-  double next_expectation_s = -std::numeric_limits<double>::infinity();
+  std::vector<bool> snapped;
+  /// The scene's expectations, checked as they fall due.
+  ExpectationWatch expectations{scene.expectations, m};
   std::vector<int> event_shots;  ///< per snapshot: occurrences of its event so far
   /// Event snapshots due at this tick's pictures: snapshot index and occurrence (1, 2, ...).
   std::vector<std::pair<size_t, int>> pending_shots;
-  std::vector<ExpectationResult> checks;
   std::vector<ClutchState> clutches;  ///< the backend's, this tick
   control::MasterTelegram mdt;
   std::vector<ProgramEvent> events;
