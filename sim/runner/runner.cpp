@@ -12,11 +12,11 @@
 #include <span>
 #include <utility>
 
+#include "common/output_file.hpp"
 #include "control/channel/jog_of_path.hpp"
 #include "control/gateway/channel_gateway.hpp"
 #include "control/plc/plc_programs.hpp"
 #include "control/plc/plc_runtime.hpp"
-#include "render/image.hpp"
 #include "sim/backend/stylus.hpp"
 #include "sim/collision/machine_path_guard.hpp"
 #include "sim/collision/spindle_sweep.hpp"
@@ -24,12 +24,10 @@
 #include "sim/model/gateway_layout.hpp"
 #include "sim/runner/channel_events.hpp"
 #include "sim/runner/contact_sheets.hpp"
-#include "sim/runner/event_snapshots.hpp"
 #include "sim/runner/expectation_watch.hpp"
 #include "sim/runner/make_backend.hpp"
 #include "sim/runner/probe_glue.hpp"
 #include "sim/runner/runner_state.hpp"
-#include "sim/runner/scene_renderer.hpp"
 #include "sim/runner/timeline_player.hpp"
 #include "sim/runner/trace_rows.hpp"
 
@@ -62,7 +60,7 @@ nlohmann::ordered_json SpindleStatusJson(const control::channel::Channel& ch,
 
 SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     : scene(scene_), options(options_), m(*scene_.model) {
-  recorder.AddObserver([this](const nlohmann::ordered_json& e) { NoteSnapshotEvent(e); }, false);
+  recorder.AddObserver([this](const nlohmann::ordered_json& e) { snapshots.NoteEvent(e); }, false);
   recorder.AddObserver([this](const nlohmann::ordered_json& e) { NoteProbeLatch(e); }, false);
   if (options.on_event) recorder.AddObserver(options.on_event);
   if (options.signal_events && options.out_dir.empty())
@@ -87,8 +85,6 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
   if (!options.out_dir.empty()) recorder.Open(options.out_dir);
   recorder.Trace(TraceHeader(m, channel != nullptr));
 
-  snapped.assign(scene.snapshots.size(), false);
-  event_shots.assign(scene.snapshots.size(), 0);
   clutches.resize(m.clutches.size());
 }
 
@@ -233,7 +229,7 @@ void SceneRun::State::Step() {
   if (tick % trace_every == 0 || tick == last_tick)
     recorder.Trace(TraceRow(t, m, at, mdt, clutches, channel.get()));
   CheckExpectations(t, at);
-  TakeDueSnapshots(t);
+  snapshots.TakeDue(t, {*backend, cutter.get(), stock_cuts}, recorder, result.snapshot_files);
 
   if (tick == last_tick) {
     finished = true;
@@ -254,23 +250,6 @@ void SceneRun::State::CheckExpectations(double t, const control::AmplifierTelegr
                      {at, clutches, channel.get(), image.get(), machine_events.trips()}, recorder);
 }
 
-void SceneRun::State::TakeDueSnapshots(double t) {
-  for (size_t i = 0; i < scene.snapshots.size(); ++i) {
-    const SnapshotSpec& s = scene.snapshots[i];
-    if (s.on != SnapshotEvent::kNone || snapped[i] || t < s.at_s - 1e-9) continue;
-    snapped[i] = true;
-    TakeSnapshot(s, s.file, {{"t", t}, {"event", "snapshot"}, {"camera", s.camera}});
-  }
-  // Events recorded since the last pictures (this tick's, and a stylus' over-travel found in
-  // the last physics step), in the order they came.
-  for (const auto& [i, n] : std::exchange(pending_shots, {})) {
-    const SnapshotSpec& s = scene.snapshots[i];
-    TakeSnapshot(
-        s, EventSnapshotFile(s, n, t),
-        {{"t", t}, {"event", "snapshot"}, {"on", ToString(s.on)}, {"n", n}, {"camera", s.camera}});
-  }
-}
-
 RunResult SceneRun::State::Finish(const std::string& stop_reason) {
   // A run stopped early (vmt serve, a study's case, a signal) ends with the tick it is at, as a
   // run to that time does (its last tick's trace row, no step beyond): so vmt view, running to
@@ -282,7 +261,7 @@ RunResult SceneRun::State::Finish(const std::string& stop_reason) {
     last_tick = tick;
     Step();
   }
-  RenderPendingSnapshots();
+  snapshots.RenderPending(recorder, result.snapshot_files);
   if (options.snapshots && recorder.writing()) {
     try {
       result.contact_sheets = WriteContactSheets(scene, options.out_dir, result.snapshot_files);
@@ -352,6 +331,16 @@ SceneRun::SceneRun(const Scene& scene, const RunOptions& options)
     : state_(std::make_unique<State>(scene, options)) {}
 SceneRun::~SceneRun() = default;
 bool SceneRun::done() const { return state_->finished; }
+bool SceneRun::State::WriteOutput(const std::string& path, std::string_view text) {
+  try {
+    common::WriteFileAtomically(path, text);
+    return true;
+  } catch (const common::WriteError& e) {
+    recorder.AddWriteError(e.what());
+    return false;
+  }
+}
+
 void SceneRun::Step() { state_->Step(); }
 RunResult SceneRun::Finish(const std::string& stop_reason) { return state_->Finish(stop_reason); }
 control::gateway::SignalImage* SceneRun::image() { return state_->image.get(); }

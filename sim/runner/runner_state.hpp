@@ -1,7 +1,7 @@
 #pragma once
 // What a scene run holds between ticks (SceneRun::State): private to sim/runner/, whose files
 // each take one part of a tick - runner.cpp the tick and the run's end, runner_channel.cpp the
-// NC channel's part, runner_plc.cpp the PLC and the field bus, runner_snapshots.cpp pictures.
+// NC channel's part, runner_plc.cpp the PLC and the field bus.
 
 #include <chrono>
 #include <cmath>
@@ -25,8 +25,8 @@
 #include "sim/runner/machine_events.hpp"
 #include "sim/runner/probe_glue.hpp"
 #include "sim/runner/run_recorder.hpp"
+#include "sim/runner/run_snapshots.hpp"
 #include "sim/runner/runner.hpp"
-#include "sim/runner/scene_renderer.hpp"
 #include "sim/runner/timeline_player.hpp"
 
 namespace vmt::sim {
@@ -50,27 +50,6 @@ struct SceneRun::State {
   void StopPlc(double t, const std::string& reason, const std::string& nc_text);
   /// The scene's expectations due at `t`, checked and recorded.
   void CheckExpectations(double t, const control::AmplifierTelegram& at);
-  /// The pictures due at `t`: timed ones, then those of this tick's events.
-  void TakeDueSnapshots(double t);
-
-  void NoteSnapshotEvent(const nlohmann::ordered_json& event);
-  void TakeSnapshot(const SnapshotSpec& s, const std::string& file, nlohmann::ordered_json event);
-  /// A picture as taken: the joint positions of its tick, what to render, where it goes, and
-  /// the workpiece as turned then (null: as the scene made it, nothing cut yet).
-  struct PendingSnapshot {
-    std::vector<double> joints;
-    const SnapshotSpec* spec;
-    std::string path;
-    std::shared_ptr<const TurnedProfile> turned;
-  };
-  /// The turned stock as the last picture took it: shared by the pictures until the next cut.
-  std::shared_ptr<const TurnedProfile> TurnedNow();
-  std::shared_ptr<const TurnedProfile> turned_profile;
-  /// Returns whether the picture was written (a failure is a write error of the run).
-  bool RenderSnapshot(const PendingSnapshot& shot);
-  void RenderPendingSnapshots();
-  /// RunOptions::snapshots_after_run: the pictures taken, rendered at Finish.
-  std::vector<PendingSnapshot> pending_snapshots;
 
   const Scene& scene;
   const RunOptions options;
@@ -115,13 +94,10 @@ struct SceneRun::State {
   /// Trace, events and their observers: the event snapshots first, then RunOptions::on_event.
   RunRecorder recorder;
   RunResult result;
-  std::unique_ptr<SceneRenderer> renderer;
-  std::vector<bool> snapped;
   /// The scene's expectations, checked as they fall due.
   ExpectationWatch expectations{scene.expectations, m};
-  std::vector<int> event_shots;  ///< per snapshot: occurrences of its event so far
-  /// Event snapshots due at this tick's pictures: snapshot index and occurrence (1, 2, ...).
-  std::vector<std::pair<size_t, int>> pending_shots;
+  /// The scene's pictures, taken as they fall due.
+  RunSnapshots snapshots{scene, options};
   std::vector<ClutchState> clutches;  ///< the backend's, this tick
   control::MasterTelegram mdt;
   std::vector<ProgramEvent> events;
