@@ -34,10 +34,6 @@
 namespace vmt::sim {
 namespace {
 
-/// Turned stock slices whose radii differ by less make one cylinder for PathGuard: well below
-/// the cut's allowance, so a merged run never stands above a tool in its cut.
-constexpr double kStockTolerance = 2e-6;
-
 // The main spindle's status indication as a user interface shows it (C-axis manual 2.3 / 3.3):
 // the designation, the speeds or -- in rotary axis mode -- lines (null), the overrides always.
 nlohmann::ordered_json SpindleStatusJson(const control::channel::Channel& ch,
@@ -107,23 +103,9 @@ void SceneRun::State::MakeChannels() {
   if (config.path_guard != control::GuardReaction::kOff) {
     // The machine's collision geometry with the scene's workpiece, posed where the backend
     // stands; the channel asks it before its approach moves.
-    std::vector<CylinderPart> parts;
-    if (scene.workpiece.present) {
-      cutter = std::make_unique<StockCutter>(m, scene.workpiece.part);
-      parts = cutter->stock().Cylinders(kStockTolerance);
-    }
-    MachineBackend* b = backend.get();
-    path_guard = std::make_unique<MachinePathGuard>(m, parts, [b] { return b->JointPositions(); });
-    path_guard->SetSweep(SweepOf(path_guard->world(), scene.workpiece.present
-                                                          ? scene.workpiece.part.link
-                                                          : std::string("spindle")));
-    path_guard->before_check = [this](CollisionWorld&) {
-      if (!guard_parts_stale || !cutter) return;
-      path_guard->SetAdded(cutter->stock().Cylinders(kStockTolerance));
-      guard_parts_stale = false;
-    };
-    channel->SetPathGuard(path_guard.get());
-    if (jog_of_path) jog_of_path->SetPathGuard(path_guard.get());
+    path_guard = std::make_unique<RunPathGuard>(m, scene.workpiece, *backend);
+    channel->SetPathGuard(&path_guard->guard());
+    if (jog_of_path) jog_of_path->SetPathGuard(&path_guard->guard());
   }
 }
 
@@ -229,7 +211,10 @@ void SceneRun::State::Step() {
   if (tick % trace_every == 0 || tick == last_tick)
     recorder.Trace(TraceRow(t, m, at, mdt, clutches, channel.get()));
   CheckExpectations(t, at);
-  snapshots.TakeDue(t, {*backend, cutter.get(), stock_cuts}, recorder, result.snapshot_files);
+  snapshots.TakeDue(t,
+                    {*backend, path_guard ? path_guard->cutter() : nullptr,
+                     path_guard ? path_guard->stock_cuts() : 0},
+                    recorder, result.snapshot_files);
 
   if (tick == last_tick) {
     finished = true;
@@ -386,8 +371,9 @@ void SceneRun::State::NoteProbeLatch(const nlohmann::ordered_json& event) {
 }
 
 std::optional<Eigen::Vector3d> SceneRun::ToolTip() const {
-  if (!state_->cutter) return std::nullopt;
-  return state_->cutter->CuttingPoint(state_->backend->JointPositions());
+  const StockCutter* cutter = state_->path_guard ? state_->path_guard->cutter() : nullptr;
+  if (!cutter) return std::nullopt;
+  return cutter->CuttingPoint(state_->backend->JointPositions());
 }
 std::optional<Eigen::Vector3d> SceneRun::ProbeLatchPoint() const {
   return state_->probe_latch_point;

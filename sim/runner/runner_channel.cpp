@@ -9,28 +9,14 @@
 
 namespace vmt::sim {
 
-// Each NC cycle, before the channel may ask PathGuard: cut the stock where the tools stand and
-// note whether the spindle turns (the chuck is then checked as it sweeps).
-void SceneRun::State::FollowSpindle(double t) {
-  const std::vector<double> q = backend->JointPositions();
-  if (cutter && cutter->Cut(q, t)) {
-    guard_parts_stale = true;
-    ++stock_cuts;
-  }
-  const int joint = path_guard->sweep().joint;
-  if (joint < 0) return;
-  const double cycle_s = channel->ticks_per_cycle() * kDriveTickS;
-  path_guard->SetSpindleTurning(std::abs(q[joint] - spindle_angle) >= kTurningSpeedRadS * cycle_s);
-  spindle_angle = q[joint];
-}
-
 void SceneRun::State::StepChannel(double t, const control::AmplifierTelegram& at) {
   const bool nc_cycle = tick % channel->ticks_per_cycle() == 0;
   if (gateway && nc_cycle && default_headstock_plc) AcknowledgeHeadstock();
   if (gateway && nc_cycle) gateway->ReadControls(*channel);
   if (jog_of_path && gateway && nc_cycle) gateway->ReadJogOfPath(*jog_of_path);
   if (jog_of_path && nc_cycle) control::channel::HandOverAxes(*channel, *jog_of_path);
-  if (path_guard && nc_cycle) FollowSpindle(t);
+  if (path_guard && nc_cycle)
+    path_guard->FollowSpindle(t, channel->ticks_per_cycle() * kDriveTickS);
   // Each drive has one writer: the timeline's steps for those no channel writes this tick.
   const control::channel::Channel* lent = jog_of_path.get();
   timeline->WriteSetpoints(mdt, [this, lent](size_t d) {

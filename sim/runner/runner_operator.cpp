@@ -129,9 +129,12 @@ int64_t SceneRun::tick() const { return state_->tick; }
 const control::gateway::SignalImage* SceneRun::image() const { return state_->image.get(); }
 std::vector<CylinderPart> SceneRun::TurnedStockCylinders() const {
   // Finer than PathGuard's: the page draws what is cut to a micrometre.
-  return state_->cutter ? state_->cutter->stock().Cylinders(1e-6) : std::vector<CylinderPart>{};
+  const StockCutter* cutter = state_->path_guard ? state_->path_guard->cutter() : nullptr;
+  return cutter ? cutter->stock().Cylinders(1e-6) : std::vector<CylinderPart>{};
 }
-int64_t SceneRun::stock_cuts() const { return state_->stock_cuts; }
+int64_t SceneRun::stock_cuts() const {
+  return state_->path_guard ? state_->path_guard->stock_cuts() : 0;
+}
 double SceneRun::end_s() const { return state_->last_tick * kDriveTickS; }
 
 }  // namespace vmt::sim

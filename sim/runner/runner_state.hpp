@@ -17,13 +17,11 @@
 #include "control/channel/channel.hpp"
 #include "control/gateway/channel_gateway.hpp"
 #include "control/plc/plc_runtime.hpp"
-#include "sim/collision/machine_path_guard.hpp"
-#include "sim/collision/spindle_sweep.hpp"
-#include "sim/collision/stock_cutter.hpp"
 #include "sim/runner/channel_event_watch.hpp"
 #include "sim/runner/expectation_watch.hpp"
 #include "sim/runner/machine_events.hpp"
 #include "sim/runner/probe_glue.hpp"
+#include "sim/runner/run_path_guard.hpp"
 #include "sim/runner/run_recorder.hpp"
 #include "sim/runner/run_snapshots.hpp"
 #include "sim/runner/runner.hpp"
@@ -56,17 +54,11 @@ struct SceneRun::State {
   const MachineModel& m;
   const std::chrono::steady_clock::time_point wall_start = std::chrono::steady_clock::now();
   std::unique_ptr<MachineBackend> backend;
-  std::unique_ptr<MachinePathGuard> path_guard;  ///< before the channel, which asks it
-  /// The workpiece as turned, for PathGuard (which checks the chuck as it sweeps while the
-  /// spindle turns); PathGuard's parts are rebuilt before a check after a cut.
-  std::unique_ptr<StockCutter> cutter;
-  double spindle_angle = 0;
-  bool guard_parts_stale = false;
-  int64_t stock_cuts = 0;  ///< ticks in which the turned stock changed
+  /// PathGuard with the stock as turned; before the channel, which asks it. Null: no PathGuard.
+  std::unique_ptr<RunPathGuard> path_guard;
   /// SceneRun::ProbeLatchPoint, taken from each probe_latch event as it is recorded.
   std::optional<Eigen::Vector3d> probe_latch_point;
   void NoteProbeLatch(const nlohmann::ordered_json& event);
-  void FollowSpindle(double t);
   /// The machine data pages of fast measurement: the channel's MTD(...) and the probe block's
   /// MTD_RD read and write the same ones.
   control::measure::MeasuringPages measuring_pages;
