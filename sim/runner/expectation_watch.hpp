@@ -12,9 +12,9 @@
 #include "control/drive_bus.hpp"
 #include "control/gateway/signal_image.hpp"
 #include "sim/model/machine_model.hpp"
+#include "sim/runner/expectation_result.hpp"
 #include "sim/runner/machine_events.hpp"
 #include "sim/runner/run_recorder.hpp"
-#include "sim/runner/runner.hpp"
 #include "sim/scene/scene.hpp"
 
 namespace vmt::sim {

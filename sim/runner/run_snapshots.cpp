@@ -6,16 +6,16 @@
 
 namespace vmt::sim {
 
-RunSnapshots::RunSnapshots(const Scene& scene, const RunOptions& options)
+RunSnapshots::RunSnapshots(const Scene& scene, SnapshotSettings settings)
     : scene_(&scene),
-      options_(&options),
+      settings_(std::move(settings)),
       snapped_(scene.snapshots.size(), false),
       event_shots_(scene.snapshots.size(), 0) {}
 
 // An event snapshot is due for each of the scene's `on:` snapshots of this event that has not
 // reached its limit.
 void RunSnapshots::NoteEvent(const nlohmann::ordered_json& event) {
-  if (!options_->snapshots) return;
+  if (!settings_.take) return;
   const SnapshotEvent kind = SnapshotEventOf(event);
   if (kind == SnapshotEvent::kNone) return;
   for (size_t i = 0; i < scene_->snapshots.size(); ++i)
@@ -46,10 +46,10 @@ void RunSnapshots::TakeDue(double t, const SnapshotSource& source, RunRecorder& 
 void RunSnapshots::Take(const SnapshotSpec& s, const std::string& file,
                         nlohmann::ordered_json event, const SnapshotSource& source,
                         RunRecorder& recorder, std::vector<std::string>& files) {
-  if (!options_->snapshots) return;
-  const std::string path = options_->out_dir + "/" + file;
+  if (!settings_.take) return;
+  const std::string path = settings_.out_dir + "/" + file;
   PendingSnapshot shot{source.backend.JointPositions(), &s, path, TurnedNow(source)};
-  if (!options_->snapshots_after_run) {
+  if (!settings_.after_run) {
     if (!Render(shot, recorder)) return;
   } else if (recorder.writing()) {
     pending_.push_back(std::move(shot));

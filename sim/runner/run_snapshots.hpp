@@ -1,8 +1,8 @@
 #pragma once
 // The pictures of a run: the timed ones (`at:`) and those of events (`on:`, each up to its
 // limit), taken at the tick they fall due - the joint positions and the workpiece as turned
-// then - and rendered at once, or after the run (RunOptions::snapshots_after_run, a study's
-// cases). Each picture written is announced as an event "snapshot".
+// then - and rendered at once, or after the run (a study's cases). Each picture written is
+// announced as an event "snapshot".
 
 #include <cstdint>
 #include <memory>
@@ -14,7 +14,6 @@
 #include "sim/backend/machine_backend.hpp"
 #include "sim/collision/stock_cutter.hpp"
 #include "sim/runner/run_recorder.hpp"
-#include "sim/runner/runner.hpp"
 #include "sim/runner/scene_renderer.hpp"
 #include "sim/scene/scene.hpp"
 
@@ -28,9 +27,16 @@ struct SnapshotSource {
   int64_t stock_cuts = 0;  ///< ticks in which the turned stock changed
 };
 
+/// How a run takes its pictures (RunOptions' snapshots, snapshots_after_run and out_dir).
+struct SnapshotSettings {
+  bool take = true;        ///< false: no pictures at all
+  bool after_run = false;  ///< rendered at the run's end, not as taken
+  std::string out_dir;
+};
+
 class RunSnapshots {
  public:
-  RunSnapshots(const Scene& scene, const RunOptions& options);
+  RunSnapshots(const Scene& scene, SnapshotSettings settings);
 
   /// An event was recorded: the pictures of the scene's `on:` snapshots for it are due at this
   /// tick's end (the recorder's observer).
@@ -59,7 +65,7 @@ class RunSnapshots {
   bool Render(const PendingSnapshot& shot, RunRecorder& recorder);
 
   const Scene* scene_;
-  const RunOptions* options_;
+  SnapshotSettings settings_;
   std::unique_ptr<SceneRenderer> renderer_;  ///< made at the first picture
   std::vector<bool> snapped_;                ///< per timed snapshot: taken
   std::vector<int> event_shots_;             ///< per snapshot: occurrences of its event so far

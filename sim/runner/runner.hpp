@@ -14,6 +14,7 @@
 #include "control/gateway/signal_image.hpp"
 #include "control/plc/axd_wr.hpp"
 #include "sim/collision/collision_world.hpp"
+#include "sim/runner/expectation_result.hpp"
 #include "sim/scene/operator_steps.hpp"
 #include "sim/scene/scene.hpp"
 
@@ -48,12 +49,6 @@ struct RunOptions {
   /// The operator inputs of an earlier run (operator.yaml, vmt run --operator), taken at their
   /// ticks as SceneRun::Operate took them: the run repeats that one to the same trace digest.
   std::vector<OperatorStep> operator_steps;
-};
-
-struct ExpectationResult {
-  std::string text;
-  bool passed = false;
-  std::string detail;  ///< "got 249.9876"
 };
 
 struct RunResult {

@@ -89,7 +89,7 @@ struct SceneRun::State {
   /// The scene's expectations, checked as they fall due.
   ExpectationWatch expectations{scene.expectations, m};
   /// The scene's pictures, taken as they fall due.
-  RunSnapshots snapshots{scene, options};
+  RunSnapshots snapshots{scene, {options.snapshots, options.snapshots_after_run, options.out_dir}};
   std::vector<ClutchState> clutches;  ///< the backend's, this tick
   control::MasterTelegram mdt;
   std::vector<ProgramEvent> events;

@@ -1,6 +1,6 @@
 // The run's pictures on their own: a timed one once at its time, an event's up to its limit in
 // the order the events came, each announced as a "snapshot" event with its file; after the run
-// (RunOptions::snapshots_after_run) the files are listed at once and written by RenderPending.
+// (SnapshotSettings::after_run) the files are listed at once and written by RenderPending.
 #include "sim/runner/run_snapshots.hpp"
 
 #include <gtest/gtest.h>
@@ -37,7 +37,7 @@ const nlohmann::ordered_json kCollision = {{"event", "path_guard"}, {"clear", fa
 
 TEST(RunSnapshots, TimedOnceAndEventsUpToTheirLimit) {
   const Scene scene = PicturedScene();
-  RunOptions options;
+  SnapshotSettings options;
   options.out_dir = testing::OutputDir("run_snapshots/at_once");
   const auto backend = MakeBackend(BackendKind::kKinematic, *scene.model, scene.initial);
   RunRecorder recorder;
@@ -66,9 +66,9 @@ TEST(RunSnapshots, TimedOnceAndEventsUpToTheirLimit) {
 
 TEST(RunSnapshots, AfterTheRunTheyAreWrittenAtTheEnd) {
   const Scene scene = PicturedScene();
-  RunOptions options;
+  SnapshotSettings options;
   options.out_dir = testing::OutputDir("run_snapshots/after_run");
-  options.snapshots_after_run = true;
+  options.after_run = true;
   std::filesystem::remove(options.out_dir + "/timed.png");
   const auto backend = MakeBackend(BackendKind::kKinematic, *scene.model, scene.initial);
   RunRecorder recorder;
