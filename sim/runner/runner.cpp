@@ -183,7 +183,7 @@ void SceneRun::State::Step() {
   const double t = tick * kDriveTickS;
   // An operator input of a recorded run is taken where the station took it: before the tick.
   if (next_operator_step < options.operator_steps.size()) ReplayOperatorSteps();
-  const control::AmplifierTelegram& at = Faulted(backend->Read());
+  const control::AmplifierTelegram& at = fault_filter.In(backend->Read(), timeline->faults());
   for (size_t k = 0; k < clutches.size(); ++k) clutches[k] = backend->Clutch(static_cast<int>(k));
 
   // The PLC scans at the start of its cycle, on the machine's inputs as they stand then (the
@@ -220,7 +220,7 @@ void SceneRun::State::Step() {
     finished = true;
     return;
   }
-  ApplyOutputFaults();
+  FaultFilter::Out(timeline->faults(), mdt);
   backend->Write(mdt);
   backend->Step();
   for (const StylusOverTravel& o : backend->TakeStylusOverTravels())

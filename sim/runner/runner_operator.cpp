@@ -122,7 +122,8 @@ const Scene& SceneRun::scene() const { return state_->scene; }
 const control::channel::Channel* SceneRun::channel() const { return state_->channel.get(); }
 const control::AmplifierTelegram& SceneRun::feedback() const {
   // Before the first tick the control has seen nothing yet: the machine as it stands.
-  return state_->faulted_at.feedback.empty() ? state_->backend->Read() : state_->faulted_at;
+  const control::AmplifierTelegram& filtered = state_->fault_filter.filtered();
+  return filtered.feedback.empty() ? state_->backend->Read() : filtered;
 }
 std::vector<double> SceneRun::joint_positions() const { return state_->backend->JointPositions(); }
 int64_t SceneRun::tick() const { return state_->tick; }

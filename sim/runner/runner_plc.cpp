@@ -1,6 +1,5 @@
 // The PLC's part of a scene run: its scans and watchdog, the field bus between the machine's
-// I/O and the signal image, the headstock changeover PLC a scene without one gets, and the
-// faults a timeline injects between machine and control.
+// I/O and the signal image, the headstock changeover PLC a scene without one gets.
 #include <stdexcept>
 
 #include "control/plc/plc_programs.hpp"
@@ -55,32 +54,6 @@ void SceneRun::State::AcknowledgeHeadstock() {
   }
 }
 
-// Faults between the machine and the control (timeline `fault:` steps): a stuck sensor reads
-// its stuck level, a faulted drive reports itself not ready.
-const control::AmplifierTelegram& SceneRun::State::Faulted(const control::AmplifierTelegram& raw) {
-  InjectedFaults& f = timeline->faults();
-  if (!f.any) return raw;
-  faulted_at = raw;
-  for (size_t i = 0; i < f.sensor.size(); ++i)
-    if (f.sensor[i] >= 0) faulted_at.inputs[i] = static_cast<uint8_t>(f.sensor[i]);
-  for (size_t d = 0; d < f.drive.size(); ++d)
-    if (f.drive[d])
-      faulted_at.feedback[d].status &=
-          ~(control::drive_status::kReady | control::drive_status::kEnabled);
-  return faulted_at;
-}
-
-// A stuck valve stays where it is whatever the PLC commands; a faulted drive's power stage is
-// off, so its axis coasts.
-void SceneRun::State::ApplyOutputFaults() {
-  InjectedFaults& f = timeline->faults();
-  if (!f.any) return;
-  for (size_t i = 0; i < f.valve.size(); ++i)
-    if (f.valve[i] >= 0) mdt.outputs[i] = static_cast<uint8_t>(f.valve[i]);
-  for (size_t d = 0; d < f.drive.size(); ++d)
-    if (f.drive[d]) mdt.setpoints[d] = {control::DriveMode::kOff, 0, 0};
-}
-
 // The PLC scans unless an overrun makes it miss its cycles or its link is gone; after two missed
 // cycles its watchdog stops it (its outputs drop) and the NC stops with "PLC not running".
 void SceneRun::State::ScanPlc(double t) {
@@ -110,7 +83,7 @@ void SceneRun::State::StopPlc(double t, const std::string& reason, const std::st
 }
 
 void SceneRun::State::ReadFieldBus() {
-  const control::AmplifierTelegram& at = Faulted(backend->Read());
+  const control::AmplifierTelegram& at = fault_filter.In(backend->Read(), timeline->faults());
   for (const auto& [io, id] : plc_inputs) image->SetBool(id, at.inputs[io] != 0);
 }
 

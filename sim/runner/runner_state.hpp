@@ -19,6 +19,7 @@
 #include "control/plc/plc_runtime.hpp"
 #include "sim/runner/channel_event_watch.hpp"
 #include "sim/runner/expectation_watch.hpp"
+#include "sim/runner/fault_filter.hpp"
 #include "sim/runner/machine_events.hpp"
 #include "sim/runner/probe_glue.hpp"
 #include "sim/runner/run_path_guard.hpp"
@@ -40,8 +41,6 @@ struct SceneRun::State {
   void Step();
   RunResult Finish(const std::string& stop_reason);
   void ReadFieldBus();
-  const control::AmplifierTelegram& Faulted(const control::AmplifierTelegram& raw);
-  void ApplyOutputFaults();
   void ScanPlc(double t);
   /// The channel's NC cycle work of a tick: gateway, PathGuard's stock, the channel, events.
   void StepChannel(double t, const control::AmplifierTelegram& at);
@@ -93,7 +92,7 @@ struct SceneRun::State {
   std::vector<ClutchState> clutches;  ///< the backend's, this tick
   control::MasterTelegram mdt;
   std::vector<ProgramEvent> events;
-  control::AmplifierTelegram faulted_at;  ///< the machine as the control sees it, faults applied
+  FaultFilter fault_filter;               ///< the injected faults between machine and control
   int64_t plc_overdue = 0;                ///< scans in a row the PLC has missed
   /// Without a PLC the runner acknowledges the headstock changeover at once, as a PLC does
   /// when no mechanical changeover is needed (C-axis manual 4.2), reports spindle mode at
