@@ -74,7 +74,7 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
       if (c->MayWriteDrive(d)) channel_drive[d] = 1;
   for (size_t d = 0; d < channel_drive.size(); ++d)
     if (channel_drive[d]) timeline->LeaveEnableToChannel(d);
-  if (field_bus) ReadFieldBus();
+  if (field_bus.connected()) ReadFieldBus();
 
   last_tick = std::llround(options.until_s.value_or(scene.duration_s) / kDriveTickS);
   trace_every = std::max<int64_t>(1, std::llround(scene.trace_period_s / kDriveTickS));
@@ -159,15 +159,8 @@ void SceneRun::State::MakePlc() {
       plc->SetAxdWriter(
           [glue](int axis, int ident, int64_t value) { return glue->Write(axis, ident, value); });
   }
-  field_bus = image && (plc || options.external_plc);
-  if (field_bus) {
-    for (size_t i = 0; i < m.io.size(); ++i) {
-      const int id = image->Find(m.io[i].name);
-      if (id < 0 || m.io[i].key) continue;  // keys are the operator's, not the machine's
-      (m.io[i].is_output ? plc_outputs : plc_inputs).emplace_back(static_cast<int>(i), id);
-    }
-  }
-  if (image && !field_bus && channel && channel->headstock()) {
+  if (image && (plc || options.external_plc)) field_bus.ConnectAll(m, *image);
+  if (image && !field_bus.connected() && channel && channel->headstock()) {
     default_headstock_plc = true;
     for (const TimelineStep& step : scene.timeline) {
       if (step.kind != TimelineStep::Kind::kSignal) continue;
@@ -199,8 +192,7 @@ void SceneRun::State::Step() {
     ++plc_client_gone_told;
     if (options.external_plc && options.on_plc_client_gone) options.on_plc_client_gone();
   }
-  if (field_bus)
-    for (const auto& [io, id] : plc_outputs) mdt.outputs[io] = image->Bool(id) ? 1 : 0;
+  if (field_bus.connected()) field_bus.WriteOutputs(*image, mdt);
   if (channel)
     StepChannel(t, at);
   else
@@ -226,7 +218,7 @@ void SceneRun::State::Step() {
   for (const StylusOverTravel& o : backend->TakeStylusOverTravels())
     recorder.Event(StylusOverTravelEvent(o));
   ++tick;
-  if (field_bus && tick % plc_every == 0) ReadFieldBus();
+  if (field_bus.connected() && tick % plc_every == 0) ReadFieldBus();
 }
 
 void SceneRun::State::CheckExpectations(double t, const control::AmplifierTelegram& at) {

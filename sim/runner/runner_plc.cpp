@@ -22,14 +22,14 @@ void SceneRun::State::StartHeadstockPlc() {
   if (!made) return;
   plc = std::make_unique<control::plc::PlcRuntime>(*image, std::move(*made),
                                                    control::plc::PlcTime(plc_every * 250));
-  field_bus = true;
+  field_bus.Connect();
   default_headstock_plc = false;
   for (size_t i = 0; i < m.io.size(); ++i) {
     const std::string& name = m.io[i].name;
     const int id = image->Find(name);
     if (id < 0 || m.io[i].key) continue;
     if (!m.io[i].is_output) {
-      plc_inputs.emplace_back(static_cast<int>(i), id);
+      field_bus.AddInput(static_cast<int>(i), id);
       continue;
     }
     if (name != "QROTMODE" && name != "QSPMODE") continue;
@@ -38,7 +38,7 @@ void SceneRun::State::StartHeadstockPlc() {
         throw std::runtime_error(step.text + ": valve " + name +
                                  " is switched by the headstock changeover PLC (C-axis manual "
                                  "4.4) in a scene with an NC and no plc:");
-    plc_outputs.emplace_back(static_cast<int>(i), id);
+    field_bus.AddOutput(static_cast<int>(i), id);
   }
 }
 
@@ -83,8 +83,7 @@ void SceneRun::State::StopPlc(double t, const std::string& reason, const std::st
 }
 
 void SceneRun::State::ReadFieldBus() {
-  const control::AmplifierTelegram& at = fault_filter.In(backend->Read(), timeline->faults());
-  for (const auto& [io, id] : plc_inputs) image->SetBool(id, at.inputs[io] != 0);
+  field_bus.ReadInputs(fault_filter.In(backend->Read(), timeline->faults()), *image);
 }
 
 }  // namespace vmt::sim

@@ -20,6 +20,7 @@
 #include "sim/runner/channel_event_watch.hpp"
 #include "sim/runner/expectation_watch.hpp"
 #include "sim/runner/fault_filter.hpp"
+#include "sim/runner/field_bus.hpp"
 #include "sim/runner/machine_events.hpp"
 #include "sim/runner/probe_glue.hpp"
 #include "sim/runner/run_path_guard.hpp"
@@ -68,9 +69,8 @@ struct SceneRun::State {
   std::unique_ptr<control::gateway::SignalImage> image;
   std::unique_ptr<control::gateway::ChannelGateway> gateway;
   std::unique_ptr<control::plc::PlcRuntime> plc;
-  bool field_bus = false;  ///< the machine's I/O goes through the image (a PLC is there)
+  FieldBus field_bus;      ///< the machine's I/O through the image, where a PLC is there
   int64_t plc_every = 16;  ///< drive ticks per PLC cycle
-  std::vector<std::pair<int, int>> plc_inputs, plc_outputs;  // I/O point, signal id
   std::unique_ptr<ProbeGlue> probe_glue;  ///< the SERCOS side of the PLC's probe block
   std::unique_ptr<TimelinePlayer> timeline;
   /// Per drive: a channel may write it (its own, or the one it lends); the timeline writes
