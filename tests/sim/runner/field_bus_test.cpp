@@ -45,9 +45,11 @@ TEST(FieldBus, SensorsInValvesOutKeysStayThePanels) {
     }
   }
   bus.WriteOutputs(image, mdt);
-  for (size_t i = 0; i < m.io.size(); ++i)
-    if (m.io[i].is_output && !m.io[i].key && image.Find(m.io[i].name) >= 0)
+  for (size_t i = 0; i < m.io.size(); ++i) {
+    if (m.io[i].is_output && !m.io[i].key && image.Find(m.io[i].name) >= 0) {
       EXPECT_EQ(mdt.outputs[i], 1) << m.io[i].name;
+    }
+  }
   EXPECT_GT(sensors, 0);
   EXPECT_GT(valves, 0);
   EXPECT_GT(keys, 0);
