@@ -49,7 +49,6 @@
 #include "control/channel/repositioning.hpp"
 #include "control/channel/spindle_synchronous_motion.hpp"
 #include "control/channel/synchronous_block.hpp"
-#include "control/channel/tool_radius_compensation.hpp"
 #include "control/channel/tool_storage_control.hpp"
 #include "control/drive_bus.hpp"
 #include "control/measure/measuring_cycle.hpp"

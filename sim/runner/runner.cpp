@@ -18,8 +18,6 @@
 #include "control/plc/plc_programs.hpp"
 #include "control/plc/plc_runtime.hpp"
 #include "sim/backend/stylus.hpp"
-#include "sim/collision/machine_path_guard.hpp"
-#include "sim/collision/spindle_sweep.hpp"
 #include "sim/collision/stock_cutter.hpp"
 #include "sim/model/gateway_layout.hpp"
 #include "sim/runner/channel_events.hpp"

@@ -1,9 +1,7 @@
 // The NC channel's part of a scene run's tick: the gateway's controls in, PathGuard's view of
 // the stock, the channel's cycle, the gateway's status out, and the events of what changed.
-#include <algorithm>
 
 #include "control/channel/jog_of_path.hpp"
-#include "control/plc/plc_message_texts.hpp"
 #include "sim/runner/channel_events.hpp"
 #include "sim/runner/runner_state.hpp"
 
