@@ -13,18 +13,12 @@
 #include <utility>
 
 #include "common/output_file.hpp"
-#include "control/channel/jog_of_path.hpp"
-#include "control/gateway/channel_gateway.hpp"
-#include "control/plc/plc_programs.hpp"
-#include "control/plc/plc_runtime.hpp"
 #include "sim/backend/stylus.hpp"
 #include "sim/collision/stock_cutter.hpp"
-#include "sim/model/gateway_layout.hpp"
 #include "sim/runner/channel_events.hpp"
 #include "sim/runner/contact_sheets.hpp"
 #include "sim/runner/expectation_watch.hpp"
 #include "sim/runner/make_backend.hpp"
-#include "sim/runner/probe_glue.hpp"
 #include "sim/runner/runner_state.hpp"
 #include "sim/runner/timeline_player.hpp"
 #include "sim/runner/trace_rows.hpp"
@@ -62,112 +56,26 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
   backend = MakeBackend(options.backend.value_or(scene.backend), m, scene.initial);
   if (scene.workpiece.present) backend->SetWorkpiece(scene.workpiece.part);
   backend->SetProbeSamplingPhase(scene.probe_sampling);
-  if (scene.nc.present) MakeChannels();
-  if (channel && scene.nc.signals) MakeGateway();
-  MakePlc();
-  timeline = std::make_unique<TimelinePlayer>(scene, backend->Read(), channel.get(), image.get());
-  channel_drive.assign(m.drives.size(), 0);
-  for (const control::channel::Channel* c : {channel.get(), jog_of_path.get()})
-    for (size_t d = 0; c && d < channel_drive.size(); ++d)
-      if (c->MayWriteDrive(d)) channel_drive[d] = 1;
-  for (size_t d = 0; d < channel_drive.size(); ++d)
-    if (channel_drive[d]) timeline->LeaveEnableToChannel(d);
-  if (field_bus.connected()) ReadFieldBus();
+  if (scene.nc.present && scene.nc.channel.path_guard != control::GuardReaction::kOff) {
+    // The machine's collision geometry with the scene's workpiece, posed where the backend
+    // stands; the channels ask it before their approach moves.
+    path_guard = std::make_unique<RunPathGuard>(m, scene.workpiece, *backend);
+  }
+  control_stage = std::make_unique<ControlStage>(scene, options.external_plc,
+                                           path_guard ? &path_guard->guard() : nullptr);
+  timeline = std::make_unique<TimelinePlayer>(scene, backend->Read(), control_stage->channel(),
+                                              control_stage->image());
+  for (size_t d = 0; d < m.drives.size(); ++d)
+    if (control_stage->MayWriteDrive(d)) timeline->LeaveEnableToChannel(d);
+  if (control_stage->ReadsInputsAt(0))  // the first PLC cycle's
+    control_stage->ReadInputs(fault_filter.In(backend->Read(), timeline->faults()));
 
   last_tick = std::llround(options.until_s.value_or(scene.duration_s) / kDriveTickS);
   trace_every = std::max<int64_t>(1, std::llround(scene.trace_period_s / kDriveTickS));
   if (!options.out_dir.empty()) recorder.Open(options.out_dir);
-  recorder.Trace(TraceHeader(m, channel != nullptr));
+  recorder.Trace(TraceHeader(m, control_stage->channel() != nullptr));
 
   clutches.resize(m.clutches.size());
-}
-
-// The NC channel (and the JogOfPath channel): its axes move at the drives' rapid and
-// acceleration; with PathGuard, the machine's collision geometry and the scene's workpiece.
-void SceneRun::State::MakeChannels() {
-  const control::channel::ChannelConfig& config = scene.nc.channel;
-  std::vector<const control::nc::Program*> programs;
-  for (const auto& parsed : scene.nc.programs) programs.push_back(&parsed->program);
-  channel = std::make_unique<control::channel::Channel>(config, programs);
-  channel->SetFeedOverride(scene.nc.override);
-  if (scene.nc.jog_of_path) {
-    jog_of_path = std::make_unique<control::channel::Channel>(
-        control::channel::JogOfPathConfig(config),
-        std::vector<const control::nc::Program*>{&scene.nc.jog_of_path->program});
-    jog_of_path->SetFeedOverride(scene.nc.override);
-  }
-  measuring_pages = scene.nc.measuring_pages;
-  channel->SetMeasuringPages(&measuring_pages);
-  if (config.path_guard != control::GuardReaction::kOff) {
-    // The machine's collision geometry with the scene's workpiece, posed where the backend
-    // stands; the channel asks it before its approach moves.
-    path_guard = std::make_unique<RunPathGuard>(m, scene.workpiece, *backend);
-    channel->SetPathGuard(&path_guard->guard());
-    if (jog_of_path) jog_of_path->SetPathGuard(&path_guard->guard());
-  }
-}
-
-// The gateway: the channel reads its control signals and writes its status each NC cycle.
-void SceneRun::State::MakeGateway() {
-  image = std::make_unique<control::gateway::SignalImage>(*scene.nc.signals);
-  std::vector<int> numbers;
-  for (const auto& a : scene.nc.data.axes) numbers.push_back(a.number);
-  int spindle_number = -1;
-  const int sd = scene.nc.data.spindle_drive;
-  for (const auto& a : GatewayLayoutOf(m).axes)
-    if (a.spindle_capable && sd >= 0 &&
-        (a.name == m.drives[sd].info.name || scene.nc.data.spindle_number == a.number))
-      spindle_number = a.number;
-  const int ra = scene.nc.data.rotary_axis;
-  gateway = std::make_unique<control::gateway::ChannelGateway>(*image, scene.nc.data.process.number,
-                                                               numbers, spindle_number, sd,
-                                                               ra >= 0 ? numbers[ra] : -1);
-  control::gateway::ChannelGateway* gw = gateway.get();
-  channel->SetEventSource([gw](int n) { return gw->Event(n); });
-  channel->SetEventSink([gw](int n, bool v) { gw->SetEvent(n, v); });
-}
-
-void SceneRun::State::MakePlc() {
-  // The embedded PLC: scanned at its period against the gateway; the machine's sensors reach
-  // it through the image (as over a field bus) and its valves go out to the machine.
-  // An external PLC (vmt serve) takes the embedded program's place.
-  plc_every = std::llround(scene.plc.period_s / kDriveTickS);
-  if (gateway) {
-    const int64_t nc = channel->ticks_per_cycle();
-    gateway->SetPlcScan(static_cast<int>((plc_every + nc - 1) / nc));
-  }
-  if (image && scene.plc.present && !options.external_plc) {
-    auto made = control::plc::MakePlcProgram(scene.plc.program, *image, &measuring_pages);
-    if (!made) throw std::runtime_error("no PLC program '" + scene.plc.program + "'");
-    plc = std::make_unique<control::plc::PlcRuntime>(*image, std::move(*made),
-                                                     control::plc::PlcTime(plc_every * 250));
-    for (const auto& [id, value] : scene.plc.constants) image->SetNumber(id, value);
-  }
-  if (image)
-    for (const NcSetup::SignalPreset& p : scene.nc.presets) {
-      if (image->table()[p.id].type == control::gateway::SignalType::kString)
-        image->SetString(p.id, p.text);
-      else
-        image->SetNumber(p.id, p.number);
-    }
-  if (image) {
-    probe_glue = std::make_unique<ProbeGlue>(m, *image);
-    ProbeGlue* glue = probe_glue.get();
-    if (plc)
-      plc->SetAxdWriter(
-          [glue](int axis, int ident, int64_t value) { return glue->Write(axis, ident, value); });
-  }
-  if (image && (plc || options.external_plc)) field_bus.ConnectAll(m, *image);
-  if (image && !field_bus.connected() && channel && channel->headstock()) {
-    default_headstock_plc = true;
-    for (const TimelineStep& step : scene.timeline) {
-      if (step.kind != TimelineStep::Kind::kSignal) continue;
-      const std::string& name = image->table()[step.signal].name;
-      if (name.ends_with(".ROTMOD_Q") || name.ends_with(".SPMOD_Q")) default_headstock_plc = false;
-    }
-    if (default_headstock_plc && channel->headstock()->config().separate_servo())
-      StartHeadstockPlc();
-  }
 }
 
 void SceneRun::State::Step() {
@@ -180,8 +88,9 @@ void SceneRun::State::Step() {
   // The PLC scans at the start of its cycle, on the machine's inputs as they stand then (the
   // field bus copied them at the end of the last tick); an external PLC has scanned just before
   // this tick, on the same inputs, so both see and act alike.
-  if (probe_glue) probe_glue->ReadStatus(at);
-  if (plc && tick % plc_every == 0) ScanPlc(t);
+  control_stage->ReadStatus(at);
+  if (std::string text = control_stage->ScanPlc(tick, timeline->faults()); !text.empty())
+    StopPlc(t, "watchdog", text);
   events.clear();
   timeline->Tick(t, at, clutches, mdt, events);
   // An external PLC's client is gone: vmt serve drops the connections (an embedded PLC misses
@@ -190,16 +99,16 @@ void SceneRun::State::Step() {
     ++plc_client_gone_told;
     if (options.external_plc && options.on_plc_client_gone) options.on_plc_client_gone();
   }
-  if (field_bus.connected()) field_bus.WriteOutputs(*image, mdt);
-  if (channel)
+  control_stage->WriteOutputs(mdt);
+  if (control_stage->channel())
     StepChannel(t, at);
   else
     timeline->WriteSetpoints(mdt, [](size_t) { return false; });
   for (const ProgramEvent& e : events)
     recorder.Event({{"t", e.t_s}, {"event", e.kind}, {"text", e.text}});
-  machine_events.Watch(t, at, clutches, *backend, image.get(), recorder);
+  machine_events.Watch(t, at, clutches, *backend, control_stage->image(), recorder);
   if (tick % trace_every == 0 || tick == last_tick)
-    recorder.Trace(TraceRow(t, m, at, mdt, clutches, channel.get()));
+    recorder.Trace(TraceRow(t, m, at, mdt, clutches, control_stage->channel()));
   CheckExpectations(t, at);
   snapshots.TakeDue(t,
                     {*backend, path_guard ? path_guard->cutter() : nullptr,
@@ -216,13 +125,32 @@ void SceneRun::State::Step() {
   for (const StylusOverTravel& o : backend->TakeStylusOverTravels())
     recorder.Event(StylusOverTravelEvent(o));
   ++tick;
-  if (field_bus.connected() && tick % plc_every == 0) ReadFieldBus();
+  if (control_stage->ReadsInputsAt(tick))
+    control_stage->ReadInputs(fault_filter.In(backend->Read(), timeline->faults()));
+}
+
+void SceneRun::State::StepChannel(double t, const control::AmplifierTelegram& at) {
+  const bool nc_cycle = control_stage->NcCycle(tick);
+  control_stage->ReadControls(nc_cycle);
+  if (path_guard && nc_cycle)
+    path_guard->FollowSpindle(t, control_stage->channel()->ticks_per_cycle() * kDriveTickS);
+  // Each drive has one writer: the timeline's steps for those no channel writes this tick.
+  timeline->WriteSetpoints(mdt, [this](size_t d) { return control_stage->WritesDrive(d); });
+  control_stage->Tick(nc_cycle, at, mdt);
+  channel_events.Watch(t, nc_cycle, at, *control_stage->channel(), control_stage->jog_of_path(), recorder);
+}
+
+// The PLC is no longer there, whoever noticed it: the event records why.
+void SceneRun::State::StopPlc(double t, const std::string& reason, const std::string& nc_text) {
+  control_stage->StopPlc(nc_text);
+  recorder.Event({{"t", t}, {"event", "plc"}, {"state", "stopped"}, {"reason", reason}});
 }
 
 void SceneRun::State::CheckExpectations(double t, const control::AmplifierTelegram& at) {
   if (!expectations.Due(t, tick == last_tick)) return;
   expectations.Check(t, tick == last_tick,
-                     {at, clutches, channel.get(), image.get(), machine_events.trips()}, recorder);
+                     {at, clutches, control_stage->channel(), control_stage->image(), machine_events.trips()},
+                     recorder);
 }
 
 RunResult SceneRun::State::Finish(const std::string& stop_reason) {
@@ -251,7 +179,8 @@ RunResult SceneRun::State::Finish(const std::string& stop_reason) {
   for (std::string& f : expectations.NotHeld()) result.failures.push_back(std::move(f));
   for (const std::string& f : timeline->failures()) result.failures.push_back(f);
   for (std::string& f :
-       expectations.Unexpected(machine_events.trips(), channel ? channel->error() : std::string()))
+       expectations.Unexpected(machine_events.trips(),
+                               control_stage->channel() ? control_stage->channel()->error() : std::string()))
     result.failures.push_back(std::move(f));
   result.wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
@@ -288,9 +217,9 @@ RunResult SceneRun::State::Finish(const std::string& stop_reason) {
     if (!result.contact_sheets.empty()) summary["contact_sheets"] = result.contact_sheets;
     // The NC's message list over the run (NC errors, PLC messages MSG_WR): the operator's log.
     summary["messages"] = channel_events.messages_seen();
-    if (channel && scene.nc.data.spindle_drive >= 0)
-      summary["spindle_status"] =
-          SpindleStatusJson(*channel, m.drives[scene.nc.data.spindle_drive].info.name);
+    if (control_stage->channel() && scene.nc.data.spindle_drive >= 0)
+      summary["spindle_status"] = SpindleStatusJson(
+          *control_stage->channel(), m.drives[scene.nc.data.spindle_drive].info.name);
     // Last: a summary.json says the run's files are complete (events.jsonl, written as the run
     // goes, may lack its end without it). A file that failed is named in it.
     if (!recorder.write_errors().empty()) summary["write_errors"] = recorder.write_errors();
@@ -318,14 +247,15 @@ bool SceneRun::State::WriteOutput(const std::string& path, std::string_view text
 
 void SceneRun::Step() { state_->Step(); }
 RunResult SceneRun::Finish(const std::string& stop_reason) { return state_->Finish(stop_reason); }
-control::gateway::SignalImage* SceneRun::image() { return state_->image.get(); }
+control::gateway::SignalImage* SceneRun::image() { return state_->control_stage->image(); }
 const control::measure::MeasuringPages* SceneRun::measuring_pages() const {
-  return state_->channel ? &state_->measuring_pages : nullptr;
+  const ControlStage& stage = *state_->control_stage;
+  return stage.channel() ? &stage.measuring_pages() : nullptr;
 }
-int64_t SceneRun::ticks_per_plc_cycle() const { return state_->plc_every; }
+int64_t SceneRun::ticks_per_plc_cycle() const { return state_->control_stage->plc_every(); }
 control::plc::AxdWrStatus SceneRun::AxdWrite(int axis, int ident, int64_t value) {
-  if (!state_->probe_glue) return control::plc::AxdWrStatus::kNoAxis;
-  return state_->probe_glue->Write(axis, ident, value);
+  ProbeGlue* glue = state_->control_stage->probe_glue();
+  return glue ? glue->Write(axis, ident, value) : control::plc::AxdWrStatus::kNoAxis;
 }
 double SceneRun::time_s() const { return state_->tick * kDriveTickS; }
 void SceneRun::PlcLost(const std::string& reason) { state_->StopPlc(time_s(), reason, reason); }

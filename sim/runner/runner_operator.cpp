@@ -3,6 +3,7 @@
 // `press:` and `signal:` steps set them, and recorded so that the run can be repeated.
 #include <fstream>
 #include <sstream>
+#include <utility>
 
 #include "common/json_text.hpp"
 #include "sim/runner/runner_state.hpp"
@@ -10,28 +11,29 @@
 namespace vmt::sim {
 
 std::string SceneRun::State::OperateError(const std::string& signal) const {
-  const State& s = *this;
-  if (!s.image) return "the scene has no nc: section, so no gateway signals";
-  const int id = s.image->Find(signal);
+  const control::gateway::SignalImage* image = control_stage->image();
+  if (!image) return "the scene has no nc: section, so no gateway signals";
+  const int id = image->Find(signal);
   if (id < 0) return "no signal " + signal;
-  const control::gateway::Signal& sig = s.image->table()[id];
-  const int io = control::IndexOf(s.m.io, sig.name);
-  if (io >= 0 && s.m.io[io].key) return "";
+  const control::gateway::Signal& sig = image->table()[id];
+  const int io = control::IndexOf(m.io, sig.name);
+  if (io >= 0 && m.io[io].key) return "";
   if (sig.direction == control::gateway::Direction::kNcToPlc)
     return "the NC writes " + sig.name + ": a PLC cannot set it";
   if (sig.direction == control::gateway::Direction::kMachineToPlc)
     return sig.name + " is a sensor of the machine: a PLC cannot set it";
   // The embedded PLC writes its outputs every scan: a value set beside it would last one
   // cycle. The station presses keys then, as the timeline does with plc:.
-  if (!s.options.external_plc && s.plc)
+  if (!options.external_plc && control_stage->plc())
     return "the scene's PLC program writes " + sig.name + ": press the operator's keys instead";
   return "";
 }
 
 std::string SceneRun::State::ValueError(const std::string& signal, double value) const {
   if (std::string error = OperateError(signal); !error.empty()) return error;
-  const int id = image->Find(signal);
-  if (std::string error = control::gateway::ValueError(image->table()[id].type, value);
+  const control::gateway::SignalImage& image = *control_stage->image();
+  const int id = image.Find(signal);
+  if (std::string error = control::gateway::ValueError(image.table()[id].type, value);
       !error.empty())
     return signal + ": " + error;
   if (const int io = control::IndexOf(m.io, signal);
@@ -41,17 +43,17 @@ std::string SceneRun::State::ValueError(const std::string& signal, double value)
 }
 
 std::string SceneRun::State::Operate(const std::string& signal, double value) {
-  State& s = *this;
   if (std::string error = ValueError(signal, value); !error.empty()) return error;
-  const int id = s.image->Find(signal);
-  s.image->SetNumber(id, value);
-  s.recorder.Event(
-      {{"t", s.tick * kDriveTickS}, {"event", "operator"}, {"signal", signal}, {"value", value}});
-  s.operated.push_back({s.tick, signal, value, ""});
+  control::gateway::SignalImage& image = *control_stage->image();
+  image.SetNumber(image.Find(signal), value);
+  recorder.Event(
+      {{"t", tick * kDriveTickS}, {"event", "operator"}, {"signal", signal}, {"value", value}});
+  operated.push_back({tick, signal, value, ""});
   return "";
 }
 
 std::string SceneRun::State::OperateHandwheel(const std::string& axis, int counts) {
+  control::channel::Channel* channel = control_stage->channel();
   if (!channel) return "the scene has no nc: section, so no handwheel";
   if (counts == 0 || counts < -10000 || counts > 10000)
     return "handwheel counts: expected -10000..10000, not 0";
@@ -119,7 +121,9 @@ std::string SceneRun::OperateHandwheel(const std::string& axis, int counts) {
 }
 const std::vector<OperatorStep>& SceneRun::operated() const { return state_->operated; }
 const Scene& SceneRun::scene() const { return state_->scene; }
-const control::channel::Channel* SceneRun::channel() const { return state_->channel.get(); }
+const control::channel::Channel* SceneRun::channel() const {
+  return state_->control_stage->channel();
+}
 const control::AmplifierTelegram& SceneRun::feedback() const {
   // Before the first tick the control has seen nothing yet: the machine as it stands.
   const control::AmplifierTelegram& filtered = state_->fault_filter.filtered();
@@ -127,7 +131,9 @@ const control::AmplifierTelegram& SceneRun::feedback() const {
 }
 std::vector<double> SceneRun::joint_positions() const { return state_->backend->JointPositions(); }
 int64_t SceneRun::tick() const { return state_->tick; }
-const control::gateway::SignalImage* SceneRun::image() const { return state_->image.get(); }
+const control::gateway::SignalImage* SceneRun::image() const {
+  return std::as_const(*state_->control_stage).image();
+}
 std::vector<CylinderPart> SceneRun::TurnedStockCylinders() const {
   // Finer than PathGuard's: the page draws what is cut to a micrometre.
   const StockCutter* cutter = state_->path_guard ? state_->path_guard->cutter() : nullptr;
