@@ -8,21 +8,8 @@
 namespace vmt::control::channel {
 
 Channel::Channel(ChannelConfig config, std::vector<const nc::Program*> programs)
-    : config_(std::move(config)), programs_(std::move(programs)) {
-  const size_t n = config_.axes.size();
-  jog_.axes.resize(n);
-  out_.commanded.assign(n, 0.0);
-  out_.previous = out_.commanded;
-  // A JogOfPath channel's output is suspended until the axes are handed to it.
-  out_.suspend_requested = out_.suspended = config_.output_suspended_at_start;
-  frames_.translation.assign(n, 0.0);
-  frames_.shift.assign(n, 0.0);
-  frames_.homed.resize(n);
-  for (size_t a = 0; a < n; ++a) frames_.homed[a] = config_.axes[a].homed_at_start;
-  sp_.command = {DriveMode::kVelocity, 0, 0};
-  sp_.homed = config_.spindle.homed_at_start;
-  last_modal_ = config_.initial;
-  for (size_t a = 0; a < n; ++a) {
+    : ChannelData(config), config_(std::move(config)), programs_(std::move(programs)) {
+  for (size_t a = 0; a < config_.axes.size(); ++a) {
     if (config_.axes[a].name == "Z") axis_z_ = static_cast<int>(a);
     if (config_.axes[a].name == "X") axis_x_ = static_cast<int>(a);
   }
@@ -332,7 +319,7 @@ uint64_t Channel::FollowUpAxes(const nc::PreparedBlock& b) const {
 
 bool Channel::UpdateTranslation(const nc::ModalState& modal, const nc::Program& program,
                                 int32_t block) {
-  const axes::ToolEdge* edge = ActiveEdge(config_, modal);
+  const axes::ToolEdge* edge = ActiveEdge(tools_, modal);
   if (!edge && modal.tool_length != nc::ToolLength::kOff && modal.correction != 0) {
     Fail(program, block,
          "T" + std::to_string(modal.tool) + " D" + std::to_string(modal.correction) +
@@ -340,7 +327,7 @@ bool Channel::UpdateTranslation(const nc::ModalState& modal, const nc::Program& 
          kMsgToolNotInList);
     return false;
   }
-  channel::TranslationOf(config_, frames_.shift, modal, edge, frames_.translation);
+  channel::TranslationOf(config_, zero_offsets_, frames_.shift, modal, edge, frames_.translation);
   if (headstock_) {
     // The rotary axis' offsets act in rotary axis mode only (C-axis manual 2.3 Zero Point
     // Shifts); they stay selected meanwhile and come back with it (see RotaryOffsetsActive).

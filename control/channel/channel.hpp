@@ -28,6 +28,7 @@
 #include "control/channel/block_search_run.hpp"
 #include "control/channel/cax_track.hpp"
 #include "control/channel/channel_config.hpp"
+#include "control/channel/channel_data.hpp"
 #include "control/channel/channel_messages.hpp"
 #include "control/channel/channel_types.hpp"
 #include "control/channel/cycle_start.hpp"
@@ -64,12 +65,20 @@ struct SpindleKeyMove;
 /// original would with the same inputs, and nothing either does reaches the other. What it was
 /// given from outside is shared, not copied, and must outlive every copy: the programs, the event
 /// source and sink, the measuring pages and PathGuard. A copy that is to run against others (a
-/// copied run's gateway, pages, geometry) is given them again with the setters below.
-class Channel {
+/// copied run's gateway, pages, geometry) is given them again with the setters below. What
+/// changes as it runs is its ChannelData (channel_data.hpp), apart from its constant config.
+class Channel : private ChannelData {
  public:
   /// `programs`: the main program first, then the subprograms it may call; they must outlive
   /// the channel and its copies.
   Channel(ChannelConfig config, std::vector<const nc::Program*> programs);
+
+  /// Everything the channel has changed since it was made: a value to keep and Restore.
+  const ChannelData& data() const { return *this; }
+  /// Back to where the channel stood when `data` was taken from it (or from a channel of the
+  /// same config and programs). The data holds the outside parts as they were set then (event
+  /// source and sink, measuring pages, PathGuard): set them again if they are others now.
+  void Restore(const ChannelData& data) { static_cast<ChannelData&>(*this) = data; }
 
   void Start();  ///< cycle start: run, or resume after a hold
   void Stop();   ///< feed hold: brake on the path
@@ -398,21 +407,9 @@ class Channel {
   void ForgetEndedProgram();
   const nc::Program* ProgramOf(uint32_t index) const;
 
-  ChannelConfig config_;
+  ChannelConfig config_;  ///< never written after construction (a channel is copy-assignable)
   std::vector<const nc::Program*> programs_;
-  /// The program the channel runs: its interpreter, the block in work, look-ahead and tool
-  /// radius compensation (program_in_work.hpp).
-  ProgramInWork work_;
-  ProgramEvents events_;  ///< BES / BEC / SE / RE: the gateway's, or the program's own
-  ChannelState state_ = ChannelState::kIdle;
-  std::string error_;
-  double override_ = 1.0;
-  bool single_block_ = false;
-  ProgrammedStop programmed_stop_;  ///< M00 / M01
 
-  /// Positions commanded at the last two NC cycles and who holds the axes.
-  AxisOutput out_;
-  PendingStart start_;
   /// The drives Tick writes once the channel holds its axes (WritesDrive), by drive index;
   /// the tool storage axis' aside.
   std::vector<bool> DrivesWritten() const;
@@ -437,16 +434,7 @@ class Channel {
   void FictiveJogging(double dt);
   bool GuardFictiveJog(int x, int c, nc::FictivePoint next);
 
-  ChannelMode mode_ = ChannelMode::kAutomatic;
-  int error_number_ = 0;
-  ProgramFrames frames_;  ///< per axis: program -> axis translation, G92 shift, reference
-  AuxOutput aux_;         ///< M, H, Q, T waiting for the PLC, and their strobe
-  bool reversing_ = false;
-
-  bool inserted_piece_ = false;    ///< work_.block is a corner the compensation inserted before it
   int axis_z_ = -1, axis_x_ = -1;  ///< channel axes of the G18 plane
-  MdiState mdi_;
-  nc::ModalState last_modal_;
   /// A feed axis or X1/Y1 still jogs: braking after a mode change, or an increment under way.
   bool JogsMoving() const;
   // PathGuard of the jog moves (channel_path_guard.cpp).
@@ -484,16 +472,11 @@ class Channel {
   /// The main spindle about to take setpoint `sp`: a start sweeps what turns with it. False
   /// if stopped.
   bool GuardSpindleStart(const std::string& move, const DriveSetpoint& sp);
-  FurtherSpindleControl further_{config_.spindles};  ///< spindles j >= 2
-  PathGuardClient guard_{config_.path_guard, config_.path_guard_every};
-  std::vector<double> drive_positions_;  ///< every drive's actual position, this NC cycle
   // Repositioning and NC-block restart (repositioning.hpp); the REPOS subroutine's run in
   // channel_repositioning.cpp.
-  Repositioning repos_;
   /// What repositioning reads of the channel now.
   ReposView ReposViewNow() const;
   // Backward travel (backward_travel.hpp; the channel's side in channel_backward.cpp).
-  BackwardTravel backward_;
   /// A block's motion starts: remembered for backward travel (`rapid`: G00).
   void RecordPath(const BlockMotion& motion, bool rapid);
   /// A block backward travel cannot take: the path before it is forgotten.
@@ -505,8 +488,6 @@ class Channel {
   ReplayGuard ReplayGuardOf();
   void ReplayArrived(ReplayStep step);
   void RefuseBackward(const std::string& why);
-  /// The interrupted program while the REPOS subroutine runs in its place (in work_).
-  ProgramInWork parked_;
   void SwapProgramInWork();
   void CaptureInterruption();
   /// Program -> axis translation of `modal` with the tables as they are now (no G92 check).
@@ -514,10 +495,6 @@ class Channel {
   bool ToolStorageKnown() const;
   // An NC-controlled tool storage axis (tool_storage_control.hpp); the program's side of it in
   // channel_tool_storage.cpp.
-  ToolStorageControl tool_storage_{config_};
-  /// MRY: the block waits until the program's traverse (T, MTP) has ended and the axis stands
-  /// at its place.
-  bool tool_storage_wait_ = false;
   bool ToolStorageNc() const { return tool_storage_.nc() && ToolStorageKnown(); }
   /// PathGuard's checks of the tool storage axis' moves (channel_turret_guard.cpp).
   TurretGuard TurretGuardOf();
@@ -543,7 +520,6 @@ class Channel {
   /// The REPOS subroutine's @ variables back to the interrupted program (one set, 8.3).
   void HandBackVariables();
   // Fast measurement (fast_measurement.hpp; the channel's side in channel_measuring.cpp).
-  FastMeasurement measuring_{config_};
   /// What the fast measurement is handed for one call: the block in work, the axis output,
   /// the events, the PLC's functions, PathGuard's check and the channel's error state.
   MeasuringLink MeasuringLinkNow();
@@ -551,10 +527,8 @@ class Channel {
   /// commanded: false, failed, for an axis without its reference or a plan's error.
   bool PlanGeneratedMotion();
   // Block search (channel_block_search.cpp).
-  std::optional<BlockSearchRun> search_;
   // #CAX TRACK (cax_track.hpp, channel_cax_track.cpp): on with its options, in a run and in
   // the search alike; a C-only move of a turn beyond ANGLIMIT runs before the block.
-  CaxTrackState cax_;
   int TrackedAxis() const;
   /// #CAX TRACK in `st` of block `b`, C standing at `c_machine`: nothing if `st` is another
   /// command, false if it failed (Fail called).
@@ -565,7 +539,6 @@ class Channel {
   bool TrackC(nc::PreparedBlock& b, const std::vector<double>& from, double rev_per_s,
               std::optional<double>& align_to);
   bool StartCaxAlignment(double to);
-  BlockSearchData bs_;
   /// A program start: block search, breakpoint and entry point as the parameters say.
   void BeginBlockSearch();
   /// The search's part of an NC cycle; true while it owns the cycle (no normal block flow).
@@ -629,21 +602,13 @@ class Channel {
   void AcknowledgeDriveTrips(MasterTelegram& mdt);
   DriveSetpoint SpindleSetpoint() const;
   // Spindle-synchronous block in work (G33/G63/G64, channel_spindle_synchronous.cpp).
-  SynchronousBlock sync_{config_.axes, config_.spindle_drive, config_.spindle};
   SynchronousContext SynchronousContextNow();
   bool StartSynchronous(const AmplifierTelegram& at);
   void SynchronousCycle(const AmplifierTelegram& at, double dt);
   bool InSynchronousBlock() const { return work_.active && sync_.active(); }
-  HeadstockControl headstock_{config_.headstock};  ///< none without a headstock
-  PlcMessage plc_message_;
   /// A changeover to rotary axis mode has ended: the block in work and the interpreter take
   /// the rotary axis' actual position.
   void RebaseRotaryAxis();
-  EnablingSignals enable_;  ///< PxxC.ENABL, AxxC.ENABL
-  MainSpindleState sp_;  ///< the main spindle: command, override, keys, reference, feedback
-  DriveWatch drives_;    ///< encoder positions and Control-Reset's trip acknowledgement
-  LookAheadState look_;  ///< the block in work's speed targets and the speed carried on
-  JogData jog_;          ///< the jog keys, the handwheel, X1/Y1, the jog mode
 };
 
 }  // namespace vmt::control::channel

@@ -33,6 +33,8 @@ struct ChannelConfig {
   std::vector<ChannelSpindle> spindles;
   int ticks_per_cycle = 4;  ///< NC cycle 1 ms at the 250 us drive tick
   double tick_s = 250e-6;
+  /// The zero offset table and the tool list at power-on; the running channel writes its own
+  /// copies (ChannelData).
   axes::ZeroOffsetTable zero_offsets;
   axes::ToolTable tools;
   nc::ModalState initial;  ///< modal state at program start

@@ -118,7 +118,7 @@ nc::DataAccess Channel::MakeDataAccess() {
             "argument 5 (element) must be 1, 2, 3 (the lengths L1, L2, L3, read only) or "
             "11, 12, 13 (wear L1, L2, L3)");
       axes::ToolEdge* e = nullptr;
-      for (axes::ToolEdge& candidate : config_.tools.edges)
+      for (axes::ToolEdge& candidate : tools_.edges)
         if (candidate.tool == tool && candidate.edge == edge) e = &candidate;
       if (!e)
         return fail("T" + std::to_string(tool) + " D" + std::to_string(edge) +
@@ -161,7 +161,7 @@ nc::DataAccess Channel::MakeDataAccess() {
       if (write) {
         SetZeroOffset(g, static_cast<size_t>(axis - 1), value);
       } else {
-        value = config_.zero_offsets.Offset(g, static_cast<size_t>(axis - 1));
+        value = zero_offsets_.Offset(g, static_cast<size_t>(axis - 1));
       }
       return "";
     }

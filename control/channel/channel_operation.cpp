@@ -217,7 +217,7 @@ void Channel::Reset() {
   std::fill(frames_.shift.begin(), frames_.shift.end(), 0.0);
   last_modal_ = config_.initial;
   for (size_t a = 0; a < frames_.translation.size(); ++a)
-    frames_.translation[a] = config_.zero_offsets.Offset(config_.initial.zero_offset, a);
+    frames_.translation[a] = zero_offsets_.Offset(config_.initial.zero_offset, a);
   if (headstock_) {
     const size_t r = static_cast<size_t>(config_.rotary_axis);
     headstock_.set_rotary_translation(frames_.translation[r]);

@@ -31,7 +31,7 @@ bool Channel::NextBlock(const AmplifierTelegram& at) {
   return RunBlock(at);
 }
 
-FeedContext Channel::FeedContextNow() const { return {config_.tools, axis_z_, axis_x_}; }
+FeedContext Channel::FeedContextNow() const { return {tools_, axis_z_, axis_x_}; }
 
 void Channel::FailAt(const BlockError& e) {
   Fail(*ProgramOf(e.program), e.block, e.text, e.number);

@@ -15,14 +15,16 @@ namespace vmt::control::channel {
 
 std::vector<double> Channel::TranslationOf(const nc::ModalState& modal) const {
   std::vector<double> t;
-  channel::TranslationOf(config_, frames_.shift, modal, ActiveEdge(config_, modal), t);
+  channel::TranslationOf(config_, zero_offsets_, frames_.shift, modal, ActiveEdge(tools_, modal),
+                         t);
   return t;
 }
 
 ReposView Channel::ReposViewNow() const {
   const double* tool_storage =
       ToolStorageKnown() ? &drive_positions_[config_.tool_storage_drive] : nullptr;
-  return {config_, frames_.shift, out_.commanded, headstock(), sp_, further_, tool_storage};
+  return {config_,     zero_offsets_, tools_,   frames_.shift, out_.commanded,
+          headstock(), sp_,           further_, tool_storage};
 }
 
 void Channel::CaptureInterruption() {
@@ -89,7 +91,7 @@ void Channel::SetReposition(bool repositioning, bool restart) {
 
 bool Channel::SetZeroOffset(int g, size_t axis, double value) {
   if (g < 54 || g > 59 || axis >= config_.axes.size()) return false;
-  std::vector<double>& table = config_.zero_offsets.g54_to_g59[g - 54];
+  std::vector<double>& table = zero_offsets_.g54_to_g59[g - 54];
   if (table.size() <= axis) table.resize(config_.axes.size(), 0.0);
   table[axis] = value;
   return true;
@@ -97,7 +99,7 @@ bool Channel::SetZeroOffset(int g, size_t axis, double value) {
 
 bool Channel::SetToolLength(int tool, int edge, size_t axis, double value) {
   if (axis >= config_.axes.size()) return false;
-  for (axes::ToolEdge& e : config_.tools.edges)
+  for (axes::ToolEdge& e : tools_.edges)
     if (e.tool == tool && e.edge == edge) {
       if (e.length.size() <= axis) e.length.resize(config_.axes.size(), 0.0);
       e.length[axis] = value;

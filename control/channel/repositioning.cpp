@@ -124,7 +124,7 @@ namespace {
 // interruption moves the contour).
 std::vector<double> TranslationNow(const ReposView& v, const Interruption& i) {
   std::vector<double> t;
-  TranslationOf(v.config, v.shift, i.modal, ActiveEdge(v.config, i.modal), t);
+  TranslationOf(v.config, v.zero_offsets, v.shift, i.modal, ActiveEdge(v.tools, i.modal), t);
   return t;
 }
 

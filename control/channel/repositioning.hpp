@@ -14,6 +14,8 @@
 
 #include "control/axes/axis_parameters.hpp"
 #include "control/axes/headstock_changeover.hpp"
+#include "control/axes/tool_table.hpp"
+#include "control/axes/zero_offsets.hpp"
 #include "control/channel/further_spindles.hpp"
 #include "control/channel/main_spindle_state.hpp"
 #include "control/drive_bus.hpp"
@@ -152,6 +154,8 @@ struct ReposData {
 /// is kept.
 struct ReposView {
   const ChannelConfig& config;
+  const axes::ZeroOffsetTable& zero_offsets;   ///< the channel's, as the program wrote them
+  const axes::ToolTable& tools;                ///< the same
   const std::vector<double>& shift;            ///< G92's part of the translation, per axis
   const std::vector<double>& commanded;        ///< the channel axes' commands
   const axes::HeadstockChangeover* headstock;  ///< null: none

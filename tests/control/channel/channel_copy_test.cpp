@@ -231,5 +231,34 @@ TEST(ChannelCopyTest, TheOriginalIsUntouchedByWhatTheCopyIsGiven) {
   EXPECT_NEAR(copy.bus.at.feedback[1].position, original.bus.at.feedback[1].position, 1e-9);
 }
 
+// The channel's data alone, taken mid-program and handed back to the same channel after it
+// ran to the end: from there the channel runs the rest again, tick for tick as the first time.
+TEST(ChannelCopyTest, RestoredDataRunsOnFromWhereItWasTaken) {
+  const std::vector<Outputs> reference = Reference();
+  Machine m(kProgram, 0, 0, WithOffsetsAndTools);
+  m.channel->Start();
+  constexpr int kTaken = 2000;
+  for (int t = 0; t < kTaken; ++t) m.Tick();
+  ASSERT_EQ(m.channel->line(), 7u);  // N60 in the loop
+  const ChannelData data = m.channel->data();
+  const test_support::IdealDriveBus bus = m;
+  m.RunUntilEnd(30);
+  ASSERT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+
+  m.channel->Restore(data);
+  static_cast<test_support::IdealDriveBus&>(m) = bus;
+  EXPECT_EQ(m.channel->state(), ChannelState::kRunning);
+  EXPECT_EQ(m.channel->line(), 7u);
+  int t = kTaken;
+  for (; m.channel->state() == ChannelState::kRunning; ++t) {
+    ASSERT_LT(t, static_cast<int>(reference.size()));
+    m.Tick();
+    ExpectSame(Of(m.mdt, *m.channel), reference[static_cast<size_t>(t)], t);
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_EQ(t, static_cast<int>(reference.size()));
+  EXPECT_EQ(m.channel->state(), ChannelState::kEnded) << m.channel->error();
+}
+
 }  // namespace
 }  // namespace vmt::control::channel

@@ -46,7 +46,9 @@ struct Interrupted : ::testing::Test {
     i.translation = {5, 0};
     repos.Interrupt(i, commanded);
   }
-  ReposView View() const { return {config, shift, commanded, nullptr, spindle, further}; }
+  ReposView View() const {
+    return {config, config.zero_offsets, config.tools, shift, commanded, nullptr, spindle, further};
+  }
   void Cycle(bool interrupted = true, bool motion = false) {
     repos.Cycle(View(), at, interrupted, motion);
   }
