@@ -61,17 +61,17 @@ struct ChannelData {
   ProgramInWork work_;
   ProgramEvents events_;            ///< BES / BEC / SE / RE: the gateway's, or the program's own
   ProgrammedStop programmed_stop_;  ///< M00 / M01
-  ProgramFrames frames_;  ///< per axis: program -> axis translation, G92 shift, reference
+  ProgramFrames frames_;            ///< per axis: program -> axis translation, G92 shift, reference
   /// The zero offset table and the tool list as the program and repositioning have written
   /// them (TLD, OTD, repositioning's edits); ChannelConfig's are the ones at power-on.
   axes::ZeroOffsetTable zero_offsets_;
   axes::ToolTable tools_;
-  AuxOutput aux_;         ///< M, H, Q, T waiting for the PLC, and their strobe
+  AuxOutput aux_;  ///< M, H, Q, T waiting for the PLC, and their strobe
   bool reversing_ = false;
   bool inserted_piece_ = false;  ///< work_.block is a corner the compensation inserted before it
   MdiState mdi_;
   nc::ModalState last_modal_;
-  LookAheadState look_;  ///< the block in work's speed targets and the speed carried on
+  LookAheadState look_;    ///< the block in work's speed targets and the speed carried on
   SynchronousBlock sync_;  ///< G33 / G63 / G64 in work
   CaxTrackState cax_;      ///< #CAX TRACK
 

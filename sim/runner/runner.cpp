@@ -62,7 +62,7 @@ SceneRun::State::State(const Scene& scene_, const RunOptions& options_)
     path_guard = std::make_unique<RunPathGuard>(m, scene.workpiece, *backend);
   }
   control_stage = std::make_unique<ControlStage>(scene, options.external_plc,
-                                           path_guard ? &path_guard->guard() : nullptr);
+                                                 path_guard ? &path_guard->guard() : nullptr);
   timeline = std::make_unique<TimelinePlayer>(scene, backend->Read(), control_stage->channel(),
                                               control_stage->image());
   for (size_t d = 0; d < m.drives.size(); ++d)
@@ -137,7 +137,8 @@ void SceneRun::State::StepChannel(double t, const control::AmplifierTelegram& at
   // Each drive has one writer: the timeline's steps for those no channel writes this tick.
   timeline->WriteSetpoints(mdt, [this](size_t d) { return control_stage->WritesDrive(d); });
   control_stage->Tick(nc_cycle, at, mdt);
-  channel_events.Watch(t, nc_cycle, at, *control_stage->channel(), control_stage->jog_of_path(), recorder);
+  channel_events.Watch(t, nc_cycle, at, *control_stage->channel(), control_stage->jog_of_path(),
+                       recorder);
 }
 
 // The PLC is no longer there, whoever noticed it: the event records why.
@@ -148,9 +149,10 @@ void SceneRun::State::StopPlc(double t, const std::string& reason, const std::st
 
 void SceneRun::State::CheckExpectations(double t, const control::AmplifierTelegram& at) {
   if (!expectations.Due(t, tick == last_tick)) return;
-  expectations.Check(t, tick == last_tick,
-                     {at, clutches, control_stage->channel(), control_stage->image(), machine_events.trips()},
-                     recorder);
+  expectations.Check(
+      t, tick == last_tick,
+      {at, clutches, control_stage->channel(), control_stage->image(), machine_events.trips()},
+      recorder);
 }
 
 RunResult SceneRun::State::Finish(const std::string& stop_reason) {
@@ -178,9 +180,9 @@ RunResult SceneRun::State::Finish(const std::string& stop_reason) {
   result.expectations = expectations.Close();
   for (std::string& f : expectations.NotHeld()) result.failures.push_back(std::move(f));
   for (const std::string& f : timeline->failures()) result.failures.push_back(f);
-  for (std::string& f :
-       expectations.Unexpected(machine_events.trips(),
-                               control_stage->channel() ? control_stage->channel()->error() : std::string()))
+  for (std::string& f : expectations.Unexpected(
+           machine_events.trips(),
+           control_stage->channel() ? control_stage->channel()->error() : std::string()))
     result.failures.push_back(std::move(f));
   result.wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
