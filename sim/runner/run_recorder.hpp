@@ -19,7 +19,11 @@ namespace vmt::sim {
 class Fnv1a64 {
  public:
   void Add(const std::string& s) {
-    for (unsigned char c : s) hash_ = (hash_ ^ c) * 0x100000001b3ull;
+    // In a local: the bytes are chars, which may alias the member, so a loop on the member
+    // stores it back after every byte.
+    uint64_t hash = hash_;
+    for (unsigned char c : s) hash = (hash ^ c) * 0x100000001b3ull;
+    hash_ = hash;
   }
   std::string Hex() const {
     char buf[17];

@@ -6,9 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -80,6 +83,47 @@ TEST(TraceRows, ValuesAreWrittenAsPrintfWritesThem) {
                              Printf(0) + Printf(v) + Printf(v / 6.0) + Printf(1) + "\n";
     EXPECT_EQ(TraceRow(v, m, at, mdt, {}, nullptr), want) << "value " << v;
   }
+}
+
+// The one-drive row's position field, which the general path and the integer path both write.
+std::string PositionField(double v) {
+  MachineModel m = TwoDrives();
+  m.drives.resize(1);
+  control::AmplifierTelegram at;
+  at.feedback.resize(1);
+  at.feedback[0].position = v;
+  control::MasterTelegram mdt;
+  mdt.setpoints.resize(1);
+  const std::string row = TraceRow(0, m, at, mdt, {}, nullptr);
+  const size_t first = row.find(',', row.find(',') + 1);
+  return row.substr(first, row.find(',', first + 1) - first);
+}
+
+// Printf rounds the double's exact value to six decimals, ties to even: the values whose
+// millionths end in exactly one half (odd multiples of 2^-7, such as 0.0078125) round to the
+// even neighbour, every other one to the nearest. Random doubles of every magnitude a trace
+// holds, from denormals to past the integer path's range, must come out as printf writes them.
+TEST(TraceRows, EveryMagnitudeIsRoundedAsPrintfRoundsIt) {
+  std::vector<double> values;
+  for (int k = -2000; k <= 2000; ++k) values.push_back((2 * k + 1) / 128.0);  // exact ties
+  for (int k = -2000; k <= 2000; ++k) values.push_back(k / 1e6);
+  for (double big : {8.999999999999e12, 9e12, 9.000000000001e12, 4503599627370496.5,
+                     9007199254740993.0, 1e15, 1e18})
+    values.push_back(big), values.push_back(-big);
+  std::mt19937_64 random(20261202);
+  for (int i = 0; i < 400000; ++i) {
+    // A random mantissa under a random exponent from 2^-1074 to 2^50, either sign.
+    const uint64_t mantissa = random() & ((uint64_t{1} << 52) - 1);
+    const uint64_t biased = random() % (1023 + 51);
+    const uint64_t sign = (random() & 1) << 63;
+    values.push_back(std::bit_cast<double>(sign | (biased << 52) | mantissa));
+  }
+  std::uniform_real_distribution<double> millimetres(-2000, 2000);
+  for (int i = 0; i < 200000; ++i) values.push_back(millimetres(random));
+  int wrong = 0;
+  for (double v : values)
+    if (PositionField(v) != Printf(v) && ++wrong < 10) ADD_FAILURE() << "value " << v;
+  EXPECT_EQ(wrong, 0);
 }
 
 TEST(TraceRows, ClutchesAndTheChannelCloseTheRow) {
