@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Generate a lathe machine model: models/lathe-<variant>/{machine.urdf,README.md,meshes/*.obj}.
+"""Generate a lathe machine model: models/lathe-<variant>/{machine.urdf,README.md,meshes/*.ply}.
 
 Variants (same bed, carriage, cross slide, turret and tailstock):
   c1  main spindle driven by motor S1 through a belt; C-axis servo geared onto the spindle
@@ -419,7 +419,7 @@ def urdf_text(links, joints, variant):
         for pname, mesh, mat, _ in lk["parts"]:
             L.append('    <visual name="%s">' % pname)
             L.append('      <origin xyz="0 0 0" rpy="0 0 0"/>')
-            L.append('      <geometry><mesh filename="meshes/%s.obj"/></geometry>' % mesh)
+            L.append('      <geometry><mesh filename="meshes/%s.ply"/></geometry>' % mesh)
             L.append('      <material name="%s"/>' % mat)
             L.append("    </visual>")
         for pname, mesh, mat, collide in lk["parts"]:
@@ -427,7 +427,7 @@ def urdf_text(links, joints, variant):
                 continue
             L.append('    <collision name="%s">' % pname)
             L.append('      <origin xyz="0 0 0" rpy="0 0 0"/>')
-            L.append('      <geometry><mesh filename="meshes/%s.obj"/></geometry>' % mesh)
+            L.append('      <geometry><mesh filename="meshes/%s.ply"/></geometry>' % mesh)
             L.append("    </collision>")
         L.append("  </link>")
     for (name, jtype, parent, child, xyz, rpy, axis, limit, damping, friction) in joints:
@@ -459,8 +459,8 @@ def readme_text(links, joints, meshes, stations, variant):
          "names below.",
          "",
          "## Frames and units",
-         "- Metres, radians, kilograms. Meshes: Wavefront OBJ with per-vertex normals, triangles",
-         "  only, each in its own link frame (all visual/collision origins are identity).",
+         "- Metres, radians, kilograms. Meshes: ASCII PLY, triangles only, each corner with its",
+         "  normal, each in its own link frame (all visual/collision origins are identity).",
          "- World frame = `bed` link frame: **x** radial (machine X, positive away from the",
          "  spindle axis toward the turret at the back), **y up** (gravity is -y, not the usual",
          "  URDF -z), **z** along the spindle axis (machine Z, positive toward the tailstock).",
@@ -549,17 +549,17 @@ def main():
     for name in sorted(meshes):
         m = meshes[name]
         m.check_closed()
-        text = m.obj_text("lathe-" + variant)
-        write(os.path.join(mesh_dir, name + ".obj"), text)
+        text = m.ply_text("lathe-" + variant)
+        write(os.path.join(mesh_dir, name + ".ply"), text)
         total_tris += len(m.tris)
         total_bytes += len(text)
-        rows.append("%-32s %6d triangles %8d bytes" % (name + ".obj", len(m.tris), len(text)))
+        rows.append("%-32s %6d triangles %8d bytes" % (name + ".ply", len(m.tris), len(text)))
     write(os.path.join(model_dir, "machine.urdf"), urdf_text(links, joints, variant))
     write(os.path.join(model_dir, "README.md"),
           readme_text(links, joints, meshes, stations, variant))
     if not args.quiet:
         print("\n".join(rows))
-        print("%d meshes, %d triangles, %d bytes of OBJ" % (len(meshes), total_tris, total_bytes))
+        print("%d meshes, %d triangles, %d bytes of PLY" % (len(meshes), total_tris, total_bytes))
 
 
 if __name__ == "__main__":

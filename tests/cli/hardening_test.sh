@@ -94,8 +94,10 @@ bad huge_bore "huge_section.yaml:[0-9]+:[0-9]+: workpiece.sections\[0\].bore" --
 
 mkdir -p "$out/far_vertex"
 cp -r "$src/models/lathe-c1/." "$out/far_vertex/"
-sed -i '0,/^v /s/^v .*/v 1e200 1e200 1e200/' "$out/far_vertex/meshes/turret_st01_insert.obj"
-bad far_vertex "turret_st01_insert.obj: a vertex lies beyond \+-100 m of its link" -- \
+# The first vertex after the header, its position far away.
+sed -i '/^end_header/{n;s/^[^ ]* [^ ]* [^ ]*/1e200 1e200 1e200/}' \
+  "$out/far_vertex/meshes/turret_st01_insert.ply"
+bad far_vertex "turret_st01_insert.ply: a vertex lies beyond \+-100 m of its link" -- \
   "$vmt" signals "$out/far_vertex/machine.yaml"
 
 # FIFOs and directories: opening a FIFO waited forever for a writer.

@@ -305,11 +305,11 @@ TEST(ModelInputTest, MissingMeshNamesTheLink) {
   const std::string e = LoadEdited(
       "missing_mesh", [](std::string s) { return s; },
       [](std::string u) {
-        return Replace(u, "meshes/spindle_chuck_body.obj", "meshes/no_such_mesh.obj");
+        return Replace(u, "meshes/spindle_chuck_body.ply", "meshes/no_such_mesh.ply");
       });
   EXPECT_THAT(e, HasSubstr("machine.urdf"));
   EXPECT_THAT(e, HasSubstr("<link name=\"spindle\">"));
-  EXPECT_THAT(e, HasSubstr("no_such_mesh.obj"));
+  EXPECT_THAT(e, HasSubstr("no_such_mesh.ply"));
 }
 
 TEST(ModelInputTest, MissingFile) {

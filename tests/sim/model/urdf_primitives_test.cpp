@@ -38,13 +38,13 @@ std::string AsPrimitives(std::string urdf) {
   urdf = ReplaceOnce(
       urdf,
       "<collision name=\"bed_headstock\">\n      <origin xyz=\"0 0 0\" rpy=\"0 0 0\"/>\n"
-      "      <geometry><mesh filename=\"meshes/bed_headstock.obj\"/></geometry>",
+      "      <geometry><mesh filename=\"meshes/bed_headstock.ply\"/></geometry>",
       "<collision name=\"bed_headstock\">\n      <origin xyz=\"0 -0.09 -0.26\"/>\n"
       "      <geometry><box size=\"0.4 0.62 0.48\"/></geometry>");
   return ReplaceOnce(
       urdf,
       "<collision name=\"tailstock_quill\">\n      <origin xyz=\"0 0 0\" rpy=\"0 0 0\"/>\n"
-      "      <geometry><mesh filename=\"meshes/tailstock_quill.obj\"/></geometry>",
+      "      <geometry><mesh filename=\"meshes/tailstock_quill.ply\"/></geometry>",
       "<collision name=\"tailstock_quill\">\n      <origin xyz=\"0 0 0.09\"/>\n"
       "      <geometry><cylinder radius=\"0.035\" length=\"0.1\"/></geometry>");
 }
@@ -118,7 +118,7 @@ std::string QuillAsSphere(std::string urdf, const std::string& radius) {
   return ReplaceOnce(
       urdf,
       "<collision name=\"tailstock_quill\">\n      <origin xyz=\"0 0 0\" rpy=\"0 0 0\"/>\n"
-      "      <geometry><mesh filename=\"meshes/tailstock_quill.obj\"/></geometry>",
+      "      <geometry><mesh filename=\"meshes/tailstock_quill.ply\"/></geometry>",
       "<collision name=\"tailstock_quill\">\n      <origin xyz=\"0 0 0.09\"/>\n"
       "      <geometry><sphere radius=\"" +
           radius + "\"/></geometry>");
