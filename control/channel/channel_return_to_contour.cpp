@@ -5,11 +5,9 @@
 // the manual return is checked against mc_cmd_bs_deviation_max_w and its offset kept until the
 // program's end (8). Machining then goes on at the continue position, inside its block when a
 // covered distance or a distance from program start says so (4.1).
-#include <cmath>
-#include <limits>
-
 #include "control/channel/block_search_support.hpp"
 #include "control/channel/channel.hpp"
+#include "control/channel/return_to_contour.hpp"
 #include "control/nc/coordinate_transformation.hpp"
 
 namespace vmt::control::channel {
@@ -33,17 +31,11 @@ bool Channel::StartReturnToContour() {
     const size_t r = static_cast<size_t>(config_.rotary_axis);
     s.restart[r] = out_.commanded[r];
   }
-  if (cax_.command) {
-    for (size_t a = 0; a < out_.commanded.size(); ++a) {
-      if (config_.axes[a].name != "C" || std::abs(s.restart[a] - out_.commanded[a]) < 1e-12)
-        continue;
-      std::vector<double> aligned = out_.commanded;
-      aligned[a] = s.restart[a];
-      s.return_rest = true;
-      return StartReturnMove(aligned, "C axis alignment (#CAX TRACK)");
-    }
-  }
-  return StartReturnMove(s.restart, "return to contour");
+  const ReturnLeg leg =
+      FirstReturnLeg(out_.commanded, s.restart, config_.axes, cax_.command.has_value());
+  s.return_rest = leg.c_alignment;
+  return StartReturnMove(leg.to,
+                         leg.c_alignment ? "C axis alignment (#CAX TRACK)" : "return to contour");
 }
 
 bool Channel::StartReturnMove(const std::vector<double>& to, const std::string& move) {
@@ -81,54 +73,35 @@ bool Channel::StartReturnMove(const std::vector<double>& to, const std::string& 
     return true;
   }
   // 4.2: one straight move at the rapid limits, every axis ending together.
-  work_.motion = BlockMotion{};
-  work_.motion.start = out_.commanded;
-  work_.motion.end = to;
-  double rate = std::numeric_limits<double>::infinity(), accel = rate;
-  for (size_t a = 0; a < out_.commanded.size(); ++a) {
-    const double distance = std::abs(work_.motion.end[a] - work_.motion.start[a]);
-    if (distance < 1e-12) continue;
-    const ChannelAxis& axis = config_.axes[a];
-    rate = std::min(rate, axis.rapid_per_s / distance);
-    accel = std::min(accel, axis.acceleration / distance);
-  }
-  if (!std::isfinite(rate)) return true;  // already there
-  work_.motion.moves = true;
-  work_.motion.length = 0;
-  for (size_t a = 0; a < out_.commanded.size(); ++a)
-    work_.motion.length += std::pow(work_.motion.end[a] - work_.motion.start[a], 2);
-  work_.motion.length = std::sqrt(work_.motion.length);
+  const StraightReturn straight = PlanStraightReturn(out_.commanded, to, config_.axes);
+  work_.motion = straight.motion;
+  if (!work_.motion.moves) return true;  // already there
   // The manual leaves obstacles on this line to the operator (8); vmt asks PathGuard first.
   if (!GuardBlockMove(move)) return false;
-  work_.profile.max_rate = rate;
-  work_.profile.max_accel = accel;
+  work_.profile.max_rate = straight.rate;
+  work_.profile.max_accel = straight.accel;
   work_.active = true;
   return true;
 }
 
 bool Channel::ApplySearchOffset() {
   BlockSearchRun& s = *search_;
-  double deviation2 = 0;
-  for (size_t a = 0; a < out_.commanded.size(); ++a)
-    if (MainAxis(config_.axes[a].name)) deviation2 += std::pow(out_.commanded[a] - s.restart[a], 2);
-  const double deviation = std::sqrt(deviation2);
-  const double allowed = static_cast<double>(bs_.started.deviation_max) * 1e-4;
-  if (deviation > allowed + 1e-9) {
-    Fail("block search: the axes stand " + Mm(deviation) +
+  const ManualReturn manual =
+      CheckManualReturn(out_.commanded, s.restart, config_.axes, bs_.started.deviation_max);
+  if (!manual.within) {
+    Fail("block search: the axes stand " + Mm(manual.deviation_mm) +
              " mm from the continue position, more than mc_cmd_bs_deviation_max_w allows (" +
-             Mm(allowed) + " mm): bring them closer, or select the automatic return",
+             Mm(manual.allowed_mm) + " mm): bring them closer, or select the automatic return",
          kMsgBlockSearchDeviation);
     return false;
   }
   // 4.2, 8: the program goes on offset by where the axes stand, until its end or a reset.
-  bs_.offset.assign(out_.commanded.size(), 0.0);
-  for (size_t a = 0; a < out_.commanded.size(); ++a) {
-    const double offset = out_.commanded[a] - s.restart[a];
-    bs_.offset[a] = offset;
-    frames_.shift[a] += offset;
-    frames_.translation[a] += offset;
-    s.restart_motion.start[a] += offset;
-    s.restart_motion.end[a] += offset;
+  bs_.offset = manual.offset;
+  for (size_t a = 0; a < bs_.offset.size(); ++a) {
+    frames_.shift[a] += bs_.offset[a];
+    frames_.translation[a] += bs_.offset[a];
+    s.restart_motion.start[a] += bs_.offset[a];
+    s.restart_motion.end[a] += bs_.offset[a];
   }
   for (int k = 0; k < 2; ++k)
     if (const int axis = s.restart_motion.arc_axes[k]; axis >= 0)
