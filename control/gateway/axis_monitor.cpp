@@ -48,9 +48,11 @@ void AxisMonitor::ReadControls(channel::Channel& ch) {
   for (Axis& a : axes_) {
     const channel::ChannelConfig& c = ch.config();
     if (a.channel_axis < 0 && c.spindle_drive < 0) continue;
-    const std::string name = a.channel_axis >= 0
-                                 ? "axis " + c.axes[a.channel_axis].name
+    // Built only for a message: the switches are read every NC cycle.
+    const auto name = [&] {
+      return a.channel_axis >= 0 ? "axis " + c.axes[a.channel_axis].name
                                  : "spindle " + (c.spindle.name.empty() ? "S1" : c.spindle.name);
+    };
     // C-axis manual 4.2 only asks that the switches be 1 on a digital spindle and gives no
     // reaction to a 0. vmt's reading: a switch that opens is a fault of the axis, as on the
     // machine a tripped limit switch or a hot motor takes the drive's power: immediate stop
@@ -62,10 +64,10 @@ void AxisMonitor::ReadControls(channel::Channel& ch) {
       return fell;
     };
     if (opened(a.otrvl, a.last_otrvl))
-      ch.SafetyStop(name + " (" + a.name + "): safety limit switch open (AxxC.OTRVL)",
+      ch.SafetyStop(name() + " (" + a.name + "): safety limit switch open (AxxC.OTRVL)",
                     channel::kMsgSafetyLimitSwitch);
     if (opened(a.mtas, a.last_mtas))
-      ch.SafetyStop(name + " (" + a.name + "): thermal protection switch open (AxxC.MTAS)",
+      ch.SafetyStop(name() + " (" + a.name + "): thermal protection switch open (AxxC.MTAS)",
                     channel::kMsgThermalSwitch);
   }
 }
