@@ -86,7 +86,7 @@ class RowWriter {
     }
     // Backwards from the last decimal into a block: three pairs of decimals, the point, the
     // whole part (at most 13 digits below 9e12), the sign; then the block is copied whole.
-    char block[64];
+    char block[64] = {};
     char* const end = block + 40;
     char* q = end;
     uint64_t whole = micros / 1000000;
