@@ -502,7 +502,28 @@ void ChannelGateway::WriteBlockSearch(const channel::Channel& ch) {
   const BlockSearch& b = bs_;
   if (b.state < 0 && b.type_r < 0) return;
   // The read-backs: what the running program was started with (5).
-  const channel::BlockSearchParameters& p = ch.block_search_parameters();
+  if (const channel::BlockSearchParameters& p = ch.block_search_parameters();
+      !bs_read_back_ || p != *bs_read_back_) {
+    WriteBlockSearchReadBacks(p);
+    bs_read_back_ = p;
+  }
+  // 5.5, 5.6: the status, distances in 0.1 um (increments).
+  const channel::BlockSearchStatus& st = ch.block_search();
+  SetNumber(b.active, st.active());
+  SetNumber(b.state, static_cast<double>(st.state));
+  SetNumber(b.covered_distance, std::floor(st.covered_distance));
+  SetNumber(b.dist_prog_start, st.dist_prog_start * 1e4);
+  SetNumber(b.distance_object, st.dist_prog_start * 1e4);
+  SetNumber(b.line_count, st.block_count);
+  SetNumber(b.path_deviation, std::min(std::round(st.path_deviation * 1e4), 2147483647.0));
+  SetNumber(b.stop_conditions, static_cast<int32_t>(st.stop_conditions));
+  SetNumber(b.command, st.command);
+  SetNumber(b.backward_r, ch.travelling_back());
+  SetNumber(b.suspended_r, ch.output_suspended());
+}
+
+void ChannelGateway::WriteBlockSearchReadBacks(const channel::BlockSearchParameters& p) {
+  const BlockSearch& b = bs_;
   SetNumber(b.type_r, static_cast<double>(p.type));
   SetNumber(b.auto_return_r, p.auto_return);
   SetNumber(b.no_hold_r, p.no_hold_at_restart);
@@ -522,19 +543,6 @@ void ChannelGateway::WriteBlockSearch(const channel::Channel& ch) {
   if (b.start_name_r >= 0) image_->SetString(b.start_name_r, p.start.name);
   if (b.end_name_r >= 0) image_->SetString(b.end_name_r, p.end.name);
   if (b.prog_name_r >= 0) image_->SetString(b.prog_name_r, p.block_nbr_prog_name);
-  // 5.5, 5.6: the status, distances in 0.1 um (increments).
-  const channel::BlockSearchStatus& st = ch.block_search();
-  SetNumber(b.active, st.active());
-  SetNumber(b.state, static_cast<double>(st.state));
-  SetNumber(b.covered_distance, std::floor(st.covered_distance));
-  SetNumber(b.dist_prog_start, st.dist_prog_start * 1e4);
-  SetNumber(b.distance_object, st.dist_prog_start * 1e4);
-  SetNumber(b.line_count, st.block_count);
-  SetNumber(b.path_deviation, std::min(std::round(st.path_deviation * 1e4), 2147483647.0));
-  SetNumber(b.stop_conditions, static_cast<int32_t>(st.stop_conditions));
-  SetNumber(b.command, st.command);
-  SetNumber(b.backward_r, ch.travelling_back());
-  SetNumber(b.suspended_r, ch.output_suspended());
 }
 
 }  // namespace vmt::control::gateway

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -154,6 +155,9 @@ class ChannelGateway {
     bool jop_start = false, jop_stop = false;  ///< the levels last seen, for their edges
   } bs_;
   channel::BlockSearchParameters bs_parameters_;  ///< as last handed to the channel
+  /// The read-backs as last written: the NC is their only writer, so they are written again
+  /// only when the channel's parameters change.
+  std::optional<channel::BlockSearchParameters> bs_read_back_;
   /// Any signal as a number (BOOL 0/1, integers, REAL/LREAL); 0 for a missing one.
   double Number(int id) const { return id >= 0 ? image_->Number(id) : 0; }
   void SetNumber(int id, double value) {
@@ -168,6 +172,7 @@ class ChannelGateway {
   void ReadHeadstock(channel::Channel& ch);
   void ReadBlockSearch(channel::Channel& ch);
   void WriteBlockSearch(const channel::Channel& ch);
+  void WriteBlockSearchReadBacks(const channel::BlockSearchParameters& p);
   /// Q functions with their own signal and acknowledgement (Pxx.Qnnnn / Pxx.Qnnnn_Q).
   struct QSignal {
     int number, out, ack;

@@ -8,20 +8,15 @@
 #include "common/demand.hpp"
 
 namespace vmt::control::gateway {
-namespace {
-
-int64_t RealBits(SignalType type, double v) {
-  // A REAL cell holds the binary32 value widened, so that Real() equals what the PLC reads.
-  if (type == SignalType::kReal) v = static_cast<double>(static_cast<float>(v));
-  return std::bit_cast<int64_t>(v);
-}
-
-}  // namespace
 
 SignalImage::SignalImage(std::vector<Signal> table) : table_(std::move(table)) {
   const int n = size();
   types_.reserve(n);
-  for (const Signal& s : table_) types_.push_back(s.type);
+  range_.reserve(n);
+  for (const Signal& s : table_) {
+    types_.push_back(s.type);
+    range_.push_back(IsInteger(s.type) ? Range{MinValue(s.type), MaxValue(s.type)} : Range{1, 0});
+  }
   by_name_.resize(n);
   for (int i = 0; i < n; ++i) by_name_[i] = i;
   std::sort(by_name_.begin(), by_name_.end(),
@@ -92,27 +87,11 @@ void SignalImage::Refuse(int id, const char* accessor) const {
                        ToString(types_[id]));
 }
 
-int64_t SignalImage::Int(int id) const {
-  Check(id, IsInteger, "Int");
-  return cells_[id];
-}
-
-void SignalImage::SetInt(int id, int64_t v) {
-  Check(id, IsInteger, "SetInt");
+void SignalImage::RefuseRange(int id, int64_t v) const {
   const SignalType t = types_[id];
-  VMT_DEMAND(v >= MinValue(t) && v <= MaxValue(t), "gateway: SetInt(%s, %lld): outside the range of %s",
-             table_[id].name.c_str(), static_cast<long long>(v), ToString(t));
-  Store(id, v);
-}
-
-double SignalImage::Real(int id) const {
-  Check(id, IsReal, "Real");
-  return std::bit_cast<double>(cells_[id]);
-}
-
-void SignalImage::SetReal(int id, double v) {
-  Check(id, IsReal, "SetReal");
-  Store(id, RealBits(types_[id], v));
+  common::DemandFailed(__FILE__, __LINE__, "a value within the signal's type",
+                       "gateway: SetInt(%s, %lld): outside the range of %s",
+                       table_[id].name.c_str(), static_cast<long long>(v), ToString(t));
 }
 
 const std::string& SignalImage::String(int id) const {
@@ -130,39 +109,6 @@ void SignalImage::SetString(int id, std::string_view v) {
   if (s == v) return;
   s.assign(v);
   ++changes_;
-}
-
-double SignalImage::Number(int id) const {
-  Check(id, AnyType, "Number");
-  const int64_t cell = cells_[id];
-  switch (types_[id]) {
-    case SignalType::kBool:
-      return cell != 0 ? 1 : 0;
-    case SignalType::kReal:
-    case SignalType::kLreal:
-      return std::bit_cast<double>(cell);
-    case SignalType::kString:
-      return 0;
-    default:
-      return static_cast<double>(cell);
-  }
-}
-
-void SignalImage::SetNumber(int id, double value) {
-  Check(id, AnyType, "SetNumber");
-  switch (types_[id]) {
-    case SignalType::kBool:
-      Store(id, value != 0 ? 1 : 0);
-      return;
-    case SignalType::kReal:
-    case SignalType::kLreal:
-      Store(id, RealBits(types_[id], value));
-      return;
-    case SignalType::kString:
-      return;
-    default:
-      SetInt(id, static_cast<int64_t>(std::llround(value)));
-  }
 }
 
 namespace {

@@ -3,6 +3,8 @@
 // kernel, the PLC runtime and the Modbus adapter every cycle. Names are resolved to ids once
 // (Find / Require); the per-tick get/set is an index into flat arrays with a type check.
 
+#include <bit>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -41,18 +43,61 @@ class SignalImage {
     Check(id, IsBool, "SetBool");
     Store(id, v ? 1 : 0);
   }
-  int64_t Int(int id) const;
-  void SetInt(int id, int64_t v);
+  int64_t Int(int id) const {
+    Check(id, IsInteger, "Int");
+    return cells_[id];
+  }
+  void SetInt(int id, int64_t v) {
+    Check(id, IsInteger, "SetInt");
+    if (v < range_[id].min || v > range_[id].max) [[unlikely]]
+      RefuseRange(id, v);
+    Store(id, v);
+  }
   /// kReal values are stored rounded to binary32, as a REAL variable and its registers hold them.
-  double Real(int id) const;
-  void SetReal(int id, double v);
+  double Real(int id) const {
+    Check(id, IsReal, "Real");
+    return std::bit_cast<double>(cells_[id]);
+  }
+  void SetReal(int id, double v) {
+    Check(id, IsReal, "SetReal");
+    Store(id, RealBits(types_[id], v));
+  }
   const std::string& String(int id) const;
   void SetString(int id, std::string_view v);
   /// Any signal as a number: BOOL 0/1, the integers, REAL/LREAL; a STRING reads 0.
-  double Number(int id) const;
-  /// A number into a signal of any numeric type (BOOL: != 0; integers rounded); a STRING is
-  /// left as it is.
-  void SetNumber(int id, double value);
+  double Number(int id) const {
+    Check(id, AnyType, "Number");
+    const int64_t cell = cells_[id];
+    switch (types_[id]) {
+      case SignalType::kBool:
+        return cell != 0 ? 1 : 0;
+      case SignalType::kReal:
+      case SignalType::kLreal:
+        return std::bit_cast<double>(cell);
+      case SignalType::kString:
+        return 0;
+      default:
+        return static_cast<double>(cell);
+    }
+  }
+  /// A number into a signal of any numeric type (BOOL: != 0; integers rounded half away from
+  /// zero, as std::llround); a STRING is left as it is.
+  void SetNumber(int id, double value) {
+    Check(id, AnyType, "SetNumber");
+    switch (types_[id]) {
+      case SignalType::kBool:
+        Store(id, value != 0 ? 1 : 0);
+        return;
+      case SignalType::kReal:
+      case SignalType::kLreal:
+        Store(id, RealBits(types_[id], value));
+        return;
+      case SignalType::kString:
+        return;
+      default:
+        SetInt(id, RoundHalfAway(value));
+    }
+  }
 
   /// Every signal's stored cell (BOOL/integer value, REAL/LREAL bits, a STRING's slot), by id.
   /// A cell that compares equal to an earlier copy holds the same value (strings aside), so a
@@ -79,10 +124,26 @@ class SignalImage {
       Refuse(id, accessor);
   }
   static bool IsBool(SignalType t) { return t == SignalType::kBool; }
+  static bool IsInteger(SignalType t) { return t >= SignalType::kInt && t <= SignalType::kDword; }
   static bool IsReal(SignalType t) { return t == SignalType::kReal || t == SignalType::kLreal; }
   static bool IsString(SignalType t) { return t == SignalType::kString; }
   static bool AnyType(SignalType) { return true; }
   [[noreturn]] void Refuse(int id, const char* accessor) const;
+  [[noreturn]] void RefuseRange(int id, int64_t v) const;
+  // A REAL cell holds the binary32 value widened, so that Real() equals what the PLC reads.
+  static int64_t RealBits(SignalType type, double v) {
+    if (type == SignalType::kReal) v = static_cast<double>(static_cast<float>(v));
+    return std::bit_cast<int64_t>(v);
+  }
+  // std::llround without the library call for the values a signal can hold: below 2^63 the
+  // truncation and the fraction it leaves are exact; NaN and larger magnitudes go to llround.
+  static int64_t RoundHalfAway(double v) {
+    if (!(std::fabs(v) < 9.2e18)) [[unlikely]]
+      return std::llround(v);
+    const int64_t i = static_cast<int64_t>(v);
+    const double fraction = v - static_cast<double>(i);
+    return i + (fraction >= 0.5) - (fraction <= -0.5);
+  }
   void Store(int id, int64_t cell) {
     if (cells_[id] == cell) return;
     cells_[id] = cell;
@@ -91,6 +152,10 @@ class SignalImage {
 
   std::vector<Signal> table_;
   std::vector<SignalType> types_;     // by id: the type check without touching table_
+  struct Range {
+    int64_t min = 0, max = 0;
+  };
+  std::vector<Range> range_;          // by id: an integer type's values (empty range otherwise)
   std::vector<int64_t> cells_;        // by id: BOOL/integer value, REAL/LREAL bits, string slot
   std::vector<std::string> strings_;  // by string slot
   std::vector<int> by_name_;          // ids sorted by name, for Find

@@ -1,5 +1,7 @@
 #include "sim/runner/machine_events.hpp"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
@@ -57,21 +59,24 @@ void MachineEventWatch::WatchSignals(double t, const control::gateway::SignalIma
       for (int id = 0; id < image.size(); ++id)
         wanted_[id] = signal_events_(image.table()[id].name);
   }
+  // Whole blocks of unchanged cells are passed over by memcmp (vectorised) at once; the cells
+  // of a block that changed are compared one by one.
   constexpr int kBlock = 64;
-  for (int id = 0; id < image.size(); ++id) {
-    // Whole blocks of unchanged cells are passed over by memcmp (vectorised) at once.
-    if (!first && id % kBlock == 0 && id + kBlock <= image.size() &&
-        std::memcmp(&cells[id], &last_cells_[id], kBlock * sizeof(int64_t)) == 0) {
-      id += kBlock - 1;
+  const int n = image.size();
+  for (int block = 0; block < n; block += kBlock) {
+    const int end = std::min(n, block + kBlock);
+    if (!first && std::memcmp(&cells[block], &last_cells_[block],
+                              static_cast<size_t>(end - block) * sizeof(int64_t)) == 0)
       continue;
-    }
-    if (!first && cells[id] == last_cells_[id]) continue;
-    last_cells_[id] = cells[id];
-    if (!wanted_[id]) continue;
-    const double v = image.Number(id);
-    if (v != last_signals_[id] && !(std::isnan(v) && std::isnan(last_signals_[id]))) {
-      if (!std::isnan(last_signals_[id]) || v != 0) recorder.Signal(t, image.table()[id].name, v);
-      last_signals_[id] = v;
+    for (int id = block; id < end; ++id) {
+      if (!first && cells[id] == last_cells_[id]) continue;
+      last_cells_[id] = cells[id];
+      if (!wanted_[id]) continue;
+      const double v = image.Number(id);
+      if (v != last_signals_[id] && !(std::isnan(v) && std::isnan(last_signals_[id]))) {
+        if (!std::isnan(last_signals_[id]) || v != 0) recorder.Signal(t, image.table()[id].name, v);
+        last_signals_[id] = v;
+      }
     }
   }
 }
@@ -134,13 +139,13 @@ void MachineEventWatch::WatchDrives(double t, const control::AmplifierTelegram& 
     const control::ProbeStatus& p = at.feedback[d].probe;
     const control::ProbeEdgeLatch* latches[4] = {&p.probe1.positive, &p.probe1.negative,
                                                  &p.probe2.positive, &p.probe2.negative};
-    uint8_t now = 0;
-    for (int k = 0; k < 4; ++k)
-      if (latches[k]->latched) now |= static_cast<uint8_t>(1u << k);
-    for (int k = 0; k < 4; ++k)
-      if ((now >> k & 1) && !(last_latches_[d] >> k & 1))
-        recorder.Event(
-            ProbeLatchEvent(t, m_->drives[d].info.name, k < 2 ? 4 : 5, k % 2 == 0, *latches[k]));
+    const uint8_t now = static_cast<uint8_t>(latches[0]->latched | latches[1]->latched << 1 |
+                                             latches[2]->latched << 2 | latches[3]->latched << 3);
+    for (uint8_t rising = now & ~last_latches_[d]; rising != 0; rising &= rising - 1) {
+      const int k = std::countr_zero(rising);
+      recorder.Event(
+          ProbeLatchEvent(t, m_->drives[d].info.name, k < 2 ? 4 : 5, k % 2 == 0, *latches[k]));
+    }
     last_latches_[d] = now;
   }
 }

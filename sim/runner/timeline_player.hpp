@@ -46,7 +46,7 @@ class TimelinePlayer {
 
   /// A channel may write drive d (its axis, or the rotary axis of its headstock): the
   /// channel's headstock switches its controller enable, the timeline holds it until then.
-  void LeaveEnableToChannel(size_t d) { held_[d] = false; }
+  void LeaveEnableToChannel(size_t d) { Release(d); }
 
   bool finished() const { return next_ >= scene_->timeline.size(); }
   InjectedFaults& faults() { return play_.faults; }
@@ -60,12 +60,18 @@ class TimelinePlayer {
   /// Per drive: the clutch between its motor and its encoder (-1: none), and whether the
   /// drive still has its default setpoint (no step has commanded it).
   std::vector<int> encoder_clutch_;
-  std::vector<bool> held_;
+  std::vector<uint8_t> held_;
+  int held_count_ = 0;        ///< drives held: without them a tick needs no comparison of setpoints
   double step_since_s_ = -1;  ///< when the current blocking step began
   /// The setpoints before a step played, to tell which drives it commanded (kept, so that the
   /// step a run waits on does not allocate every tick).
   std::vector<control::DriveSetpoint> setpoints_before_;
-  std::vector<bool> profiling_before_;
+  std::vector<uint8_t> profiling_before_;
+
+  void Release(size_t d) {
+    held_count_ -= held_[d];
+    held_[d] = 0;
+  }
 };
 
 }  // namespace vmt::sim

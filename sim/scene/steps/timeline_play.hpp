@@ -46,7 +46,7 @@ struct TimelinePlay {
   control::gateway::SignalImage* image = nullptr;  ///< may be null: signal steps do nothing
   std::vector<control::DriveSetpoint> setpoints;
   std::vector<TrapezoidProfile> profiles;
-  std::vector<bool> profiling;  ///< per drive: its setpoint follows profiles[drive]
+  std::vector<uint8_t> profiling;  ///< per drive: its setpoint follows profiles[drive]
   std::vector<uint8_t> outputs;
   InjectedFaults faults;
   std::vector<std::string> failures;  ///< steps that did not complete, as messages

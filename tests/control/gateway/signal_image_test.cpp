@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include "tests/control/gateway/lathe_layout.hpp"
 
@@ -105,6 +107,35 @@ TEST_F(SignalImageTest, NumberOfEveryType) {
   image_.SetNumber(s, 7);  // a STRING is left as it is and reads 0
   EXPECT_EQ(image_.String(s), "%t.nc");
   EXPECT_EQ(image_.Number(s), 0);
+}
+
+TEST_F(SignalImageTest, SetNumberRoundsAsLlroundDoes) {
+  const int i32 = image_.Require("A03.AXD.65013");  // DINT
+  std::vector<double> values = {0.5,
+                                -0.5,
+                                1.5,
+                                -1.5,
+                                2.5,
+                                -2.5,
+                                0.49999999999999994,
+                                -0.49999999999999994,
+                                2147483647.4,
+                                -2147483648.4,
+                                1e-300,
+                                -1e-300,
+                                0.0,
+                                -0.0};
+  // Every quarter and its neighbours one ulp either side, over the DINT range's magnitudes.
+  for (double m = 0.25; m < 2e9; m *= 3.7)
+    for (double q : {0.0, 0.25, 0.5, 0.75})
+      for (double v : {std::floor(m) + q, -(std::floor(m) + q)})
+        for (double w : {std::nextafter(v, -1e10), v, std::nextafter(v, 1e10)}) values.push_back(w);
+  for (double v : values) {
+    const long long expected = std::llround(v);
+    if (expected < -2147483648LL || expected > 2147483647LL) continue;
+    image_.SetNumber(i32, v);
+    EXPECT_EQ(image_.Int(i32), expected) << std::hexfloat << v;
+  }
 }
 
 TEST_F(SignalImageTest, ChangesCountOnlyWritesThatChangeAValue) {
