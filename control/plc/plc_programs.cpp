@@ -1,7 +1,5 @@
 #include "control/plc/plc_programs.hpp"
 
-#include <memory>
-
 #include "control/plc/programs/c_axis_changeover.hpp"
 #include "control/plc/programs/machine_panel.hpp"
 #include "control/plc/programs/probe_block.hpp"
@@ -17,28 +15,24 @@ struct Entry {
 
 template <typename Program>
 PlcProgram Make(const gateway::SignalImage& image, const measure::MeasuringPages*) {
-  // std::function needs a copyable target; the program's state lives on the heap once.
-  auto program = std::make_shared<Program>(image);
-  return [program](PlcScan& scan) { (*program)(scan); };
+  return Program(image);
 }
 
 PlcProgram MakeProbeBlock(const gateway::SignalImage& image,
                           const measure::MeasuringPages* measuring_pages) {
-  auto program = std::make_shared<ProbeBlockProgram>(image);
-  program->measuring_pages = measuring_pages;
-  return [program](PlcScan& scan) { (*program)(scan); };
+  ProbeBlockProgram program(image);
+  program.measuring_pages = measuring_pages;
+  return program;
 }
 
 PlcProgram MakeNcTurretPanel(const gateway::SignalImage& image, const measure::MeasuringPages*) {
-  auto program = std::make_shared<MachinePanel>(image, true);
-  return [program](PlcScan& scan) { (*program)(scan); };
+  return MachinePanel(image, true);
 }
 
 PlcProgram MakeWrongChangeover(const gateway::SignalImage& image, const measure::MeasuringPages*) {
   CAxisChangeoverConfig config;
   config.acknowledge_before_clutch = true;
-  auto program = std::make_shared<CAxisChangeover>(image, config);
-  return [program](PlcScan& scan) { (*program)(scan); };
+  return CAxisChangeover(image, config);
 }
 
 constexpr Entry kPrograms[] = {

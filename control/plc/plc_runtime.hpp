@@ -5,9 +5,12 @@
 // the PLC's own clock, advanced by the period each scan: nothing reads the wall clock.
 
 #include <chrono>
+#include <concepts>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -52,8 +55,43 @@ class PlcScan {
 };
 
 /// A PLC program: called once per scan. Programs resolve their signal ids when they are made
-/// (plc_programs.hpp) and keep their function block instances as members.
-using PlcProgram = std::function<void(PlcScan&)>;
+/// (plc_programs.hpp) and keep their function block instances as members. A program is a value:
+/// a copy holds its own instances (a run's in-memory snapshot copies the PLC with them), which
+/// std::function, copying a shared pointer to the state, would not give.
+class PlcProgram {
+ public:
+  PlcProgram() = default;
+  template <typename Body>
+  requires std::invocable<Body&, PlcScan&> && std::copy_constructible<Body> &&
+      (!std::same_as<std::remove_cvref_t<Body>, PlcProgram>)PlcProgram(
+          Body body)  // NOLINT(google-explicit-constructor): any scan function is a program
+      : body_(std::make_unique<Held<Body>>(std::move(body))) {}
+  PlcProgram(const PlcProgram& other) : body_(other.body_ ? other.body_->Copy() : nullptr) {}
+  PlcProgram& operator=(const PlcProgram& other) {
+    if (this != &other) body_ = other.body_ ? other.body_->Copy() : nullptr;
+    return *this;
+  }
+  PlcProgram(PlcProgram&&) noexcept = default;
+  PlcProgram& operator=(PlcProgram&&) noexcept = default;
+
+  void operator()(PlcScan& scan) { body_->Scan(scan); }
+  explicit operator bool() const { return body_ != nullptr; }
+
+ private:
+  struct Body {
+    virtual ~Body() = default;
+    virtual void Scan(PlcScan& scan) = 0;
+    virtual std::unique_ptr<Body> Copy() const = 0;
+  };
+  template <typename F>
+  struct Held final : Body {
+    explicit Held(F f) : f(std::move(f)) {}
+    void Scan(PlcScan& scan) override { f(scan); }
+    std::unique_ptr<Body> Copy() const override { return std::make_unique<Held>(f); }
+    F f;
+  };
+  std::unique_ptr<Body> body_;
+};
 
 /// True for the signals a PLC may write: PLC to NC, PLC to machine, and the shared ones.
 bool PlcDrives(gateway::Direction direction);
@@ -81,6 +119,24 @@ class PlcRuntime {
   PlcTime now() const { return now_; }
   PlcTime period() const { return period_; }
   uint64_t cycles() const { return cycles_; }
+
+  /// What scanning changes (the latched copy, the program's instances, the clock): kept to go
+  /// back to (a run's in-memory snapshot). The image itself is its owner's to keep.
+  struct Saved {
+    gateway::SignalImage latched;
+    PlcProgram program;
+    PlcTime now;
+    uint64_t cycles;
+    bool stopped;
+  };
+  Saved Save() const { return {latched_, program_, now_, cycles_, stopped_}; }
+  void Restore(const Saved& saved) {
+    latched_ = saved.latched;
+    program_ = saved.program;
+    now_ = saved.now;
+    cycles_ = saved.cycles;
+    stopped_ = saved.stopped;
+  }
 
  private:
   gateway::SignalImage& image_;

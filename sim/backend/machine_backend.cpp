@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "common/demand.hpp"
 #include "sim/backend/coupling_graph.hpp"
 
 namespace vmt::sim {
@@ -23,6 +24,10 @@ MachineBackend::MachineBackend(const MachineModel& model, const InitialState& in
   mdt_.outputs.assign(model.io.size(), 0);
   at_.feedback.resize(model.drives.size());
   at_.inputs.assign(model.io.size(), 0);
+}
+
+void MachineBackend::Restore(const MachineBackend&) {
+  VMT_DEMAND(false, "a backend without Copy has nothing to restore");
 }
 
 void MachineBackend::Write(const control::MasterTelegram& mdt) {

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,11 @@ class MachineBackend : public control::DriveBus {
   double time_s() const { return ticks_ * kDriveTickS; }
   /// Joint positions (m | rad), one per model joint: what the renderer and PathGuard pose.
   virtual std::vector<double> JointPositions() const = 0;
+  /// A copy of the machine as it stands, to go back to with Restore (a run's in-memory
+  /// snapshot); null where the backend has none: Bullet's world does not copy.
+  virtual std::unique_ptr<MachineBackend> Copy() const { return nullptr; }
+  /// Back to `saved`, a Copy of this backend.
+  virtual void Restore(const MachineBackend& saved);
   ClutchState Clutch(int index) const { return clutches_[index].state; }
   /// The clutch's logic: state, stroke and clashes (dogs ratcheting at speed).
   const DogClutchLogic& ClutchLogic(int index) const { return clutches_[index]; }

@@ -454,6 +454,7 @@ std::vector<Command> AddStudy(CLI::App& app) {
     double every_ms = 0;
     size_t max_cases = 0;
     bool no_fork = false;
+    std::string run_ups = "memory";
     std::vector<std::string> merge_dirs;
     std::string merge_out;
     std::string replay_dir, replay_case;
@@ -487,8 +488,16 @@ std::vector<Command> AddStudy(CLI::App& app) {
       ->excludes(every_ms);
   repos->add_option("--max-cases", o->max_cases, "Only the first N cases (of this shard)")
       ->check(WholeIn(1, 1000000000));
-  repos->add_flag("--no-fork", o->no_fork,
-                  "Run every case from the program's start (slow; checks the forked run-ups)");
+  CLI::Option* run_ups =
+      repos
+          ->add_option("--run-ups", o->run_ups,
+                       "How the cases of an interruption share the run-up to it: memory (one "
+                       "process going back to the run saved there), fork (a process each: "
+                       "slower, a case that crashes does not end its worker), start (every case "
+                       "from the program's start: slow, a check of the others)")
+          ->check(CLI::IsMember({"fork", "memory", "start"}))
+          ->capture_default_str();
+  repos->add_flag("--no-fork", o->no_fork, "The same as --run-ups start")->excludes(run_ups);
   repos->add_option("--bench-json", o->bench_json, "Also write the speed here as JSON")
       ->check(sim::kOutputFile);
   repos
@@ -537,7 +546,10 @@ std::vector<Command> AddStudy(CLI::App& app) {
                       sim::study::StudyOptions options = o->options;
                       if (o->every_ms > 0) options.every_ms = o->every_ms;
                       if (o->max_cases > 0) options.max_cases = o->max_cases;
-                      options.fork_cases = !o->no_fork;
+                      using sim::study::RunUpSharing;
+                      options.run_ups = o->no_fork || o->run_ups == "start" ? RunUpSharing::kNone
+                                        : o->run_ups == "memory"            ? RunUpSharing::kMemory
+                                                                            : RunUpSharing::kFork;
                       options.progress = true;
                       return StudyRepos(options, o->shard, o->per_mille, o->bench_json);
                     }};

@@ -213,6 +213,15 @@ void CollisionWorld::SetAdded(const std::vector<CylinderPart>& added) {
     }
 }
 
+void CollisionWorld::Restore(const Saved& saved) {
+  SetAdded(saved.added);
+  aside_ = saved.aside;
+  measuring_ = saved.measuring;
+  X_WorldLink_ = saved.X_WorldLink;
+  for (int i = 0; i < size(); ++i) PosePart(i);
+  queries_ = saved.queries;
+}
+
 void CollisionWorld::Pose(const std::vector<double>& q) {
   X_WorldLink_ = LinkPoses(*model_, q);
   for (int i = 0; i < size(); ++i) PosePart(i);

@@ -91,6 +91,19 @@ class CollisionWorld {
   bool Collide(int a, int b, Eigen::Vector3d* point = nullptr) const;
   int64_t queries() const { return queries_; }
 
+  /// What checking changes: the added parts, the parts set aside, the measuring switch, the
+  /// links' poses (a clearance proof reads them before it poses anything) and the count of
+  /// queries. Kept to go back to (a run's in-memory snapshot); the solids are rebuilt from it.
+  struct Saved {
+    std::vector<CylinderPart> added;
+    std::vector<char> aside;
+    bool measuring = false;
+    std::vector<Eigen::Isometry3d> X_WorldLink;
+    int64_t queries = 0;
+  };
+  Saved Save() const { return {added_, aside_, measuring_, X_WorldLink_, queries_}; }
+  void Restore(const Saved& saved);
+
  private:
   struct Fcl;
   const MachineModel* model_;

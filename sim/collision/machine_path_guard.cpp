@@ -41,6 +41,21 @@ void MachinePathGuard::SetSweep(SpindleSweep sweep) {
   stale_ = true;
 }
 
+MachinePathGuard::Saved MachinePathGuard::Save() const {
+  return {world_.Save(), added_, sweep_, turning_, world_swept_, stale_, world_version_, proof_};
+}
+
+void MachinePathGuard::Restore(const Saved& saved) {
+  world_.Restore(saved.world);
+  added_ = saved.added;
+  sweep_ = saved.sweep;
+  turning_ = saved.turning;
+  world_swept_ = saved.world_swept;
+  stale_ = saved.stale;
+  world_version_ = saved.world_version;
+  proof_ = saved.proof;
+}
+
 void MachinePathGuard::Refresh(bool swept) {
   if (!stale_ && swept == world_swept_) return;
   std::vector<CylinderPart> parts = added_;
@@ -89,8 +104,7 @@ control::PathCheck MachinePathGuard::CheckMeasuringPath(const std::vector<double
   return c;
 }
 
-control::PathCheck MachinePathGuard::CheckSpindleStart(const std::vector<double>& at,
-                                                       int spindle) {
+control::PathCheck MachinePathGuard::CheckSpindleStart(const std::vector<double>& at, int spindle) {
   if (sweep_.joint < 0 || spindle < 0) return {};
   if (before_check) before_check(world_);
   proof_.reset();

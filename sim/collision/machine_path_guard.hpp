@@ -54,6 +54,26 @@ class MachinePathGuard : public control::PathGuard {
   void SetSpindleTurning(bool turning) { turning_ = turning; }
 
  private:
+  struct Proof {
+    ClearMove move;
+    int64_t world_version = -1;
+    std::string closest_a, closest_b;
+  };
+
+ public:
+  /// What the checks change, kept to go back to (a run's in-memory snapshot).
+  struct Saved {
+    CollisionWorld::Saved world;
+    std::vector<CylinderPart> added;
+    SpindleSweep sweep;
+    bool turning, world_swept, stale;
+    int64_t world_version;
+    std::optional<Proof> proof;
+  };
+  Saved Save() const;
+  void Restore(const Saved& saved);
+
+ private:
   const MachineModel* model_;
   CollisionWorld world_;
   std::function<std::vector<double>()> current_;
@@ -62,14 +82,9 @@ class MachinePathGuard : public control::PathGuard {
   std::vector<CylinderPart> added_;
   SpindleSweep sweep_;
   bool turning_ = false;
-  bool world_swept_ = false;  ///< the world holds the sweep in the chuck's place
-  bool stale_ = false;        ///< added_ or the sweep changed since the world was built
-  int64_t world_version_ = 0;  ///< counts the world's rebuilds (Refresh)
-  struct Proof {
-    ClearMove move;
-    int64_t world_version = -1;
-    std::string closest_a, closest_b;
-  };
+  bool world_swept_ = false;    ///< the world holds the sweep in the chuck's place
+  bool stale_ = false;          ///< added_ or the sweep changed since the world was built
+  int64_t world_version_ = 0;   ///< counts the world's rebuilds (Refresh)
   std::optional<Proof> proof_;  ///< the last CheckMove, when it was clear
 };
 

@@ -51,6 +51,11 @@ void KinematicBackend::RebuildPlan() {
   group_held_.assign(groups, 0);
 }
 
+void KinematicBackend::Restore(const MachineBackend& saved) {
+  // Every member is a value (the model is shared and constant), so the copy is the state.
+  *this = static_cast<const KinematicBackend&>(saved);
+}
+
 void KinematicBackend::Step() {
   const double dt = kDriveTickS;
   // Member buffers only: this runs thousands of times per simulated second.

@@ -11,12 +11,16 @@
 
 namespace vmt::sim {
 
-class KinematicBackend : public MachineBackend {
+class KinematicBackend final : public MachineBackend {
  public:
   KinematicBackend(const MachineModel& model, const InitialState& init);
 
   void Step() override;
   std::vector<double> JointPositions() const override { return q_; }
+  std::unique_ptr<MachineBackend> Copy() const override {
+    return std::make_unique<KinematicBackend>(*this);
+  }
+  void Restore(const MachineBackend& saved) override;
 
  private:
   void UpdateFeedback();

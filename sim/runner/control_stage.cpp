@@ -206,4 +206,29 @@ void ControlStage::Tick(bool nc_cycle, const control::AmplifierTelegram& at,
   if (jog_of_path_ && gateway_ && nc_cycle) gateway_->WriteJogOfPath(*jog_of_path_);
 }
 
+ControlStage::Saved ControlStage::Save() const {
+  Saved saved{measuring_pages_, {}, {}, {}, {}, {}, {}, plc_overdue_, default_headstock_plc_};
+  if (channel_) saved.channel = channel_->data();
+  if (jog_of_path_) saved.jog_of_path = jog_of_path_->data();
+  if (image_) saved.image = *image_;
+  if (gateway_) saved.gateway = *gateway_;
+  if (plc_) saved.plc = plc_->Save();
+  if (probe_glue_) saved.probe_glue = *probe_glue_;
+  return saved;
+}
+
+// The stage's objects stay where they are (the channel points at the pages and PathGuard, the
+// gateway and the PLC at the image): their values are put back.
+void ControlStage::Restore(const Saved& saved) {
+  measuring_pages_ = saved.measuring_pages;
+  if (channel_) channel_->Restore(*saved.channel);
+  if (jog_of_path_) jog_of_path_->Restore(*saved.jog_of_path);
+  if (image_) *image_ = *saved.image;
+  if (gateway_) *gateway_ = *saved.gateway;
+  if (plc_) plc_->Restore(*saved.plc);
+  if (probe_glue_) *probe_glue_ = *saved.probe_glue;
+  plc_overdue_ = saved.plc_overdue;
+  default_headstock_plc_ = saved.default_headstock_plc;
+}
+
 }  // namespace vmt::sim

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -83,6 +84,21 @@ class ControlStage {
   const control::measure::MeasuringPages& measuring_pages() const { return measuring_pages_; }
   /// Drive ticks per PLC cycle.
   int64_t plc_every() const { return plc_every_; }
+
+  /// What the stage's tick changes (channels, signal image, gateway, PLC, probe block, machine
+  /// data pages), kept to go back to (a run's in-memory snapshot).
+  struct Saved {
+    control::measure::MeasuringPages measuring_pages;
+    std::optional<control::channel::ChannelData> channel, jog_of_path;
+    std::optional<control::gateway::SignalImage> image;
+    std::optional<control::gateway::ChannelGateway> gateway;
+    std::optional<control::plc::PlcRuntime::Saved> plc;
+    std::optional<ProbeGlue> probe_glue;
+    int64_t plc_overdue;
+    bool default_headstock_plc;
+  };
+  Saved Save() const;
+  void Restore(const Saved& saved);
 
  private:
   void MakeChannels(const Scene& scene, control::PathGuard* guard);

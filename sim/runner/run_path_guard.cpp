@@ -46,4 +46,18 @@ void RunPathGuard::FollowSpindle(double t, double cycle_s) {
   spindle_angle_ = q[joint];
 }
 
+RunPathGuard::Saved RunPathGuard::Save() const {
+  Saved saved{std::nullopt, guard_->Save(), spindle_angle_, parts_stale_, stock_cuts_};
+  if (cutter_) saved.cutter = *cutter_;
+  return saved;
+}
+
+void RunPathGuard::Restore(const Saved& saved) {
+  if (cutter_) *cutter_ = *saved.cutter;
+  guard_->Restore(saved.guard);
+  spindle_angle_ = saved.spindle_angle;
+  parts_stale_ = saved.parts_stale;
+  stock_cuts_ = saved.stock_cuts;
+}
+
 }  // namespace vmt::sim

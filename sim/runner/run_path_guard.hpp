@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 #include "sim/backend/machine_backend.hpp"
 #include "sim/collision/machine_path_guard.hpp"
@@ -28,6 +29,18 @@ class RunPathGuard {
   int64_t stock_cuts() const { return stock_cuts_; }
   /// At the start of an NC cycle of `cycle_s` seconds, at `t`.
   void FollowSpindle(double t, double cycle_s);
+
+  /// The stock as turned and PathGuard's state, kept to go back to (a run's in-memory
+  /// snapshot).
+  struct Saved {
+    std::optional<StockCutter> cutter;
+    MachinePathGuard::Saved guard;
+    double spindle_angle;
+    bool parts_stale;
+    int64_t stock_cuts;
+  };
+  Saved Save() const;
+  void Restore(const Saved& saved);
 
  private:
   const MachineBackend* backend_;

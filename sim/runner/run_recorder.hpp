@@ -74,6 +74,18 @@ class RunRecorder {
   void AddWriteError(const std::string& error);
   const std::vector<std::string>& write_errors() const { return write_errors_; }
 
+  /// The digest so far and the write errors: what a run that writes no files has recorded,
+  /// kept to go back to (SceneRun::Save).
+  struct Saved {
+    Fnv1a64 digest;
+    std::vector<std::string> write_errors;
+  };
+  Saved Save() const { return {digest_, write_errors_}; }
+  void Restore(const Saved& saved) {
+    digest_ = saved.digest;
+    write_errors_ = saved.write_errors;
+  }
+
  private:
   void Checked(std::unique_ptr<common::OutputFile>& file, bool close);
 

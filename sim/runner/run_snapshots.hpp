@@ -58,6 +58,27 @@ class RunSnapshots {
     std::string path;
     std::shared_ptr<const TurnedProfile> turned;
   };
+
+ public:
+  /// Which pictures are taken, due and pending: kept to go back to (a run's in-memory copy,
+  /// SceneRun::Save). The renderer is a cache of the scene and stays.
+  struct Saved {
+    std::vector<bool> snapped;
+    std::vector<int> event_shots;
+    std::vector<std::pair<size_t, int>> due;
+    std::vector<PendingSnapshot> pending;
+    std::shared_ptr<const TurnedProfile> turned;
+  };
+  Saved Save() const { return {snapped_, event_shots_, due_, pending_, turned_}; }
+  void Restore(const Saved& saved) {
+    snapped_ = saved.snapped;
+    event_shots_ = saved.event_shots;
+    due_ = saved.due;
+    pending_ = saved.pending;
+    turned_ = saved.turned;
+  }
+
+ private:
   void Take(const SnapshotSpec& s, const std::string& file, nlohmann::ordered_json event,
             const SnapshotSource& source, RunRecorder& recorder, std::vector<std::string>& files);
   std::shared_ptr<const TurnedProfile> TurnedNow(const SnapshotSource& source);

@@ -70,6 +70,9 @@ struct RunResult {
 
 /// A run one drive tick at a time, for whoever paces it (vmt serve: an external PLC's cycles).
 /// Throws common::WriteError when the output folder cannot be made.
+/// A run's changing state at one tick, kept in memory (SceneRun::Save).
+struct SavedRun;
+
 class SceneRun {
  public:
   SceneRun(const Scene& scene, const RunOptions& options);
@@ -83,6 +86,17 @@ class SceneRun {
   /// here, e.g. "SIGTERM"). A file that cannot be written does not throw: the run's other files
   /// are still written, and RunResult::write_errors names it.
   RunResult Finish(const std::string& stop_reason = {});
+  /// The run as it stands, kept in memory to go back to with Restore, as often as wanted: the
+  /// machine, PathGuard and the stock as turned, the channels, the signal image, the PLC's
+  /// program instances, the timeline's place, the watches and the digest so far. A run on the
+  /// physics backend (Bullet's world does not copy), one that writes its files as it goes
+  /// (`out_dir`) and one whose PLC is an external client have none: std::runtime_error says
+  /// which.
+  std::shared_ptr<const SavedRun> Save() const;
+  /// Back to the tick `saved` was taken at, a Save of this run (Finish too is undone): the
+  /// steps from there are the ones the run took the first time, bit for bit. The scene is the
+  /// caller's: timeline steps appended since stay appended.
+  void Restore(const SavedRun& saved);
   /// The gateway signals, null without an nc: section.
   control::gateway::SignalImage* image();
   const control::gateway::SignalImage* image() const;

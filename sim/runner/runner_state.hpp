@@ -27,6 +27,31 @@
 
 namespace vmt::sim {
 
+// The values of a run's changing state at one tick (saved_run.cpp). The objects they belong
+// to stay where they are in the run, pointing at each other, and take these values back.
+struct SavedRun {
+  std::unique_ptr<MachineBackend> backend;
+  std::optional<RunPathGuard::Saved> path_guard;
+  ControlStage::Saved control_stage;
+  TimelinePlayer timeline;
+  MachineEventWatch machine_events;
+  ChannelEventWatch channel_events;
+  int64_t tick, last_tick;
+  bool finished;
+  RunRecorder::Saved recorder;
+  RunResult result;
+  ExpectationWatch expectations;
+  RunSnapshots::Saved snapshots;
+  std::vector<ClutchState> clutches;
+  control::MasterTelegram mdt;
+  std::vector<ProgramEvent> events;
+  FaultFilter fault_filter;
+  int plc_client_gone_told;
+  std::optional<Eigen::Vector3d> probe_latch_point;
+  std::vector<OperatorStep> operated;
+  size_t next_operator_step;
+};
+
 // Everything a run holds between ticks.
 struct SceneRun::State {
   State(const Scene& scene, const RunOptions& options);
@@ -39,6 +64,9 @@ struct SceneRun::State {
   void StopPlc(double t, const std::string& reason, const std::string& nc_text);
   /// The scene's expectations due at `t`, checked and recorded.
   void CheckExpectations(double t, const control::AmplifierTelegram& at);
+  /// The run's changing state as it stands (SceneRun::Save), or why it has no copy.
+  std::shared_ptr<const SavedRun> Save() const;
+  void Restore(const SavedRun& saved);
 
   const Scene& scene;
   const RunOptions options;

@@ -120,6 +120,16 @@ CaseResult DiedResult(const StudyPlan& plan, const std::vector<Interruption>& in
   return r;
 }
 
+// A case whose run failed in the study's own process (run-ups kept in memory).
+CaseResult FailedResult(const StudyPlan& plan, const std::vector<Interruption>& interruptions,
+                        const StudyCase& c, const std::string& what) {
+  CaseObserver none;
+  CaseResult r = none.Result(plan, interruptions, c, 0);
+  r["verdict"] = "error";
+  r["error"] = "the case failed: " + what;
+  return r;
+}
+
 }  // namespace
 
 Scene SubroutineScene(const Scene& base, const Subroutine& subroutine) {
@@ -338,21 +348,29 @@ std::vector<std::string> InChild(const std::function<void(int)>& work, int* stat
   return lines;
 }
 
-// In a child at the interruption, held: the retract the cases share, then each case's way
-// back, a result line each to `fd` in the cases' order. Every mode but the last runs in a
-// grandchild of its own; the last runs on here (a crash in it is reported by the caller, as
-// for a grandchild).
+// At the interruption, held: the retract the cases share, then each case's way back, a result
+// line each to `emit` in the cases' order. Forked (`in_memory` false; in a child): every mode but
+// the last runs in a grandchild of its own, the last runs on here (a crash in it is reported by
+// the caller, as for a grandchild). In memory: each mode goes back to the end of the retract.
 void RunRetractCases(Scene& scene, SceneRun& run, CaseObserver*& observer, const StudyPlan& plan,
                      const std::vector<Interruption>& interruptions, const Interruption& in,
-                     size_t sub, std::span<const StudyCase> cases, const CaseWatch* watch, int fd) {
+                     size_t sub, std::span<const StudyCase> cases, const CaseWatch* watch,
+                     bool in_memory, const std::function<void(const std::string&)>& emit) {
   const RetractPattern& retract = plan.retracts[cases.front().retract];
   Append(scene, RetractLines(scene, plan, in, retract));
   const size_t marker = scene.timeline.size() - 1;
   CaseObserver obs(CaseObserver::kNoStep, marker);
   observer = &obs;
   const double limit = CaseLimit(plan, in, retract);
-  while (!run.done() && !obs.done() && !obs.marker_seen() && run.time_s() < limit) run.Step();
-  for (int w = 0; w < 8 && obs.error_pending() && !run.done(); ++w) run.Step();
+  try {
+    while (!run.done() && !obs.done() && !obs.marker_seen() && run.time_s() < limit) run.Step();
+    for (int w = 0; w < 8 && obs.error_pending() && !run.done(); ++w) run.Step();
+  } catch (const std::exception& e) {
+    if (!in_memory) throw;  // the child's end tells
+    for (const StudyCase& c : cases)
+      emit(CaseJsonLine(FailedResult(plan, interruptions, c, e.what())));
+    return;
+  }
   // The case's result, seen by the watch, as its line.
   const auto result_line = [&](const StudyCase& c) {
     const CaseResult r = obs.Result(plan, interruptions, c, run.time_s());
@@ -364,22 +382,40 @@ void RunRetractCases(Scene& scene, SceneRun& run, CaseObserver*& observer, const
     RunReturn(scene, run, obs, plan, plan.subroutines[sub], c.mode, limit);
     return result_line(c);
   };
+  std::shared_ptr<const SavedRun> retracted;
+  const size_t retract_steps = scene.timeline.size();
+  const CaseObserver at_retracted = obs;
+  if (in_memory && obs.marker_seen() && cases.size() > 1) retracted = run.Save();
   for (size_t m = 0; m < cases.size(); ++m) {
     const StudyCase& c = cases[m];
     if (!obs.marker_seen()) {  // the retract ended the case (a refused jog)
-      WriteAll(fd, result_line(c));
+      emit(result_line(c));
+      continue;
+    }
+    if (in_memory) {
+      if (m > 0) {
+        run.Restore(*retracted);
+        scene.timeline.resize(retract_steps);
+        obs = at_retracted;
+      }
+      std::string line;
+      try {
+        line = way_back(c);
+      } catch (const std::exception& e) {  // the next mode goes back to the retract's end
+        line = CaseJsonLine(FailedResult(plan, interruptions, c, e.what()));
+      }
+      emit(line);
       continue;
     }
     if (m + 1 == cases.size()) {
-      WriteAll(fd, way_back(c));
+      emit(way_back(c));
       continue;
     }
     int mode_status = 0;
     const std::vector<std::string> one =
         InChild([&](int mode_fd) { WriteAll(mode_fd, way_back(c)); }, &mode_status);
     const bool ok = WIFEXITED(mode_status) && WEXITSTATUS(mode_status) == 0 && one.size() == 1;
-    WriteAll(fd,
-             ok ? one[0] + "\n" : CaseJsonLine(DiedResult(plan, interruptions, c, mode_status)));
+    emit(ok ? one[0] + "\n" : CaseJsonLine(DiedResult(plan, interruptions, c, mode_status)));
   }
 }
 
@@ -397,11 +433,113 @@ void ForwardResults(int fd, const std::function<void(const CaseResult&)>& sink) 
   }
 }
 
+// What the groups of one subroutine share: its scene (the run reads its timeline by reference;
+// a group appends its steps and takes them back, or appends them in its own process), the run,
+// and where the run's events go.
+struct SubroutineRun {
+  Scene& scene;
+  SceneRun& run;
+  CaseObserver*& observer;
+  const StudyPlan& plan;
+  const std::vector<Interruption>& interruptions;
+  size_t sub;
+  const CaseWatch* watch;
+};
+
+// A group's run stops a little before the step's time, so that the appended step runs on the
+// same tick as in a run from the start (a step waits for its `at:`).
+constexpr double kAhead = 0.002;
+
+// The cases of one retract share it: `retract_cases` gets each retract's cases of `mine`.
+void EachRetract(const std::vector<StudyCase>& mine,
+                 const std::function<void(std::span<const StudyCase>)>& retract_cases) {
+  for (size_t k = 0; k < mine.size();) {
+    size_t end = k;
+    while (end < mine.size() && mine[end].retract == mine[k].retract) ++end;
+    retract_cases(std::span<const StudyCase>(mine.data() + k, end - k));
+    k = end;
+  }
+}
+
+// One interruption's cases in this process: the run is saved where it stands (a little before
+// the interruption) and after the feed hold; each retract goes back to the held feed, and at the
+// end the run goes back to where it stood, for the next interruption.
+void RunGroupInMemory(const SubroutineRun& s, const Interruption& in,
+                      const std::vector<StudyCase>& mine,
+                      const std::function<void(const CaseResult&)>& sink) {
+  const size_t run_up_steps = s.scene.timeline.size();
+  const std::shared_ptr<const SavedRun> run_up = s.run.Save();
+  s.scene.timeline.push_back(HoldStep(s.scene, in.t_s, s.scene.timeline.size()));
+  while (!s.run.done() && s.run.time_s() < in.t_s + s.plan.hold_s - kAhead) s.run.Step();
+  const size_t held_steps = s.scene.timeline.size();
+  const std::shared_ptr<const SavedRun> held = s.run.Save();
+  bool first = true;
+  EachRetract(mine, [&](std::span<const StudyCase> cases) {
+    if (!first) {
+      s.run.Restore(*held);
+      s.scene.timeline.resize(held_steps);
+    }
+    first = false;
+    RunRetractCases(s.scene, s.run, s.observer, s.plan, s.interruptions, in, s.sub, cases, s.watch,
+                    true,
+                    [&](const std::string& line) { sink(nlohmann::ordered_json::parse(line)); });
+  });
+  s.observer = nullptr;
+  s.run.Restore(*run_up);
+  s.scene.timeline.resize(run_up_steps);
+}
+
+// One interruption's cases forked: a child holds the feed, a child of it per retract runs the
+// retract, a grandchild per mode (RunRetractCases). The results come back a line each through a
+// pipe, so that `sink` runs here; the run here stays where it stands.
+void RunGroupForked(const SubroutineRun& s, const Interruption& in,
+                    const std::vector<StudyCase>& mine,
+                    const std::function<void(const CaseResult&)>& sink) {
+  int lines[2];
+  if (::pipe(lines) != 0) throw std::runtime_error("pipe failed");
+  std::fflush(nullptr);
+  const pid_t parent = ::getpid();
+  const pid_t group = ::fork();
+  if (group < 0) throw std::runtime_error("fork failed");
+  if (group == 0) {
+    DieWithParent(parent);
+    ::close(lines[0]);
+    s.scene.timeline.push_back(HoldStep(s.scene, in.t_s, s.scene.timeline.size()));
+    while (!s.run.done() && s.run.time_s() < in.t_s + s.plan.hold_s - kAhead) s.run.Step();
+    EachRetract(mine, [&](std::span<const StudyCase> cases) {
+      int status = 0;
+      const std::vector<std::string> got = InChild(
+          [&](int fd) {
+            RunRetractCases(s.scene, s.run, s.observer, s.plan, s.interruptions, in, s.sub, cases,
+                            s.watch, false, [fd](const std::string& line) { WriteAll(fd, line); });
+          },
+          &status);
+      for (size_t m = 0; m < cases.size(); ++m) {
+        const StudyCase& c = cases[m];
+        CaseResult r = m < got.size() ? nlohmann::ordered_json::parse(got[m], nullptr, false)
+                                      : nlohmann::ordered_json();
+        if (r.is_discarded() || !r.is_object() || r.value("case", "") != c.id)
+          r = DiedResult(s.plan, s.interruptions, c, status);
+        WriteAll(lines[1], CaseJsonLine(r));
+      }
+    });
+    ::_exit(0);
+  }
+  ::close(lines[1]);
+  ForwardResults(lines[0], sink);
+  ::close(lines[0]);
+  int status = 0;
+  ::waitpid(group, &status, 0);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw std::runtime_error("a study process at " + in.label + " died (wait status " +
+                             std::to_string(status) + ")");
+}
+
 }  // namespace
 
 void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
                         const std::vector<Interruption>& interruptions, size_t sub,
-                        const std::function<bool(const StudyCase&)>& chosen, bool fork,
+                        const std::function<bool(const StudyCase&)>& chosen, RunUpSharing sharing,
                         const std::function<void(const CaseResult&)>& sink,
                         const CaseWatch* watch) {
   // Made group by group, so that a worker holds one group's cases, not its share's.
@@ -420,69 +558,26 @@ void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
                    [&](size_t a, size_t b) { return interruptions[a].t_s < interruptions[b].t_s; });
   if (std::none_of(order.begin(), order.end(), [&](size_t i) { return !group_at(i).empty(); }))
     return;
-  if (!fork) {
+  if (sharing == RunUpSharing::kNone) {
     for (const size_t i : order)
       for (const StudyCase& c : group_at(i))
         sink(RunCaseFromStart(base, plan, interruptions, c, watch));
     return;
   }
-  // The scene lives here; the run reads its timeline by reference, and each child appends to
-  // its own copy of it.
   Scene scene = SubroutineScene(base, plan.subroutines[sub]);
   CaseObserver* observer = nullptr;
   SceneRun run(scene, CaseOptions(&observer));
   WarmSteps(scene, plan, interruptions[order.front()], plan.subroutines[sub]);
-  // Forks a little before the step's time, so that the appended step runs on the same tick as
-  // in a run from the start (a step waits for its `at:`).
-  constexpr double kAhead = 0.002;
+  const SubroutineRun s{scene, run, observer, plan, interruptions, sub, watch};
   for (const size_t i : order) {
     const std::vector<StudyCase> mine = group_at(i);
     if (mine.empty()) continue;
     const Interruption& in = interruptions[i];
     while (!run.done() && run.time_s() < in.t_s - kAhead) run.Step();
-    // The group's results come back a line each through a pipe, so that `sink` runs here.
-    int lines[2];
-    if (::pipe(lines) != 0) throw std::runtime_error("pipe failed");
-    std::fflush(nullptr);
-    const pid_t parent = ::getpid();
-    const pid_t group = ::fork();
-    if (group < 0) throw std::runtime_error("fork failed");
-    if (group == 0) {
-      DieWithParent(parent);
-      ::close(lines[0]);
-      scene.timeline.push_back(HoldStep(scene, in.t_s, scene.timeline.size()));
-      while (!run.done() && run.time_s() < in.t_s + plan.hold_s - kAhead) run.Step();
-      // The cases of one retract share it: a child per retract runs it, a grandchild per mode.
-      for (size_t k = 0; k < mine.size();) {
-        size_t end = k;
-        while (end < mine.size() && mine[end].retract == mine[k].retract) ++end;
-        const std::span<const StudyCase> cases(mine.data() + k, end - k);
-        int status = 0;
-        const std::vector<std::string> got = InChild(
-            [&](int fd) {
-              RunRetractCases(scene, run, observer, plan, interruptions, in, sub, cases, watch, fd);
-            },
-            &status);
-        for (size_t m = 0; m < cases.size(); ++m) {
-          const StudyCase& c = cases[m];
-          CaseResult r = m < got.size() ? nlohmann::ordered_json::parse(got[m], nullptr, false)
-                                        : nlohmann::ordered_json();
-          if (r.is_discarded() || !r.is_object() || r.value("case", "") != c.id)
-            r = DiedResult(plan, interruptions, c, status);
-          WriteAll(lines[1], CaseJsonLine(r));
-        }
-        k = end;
-      }
-      ::_exit(0);
-    }
-    ::close(lines[1]);
-    ForwardResults(lines[0], sink);
-    ::close(lines[0]);
-    int status = 0;
-    ::waitpid(group, &status, 0);
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-      throw std::runtime_error("a study process at " + in.label + " died (wait status " +
-                               std::to_string(status) + ")");
+    if (sharing == RunUpSharing::kMemory)
+      RunGroupInMemory(s, in, mine, sink);
+    else
+      RunGroupForked(s, in, mine, sink);
   }
 }
 

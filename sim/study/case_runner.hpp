@@ -8,8 +8,9 @@
 // deterministic and single-threaded: so the program runs once per subroutine, and at each
 // interruption point the process forks (POSIX fork) -- a child holds the feed and forks a
 // child per retract, which appends the retract's steps to the timeline, runs them and forks a
-// child per mode (REPOS or RESTA, AUTO, start). A case run so gives the same result as the case
-// run from the start (RunCaseFromStart; a test checks it).
+// child per mode (REPOS or RESTA, AUTO, start). Without fork the same sharing is kept in memory:
+// the run is saved at each of those points and each case goes back to it. A case run either
+// way gives the same result as the case run from the start (RunCaseFromStart; a test checks it).
 
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -39,12 +40,18 @@ struct CaseWatch {
   std::function<void(const SceneRun&, const StudyCase&, const CaseResult&)> after;
 };
 
+/// How the cases of an interruption point share the run-up to it, and a retract's cases the
+/// retract. kFork: POSIX fork; a case that crashes is reported as died and the study goes on.
+/// kMemory: in one process, each case going back to the shared state (SceneRun::Save). kNone:
+/// every case from the program's start (slow: the check of the other two).
+enum class RunUpSharing { kFork, kMemory, kNone };
+
 /// Runs the cases of subroutine `sub` that `chosen` picks, group by group in the time order of
-/// their interruption points, calling `sink` with each result as it finishes. With `fork`
-/// false each case runs from the start.
+/// their interruption points, calling `sink` with each result as it finishes. Whatever the
+/// sharing, the results are the same.
 void RunSubroutineCases(const Scene& base, const StudyPlan& plan,
                         const std::vector<Interruption>& interruptions, size_t sub,
-                        const std::function<bool(const StudyCase&)>& chosen, bool fork,
+                        const std::function<bool(const StudyCase&)>& chosen, RunUpSharing sharing,
                         const std::function<void(const CaseResult&)>& sink,
                         const CaseWatch* watch = nullptr);
 

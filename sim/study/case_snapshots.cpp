@@ -137,10 +137,9 @@ void PictureSubroutine(const Scene& base, const StudyPlan& plan,
     const ContactStage stage{run.joint_positions(), run.TurnedStockCylinders()};
     render::WritePng(file_of(c), ContactImage(base, stage, *wanted.at(c.index), look));
   };
-  // A process that has rendered must not fork a renderer (render::RendererStarted): its cases
-  // then run from the start here.
+  // In memory: a process that has rendered must not fork a renderer (render::RendererStarted).
   RunSubroutineCases(
-      base, plan, interruptions, sub, chosen, !render::RendererStarted(), [](const CaseResult&) {},
+      base, plan, interruptions, sub, chosen, RunUpSharing::kMemory, [](const CaseResult&) {},
       &watch);
 }
 

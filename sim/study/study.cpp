@@ -119,11 +119,10 @@ struct WorkersEnd {
     CaseFiles files(o.out_dir);
     const auto mine = [&](const StudyCase& c) { return todo[c.index] && worker_of[c.group] == w; };
     for (size_t s = 0; s < plan.subroutines.size(); ++s)
-      RunSubroutineCases(scene, plan, interruptions, s, mine, o.fork_cases,
-                         [&](const CaseResult& r) {
-                           const StopSignalsHeld whole_lines;
-                           files.Write(r);
-                         });
+      RunSubroutineCases(scene, plan, interruptions, s, mine, o.run_ups, [&](const CaseResult& r) {
+        const StopSignalsHeld whole_lines;
+        files.Write(r);
+      });
   } catch (const std::exception& e) {
     std::fprintf(stderr, "vmt study: worker %d: %s\n", w, e.what());
     code = 1;

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/study/case_runner.hpp"
+
 namespace vmt::sim::study {
 
 /// --shard K/N: at most this many shards (a cluster's cores, with room).
@@ -20,8 +22,9 @@ struct StudyOptions {
   int shard = 1, shards = 1;       ///< this process' share: groups g with g % shards == shard - 1
   std::optional<double> every_ms;  ///< overrides the plan's interruption
   std::optional<std::vector<int>> per_mille;
-  bool fork_cases = true;  ///< false: every case runs from the program's start (slow; a check)
-  bool progress = false;   ///< a progress bar on stderr
+  /// How a group's cases share their run-up (RunUpSharing).
+  RunUpSharing run_ups = RunUpSharing::kMemory;
+  bool progress = false;            ///< a progress bar on stderr
   std::optional<size_t> max_cases;  ///< the first N cases of this shard only (benchmarks)
   /// Pictures of the worst cases, rendered after the study: per subroutine this many
   /// collisions and the tightest clear case (0: none).

@@ -42,6 +42,18 @@ grep -q '<svg' merged/report.html || fail "merged report.html"
 "$vmt" study repos "$scene" --out jobs --jobs 2 > /dev/null
 diff <(sorted whole) <(sorted jobs) > /dev/null || fail "--jobs 2 differs from one job"
 cmp whole/cases.jsonl jobs/cases.jsonl || fail "cases.jsonl: not the same bytes with --jobs 2"
+# However the cases share their run-ups (in memory, forked, or none: each from the start), the
+# same bytes; a sharing the study does not know is refused.
+for run_ups in fork start; do
+  "$vmt" study repos "$scene" --out "$run_ups" --run-ups "$run_ups" --snapshots 0 > /dev/null
+  cmp whole/cases.jsonl "$run_ups/cases.jsonl" || fail "cases.jsonl differs with --run-ups $run_ups"
+done
+set +e
+"$vmt" study repos "$scene" --out bad --run-ups threads > bad.txt 2>&1
+code=$?
+set -e
+[ "$code" -eq 2 ] || fail "--run-ups threads: exit $code, not 2"
+grep -q "run-ups" bad.txt || fail "--run-ups threads: the message names no option: $(cat bad.txt)"
 "$vmt" study repos "$scene" --out noshots --snapshots 0 > /dev/null
 [ ! -e noshots/snapshots ] || fail "--snapshots 0 took pictures"
 cmp whole/cases.jsonl noshots/cases.jsonl || fail "cases.jsonl depends on the pictures"

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "control/gateway/signal_table.hpp"
 #include "control/plc/plc_programs.hpp"
 #include "control/plc/programs/repos_machine_keys.hpp"
@@ -47,6 +49,34 @@ TEST(PlcRuntimeTest, OutputsReachTheImageAtTheEndOfTheScanAndTheClockAdvances) {
   EXPECT_EQ(seen_times, (std::vector<int64_t>{0, 4000}));
   EXPECT_EQ(plc.cycles(), 2u);
   EXPECT_EQ(plc.now(), PlcTime(8000));
+}
+
+// A program is a value: a saved runtime keeps its own instances, and restored it scans on from
+// them (a run kept in memory), whatever the program did since.
+TEST(PlcRuntimeTest, RestoredRuntimeScansOnFromItsSavedInstances) {
+  gateway::SignalImage image = LatheImage();
+  const int valve = image.Require("QROTMODE");
+  // Toggles the valve every third scan: its count is the program's own state.
+  PlcRuntime plc(
+      image,
+      [valve, scans = 0](PlcScan& s) mutable {
+        if (++scans % 3 == 0) s.SetBool(valve, !s.Bool(valve));
+      },
+      PlcTime(4000));
+  const auto valve_over = [&](int scans) {
+    std::string seen;
+    for (int k = 0; k < scans; ++k) plc.Scan(), seen += image.Bool(valve) ? '1' : '0';
+    return seen;
+  };
+  (void)valve_over(2);
+  const gateway::SignalImage image_then = image;
+  const PlcRuntime::Saved saved = plc.Save();
+  const std::string first = valve_over(7);
+  EXPECT_EQ(first, "1110001");
+  plc.Restore(saved);
+  image = image_then;
+  EXPECT_EQ(plc.now(), PlcTime(8000));
+  EXPECT_EQ(valve_over(7), first);
 }
 
 TEST(PlcRuntimeTest, InputsAreLatchedAtTheStartOfTheScan) {

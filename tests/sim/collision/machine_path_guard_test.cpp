@@ -77,6 +77,37 @@ TEST(MachinePathGuard, ThePartAsTurnedReplacesTheStock) {
   EXPECT_TRUE(away.clear);
 }
 
+// Saved and restored (a run's in-memory copy), the guard answers as it did when saved: the
+// stock as it was then, and the clearance proof of its last check.
+TEST(MachinePathGuard, RestoredGuardAnswersAsWhenSaved) {
+  Guarded g;
+  const control::PathCheck plunge =
+      g.guard.CheckMove(g.Drives(130, 250, 450), g.Drives(130, 0, 450));
+  const control::PathCheck open =
+      g.guard.CheckMove(g.Drives(500, 250, 650), g.Drives(450, 200, 650));
+  ASSERT_TRUE(open.clear);
+  const MachinePathGuard::Saved saved = g.guard.Save();
+  control::PathCheck proven;
+  ASSERT_TRUE(g.guard.Proves(g.Drives(500, 249.5, 650), g.Drives(450, 199.5, 650), proven));
+
+  g.guard.SetAdded({{"workpiece", "spindle", 0.025, 0.160, 0.060}});
+  const control::PathCheck turned =
+      g.guard.CheckMove(g.Drives(130, 250, 450), g.Drives(130, 0, 450));
+  ASSERT_NE(turned.distance, plunge.distance);
+
+  g.guard.Restore(saved);
+  control::PathCheck proven_again;
+  ASSERT_TRUE(g.guard.Proves(g.Drives(500, 249.5, 650), g.Drives(450, 199.5, 650), proven_again));
+  EXPECT_EQ(proven_again.min_clearance, proven.min_clearance);
+  EXPECT_EQ(proven_again.closest_a, proven.closest_a);
+  const control::PathCheck again =
+      g.guard.CheckMove(g.Drives(130, 250, 450), g.Drives(130, 0, 450));
+  EXPECT_EQ(again.distance, plunge.distance);
+  EXPECT_EQ(again.part_a, plunge.part_a);
+  EXPECT_EQ(again.part_b, plunge.part_b);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(again.point[i], plunge.point[i]);
+}
+
 TEST(MachinePathGuard, ARingIsMaterialOnlyBetweenItsRadii) {
   Guarded g;
   const control::PathCheck solid =

@@ -52,7 +52,7 @@ TEST(study_cases, TinyStudyVerdicts) {
   const Tiny t;
   ASSERT_EQ(t.cases.size(), 2u);
   std::map<std::string, CaseResult> by_retract;
-  RunSubroutineCases(t.scene, t.plan, t.interruptions, 0, FirstInterruption, true,
+  RunSubroutineCases(t.scene, t.plan, t.interruptions, 0, FirstInterruption, RunUpSharing::kFork,
                      [&](const CaseResult& r) { by_retract[r["retract"].get<std::string>()] = r; });
   ASSERT_EQ(by_retract.size(), 2u);
   const CaseResult& up = by_retract["X+ then Z+"];
@@ -76,12 +76,33 @@ TEST(study_cases, TinyStudyVerdicts) {
 TEST(study_cases, ForkedCaseEqualsTheCaseRunFromTheStart) {
   const Tiny t;
   std::vector<CaseResult> forked;
-  RunSubroutineCases(t.scene, t.plan, t.interruptions, 0, FirstInterruption, true,
+  RunSubroutineCases(t.scene, t.plan, t.interruptions, 0, FirstInterruption, RunUpSharing::kFork,
                      [&](const CaseResult& r) { forked.push_back(r); });
   ASSERT_EQ(forked.size(), t.cases.size());
   for (size_t i = 0; i < t.cases.size(); ++i)
     EXPECT_EQ(forked[i].dump(),
               RunCaseFromStart(t.scene, t.plan, t.interruptions, t.cases[i]).dump());
+}
+
+// Shared in memory, every interruption's cases, both retracts and both modes (so that a run goes
+// back to the interruption, to the held feed and to the retract's end), give the bytes of the
+// forked cases and of the cases run from the start, in the same order.
+TEST(study_cases, CasesSharedInMemoryEqualForkedAndFromStart) {
+  Tiny t;
+  t.plan.modes = {ReposMode::kRepositioning, ReposMode::kRestart};
+  const auto all = [](const StudyCase&) { return true; };
+  std::vector<std::string> forked, in_memory, alone;
+  const auto into = [](std::vector<std::string>& v) {
+    return [&v](const CaseResult& r) { v.push_back(r.dump()); };
+  };
+  RunSubroutineCases(t.scene, t.plan, t.interruptions, 0, all, RunUpSharing::kFork, into(forked));
+  RunSubroutineCases(t.scene, t.plan, t.interruptions, 0, all, RunUpSharing::kMemory,
+                     into(in_memory));
+  RunSubroutineCases(t.scene, t.plan, t.interruptions, 0, all, RunUpSharing::kNone, into(alone));
+  ASSERT_GE(t.interruptions.size(), 2u);
+  ASSERT_EQ(forked.size(), t.interruptions.size() * 4);
+  EXPECT_EQ(in_memory, forked);
+  EXPECT_EQ(alone, forked);
 }
 
 // The watch sees each case in the case's own process: at the tick it ended (the machine not
@@ -114,7 +135,7 @@ TEST(study_cases, WatchSeesTheCaseAtItsEndForkedOrNot) {
   const CaseWatch in_fork = watch_into(forked), from_start = watch_into(alone);
   std::vector<CaseResult> results;
   RunSubroutineCases(
-      t.scene, t.plan, t.interruptions, 0, FirstInterruption, true,
+      t.scene, t.plan, t.interruptions, 0, FirstInterruption, RunUpSharing::kFork,
       [&](const CaseResult& r) { results.push_back(r); }, &in_fork);
   for (const StudyCase& c : t.cases)
     (void)RunCaseFromStart(t.scene, t.plan, t.interruptions, c, &from_start);

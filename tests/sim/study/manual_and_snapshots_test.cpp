@@ -49,12 +49,12 @@ struct TinyManual {
     for (const StudyCase& c : EnumerateCases(plan, interruptions))
       if (c.interruption == 0) cases.push_back(c);
   }
-  std::map<std::string, CaseResult> Run(bool fork) const {
+  std::map<std::string, CaseResult> Run(RunUpSharing sharing = RunUpSharing::kFork) const {
     std::map<std::string, CaseResult> by_order;
     for (size_t s = 0; s < plan.subroutines.size(); ++s)
       RunSubroutineCases(
           scene, plan, interruptions, s, [](const StudyCase& c) { return c.interruption == 0; },
-          fork, [&](const CaseResult& r) { by_order[r["subroutine"].get<std::string>()] = r; });
+          sharing, [&](const CaseResult& r) { by_order[r["subroutine"].get<std::string>()] = r; });
     return by_order;
   }
 };
@@ -62,7 +62,7 @@ struct TinyManual {
 TEST(study_manual, VerdictsOfTheJogOrders) {
   const TinyManual t;
   ASSERT_EQ(t.cases.size(), 2u);
-  std::map<std::string, CaseResult> got = t.Run(true);
+  std::map<std::string, CaseResult> got = t.Run();
   ASSERT_EQ(got.size(), 2u);
   // The hand-built expectation: the retract left the tool 70 mm up and 75 mm toward the chuck.
   // Z first: 75 mm in Z back over the part, then 70 mm down in X to the interruption point;
@@ -97,16 +97,20 @@ TEST(study_manual, VerdictsOfTheJogOrders) {
 
 TEST(study_manual, ForkedManualCaseEqualsTheCaseRunFromTheStart) {
   const TinyManual t;
-  const std::map<std::string, CaseResult> forked = t.Run(true);
-  const std::map<std::string, CaseResult> alone = t.Run(false);
+  const std::map<std::string, CaseResult> forked = t.Run();
+  const std::map<std::string, CaseResult> alone = t.Run(RunUpSharing::kNone);
+  const std::map<std::string, CaseResult> in_memory = t.Run(RunUpSharing::kMemory);
   ASSERT_EQ(forked.size(), 2u);
-  for (const auto& [order, r] : forked) EXPECT_EQ(r.dump(), alone.at(order).dump()) << order;
+  for (const auto& [order, r] : forked) {
+    EXPECT_EQ(r.dump(), alone.at(order).dump()) << order;
+    EXPECT_EQ(r.dump(), in_memory.at(order).dump()) << order;
+  }
 }
 
 TEST(study_snapshots, WorstCasesPicturedAndLinked) {
   const TinyManual t;
   std::vector<CaseResult> results;
-  for (const auto& [order, r] : t.Run(true)) results.push_back(r);
+  for (const auto& [order, r] : t.Run()) results.push_back(r);
   const std::vector<std::string> ids = WorstCaseIds(results, 3);
   ASSERT_EQ(ids.size(), 2u);  // the one collision of X,Z; the clear case of Z,X (the tightest)
   const std::string dir = Out("snapshots");
@@ -133,7 +137,7 @@ TEST(study_pictures_side_by_side, AreThePicturesTakenOneByOne) {
   if (render::RendererStarted()) GTEST_SKIP() << "this process has rendered: run the test alone";
   const TinyManual t;
   std::vector<CaseResult> results;
-  for (const auto& [order, r] : t.Run(true)) results.push_back(r);
+  for (const auto& [order, r] : t.Run()) results.push_back(r);
   const std::vector<std::string> ids = WorstCaseIds(results, 3);
   ASSERT_EQ(ids.size(), 2u);
   const std::string one = Out("snapshots-one"), two = Out("snapshots-two");
