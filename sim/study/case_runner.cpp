@@ -51,6 +51,9 @@ TimelineStep Step(const Scene& scene, const std::string& yaml, size_t index) {
   if (it == read.by_line.end()) {
     const YamlNode n(YAML::Load(yaml), "study case", StepName(index));
     TimelineStep step = ReadStep(*scene.model, n, index, scene.nc, false);
+    // A line at its own time (the feed hold, the switch to manual) serves one interruption
+    // point: kept, it would grow the worker with every point it runs.
+    if (yaml.starts_with("{at: ")) return step;
     TimelineStep first = step;
     first.text.replace(0, StepName(index).size(), StepName(0));
     read.by_line.emplace(yaml, std::move(first));
