@@ -54,6 +54,13 @@ class PlcScan {
   const AxdWriter* axd_wr_;
 };
 
+/// What a PlcProgram holds: called once per scan, copied with the program. The program type
+/// itself is excluded first: its own copy constructor copies it, and asking whether it is
+/// copyable while this is worked out would never end.
+template <typename Body, typename Program>
+concept ScanFunction = !std::same_as<std::remove_cvref_t<Body>, Program> &&
+                       std::invocable<Body&, PlcScan&> && std::copy_constructible<Body>;
+
 /// A PLC program: called once per scan. Programs resolve their signal ids when they are made
 /// (plc_programs.hpp) and keep their function block instances as members. A program is a value:
 /// a copy holds its own instances (a run's in-memory snapshot copies the PLC with them), which
@@ -61,10 +68,8 @@ class PlcScan {
 class PlcProgram {
  public:
   PlcProgram() = default;
-  template <typename Body>
-  requires std::invocable<Body&, PlcScan&> && std::copy_constructible<Body> &&
-      (!std::same_as<std::remove_cvref_t<Body>, PlcProgram>)PlcProgram(
-          Body body)  // NOLINT(google-explicit-constructor): any scan function is a program
+  template <ScanFunction<PlcProgram> Body>
+  PlcProgram(Body body)  // NOLINT(google-explicit-constructor): any scan function is a program
       : body_(std::make_unique<Held<Body>>(std::move(body))) {}
   PlcProgram(const PlcProgram& other) : body_(other.body_ ? other.body_->Copy() : nullptr) {}
   PlcProgram& operator=(const PlcProgram& other) {
