@@ -113,7 +113,7 @@ bool Channel::Reverse() {
   // reverse program, and vmt's reading is that the search has rebuilt an interrupted program
   // whose reverse program runs from where the axes stand.
   if (bs_.state != BlockSearchState::kInactive) {
-    search_.reset();
+    search_.Reset();
     bs_.state = BlockSearchState::kInactive;
     bs_.command = false;
     cax_.aligning = false;

@@ -26,6 +26,7 @@
 #include "control/channel/block_motion.hpp"
 #include "control/channel/block_search.hpp"
 #include "control/channel/block_search_run.hpp"
+#include "control/channel/block_search_simulation.hpp"
 #include "control/channel/cax_track.hpp"
 #include "control/channel/channel_config.hpp"
 #include "control/channel/channel_data.hpp"
@@ -450,7 +451,7 @@ class Channel : private ChannelData {
   /// kChordTolerance of the curve.
   bool GuardCurvedMove(const std::string& move);
   static constexpr double kChordTolerance = 1e-3;  ///< mm
-  static constexpr int kMaxChords = 20000;  ///< a bound on the work (0.1 mm min. clearance)
+  static constexpr int kMaxChords = 20000;         ///< a bound on the work (0.1 mm min. clearance)
   bool GuardStops(const std::string& move, const std::vector<double>& from,
                   const std::vector<double>& to, const PathCheck& check);
   /// After a contact PathGuardClient recorded: with `stop`, the NC error naming the parts and
@@ -543,26 +544,11 @@ class Channel : private ChannelData {
   void BeginBlockSearch();
   /// The search's part of an NC cycle; true while it owns the cycle (no normal block flow).
   bool SearchCycle(const AmplifierTelegram& at);
-  bool SimulateBlocks();
-  /// False while technology waits (PLC acknowledgement, a changeover) or the search ended.
-  bool SearchGoesOn() const;
+  /// What the skipped blocks are handed (block_search_simulation.hpp) for one NC cycle.
+  SearchLink SearchLinkNow();
   /// The search's next block into work_.block: from the interpreter, or under G41/G42 the next
   /// piece of the tip path. False on an error.
   bool NextSearchBlock();
-  bool SimulateBlock(nc::PreparedBlock& b);
-  // Technology of the skipped part (channel_block_search_technology.cpp).
-  /// The changeover `b` needs, requested as in a run: false while it runs (the block waits).
-  bool SearchChangeover(const nc::PreparedBlock& b);
-  /// The changeover `b` waited for has ended: `b` goes on from there, rotary axis rebased.
-  void EndSearchChangeover(nc::PreparedBlock& b);
-  /// The motion part of SimulateBlock; `boundary`: `b` is the block of the continue position.
-  bool SimulateMotion(nc::PreparedBlock& b, bool boundary);
-  /// The continue position is found at `b`, at u in its motion (planned from its start).
-  /// False (an error) when the breakpoint lies before it.
-  bool FoundContinuePosition(const nc::PreparedBlock& b, const BlockMotion& motion, double u);
-  /// Block search 3.5: false, with the error, if the breakpoint lies before `continue_mm`
-  /// from program start (`b`: the block where the search has got to).
-  bool BreakpointAfter(double continue_mm, const nc::PreparedBlock& b);
   void EndSearchMode();
   bool SpindleReady(const AmplifierTelegram& at) const;
   bool StartReturnToContour();
@@ -576,8 +562,6 @@ class Channel : private ChannelData {
   /// Block search 3.5: the breakpoint stops the path like an M0 until the next start.
   void HoldAtBreakpoint();
   void UpdateBlockSearchStatus();
-  /// M3/M4/M5/M19 and S of `b` on the spindle setpoint `sp`; true if M19 (orientation) came.
-  bool SpindleFunctions(const nc::PreparedBlock& b, DriveSetpoint& sp) const;
   /// The headstock mode block `b` needs (HeadstockControl::ModeNeeded).
   axes::HeadstockMode ModeNeeded(const nc::PreparedBlock& b) const {
     return HeadstockControl::ModeNeeded(b, config_.rotary_axis);

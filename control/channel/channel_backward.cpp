@@ -56,7 +56,7 @@ void Channel::StartReplay() {
         RefuseBackward("not possible with the offset of a manual return to the contour");
         return;
       }
-    if (search_ && bs_.state != BlockSearchState::kInactive &&
+    if (search_.active() && bs_.state != BlockSearchState::kInactive &&
         bs_.state != BlockSearchState::kWaitForContinueContour) {
       RefuseBackward("block search has not returned to the contour yet");
       return;
@@ -68,14 +68,15 @@ void Channel::StartReplay() {
     double u = -1;
     if (work_.active && backward_.LastStepIs(work_.motion))
       u = work_.profile.u;
-    else if (search_ && bs_.state == BlockSearchState::kWaitForContinueContour &&
-             backward_.LastStepIs(search_->restart_motion))
-      u = search_->restart_u;
+    else if (search_.active() && bs_.state == BlockSearchState::kWaitForContinueContour &&
+             backward_.LastStepIs(search_.run().restart_motion))
+      u = search_.run().restart_u;
     else if (backward_.AtLastStepEnd(out_.commanded))
       u = 1;
     if (!backward_.CanGoBackFrom(u)) {
-      RefuseBackward("no path behind the axes (the program's start, or a block backward travel "
-                     "cannot take: G74, a thread, measuring, G31)");
+      RefuseBackward(
+          "no path behind the axes (the program's start, or a block backward travel "
+          "cannot take: G74, a thread, measuring, G31)");
       return;
     }
     // Not jogged off: the interruption of a visit to manual mode is over.

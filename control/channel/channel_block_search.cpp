@@ -1,15 +1,13 @@
-// Block search in the channel (twincat-cnc-block-search-de.md): at the program start the
-// channel decodes the program without axis motion up to the continue position (types 1, 3, 4;
-// 5 to the program end), rebuilding modal state, variables, offsets, tool and spindle, with
-// every technology function going to the PLC and acknowledged as in a normal run. Found, it
-// hands over to the PLC (7); where in its block machining goes on is continue_position.hpp's,
-// the return to the contour and the continuation inside the block are
-// channel_return_to_contour.cpp's. Under G41/G42 the search runs the tool nose
-// radius compensation as the run does, so the continue position is on the tip path and the
-// run goes on from the compensation's state; with #CAX TRACK on, the return aligns C first
-// (4.2.2). A spindle / rotary axis changeover and measuring instructions of the skipped part:
-// channel_block_search_technology.cpp. The breakpoint (3.5) and the distance from program start
-// (4.1.2), which count in normal runs as well, are program_distance.hpp's.
+// Block search in the channel (twincat-cnc-block-search-de.md): the search's phases around the
+// skipped blocks. At the program start the channel takes the CNC objects, the breakpoint and the
+// entry point; in search mode it waits for the PLC's acknowledgement (7), reads the blocks (under
+// G41/G42 through the tool nose radius compensation, as a run reads them, so the continue
+// position is on the tip path and the run goes on from the compensation's state) and hands them
+// to BlockSearchSimulation (block_search_simulation.hpp), which decodes them without axis motion
+// up to the continue position. Found, it hands over to the PLC again; where in its block
+// machining goes on is continue_position.hpp's, the return to the contour and the continuation
+// inside the block are channel_return_to_contour.cpp's. The breakpoint (3.5) and the distance
+// from program start (4.1.2), which count in normal runs as well, are program_distance.hpp's.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -21,16 +19,6 @@
 #include "control/nc/coordinate_transformation.hpp"
 
 namespace vmt::control::channel {
-namespace {
-
-/// Blocks decoded per NC cycle in search mode: fast, yet a program looping for ever with
-/// motion still leaves the cycle (and the scene's end) in charge.
-constexpr int kSearchBlocksPerCycle = 20000;
-
-constexpr const char* kNotFound =
-    "P-ERR-20704: the continue position was not found; the program ended in block search mode";
-
-}  // namespace
 
 bool Channel::SetBlockSearch(const BlockSearchParameters& p, std::string* text) {
   // Kept even when wrong: the program start reports it, where the operator looks.
@@ -42,7 +30,7 @@ bool Channel::SetBlockSearch(const BlockSearchParameters& p, std::string* text) 
 
 void Channel::BeginBlockSearch() {
   bs_.started = bs_.next;
-  search_.reset();
+  search_.Reset();
   bs_.state = BlockSearchState::kInactive;
   bs_.command = false;
   bs_.warnings.clear();
@@ -64,17 +52,15 @@ void Channel::BeginBlockSearch() {
     return;
   }
   if (!bs_.started.searches()) return;
-  search_.emplace(bs_.started);
-  search_->position = out_.commanded;
-  search_->spindle = sp_.command;
+  search_.Begin(bs_.started, out_.commanded, sp_.command);
   work_.interpreter->SetEveryBlock(true);
   bs_.state = BlockSearchState::kWaitForPlcOn;
   bs_.command = true;
 }
 
 bool Channel::SearchCycle(const AmplifierTelegram& at) {
-  if (!search_ || bs_.state == BlockSearchState::kInactive) return false;
-  BlockSearchRun& s = *search_;
+  if (!search_.active() || bs_.state == BlockSearchState::kInactive) return false;
+  BlockSearchRun& s = search_.run();
   // Technology functions of the search wait for the PLC as in a normal run (2, 7).
   if (!aux_.functions.empty()) return true;
   // 4.2.1: from the return on the search moves axes; lent to the JogOfPath channel, they must
@@ -90,13 +76,7 @@ bool Channel::SearchCycle(const AmplifierTelegram& at) {
       [[fallthrough]];
     case BlockSearchState::kActive:
       if (state_ != ChannelState::kRunning) return true;
-      if (headstock_.waiting()) {
-        // The block waits for its changeover as in a run (channel_block_search_technology.cpp).
-        if (headstock_->mode() != headstock_.waiting_for()) return true;
-        EndSearchChangeover(work_.block);
-        if (!SimulateBlock(work_.block) || !SearchGoesOn()) return true;
-      }
-      SimulateBlocks();
+      search_.SimulateBlocks(SearchLinkNow(), work_.block);
       return true;
     case BlockSearchState::kWaitForPlcOff:
       bs_.command = false;
@@ -112,8 +92,7 @@ bool Channel::SearchCycle(const AmplifierTelegram& at) {
         return true;  // the drive's at-speed answers the new command from the next cycle on
       }
       // In rotary axis mode the headstock holds the spindle still whatever its command.
-      if ((!headstock_ || headstock_->mode() == axes::HeadstockMode::kSpindle) &&
-          !SpindleReady(at))
+      if ((!headstock_ || headstock_->mode() == axes::HeadstockMode::kSpindle) && !SpindleReady(at))
         return true;
       s.start_requested = false;
       if (bs_.started.auto_return) {
@@ -149,24 +128,48 @@ bool Channel::SearchCycle(const AmplifierTelegram& at) {
   return false;
 }
 
-bool Channel::SimulateBlocks() {
-  for (int n = 0; n < kSearchBlocksPerCycle; ++n) {
-    if (!NextSearchBlock()) return false;
-    ++search_->blocks;
-    if (!SimulateBlock(work_.block)) return false;
-    if (!SearchGoesOn()) return true;
-  }
-  return true;
-}
-
-bool Channel::SearchGoesOn() const {
-  // Technology waits for the PLC: its acknowledgement, or the end of a changeover.
-  return bs_.state == BlockSearchState::kActive && aux_.functions.empty() &&
-         !headstock_.waiting() && state_ == ChannelState::kRunning;
+SearchLink Channel::SearchLinkNow() {
+  return SearchLink{
+      .config = config_,
+      .data = bs_,
+      .interpreter = *work_.interpreter,
+      .state = state_,
+      .frames = frames_,
+      .events = events_,
+      .aux = aux_,
+      .headstock = headstock_,
+      .commanded = out_.commanded,
+      .compensating = work_.feed.compensating(),
+      .tracked_axis = TrackedAxis(),
+      .next_block = [this] { return NextSearchBlock(); },
+      .program_of = [this](uint32_t index) -> const nc::Program& { return *ProgramOf(index); },
+      .fail = [this](const nc::Program& program, int32_t block, const std::string& text,
+                     int number) { Fail(program, block, text, number); },
+      .fail_message = [this](const std::string& message, int number) { Fail(message, number); },
+      .take_offsets = [this](const nc::ModalState& modal, const nc::Program& program,
+                             int32_t block) { return UpdateTranslation(modal, program, block); },
+      .index_tool_storage =
+          [this](const nc::PreparedBlock& b, const nc::Program& program) {
+            return IndexToolStorage(b, program);
+          },
+      .simulate_measuring =
+          [this](const nc::PreparedBlock& b, std::vector<double>& position) {
+            return measuring_.Simulate(MeasuringLinkNow(), b, position, bs_.warnings);
+          },
+      .cax_instruction =
+          [this](const nc::Program& program, const nc::Statement& st, nc::PreparedBlock& b,
+                 double c_machine) { return CaxTrackInstruction(program, st, b, c_machine); },
+      .track_c =
+          [this](nc::PreparedBlock& b, const std::vector<double>& from, double rev_per_s,
+                 std::optional<double>& align_to) { return TrackC(b, from, rev_per_s, align_to); },
+      .follow_up_axes = [this](const nc::PreparedBlock& b) { return FollowUpAxes(b); },
+      .record_path = [this](const BlockMotion& motion, bool rapid) { RecordPath(motion, rapid); },
+      .path_barrier = [this] { PathBarrier(); },
+  };
 }
 
 bool Channel::NextSearchBlock() {
-  BlockSearchRun& s = *search_;
+  BlockSearchRun& s = search_.run();
   s.further_piece = s.inserted_piece = false;
   inserted_piece_ = false;
   const auto text_ended = [&] {
@@ -211,206 +214,8 @@ bool Channel::NextSearchBlock() {
   return true;
 }
 
-bool Channel::SimulateBlock(nc::PreparedBlock& b) {
-  BlockSearchRun& s = *search_;
-  if (b.block < 0) {  // the end of the text, or type 1's end position (ReadSource)
-    if (s.end_reached)
-      // Type 1's end position before its continue position: nothing is left to machine.
-      bs_.warnings.push_back("the end position came before the continue position");
-    else if (bs_.started.type != BlockSearchType::kProgramEnd)
-      bs_.warnings.push_back(kNotFound);
-    s.ends_program = true;
-    bs_.state = BlockSearchState::kWaitForPlcOff;
-    return true;
-  }
-  const nc::Program& program = *ProgramOf(b.program);
-  auto fail = [&](const std::string& text, int number) {
-    Fail(program, b.block, text, number);
-    return false;
-  };
-  // A further piece of a block's tip path: its functions ran with the first.
-  if (s.further_piece) return SimulateMotion(b, false);
-  // A spindle / rotary axis changeover runs as in a run; the block waits for its end.
-  if (!SearchChangeover(b)) return true;
-  const bool boundary = !s.found && s.matcher.Matches(b, program, b.program);
-  if (boundary && b.search_locked)
-    return fail("P-ERR-21399: the continue position lies in a region locked for block search "
-                "(#BLOCKSEARCH LOCKED)",
-                kMsgBlockSearchLocked);
-  // 4.1.2: reference moves and measuring moves end on an external signal; up to the block
-  // boundary they are simulated, beyond it (the search by distance) they cannot be.
-  if (s.by_distance && (b.homing || b.measuring))
-    return fail(std::string(b.homing ? "G74" : "G100") +
-                    " between the block of the continue position and its distance from program "
-                    "start cannot be simulated (block search 4.1.2)",
-                kMsgBlockSearch);
-  if (b.repos) return fail("G77 cannot run in block search", kMsgBlockSearch);
-  // The search restores the main spindle's speed before the return to the contour; the further
-  // spindles' it does not keep, so their words stop the search rather than be lost.
-  for (const nc::AuxFunction& f : b.aux)
-    if ((f.letter == 'S' || f.letter == 'M') && SpindleIndex(f.index) >= 2)
-      return fail(std::string(1, f.letter) + std::to_string(f.index) +
-                      "=: block search does not carry further spindles (Sj=, Mj= with j >= 2) "
-                      "to the continue position",
-                  kMsgBlockSearch);
-  if (!b.calls.empty()) {
-    // Section 8: the search cannot measure; the continue position after the instruction can.
-    if (boundary)
-      return fail("the continue position lies in measuring instruction " +
-                      std::string(nc::InstructionName(b.calls.front().instruction)) +
-                      ": block search cannot measure without motion (section 8); continue at "
-                      "the block after it",
-                  kMsgBlockSearch);
-    return measuring_.Simulate(MeasuringLinkNow(), b, search_->position, bs_.warnings);
-  }
-  for (uint32_t index : b.instructions) {
-    const nc::Statement& st = program.statements[index];
-    if (st.kind == nc::Statement::Kind::kHashCommand) {
-      if (const std::string refused = RefusedHashCommand(st.hash); !refused.empty()) {
-        Fail(nc::Format({st.pos, refused}, program.files), kMsgNotAvailable);
-        return false;
-      }
-      // 4.2.2: the C axis tracks the contour in the search as in the run.
-      const int c = TrackedAxis();
-      if (const auto done = CaxTrackInstruction(program, st, b,
-                                                c < 0 ? 0 : s.position[static_cast<size_t>(c)])) {
-        if (!*done) return false;
-        continue;
-      }
-      if (SteersBlockSearch(st.hash)) continue;
-    }
-    return fail("instruction " +
-                    (st.kind == nc::Statement::Kind::kHashCommand ? "#" + program.texts[st.text]
-                                                                   : program.symbols.Name(st.name)) +
-                    " is not supported in block search by vmt (docs/conformance.md)",
-                kMsgNotAvailable);
-  }
-  for (const auto& [n, set] : b.events) {
-    events_.own[n] = set;
-    if (events_.sink) events_.sink(n, set);
-  }
-  bs_.program_distance.Command(b.distance_command);
-  if (!UpdateTranslation(b.modal, program, b.block)) return false;
-  if (b.set_position)
-    for (size_t a = 0; a < s.position.size(); ++a)
-      if (b.programmed >> a & 1) {
-        frames_.shift[a] += s.position[a] - (b.target[a] + frames_.translation[a]);
-        frames_.translation[a] = s.position[a] - b.target[a];
-        if (headstock_ && static_cast<int>(a) == config_.rotary_axis)
-          headstock_.set_rotary_translation(frames_.translation[a]);
-      }
-  SpindleFunctions(b, s.spindle);
-  // An NC-controlled turret is technology too: the T word indexes it now, as in a run.
-  if (!IndexToolStorage(b, program)) return false;
-  // Technology goes to the PLC as in a normal run (2): it switches coolant, turret, ... now.
-  if (config_.aux_handshake) {
-    for (const nc::AuxFunction& f : b.aux)
-      if (f.letter == 'M' || f.letter == 'H' || f.letter == 'Q' || f.letter == 'T')
-        aux_.functions.push_back(f);
-    if (!aux_.functions.empty()) ++aux_.strobe;
-  }
-
-  return SimulateMotion(b, boundary);
-}
-
-bool Channel::SimulateMotion(nc::PreparedBlock& b, bool boundary) {
-  BlockSearchRun& s = *search_;
-  // The block's path from where the program has the axes. G74 is left out (8: the axes stay),
-  // G100 becomes a G01 to its target (8), a thread the straight line it is. Under G41/G42 the
-  // block is a piece of the tip path (NextSearchBlock): planned as the run plans it.
-  BlockMotion motion;
-  if ((b.motion != nc::Motion::kNone || b.measuring) && !b.homing) {
-    nc::PreparedBlock m = b;
-    if (m.measuring || nc::SpindleSynchronous(m.motion)) {
-      m.motion = nc::Motion::kLinear;
-      m.modal.feed_per_revolution = false;
-      if (m.modal.feed <= 0) m.modal.feed = 1;  // the geometry only: no time passes
-    }
-    const double rev_per_s = s.spindle.mode == DriveMode::kVelocity ? s.spindle.value / 360 : 0;
-    // #CAX TRACK: C as the run turns it; a turn beyond ANGLIMIT before the block is
-    // simulated, so that C stands at the block's tangent from its start.
-    std::optional<double> align;
-    if (!TrackC(m, s.position, std::abs(rev_per_s), align)) return false;
-    if (align) s.position[static_cast<size_t>(TrackedAxis())] = *align;
-    if (const auto error = PlanBlockMotion(m, s.position, frames_.translation, config_.axes,
-                                           std::abs(rev_per_s), motion, FollowUpAxes(m))) {
-      Fail(*ProgramOf(b.program), b.block, error->text, error->number);
-      return false;
-    }
-  }
-  if (b.homing) {
-    // The interpreter took G74's words for targets; they are the homing order (ISG) or a
-    // placeholder (MTC200), never positions. The skipped G74 leaves the axes where the program
-    // had them (8), and the blocks after it count from there, as after a run's G74 they count
-    // from the reference points (NextHomingStage).
-    for (size_t a = 0; a < s.position.size(); ++a)
-      if (b.programmed >> a & 1)
-        work_.interpreter->SetAxisPosition(a, s.position[a] - frames_.translation[a]);
-  }
-  const double length = bs_.program_distance.LengthOf(motion, config_.axes);
-  if (boundary || s.Deciding()) {
-    const ContinueStep step =
-        DecideContinue(s, bs_.started, motion, length, bs_.program_distance.distance(), boundary);
-    if (step.distance_passed)
-      bs_.warnings.push_back(DistancePassedWarning(bs_.started, bs_.program_distance.distance()));
-    if (step.found) return FoundContinuePosition(b, motion, step.u);
-  }
-  if (motion.moves) s.position = motion.end;
-  bs_.program_distance.Pass(length);
-  if (!BreakpointAfter(bs_.program_distance.distance(), b)) return false;
-  // The decoded path, for backward travel from the continue position (4.3); not to the
-  // program's end (type 5), where the program ends in search mode.
-  if (b.homing || b.measuring || nc::SpindleSynchronous(b.motion))
-    PathBarrier();
-  else if (bs_.started.type != BlockSearchType::kProgramEnd)
-    RecordPath(motion, b.motion == nc::Motion::kRapid);
-  if (b.end) {
-    if (bs_.started.type != BlockSearchType::kProgramEnd) bs_.warnings.push_back(kNotFound);
-    s.ends_program = true;
-    bs_.state = BlockSearchState::kWaitForPlcOff;
-  }
-  return true;
-}
-
-bool Channel::BreakpointAfter(double continue_mm, const nc::PreparedBlock& b) {
-  // 3.5 requires the breakpoint to lie after the continue position. vmt reads a breakpoint
-  // the search passes as a wrong parameter, not as one to drop: the operator asked
-  // for a stop and machining must not run on without it. The search stops with an error where
-  // it meets the breakpoint, before any axis moves; a breakpoint at the continue position
-  // itself holds as soon as machining goes on there (ContinueAfterSearch).
-  if (!bs_.program_distance.BreakpointBefore(continue_mm)) return true;
-  Fail(*ProgramOf(b.program), b.block,
-       "the breakpoint mc_cmd_bs_breakpoint_position_w at " +
-           Mm(bs_.program_distance.breakpoint()) +
-           " mm from program start lies before the continue position of block search (" +
-           Mm(continue_mm) + " mm and on): it must lie after it (block search 3.5)",
-       kMsgBlockSearch);
-  return false;
-}
-
-bool Channel::FoundContinuePosition(const nc::PreparedBlock& b, const BlockMotion& motion,
-                                    double u) {
-  BlockSearchRun& s = *search_;
-  const double length = bs_.program_distance.LengthOf(motion, config_.axes);
-  if (!BreakpointAfter(bs_.program_distance.distance() + u * length, b)) return false;
-  s.face_return = b.modal.transformation == nc::Transformation::kFace;
-  s.restart_motion = motion;
-  s.restart_u = u;
-  s.restart_distance = bs_.program_distance.distance();
-  s.restart_length = length;
-  s.restart = s.position;
-  if (motion.moves) motion.PointAt(u, s.restart);
-  if (b.homing || b.measuring || nc::SpindleSynchronous(b.motion))
-    PathBarrier();
-  else
-    RecordPath(motion, b.motion == nc::Motion::kRapid);
-  s.position = s.restart;
-  bs_.state = BlockSearchState::kWaitForPlcOff;
-  return true;
-}
-
 void Channel::EndSearchMode() {
-  BlockSearchRun& s = *search_;
+  BlockSearchRun& s = search_.run();
   // Type 1 with an end position watches the blocks of the real run too (NextBlock).
   work_.interpreter->SetEveryBlock(bs_.started.type == BlockSearchType::kFileOffset &&
                                    bs_.started.end.offset >= 0);
@@ -430,25 +235,6 @@ void Channel::HoldAtBreakpoint() {
   bs_.program_distance.Hold();
   state_ = ChannelState::kHold;
   bs_.state = BlockSearchState::kWaitForContinueContour;
-}
-
-bool Channel::SpindleFunctions(const nc::PreparedBlock& b, DriveSetpoint& sp) const {
-  bool orient = false;
-  for (const nc::AuxFunction& f : b.aux) {
-    if (f.letter != 'M' || SpindleIndex(f.index) != 1 || config_.spindle_drive < 0) continue;
-    const int m = static_cast<int>(f.value);
-    const double rpm = b.modal.spindle_speed;
-    // G64 keeps the spindle in position control: M3/M4 give its direction only.
-    if ((m == 3 || m == 4) && b.motion == nc::Motion::kRigidTapping) continue;
-    if (m == 3) sp = {DriveMode::kVelocity, rpm * 6, 0};
-    if (m == 4) sp = {DriveMode::kVelocity, -rpm * 6, 0};
-    if (m == 5) sp = {DriveMode::kVelocity, 0, 0};
-    if (m == 19) sp = {DriveMode::kPosition, 0, 0}, orient = true;
-  }
-  // An S word alone changes the speed of a running spindle.
-  if (sp.mode == DriveMode::kVelocity && sp.value != 0)
-    sp.value = std::copysign(b.modal.spindle_speed * 6, sp.value);
-  return orient;
 }
 
 void Channel::UpdateBlockSearchStatus() {
@@ -471,18 +257,18 @@ void Channel::UpdateBlockSearchStatus() {
   st.block_count = work_.block.block_count;
   st.path_deviation = 0;
   st.continue_position.clear();
-  if (search_ && !search_->restart.empty() && !holding &&
+  if (search_.active() && !search_.run().restart.empty() && !holding &&
       (bs_.state == BlockSearchState::kWaitForPlcOff ||
        bs_.state == BlockSearchState::kWaitReturnToContour ||
        bs_.state == BlockSearchState::kReturningToContour ||
        bs_.state == BlockSearchState::kWaitForContinueContour)) {
+    const BlockSearchRun& s = search_.run();
     double d2 = 0;
     for (size_t a = 0; a < out_.commanded.size(); ++a)
-      if (MainAxis(config_.axes[a].name))
-        d2 += std::pow(out_.commanded[a] - search_->restart[a], 2);
+      if (MainAxis(config_.axes[a].name)) d2 += std::pow(out_.commanded[a] - s.restart[a], 2);
     st.path_deviation = std::sqrt(d2);
-    st.continue_position = search_->restart;
-    st.dist_prog_start = search_->restart_distance + search_->restart_u * search_->restart_length;
+    st.continue_position = s.restart;
+    st.dist_prog_start = s.restart_distance + s.restart_u * s.restart_length;
   }
   uint32_t sc = 0;
   using namespace stop_condition;
@@ -492,7 +278,8 @@ void Channel::UpdateBlockSearchStatus() {
   if (hold && single_block_) sc |= kSingleBlock;
   // M00 / M01 (programmed_stop.hpp). STOP_REVERSIBLE: at an M00 the program may still be
   // travelled back (channel_backward.cpp) while the path memory holds a path to take.
-  const ProgrammedStop::Kind programmed = hold ? programmed_stop_.held : ProgrammedStop::Kind::kNone;
+  const ProgrammedStop::Kind programmed =
+      hold ? programmed_stop_.held : ProgrammedStop::Kind::kNone;
   if (programmed == ProgrammedStop::Kind::kM00)
     sc |= kM00OrM01 | kM0Stop | (backward_.empty() ? 0 : kStopReversible);
   if (programmed == ProgrammedStop::Kind::kM01) sc |= kM00OrM01 | kM1Stop;

@@ -10,14 +10,14 @@ NcCycleOwner Channel::CycleOwner() const {
   if (mode_ == ChannelMode::kManual) return NcCycleOwner::kJog;
   if (JogsMoving()) return NcCycleOwner::kJogBraking;
   if (backward_.away()) return NcCycleOwner::kBackward;
-  if (state_ == ChannelState::kRunning || state_ == ChannelState::kHold)
-    return ProgramCycleOwner();
+  if (state_ == ChannelState::kRunning || state_ == ChannelState::kHold) return ProgramCycleOwner();
   return NcCycleOwner::kNone;
 }
 
 NcCycleOwner Channel::ProgramCycleOwner() const {
   // Block search owns the cycle while it is under way, its return to the contour included.
-  if (search_ && bs_.state != BlockSearchState::kInactive) return NcCycleOwner::kBlockSearch;
+  if (search_.active() && bs_.state != BlockSearchState::kInactive)
+    return NcCycleOwner::kBlockSearch;
   if (!aux_.functions.empty()) return NcCycleOwner::kAuxAcknowledge;
   if (headstock_.waiting()) return NcCycleOwner::kChangeover;
   if (tool_storage_wait_) return NcCycleOwner::kToolStorage;
@@ -112,8 +112,7 @@ void Channel::ProgramCycle(NcCycleOwner owner, const AmplifierTelegram& at, doub
       look_.carry_speed = look_.carry_accel = look_.carry_leftover = 0;
     }
   }
-  if (finished && single_block_ && state_ == ChannelState::kRunning)
-    state_ = ChannelState::kHold;
+  if (finished && single_block_ && state_ == ChannelState::kRunning) state_ = ChannelState::kHold;
 }
 
 }  // namespace vmt::control::channel

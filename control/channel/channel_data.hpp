@@ -16,6 +16,7 @@
 #include "control/channel/axis_output.hpp"
 #include "control/channel/backward_travel.hpp"
 #include "control/channel/block_search_run.hpp"
+#include "control/channel/block_search_simulation.hpp"
 #include "control/channel/cax_track.hpp"
 #include "control/channel/channel_config.hpp"
 #include "control/channel/channel_types.hpp"
@@ -99,7 +100,7 @@ struct ChannelData {
   /// The interrupted program while the REPOS subroutine runs in its place (in work_).
   ProgramInWork parked_;
   BackwardTravel backward_;
-  std::optional<BlockSearchRun> search_;
+  BlockSearchSimulation search_;  ///< the skipped blocks and the search's run
   BlockSearchData bs_;
   FastMeasurement measuring_;
 };

@@ -70,7 +70,8 @@ CycleStart Channel::StartCase() const {
   if (state_ == ChannelState::kHold) {
     if (backward_.moving() || backward_.backward_requested() || backward_.away())
       return CycleStart::kReplay;
-    if (bs_.program_distance.holding() || (search_ && bs_.state != BlockSearchState::kInactive))
+    if (bs_.program_distance.holding() ||
+        (search_.active() && bs_.state != BlockSearchState::kInactive))
       return CycleStart::kBlockSearchHold;
     if (repos_.run()) return repos_.rerun() ? CycleStart::kReposRerun : CycleStart::kReposContinue;
     if (repos_.interruption() && repos_.called()) return CycleStart::kReposCall;
@@ -191,7 +192,7 @@ void Channel::Reset() {
   repos_.Clear();
   measuring_.Reset();
   // Block search 7: a reset leaves block search without the handshake.
-  search_.reset();
+  search_.Reset();
   bs_.state = BlockSearchState::kInactive;
   bs_.command = false;
   // 7: a CNC reset clears the CNC's and the PLC's signal of the handshake alike, so the next

@@ -108,7 +108,7 @@ bool Channel::ReadNext(nc::PreparedBlock& b) {
 }
 
 bool Channel::ReadSource(nc::PreparedBlock& b) {
-  if (search_ && search_->end_reached) return false;
+  if (search_.active() && search_.run().end_reached) return false;
   // BES/BEC and TLD/OTD/MTD reach this channel through what is handed in here, not through
   // anything the interpreter keeps: a copy of the channel runs its copy of the interpreter.
   const std::function<bool(int)> events = [this](int n) {
@@ -122,9 +122,9 @@ bool Channel::ReadSource(nc::PreparedBlock& b) {
   // count), so that it holds whatever path the channel makes of them afterwards: block by
   // block, blended by the look-ahead, or offset by G41/G42, whose read-ahead then meets the
   // end as it meets the text's end (the tip path closes there).
-  if (search_ && !mdi_.running &&
-      search_->matcher.EndMatches(b, *ProgramOf(b.program), b.program)) {
-    search_->end_reached = true;
+  if (search_.active() && !mdi_.running &&
+      search_.run().matcher.EndMatches(b, *ProgramOf(b.program), b.program)) {
+    search_.run().end_reached = true;
     return false;
   }
   return true;

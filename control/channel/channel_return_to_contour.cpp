@@ -21,7 +21,7 @@ bool Channel::SpindleReady(const AmplifierTelegram& at) const {
 }
 
 bool Channel::StartReturnToContour() {
-  BlockSearchRun& s = *search_;
+  BlockSearchRun& s = search_.run();
   // 4.2.2: with #CAX TRACK on at the continue position the C axis turns to the path's tangent
   // there first (where the search's tracking has C: channel_cax_track.cpp), then the other
   // axes return; the tracking goes on with the continue block.
@@ -47,7 +47,7 @@ bool Channel::StartReturnMove(const std::vector<double>& to, const std::string& 
   // would sweep a spiral across the face. A line through the centre, where C is undefined,
   // stays straight in the axes (the operator's start there is no program's move to refuse).
   int x = -1, c = -1;
-  if (search_->face_return && FictiveJogAxes(x, c) &&
+  if (search_.run().face_return && FictiveJogAxes(x, c) &&
       !nc::FaceLineOf(
            nc::MachineToFace(out_.commanded[x] - frames_.translation[x],
                              out_.commanded[c] - frames_.translation[c]),
@@ -85,7 +85,7 @@ bool Channel::StartReturnMove(const std::vector<double>& to, const std::string& 
 }
 
 bool Channel::ApplySearchOffset() {
-  BlockSearchRun& s = *search_;
+  BlockSearchRun& s = search_.run();
   const ManualReturn manual =
       CheckManualReturn(out_.commanded, s.restart, config_.axes, bs_.started.deviation_max);
   if (!manual.within) {
@@ -110,7 +110,7 @@ bool Channel::ApplySearchOffset() {
 }
 
 void Channel::ContinueAfterSearch() {
-  BlockSearchRun& s = *search_;
+  BlockSearchRun& s = search_.run();
   bs_.state = BlockSearchState::kInactive;
   state_ = ChannelState::kRunning;
   s.start_requested = false;
@@ -145,7 +145,7 @@ void Channel::StartBlockSearchHold() {
   }
   if (bs_.state == BlockSearchState::kWaitReturnToContour ||
       bs_.state == BlockSearchState::kWaitForContinueContour)
-    search_->start_requested = true;
+    search_.run().start_requested = true;
   state_ = ChannelState::kRunning;  // a feed hold during the search or the return ends
 }
 

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "control/channel/channel.hpp"
+#include "control/channel/spindle_functions.hpp"
 
 namespace vmt::control::channel {
 
@@ -183,7 +184,7 @@ bool Channel::BlockOffsets(const nc::Program& program) {
 bool Channel::BlockSpindles(const nc::Program& program) {
   // M3/M4 with S (rpm), M5, M19 (orient to 0 deg); a start is checked by PathGuard.
   DriveSetpoint spindle = sp_.command;
-  const bool orient = SpindleFunctions(work_.block, spindle);
+  const bool orient = MainSpindleFunctions(work_.block, config_.spindle_drive, spindle);
   if (!GuardSpindleStart("spindle start", spindle)) return false;
   // Sj= / Mj= of the further spindles (G77 Sj=0 restores them instead, StartReposMotion).
   if (!work_.block.repos) {
