@@ -4,8 +4,8 @@
 // offsets, tool, spindle, technology sent to the PLC), then the axes return to the contour and
 // machining goes on from there. This file holds the plain data of it: the CNC objects the PLC
 // or the operator sets before the program start (5.1-5.4), the states and status data the PLC
-// reads (5.6), and the matching of the continue position, which the channel
-// (channel_block_search.cpp) runs.
+// reads (5.6), and the matching of the continue position, which the skipped blocks
+// (block_search_simulation.hpp) run.
 
 #include <cstdint>
 #include <optional>

@@ -46,7 +46,7 @@ struct BlockSearchRun {
   /// G31 at the continue position: the return runs on the face's line, as G77 X1/Y1 does.
   bool face_return = false;
   /// The block in work waited for a spindle / rotary axis changeover, which has ended: it
-  /// is simulated again from there (channel_block_search_technology.cpp).
+  /// is simulated again from there (BlockSearchSimulation).
   bool changed_over = false;
   /// Where the interpreter had the rotary axis before the block in work (RebaseRotaryAxis).
   double rotary_start = 0;

@@ -1,5 +1,5 @@
 #pragma once
-// What block search (channel_block_search.cpp) and its return to the contour
+// What block search (block_search_simulation.cpp) and its return to the contour
 // (channel_return_to_contour.cpp) share: private to control/channel/.
 
 #include <cstdio>

@@ -527,7 +527,7 @@ class Channel : private ChannelData {
   /// work_.block, a block a measuring instruction generated, planned from where the axes are
   /// commanded: false, failed, for an axis without its reference or a plan's error.
   bool PlanGeneratedMotion();
-  // Block search (channel_block_search.cpp).
+  // Block search's phases (channel_block_search.cpp); the skipped blocks are search_'s.
   // #CAX TRACK (cax_track.hpp, channel_cax_track.cpp): on with its options, in a run and in
   // the search alike; a C-only move of a turn beyond ANGLIMIT runs before the block.
   int TrackedAxis() const;

@@ -77,12 +77,16 @@ std::string Tally(const std::map<std::string, ClassCount>& by) {
   return s;
 }
 
-// The CPU time of the waited-for child processes (the workers and, through them, every case).
-double ChildrenCpuSeconds() {
-  rusage u{};
-  ::getrusage(RUSAGE_CHILDREN, &u);
-  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-         static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec) / 1e6;
+// The CPU time of this process and its waited-for children (forked workers and cases).
+double CpuSeconds() {
+  double seconds = 0;
+  for (const int who : {RUSAGE_SELF, RUSAGE_CHILDREN}) {
+    rusage u{};
+    ::getrusage(who, &u);
+    seconds += static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+               static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec) / 1e6;
+  }
+  return seconds;
 }
 
 // SIGINT and SIGTERM held back while it lives: a worker writes a case's lines whole, and a
@@ -129,6 +133,36 @@ struct WorkersEnd {
   }
   std::fflush(nullptr);
   ::_exit(code);
+}
+
+// The cases of `todo` in this process, in order, each result appended to the case files. The
+// stop is asked after each case (a case is short); stopped, the cases written so far stay.
+WorkersEnd RunHere(const StudyOptions& o, const Scene& scene, const StudyPlan& plan,
+                   const std::vector<Interruption>& interruptions, const std::vector<bool>& todo,
+                   size_t todo_count, std::chrono::steady_clock::time_point wall0) {
+  struct Stopped {};  // not a std::exception: a case's error handling lets it through
+  WorkersEnd end;
+  const auto stop = [&] { return o.stop ? o.stop() : std::string(); };
+  size_t written = 0;
+  try {
+    CaseFiles files(o.out_dir);
+    const auto mine = [&](const StudyCase& c) { return static_cast<bool>(todo[c.index]); };
+    for (size_t s = 0; s < plan.subroutines.size() && (end.stopped = stop()).empty(); ++s)
+      RunSubroutineCases(scene, plan, interruptions, s, mine, o.run_ups, [&](const CaseResult& r) {
+        files.Write(r);
+        ++written;
+        if (o.progress)
+          Bar(written, todo_count,
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count());
+        if (!(end.stopped = stop()).empty()) throw Stopped{};
+      });
+  } catch (const Stopped&) {
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "vmt study: %s\n", e.what());
+    end.failed = true;
+  }
+  if (o.progress) std::fprintf(stderr, "\n");
+  return end;
 }
 
 // Forks the workers and waits for them. Asked to stop (o.stop), it forks no more and ends them
@@ -273,10 +307,15 @@ StudySummary RunStudy(const StudyOptions& o) {
   summary.cases = share_count;
   summary.skipped = share_count - todo_count;
   summary.run = todo_count;
-  const double cpu0 = ChildrenCpuSeconds();
+  const double cpu0 = CpuSeconds();
+  // One job with run-ups in memory or from the start needs no process of its own: the study
+  // runs where POSIX fork does not exist or costs more than it gives.
   const WorkersEnd workers =
-      RunWorkers(o, scene, plan, interruptions, space, todo, todo_count, CountLines(jsonl), wall0);
-  summary.cases_cpu_s = ChildrenCpuSeconds() - cpu0;
+      o.jobs == 1 && o.run_ups != RunUpSharing::kFork
+          ? RunHere(o, scene, plan, interruptions, todo, todo_count, wall0)
+          : RunWorkers(o, scene, plan, interruptions, space, todo, todo_count, CountLines(jsonl),
+                       wall0);
+  summary.cases_cpu_s = CpuSeconds() - cpu0;
   // The files in case id order, whatever the workers' interleaving: the same study gives the
   // same bytes.
   // Merged as they stream by: the tally and the worst cases keep bounded state.

@@ -1,6 +1,8 @@
 // Manual repositioning cases (repositioning manual 3) against a hand-built expectation, the
-// worst cases' pictures linked from the report, and a study run twice giving the same bytes.
+// worst cases' pictures linked from the report, a study run twice giving the same bytes, and a
+// study of one job that forks no process.
 #include <gmock/gmock.h>
+#include <pthread.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -169,6 +171,38 @@ TEST(study_determinism, SameStudyTwiceGivesTheSameBytes) {
   EXPECT_FALSE(jsonl[0].empty());
   EXPECT_EQ(jsonl[0], jsonl[1]);
   EXPECT_EQ(csv[0], csv[1]);
+}
+
+// Every fork of this process from the first call on.
+int ForksSoFar() {
+  static int forks = 0;
+  static const bool counting = [] {
+    return ::pthread_atfork([] { ++forks; }, nullptr, nullptr) == 0;
+  }();
+  EXPECT_TRUE(counting);
+  return forks;
+}
+
+TEST(study_without_fork, OneJobRunsItsCasesInItsOwnProcess) {
+  std::string jsonl[2];
+  int forks[2];
+  for (const int jobs : {1, 2}) {
+    StudyOptions o;
+    o.scene = kTiny;
+    o.out_dir = Out("jobs-" + std::to_string(jobs));
+    o.jobs = jobs;
+    o.snapshots = 0;
+    const int before = ForksSoFar();
+    const StudySummary s = RunStudy(o);
+    forks[jobs - 1] = ForksSoFar() - before;
+    EXPECT_GT(s.run, 2u);
+    EXPECT_GT(s.cases_cpu_s, 0);
+    jsonl[jobs - 1] = ReadText(o.out_dir + "/cases.jsonl");
+  }
+  EXPECT_EQ(forks[0], 0) << "one job with run-ups in memory forks nothing";
+  EXPECT_GT(forks[1], 0) << "two jobs are worker processes (the count is seen)";
+  EXPECT_FALSE(jsonl[0].empty());
+  EXPECT_EQ(jsonl[0], jsonl[1]);
 }
 
 }  // namespace
