@@ -45,21 +45,12 @@ bool BlockSearchSimulation::GoesOn(const SearchLink& link) {
          !link.headstock.waiting() && link.state == ChannelState::kRunning;
 }
 
-bool BlockSearchSimulation::SimulateBlocks(const SearchLink& link, nc::PreparedBlock& block) {
-  if (link.headstock.waiting()) {
-    // The block waits for its changeover as in a run.
-    if (link.headstock->mode() != link.headstock.waiting_for()) return true;
-    EndChangeover(link, block);
-    if (!SimulateBlock(link, block)) return false;
-    if (!GoesOn(link)) return true;
-  }
-  for (int n = 0; n < kBlocksPerCycle; ++n) {
-    if (!link.next_block()) return false;
-    ++run_->blocks;
-    if (!SimulateBlock(link, block)) return false;
-    if (!GoesOn(link)) return true;
-  }
-  return true;
+bool BlockSearchSimulation::ChangeoverEnded(const SearchLink& link, nc::PreparedBlock& b) {
+  // The block waits for its changeover as in a run.
+  if (!link.headstock.waiting() || link.headstock->mode() != link.headstock.waiting_for())
+    return true;
+  EndChangeover(link, b);
+  return SimulateBlock(link, b);
 }
 
 void BlockSearchSimulation::EndsProgram(const SearchLink& link, const char* warning) {
@@ -168,7 +159,7 @@ bool BlockSearchSimulation::SimulateTechnology(const SearchLink& link, nc::Prepa
       }
   MainSpindleFunctions(b, link.config.spindle_drive, s.spindle);
   // An NC-controlled turret is technology too: the T word indexes it now, as in a run.
-  if (!link.index_tool_storage(b, program)) return false;
+  if (link.index_tool_storage && !link.index_tool_storage(b, program)) return false;
   // Technology goes to the PLC as in a normal run (2): it switches coolant, turret, ... now.
   if (link.config.aux_handshake) {
     AuxOutput& aux = link.aux;
@@ -199,10 +190,11 @@ bool BlockSearchSimulation::SimulateMotion(const SearchLink& link, nc::PreparedB
     // #CAX TRACK: C as the run turns it; a turn beyond ANGLIMIT before the block is
     // simulated, so that C stands at the block's tangent from its start.
     std::optional<double> align;
-    if (!link.track_c(m, s.position, std::abs(rev_per_s), align)) return false;
+    if (link.cax.command && !link.track_c(m, s.position, std::abs(rev_per_s), align)) return false;
     if (align) s.position[static_cast<size_t>(link.tracked_axis)] = *align;
-    if (const auto error = PlanBlockMotion(m, s.position, link.frames.translation, link.config.axes,
-                                           std::abs(rev_per_s), motion, link.follow_up_axes(m))) {
+    if (const auto error = PlanBlockMotion(
+            m, s.position, link.frames.translation, link.config.axes, std::abs(rev_per_s), motion,
+            link.headstock.FollowUpAxes(m, link.config.rotary_axis))) {
       link.fail(link.program_of(b.program), b.block, error->text, error->number);
       return false;
     }
@@ -227,13 +219,11 @@ bool BlockSearchSimulation::SimulateMotion(const SearchLink& link, nc::PreparedB
   }
   if (motion.moves) s.position = motion.end;
   data.program_distance.Pass(length);
-  if (!BreakpointAfter(link, data.program_distance.distance(), b)) return false;
+  if (data.program_distance.BreakpointBefore(data.program_distance.distance()))
+    return BreakpointAfter(link, data.program_distance.distance(), b);
   // The decoded path, for backward travel from the continue position (4.3); not to the
   // program's end (type 5), where the program ends in search mode.
-  if (b.homing || b.measuring || nc::SpindleSynchronous(b.motion))
-    link.path_barrier();
-  else if (data.started.type != BlockSearchType::kProgramEnd)
-    link.record_path(motion, b.motion == nc::Motion::kRapid);
+  RecordPath(link, b, motion, data.started.type != BlockSearchType::kProgramEnd);
   if (b.end)
     EndsProgram(link, data.started.type != BlockSearchType::kProgramEnd ? kNotFound : nullptr);
   return true;
@@ -270,13 +260,18 @@ bool BlockSearchSimulation::FoundContinuePosition(const SearchLink& link,
   s.restart_length = length;
   s.restart = s.position;
   if (motion.moves) motion.PointAt(u, s.restart);
-  if (b.homing || b.measuring || nc::SpindleSynchronous(b.motion))
-    link.path_barrier();
-  else
-    link.record_path(motion, b.motion == nc::Motion::kRapid);
+  RecordPath(link, b, motion, true);
   s.position = s.restart;
   link.data.state = BlockSearchState::kWaitForPlcOff;
   return true;
+}
+
+void BlockSearchSimulation::RecordPath(const SearchLink& link, const nc::PreparedBlock& b,
+                                       const BlockMotion& motion, bool keep) {
+  if (b.homing || b.measuring || nc::SpindleSynchronous(b.motion))
+    link.backward.Forget();
+  else if (keep)  // decoded: the search's blocks were never travelled
+    link.backward.Record(motion, b.motion == nc::Motion::kRapid, true);
 }
 
 bool BlockSearchSimulation::Changeover(const SearchLink& link, const nc::PreparedBlock& b) {

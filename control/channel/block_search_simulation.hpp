@@ -8,9 +8,9 @@
 //
 // The object owns the search's run (BlockSearchRun). It never reads the program itself and
 // never touches the channel: each call is handed a `SearchLink` with the channel's reader, the
-// state the blocks change (frames, events, PLC functions, headstock), and the few channel
-// functions a block needs (offsets, the turret, #CAX TRACK, the measuring instructions, the
-// path memory, a way to fail). The search's phases around it (the PLC's handshake, the return to
+// state the blocks change (frames, events, PLC functions, headstock, the path memory), and the
+// few channel functions a block needs (offsets, the turret, #CAX TRACK, the measuring
+// instructions, a way to fail). The search's phases around it (the PLC's handshake, the return to
 // the contour) stay the channel's: they move axes.
 
 #include <cstdint>
@@ -20,8 +20,10 @@
 #include <vector>
 
 #include "control/channel/aux_output.hpp"
+#include "control/channel/backward_travel.hpp"
 #include "control/channel/block_motion.hpp"
 #include "control/channel/block_search_run.hpp"
+#include "control/channel/cax_track.hpp"
 #include "control/channel/channel_config.hpp"
 #include "control/channel/channel_types.hpp"
 #include "control/channel/headstock_control.hpp"
@@ -41,6 +43,9 @@ struct SearchLink {
   ProgramEvents& events;  ///< the program's own events
   AuxOutput& aux;         ///< technology to the PLC
   HeadstockControl& headstock;
+  const CaxTrackState& cax;  ///< #CAX TRACK: C follows the contour while a command is on
+  /// The path memory: the decoded path, for backward travel from the continue position.
+  BackwardTravel& backward;
   /// Where the axes are commanded (machine coordinates): C's after a changeover.
   const std::vector<double>& commanded;
   /// G41/G42 is on: the blocks ahead are prepared already (a changeover does not rebase C).
@@ -48,11 +53,6 @@ struct SearchLink {
   /// The rotary axis #CAX TRACK turns, -1: none.
   int tracked_axis = -1;
 
-  /// The search's next block into the block SimulateBlocks was handed (the channel's block in
-  /// work): false on an error (the channel failed).
-  std::function<bool()> next_block;
-  /// Under G41/G42 the reader also marks in the run whether the block is a further piece of
-  /// a block's tip path or a corner inserted before its block.
   std::function<const nc::Program&(uint32_t index)> program_of;
   /// Fails the channel with `text` (message number `number`) at `block` of `program`.
   std::function<void(const nc::Program& program, int32_t block, const std::string& text,
@@ -64,6 +64,7 @@ struct SearchLink {
   std::function<bool(const nc::ModalState& modal, const nc::Program& program, int32_t block)>
       take_offsets;
   /// The block's T words index an NC-controlled turret: false if that failed the channel.
+  /// Empty without such a turret.
   std::function<bool(const nc::PreparedBlock& b, const nc::Program& program)> index_tool_storage;
   /// A measuring instruction of the skipped part, simulated from `position` (FastMeasurement).
   std::function<bool(const nc::PreparedBlock& b, std::vector<double>& position)> simulate_measuring;
@@ -71,15 +72,11 @@ struct SearchLink {
   std::function<std::optional<bool>(const nc::Program& program, const nc::Statement& st,
                                     nc::PreparedBlock& b, double c_machine)>
       cax_instruction;
-  /// While tracking: C's target of `b` from its tangent; `align_to` set when C turns first.
+  /// While tracking (cax.command): C's target of `b` from its tangent; `align_to` set when C
+  /// turns first.
   std::function<bool(nc::PreparedBlock& b, const std::vector<double>& from, double rev_per_s,
                      std::optional<double>& align_to)>
       track_c;
-  /// The rotary axis as a follow-up bit while the NC does not position it.
-  std::function<uint64_t(const nc::PreparedBlock& b)> follow_up_axes;
-  /// The decoded path into the path memory for backward travel; `barrier`: none past here.
-  std::function<void(const BlockMotion& motion, bool rapid)> record_path;
-  std::function<void()> path_barrier;
 };
 
 class BlockSearchSimulation {
@@ -96,11 +93,23 @@ class BlockSearchSimulation {
   BlockSearchRun& run() { return *run_; }
   const BlockSearchRun& run() const { return *run_; }
 
-  /// Decodes blocks into `block` until technology waits for the PLC, a changeover runs, the
-  /// continue position is found, the program ends or kBlocksPerCycle have passed. The block
-  /// that waited for a changeover is simulated again first, from where C stands now. False
-  /// after an error (the channel failed).
-  bool SimulateBlocks(const SearchLink& link, nc::PreparedBlock& block);
+  /// Decodes blocks until technology waits for the PLC, a changeover runs, the continue
+  /// position is found, the program ends or kBlocksPerCycle have passed. `next_block()` reads
+  /// the next one into `block` (the channel's block in work; false on an error, the channel
+  /// failed); under G41/G42 it also marks in the run whether the block is a further piece of a
+  /// block's tip path or a corner inserted before its block. The block that waited for a
+  /// changeover is simulated again first, from where C stands now. False after an error. A
+  /// template so that the reader, called for every block, is called directly.
+  template <typename NextBlock>
+  bool SimulateBlocks(const SearchLink& link, nc::PreparedBlock& block, NextBlock&& next_block) {
+    if (!ChangeoverEnded(link, block)) return false;
+    for (int n = 0; n < kBlocksPerCycle && GoesOn(link); ++n) {
+      if (!next_block()) return false;
+      ++run_->blocks;
+      if (!SimulateBlock(link, block)) return false;
+    }
+    return true;
+  }
 
  private:
   /// False while technology waits (PLC acknowledgement, a changeover) or the search ended.
@@ -121,8 +130,15 @@ class BlockSearchSimulation {
   bool Changeover(const SearchLink& link, const nc::PreparedBlock& b);
   /// The changeover `b` waited for has ended: `b` goes on from there, rotary axis rebased.
   void EndChangeover(const SearchLink& link, nc::PreparedBlock& b);
+  /// The block in work waited for a changeover that has ended now: it is simulated from there.
+  /// False after an error.
+  bool ChangeoverEnded(const SearchLink& link, nc::PreparedBlock& b);
   /// The search reached the end of the program (its text or M30).
   void EndsProgram(const SearchLink& link, const char* warning);
+  /// The decoded path into the path memory (`keep`: not for a search to the program's end);
+  /// G74, G100 and threads end what backward travel can take.
+  static void RecordPath(const SearchLink& link, const nc::PreparedBlock& b,
+                         const BlockMotion& motion, bool keep);
 
   std::optional<BlockSearchRun> run_;
 };

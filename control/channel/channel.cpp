@@ -307,14 +307,7 @@ DriveSetpoint Channel::SpindleSetpoint() const {
 }
 
 uint64_t Channel::FollowUpAxes(const nc::PreparedBlock& b) const {
-  // Outside rotary axis mode the rotary axis tracks its actual position (HeadstockCycle); a
-  // block that does not program it leaves it there rather than moving it back to where the
-  // program last put it (with a load-side encoder it reads the turning spindle).
-  if (!headstock_ || config_.rotary_axis < 0 || headstock_->mode() == axes::HeadstockMode::kRotary)
-    return 0;
-  const uint64_t bit = uint64_t{1} << config_.rotary_axis;
-  // X1/Y1 program C but position it only in rotary axis mode (coordinate_transformation.hpp).
-  return b.programmed & bit && !b.fictive ? 0 : bit;
+  return headstock_.FollowUpAxes(b, config_.rotary_axis);
 }
 
 bool Channel::UpdateTranslation(const nc::ModalState& modal, const nc::Program& program,

@@ -76,7 +76,7 @@ bool Channel::SearchCycle(const AmplifierTelegram& at) {
       [[fallthrough]];
     case BlockSearchState::kActive:
       if (state_ != ChannelState::kRunning) return true;
-      search_.SimulateBlocks(SearchLinkNow(), work_.block);
+      search_.SimulateBlocks(SearchLinkNow(), work_.block, [this] { return NextSearchBlock(); });
       return true;
     case BlockSearchState::kWaitForPlcOff:
       bs_.command = false;
@@ -138,10 +138,11 @@ SearchLink Channel::SearchLinkNow() {
       .events = events_,
       .aux = aux_,
       .headstock = headstock_,
+      .cax = cax_,
+      .backward = backward_,
       .commanded = out_.commanded,
       .compensating = work_.feed.compensating(),
       .tracked_axis = TrackedAxis(),
-      .next_block = [this] { return NextSearchBlock(); },
       .program_of = [this](uint32_t index) -> const nc::Program& { return *ProgramOf(index); },
       .fail = [this](const nc::Program& program, int32_t block, const std::string& text,
                      int number) { Fail(program, block, text, number); },
@@ -149,9 +150,11 @@ SearchLink Channel::SearchLinkNow() {
       .take_offsets = [this](const nc::ModalState& modal, const nc::Program& program,
                              int32_t block) { return UpdateTranslation(modal, program, block); },
       .index_tool_storage =
-          [this](const nc::PreparedBlock& b, const nc::Program& program) {
-            return IndexToolStorage(b, program);
-          },
+          ToolStorageNc() ? std::function<bool(const nc::PreparedBlock&, const nc::Program&)>(
+                                [this](const nc::PreparedBlock& b, const nc::Program& program) {
+                                  return IndexToolStorage(b, program);
+                                })
+                          : nullptr,
       .simulate_measuring =
           [this](const nc::PreparedBlock& b, std::vector<double>& position) {
             return measuring_.Simulate(MeasuringLinkNow(), b, position, bs_.warnings);
@@ -162,9 +165,6 @@ SearchLink Channel::SearchLinkNow() {
       .track_c =
           [this](nc::PreparedBlock& b, const std::vector<double>& from, double rev_per_s,
                  std::optional<double>& align_to) { return TrackC(b, from, rev_per_s, align_to); },
-      .follow_up_axes = [this](const nc::PreparedBlock& b) { return FollowUpAxes(b); },
-      .record_path = [this](const BlockMotion& motion, bool rapid) { RecordPath(motion, rapid); },
-      .path_barrier = [this] { PathBarrier(); },
   };
 }
 

@@ -93,4 +93,15 @@ void HeadstockControl::TakeModeFromPlc() {
   waiting_for_ = axes::HeadstockMode::kNone;
 }
 
+uint64_t HeadstockControl::FollowUpAxes(const nc::PreparedBlock& b, int rotary_axis) const {
+  // Outside rotary axis mode the rotary axis tracks its actual position (the channel's headstock
+  // cycle); a block that does not program it leaves it there rather than moving it back to where
+  // the program last put it (with a load-side encoder it reads the turning spindle).
+  if (!changeover_ || rotary_axis < 0 || changeover_->mode() == axes::HeadstockMode::kRotary)
+    return 0;
+  const uint64_t bit = uint64_t{1} << rotary_axis;
+  // X1/Y1 program C but position it only in rotary axis mode (coordinate_transformation.hpp).
+  return b.programmed & bit && !b.fictive ? 0 : bit;
+}
+
 }  // namespace vmt::control::channel

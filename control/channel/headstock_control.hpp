@@ -61,6 +61,9 @@ class HeadstockControl {
 
   /// The mode `b` needs (4.2), kNone if none; `rotary_axis` is the channel's rotary axis.
   static axes::HeadstockMode ModeNeeded(const nc::PreparedBlock& b, int rotary_axis);
+  /// The rotary axis as a PlanBlockMotion follow-up bit while the NC does not position it
+  /// (outside rotary axis mode), 0 otherwise.
+  uint64_t FollowUpAxes(const nc::PreparedBlock& b, int rotary_axis) const;
   /// A block needs `mode`: the changeover starts and the block waits for it.
   void RequestForBlock(axes::HeadstockMode mode);
   /// A jog key turned the changeover round: the waiting block commands its own again.

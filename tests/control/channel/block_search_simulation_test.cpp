@@ -76,15 +76,9 @@ struct Rig {
         .events = events,
         .aux = aux,
         .headstock = headstock,
+        .cax = cax,
+        .backward = backward,
         .commanded = commanded,
-        .next_block =
-            [this] {
-              if (interpreter->Next(block)) return true;
-              block = nc::PreparedBlock{};  // the text ended
-              block.end = true;
-              block.block = -1;
-              return true;
-            },
         .program_of = [this](uint32_t) -> const nc::Program& { return parsed.program; },
         .fail = [this](const nc::Program&, int32_t b, const std::string& text,
                        int number) { Fail(b, text, number); },
@@ -100,10 +94,16 @@ struct Rig {
                               double) -> std::optional<bool> { return std::nullopt; },
         .track_c = [](nc::PreparedBlock&, const std::vector<double>&, double,
                       std::optional<double>&) { return true; },
-        .follow_up_axes = [](const nc::PreparedBlock&) { return uint64_t{0}; },
-        .record_path = [this](const BlockMotion& m, bool) { path.push_back(m.end); },
-        .path_barrier = [this] { path.clear(); },
     };
+  }
+
+  /// The interpreter's next block; at the text's end a block that says so.
+  bool NextBlock() {
+    if (interpreter->Next(block)) return true;
+    block = nc::PreparedBlock{};
+    block.end = true;
+    block.block = -1;
+    return true;
   }
 
   void Fail(int32_t b, const std::string& text, int number) {
@@ -113,7 +113,7 @@ struct Rig {
 
   /// One NC cycle of the search; the PLC acknowledges what it was sent before the next.
   bool Cycle() {
-    const bool ok = search.SimulateBlocks(Link(), block);
+    const bool ok = search.SimulateBlocks(Link(), block, [this] { return NextBlock(); });
     for (const nc::AuxFunction& f : aux.functions)
       sent.push_back(std::string(1, f.letter) + std::to_string(static_cast<int>(f.value)));
     return ok;
@@ -130,13 +130,14 @@ struct Rig {
   ProgramEvents events;
   AuxOutput aux;
   HeadstockControl headstock{std::nullopt};
+  CaxTrackState cax;
+  BackwardTravel backward;
   std::vector<double> commanded{50, 5};
   nc::PreparedBlock block;
   BlockSearchSimulation search;
 
   int offsets_taken = 0;
   std::vector<int> tools;
-  std::vector<std::vector<double>> path;
   std::vector<std::string> sent;
   std::vector<Error> errors;
 };
@@ -160,9 +161,9 @@ TEST(BlockSearchSimulation, FollowsThePathOnPaperUpToTheContinueBlock) {
   EXPECT_THAT(s.restart, ElementsAre(30, -20));
   EXPECT_THAT(s.position, ElementsAre(30, -20));
   EXPECT_FALSE(s.ends_program);
-  // N10 and N20 for backward travel, and the continue block from its start.
-  ASSERT_EQ(r.path.size(), 3u);
-  EXPECT_THAT(r.path[1], ElementsAre(30, -20));
+  // The decoded path up to the continue block, for backward travel from there.
+  EXPECT_FALSE(r.backward.empty());
+  EXPECT_TRUE(r.backward.LastStepIs(s.restart_motion));
   // The distance from program start counts the skipped paths (X, Z are main axes).
   EXPECT_NEAR(r.data.program_distance.distance(), std::hypot(10, 5) + std::hypot(10, 20), 1e-9);
   EXPECT_EQ(r.offsets_taken, 3);
