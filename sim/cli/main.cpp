@@ -473,7 +473,10 @@ std::vector<Command> AddStudy(CLI::App& app) {
   repos->add_option("--out", study_options.out_dir, "Study folder (a rerun skips its cases)")
       ->required()
       ->check(sim::kOutputFolder);
-  repos->add_option("--jobs", study_options.jobs, "Worker processes")
+  repos
+      ->add_option("--jobs", study_options.jobs,
+                   "Worker processes (1: the cases run in vmt's own process, without fork, unless "
+                   "--run-ups fork)")
       ->check(WholeIn(1, 256))
       ->capture_default_str();
   repos->add_option("--shard", o->shard, "K/N: this process runs shard K of N (every N-th group)")
