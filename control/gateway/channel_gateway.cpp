@@ -1,7 +1,9 @@
 #include "control/gateway/channel_gateway.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <span>
 
 #include "control/channel/channel.hpp"
 
@@ -447,9 +449,43 @@ void ChannelGateway::WriteStatus(const channel::Channel& ch, const AmplifierTele
   axis_monitor_.WriteStatus(ch, at);
 }
 
+// Whether a parameter signal was written since the last read: their cells, and the texts (a
+// STRING's cell is its slot). A PLC writes the parameters once per search; building them reads
+// twenty signals and copies three texts, which every NC cycle was a few per cent of a run.
+bool ChannelGateway::BlockSearchWritten() {
+  const BlockSearch& b = bs_;
+  const std::array<int, 20> ids = {
+      b.type_w,       b.auto_return_w, b.no_hold_w,      b.deviation_max_w, b.file_offset_w,
+      b.breakpoint_w, b.distance_w,    b.covered_w,      b.start_offset_w,  b.start_name_w,
+      b.start_type_w, b.start_count_w, b.end_offset_w,   b.end_name_w,      b.end_type_w,
+      b.end_count_w,  b.block_count_w, b.block_number_w, b.pass_w,          b.prog_name_w};
+  const std::span<const int64_t> cells = image_->cells();
+  bool written = bs_cells_.empty();
+  bs_cells_.resize(ids.size());
+  for (size_t k = 0; k < ids.size(); ++k) {
+    const int64_t cell = ids[k] >= 0 ? cells[ids[k]] : 0;
+    written = written || cell != bs_cells_[k];
+    bs_cells_[k] = cell;
+  }
+  const auto same_text = [&](int id, const std::string& last) {
+    return id < 0 || image_->String(id) == last;
+  };
+  return written || !same_text(b.start_name_w, bs_parameters_.start.name) ||
+         !same_text(b.end_name_w, bs_parameters_.end.name) ||
+         !same_text(b.prog_name_w, bs_parameters_.block_nbr_prog_name);
+}
+
 void ChannelGateway::ReadBlockSearch(channel::Channel& ch) {
   const BlockSearch& b = bs_;
   if (b.type_w < 0) return;  // a machine without the block search objects
+  if (BlockSearchWritten()) ReadBlockSearchParameters(ch);
+  ch.SetBlockSearchPlc(Number(b.enable) != 0, Number(b.plc_state) != 0);
+  ch.SetBackward(Number(b.backward_w) != 0);
+  ch.SetSuspendOutput(Number(b.suspend_w) != 0);
+}
+
+void ChannelGateway::ReadBlockSearchParameters(channel::Channel& ch) {
+  const BlockSearch& b = bs_;
   auto text = [&](int id) { return id >= 0 ? image_->String(id) : std::string(); };
   auto integer = [&](int id, int64_t missing) {
     return id >= 0 ? static_cast<int64_t>(std::llround(Number(id))) : missing;
@@ -479,9 +515,6 @@ void ChannelGateway::ReadBlockSearch(channel::Channel& ch) {
   p.block_nbr_prog_name = text(b.prog_name_w);
   // Handed over as they change: the channel checks them on each hand-over.
   if (p != bs_parameters_) ch.SetBlockSearch(bs_parameters_ = p);
-  ch.SetBlockSearchPlc(Number(b.enable) != 0, Number(b.plc_state) != 0);
-  ch.SetBackward(Number(b.backward_w) != 0);
-  ch.SetSuspendOutput(Number(b.suspend_w) != 0);
 }
 
 void ChannelGateway::ReadJogOfPath(channel::Channel& jog_of_path) {

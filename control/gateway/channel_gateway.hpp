@@ -103,9 +103,9 @@ class ChannelGateway {
   Edge spindle_home_;  ///< AxxC.HOME of a main spindle that is no channel axis
   int spindle_jgpos_ = -1, spindle_jgneg_ = -1, last_spindle_key_ = 0;  ///< AxxC.JGPOS/JGNEG
   int spindle_enabl_ = -1, spindle_rf_ = -1, spindle_bbdig_ = -1, nc_nmax_ = -1;
-  bool last_spindle_enabl_ = false;   ///< the spindle's AxxC.ENABL as last seen
-  bool spindle_enabled_ = true;       ///< what the channel was last told of it
-  bool spindle_key_enabled_ = true;   ///< spindle_enabled_ when its jog key was last read
+  bool last_spindle_enabl_ = false;  ///< the spindle's AxxC.ENABL as last seen
+  bool spindle_enabled_ = true;      ///< what the channel was last told of it
+  bool spindle_key_enabled_ = true;  ///< spindle_enabled_ when its jog key was last read
   int sovr_ = -1, spindle_homed_ = -1;
   int64_t last_sovr_ = -1;
   bool last_sbl_ = false, last_opstp_ = false;
@@ -137,15 +137,13 @@ class ChannelGateway {
   /// mc_cmd_bs_*_w / _r, the HLI status and the on/off handshake. -1 where the image lacks one.
   struct BlockSearch {
     int type_w = -1, auto_return_w = -1, no_hold_w = -1, deviation_max_w = -1, file_offset_w = -1,
-        breakpoint_w = -1, distance_w = -1, covered_w = -1, start_offset_w = -1,
-        start_name_w = -1, start_type_w = -1, start_count_w = -1, end_offset_w = -1,
-        end_name_w = -1, end_type_w = -1, end_count_w = -1, block_count_w = -1,
-        block_number_w = -1, pass_w = -1, prog_name_w = -1;
+        breakpoint_w = -1, distance_w = -1, covered_w = -1, start_offset_w = -1, start_name_w = -1,
+        start_type_w = -1, start_count_w = -1, end_offset_w = -1, end_name_w = -1, end_type_w = -1,
+        end_count_w = -1, block_count_w = -1, block_number_w = -1, pass_w = -1, prog_name_w = -1;
     int type_r = -1, auto_return_r = -1, no_hold_r = -1, deviation_max_r = -1, breakpoint_r = -1,
-        distance_r = -1, covered_r = -1, start_offset_r = -1, start_name_r = -1,
-        start_type_r = -1, start_count_r = -1, end_offset_r = -1, end_name_r = -1,
-        end_type_r = -1, end_count_r = -1, block_count_r = -1, block_number_r = -1, pass_r = -1,
-        prog_name_r = -1;
+        distance_r = -1, covered_r = -1, start_offset_r = -1, start_name_r = -1, start_type_r = -1,
+        start_count_r = -1, end_offset_r = -1, end_name_r = -1, end_type_r = -1, end_count_r = -1,
+        block_count_r = -1, block_number_r = -1, pass_r = -1, prog_name_r = -1;
     int active = -1, state = -1, covered_distance = -1, dist_prog_start = -1, line_count = -1,
         path_deviation = -1, stop_conditions = -1, distance_object = -1;
     int command = -1, plc_state = -1, enable = -1;
@@ -155,6 +153,7 @@ class ChannelGateway {
     bool jop_start = false, jop_stop = false;  ///< the levels last seen, for their edges
   } bs_;
   channel::BlockSearchParameters bs_parameters_;  ///< as last handed to the channel
+  std::vector<int64_t> bs_cells_;                 ///< the parameter signals' cells as last read
   /// The read-backs as last written: the NC is their only writer, so they are written again
   /// only when the channel's parameters change.
   std::optional<channel::BlockSearchParameters> bs_read_back_;
@@ -171,6 +170,8 @@ class ChannelGateway {
   void ReadAuxAcknowledge(channel::Channel& ch);
   void ReadHeadstock(channel::Channel& ch);
   void ReadBlockSearch(channel::Channel& ch);
+  bool BlockSearchWritten();
+  void ReadBlockSearchParameters(channel::Channel& ch);
   void WriteBlockSearch(const channel::Channel& ch);
   void WriteBlockSearchReadBacks(const channel::BlockSearchParameters& p);
   /// Q functions with their own signal and acknowledgement (Pxx.Qnnnn / Pxx.Qnnnn_Q).

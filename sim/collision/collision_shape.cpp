@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <mutex>
 
 namespace vmt::sim {
 namespace {
@@ -41,6 +42,11 @@ std::shared_ptr<fcl::CollisionGeometryd> TriangleTree(const Points& points,
   bvh->addSubModel(points, triangles);
   bvh->endModel();
   return bvh;
+}
+
+std::mutex& SharedShapesMutex() {
+  static std::mutex mutex;
+  return mutex;
 }
 
 }  // namespace
@@ -95,6 +101,22 @@ CollisionShape ShapeOfMesh(const render::Mesh& mesh) {
   }
   shape.geometry = TriangleTree(points, mesh.indices);
   return shape;
+}
+
+CollisionShape SharedShapeOfMesh(const std::shared_ptr<const render::Mesh>& mesh) {
+  // Keyed by the mesh's ownership, not its address: a mesh freed and another made at the same
+  // address is a different key, and an expired entry is dropped when the next one is added.
+  static std::map<std::weak_ptr<const render::Mesh>, CollisionShape, std::owner_less<>> shapes;
+  const std::lock_guard<std::mutex> lock(SharedShapesMutex());
+  if (auto it = shapes.find(mesh); it != shapes.end()) return it->second;
+  std::erase_if(shapes, [](const auto& entry) { return entry.first.expired(); });
+  return shapes.emplace(mesh, ShapeOfMesh(*mesh)).first->second;
+}
+
+std::unique_ptr<fcl::CollisionObjectd> ObjectOf(
+    const std::shared_ptr<fcl::CollisionGeometryd>& geometry) {
+  const std::lock_guard<std::mutex> lock(SharedShapesMutex());
+  return std::make_unique<fcl::CollisionObjectd>(geometry);
 }
 
 CollisionShape ShapeOfPrimitive(const Primitive& primitive) {

@@ -8,6 +8,7 @@
 // A tree is only a surface, a box or convex solid is solid: a part wholly inside one touches it.
 
 #include <fcl/geometry/collision_geometry.h>
+#include <fcl/narrowphase/collision_object.h>
 
 #include <Eigen/Geometry>
 #include <memory>
@@ -27,6 +28,18 @@ struct CollisionShape {
 
 /// The solid of `mesh` (closed and outward-wound, as the model's collision meshes are).
 CollisionShape ShapeOfMesh(const render::Mesh& mesh);
+
+/// ShapeOfMesh built once per mesh in the process, for as long as the mesh lives: every run of
+/// a model (a study's cases run from the start, its saved cases, the station's reset, a scene
+/// run again) would otherwise build the same trees and hulls again, a tenth of a short run.
+/// Thread-safe; queries only read a geometry, but make its objects with ObjectOf.
+CollisionShape SharedShapeOfMesh(const std::shared_ptr<const render::Mesh>& mesh);
+
+/// An FCL object of `geometry`, shared or not. FCL's object recomputes its geometry's local
+/// bounding box when it is made (the same numbers every time): one at a time, so that worlds
+/// built in two threads do not write a shared geometry at once.
+std::unique_ptr<fcl::CollisionObjectd> ObjectOf(
+    const std::shared_ptr<fcl::CollisionGeometryd>& geometry);
 
 /// The URDF primitive's own solid (not its mesh: a cylinder's facets lie inside it).
 CollisionShape ShapeOfPrimitive(const Primitive& primitive);

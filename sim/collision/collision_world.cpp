@@ -24,11 +24,10 @@ struct CollisionWorld::Fcl {
 
 namespace {
 
-/// The part's solid from `mesh`, in the part's frame `X_LinkMesh` (FCL's box sits at its centre).
-std::shared_ptr<fcl::CollisionGeometryd> MeshGeometry(const render::Mesh& mesh,
+/// The part's solid `shape` of a mesh placed at `X_LinkMesh` (FCL's box sits at its centre).
+std::shared_ptr<fcl::CollisionGeometryd> MeshGeometry(const CollisionShape& shape,
                                                       const Eigen::Isometry3d& X_LinkMesh,
                                                       CollisionPart& p) {
-  CollisionShape shape = ShapeOfMesh(mesh);
   p.X_LinkPart = X_LinkMesh * shape.X_MeshShape;
   p.centre = shape.X_MeshShape.inverse() * shape.centre;
   p.radius = shape.radius;
@@ -82,7 +81,7 @@ CollisionWorld::CollisionWorld(const MachineModel& model, const std::vector<Cyli
         p.radius = shape.radius;
         geometry = shape.geometry;
       } else {
-        geometry = MeshGeometry(*v.mesh, v.X_LinkVisual, p);
+        geometry = MeshGeometry(SharedShapeOfMesh(v.mesh), v.X_LinkVisual, p);
       }
       if (const MeasuringSphere* ball = stylus ? BallOf(*stylus, p) : nullptr) {
         // A ruby's mesh has its vertices on the sphere and its faces inside it: a sharp edge
@@ -99,10 +98,7 @@ CollisionWorld::CollisionWorld(const MachineModel& model, const std::vector<Cyli
     }
   }
   machine_parts_ = size();
-  for (auto& g : fcl_->geometry) {
-    g->computeLocalAABB();
-    fcl_->objects.push_back(std::make_unique<fcl::CollisionObjectd>(g));
-  }
+  for (auto& g : fcl_->geometry) fcl_->objects.push_back(ObjectOf(g));
   aside_.assign(machine_parts_, 0);
   SetAdded(added);
   queries_ = 0;
@@ -149,9 +145,9 @@ void CollisionWorld::SetAdded(const std::vector<CylinderPart>& added) {
       // corners lie on it, so the polygon never misses material.
       constexpr int kSegments = 64;
       const double outer = c.radius_m / std::cos(std::numbers::pi / kSegments);
-      fcl_->geometry.push_back(
-          MeshGeometry(render::MakeTube(c.inner_radius_m, outer, c.length_m, kSegments),
-                       Eigen::Isometry3d(Eigen::Translation3d(0, 0, c.z_m)), p));
+      fcl_->geometry.push_back(MeshGeometry(
+          ShapeOfMesh(render::MakeTube(c.inner_radius_m, outer, c.length_m, kSegments)),
+          Eigen::Isometry3d(Eigen::Translation3d(0, 0, c.z_m)), p));
     } else {
       // FCL's cylinder is centred on its origin.
       p.X_LinkPart.translation() = Eigen::Vector3d(0, 0, c.z_m + c.length_m / 2);
@@ -159,8 +155,7 @@ void CollisionWorld::SetAdded(const std::vector<CylinderPart>& added) {
       fcl_->geometry.push_back(std::make_shared<fcl::Cylinderd>(c.radius_m, c.length_m));
     }
     parts_.push_back(p);
-    fcl_->geometry.back()->computeLocalAABB();
-    fcl_->objects.push_back(std::make_unique<fcl::CollisionObjectd>(fcl_->geometry.back()));
+    fcl_->objects.push_back(ObjectOf(fcl_->geometry.back()));
   }
 
   // The machine's own contacts: same link, links joined by a joint, and parts that touch in the

@@ -113,5 +113,51 @@ TEST(CollisionShape, ABoxTurnedInItsFrameIsConvexNotABox) {
   ExpectSameSolid(box);
 }
 
+TEST(CollisionShape, AMeshsSharedSolidIsBuiltOnceWhileTheMeshLives) {
+  auto tube = std::make_shared<const render::Mesh>(render::MakeTube(0.02, 0.04, 0.1, 32));
+  const CollisionShape first = SharedShapeOfMesh(tube);
+  const CollisionShape fresh = ShapeOfMesh(*tube);
+  EXPECT_EQ(SharedShapeOfMesh(tube).geometry, first.geometry);
+  EXPECT_EQ(first.geometry->getNodeType(), fresh.geometry->getNodeType());
+  EXPECT_EQ(first.centre, fresh.centre);
+  EXPECT_EQ(first.radius, fresh.radius);
+  EXPECT_TRUE(first.X_MeshShape.isApprox(fresh.X_MeshShape, 0));
+  // The same solid as a fresh one, bit for bit, against a pin in the bore and one outside.
+  const auto pin = Tree(render::MakeCylinder(0.01, 0.2, 16));
+  for (const double x : {0.0, 0.057, 0.1}) {
+    const Eigen::Isometry3d X_pin(Eigen::Translation3d(x, 0.003, -0.05));
+    const Pair shared = Query(first.geometry, Eigen::Isometry3d::Identity(), pin, X_pin);
+    const Pair built = Query(fresh.geometry, Eigen::Isometry3d::Identity(), pin, X_pin);
+    EXPECT_EQ(shared.distance, built.distance) << x;
+    EXPECT_EQ(shared.contact, built.contact) << x;
+  }
+
+  // Another mesh, even equal in every number, is another key; so is a mesh made where a freed
+  // one stood.
+  auto twin = std::make_shared<const render::Mesh>(*tube);
+  EXPECT_NE(SharedShapeOfMesh(twin).geometry, first.geometry);
+  const std::weak_ptr<fcl::CollisionGeometryd> was = first.geometry;
+  const fcl::CollisionGeometryd* const raw = first.geometry.get();
+  tube.reset();
+  auto box = std::make_shared<const render::Mesh>(render::MakeBox({0, 0, 0}, {0.01, 0.01, 0.01}));
+  const CollisionShape other = SharedShapeOfMesh(box);
+  EXPECT_EQ(other.geometry->getNodeType(), fcl::GEOM_BOX);
+  // Adding it dropped the freed mesh's entry: its solid is gone with the last holder here.
+  EXPECT_EQ(was.use_count(), 1);
+  EXPECT_NE(other.geometry.get(), raw);
+}
+
+TEST(CollisionShape, AnObjectOfASharedSolidLeavesItsBoundingBoxAsItWas) {
+  auto cylinder = std::make_shared<const render::Mesh>(render::MakeCylinder(0.04, 0.1, 48));
+  const CollisionShape shape = SharedShapeOfMesh(cylinder);
+  const std::unique_ptr<fcl::CollisionObjectd> a = ObjectOf(shape.geometry);
+  const fcl::AABBd box = shape.geometry->aabb_local;
+  const std::unique_ptr<fcl::CollisionObjectd> b = ObjectOf(shape.geometry);
+  EXPECT_EQ(shape.geometry->aabb_local.min_, box.min_);
+  EXPECT_EQ(shape.geometry->aabb_local.max_, box.max_);
+  EXPECT_EQ(a->collisionGeometry(), b->collisionGeometry());
+  EXPECT_NEAR(box.max_.x(), 0.04, 1e-6);
+}
+
 }  // namespace
 }  // namespace vmt::sim
