@@ -11,12 +11,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 
 #include "control/channel/block_search_support.hpp"
 #include "control/channel/channel.hpp"
-#include "control/channel/continue_position.hpp"
-#include "control/nc/coordinate_transformation.hpp"
 
 namespace vmt::control::channel {
 

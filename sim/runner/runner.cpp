@@ -108,7 +108,7 @@ void SceneRun::State::Step() {
     recorder.Event({{"t", e.t_s}, {"event", e.kind}, {"text", e.text}});
   machine_events.Watch(t, at, clutches, *backend, control_stage->image(), recorder);
   if (tick % trace_every == 0 || tick == last_tick)
-    recorder.Trace(TraceRow(t, m, at, mdt, clutches, control_stage->channel()));
+    recorder.Trace(trace_rows.Row(t, m, at, mdt, clutches, control_stage->channel()));
   CheckExpectations(t, at);
   snapshots.TakeDue(t,
                     {*backend, path_guard ? path_guard->cutter() : nullptr,

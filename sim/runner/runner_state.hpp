@@ -24,6 +24,7 @@
 #include "sim/runner/run_snapshots.hpp"
 #include "sim/runner/runner.hpp"
 #include "sim/runner/timeline_player.hpp"
+#include "sim/runner/trace_rows.hpp"
 
 namespace vmt::sim {
 
@@ -89,6 +90,8 @@ struct SceneRun::State {
   bool finished = false;
   /// Trace, events and their observers: the event snapshots first, then RunOptions::on_event.
   RunRecorder recorder;
+  /// The trace's rows; what it keeps is the last row's text, the same after any Restore.
+  TraceRowWriter trace_rows;
   RunResult result;
   /// The scene's expectations, checked as they fall due.
   ExpectationWatch expectations{scene.expectations, m};

@@ -46,18 +46,20 @@ constexpr char kDigitPairs[] =
     "8081828384858687888990919293949596979899";
 
 // A row written straight into its string, sized up front for its longest form (every field at
-// its cut of 31 characters with the comma), so that a field costs no bounds checks.
+// its cut of 31 characters with the comma), so that a field costs no bounds checks. A field
+// whose value has the bits it had in the row before is copied as it was written then.
 class RowWriter {
  public:
-  explicit RowWriter(size_t fields) {
+  RowWriter(size_t fields, std::vector<TraceRowWriter::Field>& last) : last_(last) {
     row_.resize(31 * fields + 1 + kSlack);
     p_ = row_.data();
+    last_.resize(fields);
   }
-  void First(double v) { Fixed6(v, 31); }
+  void First(double v) { Field(v, 31); }
   /// No "-0.000000": a zero of either sign is written as 0.
   void Next(double v) {
     *p_++ = ',';
-    Fixed6(v == 0 ? 0.0 : v, 30);
+    Field(v == 0 ? 0.0 : v, 30);
   }
   std::string Done() {
     *p_++ = '\n';
@@ -67,6 +69,22 @@ class RowWriter {
 
  private:
   static constexpr size_t kSlack = 32;  // a field is copied as a whole 32-byte block
+  static_assert(sizeof(TraceRowWriter::Field::text) == kSlack);
+
+  void Field(double v, size_t width) {
+    TraceRowWriter::Field& f = last_[field_++];
+    const uint64_t bits = std::bit_cast<uint64_t>(v);
+    if (f.size > 0 && f.bits == bits) {
+      std::memcpy(p_, f.text, kSlack);
+      p_ += f.size;
+      return;
+    }
+    char* const start = p_;
+    Fixed6(v, width);
+    f.bits = bits;
+    f.size = static_cast<uint8_t>(p_ - start);
+    std::memcpy(f.text, start, f.size);
+  }
 
   // What printf's "%.6f" writes, byte for byte, at most `width` characters (a value past
   // 1e23, a drive gone wild, is cut there, as the trace has always cut it). Nearly every trace
@@ -112,6 +130,8 @@ class RowWriter {
     p_ += end - q;               // at most 22 characters, below every width
   }
 
+  std::vector<TraceRowWriter::Field>& last_;
+  size_t field_ = 0;
   std::string row_;
   char* p_;
 };
@@ -134,7 +154,15 @@ std::string TraceHeader(const MachineModel& m, bool nc) {
 std::string TraceRow(double t, const MachineModel& m, const control::AmplifierTelegram& at,
                      const control::MasterTelegram& mdt, const std::vector<ClutchState>& clutches,
                      const control::channel::Channel* channel) {
-  RowWriter row(1 + 5 * m.drives.size() + clutches.size() + 2);
+  return TraceRowWriter().Row(t, m, at, mdt, clutches, channel);
+}
+
+std::string TraceRowWriter::Row(double t, const MachineModel& m,
+                                const control::AmplifierTelegram& at,
+                                const control::MasterTelegram& mdt,
+                                const std::vector<ClutchState>& clutches,
+                                const control::channel::Channel* channel) {
+  RowWriter row(1 + 5 * m.drives.size() + clutches.size() + 2, last_);
   row.First(t);
   for (size_t d = 0; d < m.drives.size(); ++d) {
     const control::DriveFeedback& fb = at.feedback[d];

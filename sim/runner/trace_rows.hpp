@@ -4,6 +4,7 @@
 // has several), each clutch's state, and the NC's state and line. Fixed formatting, so that
 // the bytes, and so the digest, depend only on the simulation.
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -20,5 +21,25 @@ std::string TraceHeader(const MachineModel& m, bool nc);
 std::string TraceRow(double t, const MachineModel& m, const control::AmplifierTelegram& at,
                      const control::MasterTelegram& mdt, const std::vector<ClutchState>& clutches,
                      const control::channel::Channel* channel);
+
+/// A run's rows, each as TraceRow writes it. Most of a row stands still from one row to the
+/// next (the axes at rest, the spindle off, the clutch, the NC's state): a field whose value
+/// has the bits it had in the row before is copied as written then, not formatted again.
+class TraceRowWriter {
+ public:
+  std::string Row(double t, const MachineModel& m, const control::AmplifierTelegram& at,
+                  const control::MasterTelegram& mdt, const std::vector<ClutchState>& clutches,
+                  const control::channel::Channel* channel);
+
+  /// One field as last written: its value's bits and its text (at most 31 characters).
+  struct Field {
+    uint64_t bits = 0;
+    uint8_t size = 0;  ///< 0: not written yet
+    char text[32] = {};
+  };
+
+ private:
+  std::vector<Field> last_;
+};
 
 }  // namespace vmt::sim
