@@ -35,37 +35,37 @@ class SignalImage {
   // Accessors abort (with the signal's name) on an id out of range, on the wrong type (Bool
   // for kBool; Int for the integer types; Real for kReal and kLreal; String for kString) and
   // on an integer outside its type's range or a string longer than 83 bytes.
-  bool Bool(int id) const {
+  [[gnu::always_inline]] bool Bool(int id) const {
     Check(id, IsBool, "Bool");
     return cells_[id] != 0;
   }
-  void SetBool(int id, bool v) {
+  [[gnu::always_inline]] void SetBool(int id, bool v) {
     Check(id, IsBool, "SetBool");
     Store(id, v ? 1 : 0);
   }
-  int64_t Int(int id) const {
+  [[gnu::always_inline]] int64_t Int(int id) const {
     Check(id, IsInteger, "Int");
     return cells_[id];
   }
-  void SetInt(int id, int64_t v) {
+  [[gnu::always_inline]] void SetInt(int id, int64_t v) {
     Check(id, IsInteger, "SetInt");
     if (v < range_[id].min || v > range_[id].max) [[unlikely]]
       RefuseRange(id, v);
     Store(id, v);
   }
   /// kReal values are stored rounded to binary32, as a REAL variable and its registers hold them.
-  double Real(int id) const {
+  [[gnu::always_inline]] double Real(int id) const {
     Check(id, IsReal, "Real");
     return std::bit_cast<double>(cells_[id]);
   }
-  void SetReal(int id, double v) {
+  [[gnu::always_inline]] void SetReal(int id, double v) {
     Check(id, IsReal, "SetReal");
     Store(id, RealBits(types_[id], v));
   }
   const std::string& String(int id) const;
   void SetString(int id, std::string_view v);
   /// Any signal as a number: BOOL 0/1, the integers, REAL/LREAL; a STRING reads 0.
-  double Number(int id) const {
+  [[gnu::always_inline]] double Number(int id) const {
     Check(id, AnyType, "Number");
     const int64_t cell = cells_[id];
     switch (types_[id]) {
@@ -82,7 +82,7 @@ class SignalImage {
   }
   /// A number into a signal of any numeric type (BOOL: != 0; integers rounded half away from
   /// zero, as std::llround); a STRING is left as it is.
-  void SetNumber(int id, double value) {
+  [[gnu::always_inline]] void SetNumber(int id, double value) {
     Check(id, AnyType, "SetNumber");
     switch (types_[id]) {
       case SignalType::kBool:
@@ -118,8 +118,10 @@ class SignalImage {
  private:
   // Inline, because the NC, the PLC and the watchers make tens of these accesses each NC cycle;
   // the refusal, with its message, out of line. `accepts` is the accessor's test of the type.
+  // Forced: left to itself, the link-time optimiser kept out-of-line copies that call the test
+  // through its pointer.
   template <class TypeTest>
-  void Check(int id, TypeTest accepts, const char* accessor) const {
+  [[gnu::always_inline]] void Check(int id, TypeTest accepts, const char* accessor) const {
     if (id < 0 || id >= size() || !accepts(types_[id])) [[unlikely]]
       Refuse(id, accessor);
   }
@@ -144,14 +146,14 @@ class SignalImage {
     const double fraction = v - static_cast<double>(i);
     return i + (fraction >= 0.5) - (fraction <= -0.5);
   }
-  void Store(int id, int64_t cell) {
+  [[gnu::always_inline]] void Store(int id, int64_t cell) {
     if (cells_[id] == cell) return;
     cells_[id] = cell;
     ++changes_;
   }
 
   std::vector<Signal> table_;
-  std::vector<SignalType> types_;     // by id: the type check without touching table_
+  std::vector<SignalType> types_;  // by id: the type check without touching table_
   struct Range {
     int64_t min = 0, max = 0;
   };
