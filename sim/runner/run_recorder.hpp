@@ -9,6 +9,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "common/output_file.hpp"
@@ -18,7 +19,7 @@ namespace vmt::sim {
 /// The trace's digest: same scene, same bytes, same digest.
 class Fnv1a64 {
  public:
-  void Add(const std::string& s) {
+  void Add(std::string_view s) {
     // In a local: the bytes are chars, which may alias the member, so a loop on the member
     // stores it back after every byte.
     uint64_t hash = hash_;
@@ -51,7 +52,7 @@ class RunRecorder {
   void Open(const std::string& out_dir);
   bool writing() const { return writing_; }
 
-  void Trace(const std::string& row) {
+  void Trace(std::string_view row) {
     digest_.Add(row);
     if (trace_file_) trace_file_->Write(row);  // checked at Flush and Close, not per row
   }

@@ -50,8 +50,9 @@ constexpr char kDigitPairs[] =
 // whose value has the bits it had in the row before is copied as it was written then.
 class RowWriter {
  public:
-  RowWriter(size_t fields, std::vector<TraceRowWriter::Field>& last) : last_(last) {
-    row_.resize(31 * fields + 1 + kSlack);
+  RowWriter(size_t fields, std::vector<TraceRowWriter::Field>& last, std::string& buffer)
+      : last_(last), row_(buffer) {
+    if (row_.size() < 31 * fields + 1 + kSlack) row_.resize(31 * fields + 1 + kSlack);
     p_ = row_.data();
     last_.resize(fields);
   }
@@ -61,10 +62,9 @@ class RowWriter {
     *p_++ = ',';
     Field(v == 0 ? 0.0 : v, 30);
   }
-  std::string Done() {
+  std::string_view Done() {
     *p_++ = '\n';
-    row_.resize(static_cast<size_t>(p_ - row_.data()));
-    return std::move(row_);
+    return {row_.data(), static_cast<size_t>(p_ - row_.data())};
   }
 
  private:
@@ -132,7 +132,7 @@ class RowWriter {
 
   std::vector<TraceRowWriter::Field>& last_;
   size_t field_ = 0;
-  std::string row_;
+  std::string& row_;  ///< at least the longest row long: never resized while written
   char* p_;
 };
 
@@ -154,15 +154,15 @@ std::string TraceHeader(const MachineModel& m, bool nc) {
 std::string TraceRow(double t, const MachineModel& m, const control::AmplifierTelegram& at,
                      const control::MasterTelegram& mdt, const std::vector<ClutchState>& clutches,
                      const control::channel::Channel* channel) {
-  return TraceRowWriter().Row(t, m, at, mdt, clutches, channel);
+  return std::string(TraceRowWriter().Row(t, m, at, mdt, clutches, channel));
 }
 
-std::string TraceRowWriter::Row(double t, const MachineModel& m,
-                                const control::AmplifierTelegram& at,
-                                const control::MasterTelegram& mdt,
-                                const std::vector<ClutchState>& clutches,
-                                const control::channel::Channel* channel) {
-  RowWriter row(1 + 5 * m.drives.size() + clutches.size() + 2, last_);
+std::string_view TraceRowWriter::Row(double t, const MachineModel& m,
+                                     const control::AmplifierTelegram& at,
+                                     const control::MasterTelegram& mdt,
+                                     const std::vector<ClutchState>& clutches,
+                                     const control::channel::Channel* channel) {
+  RowWriter row(1 + 5 * m.drives.size() + clutches.size() + 2, last_, buffer_);
   row.First(t);
   for (size_t d = 0; d < m.drives.size(); ++d) {
     const control::DriveFeedback& fb = at.feedback[d];

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "control/channel/channel.hpp"
@@ -27,9 +28,10 @@ std::string TraceRow(double t, const MachineModel& m, const control::AmplifierTe
 /// has the bits it had in the row before is copied as written then, not formatted again.
 class TraceRowWriter {
  public:
-  std::string Row(double t, const MachineModel& m, const control::AmplifierTelegram& at,
-                  const control::MasterTelegram& mdt, const std::vector<ClutchState>& clutches,
-                  const control::channel::Channel* channel);
+  /// The row, valid until the next: written into a buffer the writer keeps.
+  std::string_view Row(double t, const MachineModel& m, const control::AmplifierTelegram& at,
+                       const control::MasterTelegram& mdt, const std::vector<ClutchState>& clutches,
+                       const control::channel::Channel* channel);
 
   /// One field as last written: its value's bits and its text (at most 31 characters).
   struct Field {
@@ -40,6 +42,7 @@ class TraceRowWriter {
 
  private:
   std::vector<Field> last_;
+  std::string buffer_;
 };
 
 }  // namespace vmt::sim
